@@ -1,0 +1,399 @@
+//! Engine configuration: the machine the engine simulates. Deserialized from the `[machine]`,
+//! `[[axes]]` and `[io]` parts of an mcemu config file; every struct refuses unknown keys.
+//!
+//! Semantic checks (ranges, cross-field rules) happen in [`EngineConfig::validate`], which names
+//! the offending key path so the binary can say "file, key, reason".
+
+use std::collections::BTreeMap;
+
+use serde::{Deserialize, Serialize};
+
+use crate::param::{Access, ParamId};
+
+/// Shortest and longest servo period (ARCHITECTURE §3.1).
+pub const MIN_PERIOD: f64 = 62.5e-6;
+pub const MAX_PERIOD: f64 = 10e-3;
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EngineConfig {
+    /// Servo period in seconds, 62.5 µs … 10 ms.
+    #[serde(default = "default_period")]
+    pub period: f64,
+    /// Seed of every random process (encoder noise, injected faults).
+    #[serde(default)]
+    pub seed: u64,
+    #[serde(default)]
+    pub axes: Vec<AxisConfig>,
+    #[serde(default)]
+    pub io: IoConfig,
+}
+
+fn default_period() -> f64 {
+    1e-3
+}
+
+impl Default for EngineConfig {
+    fn default() -> Self {
+        EngineConfig {
+            period: default_period(),
+            seed: 0,
+            axes: Vec::new(),
+            io: IoConfig::default(),
+        }
+    }
+}
+
+/// One axis: its parameters (any row of the table) and its simulated hardware.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct AxisConfig {
+    pub name: Option<String>,
+    /// Slots of the command FIFO, the running command included (HMC: 64).
+    pub fifo_depth: Option<u16>,
+    /// Parameter values by name or vendor alias, e.g. `speed = 100.0`, `FELimit = 5`.
+    pub params: BTreeMap<ParamId, f64>,
+    pub pulse: PulseConfig,
+    pub encoder: EncoderConfig,
+    pub plant: PlantConfig,
+    pub switches: SwitchesConfig,
+}
+
+pub const DEFAULT_FIFO_DEPTH: u16 = 64;
+
+/// Pulse/direction output (ARCHITECTURE §3.2).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct PulseConfig {
+    /// Highest pulse frequency, Hz (HMC 2 MHz, CPU 226H 200 kHz). Faster commands are clamped
+    /// and the pulses owed are sent later.
+    pub max_frequency: f64,
+    /// Invert the direction output.
+    pub invert_direction: bool,
+}
+
+impl Default for PulseConfig {
+    fn default() -> Self {
+        PulseConfig {
+            max_frequency: 2e6,
+            invert_direction: false,
+        }
+    }
+}
+
+/// Incremental encoder (ARCHITECTURE §3.2).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct EncoderConfig {
+    /// Counts per motor revolution: the index (Z) pulse comes once per revolution. 0 = no index.
+    pub counts_per_rev: u32,
+    /// Width of the index pulse, counts.
+    pub index_width: u32,
+    /// Count offset of the index pulse within a revolution.
+    pub index_offset: u32,
+    /// Peak amplitude of uniform noise added to the count, counts (0 = none).
+    pub noise: f64,
+}
+
+impl Default for EncoderConfig {
+    fn default() -> Self {
+        EncoderConfig {
+            counts_per_rev: 10_000,
+            index_width: 1,
+            index_offset: 0,
+            noise: 0.0,
+        }
+    }
+}
+
+/// The drive and motor that turn the command into actual motion.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "model", rename_all = "snake_case", deny_unknown_fields)]
+pub enum PlantConfig {
+    /// Actual position = commanded position (after the pulse stage).
+    #[default]
+    Ideal,
+    /// First-order lag behind the command with this time constant, seconds.
+    Lag { time_constant: f64 },
+    /// The HMC closed position loop (HMC §2.1): the servo output (DAC counts, gains `kp` … `ko`,
+    /// dead band, clamp) commands an ideal velocity-mode drive.
+    PositionLoop {
+        /// Motor velocity at DAC output 32767, user units/s.
+        #[serde(default = "default_full_scale_velocity")]
+        full_scale_velocity: f64,
+        /// Velocity loop time constant of the drive, seconds (0 = instant).
+        #[serde(default)]
+        velocity_time_constant: f64,
+    },
+}
+
+fn default_full_scale_velocity() -> f64 {
+    1000.0
+}
+
+/// Limit and home switches, computed from the actual position.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SwitchesConfig {
+    /// Positive limit: active for actual position ≥ `position`.
+    pub limit_pos: Option<SwitchConfig>,
+    /// Negative limit: active for actual position ≤ `position`.
+    pub limit_neg: Option<SwitchConfig>,
+    pub home: Option<HomeSwitchConfig>,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SwitchConfig {
+    pub position: f64,
+    /// Ticks the raw level must be stable before the input follows it (debounce).
+    #[serde(default)]
+    pub filter: u32,
+}
+
+/// A home switch active on `[low, high]` (a cam). Leave one bound out for a switch that stays
+/// active to that side (CiA 402 "positive/negative home switch").
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HomeSwitchConfig {
+    #[serde(default = "neg_inf")]
+    pub low: f64,
+    #[serde(default = "pos_inf")]
+    pub high: f64,
+    #[serde(default)]
+    pub filter: u32,
+}
+
+fn neg_inf() -> f64 {
+    f64::NEG_INFINITY
+}
+fn pos_inf() -> f64 {
+    f64::INFINITY
+}
+
+/// Machine I/O images.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct IoConfig {
+    pub digital_inputs: u16,
+    pub digital_outputs: u16,
+    pub analog_inputs: u16,
+    pub analog_outputs: u16,
+    /// DI channels driven by an axis signal (the wiring of a switch to a general input).
+    pub bindings: Vec<InputBinding>,
+}
+
+impl Default for IoConfig {
+    fn default() -> Self {
+        IoConfig {
+            digital_inputs: 64,
+            digital_outputs: 64,
+            analog_inputs: 8,
+            analog_outputs: 8,
+            bindings: Vec::new(),
+        }
+    }
+}
+
+/// `di[channel]` follows `signal` of `axis`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct InputBinding {
+    pub channel: u16,
+    pub axis: u16,
+    pub signal: AxisSignal,
+}
+
+/// An axis signal that can be wired to a general input.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum AxisSignal {
+    LimitPos,
+    LimitNeg,
+    Home,
+    Index,
+    DriveAlarm,
+}
+
+/// A semantic config error: the key path (`axes[1].params.accel`) and why.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{key}: {reason}")]
+pub struct ConfigError {
+    pub key: String,
+    pub reason: String,
+}
+
+impl ConfigError {
+    pub fn new(key: impl Into<String>, reason: impl Into<String>) -> ConfigError {
+        ConfigError {
+            key: key.into(),
+            reason: reason.into(),
+        }
+    }
+}
+
+impl EngineConfig {
+    /// Check ranges and cross-field rules. Errors name the key path.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        if !(MIN_PERIOD..=MAX_PERIOD).contains(&self.period) {
+            return Err(ConfigError::new(
+                "period",
+                format!(
+                    "{} s is outside {MIN_PERIOD} … {MAX_PERIOD} s (62.5 µs … 10 ms)",
+                    self.period
+                ),
+            ));
+        }
+        for (i, axis) in self.axes.iter().enumerate() {
+            axis.validate(&format!("axes[{i}]"))?;
+        }
+        let io = &self.io;
+        for (i, b) in io.bindings.iter().enumerate() {
+            if b.channel >= io.digital_inputs {
+                return Err(ConfigError::new(
+                    format!("io.bindings[{i}].channel"),
+                    format!(
+                        "DI {} does not exist (digital_inputs = {})",
+                        b.channel, io.digital_inputs
+                    ),
+                ));
+            }
+            if b.axis as usize >= self.axes.len() {
+                return Err(ConfigError::new(
+                    format!("io.bindings[{i}].axis"),
+                    format!("axis {} does not exist ({} axes)", b.axis, self.axes.len()),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+impl AxisConfig {
+    fn validate(&self, key: &str) -> Result<(), ConfigError> {
+        if self.fifo_depth == Some(0) {
+            return Err(ConfigError::new(
+                format!("{key}.fifo_depth"),
+                "must be at least 1",
+            ));
+        }
+        for (id, value) in &self.params {
+            let def = id.def();
+            if def.access == Access::ReadOnly {
+                return Err(ConfigError::new(
+                    format!("{key}.params.{}", def.name),
+                    "is computed by the engine and cannot be configured",
+                ));
+            }
+            if let Err(e) = def.validate(*value) {
+                return Err(ConfigError::new(
+                    format!("{key}.params.{}", def.name),
+                    e.to_string(),
+                ));
+            }
+        }
+        let positive = |name: &str, v: f64| -> Result<(), ConfigError> {
+            if v.is_finite() && v > 0.0 {
+                Ok(())
+            } else {
+                Err(ConfigError::new(
+                    format!("{key}.{name}"),
+                    format!("{v} must be a positive number"),
+                ))
+            }
+        };
+        positive("pulse.max_frequency", self.pulse.max_frequency)?;
+        if !(self.encoder.noise.is_finite() && self.encoder.noise >= 0.0) {
+            return Err(ConfigError::new(
+                format!("{key}.encoder.noise"),
+                "must be a finite number ≥ 0",
+            ));
+        }
+        if self.encoder.counts_per_rev > 0 && self.encoder.index_width == 0 {
+            return Err(ConfigError::new(
+                format!("{key}.encoder.index_width"),
+                "must be at least 1 count when counts_per_rev is set",
+            ));
+        }
+        match &self.plant {
+            PlantConfig::Ideal => {}
+            PlantConfig::Lag { time_constant } => {
+                positive("plant.time_constant", *time_constant)?;
+            }
+            PlantConfig::PositionLoop {
+                full_scale_velocity,
+                velocity_time_constant,
+            } => {
+                positive("plant.full_scale_velocity", *full_scale_velocity)?;
+                if !(velocity_time_constant.is_finite() && *velocity_time_constant >= 0.0) {
+                    return Err(ConfigError::new(
+                        format!("{key}.plant.velocity_time_constant"),
+                        "must be a finite number ≥ 0",
+                    ));
+                }
+            }
+        }
+        let sw = &self.switches;
+        for (name, s) in [("limit_pos", &sw.limit_pos), ("limit_neg", &sw.limit_neg)] {
+            if let Some(s) = s {
+                if !s.position.is_finite() {
+                    return Err(ConfigError::new(
+                        format!("{key}.switches.{name}.position"),
+                        "must be a finite number",
+                    ));
+                }
+            }
+        }
+        if let (Some(p), Some(n)) = (&sw.limit_pos, &sw.limit_neg) {
+            if p.position <= n.position {
+                return Err(ConfigError::new(
+                    format!("{key}.switches.limit_pos.position"),
+                    format!(
+                        "{} must be above the negative limit at {}",
+                        p.position, n.position
+                    ),
+                ));
+            }
+        }
+        if let Some(h) = &sw.home {
+            if h.low.is_nan() || h.high.is_nan() || h.low > h.high || h.low == h.high {
+                return Err(ConfigError::new(
+                    format!("{key}.switches.home"),
+                    format!("low ({}) must be below high ({})", h.low, h.high),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn errors_name_the_key_path() {
+        let mut c = EngineConfig {
+            period: 0.02,
+            ..Default::default()
+        };
+        assert_eq!(c.validate().unwrap_err().key, "period");
+        c.period = 1e-3;
+        let mut axis = AxisConfig::default();
+        axis.params.insert(ParamId::Accel, -1.0);
+        c.axes.push(AxisConfig::default());
+        c.axes.push(axis);
+        let e = c.validate().unwrap_err();
+        assert_eq!(e.key, "axes[1].params.accel");
+        assert!(e.reason.contains("greater than 0"), "{}", e.reason);
+    }
+
+    #[test]
+    fn params_deserialize_by_alias() {
+        let c: AxisConfig =
+            serde_json::from_str(r#"{"params": {"Speed": 10.0, "FELimit": 3}}"#).unwrap();
+        assert_eq!(c.params[&ParamId::Speed], 10.0);
+        assert_eq!(c.params[&ParamId::FeLimit], 3.0);
+        assert!(serde_json::from_str::<AxisConfig>(r#"{"parms": {}}"#).is_err());
+    }
+}

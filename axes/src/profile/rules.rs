@@ -1,0 +1,1 @@
+//! Vendor profile rules as options of the generic planner.

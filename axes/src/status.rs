@@ -1,0 +1,194 @@
+//! The vendor-neutral axis status record (ARCHITECTURE §3.4) and the machine snapshot.
+//!
+//! Every vendor status word (HMC AxisStatus/LimitState, NMC `BIT_AXIS_*`, HIMC `Is*`, CPU 226H
+//! STATUS, CiA 402 statusword) is a pure function of [`AxisStatus`] plus the dialect's own
+//! latched bits; those functions live in the dialects.
+
+use serde::{Deserialize, Serialize};
+
+use crate::command::{CommandId, CommandKind, ErrorKind};
+
+/// PLCopen axis state.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum AxisState {
+    #[default]
+    Disabled,
+    Standstill,
+    Homing,
+    DiscreteMotion,
+    ContinuousMotion,
+    SynchronizedMotion,
+    Stopping,
+    ErrorStop,
+}
+
+impl AxisState {
+    /// snake_case name, as in traces and JSON.
+    pub const fn name(self) -> &'static str {
+        match self {
+            AxisState::Disabled => "disabled",
+            AxisState::Standstill => "standstill",
+            AxisState::Homing => "homing",
+            AxisState::DiscreteMotion => "discrete_motion",
+            AxisState::ContinuousMotion => "continuous_motion",
+            AxisState::SynchronizedMotion => "synchronized_motion",
+            AxisState::Stopping => "stopping",
+            AxisState::ErrorStop => "error_stop",
+        }
+    }
+}
+
+impl std::fmt::Display for AxisState {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+bitflags::bitflags! {
+    /// Axis flags. The same type carries the live flags and the latched faults.
+    #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+    #[serde(transparent)]
+    pub struct AxisFlags: u32 {
+        const ENABLED = 1 << 0;
+        /// The commanded position is changing.
+        const MOVING = 1 << 1;
+        /// Motion done and |following error| within the window for the window time.
+        const IN_POSITION = 1 << 2;
+        const HOMED = 1 << 3;
+        const HW_LIMIT_POS = 1 << 4;
+        const HW_LIMIT_NEG = 1 << 5;
+        const SW_LIMIT_POS = 1 << 6;
+        const SW_LIMIT_NEG = 1 << 7;
+        const HOME_SWITCH = 1 << 8;
+        const INDEX = 1 << 9;
+        /// |FE| over the limit at least once recently (auto-clearing, HMC AxisStatus bit 1).
+        const FE_WARNING = 1 << 10;
+        /// |FE| over the limit for `fe_fault_cycles` consecutive ticks (latched, HMC bit 0).
+        const FE_FAULT = 1 << 11;
+        const DRIVE_ALARM = 1 << 12;
+        const ESTOP = 1 << 13;
+        const CAPTURE_TRIGGERED = 1 << 14;
+        /// A parameter write was corrected (HMC AxisStatus bit 2, latched).
+        const PARAMETER_ERROR = 1 << 15;
+        const QUEUE_FULL = 1 << 16;
+        const IN_GROUP = 1 << 17;
+        const ENCODER_LOSS = 1 << 18;
+        /// Paused by `halt`, waiting for `resume`.
+        const HALTED = 1 << 19;
+        const HOMING_FAILED = 1 << 20;
+        /// The last motion command ended in an error or could not start (NMC BIT_AXIS_MVERR).
+        const MOTION_ERROR = 1 << 21;
+        /// Soft-limit parameters inconsistent: positive limit ≤ negative limit (HMC LimitState bit 4).
+        const SW_LIMIT_CONFIG = 1 << 22;
+        /// Both limits of one kind active at once (HMC LimitState bit 5).
+        const BOTH_LIMITS = 1 << 23;
+        /// Accelerating (|v| increasing) — HIMC IsAcc.
+        const ACCELERATING = 1 << 24;
+    }
+}
+
+impl std::fmt::Display for AxisFlags {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.is_empty() {
+            return f.write_str("none");
+        }
+        bitflags::parser::to_writer(self, f)
+    }
+}
+
+impl AxisFlags {
+    /// Faults that put the axis into ErrorStop while latched.
+    pub const ERROR_STOP_FAULTS: AxisFlags = AxisFlags::FE_FAULT
+        .union(AxisFlags::DRIVE_ALARM)
+        .union(AxisFlags::ESTOP)
+        .union(AxisFlags::ENCODER_LOSS)
+        .union(AxisFlags::HOMING_FAILED);
+
+    /// Flags that can be latched and must be cleared by `reset`.
+    pub const LATCHABLE: AxisFlags = AxisFlags::ERROR_STOP_FAULTS
+        .union(AxisFlags::PARAMETER_ERROR)
+        .union(AxisFlags::MOTION_ERROR)
+        .union(AxisFlags::HW_LIMIT_POS)
+        .union(AxisFlags::HW_LIMIT_NEG)
+        .union(AxisFlags::SW_LIMIT_POS)
+        .union(AxisFlags::SW_LIMIT_NEG);
+}
+
+/// A reference to the command at a FIFO position.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct CommandRef {
+    pub id: CommandId,
+    pub kind: CommandKind,
+}
+
+/// Everything a front-end may want to know about one axis, after one tick. `Copy` so that
+/// publishing a snapshot is a memcpy.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct AxisStatus {
+    pub state: AxisState,
+    /// Live flags (switch levels, motion, enable …) and latched faults.
+    pub flags: AxisFlags,
+    /// The subset of `flags` that is latched until a reset.
+    pub latched: AxisFlags,
+    /// Commanded (planned) position, user units (HMC DPos, NMC prfPos).
+    pub cmd_pos: f64,
+    pub cmd_vel: f64,
+    pub cmd_acc: f64,
+    /// Actual position from feedback, user units (HMC MPos, NMC encPos/Ke).
+    pub act_pos: f64,
+    pub act_vel: f64,
+    /// cmd_pos − act_pos (HMC FE).
+    pub following_error: f64,
+    /// Target of the running command (HMC EndPos).
+    pub target_pos: f64,
+    /// Pulse output counter (integer pulses, signed).
+    pub pulses: i64,
+    /// Pulses emitted in the last tick (HMC PulseNum, signed).
+    pub pulses_last_tick: i32,
+    /// Pulse frequency of the last tick, Hz, signed.
+    pub pulse_frequency: f64,
+    /// Direction output level (true = positive, before inversion).
+    pub direction: bool,
+    /// Encoder counter.
+    pub encoder_counts: i64,
+    /// Quadrature levels: bit 0 = A, bit 1 = B.
+    pub quadrature: u8,
+    /// Servo output of a closed position loop (HMC DACOut).
+    pub dac_out: f64,
+    /// Commands in the FIFO, the running one included.
+    pub fifo_len: u16,
+    pub current_command: Option<CommandRef>,
+    pub next_command: Option<CommandRef>,
+    /// Phase of a running homing, 0 when none (vendor maps refine it).
+    pub homing_phase: u8,
+    /// The error that ended the last command or the last refused command, if any.
+    pub last_error: Option<ErrorKind>,
+}
+
+/// Digital and analog I/O images of the machine.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct IoImage {
+    pub di: Vec<bool>,
+    pub do_: Vec<bool>,
+    pub ai: Vec<f64>,
+    pub ao: Vec<f64>,
+}
+
+/// The machine's state after a tick: what front-ends read without waiting for the servo thread.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Snapshot {
+    /// Ticks since start.
+    pub tick: u64,
+    /// Servo period, seconds.
+    pub period: f64,
+    pub axes: Vec<AxisStatus>,
+    pub io: IoImage,
+}
+
+impl Snapshot {
+    /// Engine time, seconds.
+    pub fn time(&self) -> f64 {
+        self.tick as f64 * self.period
+    }
+}
