@@ -107,28 +107,41 @@ impl Default for EncoderConfig {
 }
 
 /// The drive and motor that turn the command into actual motion.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "model", rename_all = "snake_case", deny_unknown_fields)]
-pub enum PlantConfig {
-    /// Actual position = commanded position (after the pulse stage).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PlantModel {
+    /// The motor follows its position command exactly.
     #[default]
     Ideal,
-    /// First-order lag behind the command with this time constant, seconds.
-    Lag { time_constant: f64 },
-    /// The HMC closed position loop (HMC §2.1): the servo output (DAC counts, gains `kp` … `ko`,
-    /// dead band, clamp) commands an ideal velocity-mode drive.
-    PositionLoop {
-        /// Motor velocity at DAC output 32767, user units/s.
-        #[serde(default = "default_full_scale_velocity")]
-        full_scale_velocity: f64,
-        /// Velocity loop time constant of the drive, seconds (0 = instant).
-        #[serde(default)]
-        velocity_time_constant: f64,
-    },
+    /// The motor follows its position command with a first-order lag (`time_constant`).
+    Lag,
+    /// The controller closes the HMC position loop (HMC §2.1 fig. 3: gains `kp` … `ko`, dead band,
+    /// DAC clamp) and drives a velocity-mode motor. Required by the closed-loop axis types (analog
+    /// servo 20, bus velocity 41/51).
+    PositionLoop,
 }
 
-fn default_full_scale_velocity() -> f64 {
-    1000.0
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct PlantConfig {
+    pub model: PlantModel,
+    /// Lag time constant, seconds (model `lag`).
+    pub time_constant: f64,
+    /// Motor velocity at servo output 32767, user units/s (model `position_loop`).
+    pub full_scale_velocity: f64,
+    /// Time constant of the drive's velocity loop, seconds, 0 = instant (model `position_loop`).
+    pub velocity_time_constant: f64,
+}
+
+impl Default for PlantConfig {
+    fn default() -> Self {
+        PlantConfig {
+            model: PlantModel::Ideal,
+            time_constant: 0.01,
+            full_scale_velocity: 1000.0,
+            velocity_time_constant: 0.0,
+        }
+    }
 }
 
 /// Limit and home switches, computed from the actual position.
@@ -315,23 +328,30 @@ impl AxisConfig {
                 "must be at least 1 count when counts_per_rev is set",
             ));
         }
-        match &self.plant {
-            PlantConfig::Ideal => {}
-            PlantConfig::Lag { time_constant } => {
-                positive("plant.time_constant", *time_constant)?;
-            }
-            PlantConfig::PositionLoop {
-                full_scale_velocity,
-                velocity_time_constant,
-            } => {
-                positive("plant.full_scale_velocity", *full_scale_velocity)?;
-                if !(velocity_time_constant.is_finite() && *velocity_time_constant >= 0.0) {
-                    return Err(ConfigError::new(
-                        format!("{key}.plant.velocity_time_constant"),
-                        "must be a finite number ≥ 0",
-                    ));
-                }
-            }
+        positive("plant.time_constant", self.plant.time_constant)?;
+        positive("plant.full_scale_velocity", self.plant.full_scale_velocity)?;
+        let vtc = self.plant.velocity_time_constant;
+        if !(vtc.is_finite() && vtc >= 0.0) {
+            return Err(ConfigError::new(
+                format!("{key}.plant.velocity_time_constant"),
+                "must be a finite number ≥ 0",
+            ));
+        }
+        let axis_type = self
+            .params
+            .get(&ParamId::AxisType)
+            .copied()
+            .unwrap_or(ParamId::AxisType.def().default);
+        let closed_loop = crate::hw::AxisClass::of(axis_type).is_closed_loop();
+        if closed_loop != (self.plant.model == PlantModel::PositionLoop) {
+            return Err(ConfigError::new(
+                format!("{key}.plant.model"),
+                if closed_loop {
+                    format!("axis type {axis_type} closes a position loop: the plant model must be `position_loop`")
+                } else {
+                    format!("`position_loop` needs a closed-loop axis type (20, 41 or 51), not {axis_type}")
+                },
+            ));
         }
         let sw = &self.switches;
         for (name, s) in [("limit_pos", &sw.limit_pos), ("limit_neg", &sw.limit_neg)] {

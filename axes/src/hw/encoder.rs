@@ -1,0 +1,214 @@
+//! Incremental encoder (ARCHITECTURE §3.2): physical motion → counts, A/B quadrature and an
+//! index (Z) pulse once per revolution; optional noise from the seeded RNG; loss of feedback.
+
+use crate::config::EncoderConfig;
+use crate::rng::Rng;
+
+/// Encoder of one axis.
+#[derive(Clone, Debug)]
+pub struct Encoder {
+    counts_per_unit: f64,
+    counts_per_rev: i64,
+    index_width: i64,
+    index_offset: i64,
+    noise: f64,
+    rng: Rng,
+    /// Counts of the true motor position; `origin`/`base` as in the pulse output, so a change of
+    /// scale never jumps.
+    raw: i64,
+    origin: f64,
+    base: i64,
+    /// What the controller reads: `raw` plus noise, frozen while the feedback is lost.
+    counts: i64,
+    lost: bool,
+}
+
+/// What happened on the encoder during one tick.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct EncoderTick {
+    /// Physical position of an index pulse passed during the tick (the first one in the
+    /// direction of travel).
+    pub index_at: Option<f64>,
+}
+
+impl Encoder {
+    pub fn new(config: &EncoderConfig, counts_per_unit: f64, position: f64, rng: Rng) -> Self {
+        Encoder {
+            counts_per_unit,
+            counts_per_rev: config.counts_per_rev as i64,
+            index_width: config.index_width.max(1) as i64,
+            index_offset: config.index_offset as i64,
+            noise: config.noise,
+            rng,
+            raw: 0,
+            origin: position,
+            base: 0,
+            counts: 0,
+            lost: false,
+        }
+    }
+
+    pub fn set_counts_per_unit(&mut self, counts_per_unit: f64, position: f64) {
+        self.base = self.raw;
+        self.origin = position;
+        self.counts_per_unit = counts_per_unit;
+    }
+
+    /// Feedback lost: the counter freezes while the motor may still move.
+    pub fn set_lost(&mut self, lost: bool) {
+        self.lost = lost;
+    }
+
+    fn counts_at(&self, position: f64) -> i64 {
+        (((position - self.origin) * self.counts_per_unit).round() as i64).saturating_add(self.base)
+    }
+
+    fn position_of(&self, counts: i64) -> f64 {
+        (counts - self.base) as f64 / self.counts_per_unit + self.origin
+    }
+
+    /// Follow the motor to `position` (physical, user units).
+    pub fn update(&mut self, position: f64) -> EncoderTick {
+        let previous = self.raw;
+        self.raw = self.counts_at(position);
+        let mut tick = EncoderTick::default();
+        if self.counts_per_rev > 0 && self.raw != previous {
+            // The index sits at counts ≡ index_offset (mod counts_per_rev). Find the first such
+            // count crossed in the direction of travel, whatever the speed.
+            let cpr = self.counts_per_rev;
+            let k = if self.raw > previous {
+                let n = (previous - self.index_offset).div_euclid(cpr) + 1;
+                n * cpr + self.index_offset
+            } else {
+                let n = (previous - 1 - self.index_offset).div_euclid(cpr);
+                n * cpr + self.index_offset
+            };
+            let crossed = if self.raw > previous {
+                k <= self.raw
+            } else {
+                k >= self.raw
+            };
+            if crossed {
+                tick.index_at = Some(self.position_of(k));
+            }
+        }
+        if !self.lost {
+            self.counts = self.raw;
+            if self.noise > 0.0 {
+                self.counts += (self.noise * self.rng.next_signed()).round() as i64;
+            }
+        }
+        tick
+    }
+
+    /// The counter the controller reads.
+    pub fn counts(&self) -> i64 {
+        self.counts
+    }
+
+    /// The position the counter stands for (physical frame, user units).
+    pub fn position(&self) -> f64 {
+        self.position_of(self.counts)
+    }
+
+    /// Index (Z) level: high for `index_width` counts once per revolution.
+    pub fn index(&self) -> bool {
+        self.counts_per_rev > 0
+            && (self.raw - self.index_offset).rem_euclid(self.counts_per_rev) < self.index_width
+    }
+
+    /// A/B levels: bit 0 = A, bit 1 = B; counting up steps 00 → 01 → 11 → 10 (A leads B).
+    pub fn quadrature(&self) -> u8 {
+        const STATES: [u8; 4] = [0b00, 0b01, 0b11, 0b10];
+        STATES[self.raw.rem_euclid(4) as usize]
+    }
+
+    /// Whether the encoder has an index pulse at all.
+    pub fn has_index(&self) -> bool {
+        self.counts_per_rev > 0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn encoder(cpr: u32, cpu: f64) -> Encoder {
+        let config = EncoderConfig {
+            counts_per_rev: cpr,
+            index_width: 1,
+            index_offset: 0,
+            noise: 0.0,
+        };
+        Encoder::new(&config, cpu, 0.0, Rng::new(1))
+    }
+
+    #[test]
+    fn hmc_ke_example_counts_to_degrees() {
+        // HMC §4.7.5: Ke = 360/8192 with Units = 1 ⇒ 8192 counts per 360 degrees.
+        let mut e = encoder(8192, 8192.0 / 360.0);
+        e.update(360.0);
+        assert_eq!(e.counts(), 8192);
+        assert!((e.position() - 360.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn index_found_at_every_revolution_even_when_fast() {
+        let mut e = encoder(1000, 1000.0); // one revolution per unit
+        assert_eq!(e.update(0.5).index_at, None);
+        assert_eq!(e.update(1.2).index_at, Some(1.0));
+        // Several revolutions in one tick: the first one crossed is reported.
+        assert_eq!(e.update(4.7).index_at, Some(2.0));
+        // Backwards.
+        assert_eq!(e.update(3.5).index_at, Some(4.0));
+        assert_eq!(e.update(3.2).index_at, None);
+        assert_eq!(e.update(-0.2).index_at, Some(3.0));
+        e.update(0.0);
+        assert!(e.index());
+        e.update(0.0005);
+        assert!(!e.index());
+    }
+
+    #[test]
+    fn quadrature_sequence_and_direction() {
+        let mut e = encoder(0, 1.0);
+        let mut seq = vec![];
+        for k in 0..5 {
+            e.update(k as f64);
+            seq.push(e.quadrature());
+        }
+        assert_eq!(seq, vec![0b00, 0b01, 0b11, 0b10, 0b00]);
+        e.update(-1.0);
+        assert_eq!(e.quadrature(), 0b10);
+    }
+
+    #[test]
+    fn loss_freezes_counts_and_noise_is_seeded() {
+        let mut e = encoder(0, 1.0);
+        e.update(10.0);
+        e.set_lost(true);
+        e.update(20.0);
+        assert_eq!(e.counts(), 10);
+        e.set_lost(false);
+        e.update(20.0);
+        assert_eq!(e.counts(), 20);
+
+        let noisy = EncoderConfig {
+            noise: 2.0,
+            ..EncoderConfig::default()
+        };
+        let run = |seed| {
+            let mut e = Encoder::new(&noisy, 1.0, 0.0, Rng::new(seed));
+            (0..100)
+                .map(|_| {
+                    e.update(50.0);
+                    e.counts()
+                })
+                .collect::<Vec<_>>()
+        };
+        let a = run(3);
+        assert_eq!(a, run(3));
+        assert!(a.iter().all(|c| (48..=52).contains(c)));
+        assert!(a.iter().any(|c| *c != 50));
+    }
+}
