@@ -159,6 +159,10 @@ pub struct SwitchesConfig {
 #[serde(deny_unknown_fields)]
 pub struct SwitchConfig {
     pub position: f64,
+    /// The sensor outputs low while actuated (normally-closed wiring). The controller's
+    /// `*_invert` parameter must match, or the input reads inverted — as on a real machine.
+    #[serde(default)]
+    pub active_low: bool,
     /// Ticks the raw level must be stable before the input follows it (debounce).
     #[serde(default)]
     pub filter: u32,
@@ -173,6 +177,8 @@ pub struct HomeSwitchConfig {
     pub low: f64,
     #[serde(default = "pos_inf")]
     pub high: f64,
+    #[serde(default)]
+    pub active_low: bool,
     #[serde(default)]
     pub filter: u32,
 }

@@ -1,2 +1,985 @@
-//! One axis: command FIFO, PLCopen state machine, limits, and the per-tick pipeline
+//! One axis: command FIFO, PLCopen state machine, limits, supervision, and the per-tick pipeline
 //! (ARCHITECTURE §3.3–§3.5).
+//!
+//! Frames. The *physical* frame is the motor's (power-on) frame: the plant, the pulse counter,
+//! the encoder and the switches live there. The *user* frame is what commands and status use:
+//! `cmd_pos = motor_cmd + cmd_offset`, `act_pos = encoder_pos + act_offset`. `set_position` and
+//! homing move the offsets, never the motor. Cyclic axes (`rep_mode` 1/2) are unwrapped
+//! internally and wrapped only where positions enter or leave the engine.
+//!
+//! Per tick ([`Axis::step`]): command source → smoothing → output stage (pulses / setpoint /
+//! servo loop) → plant → encoder → switches → supervision (limits, following error, alarms) →
+//! command progress (completion, homing, next command) → status record.
+
+mod commands;
+pub mod fifo;
+mod supervision;
+
+use crate::command::{
+    AxisIndex, CommandId, CommandKind, CommandState, Direction, ErrorKind, Setpoint, StopMode,
+};
+use crate::config::{AxisConfig, DEFAULT_FIFO_DEPTH};
+use crate::homing::Homing;
+use crate::hw::encoder::EncoderTick;
+use crate::hw::plant::{LoopGains, PlantInput};
+use crate::hw::switch::Edge;
+use crate::hw::{AxisClass, Encoder, HomeSwitch, LimitSwitch, Plant, PulseOutput};
+use crate::param::{ParamId, ParamSet, DEDICATED_INPUT};
+use crate::profile::{Goal, Limits, MotionState, MovingAverage, Options, Overshoot, Profile};
+use crate::rng::Rng;
+use crate::status::{AxisFlags, AxisState, AxisStatus, CommandRef};
+
+pub(crate) use commands::MotionRequest;
+pub use fifo::{Action, Fifo, Ledger, Overrides, Queued};
+
+/// What the engine lends an axis for one tick or one command.
+pub(crate) struct Context<'a> {
+    /// Ticks since start, after this tick when stepping.
+    pub tick: u64,
+    /// The machine's digital inputs (after forcing and bindings).
+    pub di: &'a [bool],
+    pub ledger: &'a mut Ledger,
+}
+
+/// Where the commanded motion comes from.
+#[derive(Clone, Copy, Debug)]
+enum Source {
+    /// Standing at `raw.p`.
+    Hold,
+    /// A planned profile: `raw` at tick n = `profile.sample((n − origin)·period)` + `shift`.
+    Profile {
+        profile: Profile,
+        origin: u64,
+        shift: f64,
+    },
+    /// Cyclic setpoints from a master (CiA 402 CSP/CSV/CST, HMC_SetDposVal).
+    External(Setpoint),
+}
+
+/// Why the axis decelerates to rest without a command owning the motion.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Ramp {
+    /// An explicit stop: new motion is refused until it is done (PLCopen MC_Stop).
+    Stop(StopMode),
+    /// The running command was cancelled (HMC_Cancel); queued commands continue afterwards.
+    Cancel,
+    /// A limit ended the running command; queued commands continue afterwards (HMC §3.3.5).
+    Limit(Direction),
+    /// A fault with a stop reaction.
+    Fault,
+}
+
+/// The goal of the running command.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Goal1 {
+    Position { target: f64 },
+    Velocity { velocity: f64 },
+    Homing,
+}
+
+#[derive(Clone, Debug)]
+struct Run {
+    id: CommandId,
+    kind: CommandKind,
+    goal: Goal1,
+    overrides: Overrides,
+    /// Tick at which the commanded position arrived (for `cmd_stop_mode` 1).
+    arrived_at: Option<u64>,
+    homing: Option<Box<Homing>>,
+}
+
+#[derive(Clone, Debug)]
+enum Activity {
+    Idle,
+    /// The FIFO head runs.
+    Running(Run),
+    Ramping(Ramp),
+    /// External setpoints.
+    Streaming,
+}
+
+/// Which physical input each logical input comes from, and what forced it.
+#[derive(Clone, Copy, Debug, Default)]
+struct Forces {
+    limit_pos: Option<bool>,
+    limit_neg: Option<bool>,
+    home: Option<bool>,
+    index: Option<bool>,
+    drive_alarm: Option<bool>,
+    encoder_loss: Option<bool>,
+}
+
+/// Logical input levels of this tick and the exact physical edges behind them.
+#[derive(Clone, Copy, Debug, Default)]
+struct Inputs {
+    limit_pos: bool,
+    limit_neg: bool,
+    home: bool,
+    index: bool,
+    drive_alarm: bool,
+    hold: bool,
+    home_edge: Option<Edge>,
+    limit_pos_edge: Option<Edge>,
+    limit_neg_edge: Option<Edge>,
+    index_at: Option<f64>,
+}
+
+/// One simulated axis.
+pub struct Axis {
+    index: AxisIndex,
+    name: String,
+    params: ParamSet,
+    class: AxisClass,
+    period: f64,
+
+    // Hardware (physical frame).
+    pulse: PulseOutput,
+    encoder: Encoder,
+    plant: Plant,
+    limit_pos_switch: Option<LimitSwitch>,
+    limit_neg_switch: Option<LimitSwitch>,
+    home_switch: Option<HomeSwitch>,
+    limit_pos_active_low: bool,
+    limit_neg_active_low: bool,
+    home_active_low: bool,
+    /// Motor position of a virtual axis (no plant).
+    virtual_motor: f64,
+    forces: Forces,
+    injected_fe: f64,
+
+    // Frames.
+    cmd_offset: f64,
+    act_offset: f64,
+
+    // Commanded motion (user frame, unwrapped).
+    source: Source,
+    /// Unsmoothed commanded state: what the planner plans from.
+    raw: MotionState,
+    raw_jerk: f64,
+    /// Commanded state after smoothing: what the output stage follows.
+    cmd: MotionState,
+    smoothing: Option<MovingAverage>,
+    act_pos: f64,
+    act_vel: f64,
+
+    // Commands.
+    fifo: Fifo,
+    activity: Activity,
+    halted: bool,
+    /// The id returned for the last zero-length buffered move, reused by the next one (HMC §10.7).
+    zero_length_id: Option<CommandId>,
+    /// The limits the running command was planned with, to notice live parameter changes.
+    planned_limits: Option<Limits>,
+    limits_dirty: bool,
+
+    // State.
+    enabled: bool,
+    flags: AxisFlags,
+    latched: AxisFlags,
+    /// Latched faults that hold the axis in ErrorStop.
+    blocking: AxisFlags,
+    inputs: Inputs,
+    fe_over: u32,
+    fe_ok: u32,
+    in_window_for: f64,
+    direction: f64,
+    last_error: Option<ErrorKind>,
+    homing_phase: u8,
+    target_pos: f64,
+    status: AxisStatus,
+}
+
+impl Axis {
+    pub fn new(index: AxisIndex, config: &AxisConfig, period: f64, rng: &Rng) -> Axis {
+        let mut params = ParamSet::default();
+        for (id, value) in &config.params {
+            params.set_unchecked(*id, *value);
+        }
+        // A configured rollover is the same as cyclic mode 1 (HIMC SetRollover).
+        if let Some(rollover) = config.params.get(&ParamId::Rollover) {
+            apply_rollover(&mut params, *rollover);
+        }
+        let class = AxisClass::of(params.get(ParamId::AxisType));
+        let pulses_per_unit = pulses_per_unit(&params);
+        let counts_per_unit = counts_per_unit(&params);
+        let sw = &config.switches;
+        let smoothing = smoothing_window(params.get(ParamId::SmoothTime), period);
+        let mut axis = Axis {
+            index,
+            name: config
+                .name
+                .clone()
+                .unwrap_or_else(|| format!("axis{index}")),
+            class,
+            period,
+            pulse: PulseOutput::new(pulses_per_unit, config.pulse.max_frequency, period, 0.0),
+            encoder: Encoder::new(
+                &config.encoder,
+                counts_per_unit,
+                0.0,
+                rng.fork(index as u64),
+            ),
+            plant: Plant::new(&config.plant, period, 0.0),
+            limit_pos_switch: sw
+                .limit_pos
+                .as_ref()
+                .map(|s| LimitSwitch::new(s, true, 0.0)),
+            limit_neg_switch: sw
+                .limit_neg
+                .as_ref()
+                .map(|s| LimitSwitch::new(s, false, 0.0)),
+            home_switch: sw.home.as_ref().map(|s| HomeSwitch::new(s, 0.0)),
+            limit_pos_active_low: sw.limit_pos.as_ref().is_some_and(|s| s.active_low),
+            limit_neg_active_low: sw.limit_neg.as_ref().is_some_and(|s| s.active_low),
+            home_active_low: sw.home.as_ref().is_some_and(|s| s.active_low),
+            virtual_motor: 0.0,
+            forces: Forces::default(),
+            injected_fe: 0.0,
+            cmd_offset: 0.0,
+            act_offset: 0.0,
+            source: Source::Hold,
+            raw: MotionState::default(),
+            raw_jerk: 0.0,
+            cmd: MotionState::default(),
+            smoothing: smoothing.map(MovingAverage::new),
+            act_pos: 0.0,
+            act_vel: 0.0,
+            fifo: Fifo::new(config.fifo_depth.unwrap_or(DEFAULT_FIFO_DEPTH)),
+            activity: Activity::Idle,
+            halted: false,
+            zero_length_id: None,
+            planned_limits: None,
+            limits_dirty: false,
+            enabled: false,
+            flags: AxisFlags::empty(),
+            latched: AxisFlags::empty(),
+            blocking: AxisFlags::empty(),
+            inputs: Inputs::default(),
+            fe_over: 0,
+            fe_ok: 0,
+            in_window_for: 0.0,
+            direction: 1.0,
+            last_error: None,
+            homing_phase: 0,
+            target_pos: 0.0,
+            status: AxisStatus::default(),
+            params,
+        };
+        if let Some(f) = axis.smoothing.as_mut() {
+            f.reset(0.0);
+        }
+        axis.refresh_inputs(0.0, 0.0, &[], EncoderTick::default());
+        axis.publish();
+        axis
+    }
+
+    pub fn index(&self) -> AxisIndex {
+        self.index
+    }
+
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    pub fn status(&self) -> &AxisStatus {
+        &self.status
+    }
+
+    pub fn params(&self) -> &ParamSet {
+        &self.params
+    }
+
+    /// Physical motor position (for traces and tests; the user frame is in the status).
+    pub fn motor_position(&self) -> f64 {
+        match self.class {
+            AxisClass::Virtual => self.virtual_motor,
+            _ => self.plant.position(),
+        }
+    }
+
+    pub fn fifo(&self) -> &Fifo {
+        &self.fifo
+    }
+
+    /// State of a command that is still in this axis's FIFO.
+    pub(crate) fn queued_state(&self, id: CommandId) -> Option<CommandState> {
+        let pos = self.fifo.position_of(id)?;
+        let running = matches!(&self.activity, Activity::Running(r) if r.id == id);
+        Some(if pos == 0 && running {
+            CommandState::Running
+        } else {
+            CommandState::Waiting
+        })
+    }
+
+    fn param(&self, id: ParamId) -> f64 {
+        self.params.get(id)
+    }
+
+    fn flag(&self, id: ParamId) -> bool {
+        self.params.flag(id)
+    }
+
+    fn finite_travel(&self) -> bool {
+        self.param(ParamId::RepMode) == 0.0
+    }
+
+    // ------------------------------------------------------------------ per tick
+
+    /// Advance one servo period.
+    pub(crate) fn step(&mut self, ctx: &mut Context) {
+        let dt = self.period;
+        if self.limits_dirty {
+            self.limits_dirty = false;
+            self.replan_for_new_limits(ctx.tick);
+        }
+
+        // 1. Command source.
+        let profile_done = self.advance_source(ctx.tick);
+
+        // 2. Smoothing (NMC smoothCoef / HIMC SMTime).
+        let previous = self.cmd;
+        if let Some(filter) = self.smoothing.as_mut() {
+            let p = filter.next(self.raw.p);
+            let v = (p - previous.p) / dt;
+            self.cmd = MotionState {
+                p,
+                v,
+                a: (v - previous.v) / dt,
+            };
+        } else {
+            self.cmd = self.raw;
+        }
+
+        // 3–5. Output stage, plant, encoder.
+        let motor_before = self.motor_position();
+        let encoder_tick = self.drive_motor();
+        let motor_after = self.motor_position();
+
+        // 6. Switches and inputs.
+        self.refresh_inputs(motor_before, motor_after, ctx.di, encoder_tick);
+
+        // Disabled: the command follows the actual position (PLCopen), so nothing jumps on enable.
+        if !self.enabled {
+            self.track_actual();
+        }
+
+        // 7. Supervision.
+        self.supervise(ctx);
+
+        // 8. Command progress.
+        self.progress(ctx, profile_done);
+
+        // 9. Status.
+        self.update_in_position();
+        self.publish();
+    }
+
+    /// Sample the command source for this tick. Returns whether a profile reached its goal.
+    fn advance_source(&mut self, tick: u64) -> bool {
+        let dt = self.period;
+        match self.source {
+            Source::Hold => {
+                self.raw.v = 0.0;
+                self.raw.a = 0.0;
+                self.raw_jerk = 0.0;
+                false
+            }
+            Source::Profile {
+                profile,
+                origin,
+                shift,
+            } => {
+                let t = tick.saturating_sub(origin) as f64 * dt;
+                let s = profile.sample(t);
+                self.raw = MotionState {
+                    p: s.p + shift,
+                    v: s.v,
+                    a: s.a,
+                };
+                self.raw_jerk = s.j;
+                t >= profile.duration()
+            }
+            Source::External(setpoint) => {
+                let before = self.raw;
+                match setpoint {
+                    Setpoint::Position { position } => {
+                        self.raw.p = position;
+                        self.raw.v = (position - before.p) / dt;
+                    }
+                    Setpoint::Velocity { velocity } => {
+                        self.raw.v = velocity;
+                        self.raw.p += velocity * dt;
+                    }
+                    Setpoint::Torque { torque } => {
+                        // Rated torque accelerates at `accel` (or `max_accel`); the motor speed is
+                        // capped at `speed` (or `max_velocity`), as a drive's 0x6080 would.
+                        let rated =
+                            nonzero_or(self.param(ParamId::MaxAccel), self.param(ParamId::Accel));
+                        let vmax = nonzero_or(
+                            self.param(ParamId::MaxVelocity),
+                            self.param(ParamId::Speed),
+                        );
+                        let v = (before.v + torque * rated * dt).clamp(-vmax, vmax);
+                        self.raw.v = v;
+                        self.raw.p += v * dt;
+                    }
+                }
+                self.raw.a = (self.raw.v - before.v) / dt;
+                false
+            }
+        }
+    }
+
+    /// Output stage, plant and encoder for the commanded position of this tick.
+    fn drive_motor(&mut self) -> EncoderTick {
+        let motor_cmd = self.cmd.p - self.cmd_offset;
+        let enabled = self.enabled;
+        match self.class {
+            AxisClass::Virtual => {
+                if enabled {
+                    self.virtual_motor = motor_cmd;
+                }
+                let tick = self.encoder.update(self.virtual_motor);
+                // HMC §2.3: a virtual axis has MPos = DPos exactly, without encoder quantisation.
+                let previous = self.act_pos;
+                self.act_pos = self.virtual_motor + self.act_offset + self.injected_fe_sign();
+                self.act_vel = (self.act_pos - previous) / self.period;
+                return tick;
+            }
+            AxisClass::Unused => return EncoderTick::default(),
+            _ => {}
+        }
+        let position = if self.class == AxisClass::Stepper && enabled {
+            self.pulse.update(motor_cmd);
+            self.pulse.position()
+        } else {
+            motor_cmd
+        };
+        let input = PlantInput {
+            position,
+            velocity: self.cmd.v,
+            acceleration: self.cmd.a,
+            measured_position: self.encoder.position(),
+            measured_velocity: self.act_vel,
+            enabled: enabled && self.class != AxisClass::EncoderOnly,
+        };
+        let gains = self.loop_gains();
+        self.plant.update(&input, &gains);
+        let tick = self.encoder.update(self.plant.position());
+        let previous = self.act_pos;
+        self.act_pos = self.encoder.position() + self.act_offset + self.injected_fe_sign();
+        self.act_vel = (self.act_pos - previous) / self.period;
+        tick
+    }
+
+    /// An injected following error shows as the actual position lagging the command.
+    fn injected_fe_sign(&self) -> f64 {
+        -self.injected_fe
+    }
+
+    fn loop_gains(&self) -> LoopGains {
+        let p = &self.params;
+        LoopGains {
+            kp: p.get(ParamId::Kp),
+            ki: p.get(ParamId::Ki),
+            kd: p.get(ParamId::Kd),
+            kov: p.get(ParamId::Kov),
+            kvff: p.get(ParamId::Kvff),
+            kaff: p.get(ParamId::Kaff),
+            ko: p.get(ParamId::Ko),
+            dac_high: p.get(ParamId::DacLimitHigh),
+            dac_low: p.get(ParamId::DacLimitLow),
+            pos_offset: p.get(ParamId::PosOffset),
+            neg_offset: p.get(ParamId::NegOffset),
+            zero_window: p.get(ParamId::ZeroWindow),
+            open_loop_dac: (!p.flag(ParamId::ServoLoop)).then(|| p.get(ParamId::Dac)),
+        }
+    }
+
+    /// While disabled (or open-loop), the commanded position follows the actual one.
+    fn track_actual(&mut self) {
+        let p = self.act_pos;
+        self.raw = MotionState { p, v: 0.0, a: 0.0 };
+        self.cmd = self.raw;
+        self.cmd_offset = p - self.motor_position();
+        self.source = Source::Hold;
+        if let Some(f) = self.smoothing.as_mut() {
+            f.reset(p);
+        }
+        if self.class == AxisClass::Stepper {
+            // Re-base the pulse counter so enabling emits no catch-up burst.
+            self.pulse
+                .set_pulses_per_unit(pulses_per_unit(&self.params), self.motor_position());
+        }
+    }
+
+    /// Compute the logical input levels from the switches, forcing, routing and inversion.
+    fn refresh_inputs(&mut self, from: f64, to: f64, di: &[bool], encoder: EncoderTick) {
+        let (mut lp, mut lp_edge) = (false, None);
+        if let Some(s) = self.limit_pos_switch.as_mut() {
+            (lp, lp_edge) = s.update(from, to);
+        }
+        let (mut ln, mut ln_edge) = (false, None);
+        if let Some(s) = self.limit_neg_switch.as_mut() {
+            (ln, ln_edge) = s.update(from, to);
+        }
+        let (mut home, mut home_edge) = (false, None);
+        if let Some(s) = self.home_switch.as_mut() {
+            (home, home_edge) = s.update(from, to);
+        }
+        let f = self.forces;
+        // Forcing sets the switch's actuation, which then goes through the same wiring.
+        let lp_level = f.limit_pos.unwrap_or(lp) ^ self.limit_pos_active_low;
+        let ln_level = f.limit_neg.unwrap_or(ln) ^ self.limit_neg_active_low;
+        let home_level = f.home.unwrap_or(home) ^ self.home_active_low;
+        let route = |param: f64, own: bool| -> Option<bool> {
+            if param == DEDICATED_INPUT {
+                Some(own)
+            } else if param < 0.0 {
+                None
+            } else {
+                Some(di.get(param as usize).copied().unwrap_or(false))
+            }
+        };
+        let to_user = |e: Edge, offset: f64| Edge {
+            position: e.position + offset,
+            rising: e.rising,
+        };
+        let offset = self.act_offset;
+        let invert = |v: bool, p: ParamId| v ^ self.params.flag(p);
+        let limit_pos = route(self.param(ParamId::FhLimitIn), lp_level)
+            .map(|v| invert(v, ParamId::LimitPosInvert));
+        let limit_neg = route(self.param(ParamId::RhLimitIn), ln_level)
+            .map(|v| invert(v, ParamId::LimitNegInvert));
+        let home_in =
+            route(self.param(ParamId::HomeIn), home_level).map(|v| invert(v, ParamId::HomeInvert));
+        let hold = {
+            let ch = self.param(ParamId::HoldIn);
+            ch >= 0.0 && di.get(ch as usize).copied().unwrap_or(false)
+        };
+        let alarm = f.drive_alarm.unwrap_or(false) ^ self.flag(ParamId::DriveAlarmInvert);
+        let dedicated = |p: ParamId| self.param(p) == DEDICATED_INPUT;
+        self.inputs = Inputs {
+            limit_pos: limit_pos.unwrap_or(false),
+            limit_neg: limit_neg.unwrap_or(false),
+            home: home_in.unwrap_or(false),
+            index: f.index.unwrap_or_else(|| self.encoder.index()),
+            drive_alarm: alarm && self.flag(ParamId::DriveAlarmEnable),
+            hold,
+            home_edge: home_edge
+                .filter(|_| dedicated(ParamId::HomeIn) && f.home.is_none())
+                .map(|e| to_user(e, offset)),
+            limit_pos_edge: lp_edge
+                .filter(|_| dedicated(ParamId::FhLimitIn) && f.limit_pos.is_none())
+                .map(|e| to_user(e, offset)),
+            limit_neg_edge: ln_edge
+                .filter(|_| dedicated(ParamId::RhLimitIn) && f.limit_neg.is_none())
+                .map(|e| to_user(e, offset)),
+            index_at: encoder.index_at.map(|p| p + offset),
+        };
+        self.encoder.set_lost(f.encoder_loss.unwrap_or(false));
+    }
+
+    /// Which inputs exist, for homing.
+    fn has_input(&self, p: ParamId, own: bool) -> bool {
+        let v = self.param(p);
+        if v == DEDICATED_INPUT {
+            own
+        } else {
+            v >= 0.0
+        }
+    }
+
+    // ------------------------------------------------------------------ planning
+
+    /// The limits a command plans with: its overrides, else the axis parameters, with the
+    /// velocity override, hold input, caps and vendor rules applied.
+    fn limits_for(&self, o: &Overrides) -> Limits {
+        let p = &self.params;
+        let speed = o.velocity.unwrap_or(p.get(ParamId::Speed));
+        let start = p.get(ParamId::StartVelocity);
+        // CPU 226H tip 3 / HIMC SetAccTime: a ramp time gives the acceleration.
+        let from_time = |time: f64, fallback: f64| {
+            if time > 0.0 {
+                ((speed - start).max(0.0) / time).max(f64::MIN_POSITIVE)
+            } else {
+                fallback
+            }
+        };
+        let mut acceleration = o
+            .acceleration
+            .unwrap_or_else(|| from_time(p.get(ParamId::AccelTime), p.get(ParamId::Accel)));
+        let mut deceleration = o
+            .deceleration
+            .unwrap_or_else(|| from_time(p.get(ParamId::DecelTime), p.get(ParamId::Decel)));
+        let cap = p.get(ParamId::MaxAccel);
+        if cap > 0.0 {
+            acceleration = acceleration.min(cap);
+            deceleration = deceleration.min(cap);
+        }
+        let mut velocity = speed * p.get(ParamId::VelScale) / 100.0;
+        let vmax = p.get(ParamId::MaxVelocity);
+        if vmax > 0.0 {
+            velocity = velocity.min(vmax);
+        }
+        if self.inputs.hold {
+            // HMC_HoldConfig: while the hold input is on, run at HoldSpeed (0 = pause).
+            velocity = velocity.min(p.get(ParamId::HoldSpeed));
+        }
+        let jerk = match o.jerk {
+            Some(j) if j > 0.0 => j,
+            Some(_) => f64::INFINITY,
+            None if p.flag(ParamId::JerkMode) => p.get(ParamId::Jerk),
+            None => f64::INFINITY,
+        };
+        Limits {
+            velocity,
+            acceleration,
+            deceleration,
+            jerk,
+        }
+    }
+
+    fn options(&self) -> Options {
+        Options {
+            start_velocity: self.param(ParamId::StartVelocity),
+            overshoot: if self.param(ParamId::OvershootMode) == 1.0 {
+                Overshoot::JumpToZeroAtTarget
+            } else {
+                Overshoot::Reverse
+            },
+        }
+    }
+
+    /// Plan from the current raw state towards `goal`. A zero velocity limit (velocity override
+    /// 0 %, hold speed 0, CPU 226H MAX_SPEED 0) plans a stop and keeps the goal for later.
+    fn plan(
+        &mut self,
+        tick: u64,
+        goal: Goal,
+        limits: Limits,
+    ) -> Result<(), crate::profile::PlanError> {
+        let mut goal = goal;
+        let mut limits = limits;
+        if limits.velocity <= 0.0 {
+            goal = Goal::Velocity { target: 0.0 };
+            limits.velocity = f64::MIN_POSITIVE.max(self.raw.v.abs());
+        }
+        let mut options = self.options();
+        if let Goal::Position { target, .. } = goal {
+            if let Goal::Position { .. } = goal {
+                goal = Goal::Position {
+                    target,
+                    end_velocity: self.param(ParamId::EndVelocity).min(limits.velocity),
+                };
+            }
+        } else {
+            options.start_velocity = 0.0;
+        }
+        let profile = Profile::plan(self.raw, goal, &limits, &options)?;
+        self.source = Source::Profile {
+            profile,
+            origin: tick,
+            shift: 0.0,
+        };
+        Ok(())
+    }
+
+    /// Plan a ramp to rest with deceleration `decel`.
+    fn plan_stop(&mut self, tick: u64, decel: f64) {
+        if self.raw.v == 0.0 && self.raw.a == 0.0 {
+            self.source = Source::Hold;
+            return;
+        }
+        let jerk = if self.flag(ParamId::JerkMode) {
+            self.param(ParamId::Jerk)
+        } else {
+            f64::INFINITY
+        };
+        let limits = Limits {
+            velocity: self.raw.v.abs().max(f64::MIN_POSITIVE),
+            acceleration: decel,
+            deceleration: decel,
+            jerk,
+        };
+        let options = Options::default();
+        self.source =
+            match Profile::plan(self.raw, Goal::Velocity { target: 0.0 }, &limits, &options) {
+                Ok(profile) => Source::Profile {
+                    profile,
+                    origin: tick,
+                    shift: 0.0,
+                },
+                // Limits come from validated parameters; if planning still fails, stop dead rather
+                // than leave the axis without a setpoint (Reflexxes-style fallback).
+                Err(_) => Source::Hold,
+            };
+    }
+
+    /// Stop at once: velocity jumps to zero.
+    fn stop_immediately(&mut self) {
+        self.raw.v = 0.0;
+        self.raw.a = 0.0;
+        self.source = Source::Hold;
+    }
+
+    fn limit_decel(&self) -> f64 {
+        let fast = self.param(ParamId::FastDecel);
+        if self.param(ParamId::LimitDecelMode) == 1.0 {
+            // HMC §3.3.5: Max(FastDecel, Decel).
+            fast.max(self.param(ParamId::Decel))
+        } else {
+            fast
+        }
+    }
+
+    /// The goal of `run` as a planner goal, given the current state.
+    fn run_goal(run: &Run) -> Option<Goal> {
+        match run.goal {
+            Goal1::Position { target } => Some(Goal::Position {
+                target,
+                end_velocity: 0.0,
+            }),
+            Goal1::Velocity { velocity } => Some(Goal::Velocity { target: velocity }),
+            Goal1::Homing => None,
+        }
+    }
+
+    /// A live parameter change (speed, accel, …, override, hold) re-plans the running command
+    /// from where it is (HMC §2.4: "takes effect immediately").
+    fn replan_for_new_limits(&mut self, tick: u64) {
+        if self.halted {
+            return;
+        }
+        let Activity::Running(run) = &self.activity else {
+            return;
+        };
+        let Some(goal) = Self::run_goal(run) else {
+            return;
+        };
+        let limits = self.limits_for(&run.overrides);
+        if self.planned_limits == Some(limits) {
+            return;
+        }
+        if matches!(self.source, Source::Hold)
+            && matches!(goal, Goal::Position { target, .. } if target == self.raw.p)
+        {
+            return;
+        }
+        self.planned_limits = Some(limits);
+        let _ = self.plan(tick, goal, limits);
+    }
+
+    // ------------------------------------------------------------------ status
+
+    fn moving(&self) -> bool {
+        self.cmd.v != 0.0
+            || match self.source {
+                Source::Hold => false,
+                Source::Profile { profile, .. } => profile.duration() > 0.0,
+                Source::External(_) => true,
+            } && !self.source_at_rest()
+    }
+
+    fn source_at_rest(&self) -> bool {
+        self.raw.v == 0.0 && self.raw.a == 0.0
+    }
+
+    fn update_in_position(&mut self) {
+        let fe = (self.cmd.p - self.act_pos).abs();
+        if fe <= self.param(ParamId::InPositionWindow) {
+            self.in_window_for += self.period;
+        } else {
+            self.in_window_for = 0.0;
+        }
+    }
+
+    pub(crate) fn state(&self) -> AxisState {
+        if !self.blocking.is_empty() {
+            return AxisState::ErrorStop;
+        }
+        if !self.enabled {
+            return AxisState::Disabled;
+        }
+        match &self.activity {
+            Activity::Idle => AxisState::Standstill,
+            Activity::Running(run) => match run.goal {
+                Goal1::Homing => AxisState::Homing,
+                Goal1::Velocity { .. } => AxisState::ContinuousMotion,
+                Goal1::Position { .. } => AxisState::DiscreteMotion,
+            },
+            Activity::Ramping(_) => AxisState::Stopping,
+            Activity::Streaming => AxisState::SynchronizedMotion,
+        }
+    }
+
+    /// Wrap a user-frame position into the cyclic range (HMC §2.3 RepMode).
+    fn wrap(&self, p: f64) -> f64 {
+        let dist = self.param(ParamId::RepDist);
+        match self.param(ParamId::RepMode) as i64 {
+            1 => p.rem_euclid(dist),
+            2 => (p + dist).rem_euclid(2.0 * dist) - dist,
+            _ => p,
+        }
+    }
+
+    fn publish(&mut self) {
+        let mut flags = self.flags;
+        flags.set(AxisFlags::ENABLED, self.enabled);
+        let moving = self.moving();
+        flags.set(AxisFlags::MOVING, moving);
+        let running_done =
+            !matches!(self.activity, Activity::Running(_) | Activity::Streaming) || self.halted;
+        flags.set(
+            AxisFlags::IN_POSITION,
+            self.enabled
+                && running_done
+                && !moving
+                && self.in_window_for >= self.param(ParamId::InPositionTime),
+        );
+        flags.set(AxisFlags::HOME_SWITCH, self.inputs.home);
+        flags.set(AxisFlags::INDEX, self.inputs.index);
+        flags.set(AxisFlags::HALTED, self.halted);
+        flags.set(AxisFlags::QUEUE_FULL, self.fifo.is_full());
+        flags.set(
+            AxisFlags::ACCELERATING,
+            self.cmd.v * self.cmd.a > 0.0 && moving,
+        );
+        flags |= self.latched;
+        let current = match &self.activity {
+            Activity::Running(r) => Some(CommandRef {
+                id: r.id,
+                kind: r.kind,
+            }),
+            _ => None,
+        };
+        let next_index = usize::from(current.is_some());
+        let next = self.fifo.get(next_index).map(|q| CommandRef {
+            id: q.id,
+            kind: q.kind,
+        });
+        let (pulses, last, freq, dir) = if self.class == AxisClass::Stepper {
+            (
+                self.pulse.count(),
+                self.pulse.last_tick(),
+                self.pulse.frequency(),
+                self.pulse.direction(),
+            )
+        } else {
+            (0, 0, 0.0, self.direction >= 0.0)
+        };
+        let cmd_pos = self.wrap(self.cmd.p);
+        let act_pos = self.wrap(self.act_pos);
+        self.status = AxisStatus {
+            state: self.state(),
+            flags,
+            latched: self.latched,
+            cmd_pos,
+            cmd_vel: self.cmd.v,
+            cmd_acc: self.cmd.a,
+            act_pos,
+            act_vel: self.act_vel,
+            following_error: self.cmd.p - self.act_pos,
+            target_pos: self.wrap(self.target_pos),
+            pulses,
+            pulses_last_tick: last,
+            pulse_frequency: freq,
+            direction: dir,
+            encoder_counts: self.encoder.counts(),
+            quadrature: self.encoder.quadrature(),
+            dac_out: self.plant.dac_out(),
+            fifo_len: self.fifo.len() as u16,
+            current_command: current,
+            next_command: next,
+            homing_phase: self.homing_phase,
+            last_error: self.last_error,
+        };
+    }
+}
+
+fn nonzero_or(value: f64, fallback: f64) -> f64 {
+    if value > 0.0 {
+        value
+    } else {
+        fallback
+    }
+}
+
+/// Pulses per user unit: units × Ks (HMC §4.7.6).
+pub(crate) fn pulses_per_unit(p: &ParamSet) -> f64 {
+    p.get(ParamId::Units) * p.get(ParamId::KsNumerator) / p.get(ParamId::KsDenominator)
+}
+
+/// Counts per user unit: units / Ke, following the HMC examples (digest 000 §9 item 9).
+pub(crate) fn counts_per_unit(p: &ParamSet) -> f64 {
+    p.get(ParamId::Units) * p.get(ParamId::KeDenominator) / p.get(ParamId::KeNumerator)
+}
+
+/// Moving-average window in ticks for a smoothing time, `None` when off.
+fn smoothing_window(seconds: f64, period: f64) -> Option<usize> {
+    let n = (seconds / period).round() as usize;
+    (n > 1).then_some(n)
+}
+
+/// HIMC SetRollover: > 0 = cyclic [0, rollover); 0 = finite.
+pub(crate) fn apply_rollover(params: &mut ParamSet, rollover: f64) {
+    params.set_unchecked(ParamId::Rollover, rollover);
+    if rollover > 0.0 {
+        params.set_unchecked(ParamId::RepMode, 1.0);
+        params.set_unchecked(ParamId::RepDist, rollover);
+    } else {
+        params.set_unchecked(ParamId::RepMode, 0.0);
+    }
+}
+
+/// The HMC-layout axis status word (`axis_status`, HMC §3.3 table 2).
+pub(crate) fn status_word(flags: AxisFlags) -> u32 {
+    let mut w = 0;
+    if flags.contains(AxisFlags::FE_FAULT) {
+        w |= 1;
+    }
+    if flags.contains(AxisFlags::FE_WARNING) {
+        w |= 2;
+    }
+    if flags.contains(AxisFlags::PARAMETER_ERROR) {
+        w |= 4;
+    }
+    if flags.intersects(
+        AxisFlags::HW_LIMIT_POS
+            | AxisFlags::HW_LIMIT_NEG
+            | AxisFlags::SW_LIMIT_POS
+            | AxisFlags::SW_LIMIT_NEG,
+    ) {
+        w |= 8;
+    }
+    w
+}
+
+/// The HMC-layout limit state (`limit_state`, HMC §3.3).
+pub(crate) fn limit_state(flags: AxisFlags) -> u32 {
+    let mut w = 0;
+    for (flag, bit) in [
+        (AxisFlags::HW_LIMIT_POS, 1),
+        (AxisFlags::HW_LIMIT_NEG, 2),
+        (AxisFlags::SW_LIMIT_POS, 4),
+        (AxisFlags::SW_LIMIT_NEG, 8),
+        (AxisFlags::SW_LIMIT_CONFIG, 16),
+        (AxisFlags::BOTH_LIMITS, 32),
+    ] {
+        if flags.contains(flag) {
+            w |= bit;
+        }
+    }
+    w
+}
+
+impl std::fmt::Debug for Axis {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Axis")
+            .field("index", &self.index)
+            .field("name", &self.name)
+            .field("status", &self.status)
+            .finish_non_exhaustive()
+    }
+}

@@ -20,3 +20,19 @@ pub enum HomingError {
     #[error("method {method} is not a supported homing method")]
     UnsupportedMethod { method: i16 },
 }
+
+/// A homing run as the axis starts it (placeholder until the state machine lands).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HomingSpec {
+    pub method: i16,
+    pub switch_velocity: f64,
+    pub zero_velocity: f64,
+    pub acceleration: f64,
+    pub offset: f64,
+    pub timeout: f64,
+    pub quirks: HomingQuirks,
+}
+
+/// A running homing state machine (placeholder until the state machine lands).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Homing {}

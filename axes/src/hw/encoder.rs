@@ -18,8 +18,11 @@ pub struct Encoder {
     raw: i64,
     origin: f64,
     base: i64,
-    /// What the controller reads: `raw` plus noise, frozen while the feedback is lost.
+    /// What the controller reads: `raw − missed` plus noise. While the feedback is lost the
+    /// counter freezes and the motion it misses is gone for good, as with a real incremental
+    /// encoder (the axis has to be homed again).
     counts: i64,
+    missed: i64,
     lost: bool,
 }
 
@@ -44,6 +47,7 @@ impl Encoder {
             origin: position,
             base: 0,
             counts: 0,
+            missed: 0,
             lost: false,
         }
     }
@@ -92,8 +96,10 @@ impl Encoder {
                 tick.index_at = Some(self.position_of(k));
             }
         }
-        if !self.lost {
-            self.counts = self.raw;
+        if self.lost {
+            self.missed += self.raw - previous;
+        } else {
+            self.counts = self.raw - self.missed;
             if self.noise > 0.0 {
                 self.counts += (self.noise * self.rng.next_signed()).round() as i64;
             }
@@ -190,8 +196,12 @@ mod tests {
         e.update(20.0);
         assert_eq!(e.counts(), 10);
         e.set_lost(false);
-        e.update(20.0);
-        assert_eq!(e.counts(), 20);
+        e.update(25.0);
+        assert_eq!(
+            e.counts(),
+            15,
+            "the 10 counts moved while lost are missing for good"
+        );
 
         let noisy = EncoderConfig {
             noise: 2.0,

@@ -187,6 +187,7 @@ mod tests {
         let cfg = SwitchConfig {
             position: 100.0,
             filter: 0,
+            active_low: false,
         };
         let mut s = LimitSwitch::new(&cfg, true, 0.0);
         assert!(!s.level());
@@ -207,6 +208,7 @@ mod tests {
             &SwitchConfig {
                 position: -5.0,
                 filter: 0,
+                active_low: false,
             },
             false,
             -6.0,
@@ -221,6 +223,7 @@ mod tests {
             low: 10.0,
             high: 20.0,
             filter: 0,
+            active_low: false,
         };
         let mut h = HomeSwitch::new(&cfg, 0.0);
         let (l, e) = h.update(0.0, 12.0);
@@ -276,6 +279,7 @@ mod tests {
             low: 50.0,
             high: f64::INFINITY,
             filter: 0,
+            active_low: false,
         };
         let mut h = HomeSwitch::new(&cfg, 100.0);
         assert!(h.level());

@@ -11,6 +11,9 @@
 //! are expressed as choices of `Limits`/`Options` plus [`MovingAverage`] (see `rules`).
 
 pub mod rules;
+mod smoothing;
+
+pub use smoothing::MovingAverage;
 
 /// Kinematic state of the commanded motion.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

@@ -1,0 +1,238 @@
+//! Per-tick supervision (limits, following error, drive alarm, encoder loss, the HMC error
+//! mask) and command progress (completion, stop ramps, the next command).
+
+use super::{status_word, Activity, Axis, Context, Goal1, Ramp, Source};
+use crate::command::{CommandState, Direction, ErrorKind, StopMode};
+use crate::param::ParamId;
+use crate::status::AxisFlags;
+
+impl Axis {
+    pub(super) fn supervise(&mut self, ctx: &mut Context) {
+        let homing = matches!(&self.activity, Activity::Running(r) if r.goal == Goal1::Homing);
+        self.supervise_limits(ctx, homing);
+        self.supervise_following_error(ctx);
+        self.supervise_faults(ctx);
+    }
+
+    fn supervise_limits(&mut self, ctx: &mut Context, homing: bool) {
+        let finite = self.finite_travel();
+        let ignore_hw = self.flag(ParamId::IgnoreHwLimits);
+        // Hard limits (HMC LimitState bits 0/1, NMC LMTP/LMTN, HIMC IsHWRL/IsHWLL).
+        let (lp, ln) = if finite {
+            (self.inputs.limit_pos, self.inputs.limit_neg)
+        } else {
+            (false, false)
+        };
+        self.flags.set(AxisFlags::HW_LIMIT_POS, lp);
+        self.flags.set(AxisFlags::HW_LIMIT_NEG, ln);
+        if self.flag(ParamId::LimitLatch) {
+            // NMC: the flag stays until NMC_MtClrError after the input clears.
+            if lp {
+                self.latched |= AxisFlags::HW_LIMIT_POS;
+            }
+            if ln {
+                self.latched |= AxisFlags::HW_LIMIT_NEG;
+            }
+        }
+        // Soft limits on the commanded position (HMC §3.3.5: Dpos ≥ FSLimit).
+        let (fs, rs) = (self.param(ParamId::FsLimit), self.param(ParamId::RsLimit));
+        let soft_on = finite && !self.flag(ParamId::IgnoreSwLimits) && !homing;
+        let bad_config = soft_on && fs <= rs;
+        self.flags.set(AxisFlags::SW_LIMIT_CONFIG, bad_config);
+        let (sp, sn) = if soft_on && !bad_config {
+            (self.cmd.p >= fs, self.cmd.p <= rs)
+        } else {
+            (false, false)
+        };
+        self.flags.set(AxisFlags::SW_LIMIT_POS, sp);
+        self.flags.set(AxisFlags::SW_LIMIT_NEG, sn);
+        self.flags
+            .set(AxisFlags::BOTH_LIMITS, (lp && ln) || (sp && sn));
+        if homing || !self.enabled {
+            // Homing runs into switches on purpose; its state machine decides.
+            return;
+        }
+        let hard = !ignore_hw;
+        let v = self.raw.v;
+        if v > 0.0 && (sp || (hard && lp)) {
+            self.limit_stop(ctx, Direction::Positive);
+        } else if v < 0.0 && (sn || (hard && ln)) {
+            self.limit_stop(ctx, Direction::Negative);
+        }
+    }
+
+    /// A limit in the direction of travel: the running command ends in error and the axis stops
+    /// with the limit deceleration (HMC §3.3.5 FastDecel, `limit_decel_mode`).
+    fn limit_stop(&mut self, ctx: &mut Context, direction: Direction) {
+        if matches!(self.activity, Activity::Ramping(Ramp::Limit(d)) if d == direction) {
+            return;
+        }
+        if matches!(
+            self.activity,
+            Activity::Ramping(Ramp::Stop(StopMode::Emergency) | Ramp::Fault)
+        ) {
+            return;
+        }
+        self.end_running(ctx, CommandState::Error(ErrorKind::LimitReached));
+        self.halted = false;
+        self.last_error = Some(ErrorKind::LimitReached);
+        self.latched |= AxisFlags::MOTION_ERROR;
+        let decel = self.limit_decel();
+        self.plan_stop(ctx.tick, decel);
+        self.activity = Activity::Ramping(Ramp::Limit(direction));
+    }
+
+    /// HMC §3.3.3: one tick over FELimit sets the warning, `fe_fault_cycles` consecutive ticks
+    /// latch the fault; the warning clears after `fe_warning_clear_cycles` good ticks.
+    fn supervise_following_error(&mut self, ctx: &mut Context) {
+        let limit = self.param(ParamId::FeLimit);
+        let fe = (self.cmd.p - self.act_pos).abs();
+        if self.enabled && limit > 0.0 && fe > limit {
+            self.fe_over = self.fe_over.saturating_add(1);
+            self.fe_ok = 0;
+            self.flags |= AxisFlags::FE_WARNING;
+            if self.fe_over as f64 >= self.param(ParamId::FeFaultCycles)
+                && !self.latched.contains(AxisFlags::FE_FAULT)
+            {
+                self.latched |= AxisFlags::FE_FAULT;
+                if !self.flag(ParamId::IgnoreFe) {
+                    let action = self.param(ParamId::FeAction) as u32;
+                    if action & 1 != 0 {
+                        self.fault_disable(ctx, AxisFlags::FE_FAULT);
+                    } else if action & 2 != 0 {
+                        self.fault_stop(ctx, AxisFlags::FE_FAULT);
+                    }
+                }
+            }
+        } else {
+            self.fe_over = 0;
+            self.fe_ok = self.fe_ok.saturating_add(1);
+            if self.fe_ok as f64 >= self.param(ParamId::FeWarningClearCycles) {
+                self.flags.remove(AxisFlags::FE_WARNING);
+            }
+        }
+    }
+
+    fn supervise_faults(&mut self, ctx: &mut Context) {
+        if self.inputs.drive_alarm && !self.latched.contains(AxisFlags::DRIVE_ALARM) {
+            // A drive in alarm removes power itself.
+            self.latched |= AxisFlags::DRIVE_ALARM;
+            self.fault_disable(ctx, AxisFlags::DRIVE_ALARM);
+        }
+        self.flags
+            .set(AxisFlags::DRIVE_ALARM, self.inputs.drive_alarm);
+        let lost = self.forces.encoder_loss.unwrap_or(false);
+        self.flags.set(AxisFlags::ENCODER_LOSS, lost);
+        if lost && !self.latched.contains(AxisFlags::ENCODER_LOSS) && self.class.can_move() {
+            // Feedback wire break: the drive cannot run without it (CiA 402 0x7305).
+            self.latched |= AxisFlags::ENCODER_LOSS;
+            self.fault_disable(ctx, AxisFlags::ENCODER_LOSS);
+        }
+        // HMC §3.3.4: AxisStatus & AxisErrMask ≠ 0 switches the drive off.
+        if self.enabled {
+            let word = status_word(self.flags | self.latched);
+            let mask = self.param(ParamId::AxisErrMask) as u32;
+            let hit = word & mask;
+            if hit != 0 {
+                let mut causes = AxisFlags::empty();
+                if hit & 1 != 0 && !self.flag(ParamId::IgnoreFe) {
+                    causes |= AxisFlags::FE_FAULT;
+                }
+                if hit & 2 != 0 {
+                    causes |= AxisFlags::FE_WARNING;
+                }
+                if hit & 4 != 0 {
+                    causes |= AxisFlags::PARAMETER_ERROR;
+                }
+                if hit & 8 != 0 {
+                    causes |= (self.flags | self.latched)
+                        & (AxisFlags::HW_LIMIT_POS
+                            | AxisFlags::HW_LIMIT_NEG
+                            | AxisFlags::SW_LIMIT_POS
+                            | AxisFlags::SW_LIMIT_NEG);
+                }
+                if !causes.is_empty() {
+                    self.latched |= causes;
+                    self.fault_disable(ctx, causes);
+                }
+            }
+        }
+    }
+
+    /// A fault that removes power: commands end, the axis goes to ErrorStop.
+    pub(super) fn fault_disable(&mut self, ctx: &mut Context, cause: AxisFlags) {
+        self.blocking |= cause;
+        self.last_error = Some(ErrorKind::Fault);
+        self.power_off(ctx, CommandState::Error(ErrorKind::Fault));
+    }
+
+    /// A fault with a stop reaction: commands end, the axis decelerates and stays in ErrorStop.
+    fn fault_stop(&mut self, ctx: &mut Context, cause: AxisFlags) {
+        self.blocking |= cause;
+        self.last_error = Some(ErrorKind::Fault);
+        self.abort_all(ctx, CommandState::Error(ErrorKind::Fault));
+        let decel = self.param(ParamId::FastDecel);
+        self.plan_stop(ctx.tick, decel);
+        self.activity = Activity::Ramping(Ramp::Fault);
+    }
+
+    /// Completion of the running command, the end of ramps, homing, and the next command.
+    pub(super) fn progress(&mut self, ctx: &mut Context, profile_done: bool) {
+        match &self.activity {
+            Activity::Idle | Activity::Streaming => {}
+            Activity::Ramping(ramp) => {
+                let ramp = *ramp;
+                if profile_done || matches!(self.source, Source::Hold) {
+                    self.source = Source::Hold;
+                    self.target_pos = self.raw.p;
+                    match ramp {
+                        Ramp::Stop(_) | Ramp::Fault => self.activity = Activity::Idle,
+                        Ramp::Cancel | Ramp::Limit(_) => self.start_head(ctx),
+                    }
+                }
+            }
+            Activity::Running(run) => match run.goal {
+                Goal1::Homing => self.progress_homing(ctx),
+                Goal1::Velocity { .. } => {
+                    if self.halted && profile_done {
+                        self.source = Source::Hold;
+                    }
+                }
+                Goal1::Position { .. } => {
+                    if self.halted {
+                        if profile_done {
+                            self.source = Source::Hold;
+                        }
+                        return;
+                    }
+                    if !profile_done || self.smoothing.as_ref().is_some_and(|f| !f.is_settled()) {
+                        return;
+                    }
+                    if !self.completion_reached(ctx.tick) {
+                        return;
+                    }
+                    self.source = Source::Hold;
+                    self.end_running(ctx, CommandState::Done);
+                    self.start_head(ctx);
+                }
+            },
+        }
+    }
+
+    /// HMC §3.3 CmdStopMode: 0 done when the command position arrives; 1 also waits for
+    /// |FE| < StopFETol, at most `cmd_stop_max_time`.
+    fn completion_reached(&mut self, tick: u64) -> bool {
+        if self.param(ParamId::CmdStopMode) == 0.0 {
+            return true;
+        }
+        let arrived = match &mut self.activity {
+            Activity::Running(run) => *run.arrived_at.get_or_insert(tick),
+            _ => tick,
+        };
+        let fe = (self.cmd.p - self.act_pos).abs();
+        let waited = (tick - arrived) as f64 * self.period;
+        fe < self.param(ParamId::StopFeTol) || waited >= self.param(ParamId::CmdStopMaxTime)
+    }
+
+    fn progress_homing(&mut self, _ctx: &mut Context) {}
+}

@@ -1,0 +1,619 @@
+//! Single-axis behaviour through `Command` → `Result<Reply, EngineError>` (ARCHITECTURE §3.4–§3.5):
+//! the state machine, the FIFO, stops, halts, parameters, bad input.
+
+mod common;
+
+use axes::command::{
+    BufferMode, CancelScope, Command, CommandKind, CommandState, EngineError, ErrorKind,
+    PositionFrame, Reply, StopMode,
+};
+use axes::{AxisFlags, AxisState, ParamId};
+use common::*;
+
+#[test]
+fn enable_disable_and_motion_needs_power() {
+    let mut e = one_axis();
+    assert_eq!(status(&e).state, AxisState::Disabled);
+    let err = refused(&mut e, move_abs(10.0));
+    assert!(
+        matches!(err, EngineError::AxisDisabled { axis: 0 }),
+        "{err}"
+    );
+    ok(&mut e, Command::Enable { axis: 0 });
+    assert_eq!(status(&e).state, AxisState::Standstill);
+    assert!(status(&e).flags.contains(AxisFlags::ENABLED));
+    ok(&mut e, Command::Disable { axis: 0 });
+    assert_eq!(status(&e).state, AxisState::Disabled);
+}
+
+#[test]
+fn bad_input_is_a_typed_error_and_the_engine_keeps_running() {
+    let mut e = enabled(stepper_mm());
+    let bad = [
+        Command::Enable { axis: 7 },
+        move_abs(f64::NAN),
+        move_abs(f64::INFINITY),
+        jog(f64::NEG_INFINITY),
+        Command::MoveAbsolute {
+            axis: 0,
+            position: 1.0,
+            velocity: Some(0.0),
+            acceleration: None,
+            deceleration: None,
+            jerk: None,
+            buffer_mode: BufferMode::Aborting,
+        },
+        Command::MoveAbsolute {
+            axis: 0,
+            position: 1.0,
+            velocity: None,
+            acceleration: Some(-3.0),
+            deceleration: None,
+            jerk: None,
+            buffer_mode: BufferMode::Aborting,
+        },
+        Command::MoveAbsolute {
+            axis: 0,
+            position: 1.0,
+            velocity: None,
+            acceleration: None,
+            deceleration: Some(f64::NAN),
+            jerk: None,
+            buffer_mode: BufferMode::Aborting,
+        },
+        Command::SetParameter {
+            axis: 0,
+            name: ParamId::Accel,
+            value: 0.0,
+            lenient: false,
+        },
+        Command::SetParameter {
+            axis: 0,
+            name: ParamId::ActualPosition,
+            value: 1.0,
+            lenient: false,
+        },
+        Command::Stop {
+            axis: 0,
+            mode: StopMode::Smooth,
+            deceleration: Some(-1.0),
+        },
+        Command::SetPosition {
+            axis: 0,
+            position: f64::NAN,
+            frame: PositionFrame::Both,
+        },
+        Command::CommandState { id: 999 },
+        Command::WriteDigitalOutput {
+            channel: 9999,
+            value: true,
+        },
+    ];
+    for c in bad {
+        let err = refused(&mut e, c);
+        // Every refusal says why.
+        assert!(!err.to_string().is_empty());
+    }
+    assert!(matches!(
+        refused(&mut e, Command::Enable { axis: 7 }),
+        EngineError::InvalidAxis { axis: 7, count: 1 }
+    ));
+    // Still alive and correct after all that.
+    ok(&mut e, move_abs(5.0));
+    run(&mut e, 1.0);
+    assert_eq!(status(&e).cmd_pos, 5.0);
+    assert_eq!(status(&e).state, AxisState::Standstill);
+}
+
+#[test]
+fn a_move_reaches_its_target_exactly_and_emits_the_pulses() {
+    let mut e = enabled(stepper_mm());
+    let id = id_of(ok(&mut e, move_abs(50.0)));
+    assert_eq!(state_of(&mut e, id), CommandState::Running);
+    assert_eq!(status(&e).state, AxisState::DiscreteMotion);
+    assert!(run_until(&mut e, 5.0, |s| s.state == AxisState::Standstill).is_some());
+    let s = status(&e);
+    assert_eq!(s.cmd_pos, 50.0);
+    assert_eq!(s.act_pos, 50.0);
+    assert_eq!(s.pulses, 50_000, "HMC §4.7.3: 1000 lines/mm × 50 mm");
+    assert_eq!(s.encoder_counts, 50_000);
+    assert_eq!(s.following_error, 0.0);
+    assert!(s.flags.contains(AxisFlags::IN_POSITION));
+    assert_eq!(state_of(&mut e, id), CommandState::Done);
+}
+
+#[test]
+fn buffered_commands_run_in_order_and_the_fifo_is_bounded() {
+    let mut axis = stepper_mm();
+    axis.fifo_depth = Some(3);
+    let mut e = enabled(axis);
+    let a = id_of(ok(&mut e, move_rel_buffered(10.0)));
+    let b = id_of(ok(&mut e, move_rel_buffered(20.0)));
+    let c = id_of(ok(&mut e, move_rel_buffered(-5.0)));
+    assert!(a < b && b < c);
+    assert_eq!(state_of(&mut e, a), CommandState::Running);
+    assert_eq!(state_of(&mut e, b), CommandState::Waiting);
+    assert!(status(&e).flags.contains(AxisFlags::QUEUE_FULL));
+    assert!(matches!(
+        refused(&mut e, move_rel_buffered(1.0)),
+        EngineError::QueueFull { axis: 0, depth: 3 }
+    ));
+    let st = status(&e);
+    assert_eq!(st.current_command.map(|c| c.id), Some(a));
+    assert_eq!(
+        st.next_command.map(|c| c.kind),
+        Some(CommandKind::MoveRelative)
+    );
+    assert!(run_until(&mut e, 10.0, |s| s.fifo_len == 0
+        && s.state == AxisState::Standstill)
+    .is_some());
+    assert_eq!(status(&e).cmd_pos, 25.0);
+    for id in [a, b, c] {
+        assert_eq!(state_of(&mut e, id), CommandState::Done);
+    }
+}
+
+#[test]
+fn an_aborting_command_aborts_the_running_and_queued_ones() {
+    let mut e = enabled(stepper_mm());
+    let a = id_of(ok(&mut e, move_rel_buffered(100.0)));
+    let b = id_of(ok(&mut e, move_rel_buffered(100.0)));
+    run(&mut e, 0.2);
+    let c = id_of(ok(&mut e, move_abs(-10.0)));
+    assert_eq!(state_of(&mut e, a), CommandState::Aborted);
+    assert_eq!(state_of(&mut e, b), CommandState::Aborted);
+    assert!(run_until(&mut e, 10.0, |s| s.state == AxisState::Standstill).is_some());
+    assert_eq!(status(&e).cmd_pos, -10.0);
+    assert_eq!(state_of(&mut e, c), CommandState::Done);
+}
+
+#[test]
+fn consecutive_zero_length_buffered_moves_share_an_id() {
+    // HMC §10.7 (digest 000 TV47).
+    let mut e = enabled(stepper_mm());
+    ok(&mut e, move_rel_buffered(100.0));
+    let z1 = id_of(ok(&mut e, move_rel_buffered(0.0)));
+    let z2 = id_of(ok(&mut e, move_rel_buffered(0.0)));
+    assert_eq!(z1, z2);
+    let n = id_of(ok(&mut e, move_rel_buffered(1.0)));
+    assert_ne!(n, z2);
+}
+
+#[test]
+fn jog_both_ways_then_smooth_stop() {
+    let mut e = enabled(stepper_mm());
+    ok(&mut e, jog(20.0));
+    assert_eq!(status(&e).state, AxisState::ContinuousMotion);
+    run(&mut e, 1.0);
+    assert!((status(&e).cmd_vel - 20.0).abs() < 1e-9);
+    ok(&mut e, jog(-20.0));
+    run(&mut e, 1.0);
+    assert!((status(&e).cmd_vel + 20.0).abs() < 1e-9);
+    ok(
+        &mut e,
+        Command::Stop {
+            axis: 0,
+            mode: StopMode::Smooth,
+            deceleration: Some(200.0),
+        },
+    );
+    assert_eq!(status(&e).state, AxisState::Stopping);
+    // Motion is refused until the stop is done (PLCopen MC_Stop).
+    assert!(matches!(
+        refused(&mut e, move_abs(0.0)),
+        EngineError::InvalidState { .. }
+    ));
+    // 20 mm/s at 200 mm/s² stops in 0.1 s.
+    let ticks = run_until(&mut e, 1.0, |s| s.state == AxisState::Standstill).unwrap();
+    assert!((99..=101).contains(&ticks), "{ticks}");
+    assert_eq!(status(&e).cmd_vel, 0.0);
+    ok(&mut e, move_abs(0.0));
+}
+
+#[test]
+fn emergency_stop_latches_and_needs_a_reset_abrupt_does_not() {
+    let mut e = enabled(stepper_mm());
+    ok(&mut e, jog(50.0));
+    run(&mut e, 0.5);
+    ok(
+        &mut e,
+        Command::Stop {
+            axis: 0,
+            mode: StopMode::Abrupt,
+            deceleration: None,
+        },
+    );
+    run(&mut e, 0.1);
+    assert_eq!(status(&e).state, AxisState::Standstill);
+    ok(&mut e, jog(50.0));
+    run(&mut e, 0.5);
+    ok(
+        &mut e,
+        Command::Stop {
+            axis: 0,
+            mode: StopMode::Emergency,
+            deceleration: None,
+        },
+    );
+    run(&mut e, 0.1);
+    let s = status(&e);
+    assert_eq!(s.state, AxisState::ErrorStop);
+    assert!(s.latched.contains(AxisFlags::ESTOP));
+    assert_eq!(s.cmd_vel, 0.0);
+    assert!(matches!(
+        refused(&mut e, jog(1.0)),
+        EngineError::AxisInError { .. }
+    ));
+    ok(&mut e, Command::Reset { axis: 0 });
+    assert_eq!(status(&e).state, AxisState::Standstill);
+    ok(&mut e, jog(1.0));
+}
+
+#[test]
+fn immediate_stop_jumps_to_zero() {
+    let mut e = enabled(stepper_mm());
+    ok(&mut e, jog(50.0));
+    run(&mut e, 0.5);
+    let before = status(&e).cmd_pos;
+    ok(
+        &mut e,
+        Command::Stop {
+            axis: 0,
+            mode: StopMode::Immediate,
+            deceleration: None,
+        },
+    );
+    run(&mut e, 0.01);
+    assert_eq!(status(&e).cmd_pos, before);
+    assert_eq!(status(&e).state, AxisState::Standstill);
+}
+
+#[test]
+fn halt_pauses_and_resume_finishes_the_same_move() {
+    let mut e = enabled(stepper_mm());
+    let id = id_of(ok(&mut e, move_abs(80.0)));
+    run(&mut e, 0.3);
+    ok(
+        &mut e,
+        Command::Halt {
+            axis: 0,
+            deceleration: None,
+        },
+    );
+    run(&mut e, 0.5);
+    let s = status(&e);
+    assert_eq!(s.cmd_vel, 0.0);
+    assert!(s.flags.contains(AxisFlags::HALTED));
+    assert!(s.cmd_pos < 80.0);
+    assert_eq!(state_of(&mut e, id), CommandState::Running);
+    ok(&mut e, Command::Resume { axis: 0 });
+    assert!(run_until(&mut e, 5.0, |s| s.state == AxisState::Standstill).is_some());
+    assert_eq!(status(&e).cmd_pos, 80.0);
+    assert_eq!(state_of(&mut e, id), CommandState::Done);
+}
+
+#[test]
+fn modify_target_during_motion() {
+    // HMC_MoveModify: cases "continue onto the new target" and "stop and reverse".
+    let mut e = enabled(stepper_mm());
+    let id = id_of(ok(&mut e, move_abs(100.0)));
+    run(&mut e, 0.3);
+    assert_eq!(
+        id_of(ok(
+            &mut e,
+            Command::ModifyTarget {
+                axis: 0,
+                position: 150.0,
+                relative: false
+            }
+        )),
+        id
+    );
+    assert!(run_until(&mut e, 5.0, |s| s.state == AxisState::Standstill).is_some());
+    assert_eq!(status(&e).cmd_pos, 150.0);
+    ok(&mut e, move_abs(300.0));
+    run(&mut e, 0.5);
+    let here = status(&e).cmd_pos;
+    ok(
+        &mut e,
+        Command::ModifyTarget {
+            axis: 0,
+            position: here - 50.0,
+            relative: false,
+        },
+    );
+    let trace = record(&mut e, 5.0);
+    assert!(trace.iter().any(|s| s.cmd_vel < 0.0), "reversed");
+    assert_eq!(status(&e).cmd_pos, here - 50.0);
+    // With an empty FIFO it posts a move (HMC); on a jog it is refused.
+    let posted = id_of(ok(
+        &mut e,
+        Command::ModifyTarget {
+            axis: 0,
+            position: 5.0,
+            relative: true,
+        },
+    ));
+    assert!(run_until(&mut e, 5.0, |s| s.state == AxisState::Standstill).is_some());
+    assert_eq!(status(&e).cmd_pos, here - 45.0);
+    assert_eq!(state_of(&mut e, posted), CommandState::Done);
+    ok(&mut e, jog(1.0));
+    assert!(matches!(
+        refused(
+            &mut e,
+            Command::ModifyTarget {
+                axis: 0,
+                position: 1.0,
+                relative: false
+            }
+        ),
+        EngineError::Unsupported { .. }
+    ));
+}
+
+#[test]
+fn cancel_next_current_all() {
+    let mut e = enabled(stepper_mm());
+    let a = id_of(ok(&mut e, move_rel_buffered(10.0)));
+    let b = id_of(ok(&mut e, move_rel_buffered(10.0)));
+    let c = id_of(ok(&mut e, move_rel_buffered(10.0)));
+    ok(
+        &mut e,
+        Command::Cancel {
+            axis: 0,
+            scope: CancelScope::Next,
+        },
+    );
+    assert_eq!(state_of(&mut e, b), CommandState::Aborted);
+    run(&mut e, 0.05);
+    ok(
+        &mut e,
+        Command::Cancel {
+            axis: 0,
+            scope: CancelScope::Current,
+        },
+    );
+    assert_eq!(state_of(&mut e, a), CommandState::Aborted);
+    assert!(run_until(&mut e, 5.0, |s| s.state == AxisState::Standstill
+        && s.fifo_len == 0)
+    .is_some());
+    assert_eq!(state_of(&mut e, c), CommandState::Done);
+    let after_c = status(&e).cmd_pos;
+    assert!(
+        after_c > 10.0 && after_c < 20.0,
+        "a was cut short, c ran: {after_c}"
+    );
+    let d = id_of(ok(&mut e, move_rel_buffered(10.0)));
+    let f = id_of(ok(&mut e, move_rel_buffered(10.0)));
+    ok(
+        &mut e,
+        Command::Cancel {
+            axis: 0,
+            scope: CancelScope::All,
+        },
+    );
+    assert_eq!(state_of(&mut e, d), CommandState::Aborted);
+    assert_eq!(state_of(&mut e, f), CommandState::Aborted);
+    assert!(run_until(&mut e, 2.0, |s| s.state == AxisState::Standstill).is_some());
+}
+
+#[test]
+fn parameters_validate_and_the_hmc_lenient_rule() {
+    let mut e = enabled(stepper_mm());
+    match refused(
+        &mut e,
+        Command::SetParameter {
+            axis: 0,
+            name: ParamId::Speed,
+            value: -5.0,
+            lenient: false,
+        },
+    ) {
+        EngineError::InvalidParameter {
+            name,
+            value,
+            reason,
+        } => {
+            assert_eq!(name, "speed");
+            assert_eq!(value, -5.0);
+            assert!(reason.contains("at least 0"), "{reason}");
+        }
+        other => panic!("{other}"),
+    }
+    ok(
+        &mut e,
+        Command::SetParameter {
+            axis: 0,
+            name: ParamId::Speed,
+            value: -500.0,
+            lenient: true,
+        },
+    );
+    assert_eq!(param(&mut e, ParamId::Speed), 500.0);
+    assert!(status(&e).latched.contains(AxisFlags::PARAMETER_ERROR));
+    assert_eq!(param(&mut e, ParamId::AxisStatusWord) as u32 & 4, 4);
+    ok(
+        &mut e,
+        Command::SetParameter {
+            axis: 0,
+            name: ParamId::Accel,
+            value: 0.0,
+            lenient: true,
+        },
+    );
+    assert_eq!(param(&mut e, ParamId::Accel), 200_000.0);
+    // Idle-only parameters refuse while commands are queued.
+    ok(&mut e, move_abs(10.0));
+    assert!(matches!(
+        refused(
+            &mut e,
+            Command::SetParameter {
+                axis: 0,
+                name: ParamId::Units,
+                value: 5.0,
+                lenient: false
+            }
+        ),
+        EngineError::InvalidState { .. }
+    ));
+    assert!(matches!(
+        refused(
+            &mut e,
+            Command::SetParameter {
+                axis: 0,
+                name: ParamId::Remain,
+                value: 5.0,
+                lenient: false
+            }
+        ),
+        EngineError::ReadOnlyParameter { name: "remain" }
+    ));
+}
+
+#[test]
+fn a_live_speed_change_replans_the_running_move() {
+    // HMC §2.4: Speed edits take effect immediately.
+    let mut fast = enabled(stepper_mm());
+    ok(&mut fast, move_abs(200.0));
+    let t_fast = run_until(&mut fast, 20.0, |s| s.state == AxisState::Standstill).unwrap();
+    let mut slow = enabled(stepper_mm());
+    ok(&mut slow, move_abs(200.0));
+    run(&mut slow, 0.5);
+    set(&mut slow, ParamId::Speed, 20.0);
+    let trace = record(&mut slow, 2.0);
+    assert!(trace.iter().all(|s| s.cmd_vel <= 100.0 + 1e-9));
+    assert!((trace.last().unwrap().cmd_vel - 20.0).abs() < 1e-9);
+    let rest = run_until(&mut slow, 20.0, |s| s.state == AxisState::Standstill).unwrap();
+    assert!(500 + 2000 + rest > t_fast + 1000);
+    assert_eq!(status(&slow).cmd_pos, 200.0);
+}
+
+#[test]
+fn set_position_frames() {
+    let mut e = enabled(stepper_mm());
+    ok(&mut e, move_abs(10.0));
+    run(&mut e, 1.0);
+    let pulses = status(&e).pulses;
+    ok(
+        &mut e,
+        Command::SetPosition {
+            axis: 0,
+            position: 100.0,
+            frame: PositionFrame::Both,
+        },
+    );
+    let s = status(&e);
+    assert_eq!((s.cmd_pos, s.act_pos), (100.0, 100.0));
+    run(&mut e, 0.1);
+    assert_eq!(
+        status(&e).pulses,
+        pulses,
+        "redefining never moves the motor"
+    );
+    ok(
+        &mut e,
+        Command::SetPosition {
+            axis: 0,
+            position: 0.0,
+            frame: PositionFrame::Actual,
+        },
+    );
+    run(&mut e, 0.001);
+    let s = status(&e);
+    assert_eq!(s.act_pos, 0.0);
+    assert_eq!(s.cmd_pos, 100.0);
+    assert_eq!(s.following_error, 100.0);
+    ok(
+        &mut e,
+        Command::SetPosition {
+            axis: 0,
+            position: 0.0,
+            frame: PositionFrame::Commanded,
+        },
+    );
+    run(&mut e, 0.001);
+    assert_eq!(status(&e).following_error, 0.0);
+}
+
+#[test]
+fn command_state_of_unknown_and_finished_ids() {
+    let mut e = enabled(stepper_mm());
+    assert!(matches!(
+        refused(&mut e, Command::CommandState { id: 0 }),
+        EngineError::UnknownCommand { id: 0 }
+    ));
+    let id = id_of(ok(&mut e, move_abs(1.0)));
+    run(&mut e, 1.0);
+    assert_eq!(
+        ok(&mut e, Command::CommandState { id }),
+        Reply::CommandState {
+            id,
+            state: CommandState::Done
+        }
+    );
+}
+
+#[test]
+fn velocity_override_and_hold() {
+    let mut e = enabled(stepper_mm());
+    set(&mut e, ParamId::VelScale, 50.0);
+    ok(&mut e, jog(40.0));
+    run(&mut e, 1.0);
+    assert!((status(&e).cmd_vel - 20.0).abs() < 1e-9);
+    // 0 % pauses, 100 % resumes.
+    set(&mut e, ParamId::VelScale, 0.0);
+    run(&mut e, 1.0);
+    assert_eq!(status(&e).cmd_vel, 0.0);
+    assert_eq!(status(&e).state, AxisState::ContinuousMotion);
+    set(&mut e, ParamId::VelScale, 100.0);
+    run(&mut e, 1.0);
+    assert!((status(&e).cmd_vel - 40.0).abs() < 1e-9);
+    // HMC_HoldConfig: DI 3 high → HoldSpeed.
+    set(&mut e, ParamId::HoldIn, 3.0);
+    set(&mut e, ParamId::HoldSpeed, 5.0);
+    ok(
+        &mut e,
+        Command::ForceDigitalInput {
+            channel: 3,
+            value: Some(true),
+        },
+    );
+    run(&mut e, 1.0);
+    assert!((status(&e).cmd_vel - 5.0).abs() < 1e-9);
+    ok(
+        &mut e,
+        Command::ForceDigitalInput {
+            channel: 3,
+            value: None,
+        },
+    );
+    run(&mut e, 1.0);
+    assert!((status(&e).cmd_vel - 40.0).abs() < 1e-9);
+}
+
+#[test]
+fn identical_runs_are_bit_identical() {
+    let script = |e: &mut axes::Engine| {
+        ok(e, move_abs(37.5));
+        run(e, 0.2);
+        ok(e, jog(-12.0));
+        run(e, 0.7);
+        set(e, ParamId::Speed, 33.0);
+        ok(e, move_rel_buffered(3.0));
+        run(e, 2.0);
+    };
+    let mut cfg = stepper_mm();
+    cfg.encoder.noise = 1.5;
+    let mut a = enabled(cfg.clone());
+    let mut b = enabled(cfg);
+    script(&mut a);
+    script(&mut b);
+    assert_eq!(snapshot(&a), snapshot(&b));
+}
+
+#[test]
+fn last_error_is_reported_in_status() {
+    let mut e = enabled(stepper_mm());
+    refused(&mut e, move_abs(f64::NAN));
+    assert_eq!(status(&e).last_error, Some(ErrorKind::InvalidArgument));
+}

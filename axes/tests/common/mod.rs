@@ -1,0 +1,195 @@
+//! Machines and helpers shared by the engine's behaviour tests.
+#![allow(dead_code)]
+
+use axes::command::{AxisInput, Command, CommandState, Reply};
+use axes::config::{AxisConfig, HomeSwitchConfig, SwitchConfig};
+use axes::{Engine, EngineConfig, EngineError, ParamId, Snapshot};
+
+/// A stepper axis in mm: 1000 pulses/mm, finite travel, limits at ±500 mm, a home cam on
+/// [100, 120] mm, 10 000 counts per rev and 1000 counts/mm (so one index every 10 mm).
+pub fn stepper_mm() -> AxisConfig {
+    let mut a = AxisConfig::default();
+    for (p, v) in [
+        (ParamId::AxisType, 10.0),
+        (ParamId::Units, 1000.0),
+        (ParamId::RepMode, 0.0),
+        (ParamId::Speed, 100.0),
+        (ParamId::Accel, 1000.0),
+        (ParamId::Decel, 1000.0),
+        (ParamId::FastDecel, 10_000.0),
+        (ParamId::FeLimit, 1.0),
+    ] {
+        a.params.insert(p, v);
+    }
+    a.switches.limit_pos = Some(SwitchConfig {
+        position: 500.0,
+        filter: 0,
+        active_low: false,
+    });
+    a.switches.limit_neg = Some(SwitchConfig {
+        position: -500.0,
+        filter: 0,
+        active_low: false,
+    });
+    a.switches.home = Some(HomeSwitchConfig {
+        low: 100.0,
+        high: 120.0,
+        filter: 0,
+        active_low: false,
+    });
+    a
+}
+
+pub fn engine_with(axes: Vec<AxisConfig>) -> Engine {
+    Engine::new(&EngineConfig {
+        axes,
+        ..EngineConfig::default()
+    })
+    .expect("valid test machine")
+}
+
+pub fn one_axis() -> Engine {
+    engine_with(vec![stepper_mm()])
+}
+
+pub fn enabled(axis: AxisConfig) -> Engine {
+    let mut e = engine_with(vec![axis]);
+    ok(&mut e, Command::Enable { axis: 0 });
+    e
+}
+
+pub fn ok(e: &mut Engine, c: Command) -> Reply {
+    match e.apply(c.clone()) {
+        Ok(r) => r,
+        Err(err) => panic!("{c:?} refused: {err}"),
+    }
+}
+
+pub fn refused(e: &mut Engine, c: Command) -> EngineError {
+    match e.apply(c.clone()) {
+        Ok(r) => panic!("{c:?} accepted: {r:?}"),
+        Err(err) => err,
+    }
+}
+
+pub fn id_of(r: Reply) -> u32 {
+    match r {
+        Reply::Accepted { id } => id,
+        other => panic!("expected an id, got {other:?}"),
+    }
+}
+
+pub fn state_of(e: &mut Engine, id: u32) -> CommandState {
+    match ok(e, Command::CommandState { id }) {
+        Reply::CommandState { state, .. } => state,
+        other => panic!("{other:?}"),
+    }
+}
+
+pub fn param(e: &mut Engine, name: ParamId) -> f64 {
+    match ok(e, Command::GetParameter { axis: 0, name }) {
+        Reply::Value { value } => value,
+        other => panic!("{other:?}"),
+    }
+}
+
+pub fn set(e: &mut Engine, name: ParamId, value: f64) {
+    ok(
+        e,
+        Command::SetParameter {
+            axis: 0,
+            name,
+            value,
+            lenient: false,
+        },
+    );
+}
+
+pub fn force(e: &mut Engine, input: AxisInput, value: Option<bool>) {
+    ok(
+        e,
+        Command::ForceInput {
+            axis: 0,
+            input,
+            value,
+        },
+    );
+}
+
+pub fn move_abs(position: f64) -> Command {
+    Command::MoveAbsolute {
+        axis: 0,
+        position,
+        velocity: None,
+        acceleration: None,
+        deceleration: None,
+        jerk: None,
+        buffer_mode: Default::default(),
+    }
+}
+
+pub fn move_rel_buffered(distance: f64) -> Command {
+    Command::MoveRelative {
+        axis: 0,
+        distance,
+        velocity: None,
+        acceleration: None,
+        deceleration: None,
+        jerk: None,
+        buffer_mode: axes::command::BufferMode::Buffered,
+    }
+}
+
+pub fn jog(velocity: f64) -> Command {
+    Command::MoveVelocity {
+        axis: 0,
+        velocity,
+        acceleration: None,
+        deceleration: None,
+        jerk: None,
+        buffer_mode: Default::default(),
+    }
+}
+
+/// Step `seconds` of engine time.
+pub fn run(e: &mut Engine, seconds: f64) {
+    let n = (seconds / e.period()).round() as u64;
+    for _ in 0..n {
+        e.step();
+    }
+}
+
+/// Step until `cond` holds on axis 0's status, at most `max_seconds`. Returns the ticks taken.
+pub fn run_until(
+    e: &mut Engine,
+    max_seconds: f64,
+    cond: impl Fn(&axes::AxisStatus) -> bool,
+) -> Option<u64> {
+    let n = (max_seconds / e.period()).round() as u64;
+    for k in 1..=n {
+        e.step();
+        if cond(e.axis_status(0).expect("axis 0")) {
+            return Some(k);
+        }
+    }
+    None
+}
+
+/// Record axis 0 for `seconds`.
+pub fn record(e: &mut Engine, seconds: f64) -> Vec<axes::AxisStatus> {
+    let n = (seconds / e.period()).round() as usize;
+    let mut out = Vec::with_capacity(n);
+    for _ in 0..n {
+        e.step();
+        out.push(*e.axis_status(0).expect("axis 0"));
+    }
+    out
+}
+
+pub fn status(e: &Engine) -> axes::AxisStatus {
+    *e.axis_status(0).expect("axis 0")
+}
+
+pub fn snapshot(e: &Engine) -> Snapshot {
+    e.snapshot()
+}
