@@ -55,6 +55,8 @@ impl Transition {
 /// What follows a stop.
 #[derive(Clone, Debug, PartialEq)]
 enum Then {
+    /// Begin the run (it started while the axis was moving).
+    Begin,
     /// Apply the search rule again.
     Replan,
     /// Move to this position, then search again (the re-scan quirk).
@@ -380,6 +382,20 @@ impl Homing {
 
     fn begin(&mut self, inputs: &HomingInputs, out: &mut HomingOutput) {
         self.region = self.initial_region();
+        if inputs.velocity != 0.0 && self.def.kind != Kind::Current {
+            // Every leg starts from rest; stop whatever motion the axis had first.
+            out.motion = Some(self.stop());
+            self.set_leg(Leg::Reversing {
+                dir: if inputs.velocity < 0.0 {
+                    Dir::Neg
+                } else {
+                    Dir::Pos
+                },
+                limit: None,
+                then: Then::Begin,
+            });
+            return;
+        }
         if self.def.kind == Kind::Current {
             // Methods 35/37: the current position is the home point (HIMC: 6064h = 607Ch).
             self.home_found = true;
@@ -641,6 +657,9 @@ impl Homing {
 
     fn on_motion_done(&mut self, inputs: &HomingInputs, out: &mut HomingOutput) {
         match self.leg.clone() {
+            Leg::Reversing {
+                then: Then::Begin, ..
+            } => self.begin(inputs, out),
             Leg::Backoff { .. } => {
                 self.after_backoff();
                 self.search_from_rest(inputs, out);

@@ -14,7 +14,8 @@
 //!    [`HomingOutput`]:
 //!    - `motion`: a new [`MotionRequest`] for its own profile generator (`None` keeps the
 //!      current one). The machine only reverses from rest: it asks for `Stop`, waits for
-//!      `motion_done`, then asks for the new direction.
+//!      `motion_done`, then asks for the new direction. A run started while the axis moves
+//!      (`velocity` ≠ 0) first stops it.
 //!    - `set_home`: redefine the position so that this position (current frame) reads
 //!      `spec.offset`, shifting commanded and actual position alike. Inputs from the next tick on
 //!      are in the new frame.
@@ -154,7 +155,7 @@ pub struct HomingInputs {
     pub time: f64,
     /// Actual position at the end of the tick.
     pub position: f64,
-    /// Commanded velocity.
+    /// Commanded velocity (its sign is the direction of travel).
     pub velocity: f64,
     /// The last [`MotionRequest`] has finished (at rest, or at its `MoveTo` target).
     pub motion_done: bool,

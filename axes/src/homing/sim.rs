@@ -247,10 +247,19 @@ pub fn run_with(
     hw: HomingHardware,
     layout: Layout,
     x: f64,
+    abort: impl FnMut(u64, &Homing) -> bool,
+) -> Run {
+    run_sim(spec, hw, Sim::new(layout, x), abort)
+}
+
+/// Home with `spec` from the state of `sim` (which may be moving).
+pub fn run_sim(
+    spec: &HomingSpec,
+    hw: HomingHardware,
+    mut sim: Sim,
     mut abort: impl FnMut(u64, &Homing) -> bool,
 ) -> Run {
-    let mut sim = Sim::new(layout, x);
-    let mut inputs = sim.inputs(x);
+    let mut inputs = sim.inputs(sim.x);
     let mut r = Run::default();
     match Homing::start(spec, hw, &inputs) {
         Err(e) => r.result = Some(Err(e)),

@@ -1,6 +1,6 @@
 //! Tests of the homing machine against the kinematic test double in `sim.rs`.
 
-use super::sim::{run, run_with, Layout, Run, DT};
+use super::sim::{run, run_sim, run_with, Layout, Run, Sim, DT};
 use super::*;
 
 const SWITCH_V: f64 = 20.0;
@@ -687,6 +687,36 @@ fn homing_abort_stops_then_reports() {
     assert_eq!(r.result, Some(Err(HomingError::Aborted)));
     assert_eq!(r.final_v, 0.0);
     assert!(r.final_x > RIGHT + 5.0);
+}
+
+#[test]
+fn homing_started_in_motion_stops_first() {
+    // Moving away from the cam at the switch velocity when method 8 starts.
+    let mut sim = Sim::new(Layout::cam(), LEFT);
+    sim.request(MotionRequest::Velocity {
+        velocity: -SWITCH_V,
+        acceleration: ACC,
+    });
+    for _ in 0..100 {
+        sim.tick();
+    }
+    let start = sim.x;
+    let r = run_sim(&spec(8), ALL, sim, |_, _| false);
+    check_success(&r, "moving");
+    assert_eq!(r.home, Some(13.0));
+    assert_eq!(r.dirs, vec![-1, 1]);
+    assert!(matches!(
+        r.outputs.first().and_then(|o| o.motion),
+        Some(MotionRequest::Stop { .. })
+    ));
+    // Stopped within the ramp, then searched from rest.
+    let stopped = r
+        .outputs
+        .iter()
+        .position(|o| matches!(o.motion, Some(MotionRequest::Velocity { .. })))
+        .unwrap_or(0);
+    assert!(stopped >= 10, "{stopped}");
+    assert!(start < LEFT - 1.0);
 }
 
 #[test]
