@@ -157,7 +157,8 @@ pub struct HomingInputs {
     pub position: f64,
     /// Commanded velocity (its sign is the direction of travel).
     pub velocity: f64,
-    /// The last [`MotionRequest`] has finished (at rest, or at its `MoveTo` target).
+    /// The last [`MotionRequest`] has finished (at rest, or at its `MoveTo` target). Only read
+    /// while a `Stop`, `StopImmediately` or `MoveTo` is in effect, never for `Velocity`.
     pub motion_done: bool,
     /// Logical levels (already inverted and filtered) at the end of the tick.
     pub limit_pos: bool,
