@@ -33,9 +33,22 @@ fn busy_axis() -> AxisConfig {
     a.encoder.noise = 0.5;
     a.plant.model = PlantModel::Lag;
     a.plant.time_constant = 0.002;
-    a.switches.limit_pos = Some(SwitchConfig { position: 1e9, filter: 2, active_low: false });
-    a.switches.limit_neg = Some(SwitchConfig { position: -1e9, filter: 2, active_low: false });
-    a.switches.home = Some(HomeSwitchConfig { low: 5e8, high: 5e8 + 10.0, filter: 0, active_low: false });
+    a.switches.limit_pos = Some(SwitchConfig {
+        position: 1e9,
+        filter: 2,
+        active_low: false,
+    });
+    a.switches.limit_neg = Some(SwitchConfig {
+        position: -1e9,
+        filter: 2,
+        active_low: false,
+    });
+    a.switches.home = Some(HomeSwitchConfig {
+        low: 5e8,
+        high: 5e8 + 10.0,
+        filter: 0,
+        active_low: false,
+    });
     a
 }
 

@@ -167,7 +167,8 @@ pub enum Command {
     Resume {
         axis: AxisIndex,
     },
-    /// Home with a CiA 402 method (1–35, 37). Absent values come from the `home_*` parameters.
+    /// Home with a CiA 402 method (1–14, 17–30, 33–35, 37). Absent values come from the
+    /// `home_*` parameters; vendor modes map onto methods and quirks in `homing::vendor`.
     Home {
         axis: AxisIndex,
         #[serde(default)]

@@ -9,6 +9,7 @@ use crate::command::{
     finite, positive, AxisInput, BufferMode, CancelScope, CommandKind, CommandState, Direction,
     EngineError, ErrorKind, PositionFrame, Reply, Setpoint, StopMode,
 };
+use crate::homing::{Homing, HomingHardware, HomingSpec};
 use crate::hw::AxisClass;
 use crate::param::{Access, ParamId};
 use crate::profile::{Goal, MovingAverage};
@@ -364,6 +365,7 @@ impl Axis {
                     homing: Some(Box::new(homing)),
                 });
                 self.target_pos = from;
+                self.progress_homing(ctx);
                 return Ok(());
             }
         };
@@ -1034,14 +1036,22 @@ impl Axis {
         Ok(Reply::Done)
     }
 
-    /// Start a homing run (placeholder until the homing state machine is wired in).
+    /// Start a homing run: validate it against the axis's inputs, then take its first step in
+    /// this same tick (the homing contract).
     pub(super) fn start_homing(
         &mut self,
-        _tick: u64,
-        _spec: &crate::homing::HomingSpec,
-    ) -> Result<crate::homing::Homing, EngineError> {
-        Err(EngineError::Unsupported {
-            what: "homing".into(),
-        })
+        tick: u64,
+        spec: &HomingSpec,
+    ) -> Result<Homing, EngineError> {
+        let hardware = HomingHardware {
+            limit_pos: self.has_input(ParamId::FhLimitIn, self.limit_pos_switch.is_some()),
+            limit_neg: self.has_input(ParamId::RhLimitIn, self.limit_neg_switch.is_some()),
+            home: self.has_input(ParamId::HomeIn, self.home_switch.is_some()),
+            index: self.encoder.has_index(),
+        };
+        let inputs = self.homing_inputs(tick);
+        let homing = Homing::start(spec, hardware, &inputs).map_err(EngineError::Homing)?;
+        self.flags.remove(AxisFlags::HOMED);
+        Ok(homing)
     }
 }

@@ -3,7 +3,9 @@
 
 use super::{status_word, Activity, Axis, Context, Goal1, Ramp, Source};
 use crate::command::{CommandState, Direction, ErrorKind, StopMode};
+use crate::homing::{HomingInputs, MotionRequest};
 use crate::param::ParamId;
+use crate::profile::{Goal, Limits, Options, Profile};
 use crate::status::AxisFlags;
 
 impl Axis {
@@ -234,5 +236,125 @@ impl Axis {
         fe < self.param(ParamId::StopFeTol) || waited >= self.param(ParamId::CmdStopMaxTime)
     }
 
-    fn progress_homing(&mut self, _ctx: &mut Context) {}
+    /// One tick of the homing state machine, and what it asks of the axis.
+    pub(super) fn progress_homing(&mut self, ctx: &mut Context) {
+        let inputs = self.homing_inputs(ctx.tick);
+        let Activity::Running(run) = &mut self.activity else {
+            return;
+        };
+        let Some(homing) = run.homing.as_mut() else {
+            return;
+        };
+        let offset = homing.spec().offset;
+        let out = homing.step(&inputs);
+        if let Some(at) = out.set_home {
+            // The home point reads `offset` from now on; the motor does not move.
+            let delta = offset - at;
+            self.shift_commanded(delta);
+            self.act_offset += delta;
+            self.act_pos += delta;
+        }
+        if let Some(request) = out.motion {
+            self.execute_homing_motion(ctx.tick, request);
+        }
+        self.homing_phase = out.phase.code();
+        if let Some(result) = out.done {
+            self.source = Source::Hold;
+            self.target_pos = self.raw.p;
+            match result {
+                Ok(()) => {
+                    self.flags |= AxisFlags::HOMED;
+                    self.end_running(ctx, CommandState::Done);
+                }
+                Err(_) => {
+                    self.latched |= AxisFlags::HOMING_FAILED;
+                    self.last_error = Some(ErrorKind::Homing);
+                    self.end_running(ctx, CommandState::Error(ErrorKind::Homing));
+                }
+            }
+            self.homing_phase = 0;
+            self.start_head(ctx);
+        }
+    }
+
+    /// Homing motion uses its own speeds and acceleration, not the axis profile parameters.
+    fn execute_homing_motion(&mut self, tick: u64, request: MotionRequest) {
+        let jerk = if self.flag(ParamId::JerkMode) {
+            self.param(ParamId::Jerk)
+        } else {
+            f64::INFINITY
+        };
+        let limits = |velocity: f64, acceleration: f64| Limits {
+            velocity: velocity.abs().max(f64::MIN_POSITIVE),
+            acceleration,
+            deceleration: acceleration,
+            jerk,
+        };
+        let planned = match request {
+            MotionRequest::Velocity {
+                velocity,
+                acceleration,
+            } => Profile::plan(
+                self.raw,
+                Goal::Velocity { target: velocity },
+                &limits(velocity, acceleration),
+                &Options::default(),
+            ),
+            MotionRequest::MoveTo {
+                position,
+                velocity,
+                acceleration,
+            } => Profile::plan(
+                self.raw,
+                Goal::Position {
+                    target: position,
+                    end_velocity: 0.0,
+                },
+                &limits(velocity, acceleration),
+                &Options::default(),
+            ),
+            MotionRequest::Stop { deceleration } => {
+                self.plan_stop(tick, deceleration);
+                return;
+            }
+            MotionRequest::StopImmediately => {
+                self.stop_immediately();
+                return;
+            }
+        };
+        self.source = match planned {
+            Ok(profile) => Source::Profile {
+                profile,
+                origin: tick,
+                shift: 0.0,
+            },
+            // The homing machine validated its speeds; should planning still fail, stand still.
+            Err(_) => Source::Hold,
+        };
+    }
+
+    /// What the homing machine sees this tick (user frame, unwrapped).
+    pub(super) fn homing_inputs(&self, tick: u64) -> HomingInputs {
+        let motion_done = match self.source {
+            Source::Hold => true,
+            Source::Profile {
+                profile, origin, ..
+            } => tick.saturating_sub(origin) as f64 * self.period >= profile.duration(),
+            Source::External(_) => false,
+        };
+        let i = &self.inputs;
+        HomingInputs {
+            time: tick as f64 * self.period,
+            position: self.act_pos,
+            velocity: self.raw.v,
+            motion_done,
+            limit_pos: i.limit_pos,
+            limit_neg: i.limit_neg,
+            home: i.home,
+            home_edge: i.home_edge.map(|e| e.position),
+            limit_pos_edge: i.limit_pos_edge.map(|e| e.position),
+            limit_neg_edge: i.limit_neg_edge.map(|e| e.position),
+            index: i.index_at,
+        }
+    }
 }

@@ -300,19 +300,3 @@ pub enum HomingError {
     #[error("homing aborted")]
     Aborted,
 }
-
-/// A homing run as the axis starts it (placeholder until the state machine lands).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct HomingSpec {
-    pub method: i16,
-    pub switch_velocity: f64,
-    pub zero_velocity: f64,
-    pub acceleration: f64,
-    pub offset: f64,
-    pub timeout: f64,
-    pub quirks: HomingQuirks,
-}
-
-/// A running homing state machine (placeholder until the state machine lands).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Homing {}
