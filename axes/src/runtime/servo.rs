@@ -231,7 +231,14 @@ impl<C: Clock> Servo<C> {
 
     fn run_paced(&mut self, wall_period: f64) {
         let schedule = Schedule::new(self.clock.now(), wall_period);
-        let wall_period = Duration::try_from_secs_f64(wall_period).unwrap_or(Duration::MAX);
+        self.paced_loop(&schedule);
+        // A stop can come in mid-batch: the final statistics get a drift of their own.
+        self.update_drift(&schedule);
+    }
+
+    /// Runs batches of ticks on `schedule` until a stop is requested.
+    fn paced_loop(&mut self, schedule: &Schedule) {
+        let wall_period = Duration::from_nanos(schedule.wall_period_ns.round() as u64);
         // Ticks accounted for since start: run or dropped.
         let mut scheduled: u64 = 0;
         loop {
@@ -253,23 +260,29 @@ impl<C: Clock> Servo<C> {
             let due = schedule.due_through(now).saturating_sub(scheduled).max(1);
             let missed = due - 1;
             let caught_up = missed.min(self.max_catch_up_ticks);
-            self.stats.caught_up_ticks += caught_up;
             self.stats.dropped_ticks += missed - caught_up;
             scheduled = scheduled.saturating_add(due);
-            for _ in 0..=caught_up {
+            for n in 0..=caught_up {
                 if self.stopping() {
                     return;
                 }
                 self.paced_tick(wall_period);
+                // Counted as run, so a stop in mid-batch keeps caught_up ⊆ ticks_run.
+                if n > 0 {
+                    self.stats.caught_up_ticks += 1;
+                }
             }
-            let now = self.clock.now();
-            let elapsed = now.saturating_sub(schedule.start);
-            self.stats.elapsed = elapsed.as_secs_f64();
-            self.stats.drift = (self.stats.ticks_run as f64
-                - elapsed.as_nanos() as f64 / schedule.wall_period_ns)
-                * self.engine.period();
+            self.update_drift(schedule);
             self.publish_stats();
         }
+    }
+
+    fn update_drift(&mut self, schedule: &Schedule) {
+        let elapsed = self.clock.now().saturating_sub(schedule.start);
+        self.stats.elapsed = elapsed.as_secs_f64();
+        self.stats.drift = (self.stats.ticks_run as f64
+            - elapsed.as_nanos() as f64 / schedule.wall_period_ns)
+            * self.engine.period();
     }
 
     fn paced_tick(&mut self, wall_period: Duration) {

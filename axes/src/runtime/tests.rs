@@ -92,6 +92,12 @@ struct FakeState {
     lateness: VecDeque<Duration>,
     sleeps_allowed: u64,
     waiting_at_gate: bool,
+    /// Reading number `block_at_read` (from 1) after an allowed sleep blocks until `release`
+    /// (readings before the first allowed sleep depend on how often the gate timed out).
+    sleeps_done: u64,
+    reads_since_sleep: u64,
+    block_at_read: Option<u64>,
+    blocked: bool,
 }
 
 impl FakeClock {
@@ -131,9 +137,42 @@ impl FakeClock {
     }
 }
 
+impl FakeClock {
+    fn wait_blocked(&self) {
+        let give_up = Instant::now() + Duration::from_secs(60);
+        let mut state = self.state();
+        while !state.blocked {
+            assert!(
+                Instant::now() < give_up,
+                "the servo thread never read the clock"
+            );
+            state = self
+                .0
+                 .1
+                .wait_timeout(state, Duration::from_millis(50))
+                .unwrap()
+                .0;
+        }
+    }
+
+    fn release(&self) {
+        self.state().block_at_read = None;
+        self.0 .1.notify_all();
+    }
+}
+
 impl Clock for FakeClock {
     fn now(&self) -> Duration {
         let mut state = self.state();
+        state.reads_since_sleep += 1;
+        if state.sleeps_done > 0 && state.block_at_read == Some(state.reads_since_sleep) {
+            state.blocked = true;
+            self.0 .1.notify_all();
+            while state.block_at_read.is_some() {
+                state = self.0 .1.wait(state).unwrap();
+            }
+            state.blocked = false;
+        }
         let now = state.now;
         let step = state.now_step;
         state.now += step;
@@ -156,6 +195,8 @@ impl Clock for FakeClock {
             return;
         }
         state.sleeps_allowed -= 1;
+        state.sleeps_done += 1;
+        state.reads_since_sleep = 0;
         let late = state.lateness.pop_front().unwrap_or_default();
         state.now = state.now.max(deadline + late);
     }
@@ -688,6 +729,34 @@ fn catch_up_beyond_the_bound_drops_ticks_and_shows_in_drift() {
     );
     // On schedule again, 7 periods behind wall time for good.
     assert!((stats.drift + 7e-3).abs() < 1e-12, "{}", stats.drift);
+    assert_consistent(&stats, 0);
+}
+
+#[test]
+fn stop_in_mid_catch_up_keeps_the_stats_consistent() {
+    let options = RuntimeOptions {
+        max_catch_up_ticks: 40,
+        ..RuntimeOptions::default()
+    };
+    let lateness = [Duration::from_millis(100)];
+    let (handle, guard, fake) = paced_fake(ClockMode::Realtime, &lateness, options);
+    // Readings after the sleep: 1 the wake-up, then two per tick: reading 8 starts tick 4 of
+    // a batch of 41 (100 missed: 40 caught up, 60 dropped).
+    fake.state().block_at_read = Some(8);
+    fake.allow(1);
+    fake.wait_blocked();
+    let stopper = thread::spawn(move || guard.stop());
+    eventually("the stop request", || {
+        handle.submit(enable(0)).err() == Some(SubmitError::Stopped)
+    });
+    fake.release();
+    assert_eq!(stopper.join().unwrap().unwrap().tick(), 4);
+    let stats = handle.stats();
+    assert_eq!(
+        (stats.ticks_run, stats.caught_up_ticks, stats.dropped_ticks),
+        (4, 3, 60)
+    );
+    assert!((stats.drift + 97e-3).abs() < 1e-12, "{}", stats.drift); // 4 ms − 101 ms
     assert_consistent(&stats, 0);
 }
 
