@@ -199,10 +199,12 @@ fn fe_fault_with_flag_only_reaction_keeps_moving() {
     let s = status(&e);
     assert!(s.latched.contains(AxisFlags::FE_FAULT));
     assert_eq!(s.state, AxisState::ContinuousMotion);
-    // With the stop reaction the axis stops and sits in ErrorStop.
-    ok(&mut e, Command::Reset { axis: 0 }).clone();
+    // With the stop reaction the axis stops and sits in ErrorStop, still powered.
+    ok(&mut e, Command::InjectFollowingError { axis: 0, amount: None });
+    run(&mut e, 0.001);
+    ok(&mut e, Command::Reset { axis: 0 });
     set(&mut e, ParamId::FeAction, 2.0);
-    let _ = e.apply(Command::Reset { axis: 0 });
+    ok(&mut e, Command::InjectFollowingError { axis: 0, amount: Some(5.0) });
     run(&mut e, 0.1);
     let s = status(&e);
     assert_eq!(s.state, AxisState::ErrorStop);

@@ -1,0 +1,404 @@
+//! The servo thread: owns the engine, drains the queue, steps, publishes.
+
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::sync::atomic::Ordering;
+use std::sync::mpsc::{Receiver, TryRecvError};
+use std::sync::Arc;
+use std::time::Duration;
+
+use arc_swap::ArcSwap;
+
+use super::{
+    AdvanceError, CallError, Clock, Condition, ReplySender, RuntimeOptions, RuntimeStats, Shared,
+    Until,
+};
+use crate::command::{Command, Reply};
+use crate::engine::Engine;
+use crate::status::Snapshot;
+
+pub(super) enum Request {
+    Command {
+        command: Command,
+        reply: ReplySender<Reply, CallError>,
+    },
+    Advance {
+        ticks: u64,
+        until: Option<Condition>,
+        reply: ReplySender<Until, AdvanceError>,
+    },
+    /// Wakes a virtual servo thread blocked on the queue, so that it sees the stop flag.
+    Wake,
+}
+
+/// Publishes values through an `ArcSwap`, refilling the buffer it got back from the previous
+/// swap when no reader holds it any more: steady state allocates nothing.
+struct Publisher<T> {
+    spare: Option<Arc<T>>,
+    allocations: u64,
+}
+
+impl<T: Clone + Default> Publisher<T> {
+    fn new() -> Publisher<T> {
+        Publisher {
+            spare: None,
+            allocations: 0,
+        }
+    }
+
+    fn publish(&mut self, target: &ArcSwap<T>, fill: impl FnOnce(&mut T)) {
+        let mut next = match self.spare.take() {
+            Some(spare) => spare,
+            None => {
+                self.allocations += 1;
+                Arc::new(T::default())
+            }
+        };
+        if Arc::get_mut(&mut next).is_none() {
+            self.allocations += 1; // a reader still holds it: make_mut clones
+        }
+        fill(Arc::make_mut(&mut next));
+        self.spare = Some(target.swap(next));
+    }
+}
+
+/// Absolute deadlines of a paced clock: tick n (n ≥ 1 since start) is due at
+/// start + round(n × wall period), computed from n each time so no error accumulates.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Schedule {
+    start: Duration,
+    wall_period_ns: f64,
+}
+
+impl Schedule {
+    pub(super) fn new(start: Duration, wall_period: f64) -> Schedule {
+        Schedule {
+            start,
+            wall_period_ns: wall_period * 1e9,
+        }
+    }
+
+    pub(super) fn deadline(&self, n: u64) -> Duration {
+        let offset = (n as f64 * self.wall_period_ns).round() as u64; // saturating cast
+        self.start.saturating_add(Duration::from_nanos(offset))
+    }
+
+    /// The largest n whose deadline is ≤ `now` (0 when none).
+    pub(super) fn due_through(&self, now: Duration) -> u64 {
+        let elapsed = now.saturating_sub(self.start).as_nanos() as f64;
+        let mut n = (elapsed / self.wall_period_ns).floor() as u64;
+        // The division and the rounded product can disagree by one at an edge.
+        while self.deadline(n.saturating_add(1)) <= now && n < u64::MAX {
+            n += 1;
+        }
+        while n > 0 && self.deadline(n) > now {
+            n -= 1;
+        }
+        n
+    }
+}
+
+pub(super) struct Servo<C> {
+    engine: Engine,
+    rx: Receiver<Request>,
+    shared: Arc<Shared>,
+    clock: C,
+    max_commands_per_tick: usize,
+    max_catch_up_ticks: u64,
+    snapshots: Publisher<Snapshot>,
+    stats_publisher: Publisher<RuntimeStats>,
+    stats: RuntimeStats,
+    /// Replies held back until the snapshot with their effect is published.
+    replies: Vec<(ReplySender<Reply, CallError>, Result<Reply, CallError>)>,
+}
+
+/// Clears `running` when the servo thread ends, by return or by unwinding.
+struct RunningFlag(Arc<Shared>);
+
+impl Drop for RunningFlag {
+    fn drop(&mut self) {
+        self.0.running.store(false, Ordering::Release);
+    }
+}
+
+impl<C: Clock> Servo<C> {
+    pub(super) fn new(
+        engine: Engine,
+        rx: Receiver<Request>,
+        shared: Arc<Shared>,
+        clock: C,
+        options: &RuntimeOptions,
+    ) -> Servo<C> {
+        let stats = RuntimeStats::new(options.clock, engine.period(), engine.tick());
+        Servo {
+            engine,
+            rx,
+            shared,
+            clock,
+            max_commands_per_tick: options.max_commands_per_tick,
+            max_catch_up_ticks: options.max_catch_up_ticks,
+            snapshots: Publisher::new(),
+            stats_publisher: Publisher::new(),
+            stats,
+            replies: Vec::with_capacity(options.max_commands_per_tick.min(4096)),
+        }
+    }
+
+    pub(super) fn run(mut self) -> Engine {
+        let _ = self.shared.servo_thread.set(std::thread::current().id());
+        let running = RunningFlag(Arc::clone(&self.shared));
+        match self.shared.clock.wall_period(self.engine.period()) {
+            None => self.run_virtual(),
+            Some(wall_period) => self.run_paced(wall_period),
+        }
+        drop(running);
+        self.publish_stats();
+        // Dropping the queue answers every request still in it `Stopped` (ReplySender::drop),
+        // including any that races in after this point.
+        let Servo { engine, rx, .. } = self;
+        drop(rx);
+        engine
+    }
+
+    fn stopping(&self) -> bool {
+        self.shared.stop.load(Ordering::Acquire)
+    }
+
+    // ---- virtual clock -------------------------------------------------------------------
+
+    fn run_virtual(&mut self) {
+        // Blocks on the queue rather than polling: an idle virtual runtime costs nothing, and a
+        // command is applied as soon as it arrives, at the current tick.
+        while let Ok(request) = self.rx.recv() {
+            if self.stopping() {
+                return; // `request` is dropped: its caller gets `Stopped`
+            }
+            match request {
+                Request::Command { command, reply } => {
+                    self.apply(command, reply);
+                    self.publish_snapshot();
+                    self.publish_stats();
+                    self.send_replies();
+                }
+                Request::Advance {
+                    ticks,
+                    until,
+                    reply,
+                } => {
+                    let result = self.advance(ticks, until.as_ref());
+                    self.publish_stats();
+                    reply.send(result);
+                }
+                Request::Wake => {}
+            }
+        }
+    }
+
+    fn advance(&mut self, ticks: u64, until: Option<&Condition>) -> Result<Until, AdvanceError> {
+        for _ in 0..ticks {
+            if self.stopping() {
+                return Err(AdvanceError::Submit(super::SubmitError::Stopped));
+            }
+            self.engine.step();
+            self.stats.ticks_run += 1;
+            self.publish_snapshot();
+            if let Some(condition) = until {
+                let snapshot = self.shared.snapshot.load();
+                // The condition is the caller's code: a panic in it fails this advance, not the
+                // runtime (it only saw a shared reference, so the engine is intact).
+                match catch_unwind(AssertUnwindSafe(|| condition(&snapshot))) {
+                    Ok(true) => {
+                        return Ok(Until {
+                            met: true,
+                            tick: self.engine.tick(),
+                        })
+                    }
+                    Ok(false) => {}
+                    Err(_) => {
+                        return Err(AdvanceError::ConditionPanicked {
+                            tick: self.engine.tick(),
+                        })
+                    }
+                }
+            }
+        }
+        Ok(Until {
+            met: false,
+            tick: self.engine.tick(),
+        })
+    }
+
+    // ---- paced clocks (realtime, scaled) ---------------------------------------------------
+
+    fn run_paced(&mut self, wall_period: f64) {
+        let schedule = Schedule::new(self.clock.now(), wall_period);
+        self.paced_loop(&schedule);
+        // A stop can come in mid-batch: the final statistics get a drift of their own.
+        self.update_drift(&schedule);
+    }
+
+    /// Runs batches of ticks on `schedule` until a stop is requested.
+    fn paced_loop(&mut self, schedule: &Schedule) {
+        let wall_period = Duration::from_nanos(schedule.wall_period_ns.round() as u64);
+        // Ticks accounted for since start: run or dropped.
+        let mut scheduled: u64 = 0;
+        loop {
+            let deadline = schedule.deadline(scheduled.saturating_add(1));
+            let mut now = self.clock.now();
+            if now < deadline {
+                while now < deadline {
+                    if self.stopping() {
+                        return;
+                    }
+                    self.clock.sleep_until(deadline);
+                    now = self.clock.now();
+                }
+                self.stats.lateness.record(now - deadline);
+            }
+            if self.stopping() {
+                return;
+            }
+            let due = schedule.due_through(now).saturating_sub(scheduled).max(1);
+            let missed = due - 1;
+            let caught_up = missed.min(self.max_catch_up_ticks);
+            self.stats.dropped_ticks += missed - caught_up;
+            scheduled = scheduled.saturating_add(due);
+            for n in 0..=caught_up {
+                if self.stopping() {
+                    return;
+                }
+                self.paced_tick(wall_period);
+                // Counted as run, so a stop in mid-batch keeps caught_up ⊆ ticks_run.
+                if n > 0 {
+                    self.stats.caught_up_ticks += 1;
+                }
+            }
+            self.update_drift(schedule);
+            self.publish_stats();
+        }
+    }
+
+    fn update_drift(&mut self, schedule: &Schedule) {
+        let elapsed = self.clock.now().saturating_sub(schedule.start);
+        self.stats.elapsed = elapsed.as_secs_f64();
+        self.stats.drift = (self.stats.ticks_run as f64
+            - elapsed.as_nanos() as f64 / schedule.wall_period_ns)
+            * self.engine.period();
+    }
+
+    fn paced_tick(&mut self, wall_period: Duration) {
+        let started = self.clock.now();
+        let mut applied = 0;
+        while applied < self.max_commands_per_tick {
+            match self.rx.try_recv() {
+                Ok(Request::Command { command, reply }) => {
+                    self.apply(command, reply);
+                    applied += 1;
+                }
+                Ok(Request::Advance { reply, .. }) => {
+                    reply.send(Err(AdvanceError::NotVirtual(self.shared.clock)));
+                }
+                Ok(Request::Wake) => {}
+                // Disconnected: the guard is gone, so the stop flag is set.
+                Err(TryRecvError::Empty | TryRecvError::Disconnected) => break,
+            }
+        }
+        if applied == self.max_commands_per_tick {
+            self.stats.command_bound_hits += 1;
+        }
+        self.engine.step();
+        self.stats.ticks_run += 1;
+        self.publish_snapshot();
+        self.send_replies();
+        let busy = self.clock.now().saturating_sub(started);
+        if busy > wall_period {
+            self.stats.overruns += 1;
+        }
+        self.stats.max_tick_time = self.stats.max_tick_time.max(busy.as_secs_f64());
+    }
+
+    // ---- common ----------------------------------------------------------------------------
+
+    fn apply(&mut self, command: Command, reply: ReplySender<Reply, CallError>) {
+        let result = self.engine.apply(command).map_err(CallError::Engine);
+        self.stats.commands_applied += 1;
+        self.replies.push((reply, result));
+    }
+
+    fn send_replies(&mut self) {
+        for (reply, result) in self.replies.drain(..) {
+            reply.send(result);
+        }
+    }
+
+    fn publish_snapshot(&mut self) {
+        let engine = &self.engine;
+        self.snapshots
+            .publish(&self.shared.snapshot, |s| engine.snapshot_into(s));
+    }
+
+    fn publish_stats(&mut self) {
+        self.stats.tick = self.engine.tick();
+        self.stats.snapshot_allocations = self.snapshots.allocations;
+        let stats = &self.stats;
+        self.stats_publisher
+            .publish(&self.shared.stats, |s| s.clone_from(stats));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn deadlines_are_absolute_and_do_not_accumulate_error() {
+        let s = Schedule::new(Duration::from_millis(7), 1e-3);
+        assert_eq!(s.deadline(1), Duration::from_millis(8));
+        assert_eq!(s.deadline(3), Duration::from_millis(10));
+        // 10⁹ ticks of 1 ms: still exact to the nanosecond.
+        assert_eq!(
+            s.deadline(1_000_000_000),
+            Duration::from_millis(7) + Duration::from_secs(1_000_000)
+        );
+        // A period that is not a whole number of ns: n × p, rounded once.
+        let third = Schedule::new(Duration::ZERO, 1e-3 / 3.0);
+        assert_eq!(third.deadline(3), Duration::from_millis(1));
+        assert_eq!(third.deadline(3_000_000), Duration::from_secs(1000));
+    }
+
+    #[test]
+    fn due_through_counts_deadlines_reached() {
+        let s = Schedule::new(Duration::from_millis(7), 1e-3);
+        assert_eq!(s.due_through(Duration::ZERO), 0);
+        assert_eq!(s.due_through(Duration::from_millis(7)), 0);
+        assert_eq!(s.due_through(Duration::from_nanos(7_999_999)), 0);
+        assert_eq!(s.due_through(Duration::from_millis(8)), 1);
+        assert_eq!(s.due_through(Duration::from_micros(12_500)), 5);
+        let third = Schedule::new(Duration::ZERO, 1e-3 / 3.0);
+        for n in [1u64, 2, 3, 299, 300, 301, 1_000_000] {
+            assert_eq!(third.due_through(third.deadline(n)), n);
+            assert_eq!(
+                third.due_through(third.deadline(n) - Duration::from_nanos(1)),
+                n - 1
+            );
+        }
+    }
+
+    #[test]
+    fn publisher_reuses_the_spare_unless_a_reader_holds_it() {
+        let target = ArcSwap::from_pointee(0u64);
+        let mut p = Publisher::<u64>::new();
+        p.publish(&target, |v| *v = 1);
+        p.publish(&target, |v| *v = 2);
+        assert_eq!(p.allocations, 1); // the first; the second reused the initial value's Arc
+        for i in 3..100 {
+            p.publish(&target, |v| *v = i);
+        }
+        assert_eq!(p.allocations, 1);
+        let held = target.load_full(); // 99, becomes the spare on the next publish
+        p.publish(&target, |v| *v = 100);
+        p.publish(&target, |v| *v = 101); // the spare is `held`: must not be overwritten
+        assert_eq!(*held, 99);
+        assert_eq!(**target.load(), 101);
+        assert_eq!(p.allocations, 2);
+    }
+}
