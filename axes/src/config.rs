@@ -8,6 +8,7 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
+use crate::cia402::DriveConfig;
 use crate::param::{Access, ParamId};
 
 /// Shortest and longest servo period (ARCHITECTURE §3.1).
@@ -27,6 +28,9 @@ pub struct EngineConfig {
     pub axes: Vec<AxisConfig>,
     #[serde(default)]
     pub io: IoConfig,
+    /// CiA 402 drives, each bound to an axis; slave numbers are positions in this list.
+    #[serde(default)]
+    pub drives: Vec<DriveConfig>,
 }
 
 fn default_period() -> f64 {
@@ -40,6 +44,7 @@ impl Default for EngineConfig {
             seed: 0,
             axes: Vec::new(),
             io: IoConfig::default(),
+            drives: Vec::new(),
         }
     }
 }
@@ -265,6 +270,27 @@ impl EngineConfig {
         }
         for (i, axis) in self.axes.iter().enumerate() {
             axis.validate(&format!("axes[{i}]"))?;
+        }
+        let mut bound = vec![false; self.axes.len()];
+        for (i, d) in self.drives.iter().enumerate() {
+            let key = format!("drives[{i}]");
+            d.validate()
+                .map_err(|e| ConfigError::new(key.clone(), e.to_string()))?;
+            match bound.get_mut(d.axis as usize) {
+                None => {
+                    return Err(ConfigError::new(
+                        format!("{key}.axis"),
+                        format!("axis {} does not exist ({} axes)", d.axis, self.axes.len()),
+                    ))
+                }
+                Some(true) => {
+                    return Err(ConfigError::new(
+                        format!("{key}.axis"),
+                        format!("axis {} already has a drive", d.axis),
+                    ))
+                }
+                Some(b) => *b = true,
+            }
         }
         let io = &self.io;
         for (i, b) in io.bindings.iter().enumerate() {

@@ -3,12 +3,14 @@
 //! bit-identical state: nothing here reads a clock, iterates a hash map or uses a thread.
 
 use crate::axis::{Action, Axis, Context, Ledger, MotionRequest, Overrides};
+use crate::cia402::{controlword_for, obj, Cia402Drive, DriveMaster, PowerTarget, State};
 use crate::command::{AxisIndex, Command, CommandKind, EngineError, Reply};
+use crate::od::Value;
 use crate::config::{AxisSignal, ConfigError, EngineConfig, InputBinding};
 use crate::homing::HomingSpec;
 use crate::param::ParamId;
 use crate::rng::Rng;
-use crate::status::{AxisFlags, AxisStatus, IoImage, Snapshot};
+use crate::status::{AxisFlags, AxisStatus, DriveStatus, IoImage, Snapshot};
 
 /// The machine's digital and analog I/O.
 #[derive(Clone, Debug)]
@@ -19,6 +21,17 @@ struct Io {
     bindings: Vec<InputBinding>,
 }
 
+/// A CiA 402 drive on the engine's fieldbus.
+#[derive(Debug)]
+struct Slave {
+    drive: Cia402Drive,
+    master: DriveMaster,
+    /// Engine-mastered drives: the power state the engine is walking the drive to.
+    power: Option<PowerTarget>,
+    /// The controlword the engine wrote last.
+    controlword: u16,
+}
+
 #[derive(Debug)]
 pub struct Engine {
     period: f64,
@@ -26,6 +39,11 @@ pub struct Engine {
     axes: Vec<Axis>,
     io: Io,
     ledger: Ledger,
+    slaves: Vec<Slave>,
+    /// The slave bound to each axis, if any.
+    axis_slave: Vec<Option<usize>>,
+    /// Commands the drives emitted this tick (reused; no allocation per tick).
+    drive_commands: Vec<Command>,
 }
 
 impl Engine {
@@ -39,6 +57,21 @@ impl Engine {
             .enumerate()
             .map(|(i, a)| Axis::new(i as AxisIndex, a, config.period, &rng))
             .collect();
+        let mut slaves = Vec::with_capacity(config.drives.len());
+        let mut axis_slave = vec![None; config.axes.len()];
+        for (i, d) in config.drives.iter().enumerate() {
+            let drive = Cia402Drive::new(d.clone())
+                .map_err(|e| ConfigError::new(format!("drives[{i}]"), e.to_string()))?;
+            if let Some(slot) = axis_slave.get_mut(d.axis as usize) {
+                *slot = Some(i);
+            }
+            slaves.push(Slave {
+                drive,
+                master: d.master,
+                power: None,
+                controlword: 0,
+            });
+        }
         let io = &config.io;
         Ok(Engine {
             period: config.period,
@@ -56,6 +89,9 @@ impl Engine {
                 bindings: io.bindings.clone(),
             },
             ledger: Ledger::default(),
+            slaves,
+            axis_slave,
+            drive_commands: Vec::new(),
         })
     }
 
@@ -92,11 +128,47 @@ impl Engine {
 
     /// Apply one command at the current tick.
     pub fn apply(&mut self, command: Command) -> Result<Reply, EngineError> {
+        if let Some(reply) = self.route_power(&command) {
+            return reply;
+        }
+        self.apply_to_axes(command)
+    }
+
+    /// Power commands on an axis whose drive the engine masters go through the drive's state
+    /// machine: the engine writes the controlword sequence over the next ticks and the drive
+    /// powers the axis when it reaches Operation enabled (HIMC Enable/Disable/Reset, digest 004
+    /// §3.2). The reply says the request was taken; the state follows in the status.
+    fn route_power(&mut self, command: &Command) -> Option<Result<Reply, EngineError>> {
+        let (axis, target) = match command {
+            Command::Enable { axis } => (*axis, PowerTarget::OperationEnabled),
+            Command::Disable { axis } => (*axis, PowerTarget::SwitchOnDisabled),
+            Command::Reset { axis } => (*axis, PowerTarget::SwitchOnDisabled),
+            _ => return None,
+        };
+        let slave = self.axis_slave.get(axis as usize).copied().flatten()?;
+        let s = self.slaves.get_mut(slave)?;
+        if s.master != DriveMaster::Engine {
+            return None;
+        }
+        if let Command::Reset { .. } = command {
+            // A fault reset walks Fault → Switch on disabled; the axis's own latches are
+            // cleared directly.
+            if s.drive.state() == State::Fault {
+                s.power = Some(target);
+            }
+            return Some(self.apply_to_axes(command.clone()));
+        }
+        s.power = Some(target);
+        Some(Ok(Reply::Done))
+    }
+
+    fn apply_to_axes(&mut self, command: Command) -> Result<Reply, EngineError> {
         let Engine {
             axes,
             io,
             ledger,
             tick,
+            slaves,
             ..
         } = self;
         let mut ctx = Context {
@@ -104,6 +176,12 @@ impl Engine {
             di: &io.image.di,
             ledger,
         };
+        fn slave_of(slaves: &mut [Slave], slave: u16) -> Result<&mut Slave, EngineError> {
+            let count = slaves.len() as u16;
+            slaves
+                .get_mut(slave as usize)
+                .ok_or(EngineError::InvalidSlave { slave, count })
+        }
         fn axis_mut(axes: &mut [Axis], axis: AxisIndex) -> Result<&mut Axis, EngineError> {
             let count = axes.len() as u32;
             axes.get_mut(axis as usize).ok_or(EngineError::InvalidAxis {
@@ -314,8 +392,29 @@ impl Engine {
                 *slot = value;
                 Ok(Reply::Done)
             }
-            Command::ReadObject { slave, .. } | Command::WriteObject { slave, .. } => {
-                Err(EngineError::InvalidSlave { slave, count: 0 })
+            Command::ReadObject {
+                slave,
+                index,
+                subindex,
+            } => {
+                let s = slave_of(slaves, slave)?;
+                let value = s
+                    .drive
+                    .read(index, subindex)
+                    .map_err(|error| EngineError::Object { slave, error })?;
+                Ok(Reply::Object { value })
+            }
+            Command::WriteObject {
+                slave,
+                index,
+                subindex,
+                value,
+            } => {
+                let s = slave_of(slaves, slave)?;
+                s.drive
+                    .write(index, subindex, value)
+                    .map_err(|error| EngineError::Object { slave, error })?;
+                Ok(Reply::Done)
             }
         }
     }
@@ -332,6 +431,52 @@ impl Engine {
         for axis in &mut self.axes {
             axis.step(&mut ctx);
         }
+        self.step_drives();
+    }
+
+    /// Each drive sees its axis after the tick and emits the commands that take effect from the
+    /// next one; refusals go back to the drive (ARCHITECTURE §3.8).
+    fn step_drives(&mut self) {
+        let now = self.time();
+        let mut commands = std::mem::take(&mut self.drive_commands);
+        for i in 0..self.slaves.len() {
+            let Some(slave) = self.slaves.get_mut(i) else {
+                break;
+            };
+            let axis = slave.drive.config().axis as usize;
+            let Some(status) = self.axes.get(axis).map(|a| *a.status()) else {
+                continue;
+            };
+            if let Some(target) = slave.power {
+                let cw = controlword_for(target, slave.drive.statusword(), slave.controlword);
+                if cw != slave.controlword {
+                    // 0x6040 is writable and the value in range: this cannot fail.
+                    let _ = slave
+                        .drive
+                        .write(obj::CONTROLWORD, 0, Value::U16(cw));
+                    slave.controlword = cw;
+                }
+            }
+            commands.clear();
+            slave.drive.step(&status, now, &mut commands);
+            for command in commands.drain(..) {
+                let result = self.apply_to_axes(command.clone());
+                if let Some(slave) = self.slaves.get_mut(i) {
+                    slave.drive.on_reply(&command, &result);
+                }
+            }
+        }
+        self.drive_commands = commands;
+    }
+
+    /// The drive bound to `axis`, if any.
+    pub fn drive_of(&self, axis: usize) -> Option<&Cia402Drive> {
+        let slave = self.axis_slave.get(axis).copied().flatten()?;
+        self.slaves.get(slave).map(|s| &s.drive)
+    }
+
+    pub fn drive(&self, slave: usize) -> Option<&Cia402Drive> {
+        self.slaves.get(slave).map(|s| &s.drive)
     }
 
     /// The input images: forced values win, then wiring from axis signals (last tick's), else
@@ -378,6 +523,13 @@ impl Engine {
         snapshot.axes.clear();
         snapshot.axes.extend(self.axes.iter().map(|a| *a.status()));
         snapshot.io.clone_from(&self.io.image);
+        snapshot.drives.clear();
+        snapshot.drives.extend(self.slaves.iter().map(|s| DriveStatus {
+            axis: s.drive.config().axis,
+            statusword: s.drive.statusword(),
+            mode: s.drive.mode().code(),
+            error_code: s.drive.error_code(),
+        }));
     }
 
     pub fn snapshot(&self) -> Snapshot {

@@ -175,6 +175,19 @@ pub struct IoImage {
     pub ao: Vec<f64>,
 }
 
+/// A CiA 402 drive as its master sees it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct DriveStatus {
+    /// The axis the drive moves.
+    pub axis: u16,
+    /// 0x6041.
+    pub statusword: u16,
+    /// 0x6061.
+    pub mode: i8,
+    /// 0x603F.
+    pub error_code: u16,
+}
+
 /// The machine's state after a tick: what front-ends read without waiting for the servo thread.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Snapshot {
@@ -184,6 +197,8 @@ pub struct Snapshot {
     pub period: f64,
     pub axes: Vec<AxisStatus>,
     pub io: IoImage,
+    /// The CiA 402 drives, by slave number.
+    pub drives: Vec<DriveStatus>,
 }
 
 impl Snapshot {

@@ -44,6 +44,11 @@ pub use state::{controlword_for, cw, sw, DeviceCommand, OperationMode, PowerTarg
 pub struct DriveConfig {
     /// The engine axis the drive moves.
     pub axis: AxisIndex,
+    /// Who writes the controlword: an external fieldbus master (CANopen, the default), or the
+    /// engine itself, which then powers the axis through the drive's state machine on `enable`,
+    /// `disable` and `reset` (an EtherCAT-style slave of the emulated controller, as HIMC's
+    /// Enable/Disable/Reset work through 0x6040/0x6041).
+    pub master: DriveMaster,
     /// Increments per axis user unit. Velocities (increments/s) and accelerations
     /// (increments/s²) scale with it.
     pub increments_per_unit: f64,
@@ -60,10 +65,22 @@ pub struct DriveConfig {
     pub serial: u32,
 }
 
+/// Who drives a drive's controlword.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DriveMaster {
+    /// A master on a bus (CANopen SDO/PDO) writes 0x6040 and the targets.
+    #[default]
+    External,
+    /// The engine walks the state machine on the axis's power commands.
+    Engine,
+}
+
 impl Default for DriveConfig {
     fn default() -> Self {
         DriveConfig {
             axis: 0,
+            master: DriveMaster::External,
             increments_per_unit: 1.0,
             name: "mcemu CiA 402 drive".to_string(),
             hardware_version: "simulated".to_string(),
