@@ -12,7 +12,7 @@ use crate::command::{
 use crate::homing::{Homing, HomingHardware, HomingSpec};
 use crate::hw::AxisClass;
 use crate::param::{Access, ParamId};
-use crate::profile::{Goal, MovingAverage};
+use crate::profile::{Goal, MovingAverage, PlanError};
 use crate::status::AxisFlags;
 
 /// A motion request as it arrives, before it gets an id.
@@ -370,14 +370,7 @@ impl Axis {
             }
         };
         self.plan(ctx.tick, planner_goal, limits)
-            .map_err(|e| EngineError::InvalidArgument {
-                name: "profile",
-                value: f64::NAN,
-                reason: match e {
-                    crate::profile::PlanError::InvalidLimit { name, .. }
-                    | crate::profile::PlanError::NotFinite { name, .. } => name,
-                },
-            })?;
+            .map_err(plan_error)?;
         self.planned_limits = Some(limits);
         self.activity = Activity::Running(Run {
             id: q.id,
@@ -908,7 +901,7 @@ impl Axis {
             self.act_offset += before - self.encoder.position();
         }
         if id == ParamId::SmoothTime {
-            self.smoothing = smoothing_window(value, self.period).map(MovingAverage::new);
+            self.smoothing = smoothing_window(value, self.period).and_then(|n| MovingAverage::new(n).ok());
             if let Some(f) = self.smoothing.as_mut() {
                 f.reset(self.raw.p);
             }
@@ -1054,4 +1047,20 @@ impl Axis {
         self.flags.remove(AxisFlags::HOMED);
         Ok(homing)
     }
+}
+
+/// A planner refusal as an engine error. Limits come from validated parameters and checked
+/// overrides, so this is reached only with extreme but finite values.
+fn plan_error(e: PlanError) -> EngineError {
+    let (name, value, reason) = match e {
+        PlanError::InvalidLimit { name, value } => (name, value, "must be a positive number"),
+        PlanError::NotFinite { name, value } => (name, value, "must be finite"),
+        PlanError::Negative { name, value } => (name, value, "must not be negative"),
+        PlanError::Unrepresentable => (
+            "profile",
+            f64::NAN,
+            "does not fit in f64: the limits or the distance are too extreme",
+        ),
+    };
+    EngineError::InvalidArgument { name, value, reason }
 }

@@ -241,7 +241,7 @@ impl Axis {
             raw: MotionState::default(),
             raw_jerk: 0.0,
             cmd: MotionState::default(),
-            smoothing: smoothing.map(MovingAverage::new),
+            smoothing: smoothing.and_then(|n| MovingAverage::new(n).ok()),
             act_pos: 0.0,
             act_vel: 0.0,
             fifo: Fifo::new(config.fifo_depth.unwrap_or(DEFAULT_FIFO_DEPTH)),

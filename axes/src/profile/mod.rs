@@ -8,12 +8,29 @@
 //! evaluation.
 //!
 //! Vendor rules (HMC trapezoid/triangle and JerkMode, NMC smoothCoef, CPU 226H linear ramps)
-//! are expressed as choices of `Limits`/`Options` plus [`MovingAverage`] (see `rules`).
+//! are expressed as choices of `Limits`/`Options` plus [`MovingAverage`] (see [`rules`]).
+//!
+//! Semantics the manuals leave open are recorded in `docs/decisions.md` ("Profiles"); in short:
+//! - the acceleration limit applies while |v| grows, the deceleration limit while it shrinks;
+//!   a ramp through v = 0 is one ramp when both are equal and is split at v = 0 otherwise;
+//! - the peak velocity is `velocity`; an end velocity or start velocity above it is lowered to
+//!   it, and so is the target of a velocity goal;
+//! - a position goal's end velocity points in the direction of the final approach, which is
+//!   the side of the target the axis would stop on if it braked now.
 
+mod plan;
+mod ramp;
 pub mod rules;
 mod smoothing;
+#[cfg(test)]
+mod tests;
+#[cfg(test)]
+mod tests_ruckig;
 
-pub use smoothing::MovingAverage;
+pub use smoothing::{MovingAverage, SmoothingError};
+
+use plan::MAX_PHASES;
+use ramp::Lim;
 
 /// Kinematic state of the commanded motion.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -81,14 +98,48 @@ pub enum PlanError {
     InvalidLimit { name: &'static str, value: f64 },
     #[error("{name} = {value}: must be finite")]
     NotFinite { name: &'static str, value: f64 },
+    #[error("{name} = {value}: must not be negative")]
+    Negative { name: &'static str, value: f64 },
+    /// The inputs are finite but so far apart (e.g. a velocity of 1e200 with an acceleration
+    /// of 1e-200) that the profile does not fit in `f64`.
+    #[error("the profile's values do not fit in f64 (limits or start state too extreme)")]
+    Unrepresentable,
 }
+
+/// Phases of constant jerk; ramp 1 (≤ 6 when split at v = 0) + cruise + ramp 2 (≤ 6).
+const MAX_SEGMENTS: usize = MAX_PHASES;
+
+/// One phase of constant jerk, as its state at its start time `t`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Segment {
+    t: f64,
+    p: f64,
+    v: f64,
+    a: f64,
+    j: f64,
+}
+
+/// Unused slots start at +∞, so the segment search needs no length.
+const UNUSED: Segment = Segment {
+    t: f64::INFINITY,
+    p: 0.0,
+    v: 0.0,
+    a: 0.0,
+    j: 0.0,
+};
 
 /// A planned 1-D profile. `Copy`, fixed size.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Profile {
-    // Filled by the planner implementation.
-    start: MotionState,
-    target: f64,
+    segs: [Segment; MAX_SEGMENTS],
+    len: u8,
+    duration: f64,
+    /// For t ≥ duration: p = end_p + end_v·(t − duration), v = end_v.
+    end_p: f64,
+    end_v: f64,
+    /// Velocity just before `duration`.
+    arrival_v: f64,
+    goal: Goal,
 }
 
 impl Profile {
@@ -99,32 +150,268 @@ impl Profile {
         limits: &Limits,
         options: &Options,
     ) -> Result<Profile, PlanError> {
-        let _ = (goal, limits, options);
-        Ok(Profile::hold(start.p))
+        validate(start, goal, limits, options)?;
+
+        // Normalise so that the velocity and acceleration limits are 1 (Ruckig issue #27:
+        // pulse-sized limits such as jerk 1e10, acceleration 1e6 must not reach the solver).
+        let v_scale = limits.velocity;
+        let a_scale = limits.acceleration;
+        let t_scale = v_scale / a_scale;
+        let p_scale = v_scale * t_scale;
+        let j_scale = a_scale / t_scale;
+        let lim = Lim {
+            vmax: 1.0,
+            acc: 1.0,
+            dec: limits.deceleration / a_scale,
+            jerk: limits.jerk / j_scale,
+        };
+        let usable = |x: f64| x.is_finite() && x > 0.0;
+        let jerk_usable = lim.jerk > 0.0; // may be +∞
+        if !(usable(t_scale)
+            && usable(p_scale)
+            && usable(j_scale)
+            && usable(lim.dec)
+            && jerk_usable)
+        {
+            return Err(PlanError::Unrepresentable);
+        }
+        let mut v0 = start.v / v_scale;
+        let mut a0 = start.a / a_scale;
+        let start_velocity = (options.start_velocity / v_scale).min(1.0);
+
+        let (plan, end_p, end_v) = match goal {
+            Goal::Position {
+                target,
+                end_velocity,
+            } => {
+                let d = (target - start.p) / p_scale;
+                if start_velocity > 0.0 && d != 0.0 && v0.abs() < start_velocity {
+                    // NMC startVel / CPU 226H MIN_SPEED: the motion starts at this speed.
+                    v0 = start_velocity.copysign(d);
+                    a0 = 0.0;
+                }
+                if d == 0.0 && v0 == 0.0 && a0 == 0.0 {
+                    return Ok(Profile {
+                        goal,
+                        ..Profile::hold(target)
+                    });
+                }
+                let e = (end_velocity / v_scale).min(1.0);
+                let jump = options.overshoot == Overshoot::JumpToZeroAtTarget;
+                (plan::position(v0, a0, d, e, &lim, jump), Some(target), 0.0)
+            }
+            Goal::Velocity { target } => {
+                let vt = (target / v_scale).clamp(-1.0, 1.0);
+                if start_velocity > 0.0 && vt != 0.0 && v0.abs() < start_velocity {
+                    v0 = start_velocity.min(vt.abs()).copysign(vt);
+                    a0 = 0.0;
+                }
+                let end_v = target.clamp(-v_scale, v_scale);
+                (plan::velocity(v0, a0, vt, &lim), None, end_v)
+            }
+        };
+
+        let mut segs = [UNUSED; MAX_SEGMENTS];
+        let (mut t, mut p, mut v) = (0.0, 0.0, v0);
+        let mut len = 0u8;
+        for (slot, ph) in segs.iter_mut().zip(plan.phases()) {
+            *slot = Segment {
+                t: t * t_scale,
+                p: start.p + p * p_scale,
+                v: v * v_scale,
+                a: ph.a * a_scale,
+                j: ph.j * j_scale,
+            };
+            let (dp, dv) = ph.advance(v);
+            p += dp;
+            v += dv;
+            t += ph.t;
+            len += 1;
+        }
+        // A velocity goal continues from where its ramp ends.
+        let end_p = end_p.unwrap_or(start.p + p * p_scale);
+        let arrival_v = if matches!(goal, Goal::Velocity { .. }) {
+            end_v
+        } else {
+            v * v_scale
+        };
+        let profile = Profile {
+            segs,
+            len,
+            duration: t * t_scale,
+            end_p,
+            end_v,
+            arrival_v,
+            goal,
+        };
+        if profile.is_finite() {
+            Ok(profile)
+        } else {
+            Err(PlanError::Unrepresentable)
+        }
     }
 
     /// Standing still at `p`.
     pub fn hold(p: f64) -> Profile {
         Profile {
-            start: MotionState { p, v: 0.0, a: 0.0 },
-            target: p,
+            segs: [UNUSED; MAX_SEGMENTS],
+            len: 0,
+            duration: 0.0,
+            end_p: p,
+            end_v: 0.0,
+            arrival_v: 0.0,
+            goal: Goal::Position {
+                target: p,
+                end_velocity: 0.0,
+            },
         }
     }
 
     /// Time until the goal is reached: for a position goal the end of motion, for a velocity
     /// goal the end of the ramp.
+    #[inline]
     pub fn duration(&self) -> f64 {
-        0.0
+        self.duration
     }
 
     /// State at time `t` after the start of the plan. For `t ≥ duration()`: a position goal
     /// returns exactly the target with v = a = j = 0; a velocity goal keeps moving at the target
-    /// velocity.
+    /// velocity. Times before 0 (and NaN) read as 0.
+    #[inline]
     pub fn sample(&self, t: f64) -> Sample {
-        let _ = t;
-        Sample {
-            p: self.target,
-            ..Sample::default()
+        let t = if t > 0.0 { t } else { 0.0 };
+        if t >= self.duration {
+            return self.after(t);
         }
+        let mut s = &self.segs[0];
+        for next in &self.segs[1..] {
+            if next.t > t {
+                break;
+            }
+            s = next;
+        }
+        let dt = t - s.t;
+        Sample {
+            p: s.p + dt * (s.v + dt * (0.5 * s.a + dt * s.j * (1.0 / 6.0))),
+            v: s.v + dt * (s.a + 0.5 * dt * s.j),
+            a: s.a + dt * s.j,
+            j: s.j,
+        }
+    }
+
+    #[inline]
+    fn after(&self, t: f64) -> Sample {
+        let p = if self.end_v == 0.0 {
+            // Exactly the target, bit for bit.
+            self.end_p
+        } else {
+            self.end_p + self.end_v * (t - self.duration)
+        };
+        Sample {
+            p,
+            v: self.end_v,
+            a: 0.0,
+            j: 0.0,
+        }
+    }
+
+    /// The state the profile leaves the axis in, i.e. `sample(duration())`: a position goal's
+    /// target at rest, or the end of a velocity goal's ramp.
+    pub fn final_state(&self) -> MotionState {
+        MotionState {
+            p: self.end_p,
+            v: self.end_v,
+            a: 0.0,
+        }
+    }
+
+    /// The velocity just before `duration()`: a position goal's signed end velocity (or, after
+    /// [`Overshoot::JumpToZeroAtTarget`], the velocity that jumps to zero); a velocity goal's
+    /// target.
+    pub fn arrival_velocity(&self) -> f64 {
+        self.arrival_v
+    }
+
+    /// The goal as planned (before clamping to the limits).
+    pub fn goal(&self) -> Goal {
+        self.goal
+    }
+
+    pub fn is_velocity_goal(&self) -> bool {
+        matches!(self.goal, Goal::Velocity { .. })
+    }
+
+    /// Number of constant-jerk segments (0 for a hold or an empty ramp).
+    pub fn segment_count(&self) -> usize {
+        usize::from(self.len)
+    }
+
+    /// Start times of the segments, in order (the first is 0).
+    pub fn segment_times(&self) -> impl Iterator<Item = f64> + '_ {
+        self.segs.iter().take(self.segment_count()).map(|s| s.t)
+    }
+
+    fn is_finite(&self) -> bool {
+        self.duration.is_finite()
+            && self.end_p.is_finite()
+            && self.end_v.is_finite()
+            && self.arrival_v.is_finite()
+            && self
+                .segs
+                .iter()
+                .take(self.segment_count())
+                .all(|s| [s.t, s.p, s.v, s.a, s.j].iter().all(|x| x.is_finite()))
+    }
+}
+
+fn validate(
+    start: MotionState,
+    goal: Goal,
+    limits: &Limits,
+    options: &Options,
+) -> Result<(), PlanError> {
+    let positive = |name, value: f64| {
+        // NaN fails the comparison too.
+        if value > 0.0 {
+            Ok(())
+        } else {
+            Err(PlanError::InvalidLimit { name, value })
+        }
+    };
+    let finite = |name, value: f64| {
+        if value.is_finite() {
+            Ok(())
+        } else {
+            Err(PlanError::NotFinite { name, value })
+        }
+    };
+    let magnitude = |name, value: f64| {
+        finite(name, value)?;
+        if value < 0.0 {
+            Err(PlanError::Negative { name, value })
+        } else {
+            Ok(())
+        }
+    };
+    positive("velocity", limits.velocity)?;
+    positive("acceleration", limits.acceleration)?;
+    positive("deceleration", limits.deceleration)?;
+    positive("jerk", limits.jerk)?;
+    finite("velocity", limits.velocity)?;
+    finite("acceleration", limits.acceleration)?;
+    finite("deceleration", limits.deceleration)?;
+    finite("start position", start.p)?;
+    finite("start velocity", start.v)?;
+    finite("start acceleration", start.a)?;
+    magnitude("start_velocity", options.start_velocity)?;
+    match goal {
+        Goal::Position {
+            target,
+            end_velocity,
+        } => {
+            finite("target position", target)?;
+            magnitude("end_velocity", end_velocity)
+        }
+        Goal::Velocity { target } => finite("target velocity", target),
     }
 }

@@ -1,0 +1,460 @@
+//! The planner proper, in normalised units (velocity limit 1, acceleration limit 1, start at
+//! position 0; `mod.rs` scales in and out).
+//!
+//! A position profile is ramp 1 `(v0, a0) → (vp, 0)`, an optional cruise at `vp`, and ramp 2
+//! `(vp, 0) → (e, 0)`. In a frame where the required distance `d` is at least the distance of
+//! the direct ramp `(v0, a0) → e`, the peak `vp` lies in `[lo, vmax]` with
+//! `lo = max(v_stop, e)`, and the distance `D(vp)` grows with `vp` there; beyond `D(vmax)` the
+//! profile cruises at `vmax`. The other case (`d` shorter than the direct ramp: the axis must
+//! dip below `e`, or go back to gain run-up) is the same problem mirrored. One family is not
+//! of this shape: when `a0` already brakes towards `e` (`a0 < 0 < v_stop − e`), distances
+//! between the direct ramp and `D(lo)` need the brake to be partly released first
+//! (`a0 → a1 ∈ [a0, 0]`, then ramp to `e`), which is the `release` branch.
+//!
+//! Roots are found by a safeguarded Newton iteration in `u = sqrt(vp − lo)` (the distance has
+//! square-root terms at `lo`, which this substitution makes smooth) started from the trapezoid
+//! solution, and by Brent's method for the release branch. Both are bounded.
+
+use super::ramp::{change, Change, Lim, Phase, Ramp};
+
+/// Ramp 1 (≤ 6 phases when split at v = 0) + cruise + ramp 2 (≤ 6).
+pub(crate) const MAX_PHASES: usize = 13;
+
+const MAX_ITER: usize = 100;
+
+/// A planned sequence of phases, from the start state.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Plan {
+    phases: [Phase; MAX_PHASES],
+    len: usize,
+}
+
+impl Plan {
+    fn new() -> Plan {
+        Plan {
+            phases: [Phase::default(); MAX_PHASES],
+            len: 0,
+        }
+    }
+
+    pub fn phases(&self) -> &[Phase] {
+        self.phases.get(..self.len).unwrap_or(&[])
+    }
+
+    /// Appends a phase; empty phases are dropped. The capacity covers every plan shape.
+    fn push(&mut self, ph: Phase) {
+        if ph.t > 0.0 {
+            if let Some(slot) = self.phases.get_mut(self.len) {
+                *slot = ph;
+                self.len += 1;
+            }
+        }
+    }
+
+    fn push_change(&mut self, c: &Change) {
+        for ph in c.phases() {
+            self.push(*ph);
+        }
+    }
+
+    fn mirror(&mut self) {
+        for ph in self.phases.iter_mut().take(self.len) {
+            ph.a = -ph.a;
+            ph.j = -ph.j;
+        }
+    }
+
+    /// Total duration.
+    pub fn duration(&self) -> f64 {
+        self.phases().iter().map(|p| p.t).sum()
+    }
+
+    /// Position and velocity at the end, starting at velocity `v0`.
+    pub fn end(&self, v0: f64) -> (f64, f64) {
+        let (mut p, mut v) = (0.0, v0);
+        for ph in self.phases() {
+            let (dp, dv) = ph.advance(v);
+            p += dp;
+            v += dv;
+        }
+        (p, v)
+    }
+}
+
+/// Velocity goal: one velocity change.
+pub(crate) fn velocity(v0: f64, a0: f64, target: f64, lim: &Lim) -> Plan {
+    let mut plan = Plan::new();
+    plan.push_change(&change(v0, a0, target, lim));
+    plan
+}
+
+/// Position goal at distance `d`, arriving with speed `e ≥ 0` in the direction of the final
+/// approach. With `jump_to_zero`, a target that braking would pass ends the plan where the
+/// braking profile reaches it (HMC §2.3.1).
+pub(crate) fn position(v0: f64, a0: f64, d: f64, e: f64, lim: &Lim, jump_to_zero: bool) -> Plan {
+    let brake = change(v0, a0, 0.0, lim);
+    let d_brake = brake.distance(v0);
+    // The final approach comes from the side of the stopping point: the frame `sigma` makes
+    // the target lie ahead of it.
+    let below = d < d_brake || (d == d_brake && lim.v_stop(v0, a0) < 0.0);
+    let sigma = if below { -1.0 } else { 1.0 };
+    if jump_to_zero && sigma * d < 0.0 && sigma * d_brake < sigma * d {
+        // Braking passes the target (it lies between here and the stopping point).
+        return truncated(&brake, v0, d);
+    }
+    let (v0, a0, d) = (sigma * v0, sigma * a0, sigma * d);
+    let d_direct = change(v0, a0, e, lim).distance(v0);
+    let m = if d < d_direct { -1.0 } else { 1.0 };
+    let mut plan = Branch {
+        v0: m * v0,
+        a0: m * a0,
+        e: m * e,
+        lim: *lim,
+    }
+    .plan(m * d);
+    if sigma * m < 0.0 {
+        plan.mirror();
+    }
+    plan
+}
+
+/// The braking profile cut where it reaches `d`.
+fn truncated(brake: &Change, v0: f64, d: f64) -> Plan {
+    let s = if d < 0.0 { -1.0 } else { 1.0 };
+    let mut plan = Plan::new();
+    let (mut p, mut v) = (0.0, v0);
+    for ph in brake.phases() {
+        if ph.t <= 0.0 {
+            continue;
+        }
+        let (dp, dv) = ph.advance(v);
+        if s * (p + dp - d) >= 0.0 {
+            // First phase that reaches d: p − d changes sign once in it (the velocity reverses
+            // at most once while braking), so bisection finds the crossing.
+            let (mut lo, mut hi) = (0.0, ph.t);
+            for _ in 0..MAX_ITER {
+                let mid = 0.5 * (lo + hi);
+                if mid <= lo || mid >= hi {
+                    break;
+                }
+                if s * (p + ph.advance_by(v, mid).0 - d) >= 0.0 {
+                    hi = mid;
+                } else {
+                    lo = mid;
+                }
+            }
+            plan.push(Phase { t: hi, ..*ph });
+            return plan;
+        }
+        plan.push(*ph);
+        p += dp;
+        v += dv;
+    }
+    plan
+}
+
+/// The position problem in a frame where `d ≥` the direct-ramp distance.
+struct Branch {
+    v0: f64,
+    a0: f64,
+    e: f64,
+    lim: Lim,
+}
+
+struct Eval {
+    c1: Change,
+    c2: Change,
+    /// D(vp)
+    d: f64,
+    /// Sum of the magnitudes added up in `d` (for the achievable precision).
+    mag: f64,
+}
+
+impl Branch {
+    fn eval(&self, vp: f64) -> Eval {
+        let c1 = change(self.v0, self.a0, vp, &self.lim);
+        let c2 = change(vp, 0.0, self.e, &self.lim);
+        let d1 = c1.distance(self.v0);
+        let d2 = c2.distance(vp);
+        Eval {
+            c1,
+            c2,
+            d: d1 + d2,
+            mag: d1.abs() + d2.abs(),
+        }
+    }
+
+    fn distance(&self, vp: f64) -> f64 {
+        self.eval(vp).d
+    }
+
+    fn plan(&self, d: f64) -> Plan {
+        let lim = &self.lim;
+        let v_stop = lim.v_stop(self.v0, self.a0);
+        let mut lo = if v_stop <= lim.vmax {
+            v_stop.max(self.e)
+        } else {
+            // Faster than the limit: ramp 1 brakes down to vp ≤ vmax.
+            self.e
+        };
+        let mut d_lo = self.distance(lo);
+        // The release family exists when a0 already brakes towards e.
+        let release = lim.jerk.is_finite() && self.a0 < 0.0 && lo == v_stop && v_stop > self.e;
+        if d < d_lo {
+            if release {
+                return self.release(d, self.a0, 0.0, d_lo);
+            }
+            // Only rounding puts d below D(lo) otherwise: D(lo) is the direct ramp.
+            return self.build(lo, 0.0, d);
+        }
+        if lo < 0.0 {
+            // D grows with vp for vp ≥ 0 (and for vp below the start of ramp 1); between a
+            // negative lo and 0 it need not. Search there only if the root is there.
+            let d0 = self.distance(0.0);
+            if d0 <= d {
+                lo = 0.0;
+                d_lo = d0;
+            }
+        }
+        let d_hi = self.distance(lim.vmax);
+        let upper = if d_hi <= d {
+            self.build(lim.vmax, (d - d_hi) / lim.vmax, d)
+        } else {
+            let vp = self.solve(lo, d_lo, d);
+            self.build(vp, 0.0, d)
+        };
+        if release && self.e < 0.0 {
+            // Arriving with a negative velocity, easing the brake can first gain distance and
+            // then lose it (lengthening the profile costs |e| per second), so D_release may
+            // exceed D(lo) in between: such a release profile can beat the upper one.
+            if let Some(r) = self.release_above(d) {
+                if r.duration() < upper.duration() {
+                    return r;
+                }
+            }
+        }
+        upper
+    }
+
+    /// The phases for peak `vp` and cruise time `cruise`; a cruise absorbs the rounding of
+    /// the ramps so that the plan ends at `d`.
+    fn build(&self, vp: f64, cruise: f64, d: f64) -> Plan {
+        let ev = self.eval(vp);
+        let mut plan = Plan::new();
+        plan.push_change(&ev.c1);
+        let at = plan.len;
+        plan.push(Phase {
+            a: 0.0,
+            j: 0.0,
+            t: cruise,
+        });
+        let has_cruise = plan.len > at;
+        plan.push_change(&ev.c2);
+        if has_cruise && vp != 0.0 {
+            let (p_end, _) = plan.end(self.v0);
+            if let Some(ph) = plan.phases.get_mut(at) {
+                ph.t = (ph.t + (d - p_end) / vp).max(0.0);
+            }
+        }
+        plan
+    }
+
+    /// Solves D(vp) = d for vp in [lo, vmax], given D(lo) = d_lo ≤ d < D(vmax).
+    fn solve(&self, lo: f64, d_lo: f64, d: f64) -> f64 {
+        let lim = &self.lim;
+        let (mut ul, mut uh) = (0.0, (lim.vmax - lo).max(0.0).sqrt());
+        // Start from the trapezoid solution, D(vp) ≈ D(lo) + k (vp² − lo²) for lo ≥ 0.
+        let k = 0.5 / lim.acc + 0.5 / lim.dec;
+        let base = lo.max(0.0);
+        let vt = (base * base + (d - d_lo).max(0.0) / k).sqrt();
+        let mut u = (vt - lo).max(0.0).sqrt().clamp(ul, uh);
+        for _ in 0..MAX_ITER {
+            let vp = lo + u * u;
+            let ev = self.eval(vp);
+            let f = ev.d - d;
+            if f == 0.0 || f.abs() <= 2.0 * f64::EPSILON * ev.mag {
+                break;
+            }
+            if f < 0.0 {
+                ul = u;
+            } else {
+                uh = u;
+            }
+            let df = slope_u(ev.c1.last(), vp, u, 1.0, lim.jerk)
+                + slope_u(ev.c2.first(), vp, u, -1.0, lim.jerk);
+            let mut next = u - f / df;
+            if !(next > ul && next < uh) {
+                next = 0.5 * (ul + uh);
+            }
+            if (next - u).abs() <= 2.0 * f64::EPSILON * next || uh - ul <= 2.0 * f64::EPSILON * uh {
+                u = next;
+                break;
+            }
+            u = next;
+        }
+        lo + u * u
+    }
+
+    /// Release family: a0 < 0 brakes towards e; the brake is eased to a1 ∈ [a0, 0] at full
+    /// jerk, then the ramp to e follows. a1 = a0 is the direct ramp, a1 = 0 the upper branch
+    /// at vp = v_stop.
+    fn release_eval(&self, a1: f64) -> (Phase, Change, f64) {
+        let (v0, a0, lim) = (self.v0, self.a0, &self.lim);
+        let first = Phase {
+            a: a0,
+            j: lim.jerk,
+            t: ((a1 - a0) / lim.jerk).max(0.0),
+        };
+        let (dp, dv) = first.advance(v0);
+        let rest = change(v0 + dv, a1, self.e, lim);
+        (first, rest, dp + rest.distance(v0 + dv))
+    }
+
+    /// The release profile with D = d for a1 in [lo, hi], given D(lo) ≤ d ≤ D(hi) = d_hi.
+    fn release(&self, d: f64, lo: f64, hi: f64, d_hi: f64) -> Plan {
+        let f_lo = self.release_eval(lo).2 - d;
+        let a1 = brent(|a1| self.release_eval(a1).2 - d, lo, hi, f_lo, d_hi - d);
+        let (first, rest, _) = self.release_eval(a1);
+        let mut plan = Plan::new();
+        plan.push(first);
+        plan.push_change(&rest);
+        plan
+    }
+
+    /// The least-released profile with D = d when D_release rises above d somewhere in
+    /// [a0, 0] (it starts at the direct-ramp distance ≤ d and is unimodal): golden-section
+    /// search for a point at or above d, then the root before it.
+    fn release_above(&self, d: f64) -> Option<Plan> {
+        const G: f64 = 0.618_033_988_749_894_8;
+        let f = |a1: f64| self.release_eval(a1).2;
+        let (mut a, mut b) = (self.a0, 0.0);
+        let mut x1 = b - G * (b - a);
+        let mut x2 = a + G * (b - a);
+        let (mut f1, mut f2) = (f(x1), f(x2));
+        for _ in 0..MAX_ITER {
+            if f1 >= d {
+                return Some(self.release(d, self.a0, x1, f1));
+            }
+            if f2 >= d {
+                return Some(self.release(d, self.a0, x2, f2));
+            }
+            if b - a <= 4.0 * f64::EPSILON * self.a0.abs() {
+                break;
+            }
+            if f1 < f2 {
+                a = x1;
+                x1 = x2;
+                f1 = f2;
+                x2 = a + G * (b - a);
+                f2 = f(x2);
+            } else {
+                b = x2;
+                x2 = x1;
+                f2 = f1;
+                x1 = b - G * (b - a);
+                f1 = f(x1);
+            }
+        }
+        None
+    }
+}
+
+/// ∂D/∂u of the ramp of `c` that depends on vp, with vp = lo + u². `sign` is +1 for ramp 1
+/// (ending at vp) and −1 for ramp 2 (starting at vp).
+///
+/// For a ramp ending at vp with a = 0, peak acceleration ap and direction s,
+/// ∂D/∂vp = (ap²/2j + s·vp)/ap; a ramp starting at vp with a = 0 is its time reverse, which
+/// flips s. The factor 2u/ap stays finite where ap → 0 (ap ≈ √j·u there).
+fn slope_u(r: &Ramp, vp: f64, u: f64, sign: f64, jerk: f64) -> f64 {
+    let s = if r.dir != 0.0 { sign * r.dir } else { 1.0 };
+    let h = if jerk.is_finite() {
+        r.peak * r.peak / (2.0 * jerk)
+    } else {
+        0.0
+    };
+    let num = h + s * vp;
+    if r.peak > 0.0 {
+        2.0 * u * num / r.peak
+    } else if jerk.is_finite() {
+        2.0 * num / jerk.sqrt()
+    } else {
+        0.0
+    }
+}
+
+/// Brent's method on [a, b] with f(a), f(b) of opposite signs (or one zero).
+fn brent(mut f: impl FnMut(f64) -> f64, a: f64, b: f64, fa: f64, fb: f64) -> f64 {
+    let (mut a, mut b, mut fa, mut fb) = (a, b, fa, fb);
+    if fa == 0.0 {
+        return a;
+    }
+    if fb == 0.0 || fa * fb > 0.0 {
+        return b;
+    }
+    let (mut c, mut fc) = (a, fa);
+    let mut d = b - a;
+    let mut e = d;
+    for _ in 0..MAX_ITER {
+        if fb * fc > 0.0 {
+            c = a;
+            fc = fa;
+            d = b - a;
+            e = d;
+        }
+        if fc.abs() < fb.abs() {
+            a = b;
+            b = c;
+            c = a;
+            fa = fb;
+            fb = fc;
+            fc = fa;
+        }
+        let tol = 2.0 * f64::EPSILON * b.abs() + f64::MIN_POSITIVE;
+        let m = 0.5 * (c - b);
+        if m.abs() <= tol || fb == 0.0 {
+            return b;
+        }
+        if e.abs() >= tol && fa.abs() > fb.abs() {
+            let s = fb / fa;
+            let (mut p, mut q);
+            if a == c {
+                p = 2.0 * m * s;
+                q = 1.0 - s;
+            } else {
+                let qa = fa / fc;
+                let r = fb / fc;
+                p = s * (2.0 * m * qa * (qa - r) - (b - a) * (r - 1.0));
+                q = (qa - 1.0) * (r - 1.0) * (s - 1.0);
+            }
+            if p > 0.0 {
+                q = -q;
+            } else {
+                p = -p;
+            }
+            if 2.0 * p < (3.0 * m * q - (tol * q).abs()).min((e * q).abs()) {
+                e = d;
+                d = p / q;
+            } else {
+                d = m;
+                e = m;
+            }
+        } else {
+            d = m;
+            e = m;
+        }
+        a = b;
+        fa = fb;
+        b += if d.abs() > tol {
+            d
+        } else if m > 0.0 {
+            tol
+        } else {
+            -tol
+        };
+        fb = f(b);
+        if !fb.is_finite() {
+            return b;
+        }
+    }
+    b
+}
