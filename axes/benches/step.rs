@@ -4,6 +4,9 @@
 //!
 //! `cargo bench -p axes --bench step`
 
+// A benchmark that cannot build its machine should stop loudly.
+#![allow(clippy::expect_used)]
+
 use std::hint::black_box;
 
 use axes::command::Command;

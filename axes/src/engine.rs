@@ -5,9 +5,9 @@
 use crate::axis::{Action, Axis, Context, Ledger, MotionRequest, Overrides};
 use crate::cia402::{controlword_for, obj, Cia402Drive, DriveMaster, PowerTarget, State};
 use crate::command::{AxisIndex, Command, CommandKind, EngineError, Reply};
-use crate::od::Value;
 use crate::config::{AxisSignal, ConfigError, EngineConfig, InputBinding};
 use crate::homing::HomingSpec;
+use crate::od::Value;
 use crate::param::ParamId;
 use crate::rng::Rng;
 use crate::status::{AxisFlags, AxisStatus, DriveStatus, IoImage, Snapshot};
@@ -163,6 +163,16 @@ impl Engine {
     }
 
     fn apply_to_axes(&mut self, command: Command) -> Result<Reply, EngineError> {
+        let addressed = command.axis();
+        let result = self.dispatch(command);
+        // Read-your-write: the status shows the command's effect before the next tick.
+        if let Some(axis) = addressed.and_then(|a| self.axes.get_mut(a as usize)) {
+            axis.publish();
+        }
+        result
+    }
+
+    fn dispatch(&mut self, command: Command) -> Result<Reply, EngineError> {
         let Engine {
             axes,
             io,
@@ -451,14 +461,17 @@ impl Engine {
                 let cw = controlword_for(target, slave.drive.statusword(), slave.controlword);
                 if cw != slave.controlword {
                     // 0x6040 is writable and the value in range: this cannot fail.
-                    let _ = slave
-                        .drive
-                        .write(obj::CONTROLWORD, 0, Value::U16(cw));
+                    let _ = slave.drive.write(obj::CONTROLWORD, 0, Value::U16(cw));
                     slave.controlword = cw;
                 }
             }
             commands.clear();
             slave.drive.step(&status, now, &mut commands);
+            if slave.power.is_some_and(|t| reached(t, slave.drive.state())) {
+                // Reached: from here only a new enable/disable/reset moves the drive, so a
+                // fault stays a fault until the user resets it.
+                slave.power = None;
+            }
             for command in commands.drain(..) {
                 let result = self.apply_to_axes(command.clone());
                 if let Some(slave) = self.slaves.get_mut(i) {
@@ -524,12 +537,14 @@ impl Engine {
         snapshot.axes.extend(self.axes.iter().map(|a| *a.status()));
         snapshot.io.clone_from(&self.io.image);
         snapshot.drives.clear();
-        snapshot.drives.extend(self.slaves.iter().map(|s| DriveStatus {
-            axis: s.drive.config().axis,
-            statusword: s.drive.statusword(),
-            mode: s.drive.mode().code(),
-            error_code: s.drive.error_code(),
-        }));
+        snapshot
+            .drives
+            .extend(self.slaves.iter().map(|s| DriveStatus {
+                axis: s.drive.config().axis,
+                statusword: s.drive.statusword(),
+                mode: s.drive.mode().code(),
+                error_code: s.drive.error_code(),
+            }));
     }
 
     pub fn snapshot(&self) -> Snapshot {
@@ -537,4 +552,14 @@ impl Engine {
         self.snapshot_into(&mut s);
         s
     }
+}
+
+fn reached(target: PowerTarget, state: State) -> bool {
+    matches!(
+        (target, state),
+        (PowerTarget::OperationEnabled, State::OperationEnabled)
+            | (PowerTarget::SwitchedOn, State::SwitchedOn)
+            | (PowerTarget::ReadyToSwitchOn, State::ReadyToSwitchOn)
+            | (PowerTarget::SwitchOnDisabled, State::SwitchOnDisabled)
+    )
 }

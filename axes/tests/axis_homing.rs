@@ -1,6 +1,9 @@
 //! Homing through the engine: the real switches, index pulse, profile generator and frames
 //! (ARCHITECTURE §3.7).
 
+// Tests fail loudly.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
 mod common;
 
 use axes::command::{Command, CommandState, EngineError, ErrorKind};
@@ -62,7 +65,7 @@ fn method_7_finds_the_index_left_of_the_cam_and_redefines_the_frame() {
     let home_reading = s.act_pos - (motor(&e) - 95.0);
     assert!((home_reading - 12.5).abs() < 1e-6, "{home_reading}");
     assert!(motor(&e) < 95.0 && motor(&e) > 94.9);
-    assert_eq!(s.cmd_pos, s.act_pos);
+    assert!((s.cmd_pos - s.act_pos).abs() < 1e-9);
 }
 
 #[test]

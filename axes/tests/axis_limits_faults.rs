@@ -1,6 +1,9 @@
 //! Limits, following error, drive alarm, encoder loss, and the simulated hardware seen through
 //! the engine (ARCHITECTURE §3.3 steps 2–8).
 
+// Tests fail loudly.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
 mod common;
 
 use axes::command::{
@@ -200,11 +203,23 @@ fn fe_fault_with_flag_only_reaction_keeps_moving() {
     assert!(s.latched.contains(AxisFlags::FE_FAULT));
     assert_eq!(s.state, AxisState::ContinuousMotion);
     // With the stop reaction the axis stops and sits in ErrorStop, still powered.
-    ok(&mut e, Command::InjectFollowingError { axis: 0, amount: None });
+    ok(
+        &mut e,
+        Command::InjectFollowingError {
+            axis: 0,
+            amount: None,
+        },
+    );
     run(&mut e, 0.001);
     ok(&mut e, Command::Reset { axis: 0 });
     set(&mut e, ParamId::FeAction, 2.0);
-    ok(&mut e, Command::InjectFollowingError { axis: 0, amount: Some(5.0) });
+    ok(
+        &mut e,
+        Command::InjectFollowingError {
+            axis: 0,
+            amount: Some(5.0),
+        },
+    );
     run(&mut e, 0.1);
     let s = status(&e);
     assert_eq!(s.state, AxisState::ErrorStop);

@@ -170,6 +170,10 @@ impl Axis {
                 let direction = self.direction_of(&request.action, self.raw.p);
                 self.admit(direction)?;
                 self.check_soft_limit_target(&request.action, self.raw.p)?;
+                if let Action::Home(spec) = &request.action {
+                    // Refuse a homing the axis cannot do before anything is aborted.
+                    self.start_homing(ctx.tick, spec)?;
+                }
                 self.abort_all(ctx, CommandState::Aborted);
                 let id = ctx.ledger.allocate();
                 self.zero_length_id = None;
@@ -179,7 +183,7 @@ impl Axis {
                     action: request.action,
                     overrides: request.overrides,
                 });
-                self.start_head(ctx);
+                self.start_now(ctx)?;
                 Ok(Reply::Accepted { id })
             }
             BufferMode::Buffered => {
@@ -208,7 +212,7 @@ impl Axis {
                     overrides: request.overrides,
                 });
                 if matches!(self.activity, Activity::Idle) {
-                    self.start_head(ctx);
+                    self.start_now(ctx)?;
                 }
                 Ok(Reply::Accepted { id })
             }
@@ -316,6 +320,28 @@ impl Axis {
                 }
             }
         }
+    }
+
+    /// Start the command just put at the FIFO head, for a caller waiting on the reply: if it
+    /// cannot start, it leaves the FIFO with its error, the axis comes to rest, and the caller
+    /// gets the error.
+    fn start_now(&mut self, ctx: &mut Context) -> Result<(), EngineError> {
+        let Some(head) = self.fifo.front().cloned() else {
+            return Ok(());
+        };
+        let Err(e) = self.start(ctx, &head) else {
+            return Ok(());
+        };
+        self.fifo.pop_front();
+        ctx.ledger.finish(head.id, CommandState::Error(e.kind()));
+        self.activity = Activity::Idle;
+        if self.source_at_rest() {
+            self.source = Source::Hold;
+        } else {
+            self.plan_stop(ctx.tick, self.param(ParamId::Decel));
+            self.activity = Activity::Ramping(Ramp::Cancel);
+        }
+        Err(e)
     }
 
     fn start(&mut self, ctx: &mut Context, q: &Queued) -> Result<(), EngineError> {
@@ -901,7 +927,8 @@ impl Axis {
             self.act_offset += before - self.encoder.position();
         }
         if id == ParamId::SmoothTime {
-            self.smoothing = smoothing_window(value, self.period).and_then(|n| MovingAverage::new(n).ok());
+            self.smoothing =
+                smoothing_window(value, self.period).and_then(|n| MovingAverage::new(n).ok());
             if let Some(f) = self.smoothing.as_mut() {
                 f.reset(self.raw.p);
             }
@@ -1062,5 +1089,9 @@ fn plan_error(e: PlanError) -> EngineError {
             "does not fit in f64: the limits or the distance are too extreme",
         ),
     };
-    EngineError::InvalidArgument { name, value, reason }
+    EngineError::InvalidArgument {
+        name,
+        value,
+        reason,
+    }
 }

@@ -25,7 +25,9 @@ use crate::hw::plant::{LoopGains, PlantInput};
 use crate::hw::switch::Edge;
 use crate::hw::{AxisClass, Encoder, HomeSwitch, LimitSwitch, Plant, PulseOutput};
 use crate::param::{ParamId, ParamSet, DEDICATED_INPUT};
-use crate::profile::{Goal, Limits, MotionState, MovingAverage, Options, Overshoot, Profile};
+use crate::profile::{
+    Goal, Limits, MotionState, MovingAverage, Options, Overshoot, PlanError, Profile,
+};
 use crate::rng::Rng;
 use crate::status::{AxisFlags, AxisState, AxisStatus, CommandRef};
 
@@ -42,6 +44,8 @@ pub(crate) struct Context<'a> {
 }
 
 /// Where the commanded motion comes from.
+// The profile is stored inline on purpose: one per axis, sampled every tick, no indirection.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Copy, Debug)]
 enum Source {
     /// Standing at `raw.p`.
@@ -335,7 +339,7 @@ impl Axis {
         }
 
         // 1. Command source.
-        let profile_done = self.advance_source(ctx.tick);
+        self.advance_source(ctx.tick);
 
         // 2. Smoothing (NMC smoothCoef / HIMC SMTime).
         let previous = self.cmd;
@@ -368,22 +372,21 @@ impl Axis {
         self.supervise(ctx);
 
         // 8. Command progress.
-        self.progress(ctx, profile_done);
+        self.progress(ctx);
 
         // 9. Status.
         self.update_in_position();
         self.publish();
     }
 
-    /// Sample the command source for this tick. Returns whether a profile reached its goal.
-    fn advance_source(&mut self, tick: u64) -> bool {
+    /// Sample the command source for this tick.
+    fn advance_source(&mut self, tick: u64) {
         let dt = self.period;
         match self.source {
             Source::Hold => {
                 self.raw.v = 0.0;
                 self.raw.a = 0.0;
                 self.raw_jerk = 0.0;
-                false
             }
             Source::Profile {
                 profile,
@@ -398,7 +401,6 @@ impl Axis {
                     a: s.a,
                 };
                 self.raw_jerk = s.j;
-                t >= profile.duration()
             }
             Source::External(setpoint) => {
                 let before = self.raw;
@@ -426,7 +428,6 @@ impl Axis {
                     }
                 }
                 self.raw.a = (self.raw.v - before.v) / dt;
-                false
             }
         }
     }
@@ -559,6 +560,10 @@ impl Axis {
             ch >= 0.0 && di.get(ch as usize).copied().unwrap_or(false)
         };
         let alarm = f.drive_alarm.unwrap_or(false) ^ self.flag(ParamId::DriveAlarmInvert);
+        if hold != self.inputs.hold {
+            // HMC_HoldConfig: the hold input changes the speed of the running command.
+            self.limits_dirty = true;
+        }
         let dedicated = |p: ParamId| self.param(p) == DEDICATED_INPUT;
         self.inputs = Inputs {
             limit_pos: limit_pos.unwrap_or(false),
@@ -652,31 +657,42 @@ impl Axis {
         }
     }
 
-    /// Plan from the current raw state towards `goal`. A zero velocity limit (velocity override
-    /// 0 %, hold speed 0, CPU 226H MAX_SPEED 0) plans a stop and keeps the goal for later.
-    fn plan(
-        &mut self,
-        tick: u64,
-        goal: Goal,
-        limits: Limits,
-    ) -> Result<(), crate::profile::PlanError> {
-        let mut goal = goal;
-        let mut limits = limits;
-        if limits.velocity <= 0.0 {
-            goal = Goal::Velocity { target: 0.0 };
-            limits.velocity = f64::MIN_POSITIVE.max(self.raw.v.abs());
-        }
+    /// Plan from the current raw state towards `goal`. The velocity override, `max_velocity`
+    /// and the hold input scale a jog's target velocity as they scale a move's cruise velocity
+    /// (in `limits_for`). A zero velocity (override 0 %, hold speed 0, CPU 226H MAX_SPEED 0)
+    /// plans a stop; the goal stays, and a later change of the limits re-plans towards it.
+    fn plan(&mut self, tick: u64, goal: Goal, limits: Limits) -> Result<(), PlanError> {
         let mut options = self.options();
-        if let Goal::Position { target, .. } = goal {
-            if let Goal::Position { .. } = goal {
-                goal = Goal::Position {
+        let (goal, limits) = match goal {
+            Goal::Position { target, .. } if limits.velocity > 0.0 => (
+                Goal::Position {
                     target,
                     end_velocity: self.param(ParamId::EndVelocity).min(limits.velocity),
-                };
+                },
+                limits,
+            ),
+            Goal::Position { .. } => {
+                options.start_velocity = 0.0;
+                (
+                    Goal::Velocity { target: 0.0 },
+                    Limits {
+                        velocity: unbinding_velocity(0.0, self.raw.v),
+                        ..limits
+                    },
+                )
             }
-        } else {
-            options.start_velocity = 0.0;
-        }
+            Goal::Velocity { target } => {
+                options.start_velocity = 0.0;
+                let v = self.scale_velocity(target);
+                (
+                    Goal::Velocity { target: v },
+                    Limits {
+                        velocity: unbinding_velocity(v, self.raw.v),
+                        ..limits
+                    },
+                )
+            }
+        };
         let profile = Profile::plan(self.raw, goal, &limits, &options)?;
         self.source = Source::Profile {
             profile,
@@ -684,6 +700,20 @@ impl Axis {
             shift: 0.0,
         };
         Ok(())
+    }
+
+    /// A jog velocity after the override (`vel_scale`), the cap (`max_velocity`) and the hold.
+    fn scale_velocity(&self, v: f64) -> f64 {
+        let p = &self.params;
+        let mut m = v.abs() * p.get(ParamId::VelScale) / 100.0;
+        let cap = p.get(ParamId::MaxVelocity);
+        if cap > 0.0 {
+            m = m.min(cap);
+        }
+        if self.inputs.hold {
+            m = m.min(p.get(ParamId::HoldSpeed));
+        }
+        v.signum() * m
     }
 
     /// Plan a ramp to rest with deceleration `decel`.
@@ -698,7 +728,7 @@ impl Axis {
             f64::INFINITY
         };
         let limits = Limits {
-            velocity: self.raw.v.abs().max(f64::MIN_POSITIVE),
+            velocity: unbinding_velocity(0.0, self.raw.v),
             acceleration: decel,
             deceleration: decel,
             jerk,
@@ -824,7 +854,7 @@ impl Axis {
         }
     }
 
-    fn publish(&mut self) {
+    pub(crate) fn publish(&mut self) {
         let mut flags = self.flags;
         flags.set(AxisFlags::ENABLED, self.enabled);
         let moving = self.moving();
@@ -895,6 +925,18 @@ impl Axis {
             homing_phase: self.homing_phase,
             last_error: self.last_error,
         };
+    }
+}
+
+/// A velocity limit that does not constrain a ramp from `current` to the velocity `target`: the
+/// goal itself bounds it. Never zero, and of the problem's own magnitude so that the planner's
+/// normalisation stays well-conditioned.
+pub(crate) fn unbinding_velocity(target: f64, current: f64) -> f64 {
+    let v = target.abs().max(current.abs());
+    if v > 0.0 {
+        v
+    } else {
+        1.0
     }
 }
 

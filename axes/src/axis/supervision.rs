@@ -1,7 +1,7 @@
 //! Per-tick supervision (limits, following error, drive alarm, encoder loss, the HMC error
 //! mask) and command progress (completion, stop ramps, the next command).
 
-use super::{status_word, Activity, Axis, Context, Goal1, Ramp, Source};
+use super::{status_word, unbinding_velocity, Activity, Axis, Context, Goal1, Ramp, Source};
 use crate::command::{CommandState, Direction, ErrorKind, StopMode};
 use crate::homing::{HomingInputs, MotionRequest};
 use crate::param::ParamId;
@@ -179,7 +179,9 @@ impl Axis {
     }
 
     /// Completion of the running command, the end of ramps, homing, and the next command.
-    pub(super) fn progress(&mut self, ctx: &mut Context, profile_done: bool) {
+    pub(super) fn progress(&mut self, ctx: &mut Context) {
+        // Ask the current source: supervision may have replaced the one sampled this tick.
+        let profile_done = self.source_done(ctx.tick);
         match &self.activity {
             Activity::Idle | Activity::Streaming => {}
             Activity::Ramping(ramp) => {
@@ -284,8 +286,9 @@ impl Axis {
         } else {
             f64::INFINITY
         };
+        let current = self.raw.v;
         let limits = |velocity: f64, acceleration: f64| Limits {
-            velocity: velocity.abs().max(f64::MIN_POSITIVE),
+            velocity: unbinding_velocity(velocity, current),
             acceleration,
             deceleration: acceleration,
             jerk,
@@ -333,15 +336,20 @@ impl Axis {
         };
     }
 
-    /// What the homing machine sees this tick (user frame, unwrapped).
-    pub(super) fn homing_inputs(&self, tick: u64) -> HomingInputs {
-        let motion_done = match self.source {
+    /// Whether the current source has reached its goal at `tick` (a velocity goal: its ramp).
+    pub(super) fn source_done(&self, tick: u64) -> bool {
+        match self.source {
             Source::Hold => true,
             Source::Profile {
                 profile, origin, ..
             } => tick.saturating_sub(origin) as f64 * self.period >= profile.duration(),
             Source::External(_) => false,
-        };
+        }
+    }
+
+    /// What the homing machine sees this tick (user frame, unwrapped).
+    pub(super) fn homing_inputs(&self, tick: u64) -> HomingInputs {
+        let motion_done = self.source_done(tick);
         let i = &self.inputs;
         HomingInputs {
             time: tick as f64 * self.period,

@@ -1,5 +1,6 @@
 //! Machines and helpers shared by the engine's behaviour tests.
-#![allow(dead_code)]
+// Test support: failing loudly is the point.
+#![allow(dead_code, clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use axes::command::{AxisInput, Command, CommandState, Reply};
 use axes::config::{AxisConfig, HomeSwitchConfig, SwitchConfig};
