@@ -356,6 +356,11 @@ impl Engine {
                             count: io.image.di.len() as u16,
                         })?;
                 *slot = value;
+                // A forced level shows at once; a released unwired input reads low (a bound
+                // one follows its signal from the next tick).
+                if let Some(di) = io.image.di.get_mut(channel as usize) {
+                    *di = value.unwrap_or(false);
+                }
                 Ok(Reply::Done)
             }
             Command::ForceAnalogInput { channel, value } => {
@@ -371,6 +376,9 @@ impl Engine {
                             count: io.image.ai.len() as u16,
                         })?;
                 *slot = value;
+                if let Some(ai) = io.image.ai.get_mut(channel as usize) {
+                    *ai = value.unwrap_or(0.0);
+                }
                 Ok(Reply::Done)
             }
             Command::WriteDigitalOutput { channel, value } => {
@@ -492,21 +500,13 @@ impl Engine {
         self.slaves.get(slave).map(|s| &s.drive)
     }
 
-    /// The input images: forced values win, then wiring from axis signals (last tick's), else
-    /// the input stays low.
+    /// Digital inputs wired to axis signals follow them (last tick's levels), unless forced.
+    /// Forced and unwired channels change only by command, so nothing else runs per tick.
     fn update_inputs(&mut self) {
         let io = &mut self.io;
-        for (di, forced) in io.image.di.iter_mut().zip(&io.di_forced) {
-            *di = forced.unwrap_or(false);
-        }
         for b in &io.bindings {
-            if io
-                .di_forced
-                .get(b.channel as usize)
-                .copied()
-                .flatten()
-                .is_some()
-            {
+            let ch = b.channel as usize;
+            if io.di_forced.get(ch).copied().flatten().is_some() {
                 continue;
             }
             let Some(axis) = self.axes.get(b.axis as usize) else {
@@ -520,12 +520,9 @@ impl Engine {
                 AxisSignal::Index => f.contains(AxisFlags::INDEX),
                 AxisSignal::DriveAlarm => f.contains(AxisFlags::DRIVE_ALARM),
             };
-            if let Some(di) = io.image.di.get_mut(b.channel as usize) {
+            if let Some(di) = io.image.di.get_mut(ch) {
                 *di = level;
             }
-        }
-        for (ai, forced) in io.image.ai.iter_mut().zip(&io.ai_forced) {
-            *ai = forced.unwrap_or(0.0);
         }
     }
 

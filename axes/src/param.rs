@@ -174,6 +174,9 @@ macro_rules! param_table {
         #[repr(u16)]
         pub enum ParamId { $($id),* }
 
+        /// Number of rows, as a constant so parameter sets are plain arrays.
+        const PARAM_COUNT: usize = [$(ParamId::$id),*].len();
+
         /// The table, indexed by `ParamId as usize`.
         pub static PARAMS: &[ParamDef] = &[
             $( ParamDef {
@@ -405,7 +408,7 @@ param_table! {
 }
 
 impl ParamId {
-    pub const COUNT: usize = PARAMS.len();
+    pub const COUNT: usize = PARAM_COUNT;
 
     pub fn def(self) -> &'static ParamDef {
         // The table is built from the enum by one macro, so every id has its row.
@@ -523,24 +526,26 @@ impl ParamDef {
     }
 }
 
-/// The values of one axis's parameters, indexed by `ParamId`.
+/// The values of one axis's parameters, indexed by `ParamId`. A fixed array: every id is in
+/// range by construction, so a read is one load (this runs dozens of times per tick per axis).
 #[derive(Clone, Debug, PartialEq)]
 pub struct ParamSet {
-    values: Vec<f64>,
+    values: [f64; PARAM_COUNT],
 }
 
 impl Default for ParamSet {
     fn default() -> Self {
-        ParamSet {
-            values: PARAMS.iter().map(|d| d.default).collect(),
+        let mut values = [0.0; PARAM_COUNT];
+        for (v, d) in values.iter_mut().zip(PARAMS) {
+            *v = d.default;
         }
+        ParamSet { values }
     }
 }
 
 impl ParamSet {
     #[inline]
     pub fn get(&self, id: ParamId) -> f64 {
-        // `values` has one entry per row and ids index rows.
         self.values[id as usize]
     }
 
@@ -563,6 +568,7 @@ mod tests {
 
     #[test]
     fn table_rows_match_their_ids_and_names_are_unique() {
+        assert_eq!(PARAMS.len(), ParamId::COUNT);
         for (i, def) in PARAMS.iter().enumerate() {
             assert_eq!(def.id as usize, i);
             assert!(

@@ -98,6 +98,15 @@ impl std::fmt::Display for AxisFlags {
 }
 
 impl AxisFlags {
+    /// Set or clear `flag` without a branch (`bitflags`' `set` branches; this runs a dozen
+    /// times per axis per tick).
+    #[inline]
+    pub fn put(&mut self, flag: AxisFlags, on: bool) {
+        let mask = flag.bits();
+        let bits = (self.bits() & !mask) | (mask & (on as u32).wrapping_neg());
+        *self = AxisFlags::from_bits_retain(bits);
+    }
+
     /// Faults that put the axis into ErrorStop while latched.
     pub const ERROR_STOP_FAULTS: AxisFlags = AxisFlags::FE_FAULT
         .union(AxisFlags::DRIVE_ALARM)

@@ -3,7 +3,7 @@
 
 use super::{
     apply_rollover, counts_per_unit, limit_state, pulses_per_unit, smoothing_window, status_word,
-    Action, Activity, Axis, Context, Goal1, Overrides, Queued, Ramp, Run, Source,
+    wiring::Wiring, Action, Activity, Axis, Context, Goal1, Overrides, Queued, Ramp, Run, Source,
 };
 use crate::command::{
     finite, positive, AxisInput, BufferMode, CancelScope, CommandKind, CommandState, Direction,
@@ -902,6 +902,7 @@ impl Axis {
             _ => {}
         }
         self.params.set_unchecked(id, value);
+        self.wiring = Wiring::from_params(&self.params);
         if corrected {
             // HMC §3.5.1: the corrected write latches AxisStatus bit 2.
             self.latched |= AxisFlags::PARAMETER_ERROR;
@@ -924,7 +925,8 @@ impl Axis {
             self.encoder
                 .set_counts_per_unit(counts_per_unit(&self.params), motor);
             // Keep the user-frame actual position continuous across the rescale.
-            self.act_offset += before - self.encoder.position();
+            self.encoder_pos = self.encoder.position();
+            self.act_offset += before - self.encoder_pos;
         }
         if id == ParamId::SmoothTime {
             self.smoothing =
@@ -1063,10 +1065,11 @@ impl Axis {
         tick: u64,
         spec: &HomingSpec,
     ) -> Result<Homing, EngineError> {
+        let w = self.wiring;
         let hardware = HomingHardware {
-            limit_pos: self.has_input(ParamId::FhLimitIn, self.limit_pos_switch.is_some()),
-            limit_neg: self.has_input(ParamId::RhLimitIn, self.limit_neg_switch.is_some()),
-            home: self.has_input(ParamId::HomeIn, self.home_switch.is_some()),
+            limit_pos: w.limit_pos.exists(self.switches.has_limit_pos()),
+            limit_neg: w.limit_neg.exists(self.switches.has_limit_neg()),
+            home: w.home.exists(self.switches.has_home()),
             index: self.encoder.has_index(),
         };
         let inputs = self.homing_inputs(tick);

@@ -14,17 +14,18 @@
 mod commands;
 pub mod fifo;
 mod supervision;
+mod wiring;
 
 use crate::command::{
     AxisIndex, CommandId, CommandKind, CommandState, Direction, ErrorKind, Setpoint, StopMode,
 };
-use crate::config::{AxisConfig, DEFAULT_FIFO_DEPTH};
+use crate::config::{AxisConfig, PlantModel, DEFAULT_FIFO_DEPTH};
 use crate::homing::Homing;
 use crate::hw::encoder::EncoderTick;
 use crate::hw::plant::{LoopGains, PlantInput};
 use crate::hw::switch::Edge;
-use crate::hw::{AxisClass, Encoder, HomeSwitch, LimitSwitch, Plant, PulseOutput};
-use crate::param::{ParamId, ParamSet, DEDICATED_INPUT};
+use crate::hw::{AxisClass, Encoder, Plant, PulseOutput, SwitchTick, Switches};
+use crate::param::{ParamId, ParamSet};
 use crate::profile::{
     Goal, Limits, MotionState, MovingAverage, Options, Overshoot, PlanError, Profile,
 };
@@ -33,6 +34,7 @@ use crate::status::{AxisFlags, AxisState, AxisStatus, CommandRef};
 
 pub(crate) use commands::MotionRequest;
 pub use fifo::{Action, Fifo, Ledger, Overrides, Queued};
+use wiring::Wiring;
 
 /// What the engine lends an axis for one tick or one command.
 pub(crate) struct Context<'a> {
@@ -122,6 +124,7 @@ struct Inputs {
     index: bool,
     drive_alarm: bool,
     hold: bool,
+    /// Exact raw edges and index position of this tick, physical frame.
     home_edge: Option<Edge>,
     limit_pos_edge: Option<Edge>,
     limit_neg_edge: Option<Edge>,
@@ -140,15 +143,14 @@ pub struct Axis {
     pulse: PulseOutput,
     encoder: Encoder,
     plant: Plant,
-    limit_pos_switch: Option<LimitSwitch>,
-    limit_neg_switch: Option<LimitSwitch>,
-    home_switch: Option<HomeSwitch>,
+    switches: Switches,
     limit_pos_active_low: bool,
     limit_neg_active_low: bool,
     home_active_low: bool,
     /// Motor position of a virtual axis (no plant).
     virtual_motor: f64,
     forces: Forces,
+    wiring: Wiring,
     injected_fe: f64,
 
     // Frames.
@@ -165,6 +167,10 @@ pub struct Axis {
     smoothing: Option<MovingAverage>,
     act_pos: f64,
     act_vel: f64,
+    /// The encoder's position after its last update (physical frame).
+    encoder_pos: f64,
+    /// 1/period.
+    rate: f64,
 
     // Commands.
     fifo: Fifo,
@@ -224,20 +230,13 @@ impl Axis {
                 rng.fork(index as u64),
             ),
             plant: Plant::new(&config.plant, period, 0.0),
-            limit_pos_switch: sw
-                .limit_pos
-                .as_ref()
-                .map(|s| LimitSwitch::new(s, true, 0.0)),
-            limit_neg_switch: sw
-                .limit_neg
-                .as_ref()
-                .map(|s| LimitSwitch::new(s, false, 0.0)),
-            home_switch: sw.home.as_ref().map(|s| HomeSwitch::new(s, 0.0)),
+            switches: Switches::new(sw, 0.0),
             limit_pos_active_low: sw.limit_pos.as_ref().is_some_and(|s| s.active_low),
             limit_neg_active_low: sw.limit_neg.as_ref().is_some_and(|s| s.active_low),
             home_active_low: sw.home.as_ref().is_some_and(|s| s.active_low),
             virtual_motor: 0.0,
             forces: Forces::default(),
+            wiring: Wiring::from_params(&params),
             injected_fe: 0.0,
             cmd_offset: 0.0,
             act_offset: 0.0,
@@ -248,6 +247,8 @@ impl Axis {
             smoothing: smoothing.and_then(|n| MovingAverage::new(n).ok()),
             act_pos: 0.0,
             act_vel: 0.0,
+            encoder_pos: 0.0,
+            rate: 1.0 / period,
             fifo: Fifo::new(config.fifo_depth.unwrap_or(DEFAULT_FIFO_DEPTH)),
             activity: Activity::Idle,
             halted: false,
@@ -332,7 +333,6 @@ impl Axis {
 
     /// Advance one servo period.
     pub(crate) fn step(&mut self, ctx: &mut Context) {
-        let dt = self.period;
         if self.limits_dirty {
             self.limits_dirty = false;
             self.replan_for_new_limits(ctx.tick);
@@ -345,11 +345,11 @@ impl Axis {
         let previous = self.cmd;
         if let Some(filter) = self.smoothing.as_mut() {
             let p = filter.next(self.raw.p);
-            let v = (p - previous.p) / dt;
+            let v = (p - previous.p) * self.rate;
             self.cmd = MotionState {
                 p,
                 v,
-                a: (v - previous.v) / dt,
+                a: (v - previous.v) * self.rate,
             };
         } else {
             self.cmd = self.raw;
@@ -382,7 +382,7 @@ impl Axis {
     /// Sample the command source for this tick.
     fn advance_source(&mut self, tick: u64) {
         let dt = self.period;
-        match self.source {
+        match &self.source {
             Source::Hold => {
                 self.raw.v = 0.0;
                 self.raw.a = 0.0;
@@ -393,10 +393,10 @@ impl Axis {
                 origin,
                 shift,
             } => {
-                let t = tick.saturating_sub(origin) as f64 * dt;
+                let t = tick.saturating_sub(*origin) as f64 * dt;
                 let s = profile.sample(t);
                 self.raw = MotionState {
-                    p: s.p + shift,
+                    p: s.p + *shift,
                     v: s.v,
                     a: s.a,
                 };
@@ -404,7 +404,7 @@ impl Axis {
             }
             Source::External(setpoint) => {
                 let before = self.raw;
-                match setpoint {
+                match *setpoint {
                     Setpoint::Position { position } => {
                         self.raw.p = position;
                         self.raw.v = (position - before.p) / dt;
@@ -442,10 +442,11 @@ impl Axis {
                     self.virtual_motor = motor_cmd;
                 }
                 let tick = self.encoder.update(self.virtual_motor);
+                self.encoder_pos = self.encoder.position();
                 // HMC §2.3: a virtual axis has MPos = DPos exactly, without encoder quantisation.
                 let previous = self.act_pos;
                 self.act_pos = self.virtual_motor + self.act_offset + self.injected_fe_sign();
-                self.act_vel = (self.act_pos - previous) / self.period;
+                self.act_vel = (self.act_pos - previous) * self.rate;
                 return tick;
             }
             AxisClass::Unused => return EncoderTick::default(),
@@ -461,16 +462,21 @@ impl Axis {
             position,
             velocity: self.cmd.v,
             acceleration: self.cmd.a,
-            measured_position: self.encoder.position(),
+            measured_position: self.encoder_pos,
             measured_velocity: self.act_vel,
             enabled: enabled && self.class != AxisClass::EncoderOnly,
         };
-        let gains = self.loop_gains();
-        self.plant.update(&input, &gains);
+        if self.plant.model() == PlantModel::PositionLoop {
+            let gains = self.loop_gains();
+            self.plant.update(&input, &gains);
+        } else {
+            self.plant.update(&input, &LoopGains::UNUSED);
+        }
         let tick = self.encoder.update(self.plant.position());
+        self.encoder_pos = self.encoder.position();
         let previous = self.act_pos;
-        self.act_pos = self.encoder.position() + self.act_offset + self.injected_fe_sign();
-        self.act_vel = (self.act_pos - previous) / self.period;
+        self.act_pos = self.encoder_pos + self.act_offset + self.injected_fe_sign();
+        self.act_vel = (self.act_pos - previous) * self.rate;
         tick
     }
 
@@ -517,83 +523,50 @@ impl Axis {
 
     /// Compute the logical input levels from the switches, forcing, routing and inversion.
     fn refresh_inputs(&mut self, from: f64, to: f64, di: &[bool], encoder: EncoderTick) {
-        let (mut lp, mut lp_edge) = (false, None);
-        if let Some(s) = self.limit_pos_switch.as_mut() {
-            (lp, lp_edge) = s.update(from, to);
-        }
-        let (mut ln, mut ln_edge) = (false, None);
-        if let Some(s) = self.limit_neg_switch.as_mut() {
-            (ln, ln_edge) = s.update(from, to);
-        }
-        let (mut home, mut home_edge) = (false, None);
-        if let Some(s) = self.home_switch.as_mut() {
-            (home, home_edge) = s.update(from, to);
-        }
+        let SwitchTick {
+            limit_pos: lp,
+            limit_neg: ln,
+            home,
+            limit_pos_edge: lp_edge,
+            limit_neg_edge: ln_edge,
+            home_edge,
+        } = self.switches.update(from, to);
         let f = self.forces;
+        let w = self.wiring;
         // Forcing sets the switch's actuation, which then goes through the same wiring.
         let lp_level = f.limit_pos.unwrap_or(lp) ^ self.limit_pos_active_low;
         let ln_level = f.limit_neg.unwrap_or(ln) ^ self.limit_neg_active_low;
         let home_level = f.home.unwrap_or(home) ^ self.home_active_low;
-        let route = |param: f64, own: bool| -> Option<bool> {
-            if param == DEDICATED_INPUT {
-                Some(own)
-            } else if param < 0.0 {
-                None
-            } else {
-                Some(di.get(param as usize).copied().unwrap_or(false))
-            }
-        };
-        let to_user = |e: Edge, offset: f64| Edge {
-            position: e.position + offset,
-            rising: e.rising,
-        };
-        let offset = self.act_offset;
-        let invert = |v: bool, p: ParamId| v ^ self.params.flag(p);
-        let limit_pos = route(self.param(ParamId::FhLimitIn), lp_level)
-            .map(|v| invert(v, ParamId::LimitPosInvert));
-        let limit_neg = route(self.param(ParamId::RhLimitIn), ln_level)
-            .map(|v| invert(v, ParamId::LimitNegInvert));
-        let home_in =
-            route(self.param(ParamId::HomeIn), home_level).map(|v| invert(v, ParamId::HomeInvert));
-        let hold = {
-            let ch = self.param(ParamId::HoldIn);
-            ch >= 0.0 && di.get(ch as usize).copied().unwrap_or(false)
-        };
-        let alarm = f.drive_alarm.unwrap_or(false) ^ self.flag(ParamId::DriveAlarmInvert);
+        let hold = w
+            .hold
+            .is_some_and(|ch| di.get(ch).copied().unwrap_or(false));
         if hold != self.inputs.hold {
             // HMC_HoldConfig: the hold input changes the speed of the running command.
             self.limits_dirty = true;
         }
-        let dedicated = |p: ParamId| self.param(p) == DEDICATED_INPUT;
         self.inputs = Inputs {
-            limit_pos: limit_pos.unwrap_or(false),
-            limit_neg: limit_neg.unwrap_or(false),
-            home: home_in.unwrap_or(false),
+            limit_pos: w
+                .limit_pos
+                .read(lp_level, di)
+                .is_some_and(|v| v ^ w.limit_pos_invert),
+            limit_neg: w
+                .limit_neg
+                .read(ln_level, di)
+                .is_some_and(|v| v ^ w.limit_neg_invert),
+            home: w
+                .home
+                .read(home_level, di)
+                .is_some_and(|v| v ^ w.home_invert),
             index: f.index.unwrap_or_else(|| self.encoder.index()),
-            drive_alarm: alarm && self.flag(ParamId::DriveAlarmEnable),
+            drive_alarm: w.alarm_enabled && (f.drive_alarm.unwrap_or(false) ^ w.alarm_invert),
             hold,
-            home_edge: home_edge
-                .filter(|_| dedicated(ParamId::HomeIn) && f.home.is_none())
-                .map(|e| to_user(e, offset)),
-            limit_pos_edge: lp_edge
-                .filter(|_| dedicated(ParamId::FhLimitIn) && f.limit_pos.is_none())
-                .map(|e| to_user(e, offset)),
-            limit_neg_edge: ln_edge
-                .filter(|_| dedicated(ParamId::RhLimitIn) && f.limit_neg.is_none())
-                .map(|e| to_user(e, offset)),
-            index_at: encoder.index_at.map(|p| p + offset),
+            // Physical frame; only homing reads them (see `homing_inputs`).
+            home_edge,
+            limit_pos_edge: lp_edge,
+            limit_neg_edge: ln_edge,
+            index_at: encoder.index_at,
         };
         self.encoder.set_lost(f.encoder_loss.unwrap_or(false));
-    }
-
-    /// Which inputs exist, for homing.
-    fn has_input(&self, p: ParamId, own: bool) -> bool {
-        let v = self.param(p);
-        if v == DEDICATED_INPUT {
-            own
-        } else {
-            v >= 0.0
-        }
     }
 
     // ------------------------------------------------------------------ planning
@@ -805,7 +778,7 @@ impl Axis {
 
     fn moving(&self) -> bool {
         self.cmd.v != 0.0
-            || match self.source {
+            || match &self.source {
                 Source::Hold => false,
                 Source::Profile { profile, .. } => profile.duration() > 0.0,
                 Source::External(_) => true,
@@ -845,34 +818,33 @@ impl Axis {
     }
 
     /// Wrap a user-frame position into the cyclic range (HMC §2.3 RepMode).
+    #[inline]
     fn wrap(&self, p: f64) -> f64 {
-        let dist = self.param(ParamId::RepDist);
-        match self.param(ParamId::RepMode) as i64 {
-            1 => p.rem_euclid(dist),
-            2 => (p + dist).rem_euclid(2.0 * dist) - dist,
-            _ => p,
+        match self.wiring.cyclic {
+            Some(c) => c.wrap(p),
+            None => p,
         }
     }
 
     pub(crate) fn publish(&mut self) {
         let mut flags = self.flags;
-        flags.set(AxisFlags::ENABLED, self.enabled);
+        flags.put(AxisFlags::ENABLED, self.enabled);
         let moving = self.moving();
-        flags.set(AxisFlags::MOVING, moving);
+        flags.put(AxisFlags::MOVING, moving);
         let running_done =
             !matches!(self.activity, Activity::Running(_) | Activity::Streaming) || self.halted;
-        flags.set(
+        flags.put(
             AxisFlags::IN_POSITION,
             self.enabled
                 && running_done
                 && !moving
                 && self.in_window_for >= self.param(ParamId::InPositionTime),
         );
-        flags.set(AxisFlags::HOME_SWITCH, self.inputs.home);
-        flags.set(AxisFlags::INDEX, self.inputs.index);
-        flags.set(AxisFlags::HALTED, self.halted);
-        flags.set(AxisFlags::QUEUE_FULL, self.fifo.is_full());
-        flags.set(
+        flags.put(AxisFlags::HOME_SWITCH, self.inputs.home);
+        flags.put(AxisFlags::INDEX, self.inputs.index);
+        flags.put(AxisFlags::HALTED, self.halted);
+        flags.put(AxisFlags::QUEUE_FULL, self.fifo.is_full());
+        flags.put(
             AxisFlags::ACCELERATING,
             self.cmd.v * self.cmd.a > 0.0 && moving,
         );

@@ -24,6 +24,10 @@ pub struct Encoder {
     counts: i64,
     missed: i64,
     lost: bool,
+    /// The index count at or below `raw`: the revolution the motor is in. Kept up to date
+    /// incrementally so a tick needs no 64-bit division (~40 cycles each) unless it crosses
+    /// a revolution boundary.
+    index_below: i64,
 }
 
 /// What happened on the encoder during one tick.
@@ -49,6 +53,23 @@ impl Encoder {
             counts: 0,
             missed: 0,
             lost: false,
+            index_below: 0,
+        }
+        .with_index_below()
+    }
+
+    /// Recompute `index_below` from scratch (construction, large jumps).
+    fn with_index_below(mut self) -> Self {
+        self.index_below = self.index_at_or_below(self.raw);
+        self
+    }
+
+    fn index_at_or_below(&self, count: i64) -> i64 {
+        if self.counts_per_rev > 0 {
+            (count - self.index_offset).div_euclid(self.counts_per_rev) * self.counts_per_rev
+                + self.index_offset
+        } else {
+            0
         }
     }
 
@@ -64,7 +85,8 @@ impl Encoder {
     }
 
     fn counts_at(&self, position: f64) -> i64 {
-        (((position - self.origin) * self.counts_per_unit).round() as i64).saturating_add(self.base)
+        super::round_to_i64((position - self.origin) * self.counts_per_unit)
+            .saturating_add(self.base)
     }
 
     fn position_of(&self, counts: i64) -> f64 {
@@ -76,24 +98,40 @@ impl Encoder {
         let previous = self.raw;
         self.raw = self.counts_at(position);
         let mut tick = EncoderTick::default();
-        if self.counts_per_rev > 0 && self.raw != previous {
-            // The index sits at counts ≡ index_offset (mod counts_per_rev). Find the first such
-            // count crossed in the direction of travel, whatever the speed.
-            let cpr = self.counts_per_rev;
-            let k = if self.raw > previous {
-                let n = (previous - self.index_offset).div_euclid(cpr) + 1;
-                n * cpr + self.index_offset
-            } else {
-                let n = (previous - 1 - self.index_offset).div_euclid(cpr);
-                n * cpr + self.index_offset
-            };
-            let crossed = if self.raw > previous {
-                k <= self.raw
-            } else {
-                k >= self.raw
-            };
-            if crossed {
-                tick.index_at = Some(self.position_of(k));
+        let cpr = self.counts_per_rev;
+        if cpr > 0 && self.raw != previous {
+            // The index sits at counts ≡ index_offset (mod counts_per_rev); `index_below` is the
+            // one at or below `previous`. Report the first index crossed in the direction of
+            // travel, whatever the speed.
+            let below = self.index_below;
+            if self.raw > previous {
+                let next = below + cpr;
+                if self.raw >= next {
+                    tick.index_at = Some(self.position_of(next));
+                }
+            } else if below < previous && self.raw <= below {
+                tick.index_at = Some(self.position_of(below));
+            } else if below == previous {
+                // Starting on an index count, moving down first crosses the one before it.
+                let prior = below - cpr;
+                if self.raw <= prior {
+                    tick.index_at = Some(self.position_of(prior));
+                }
+            }
+            // Keep `index_below` the index count at or below `raw`: one revolution on is the
+            // common case; anything farther is recomputed.
+            if self.raw >= below + cpr {
+                self.index_below = if self.raw < below + 2 * cpr {
+                    below + cpr
+                } else {
+                    self.index_at_or_below(self.raw)
+                };
+            } else if self.raw < below {
+                self.index_below = if self.raw >= below - cpr {
+                    below - cpr
+                } else {
+                    self.index_at_or_below(self.raw)
+                };
             }
         }
         if self.lost {
@@ -101,7 +139,7 @@ impl Encoder {
         } else {
             self.counts = self.raw - self.missed;
             if self.noise > 0.0 {
-                self.counts += (self.noise * self.rng.next_signed()).round() as i64;
+                self.counts += super::round_to_i64(self.noise * self.rng.next_signed());
             }
         }
         tick
@@ -119,8 +157,7 @@ impl Encoder {
 
     /// Index (Z) level: high for `index_width` counts once per revolution.
     pub fn index(&self) -> bool {
-        self.counts_per_rev > 0
-            && (self.raw - self.index_offset).rem_euclid(self.counts_per_rev) < self.index_width
+        self.counts_per_rev > 0 && self.raw - self.index_below < self.index_width
     }
 
     /// A/B levels: bit 0 = A, bit 1 = B; counting up steps 00 → 01 → 11 → 10 (A leads B).
@@ -173,6 +210,43 @@ mod tests {
         assert!(e.index());
         e.update(0.0005);
         assert!(!e.index());
+    }
+
+    #[test]
+    fn incremental_index_tracking_matches_the_arithmetic() {
+        // Random walks with steps from sub-revolution to many revolutions, both directions,
+        // against the closed form of "first index count crossed".
+        let config = EncoderConfig {
+            counts_per_rev: 37,
+            index_width: 3,
+            index_offset: 5,
+            noise: 0.0,
+        };
+        let mut r = Rng::new(11);
+        let mut e = Encoder::new(&config, 1.0, 0.0, Rng::new(1));
+        let mut prev: i64 = 0;
+        for _ in 0..200_000 {
+            let step = match r.next_u64() % 4 {
+                0 => (r.next_signed() * 3.0) as i64,
+                1 => (r.next_signed() * 40.0) as i64,
+                2 => (r.next_signed() * 400.0) as i64,
+                _ => 0,
+            };
+            let next = prev + step;
+            let got = e.update(next as f64).index_at;
+            let expect = if next > prev {
+                let k = (prev - 5).div_euclid(37) * 37 + 5 + 37;
+                (k <= next).then_some(k as f64)
+            } else if next < prev {
+                let k = (prev - 1 - 5).div_euclid(37) * 37 + 5;
+                (k >= next).then_some(k as f64)
+            } else {
+                None
+            };
+            assert_eq!(got, expect, "{prev} → {next}");
+            assert_eq!(e.index(), (next - 5).rem_euclid(37) < 3, "level at {next}");
+            prev = next;
+        }
     }
 
     #[test]

@@ -22,6 +22,25 @@ pub struct LoopGains {
     pub open_loop_dac: Option<f64>,
 }
 
+impl LoopGains {
+    /// For plants without a position loop, which never read the gains.
+    pub const UNUSED: LoopGains = LoopGains {
+        kp: 0.0,
+        ki: 0.0,
+        kd: 0.0,
+        kov: 0.0,
+        kvff: 0.0,
+        kaff: 0.0,
+        ko: 0.0,
+        dac_high: 0.0,
+        dac_low: 0.0,
+        pos_offset: 0.0,
+        neg_offset: 0.0,
+        zero_window: 0.0,
+        open_loop_dac: None,
+    };
+}
+
 /// What the controller hands the plant each tick.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PlantInput {
@@ -46,6 +65,8 @@ pub struct Plant {
     velocity_factor: f64,
     full_scale_velocity: f64,
     period: f64,
+    /// 1/period: velocities are differences times this (a division per tick costs ~20 cycles).
+    rate: f64,
     position: f64,
     velocity: f64,
     integral: f64,
@@ -71,6 +92,7 @@ impl Plant {
             velocity_factor: factor(config.velocity_time_constant),
             full_scale_velocity: config.full_scale_velocity,
             period,
+            rate: 1.0 / period,
             position,
             velocity: 0.0,
             integral: 0.0,
@@ -134,7 +156,7 @@ impl Plant {
                 return;
             }
         }
-        self.velocity = (self.position - before) / self.period;
+        self.velocity = (self.position - before) * self.rate;
     }
 
     /// HMC §2.1: DACOut = clamp(deadband(Ko·(Kp·FE + Ki·ΣFE·dt + Kd·dFE/dt + Kvff·v + Kaff·a −
@@ -145,7 +167,7 @@ impl Plant {
             return dac.clamp(g.dac_low, g.dac_high);
         }
         let error = input.position - input.measured_position;
-        let derivative = (error - self.previous_error) / self.period;
+        let derivative = (error - self.previous_error) * self.rate;
         self.previous_error = error;
         let candidate_integral = self.integral + error * self.period;
         let raw = g.ko

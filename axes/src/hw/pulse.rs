@@ -11,6 +11,7 @@ pub struct PulseOutput {
     /// Largest number of pulses one tick may carry.
     max_per_tick: i64,
     period: f64,
+    rate: f64,
     /// Pulses emitted since start (signed).
     count: i64,
     /// `count` target = round((position − origin) × pulses_per_unit) + base. Re-based when the
@@ -27,6 +28,7 @@ impl PulseOutput {
             pulses_per_unit,
             max_per_tick: 1,
             period,
+            rate: 1.0 / period,
             count: 0,
             origin: position,
             base: 0,
@@ -53,7 +55,7 @@ impl PulseOutput {
     /// frequency limit. Returns the pulses emitted this tick.
     pub fn update(&mut self, position: f64) -> i32 {
         // `as` saturates, so an absurd position gives a huge but finite target, never UB.
-        let target = ((position - self.origin) * self.pulses_per_unit).round() as i64;
+        let target = super::round_to_i64((position - self.origin) * self.pulses_per_unit);
         let target = target.saturating_add(self.base);
         let emit = target
             .saturating_sub(self.count)
@@ -81,7 +83,7 @@ impl PulseOutput {
 
     /// Frequency of the last tick, Hz, signed.
     pub fn frequency(&self) -> f64 {
-        self.last as f64 / self.period
+        self.last as f64 * self.rate
     }
 
     /// Direction level: true for positive motion (before any output inversion).
@@ -91,7 +93,7 @@ impl PulseOutput {
 
     /// Pulses commanded but not yet emitted because of the frequency clamp.
     pub fn owed(&self, position: f64) -> i64 {
-        let target = ((position - self.origin) * self.pulses_per_unit).round() as i64;
+        let target = super::round_to_i64((position - self.origin) * self.pulses_per_unit);
         target.saturating_add(self.base).saturating_sub(self.count)
     }
 }

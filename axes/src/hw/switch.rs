@@ -2,7 +2,7 @@
 //! step 6), with debounce. Inversion (active-low wiring) is the controller's business and lives
 //! in the axis, since the parameters that choose it are the controller's.
 
-use crate::config::{HomeSwitchConfig, SwitchConfig};
+use crate::config::{HomeSwitchConfig, SwitchConfig, SwitchesConfig};
 
 /// Where a switch changed level during a tick.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -53,6 +53,11 @@ impl Debounce {
     pub fn output(&self) -> bool {
         self.output
     }
+
+    /// No change is pending: with a steady input, `update` changes nothing.
+    pub fn settled(&self) -> bool {
+        self.candidate == self.output
+    }
 }
 
 /// A limit switch: active beyond `position` in its direction.
@@ -61,6 +66,8 @@ pub struct LimitSwitch {
     position: f64,
     positive: bool,
     filter: Debounce,
+    /// Raw level at the end of the last update.
+    raw_level: bool,
 }
 
 impl LimitSwitch {
@@ -69,9 +76,11 @@ impl LimitSwitch {
             position: config.position,
             positive,
             filter: Debounce::new(config.filter, false),
+            raw_level: false,
         };
         let raw = s.raw(motor);
         s.filter = Debounce::new(config.filter, raw);
+        s.raw_level = raw;
         s
     }
 
@@ -83,9 +92,11 @@ impl LimitSwitch {
         }
     }
 
-    /// Level after the motor moved from `from` to `to`, and the exact raw edge if it was crossed.
-    pub fn update(&mut self, from: f64, to: f64) -> (bool, Option<Edge>) {
-        let (before, after) = (self.raw(from), self.raw(to));
+    /// Level after the motor moved to `to` (from where the last update left it), and the exact
+    /// raw edge if one was crossed.
+    pub fn update(&mut self, to: f64) -> (bool, Option<Edge>) {
+        let (before, after) = (self.raw_level, self.raw(to));
+        self.raw_level = after;
         let edge = (before != after).then_some(Edge {
             position: self.position,
             rising: after,
@@ -165,6 +176,128 @@ impl HomeSwitch {
     }
 }
 
+/// The levels and exact edges of an axis's switches after one tick.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SwitchTick {
+    pub limit_pos: bool,
+    pub limit_neg: bool,
+    pub home: bool,
+    pub limit_pos_edge: Option<Edge>,
+    pub limit_neg_edge: Option<Edge>,
+    pub home_edge: Option<Edge>,
+}
+
+/// All switches of one axis. Their levels change only where the motor crosses one of a few
+/// boundary positions, so between two boundaries (and with every debounce settled) a tick
+/// costs two comparisons instead of updating each switch.
+#[derive(Clone, Debug)]
+pub struct Switches {
+    limit_pos: Option<LimitSwitch>,
+    limit_neg: Option<LimitSwitch>,
+    home: Option<HomeSwitch>,
+    /// Open interval of motor positions around the last one in which no raw level changes.
+    quiet: (f64, f64),
+    last: SwitchTick,
+}
+
+impl Switches {
+    pub fn new(config: &SwitchesConfig, motor: f64) -> Switches {
+        let mut s = Switches {
+            limit_pos: config
+                .limit_pos
+                .as_ref()
+                .map(|c| LimitSwitch::new(c, true, motor)),
+            limit_neg: config
+                .limit_neg
+                .as_ref()
+                .map(|c| LimitSwitch::new(c, false, motor)),
+            home: config.home.as_ref().map(|c| HomeSwitch::new(c, motor)),
+            quiet: (motor, motor),
+            last: SwitchTick::default(),
+        };
+        s.last = SwitchTick {
+            limit_pos: s.limit_pos.as_ref().is_some_and(LimitSwitch::level),
+            limit_neg: s.limit_neg.as_ref().is_some_and(LimitSwitch::level),
+            home: s.home.as_ref().is_some_and(HomeSwitch::level),
+            ..SwitchTick::default()
+        };
+        s.quiet = s.quiet_zone(motor);
+        s
+    }
+
+    pub fn has_limit_pos(&self) -> bool {
+        self.limit_pos.is_some()
+    }
+
+    pub fn has_limit_neg(&self) -> bool {
+        self.limit_neg.is_some()
+    }
+
+    pub fn has_home(&self) -> bool {
+        self.home.is_some()
+    }
+
+    /// The motor moved from `from` (where the last update left it) to `to`.
+    #[inline]
+    pub fn update(&mut self, from: f64, to: f64) -> SwitchTick {
+        let (lo, hi) = self.quiet;
+        if lo < to && to < hi {
+            return SwitchTick {
+                limit_pos_edge: None,
+                limit_neg_edge: None,
+                home_edge: None,
+                ..self.last
+            };
+        }
+        self.update_all(from, to)
+    }
+
+    #[inline(never)]
+    fn update_all(&mut self, from: f64, to: f64) -> SwitchTick {
+        let mut t = SwitchTick::default();
+        if let Some(s) = self.limit_pos.as_mut() {
+            (t.limit_pos, t.limit_pos_edge) = s.update(to);
+        }
+        if let Some(s) = self.limit_neg.as_mut() {
+            (t.limit_neg, t.limit_neg_edge) = s.update(to);
+        }
+        if let Some(s) = self.home.as_mut() {
+            (t.home, t.home_edge) = s.update(from, to);
+        }
+        self.last = t;
+        self.quiet = self.quiet_zone(to);
+        t
+    }
+
+    /// The open interval around `p` free of switch boundaries, or an empty one while a
+    /// debounce is still counting (every tick must then reach it).
+    fn quiet_zone(&self, p: f64) -> (f64, f64) {
+        let settled = self.limit_pos.as_ref().is_none_or(|s| s.filter.settled())
+            && self.limit_neg.as_ref().is_none_or(|s| s.filter.settled())
+            && self.home.as_ref().is_none_or(|s| s.filter.settled());
+        if !settled {
+            return (p, p);
+        }
+        let mut lo = f64::NEG_INFINITY;
+        let mut hi = f64::INFINITY;
+        let bounds = [
+            self.limit_pos.as_ref().map(|s| s.position),
+            self.limit_neg.as_ref().map(|s| s.position),
+            self.home.as_ref().map(|s| s.low),
+            self.home.as_ref().map(|s| s.high),
+        ];
+        for b in bounds.into_iter().flatten() {
+            if b <= p && b > lo {
+                lo = b;
+            }
+            if b >= p && b < hi {
+                hi = b;
+            }
+        }
+        (lo, hi)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -191,8 +324,8 @@ mod tests {
         };
         let mut s = LimitSwitch::new(&cfg, true, 0.0);
         assert!(!s.level());
-        assert_eq!(s.update(0.0, 99.0), (false, None));
-        let (level, edge) = s.update(99.0, 101.0);
+        assert_eq!(s.update(99.0), (false, None));
+        let (level, edge) = s.update(101.0);
         assert!(level);
         assert_eq!(
             edge,
@@ -201,7 +334,7 @@ mod tests {
                 rising: true
             })
         );
-        let (level, edge) = s.update(101.0, 98.0);
+        let (level, edge) = s.update(98.0);
         assert!(!level);
         assert!(!edge.unwrap().rising);
         let mut n = LimitSwitch::new(
@@ -214,7 +347,7 @@ mod tests {
             -6.0,
         );
         assert!(n.level());
-        assert!(!n.update(-6.0, 0.0).0);
+        assert!(!n.update(0.0).0);
     }
 
     #[test]
@@ -292,5 +425,51 @@ mod tests {
                 rising: false
             })
         );
+    }
+}
+
+#[cfg(test)]
+mod quiet_zone_tests {
+    use super::*;
+    use crate::rng::Rng;
+
+    /// The shortcut must never change what the switches report: compare against updating
+    /// every switch every tick, on random walks across all boundaries, with debounce.
+    #[test]
+    fn the_quiet_zone_never_changes_levels_or_edges() {
+        let config = SwitchesConfig {
+            limit_pos: Some(SwitchConfig {
+                position: 50.0,
+                filter: 2,
+                active_low: false,
+            }),
+            limit_neg: Some(SwitchConfig {
+                position: -50.0,
+                filter: 0,
+                active_low: false,
+            }),
+            home: Some(HomeSwitchConfig {
+                low: 10.0,
+                high: 12.0,
+                filter: 3,
+                active_low: false,
+            }),
+        };
+        let mut fast = Switches::new(&config, 0.0);
+        let mut slow = Switches::new(&config, 0.0);
+        let mut r = Rng::new(5);
+        let mut p = 0.0;
+        for _ in 0..200_000 {
+            let step = match r.next_u64() % 3 {
+                0 => r.next_signed() * 0.3,
+                1 => r.next_signed() * 3.0,
+                _ => 0.0,
+            };
+            let next = (p + step).clamp(-70.0, 70.0);
+            let a = fast.update(p, next);
+            let b = slow.update_all(p, next);
+            assert_eq!(a, b, "{p} → {next}");
+            p = next;
+        }
     }
 }
