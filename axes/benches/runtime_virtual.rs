@@ -22,10 +22,7 @@ fn median(mut xs: Vec<Duration>) -> Duration {
 }
 
 fn bare_loop(axes: usize, ticks: u64) -> Duration {
-    let mut engine = common::engine(axes);
-    for command in common::motion_commands(axes) {
-        let _ = engine.apply(command);
-    }
+    let mut engine = common::moving_engine(axes);
     let mut snapshot = Snapshot::default();
     let start = Instant::now();
     for _ in 0..ticks {
@@ -41,7 +38,7 @@ fn runtime_advance(axes: usize, ticks: u64) -> (Duration, u64) {
     let options = RuntimeOptions::with_clock(ClockMode::Virtual);
     let (handle, guard) = Runtime::start(common::engine(axes), options).unwrap();
     for command in common::motion_commands(axes) {
-        let _ = handle.call(command);
+        handle.call(command).unwrap();
     }
     let start = Instant::now();
     handle.advance(ticks).unwrap();
@@ -108,4 +105,13 @@ fn main() {
             format!("({} / tick)", common::fmt_duration(runtime / ticks as u32)),
         );
     }
+    // The requirement, measured as stated: one simulated hour of 8 moving axes at 1 ms,
+    // through the runtime (a snapshot published every tick), under 3.6 s of wall time.
+    let hour = (3600.0 / period).round() as u64;
+    let (elapsed, _) = runtime_advance(8, hour);
+    println!(
+        "one simulated hour, 8 moving axes: {} wall = {:.0}x real time (requirement: ≥ 1000x, < 3.6 s)",
+        common::fmt_duration(elapsed),
+        3600.0 / elapsed.as_secs_f64()
+    );
 }

@@ -176,12 +176,32 @@ pub struct AxisStatus {
 }
 
 /// Digital and analog I/O images of the machine.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct IoImage {
     pub di: Vec<bool>,
     pub do_: Vec<bool>,
     pub ai: Vec<f64>,
     pub ao: Vec<f64>,
+}
+
+impl Clone for IoImage {
+    fn clone(&self) -> Self {
+        IoImage {
+            di: self.di.clone(),
+            do_: self.do_.clone(),
+            ai: self.ai.clone(),
+            ao: self.ao.clone(),
+        }
+    }
+
+    /// Field by field, reusing the vectors: snapshots are refreshed every tick and must not
+    /// allocate (the derived `clone_from` would replace each vector).
+    fn clone_from(&mut self, source: &Self) {
+        self.di.clone_from(&source.di);
+        self.do_.clone_from(&source.do_);
+        self.ai.clone_from(&source.ai);
+        self.ao.clone_from(&source.ao);
+    }
 }
 
 /// A CiA 402 drive as its master sees it.

@@ -1,13 +1,53 @@
 //! Shared by the runtime benches: the machine under test and the commands that make it move.
 
 use axes::command::BufferMode;
-use axes::config::{AxisConfig, EngineConfig};
-use axes::{Command, Engine};
+use axes::config::{AxisConfig, EngineConfig, HomeSwitchConfig, PlantModel, SwitchConfig};
+use axes::{Command, Engine, ParamId};
 
-/// `n` axes with default configuration, 1 ms period.
+/// A stepper in mm with the whole per-tick pipeline: pulse output, encoder with index, lag
+/// plant, both limits (debounced) and a home cam — far away, so the axes keep moving for the
+/// whole measurement — S-curve profiles and following-error supervision.
+pub fn busy_axis() -> AxisConfig {
+    let mut a = AxisConfig::default();
+    for (p, v) in [
+        (ParamId::AxisType, 10.0),
+        (ParamId::Units, 1000.0),
+        (ParamId::RepMode, 0.0),
+        (ParamId::Speed, 100.0),
+        (ParamId::Accel, 1000.0),
+        (ParamId::Decel, 1000.0),
+        (ParamId::JerkMode, 1.0),
+        (ParamId::Jerk, 20_000.0),
+        (ParamId::FeLimit, 1e6),
+        (ParamId::InPositionWindow, 0.01),
+    ] {
+        a.params.insert(p, v);
+    }
+    a.plant.model = PlantModel::Lag;
+    a.plant.time_constant = 0.002;
+    a.switches.limit_pos = Some(SwitchConfig {
+        position: 1e9,
+        filter: 2,
+        active_low: false,
+    });
+    a.switches.limit_neg = Some(SwitchConfig {
+        position: -1e9,
+        filter: 2,
+        active_low: false,
+    });
+    a.switches.home = Some(HomeSwitchConfig {
+        low: 5e8,
+        high: 5e8 + 10.0,
+        filter: 0,
+        active_low: false,
+    });
+    a
+}
+
+/// `n` busy axes, 1 ms period.
 pub fn machine(n: usize) -> EngineConfig {
     EngineConfig {
-        axes: vec![AxisConfig::default(); n],
+        axes: vec![busy_axis(); n],
         ..EngineConfig::default()
     }
 }
@@ -22,15 +62,16 @@ pub fn engine(n: usize) -> Engine {
     }
 }
 
-/// Enable every axis and jog it; errors are ignored (the engine may not support motion yet).
+/// Enable every axis and start a long S-curve move (it runs for more than a simulated hour).
 pub fn motion_commands(n: usize) -> Vec<Command> {
     (0..n as u16)
         .flat_map(|axis| {
             [
                 Command::Enable { axis },
-                Command::MoveVelocity {
+                Command::MoveRelative {
                     axis,
-                    velocity: 100.0 * f64::from(axis + 1),
+                    distance: 1e8,
+                    velocity: None,
                     acceleration: None,
                     deceleration: None,
                     jerk: None,
@@ -39,6 +80,18 @@ pub fn motion_commands(n: usize) -> Vec<Command> {
             ]
         })
         .collect()
+}
+
+/// A machine of `n` busy axes, enabled and moving.
+pub fn moving_engine(n: usize) -> Engine {
+    let mut e = engine(n);
+    for command in motion_commands(n) {
+        if let Err(err) = e.apply(command) {
+            eprintln!("bench command refused: {err}");
+            std::process::exit(2);
+        }
+    }
+    e
 }
 
 pub fn fmt_duration(d: std::time::Duration) -> String {
