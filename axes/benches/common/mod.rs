@@ -1,4 +1,6 @@
 //! Shared by the runtime benches: the machine under test and the commands that make it move.
+// Shared by several benches; each uses a part.
+#![allow(dead_code)]
 
 use axes::command::BufferMode;
 use axes::config::{AxisConfig, EngineConfig, HomeSwitchConfig, PlantModel, SwitchConfig};
