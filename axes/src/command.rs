@@ -549,9 +549,27 @@ impl EngineError {
     }
 }
 
+/// Largest magnitude of a position, distance, velocity or offset a command may carry, in user
+/// units (per second): far beyond any machine, and small enough that position × scale stays
+/// well inside f64 precision and the 64-bit pulse and encoder counters.
+pub const MAX_MAGNITUDE: f64 = 1e12;
+
+/// A finite number within ±[`MAX_MAGNITUDE`]: positions, distances, velocities, offsets.
+pub(crate) fn bounded(name: &'static str, value: f64) -> Result<f64, EngineError> {
+    let value = finite(name, value)?;
+    if value.abs() <= MAX_MAGNITUDE {
+        Ok(value)
+    } else {
+        Err(EngineError::InvalidArgument {
+            name,
+            value,
+            reason: "outside ±1e12 user units",
+        })
+    }
+}
+
 /// Check that a number from a command is finite (and optionally positive) before it reaches a
 /// planner. NaN and infinities never get past the front door.
-#[allow(dead_code)] // used by the axis core
 pub(crate) fn finite(name: &'static str, value: f64) -> Result<f64, EngineError> {
     if value.is_finite() {
         Ok(value)
@@ -565,7 +583,6 @@ pub(crate) fn finite(name: &'static str, value: f64) -> Result<f64, EngineError>
 }
 
 /// A finite, strictly positive number.
-#[allow(dead_code)] // used by the axis core
 pub(crate) fn positive(name: &'static str, value: f64) -> Result<f64, EngineError> {
     let value = finite(name, value)?;
     if value > 0.0 {

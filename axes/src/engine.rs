@@ -289,6 +289,15 @@ impl Engine {
                 buffer_mode,
             } => {
                 let a = axis_mut(axes, axis)?;
+                for (name, v) in [
+                    ("switch_velocity", switch_velocity),
+                    ("zero_velocity", zero_velocity),
+                    ("offset", offset),
+                ] {
+                    if let Some(v) = v {
+                        crate::command::bounded(name, v)?;
+                    }
+                }
                 let p = a.params();
                 let spec = HomingSpec {
                     method: method.unwrap_or(p.get(ParamId::HomeMethod) as i16),

@@ -6,8 +6,8 @@ use super::{
     wiring::Wiring, Action, Activity, Axis, Context, Goal1, Overrides, Queued, Ramp, Run, Source,
 };
 use crate::command::{
-    finite, positive, AxisInput, BufferMode, CancelScope, CommandKind, CommandState, Direction,
-    EngineError, ErrorKind, PositionFrame, Reply, Setpoint, StopMode,
+    bounded, finite, positive, AxisInput, BufferMode, CancelScope, CommandKind, CommandState,
+    Direction, EngineError, ErrorKind, PositionFrame, Reply, Setpoint, StopMode,
 };
 use crate::homing::{Homing, HomingHardware, HomingSpec};
 use crate::hw::AxisClass;
@@ -102,7 +102,7 @@ impl Axis {
 
     fn check_overrides(o: &Overrides) -> Result<(), EngineError> {
         if let Some(v) = o.velocity {
-            positive("velocity", v)?;
+            positive("velocity", bounded("velocity", v)?)?;
         }
         if let Some(a) = o.acceleration {
             positive("acceleration", a)?;
@@ -152,13 +152,13 @@ impl Axis {
         Self::check_overrides(&request.overrides)?;
         match &request.action {
             Action::MoveAbsolute { position } => {
-                finite("position", *position)?;
+                bounded("position", *position)?;
             }
             Action::MoveRelative { distance } => {
-                finite("distance", *distance)?;
+                bounded("distance", *distance)?;
             }
             Action::MoveVelocity { velocity } => {
-                finite("velocity", *velocity)?;
+                bounded("velocity", *velocity)?;
             }
             Action::Home(_) => {}
         }
@@ -631,7 +631,7 @@ impl Axis {
         position: f64,
         relative: bool,
     ) -> Result<Reply, EngineError> {
-        if let Err(e) = finite("position", position) {
+        if let Err(e) = bounded("position", position) {
             return self.refuse(e);
         }
         let running = match &self.activity {
@@ -761,7 +761,7 @@ impl Axis {
         position: f64,
         frame: PositionFrame,
     ) -> Result<Reply, EngineError> {
-        if let Err(e) = finite("position", position) {
+        if let Err(e) = bounded("position", position) {
             return self.refuse(e);
         }
         if let Activity::Running(run) = &self.activity {
@@ -1000,7 +1000,7 @@ impl Axis {
         amount: Option<f64>,
     ) -> Result<Reply, EngineError> {
         let amount = match amount {
-            Some(a) => finite("amount", a)?,
+            Some(a) => bounded("amount", a)?,
             None => 0.0,
         };
         self.injected_fe = amount;
@@ -1028,7 +1028,7 @@ impl Axis {
             Setpoint::Velocity { velocity } => velocity,
             Setpoint::Torque { torque } => torque,
         };
-        if let Err(e) = finite("setpoint", value) {
+        if let Err(e) = bounded("setpoint", value) {
             return self.refuse(e);
         }
         if let Err(e) = self.check_can_move() {

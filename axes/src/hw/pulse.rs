@@ -60,7 +60,7 @@ impl PulseOutput {
         let emit = target
             .saturating_sub(self.count)
             .clamp(-self.max_per_tick, self.max_per_tick);
-        self.count += emit;
+        self.count = self.count.saturating_add(emit);
         self.last = emit.clamp(i32::MIN as i64, i32::MAX as i64) as i32;
         if emit != 0 {
             self.direction = emit > 0;
@@ -70,7 +70,7 @@ impl PulseOutput {
 
     /// The physical position the emitted pulses stand for.
     pub fn position(&self) -> f64 {
-        (self.count - self.base) as f64 / self.pulses_per_unit + self.origin
+        self.count.saturating_sub(self.base) as f64 / self.pulses_per_unit + self.origin
     }
 
     pub fn count(&self) -> i64 {

@@ -1,0 +1,340 @@
+//! No command panics the engine, whatever its numbers (issue: "Bad input … the engine keeps
+//! running. No panic on any command."): random sequences of every command kind with hostile
+//! values, interleaved with ticks, on a machine with switches, a drive and I/O.
+
+// Tests fail loudly.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+mod common;
+
+use axes::cia402::DriveConfig;
+use axes::command::{
+    AxisInput, BufferMode, CancelScope, Command, PositionFrame, Setpoint, StopMode,
+};
+use axes::homing::HomingQuirks;
+use axes::od::Value;
+use axes::{Engine, EngineConfig, ParamId};
+use proptest::prelude::*;
+use proptest::strategy::Union;
+
+fn number() -> impl Strategy<Value = f64> {
+    prop_oneof![
+        4 => -1000.0..1000.0f64,
+        1 => Just(0.0),
+        1 => Just(f64::NAN),
+        1 => Just(f64::INFINITY),
+        1 => Just(f64::NEG_INFINITY),
+        1 => Just(1e300),
+        1 => Just(-1e300),
+        1 => Just(f64::MIN_POSITIVE),
+        1 => Just(1e-12),
+    ]
+}
+
+fn opt_number() -> impl Strategy<Value = Option<f64>> {
+    prop_oneof![2 => Just(None), 1 => number().prop_map(Some)]
+}
+
+fn axis() -> impl Strategy<Value = u16> {
+    prop_oneof![6 => Just(0u16), 2 => Just(1u16), 1 => Just(2u16), 1 => any::<u16>()]
+}
+
+fn buffer_mode() -> impl Strategy<Value = BufferMode> {
+    prop_oneof![Just(BufferMode::Aborting), Just(BufferMode::Buffered)]
+}
+
+fn param() -> impl Strategy<Value = ParamId> {
+    (0..ParamId::COUNT).prop_map(|i| ParamId::all().nth(i).unwrap())
+}
+
+fn input() -> impl Strategy<Value = AxisInput> {
+    prop_oneof![
+        Just(AxisInput::LimitPos),
+        Just(AxisInput::LimitNeg),
+        Just(AxisInput::Home),
+        Just(AxisInput::Index),
+        Just(AxisInput::DriveAlarm),
+        Just(AxisInput::EncoderLoss),
+    ]
+}
+
+fn value() -> impl Strategy<Value = Value> {
+    prop_oneof![
+        any::<u16>().prop_map(Value::U16),
+        any::<i32>().prop_map(Value::I32),
+        any::<i8>().prop_map(Value::I8),
+        any::<u32>().prop_map(Value::U32),
+        number().prop_map(Value::F64),
+        ".{0,8}".prop_map(Value::String),
+    ]
+}
+
+fn command() -> BoxedStrategy<Command> {
+    let moves: Vec<BoxedStrategy<Command>> = vec![
+        (
+            axis(),
+            number(),
+            opt_number(),
+            opt_number(),
+            opt_number(),
+            opt_number(),
+            buffer_mode(),
+        )
+            .prop_map(
+                |(axis, position, velocity, acceleration, deceleration, jerk, buffer_mode)| {
+                    Command::MoveAbsolute {
+                        axis,
+                        position,
+                        velocity,
+                        acceleration,
+                        deceleration,
+                        jerk,
+                        buffer_mode,
+                    }
+                },
+            )
+            .boxed(),
+        (
+            axis(),
+            number(),
+            opt_number(),
+            opt_number(),
+            opt_number(),
+            opt_number(),
+            buffer_mode(),
+        )
+            .prop_map(
+                |(axis, distance, velocity, acceleration, deceleration, jerk, buffer_mode)| {
+                    Command::MoveRelative {
+                        axis,
+                        distance,
+                        velocity,
+                        acceleration,
+                        deceleration,
+                        jerk,
+                        buffer_mode,
+                    }
+                },
+            )
+            .boxed(),
+        (
+            axis(),
+            number(),
+            opt_number(),
+            opt_number(),
+            opt_number(),
+            buffer_mode(),
+        )
+            .prop_map(
+                |(axis, velocity, acceleration, deceleration, jerk, buffer_mode)| {
+                    Command::MoveVelocity {
+                        axis,
+                        velocity,
+                        acceleration,
+                        deceleration,
+                        jerk,
+                        buffer_mode,
+                    }
+                },
+            )
+            .boxed(),
+        (
+            axis(),
+            prop::option::of(-5i16..40),
+            opt_number(),
+            opt_number(),
+            opt_number(),
+            opt_number(),
+            opt_number(),
+        )
+            .prop_map(
+                |(axis, method, switch_velocity, zero_velocity, acceleration, offset, timeout)| {
+                    Command::Home {
+                        axis,
+                        method,
+                        switch_velocity,
+                        zero_velocity,
+                        acceleration,
+                        offset,
+                        timeout,
+                        quirks: HomingQuirks::default(),
+                        buffer_mode: BufferMode::Aborting,
+                    }
+                },
+            )
+            .boxed(),
+    ];
+    let control: Vec<BoxedStrategy<Command>> = vec![
+        axis().prop_map(|axis| Command::Enable { axis }).boxed(),
+        axis().prop_map(|axis| Command::Disable { axis }).boxed(),
+        axis().prop_map(|axis| Command::Reset { axis }).boxed(),
+        (axis(), 0..4u8, opt_number())
+            .prop_map(|(axis, m, deceleration)| Command::Stop {
+                axis,
+                mode: [
+                    StopMode::Smooth,
+                    StopMode::Abrupt,
+                    StopMode::Emergency,
+                    StopMode::Immediate,
+                ][m as usize],
+                deceleration,
+            })
+            .boxed(),
+        (axis(), opt_number())
+            .prop_map(|(axis, deceleration)| Command::Halt { axis, deceleration })
+            .boxed(),
+        axis().prop_map(|axis| Command::Resume { axis }).boxed(),
+        (axis(), number(), 0..3u8)
+            .prop_map(|(axis, position, f)| Command::SetPosition {
+                axis,
+                position,
+                frame: [
+                    PositionFrame::Both,
+                    PositionFrame::Commanded,
+                    PositionFrame::Actual,
+                ][f as usize],
+            })
+            .boxed(),
+        (axis(), param(), number(), any::<bool>())
+            .prop_map(|(axis, name, value, lenient)| Command::SetParameter {
+                axis,
+                name,
+                value,
+                lenient,
+            })
+            .boxed(),
+        (axis(), param())
+            .prop_map(|(axis, name)| Command::GetParameter { axis, name })
+            .boxed(),
+        (axis(), number(), any::<bool>())
+            .prop_map(|(axis, position, relative)| Command::ModifyTarget {
+                axis,
+                position,
+                relative,
+            })
+            .boxed(),
+        (axis(), 0..3u8)
+            .prop_map(|(axis, s)| Command::Cancel {
+                axis,
+                scope: [CancelScope::Next, CancelScope::Current, CancelScope::All][s as usize],
+            })
+            .boxed(),
+        any::<u32>()
+            .prop_map(|id| Command::CommandState { id })
+            .boxed(),
+    ];
+    let io: Vec<BoxedStrategy<Command>> = vec![
+        (axis(), input(), prop::option::of(any::<bool>()))
+            .prop_map(|(axis, input, value)| Command::ForceInput { axis, input, value })
+            .boxed(),
+        (0..80u16, prop::option::of(any::<bool>()))
+            .prop_map(|(channel, value)| Command::ForceDigitalInput { channel, value })
+            .boxed(),
+        (0..12u16, opt_number())
+            .prop_map(|(channel, value)| Command::ForceAnalogInput { channel, value })
+            .boxed(),
+        (0..80u16, any::<bool>())
+            .prop_map(|(channel, value)| Command::WriteDigitalOutput { channel, value })
+            .boxed(),
+        (0..12u16, number())
+            .prop_map(|(channel, value)| Command::WriteAnalogOutput { channel, value })
+            .boxed(),
+        (axis(), opt_number())
+            .prop_map(|(axis, amount)| Command::InjectFollowingError { axis, amount })
+            .boxed(),
+        (axis(), prop::option::of((0..3u8, number())))
+            .prop_map(|(axis, sp)| Command::Setpoint {
+                axis,
+                setpoint: sp.map(|(k, x)| match k {
+                    0 => Setpoint::Position { position: x },
+                    1 => Setpoint::Velocity { velocity: x },
+                    _ => Setpoint::Torque { torque: x },
+                }),
+            })
+            .boxed(),
+        (
+            0..3u16,
+            prop_oneof![
+                Just(0x6040u16),
+                Just(0x6060),
+                Just(0x607A),
+                Just(0x6081),
+                Just(0x6098),
+                any::<u16>()
+            ],
+            0..3u8,
+        )
+            .prop_map(|(slave, index, subindex)| Command::ReadObject {
+                slave,
+                index,
+                subindex,
+            })
+            .boxed(),
+        (
+            0..3u16,
+            prop_oneof![
+                Just(0x6040u16),
+                Just(0x6060),
+                Just(0x607A),
+                Just(0x6081),
+                Just(0x6098),
+                any::<u16>()
+            ],
+            0..3u8,
+            value(),
+        )
+            .prop_map(|(slave, index, subindex, value)| Command::WriteObject {
+                slave,
+                index,
+                subindex,
+                value,
+            })
+            .boxed(),
+    ];
+    let group = |v: Vec<BoxedStrategy<Command>>| Union::new(v).boxed();
+    prop_oneof![4 => group(moves), 4 => group(control), 3 => group(io)].boxed()
+}
+
+fn machine() -> Engine {
+    let mut servo = common::stepper_mm();
+    servo.params.insert(ParamId::AxisType, 20.0);
+    servo.params.insert(ParamId::ServoLoop, 1.0);
+    servo.params.insert(ParamId::Kp, 2000.0);
+    servo.plant.model = axes::config::PlantModel::PositionLoop;
+    let mut cyclic = common::stepper_mm();
+    cyclic.params.insert(ParamId::RepMode, 2.0);
+    cyclic.params.insert(ParamId::RepDist, 180.0);
+    cyclic.params.insert(ParamId::SmoothTime, 0.02);
+    Engine::new(&EngineConfig {
+        axes: vec![common::stepper_mm(), servo, cyclic],
+        drives: vec![DriveConfig {
+            axis: 1,
+            increments_per_unit: 100.0,
+            ..DriveConfig::default()
+        }],
+        ..EngineConfig::default()
+    })
+    .unwrap()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 400, ..ProptestConfig::default() })]
+
+    #[test]
+    fn random_commands_never_panic_and_positions_stay_finite(
+        script in prop::collection::vec((command(), 0..40u32), 1..40)
+    ) {
+        let mut e = machine();
+        for (c, ticks) in script {
+            let _ = e.apply(c);
+            for _ in 0..ticks {
+                e.step();
+            }
+            for a in &e.snapshot().axes {
+                for x in [a.cmd_pos, a.cmd_vel, a.cmd_acc, a.act_pos, a.act_vel, a.following_error, a.target_pos] {
+                    prop_assert!(x.is_finite(), "non-finite status {a:?}");
+                }
+            }
+        }
+    }
+}
