@@ -212,19 +212,25 @@ impl Profile {
         };
 
         let mut segs = [UNUSED; MAX_SEGMENTS];
-        let (mut t, mut p, mut v) = (0.0, 0.0, v0);
+        let (mut t, mut p) = (0.0, 0.0);
         let mut len = 0u8;
+        // Plateaus and jerks are exactly the limits (scaling back could be off by an ulp).
+        let exact = |x: f64, normalised: f64, physical: f64, scale: f64| {
+            if x.abs() == normalised {
+                physical.copysign(x)
+            } else {
+                x * scale
+            }
+        };
         for (slot, ph) in segs.iter_mut().zip(plan.phases()) {
             *slot = Segment {
                 t: t * t_scale,
                 p: start.p + p * p_scale,
-                v: v * v_scale,
-                a: ph.a * a_scale,
-                j: ph.j * j_scale,
+                v: ph.v * v_scale,
+                a: exact(ph.a, lim.dec, limits.deceleration, a_scale),
+                j: exact(ph.j, lim.jerk, limits.jerk, j_scale),
             };
-            let (dp, dv) = ph.advance(v);
-            p += dp;
-            v += dv;
+            p += ph.advance().0;
             t += ph.t;
             len += 1;
         }
@@ -233,7 +239,7 @@ impl Profile {
         let arrival_v = if matches!(goal, Goal::Velocity { .. }) {
             end_v
         } else {
-            v * v_scale
+            plan.end_velocity() * v_scale
         };
         let profile = Profile {
             segs,

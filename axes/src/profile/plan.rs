@@ -27,6 +27,8 @@ const MAX_ITER: usize = 100;
 pub(crate) struct Plan {
     phases: [Phase; MAX_PHASES],
     len: usize,
+    /// Velocity at the end, exactly where the plan knows it.
+    end_v: f64,
 }
 
 impl Plan {
@@ -34,6 +36,7 @@ impl Plan {
         Plan {
             phases: [Phase::default(); MAX_PHASES],
             len: 0,
+            end_v: 0.0,
         }
     }
 
@@ -51,17 +54,25 @@ impl Plan {
         }
     }
 
-    fn push_change(&mut self, c: &Change) {
+    /// Appends a velocity change that ends at `v1`.
+    fn push_change(&mut self, c: &Change, v1: f64) {
         for ph in c.phases() {
             self.push(*ph);
         }
+        self.end_v = v1;
     }
 
     fn mirror(&mut self) {
         for ph in self.phases.iter_mut().take(self.len) {
+            ph.v = -ph.v;
             ph.a = -ph.a;
             ph.j = -ph.j;
         }
+        self.end_v = -self.end_v;
+    }
+
+    pub fn end_velocity(&self) -> f64 {
+        self.end_v
     }
 
     /// Total duration.
@@ -69,22 +80,16 @@ impl Plan {
         self.phases().iter().map(|p| p.t).sum()
     }
 
-    /// Position and velocity at the end, starting at velocity `v0`.
-    pub fn end(&self, v0: f64) -> (f64, f64) {
-        let (mut p, mut v) = (0.0, v0);
-        for ph in self.phases() {
-            let (dp, dv) = ph.advance(v);
-            p += dp;
-            v += dv;
-        }
-        (p, v)
+    /// Position at the end.
+    pub fn end_position(&self) -> f64 {
+        self.phases().iter().map(|ph| ph.advance().0).sum()
     }
 }
 
 /// Velocity goal: one velocity change.
 pub(crate) fn velocity(v0: f64, a0: f64, target: f64, lim: &Lim) -> Plan {
     let mut plan = Plan::new();
-    plan.push_change(&change(v0, a0, target, lim));
+    plan.push_change(&change(v0, a0, target, lim), target);
     plan
 }
 
@@ -93,17 +98,17 @@ pub(crate) fn velocity(v0: f64, a0: f64, target: f64, lim: &Lim) -> Plan {
 /// braking profile reaches it (HMC §2.3.1).
 pub(crate) fn position(v0: f64, a0: f64, d: f64, e: f64, lim: &Lim, jump_to_zero: bool) -> Plan {
     let brake = change(v0, a0, 0.0, lim);
-    let d_brake = brake.distance(v0);
+    let d_brake = brake.distance();
     // The final approach comes from the side of the stopping point: the frame `sigma` makes
     // the target lie ahead of it.
     let below = d < d_brake || (d == d_brake && lim.v_stop(v0, a0) < 0.0);
     let sigma = if below { -1.0 } else { 1.0 };
     if jump_to_zero && sigma * d < 0.0 && sigma * d_brake < sigma * d {
         // Braking passes the target (it lies between here and the stopping point).
-        return truncated(&brake, v0, d);
+        return truncated(&brake, d);
     }
     let (v0, a0, d) = (sigma * v0, sigma * a0, sigma * d);
-    let d_direct = change(v0, a0, e, lim).distance(v0);
+    let d_direct = change(v0, a0, e, lim).distance();
     let m = if d < d_direct { -1.0 } else { 1.0 };
     let mut plan = Branch {
         v0: m * v0,
@@ -119,15 +124,15 @@ pub(crate) fn position(v0: f64, a0: f64, d: f64, e: f64, lim: &Lim, jump_to_zero
 }
 
 /// The braking profile cut where it reaches `d`.
-fn truncated(brake: &Change, v0: f64, d: f64) -> Plan {
+fn truncated(brake: &Change, d: f64) -> Plan {
     let s = if d < 0.0 { -1.0 } else { 1.0 };
     let mut plan = Plan::new();
-    let (mut p, mut v) = (0.0, v0);
+    let mut p = 0.0;
     for ph in brake.phases() {
         if ph.t <= 0.0 {
             continue;
         }
-        let (dp, dv) = ph.advance(v);
+        let (dp, _) = ph.advance();
         if s * (p + dp - d) >= 0.0 {
             // First phase that reaches d: p − d changes sign once in it (the velocity reverses
             // at most once while braking), so bisection finds the crossing.
@@ -137,18 +142,18 @@ fn truncated(brake: &Change, v0: f64, d: f64) -> Plan {
                 if mid <= lo || mid >= hi {
                     break;
                 }
-                if s * (p + ph.advance_by(v, mid).0 - d) >= 0.0 {
+                if s * (p + ph.advance_by(mid).0 - d) >= 0.0 {
                     hi = mid;
                 } else {
                     lo = mid;
                 }
             }
             plan.push(Phase { t: hi, ..*ph });
+            plan.end_v = ph.v + ph.advance_by(hi).1;
             return plan;
         }
         plan.push(*ph);
         p += dp;
-        v += dv;
     }
     plan
 }
@@ -174,8 +179,8 @@ impl Branch {
     fn eval(&self, vp: f64) -> Eval {
         let c1 = change(self.v0, self.a0, vp, &self.lim);
         let c2 = change(vp, 0.0, self.e, &self.lim);
-        let d1 = c1.distance(self.v0);
-        let d2 = c2.distance(vp);
+        let d1 = c1.distance();
+        let d2 = c2.distance();
         Eval {
             c1,
             c2,
@@ -241,17 +246,18 @@ impl Branch {
     fn build(&self, vp: f64, cruise: f64, d: f64) -> Plan {
         let ev = self.eval(vp);
         let mut plan = Plan::new();
-        plan.push_change(&ev.c1);
+        plan.push_change(&ev.c1, vp);
         let at = plan.len;
         plan.push(Phase {
+            v: vp,
             a: 0.0,
             j: 0.0,
             t: cruise,
         });
         let has_cruise = plan.len > at;
-        plan.push_change(&ev.c2);
+        plan.push_change(&ev.c2, self.e);
         if has_cruise && vp != 0.0 {
-            let (p_end, _) = plan.end(self.v0);
+            let p_end = plan.end_position();
             if let Some(ph) = plan.phases.get_mut(at) {
                 ph.t = (ph.t + (d - p_end) / vp).max(0.0);
             }
@@ -301,13 +307,14 @@ impl Branch {
     fn release_eval(&self, a1: f64) -> (Phase, Change, f64) {
         let (v0, a0, lim) = (self.v0, self.a0, &self.lim);
         let first = Phase {
+            v: v0,
             a: a0,
             j: lim.jerk,
             t: ((a1 - a0) / lim.jerk).max(0.0),
         };
-        let (dp, dv) = first.advance(v0);
+        let (dp, dv) = first.advance();
         let rest = change(v0 + dv, a1, self.e, lim);
-        (first, rest, dp + rest.distance(v0 + dv))
+        (first, rest, dp + rest.distance())
     }
 
     /// The release profile with D = d for a1 in [lo, hi], given D(lo) ≤ d ≤ D(hi) = d_hi.
@@ -317,7 +324,7 @@ impl Branch {
         let (first, rest, _) = self.release_eval(a1);
         let mut plan = Plan::new();
         plan.push(first);
-        plan.push_change(&rest);
+        plan.push_change(&rest, self.e);
         plan
     }
 

@@ -3,26 +3,28 @@
 //! Everything here works in the planner's normalised units (velocity limit 1, acceleration
 //! limit 1, positions relative to the start; see `plan`), so the few tolerances are absolute.
 
-/// One phase of constant jerk. `a` is the acceleration at its start: stating it rather than
-/// integrating it lets a trapezoid jump in acceleration and keeps S-curves free of drift.
+/// One phase of constant jerk `j` and duration `t`, with the velocity `v` and acceleration `a`
+/// at its start. Stating them rather than integrating them lets a trapezoid jump in
+/// acceleration, and puts reversals exactly at v = 0 and cruises exactly at the limit.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct Phase {
+    pub v: f64,
     pub a: f64,
     pub j: f64,
     pub t: f64,
 }
 
 impl Phase {
-    /// Position and velocity change over the whole phase, starting at velocity `v`.
+    /// Position and velocity change over the whole phase.
     #[inline]
-    pub fn advance(&self, v: f64) -> (f64, f64) {
-        self.advance_by(v, self.t)
+    pub fn advance(&self) -> (f64, f64) {
+        self.advance_by(self.t)
     }
 
     /// Position and velocity change after `t` into the phase.
     #[inline]
-    pub fn advance_by(&self, v: f64, t: f64) -> (f64, f64) {
-        let dp = t * (v + t * (0.5 * self.a + t * self.j * (1.0 / 6.0)));
+    pub fn advance_by(&self, t: f64) -> (f64, f64) {
+        let dp = t * (self.v + t * (0.5 * self.a + t * self.j * (1.0 / 6.0)));
         let dv = t * (self.a + 0.5 * t * self.j);
         (dp, dv)
     }
@@ -63,23 +65,17 @@ pub(crate) struct Ramp {
 }
 
 impl Ramp {
-    /// Distance covered, starting at velocity `v0`.
+    /// Distance covered.
     #[inline]
-    pub fn distance(&self, v0: f64) -> f64 {
-        let mut v = v0;
-        let mut p = 0.0;
-        for ph in &self.phases {
-            let (dp, dv) = ph.advance(v);
-            p += dp;
-            v += dv;
-        }
-        p
+    pub fn distance(&self) -> f64 {
+        self.phases.iter().map(|ph| ph.advance().0).sum()
     }
 }
 
 /// See [`Ramp`]. `amax > 0`; `jerk > 0`, possibly infinite.
 pub(crate) fn ramp(v0: f64, a0: f64, v1: f64, amax: f64, jerk: f64) -> Ramp {
     const NONE: Phase = Phase {
+        v: 0.0,
         a: 0.0,
         j: 0.0,
         t: 0.0,
@@ -97,6 +93,7 @@ pub(crate) fn ramp(v0: f64, a0: f64, v1: f64, amax: f64, jerk: f64) -> Ramp {
         return Ramp {
             phases: [
                 Phase {
+                    v: v0,
                     a: dir * amax,
                     j: 0.0,
                     t: dv.abs() / amax,
@@ -117,6 +114,7 @@ pub(crate) fn ramp(v0: f64, a0: f64, v1: f64, amax: f64, jerk: f64) -> Ramp {
         return Ramp {
             phases: [
                 Phase {
+                    v: v0,
                     a: a0,
                     j,
                     t: a0.abs() / jerk,
@@ -145,9 +143,9 @@ pub(crate) fn ramp(v0: f64, a0: f64, v1: f64, amax: f64, jerk: f64) -> Ramp {
         }
     };
     let t3 = ap / jerk;
+    let dv1 = 0.5 * (au + ap) * t1;
+    let dv3 = 0.5 * ap * t3;
     let t2 = if plateau {
-        let dv1 = 0.5 * (au + ap) * t1;
-        let dv3 = 0.5 * ap * t3;
         ((dvu - dv1 - dv3) / ap).max(0.0)
     } else {
         0.0
@@ -155,16 +153,20 @@ pub(crate) fn ramp(v0: f64, a0: f64, v1: f64, amax: f64, jerk: f64) -> Ramp {
     Ramp {
         phases: [
             Phase {
+                v: v0,
                 a: a0,
                 j: s * j1 * jerk,
                 t: t1,
             },
             Phase {
+                v: v0 + s * dv1,
                 a: s * ap,
                 j: 0.0,
                 t: t2,
             },
             Phase {
+                // Counted back from v1, so that the ramp ends on it.
+                v: v1 - s * dv3,
                 a: s * ap,
                 j: -s * jerk,
                 t: t3,
@@ -203,13 +205,12 @@ impl Change {
         &self.ramps[0]
     }
 
-    /// Distance covered, starting at velocity `v0`.
+    /// Distance covered.
     #[inline]
-    pub fn distance(&self, v0: f64) -> f64 {
-        let d = self.ramps[0].distance(v0);
+    pub fn distance(&self) -> f64 {
+        let d = self.ramps[0].distance();
         if self.split {
-            // The split point is v = 0 exactly.
-            d + self.ramps[1].distance(0.0)
+            d + self.ramps[1].distance()
         } else {
             d
         }
@@ -251,12 +252,12 @@ pub(crate) fn change(v0: f64, a0: f64, v1: f64, lim: &Lim) -> Change {
 mod tests {
     use super::*;
 
-    fn end_state(r: &Ramp, v0: f64) -> (f64, f64) {
-        let mut v = v0;
+    fn end_state(r: &Ramp) -> (f64, f64) {
+        let mut v = r.phases[0].v;
         let mut a = r.phases[0].a;
         for ph in &r.phases {
-            let (_, dv) = ph.advance(v);
-            v += dv;
+            assert!((ph.v - v).abs() < 1e-12, "{ph:?} starts at {v}");
+            v = ph.v + ph.advance().1;
             a = ph.a + ph.j * ph.t;
         }
         (v, a)
@@ -274,7 +275,7 @@ mod tests {
         ];
         for (v0, a0, v1, amax, j) in cases {
             let r = ramp(v0, a0, v1, amax, j);
-            let (v, a) = end_state(&r, v0);
+            let (v, a) = end_state(&r);
             assert!((v - v1).abs() < 1e-12, "{v0} {a0} {v1}: v = {v}");
             assert!(a.abs() < 1e-12, "{v0} {a0} {v1}: a = {a}");
             assert!(r.phases.iter().all(|p| p.t >= 0.0));
@@ -307,6 +308,7 @@ mod tests {
         // Brake 0.5 at 2 (0.25 s), accelerate 0.5 at 1 (0.5 s).
         assert_eq!(c.ramps[0].phases[0].t, 0.25);
         assert_eq!(c.ramps[1].phases[0].t, 0.5);
-        assert_eq!(c.distance(0.5), 0.0625 - 0.125);
+        assert_eq!(c.distance(), 0.0625 - 0.125);
+        assert_eq!(c.ramps[1].phases[0].v, 0.0);
     }
 }
