@@ -886,3 +886,123 @@ fn profile_is_small_and_copy() {
         std::mem::size_of::<Profile>()
     );
 }
+
+// ---- MovingAverage (NMC smoothCoef, HIMC SMTime) ----
+
+proptest! {
+    #![proptest_config(config(300))]
+
+    /// A trapezoid through the moving average: jerk-limited with jerk = acc/T_s, never faster,
+    /// n − 1 ticks longer, and exactly on the target at the end.
+    #[test]
+    fn smoothing_turns_a_trapezoid_into_a_jerk_limited_curve(
+        (vel, acc, dec) in (log_uniform(10.0, 1e4), log_uniform(1e4, 1e6), log_uniform(1e4, 1e6)),
+        (seconds, p0, n) in (log_uniform(0.01, 2.0), -1e9..1e9f64, 1..200usize),
+    ) {
+        // At most about 4 s of ticks.
+        let dist = vel * seconds;
+        let period = 1e-3;
+        let limits = Limits { velocity: vel, acceleration: acc, deceleration: dec, jerk: f64::INFINITY };
+        let target = p0 + dist;
+        let profile = Profile::plan(
+            MotionState { p: p0, v: 0.0, a: 0.0 },
+            Goal::Position { target, end_velocity: 0.0 },
+            &limits,
+            &Options::default(),
+        ).unwrap();
+        let mut filter = MovingAverage::new(n).unwrap();
+        filter.reset(p0);
+        let ticks = (profile.duration() / period).ceil() as usize + n + 3;
+        let input: Vec<f64> = (0..=ticks).map(|k| profile.sample(k as f64 * period).p).collect();
+        let output: Vec<f64> = input.iter().map(|&p| filter.next(p)).collect();
+        let arrive_in = input.iter().position(|&p| p == target).unwrap();
+        // Settled n − 1 ticks after the input (earlier only if an average rounds to it).
+        let settled = arrive_in + n - 1;
+        prop_assert!(output[settled..].iter().all(|&p| p == target));
+        let last_moving = (output[settled - 1] - target).abs();
+        prop_assert!(n == 1 || last_moving <= (target - input[arrive_in - 1]).abs());
+        prop_assert!(filter.is_settled());
+        // Rounding of positions around p0, differenced three times.
+        let noise = 64.0 * f64::EPSILON * (p0.abs() + target.abs()) / period.powi(3);
+        let jerk_bound = (acc + dec) / (n as f64 * period);
+        for w in output.windows(4) {
+            let jerk = (w[3] - 3.0 * w[2] + 3.0 * w[1] - w[0]) / period.powi(3);
+            prop_assert!(jerk.abs() <= jerk_bound * (1.0 + 1e-6) + noise, "jerk {jerk} > {jerk_bound}");
+        }
+        for w in output.windows(2) {
+            let v = (w[1] - w[0]) / period;
+            prop_assert!(v <= vel * (1.0 + 1e-9) + noise * period * period);
+        }
+    }
+}
+
+#[test]
+fn smoothing_jerk_is_acc_over_ts() {
+    // NMC TV12 trapezoid (acc 5e5, vel 1e4, 10000 pulses) with smoothCoef 20 ms at 1 ms:
+    // jerk = 5e5 / 0.02 = 2.5e7 pulse/s³, and the move lasts 19 ms longer.
+    let limits = Limits {
+        velocity: 1e4,
+        acceleration: 5e5,
+        deceleration: 5e5,
+        jerk: f64::INFINITY,
+    };
+    let profile = Profile::plan(
+        MotionState::default(),
+        to(10_000.0),
+        &limits,
+        &Options::default(),
+    )
+    .unwrap();
+    let mut filter = super::rules::nmc_smoothing(20.0, 1e-3).unwrap();
+    let out: Vec<f64> = (0..1100)
+        .map(|k| filter.next(profile.sample(f64::from(k) * 1e-3).p))
+        .collect();
+    let peak_jerk = out
+        .windows(4)
+        .map(|w| ((w[3] - 3.0 * w[2] + 3.0 * w[1] - w[0]) / 1e-9).abs())
+        .fold(0.0, f64::max);
+    assert!((peak_jerk - 2.5e7).abs() < 1.0, "{peak_jerk}");
+    assert_eq!(out.iter().position(|&p| p == 10_000.0), Some(1020 + 19));
+}
+
+proptest! {
+    #![proptest_config(config(200))]
+
+    /// The running sum matches a fresh sum over the window, also after many windows.
+    #[test]
+    fn moving_average_matches_the_window_mean(
+        n in 1..64usize,
+        offset in -1e9..1e9f64,
+        steps in proptest::collection::vec(-10.0..10.0f64, 1..2000),
+    ) {
+        let mut filter = MovingAverage::new(n).unwrap();
+        filter.reset(offset);
+        let mut history = vec![offset; n];
+        let mut x = offset;
+        for step in steps {
+            x += step;
+            history.push(x);
+            let got = filter.next(x);
+            let window = &history[history.len() - n..];
+            let want = offset + window.iter().map(|p| p - offset).sum::<f64>() / n as f64;
+            prop_assert!((got - want).abs() <= 1e-9 * (1.0 + offset.abs()), "{got} vs {want}");
+        }
+    }
+}
+
+#[test]
+fn moving_average_is_exact_after_a_long_run() {
+    let mut filter = MovingAverage::new(8000).unwrap();
+    filter.reset(1e9);
+    let mut x = 1e9;
+    for k in 0..200_000u32 {
+        x += f64::from(k % 97) * 0.013 - 0.6;
+        filter.next(x);
+    }
+    let last = x + 0.1;
+    for _ in 0..7999 {
+        assert_ne!(filter.next(last), last);
+    }
+    assert_eq!(filter.next(last), last);
+    assert!(filter.is_settled());
+}
