@@ -15,7 +15,7 @@
 //! square-root terms at `lo`, which this substitution makes smooth) started from the trapezoid
 //! solution, and by Brent's method for the release branch. Both are bounded.
 
-use super::ramp::{change, Change, Lim, Phase, Ramp};
+use super::ramp::{change, Change, Lim, Phase};
 
 /// Ramp 1 (≤ 6 phases when split at v = 0) + cruise + ramp 2 (≤ 6).
 pub(crate) const MAX_PHASES: usize = 13;
@@ -108,12 +108,18 @@ pub(crate) fn position(v0: f64, a0: f64, d: f64, e: f64, lim: &Lim, jump_to_zero
         return truncated(&brake, d);
     }
     let (v0, a0, d) = (sigma * v0, sigma * a0, sigma * d);
-    let d_direct = change(v0, a0, e, lim).distance();
+    let d_direct = if e == 0.0 {
+        // The planner is symmetric: negating the state negates the distance exactly.
+        sigma * d_brake
+    } else {
+        change(v0, a0, e, lim).distance()
+    };
     let m = if d < d_direct { -1.0 } else { 1.0 };
     let mut plan = Branch {
         v0: m * v0,
         a0: m * a0,
         e: m * e,
+        d_direct: m * d_direct,
         lim: *lim,
     }
     .plan(m * d);
@@ -163,34 +169,38 @@ struct Branch {
     v0: f64,
     a0: f64,
     e: f64,
+    /// Distance of the direct ramp (v0, a0) → e.
+    d_direct: f64,
     lim: Lim,
 }
 
-struct Eval {
-    c1: Change,
-    c2: Change,
-    /// D(vp)
+/// D(vp), with what its slope needs.
+struct Measure {
     d: f64,
     /// Sum of the magnitudes added up in `d` (for the achievable precision).
     mag: f64,
+    /// Peak and direction of the ramp of ramp 1 that ends at vp, and of ramp 2's that starts
+    /// there.
+    end: (f64, f64),
+    start: (f64, f64),
 }
 
 impl Branch {
-    fn eval(&self, vp: f64) -> Eval {
+    fn measure(&self, vp: f64) -> Measure {
         let c1 = change(self.v0, self.a0, vp, &self.lim);
         let c2 = change(vp, 0.0, self.e, &self.lim);
         let d1 = c1.distance();
         let d2 = c2.distance();
-        Eval {
-            c1,
-            c2,
+        Measure {
             d: d1 + d2,
             mag: d1.abs() + d2.abs(),
+            end: (c1.last().peak, c1.last().dir),
+            start: (c2.first().peak, c2.first().dir),
         }
     }
 
     fn distance(&self, vp: f64) -> f64 {
-        self.eval(vp).d
+        self.measure(vp).d
     }
 
     fn plan(&self, d: f64) -> Plan {
@@ -202,7 +212,12 @@ impl Branch {
             // Faster than the limit: ramp 1 brakes down to vp ≤ vmax.
             self.e
         };
-        let mut d_lo = self.distance(lo);
+        // With lo = e, ramp 1 is the direct ramp and ramp 2 is empty.
+        let d_lo = if lo == self.e {
+            self.d_direct
+        } else {
+            self.distance(lo)
+        };
         // The release family exists when a0 already brakes towards e.
         let release = lim.jerk.is_finite() && self.a0 < 0.0 && lo == v_stop && v_stop > self.e;
         if d < d_lo {
@@ -212,6 +227,7 @@ impl Branch {
             // Only rounding puts d below D(lo) otherwise: D(lo) is the direct ramp.
             return self.build(lo, 0.0, d);
         }
+        let mut d_lo = d_lo;
         if lo < 0.0 {
             // D grows with vp for vp ≥ 0 (and for vp below the start of ramp 1); between a
             // negative lo and 0 it need not. Search there only if the root is there.
@@ -225,7 +241,7 @@ impl Branch {
         let upper = if d_hi <= d {
             self.build(lim.vmax, (d - d_hi) / lim.vmax, d)
         } else {
-            let vp = self.solve(lo, d_lo, d);
+            let vp = self.solve(lo, d_lo, d, d_hi);
             self.build(vp, 0.0, d)
         };
         if release && self.e < 0.0 {
@@ -244,9 +260,8 @@ impl Branch {
     /// The phases for peak `vp` and cruise time `cruise`; a cruise absorbs the rounding of
     /// the ramps so that the plan ends at `d`.
     fn build(&self, vp: f64, cruise: f64, d: f64) -> Plan {
-        let ev = self.eval(vp);
         let mut plan = Plan::new();
-        plan.push_change(&ev.c1, vp);
+        plan.push_change(&change(self.v0, self.a0, vp, &self.lim), vp);
         let at = plan.len;
         plan.push(Phase {
             v: vp,
@@ -255,7 +270,7 @@ impl Branch {
             t: cruise,
         });
         let has_cruise = plan.len > at;
-        plan.push_change(&ev.c2, self.e);
+        plan.push_change(&change(vp, 0.0, self.e, &self.lim), self.e);
         if has_cruise && vp != 0.0 {
             let p_end = plan.end_position();
             if let Some(ph) = plan.phases.get_mut(at) {
@@ -265,20 +280,40 @@ impl Branch {
         plan
     }
 
-    /// Solves D(vp) = d for vp in [lo, vmax], given D(lo) = d_lo ≤ d < D(vmax).
-    fn solve(&self, lo: f64, d_lo: f64, d: f64) -> f64 {
+    /// Solves D(vp) = d for vp in [lo, vmax], given D(lo) = d_lo ≤ d < D(vmax) = d_hi.
+    fn solve(&self, lo: f64, d_lo: f64, d: f64, d_hi: f64) -> f64 {
         let lim = &self.lim;
         let (mut ul, mut uh) = (0.0, (lim.vmax - lo).max(0.0).sqrt());
-        // Start from the trapezoid solution, D(vp) ≈ D(lo) + k (vp² − lo²) for lo ≥ 0.
+        // Start where D would reach d if both ramps kept their acceleration plateaus all the
+        // way down from vmax: there dD/dvp = Σ (vp + A²/2j)/A, so
+        // D(vmax) − D(vp) = k (vmax² − vp²) + c (vmax − vp) with k = Σ 1/2A, c = Σ A/2j. It is
+        // exact for trapezoids and for long S-curve moves; Newton refines it otherwise.
         let k = 0.5 / lim.acc + 0.5 / lim.dec;
-        let base = lo.max(0.0);
-        let vt = (base * base + (d - d_lo).max(0.0) / k).sqrt();
-        let mut u = (vt - lo).max(0.0).sqrt().clamp(ul, uh);
+        let c = if lim.jerk.is_finite() {
+            0.5 * (lim.acc + lim.dec) / lim.jerk
+        } else {
+            0.0
+        };
+        let b = 2.0 * k * lim.vmax + c;
+        let excess = d_hi - d;
+        let disc = b * b - 4.0 * k * excess;
+        let back = if disc >= 0.0 {
+            2.0 * excess / (b + disc.sqrt())
+        } else {
+            lim.vmax - lo
+        };
+        let guess = lim.vmax - back;
+        if !lim.jerk.is_finite() && lo >= 0.0 {
+            // Trapezoid: D(vp) = D(lo) + k (vp² − lo²) exactly on [lo, vmax]; counted from lo
+            // so that short moves do not cancel.
+            return (lo * lo + (d - d_lo).max(0.0) / k).sqrt().min(lim.vmax);
+        }
+        let mut u = (guess - lo).max(0.0).sqrt().clamp(ul, uh);
         for _ in 0..MAX_ITER {
             let vp = lo + u * u;
-            let ev = self.eval(vp);
-            let f = ev.d - d;
-            if f == 0.0 || f.abs() <= 2.0 * f64::EPSILON * ev.mag {
+            let m = self.measure(vp);
+            let f = m.d - d;
+            if f == 0.0 || f.abs() <= 2.0 * f64::EPSILON * m.mag {
                 break;
             }
             if f < 0.0 {
@@ -286,8 +321,7 @@ impl Branch {
             } else {
                 uh = u;
             }
-            let df = slope_u(ev.c1.last(), vp, u, 1.0, lim.jerk)
-                + slope_u(ev.c2.first(), vp, u, -1.0, lim.jerk);
+            let df = slope_u(m.end, vp, u, 1.0, lim.jerk) + slope_u(m.start, vp, u, -1.0, lim.jerk);
             let mut next = u - f / df;
             if !(next > ul && next < uh) {
                 next = 0.5 * (ul + uh);
@@ -366,22 +400,22 @@ impl Branch {
     }
 }
 
-/// ∂D/∂u of the ramp of `c` that depends on vp, with vp = lo + u². `sign` is +1 for ramp 1
+/// ∂D/∂u of the ramp (peak, direction) that depends on vp, with vp = lo + u². `sign` is +1 for ramp 1
 /// (ending at vp) and −1 for ramp 2 (starting at vp).
 ///
 /// For a ramp ending at vp with a = 0, peak acceleration ap and direction s,
 /// ∂D/∂vp = (ap²/2j + s·vp)/ap; a ramp starting at vp with a = 0 is its time reverse, which
 /// flips s. The factor 2u/ap stays finite where ap → 0 (ap ≈ √j·u there).
-fn slope_u(r: &Ramp, vp: f64, u: f64, sign: f64, jerk: f64) -> f64 {
-    let s = if r.dir != 0.0 { sign * r.dir } else { 1.0 };
+fn slope_u((peak, dir): (f64, f64), vp: f64, u: f64, sign: f64, jerk: f64) -> f64 {
+    let s = if dir != 0.0 { sign * dir } else { 1.0 };
     let h = if jerk.is_finite() {
-        r.peak * r.peak / (2.0 * jerk)
+        peak * peak / (2.0 * jerk)
     } else {
         0.0
     };
     let num = h + s * vp;
-    if r.peak > 0.0 {
-        2.0 * u * num / r.peak
+    if peak > 0.0 {
+        2.0 * u * num / peak
     } else if jerk.is_finite() {
         2.0 * num / jerk.sqrt()
     } else {

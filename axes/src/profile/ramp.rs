@@ -73,6 +73,7 @@ impl Ramp {
 }
 
 /// See [`Ramp`]. `amax > 0`; `jerk > 0`, possibly infinite.
+#[inline]
 pub(crate) fn ramp(v0: f64, a0: f64, v1: f64, amax: f64, jerk: f64) -> Ramp {
     const NONE: Phase = Phase {
         v: 0.0,
@@ -224,6 +225,7 @@ impl Change {
 }
 
 /// See [`Change`].
+#[inline]
 pub(crate) fn change(v0: f64, a0: f64, v1: f64, lim: &Lim) -> Change {
     let v_stop = lim.v_stop(v0, a0);
     if lim.acc != lim.dec && v_stop * v1 < 0.0 {
