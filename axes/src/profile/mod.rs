@@ -29,7 +29,7 @@ mod tests_ruckig;
 
 pub use smoothing::{MovingAverage, SmoothingError};
 
-use plan::MAX_PHASES;
+use plan::{Plan, MAX_PHASES};
 use ramp::Lim;
 
 /// Kinematic state of the commanded motion.
@@ -159,12 +159,12 @@ impl Profile {
         let t_scale = v_scale / a_scale;
         let p_scale = v_scale * t_scale;
         let j_scale = a_scale / t_scale;
-        let lim = Lim {
-            vmax: 1.0,
-            acc: 1.0,
-            dec: limits.deceleration / a_scale,
-            jerk: limits.jerk / j_scale,
-        };
+        let lim = Lim::new(
+            1.0,
+            1.0,
+            limits.deceleration / a_scale,
+            limits.jerk / j_scale,
+        );
         let usable = |x: f64| x.is_finite() && x > 0.0;
         let jerk_usable = lim.jerk > 0.0; // may be +∞
         if !(usable(t_scale)
@@ -179,7 +179,8 @@ impl Profile {
         let mut a0 = start.a / a_scale;
         let start_velocity = (options.start_velocity / v_scale).min(1.0);
 
-        let (plan, end_p, end_v) = match goal {
+        let mut plan = Plan::new();
+        let (end_p, end_v) = match goal {
             Goal::Position {
                 target,
                 end_velocity,
@@ -198,7 +199,8 @@ impl Profile {
                 }
                 let e = (end_velocity / v_scale).min(1.0);
                 let jump = options.overshoot == Overshoot::JumpToZeroAtTarget;
-                (plan::position(v0, a0, d, e, &lim, jump), Some(target), 0.0)
+                plan::position(v0, a0, d, e, &lim, jump, &mut plan);
+                (Some(target), 0.0)
             }
             Goal::Velocity { target } => {
                 let vt = (target / v_scale).clamp(-1.0, 1.0);
@@ -206,8 +208,8 @@ impl Profile {
                     v0 = start_velocity.min(vt.abs()).copysign(vt);
                     a0 = 0.0;
                 }
-                let end_v = target.clamp(-v_scale, v_scale);
-                (plan::velocity(v0, a0, vt, &lim), None, end_v)
+                plan::velocity(v0, a0, vt, &lim, &mut plan);
+                (None, target.clamp(-v_scale, v_scale))
             }
         };
 

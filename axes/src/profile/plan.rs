@@ -32,12 +32,17 @@ pub(crate) struct Plan {
 }
 
 impl Plan {
-    fn new() -> Plan {
+    pub fn new() -> Plan {
         Plan {
             phases: [Phase::default(); MAX_PHASES],
             len: 0,
             end_v: 0.0,
         }
+    }
+
+    fn clear(&mut self) {
+        self.len = 0;
+        self.end_v = 0.0;
     }
 
     pub fn phases(&self) -> &[Phase] {
@@ -87,16 +92,24 @@ impl Plan {
 }
 
 /// Velocity goal: one velocity change.
-pub(crate) fn velocity(v0: f64, a0: f64, target: f64, lim: &Lim) -> Plan {
-    let mut plan = Plan::new();
-    plan.push_change(&change(v0, a0, target, lim), target);
-    plan
+pub(crate) fn velocity(v0: f64, a0: f64, target: f64, lim: &Lim, out: &mut Plan) {
+    out.clear();
+    out.push_change(&change(v0, a0, target, lim), target);
 }
 
 /// Position goal at distance `d`, arriving with speed `e ≥ 0` in the direction of the final
 /// approach. With `jump_to_zero`, a target that braking would pass ends the plan where the
 /// braking profile reaches it (HMC §2.3.1).
-pub(crate) fn position(v0: f64, a0: f64, d: f64, e: f64, lim: &Lim, jump_to_zero: bool) -> Plan {
+pub(crate) fn position(
+    v0: f64,
+    a0: f64,
+    d: f64,
+    e: f64,
+    lim: &Lim,
+    jump_to_zero: bool,
+    out: &mut Plan,
+) {
+    out.clear();
     let brake = change(v0, a0, 0.0, lim);
     let d_brake = brake.distance();
     // The final approach comes from the side of the stopping point: the frame `sigma` makes
@@ -105,7 +118,8 @@ pub(crate) fn position(v0: f64, a0: f64, d: f64, e: f64, lim: &Lim, jump_to_zero
     let sigma = if below { -1.0 } else { 1.0 };
     if jump_to_zero && sigma * d < 0.0 && sigma * d_brake < sigma * d {
         // Braking passes the target (it lies between here and the stopping point).
-        return truncated(&brake, d);
+        truncated(&brake, d, out);
+        return;
     }
     let (v0, a0, d) = (sigma * v0, sigma * a0, sigma * d);
     let d_direct = if e == 0.0 {
@@ -115,24 +129,22 @@ pub(crate) fn position(v0: f64, a0: f64, d: f64, e: f64, lim: &Lim, jump_to_zero
         change(v0, a0, e, lim).distance()
     };
     let m = if d < d_direct { -1.0 } else { 1.0 };
-    let mut plan = Branch {
+    Branch {
         v0: m * v0,
         a0: m * a0,
         e: m * e,
         d_direct: m * d_direct,
         lim: *lim,
     }
-    .plan(m * d);
+    .plan(m * d, out);
     if sigma * m < 0.0 {
-        plan.mirror();
+        out.mirror();
     }
-    plan
 }
 
 /// The braking profile cut where it reaches `d`.
-fn truncated(brake: &Change, d: f64) -> Plan {
+fn truncated(brake: &Change, d: f64, out: &mut Plan) {
     let s = if d < 0.0 { -1.0 } else { 1.0 };
-    let mut plan = Plan::new();
     let mut p = 0.0;
     for ph in brake.phases() {
         if ph.t <= 0.0 {
@@ -154,14 +166,13 @@ fn truncated(brake: &Change, d: f64) -> Plan {
                     lo = mid;
                 }
             }
-            plan.push(Phase { t: hi, ..*ph });
-            plan.end_v = ph.v + ph.advance_by(hi).1;
-            return plan;
+            out.push(Phase { t: hi, ..*ph });
+            out.end_v = ph.v + ph.advance_by(hi).1;
+            return;
         }
-        plan.push(*ph);
+        out.push(*ph);
         p += dp;
     }
-    plan
 }
 
 /// The position problem in a frame where `d ≥` the direct-ramp distance.
@@ -186,6 +197,7 @@ struct Measure {
 }
 
 impl Branch {
+    #[inline]
     fn measure(&self, vp: f64) -> Measure {
         let c1 = change(self.v0, self.a0, vp, &self.lim);
         let c2 = change(vp, 0.0, self.e, &self.lim);
@@ -199,11 +211,12 @@ impl Branch {
         }
     }
 
+    #[inline]
     fn distance(&self, vp: f64) -> f64 {
         self.measure(vp).d
     }
 
-    fn plan(&self, d: f64) -> Plan {
+    fn plan(&self, d: f64, out: &mut Plan) {
         let lim = &self.lim;
         let v_stop = lim.v_stop(self.v0, self.a0);
         let mut lo = if v_stop <= lim.vmax {
@@ -213,7 +226,7 @@ impl Branch {
             self.e
         };
         // With lo = e, ramp 1 is the direct ramp and ramp 2 is empty.
-        let d_lo = if lo == self.e {
+        let mut d_lo = if lo == self.e {
             self.d_direct
         } else {
             self.distance(lo)
@@ -222,12 +235,13 @@ impl Branch {
         let release = lim.jerk.is_finite() && self.a0 < 0.0 && lo == v_stop && v_stop > self.e;
         if d < d_lo {
             if release {
-                return self.release(d, self.a0, 0.0, d_lo);
+                self.release(d, self.a0, 0.0, d_lo, out);
+            } else {
+                // Only rounding puts d below D(lo) otherwise: D(lo) is the direct ramp.
+                self.build(lo, 0.0, d, out);
             }
-            // Only rounding puts d below D(lo) otherwise: D(lo) is the direct ramp.
-            return self.build(lo, 0.0, d);
+            return;
         }
-        let mut d_lo = d_lo;
         if lo < 0.0 {
             // D grows with vp for vp ≥ 0 (and for vp below the start of ramp 1); between a
             // negative lo and 0 it need not. Search there only if the root is there.
@@ -238,62 +252,58 @@ impl Branch {
             }
         }
         let d_hi = self.distance(lim.vmax);
-        let upper = if d_hi <= d {
-            self.build(lim.vmax, (d - d_hi) / lim.vmax, d)
+        if d_hi <= d {
+            self.build(lim.vmax, (d - d_hi) / lim.vmax, d, out);
         } else {
             let vp = self.solve(lo, d_lo, d, d_hi);
-            self.build(vp, 0.0, d)
-        };
+            self.build(vp, 0.0, d, out);
+        }
         if release && self.e < 0.0 {
             // Arriving with a negative velocity, easing the brake can first gain distance and
             // then lose it (lengthening the profile costs |e| per second), so D_release may
             // exceed D(lo) in between: such a release profile can beat the upper one.
-            if let Some(r) = self.release_above(d) {
-                if r.duration() < upper.duration() {
-                    return r;
-                }
+            let mut alt = Plan::new();
+            if self.release_above(d, &mut alt) && alt.duration() < out.duration() {
+                *out = alt;
             }
         }
-        upper
     }
 
     /// The phases for peak `vp` and cruise time `cruise`; a cruise absorbs the rounding of
     /// the ramps so that the plan ends at `d`.
-    fn build(&self, vp: f64, cruise: f64, d: f64) -> Plan {
-        let mut plan = Plan::new();
-        plan.push_change(&change(self.v0, self.a0, vp, &self.lim), vp);
-        let at = plan.len;
-        plan.push(Phase {
+    fn build(&self, vp: f64, cruise: f64, d: f64, out: &mut Plan) {
+        out.clear();
+        out.push_change(&change(self.v0, self.a0, vp, &self.lim), vp);
+        let at = out.len;
+        out.push(Phase {
             v: vp,
             a: 0.0,
             j: 0.0,
             t: cruise,
         });
-        let has_cruise = plan.len > at;
-        plan.push_change(&change(vp, 0.0, self.e, &self.lim), self.e);
+        let has_cruise = out.len > at;
+        out.push_change(&change(vp, 0.0, self.e, &self.lim), self.e);
         if has_cruise && vp != 0.0 {
-            let p_end = plan.end_position();
-            if let Some(ph) = plan.phases.get_mut(at) {
+            let p_end = out.end_position();
+            if let Some(ph) = out.phases.get_mut(at) {
                 ph.t = (ph.t + (d - p_end) / vp).max(0.0);
             }
         }
-        plan
     }
 
     /// Solves D(vp) = d for vp in [lo, vmax], given D(lo) = d_lo ≤ d < D(vmax) = d_hi.
     fn solve(&self, lo: f64, d_lo: f64, d: f64, d_hi: f64) -> f64 {
         let lim = &self.lim;
-        let (mut ul, mut uh) = (0.0, (lim.vmax - lo).max(0.0).sqrt());
-        // Start where D would reach d if both ramps kept their acceleration plateaus all the
-        // way down from vmax: there dD/dvp = Σ (vp + A²/2j)/A, so
-        // D(vmax) − D(vp) = k (vmax² − vp²) + c (vmax − vp) with k = Σ 1/2A, c = Σ A/2j. It is
-        // exact for trapezoids and for long S-curve moves; Newton refines it otherwise.
+        // Where D would reach d if both ramps kept their acceleration plateaus A all the way
+        // down from vmax: there dD/dvp = Σ (vp + A²/2j)/A, so
+        // D(vmax) − D(vp) = k (vmax² − vp²) + c (vmax − vp) with k = Σ 1/2A, c = Σ A/2j.
         let k = 0.5 / lim.acc + 0.5 / lim.dec;
-        let c = if lim.jerk.is_finite() {
-            0.5 * (lim.acc + lim.dec) / lim.jerk
-        } else {
-            0.0
-        };
+        if !lim.jerk.is_finite() && lo >= 0.0 {
+            // Trapezoid: D(vp) = D(lo) + k (vp² − lo²) exactly on [lo, vmax]; counted from lo
+            // so that short moves do not cancel.
+            return (lo * lo + (d - d_lo).max(0.0) / k).sqrt().min(lim.vmax);
+        }
+        let c = 0.5 * (lim.acc + lim.dec) * lim.inv_jerk();
         let b = 2.0 * k * lim.vmax + c;
         let excess = d_hi - d;
         let disc = b * b - 4.0 * k * excess;
@@ -302,13 +312,8 @@ impl Branch {
         } else {
             lim.vmax - lo
         };
-        let guess = lim.vmax - back;
-        if !lim.jerk.is_finite() && lo >= 0.0 {
-            // Trapezoid: D(vp) = D(lo) + k (vp² − lo²) exactly on [lo, vmax]; counted from lo
-            // so that short moves do not cancel.
-            return (lo * lo + (d - d_lo).max(0.0) / k).sqrt().min(lim.vmax);
-        }
-        let mut u = (guess - lo).max(0.0).sqrt().clamp(ul, uh);
+        let (mut ul, mut uh) = (0.0, (lim.vmax - lo).max(0.0).sqrt());
+        let mut u = (lim.vmax - back - lo).max(0.0).sqrt().clamp(ul, uh);
         for _ in 0..MAX_ITER {
             let vp = lo + u * u;
             let m = self.measure(vp);
@@ -321,7 +326,7 @@ impl Branch {
             } else {
                 uh = u;
             }
-            let df = slope_u(m.end, vp, u, 1.0, lim.jerk) + slope_u(m.start, vp, u, -1.0, lim.jerk);
+            let df = slope_u(m.end, vp, u, 1.0, lim) + slope_u(m.start, vp, u, -1.0, lim);
             let mut next = u - f / df;
             if !(next > ul && next < uh) {
                 next = 0.5 * (ul + uh);
@@ -344,7 +349,7 @@ impl Branch {
             v: v0,
             a: a0,
             j: lim.jerk,
-            t: ((a1 - a0) / lim.jerk).max(0.0),
+            t: ((a1 - a0) * lim.inv_jerk()).max(0.0),
         };
         let (dp, dv) = first.advance();
         let rest = change(v0 + dv, a1, self.e, lim);
@@ -352,20 +357,19 @@ impl Branch {
     }
 
     /// The release profile with D = d for a1 in [lo, hi], given D(lo) ≤ d ≤ D(hi) = d_hi.
-    fn release(&self, d: f64, lo: f64, hi: f64, d_hi: f64) -> Plan {
+    fn release(&self, d: f64, lo: f64, hi: f64, d_hi: f64, out: &mut Plan) {
         let f_lo = self.release_eval(lo).2 - d;
         let a1 = brent(|a1| self.release_eval(a1).2 - d, lo, hi, f_lo, d_hi - d);
         let (first, rest, _) = self.release_eval(a1);
-        let mut plan = Plan::new();
-        plan.push(first);
-        plan.push_change(&rest, self.e);
-        plan
+        out.clear();
+        out.push(first);
+        out.push_change(&rest, self.e);
     }
 
     /// The least-released profile with D = d when D_release rises above d somewhere in
     /// [a0, 0] (it starts at the direct-ramp distance ≤ d and is unimodal): golden-section
-    /// search for a point at or above d, then the root before it.
-    fn release_above(&self, d: f64) -> Option<Plan> {
+    /// search for a point at or above d, then the root before it. False if there is none.
+    fn release_above(&self, d: f64, out: &mut Plan) -> bool {
         const G: f64 = 0.618_033_988_749_894_8;
         let f = |a1: f64| self.release_eval(a1).2;
         let (mut a, mut b) = (self.a0, 0.0);
@@ -374,10 +378,12 @@ impl Branch {
         let (mut f1, mut f2) = (f(x1), f(x2));
         for _ in 0..MAX_ITER {
             if f1 >= d {
-                return Some(self.release(d, self.a0, x1, f1));
+                self.release(d, self.a0, x1, f1, out);
+                return true;
             }
             if f2 >= d {
-                return Some(self.release(d, self.a0, x2, f2));
+                self.release(d, self.a0, x2, f2, out);
+                return true;
             }
             if b - a <= 4.0 * f64::EPSILON * self.a0.abs() {
                 break;
@@ -396,7 +402,7 @@ impl Branch {
                 f1 = f(x1);
             }
         }
-        None
+        false
     }
 }
 
@@ -406,20 +412,15 @@ impl Branch {
 /// For a ramp ending at vp with a = 0, peak acceleration ap and direction s,
 /// ∂D/∂vp = (ap²/2j + s·vp)/ap; a ramp starting at vp with a = 0 is its time reverse, which
 /// flips s. The factor 2u/ap stays finite where ap → 0 (ap ≈ √j·u there).
-fn slope_u((peak, dir): (f64, f64), vp: f64, u: f64, sign: f64, jerk: f64) -> f64 {
+#[inline]
+fn slope_u((peak, dir): (f64, f64), vp: f64, u: f64, sign: f64, lim: &Lim) -> f64 {
     let s = if dir != 0.0 { sign * dir } else { 1.0 };
-    let h = if jerk.is_finite() {
-        peak * peak / (2.0 * jerk)
-    } else {
-        0.0
-    };
-    let num = h + s * vp;
+    let num = 0.5 * peak * peak * lim.inv_jerk() + s * vp;
     if peak > 0.0 {
         2.0 * u * num / peak
-    } else if jerk.is_finite() {
-        2.0 * num / jerk.sqrt()
     } else {
-        0.0
+        // Only with a finite jerk: a trapezoid's peak is its plateau.
+        2.0 * num * lim.inv_jerk().sqrt()
     }
 }
 
