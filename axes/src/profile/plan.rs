@@ -185,35 +185,87 @@ struct Branch {
     lim: Lim,
 }
 
-/// D(vp), with what its slope needs.
+/// D(vp) and its slope in u (vp = lo + u²).
 struct Measure {
     d: f64,
     /// Sum of the magnitudes added up in `d` (for the achievable precision).
     mag: f64,
-    /// Peak and direction of the ramp of ramp 1 that ends at vp, and of ramp 2's that starts
-    /// there.
-    end: (f64, f64),
-    start: (f64, f64),
+    /// ∂D/∂u.
+    du: f64,
 }
 
 impl Branch {
+    /// D(vp) and ∂D/∂u at vp = lo + u².
     #[inline]
-    fn measure(&self, vp: f64) -> Measure {
-        let c1 = change(self.v0, self.a0, vp, &self.lim);
-        let c2 = change(vp, 0.0, self.e, &self.lim);
+    fn measure(&self, vp: f64, u: f64) -> Measure {
+        if let Some(m) = self.measure_symmetric(vp, u) {
+            return m;
+        }
+        let lim = &self.lim;
+        let c1 = change(self.v0, self.a0, vp, lim);
+        let c2 = change(vp, 0.0, self.e, lim);
         let d1 = c1.distance();
         let d2 = c2.distance();
+        let (r1, r2) = (c1.last(), c2.first());
         Measure {
             d: d1 + d2,
             mag: d1.abs() + d2.abs(),
-            end: (c1.last().peak, c1.last().dir),
-            start: (c2.first().peak, c2.first().dir),
+            du: slope_u((r1.peak, r1.dir), vp, u, 1.0, lim)
+                + slope_u((r2.peak, r2.dir), vp, u, -1.0, lim),
         }
+    }
+
+    /// The same from the symmetry of ramps that start and end at a = 0, without building
+    /// them: such a ramp covers (v_from + v_to)/2 × its duration. Ramp 1 is one of them after
+    /// removing a0 (a0 against the ramp) or before a virtual rise of a from 0 to a0 (a0 along
+    /// it). None where that does not hold (split reversals, a0 beyond the plateau, trapezoids).
+    #[inline]
+    fn measure_symmetric(&self, vp: f64, u: f64) -> Option<Measure> {
+        let lim = &self.lim;
+        let (v0, a0, e) = (self.v0, self.a0, self.e);
+        if !lim.jerk.is_finite() {
+            return None;
+        }
+        let v_stop = lim.v_stop(v0, a0);
+        if lim.acc != lim.dec && (v_stop * vp < 0.0 || vp * e < 0.0) {
+            return None;
+        }
+        let ij = lim.inv_jerk();
+        let s1 = if vp >= v_stop { 1.0 } else { -1.0 };
+        let a1 = if (vp - v_stop) * vp > 0.0 {
+            lim.acc
+        } else {
+            lim.dec
+        };
+        let au = s1 * a0;
+        let (d1, du1, mag1) = if au <= 0.0 {
+            // a0 → 0 at jerk s1·j, then the symmetric ramp from v_stop.
+            let t = a0.abs() * ij;
+            let da = t * (v0 + t * (0.5 * a0 + t * s1 * lim.jerk / 6.0));
+            let (ds, dds) = symmetric(v_stop, vp, a1, u, lim);
+            (da + ds, dds, da.abs() + ds.abs())
+        } else if au <= a1 {
+            // The symmetric ramp from w, where a would have been 0, less that virtual rise.
+            let tau = au * ij;
+            let w = v0 - 0.5 * s1 * a0 * a0 * ij;
+            let dv = tau * (w + s1 * lim.jerk * tau * tau / 6.0);
+            let (ds, dds) = symmetric(w, vp, a1, u, lim);
+            (ds - dv, dds, ds.abs() + dv.abs())
+        } else {
+            return None;
+        };
+        let a2 = if (e - vp) * e > 0.0 { lim.acc } else { lim.dec };
+        let (d2, du2) = symmetric(e, vp, a2, u, lim);
+        Some(Measure {
+            d: d1 + d2,
+            mag: mag1 + d2.abs(),
+            du: du1 + du2,
+        })
     }
 
     #[inline]
     fn distance(&self, vp: f64) -> f64 {
-        self.measure(vp).d
+        self.measure(vp, 0.0).d
     }
 
     fn plan(&self, d: f64, out: &mut Plan) {
@@ -316,7 +368,7 @@ impl Branch {
         let mut u = (lim.vmax - back - lo).max(0.0).sqrt().clamp(ul, uh);
         for _ in 0..MAX_ITER {
             let vp = lo + u * u;
-            let m = self.measure(vp);
+            let m = self.measure(vp, u);
             let f = m.d - d;
             if f == 0.0 || f.abs() <= 2.0 * f64::EPSILON * m.mag {
                 break;
@@ -326,8 +378,7 @@ impl Branch {
             } else {
                 uh = u;
             }
-            let df = slope_u(m.end, vp, u, 1.0, lim) + slope_u(m.start, vp, u, -1.0, lim);
-            let mut next = u - f / df;
+            let mut next = u - f / m.du;
             if !(next > ul && next < uh) {
                 next = 0.5 * (ul + uh);
             }
@@ -421,6 +472,31 @@ fn slope_u((peak, dir): (f64, f64), vp: f64, u: f64, sign: f64, lim: &Lim) -> f6
     } else {
         // Only with a finite jerk: a trapezoid's peak is its plateau.
         2.0 * num * lim.inv_jerk().sqrt()
+    }
+}
+
+/// Distance and ∂/∂u (vp = lo + u²) of the ramp (w, 0) → (vp, 0) with plateau `a`: its
+/// acceleration is symmetric in time, so it covers (w + vp)/2 × its duration, which is
+/// 2·sqrt(Δ/j) as a triangle and Δ/a + a/j with a plateau (Δ = |vp − w|).
+#[inline]
+fn symmetric(w: f64, vp: f64, a: f64, u: f64, lim: &Lim) -> (f64, f64) {
+    let ij = lim.inv_jerk();
+    let delta = (vp - w).abs();
+    let s = if vp >= w { 1.0 } else { -1.0 };
+    let sum = w + vp;
+    if delta * lim.jerk <= a * a {
+        let half = (delta * ij).sqrt();
+        // 2u·∂/∂vp of sum·half; u/half stays finite where the ramp vanishes at lo (Δ = u²).
+        let ratio = if half > 0.0 {
+            u / half
+        } else {
+            lim.jerk.sqrt()
+        };
+        (sum * half, 2.0 * u * half + sum * s * ij * ratio)
+    } else {
+        let inv_a = 1.0 / a;
+        let t = delta * inv_a + a * ij;
+        (0.5 * sum * t, u * (t + sum * s * inv_a))
     }
 }
 
