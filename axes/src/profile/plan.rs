@@ -223,39 +223,34 @@ impl Branch {
     fn measure_symmetric(&self, vp: f64, u: f64) -> Option<Measure> {
         let lim = &self.lim;
         let (v0, a0, e) = (self.v0, self.a0, self.e);
-        if !lim.jerk.is_finite() {
-            return None;
-        }
         let v_stop = lim.v_stop(v0, a0);
         if lim.acc != lim.dec && (v_stop * vp < 0.0 || vp * e < 0.0) {
             return None;
         }
-        let ij = lim.inv_jerk();
         let s1 = if vp >= v_stop { 1.0 } else { -1.0 };
-        let a1 = if (vp - v_stop) * vp > 0.0 {
-            lim.acc
-        } else {
-            lim.dec
-        };
+        let plateau1 = lim.plateau(v_stop, vp);
         let au = s1 * a0;
-        let (d1, du1, mag1) = if au <= 0.0 {
+        let (d1, du1, mag1) = if !lim.jerk.is_finite() {
+            // Trapezoid: a0 does not matter.
+            let (ds, dds) = symmetric(v0, vp, plateau1, u, lim);
+            (ds, dds, ds.abs())
+        } else if au <= 0.0 {
             // a0 → 0 at jerk s1·j, then the symmetric ramp from v_stop.
-            let t = a0.abs() * ij;
+            let t = a0.abs() * lim.inv_jerk();
             let da = t * (v0 + t * (0.5 * a0 + t * s1 * lim.jerk / 6.0));
-            let (ds, dds) = symmetric(v_stop, vp, a1, u, lim);
+            let (ds, dds) = symmetric(v_stop, vp, plateau1, u, lim);
             (da + ds, dds, da.abs() + ds.abs())
-        } else if au <= a1 {
+        } else if au <= plateau1.0 {
             // The symmetric ramp from w, where a would have been 0, less that virtual rise.
-            let tau = au * ij;
-            let w = v0 - 0.5 * s1 * a0 * a0 * ij;
+            let tau = au * lim.inv_jerk();
+            let w = v0 - 0.5 * s1 * a0 * a0 * lim.inv_jerk();
             let dv = tau * (w + s1 * lim.jerk * tau * tau / 6.0);
-            let (ds, dds) = symmetric(w, vp, a1, u, lim);
+            let (ds, dds) = symmetric(w, vp, plateau1, u, lim);
             (ds - dv, dds, ds.abs() + dv.abs())
         } else {
             return None;
         };
-        let a2 = if (e - vp) * e > 0.0 { lim.acc } else { lim.dec };
-        let (d2, du2) = symmetric(e, vp, a2, u, lim);
+        let (d2, du2) = symmetric(e, vp, lim.plateau(vp, e), u, lim);
         Some(Measure {
             d: d1 + d2,
             mag: mag1 + d2.abs(),
@@ -355,7 +350,8 @@ impl Branch {
             // so that short moves do not cancel.
             return (lo * lo + (d - d_lo).max(0.0) / k).sqrt().min(lim.vmax);
         }
-        let c = 0.5 * (lim.acc + lim.dec) * lim.inv_jerk();
+        let ij = lim.inv_jerk();
+        let c = 0.5 * (lim.acc + lim.dec) * ij;
         let b = 2.0 * k * lim.vmax + c;
         let excess = d_hi - d;
         let disc = b * b - 4.0 * k * excess;
@@ -364,8 +360,34 @@ impl Branch {
         } else {
             lim.vmax - lo
         };
+        let guess = lim.vmax - back;
+        // That model holds once both ramps reach their plateaus: ramp 2 from e + dec²/j on,
+        // ramp 1 from (its symmetric start, see `measure_symmetric`) + acc²/j on.
+        let plateau1 = if self.a0 >= lim.acc {
+            f64::NEG_INFINITY
+        } else if self.a0 <= 0.0 {
+            lim.v_stop(self.v0, self.a0) + lim.acc * lim.acc * ij
+        } else {
+            self.v0 + (lim.acc * lim.acc - 0.5 * self.a0 * self.a0) * ij
+        };
+        let plateau2 = self.e + lim.dec * lim.dec * ij;
         let (mut ul, mut uh) = (0.0, (lim.vmax - lo).max(0.0).sqrt());
-        let mut u = (lim.vmax - back - lo).max(0.0).sqrt().clamp(ul, uh);
+        let mut u = if guess >= plateau1.max(plateau2) {
+            (guess - lo).max(0.0).sqrt()
+        } else {
+            // Shorter moves: as if both ramps were triangles starting at lo, where
+            // D − D(lo) = (2/√j)(u³ + 2·lo·u); the one real root of that cubic (Cardano).
+            let p = 2.0 * lo.max(0.0);
+            let q = 0.5 * (d - d_lo).max(0.0) * lim.jerk.sqrt();
+            let r = (0.25 * q * q + p * p * p / 27.0).sqrt();
+            let cr = (0.5 * q + r).cbrt();
+            if cr > 0.0 {
+                cr - p / (3.0 * cr)
+            } else {
+                0.0
+            }
+        }
+        .clamp(ul, uh);
         for _ in 0..MAX_ITER {
             let vp = lo + u * u;
             let m = self.measure(vp, u);
@@ -479,11 +501,12 @@ fn slope_u((peak, dir): (f64, f64), vp: f64, u: f64, sign: f64, lim: &Lim) -> f6
 /// acceleration is symmetric in time, so it covers (w + vp)/2 × its duration, which is
 /// 2·sqrt(Δ/j) as a triangle and Δ/a + a/j with a plateau (Δ = |vp − w|).
 #[inline]
-fn symmetric(w: f64, vp: f64, a: f64, u: f64, lim: &Lim) -> (f64, f64) {
+fn symmetric(w: f64, vp: f64, (a, inv_a): (f64, f64), u: f64, lim: &Lim) -> (f64, f64) {
     let ij = lim.inv_jerk();
     let delta = (vp - w).abs();
     let s = if vp >= w { 1.0 } else { -1.0 };
     let sum = w + vp;
+    // With infinite jerk, ij = 0 and the ramp is its plateau.
     if delta * lim.jerk <= a * a {
         let half = (delta * ij).sqrt();
         // 2u·∂/∂vp of sum·half; u/half stays finite where the ramp vanishes at lo (Δ = u²).
@@ -494,7 +517,6 @@ fn symmetric(w: f64, vp: f64, a: f64, u: f64, lim: &Lim) -> (f64, f64) {
         };
         (sum * half, 2.0 * u * half + sum * s * ij * ratio)
     } else {
-        let inv_a = 1.0 / a;
         let t = delta * inv_a + a * ij;
         (0.5 * sum * t, u * (t + sum * s * inv_a))
     }

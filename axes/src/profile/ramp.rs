@@ -68,6 +68,17 @@ impl Lim {
     pub fn inv_jerk(&self) -> f64 {
         self.inv_jerk
     }
+
+    /// The plateau, and its inverse, of a ramp from `v_stop` to `v1`: acceleration while |v|
+    /// grows, deceleration while it shrinks.
+    #[inline]
+    pub fn plateau(&self, v_stop: f64, v1: f64) -> (f64, f64) {
+        if (v1 - v_stop) * v1 > 0.0 {
+            (self.acc, self.inv_acc)
+        } else {
+            (self.dec, self.inv_dec)
+        }
+    }
 }
 
 /// The time-optimal move from `(v0, a0)` to `(v1, 0)` under one acceleration limit: raise (or
@@ -257,11 +268,7 @@ pub(crate) fn change(v0: f64, a0: f64, v1: f64, lim: &Lim) -> Change {
         }
     } else {
         // |v| grows on the way from v_stop to v1 iff v1 lies beyond v_stop, away from zero.
-        let (amax, inv) = if (v1 - v_stop) * v1 > 0.0 {
-            (lim.acc, lim.inv_acc)
-        } else {
-            (lim.dec, lim.inv_dec)
-        };
+        let (amax, inv) = lim.plateau(v_stop, v1);
         Change {
             ramps: [ramp(v0, a0, v1, amax, inv, lim), Ramp::default()],
             split: false,
