@@ -140,17 +140,61 @@ fn bench_plan(c: &mut Criterion, name: &str, jerk_limited: bool) {
     group.finish();
 }
 
-fn bench_sample(c: &mut Criterion) {
+/// (profile, time) pairs across whole profiles, past their ends too.
+fn sample_points() -> (Vec<Profile>, Vec<(usize, f64)>) {
     let profiles: Vec<Profile> = problems(true).iter().filter_map(plan).collect();
+    let points = (0..PROBLEMS * 8)
+        .map(|k| {
+            let i = k % profiles.len();
+            (i, profiles[i].duration() * ((k * 37) % 101) as f64 / 100.0)
+        })
+        .collect();
+    (profiles, points)
+}
+
+fn bench_sample(c: &mut Criterion) {
+    let (profiles, points) = sample_points();
     let mut group = c.benchmark_group("sample_scurve");
     group.bench_function("mcemu", |b| {
-        let (mut i, mut k) = (0, 0u32);
+        let mut k = 0;
         b.iter(|| {
-            i = (i + 1) % profiles.len();
-            k = (k + 7) % 101;
-            let p = &profiles[i];
-            // Times across the whole profile, including past its end.
-            black_box(p.sample(black_box(p.duration() * f64::from(k) / 100.0)))
+            k += 1;
+            if k == points.len() {
+                k = 0;
+            }
+            let (i, t) = points[k];
+            black_box(profiles[i].sample(black_box(t)))
+        })
+    });
+    // One profile, as the servo tick sees it: hot in cache, time advancing. The one with the
+    // most segments, the longest search.
+    let p = profiles
+        .iter()
+        .max_by_key(|p| p.segment_count())
+        .copied()
+        .unwrap_or(Profile::hold(0.0));
+    let ticks: Vec<f64> = (0..1000)
+        .map(|k| p.duration() * f64::from(k) / 999.0)
+        .collect();
+    group.bench_function("mcemu_one_profile", |b| {
+        let mut k = 0;
+        b.iter(|| {
+            k += 1;
+            if k == ticks.len() {
+                k = 0;
+            }
+            black_box(p.sample(black_box(ticks[k])))
+        })
+    });
+    // What the loop around `sample` costs by itself.
+    group.bench_function("harness_only", |b| {
+        let mut k = 0;
+        b.iter(|| {
+            k += 1;
+            if k == ticks.len() {
+                k = 0;
+            }
+            black_box(black_box(ticks[k]))
         })
     });
     group.finish();
@@ -197,10 +241,10 @@ fn summary() {
             theirs / ours
         );
     }
-    let profiles: Vec<Profile> = problems(true).iter().filter_map(plan).collect();
-    let sample = mean_ns(5, |i| {
-        let p = &profiles[i % profiles.len()];
-        black_box(p.sample(black_box(p.duration() * 0.37)));
+    let (profiles, points) = sample_points();
+    let sample = mean_ns(5, |k| {
+        let (i, t) = points[k];
+        black_box(profiles[i].sample(black_box(t)));
     });
     println!("{:<22} {:>9.1} ns", "sample S-curve", sample);
 }

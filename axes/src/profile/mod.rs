@@ -119,19 +119,22 @@ struct Segment {
     j: f64,
 }
 
-/// Unused slots start at +∞, so the segment search needs no length.
-const UNUSED: Segment = Segment {
-    t: f64::INFINITY,
-    p: 0.0,
-    v: 0.0,
-    a: 0.0,
-    j: 0.0,
-};
+/// The state at the start of a segment (its start time is kept apart, so that the search
+/// reads one compact array).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct State {
+    p: f64,
+    v: f64,
+    a: f64,
+    j: f64,
+}
 
 /// A planned 1-D profile. `Copy`, fixed size.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Profile {
-    segs: [Segment; MAX_SEGMENTS],
+    /// Segment start times; unused slots are +∞, so the search needs no length.
+    starts: [f64; MAX_SEGMENTS],
+    states: [State; MAX_SEGMENTS],
     len: u8,
     duration: f64,
     /// For t ≥ duration: p = end_p + end_v·(t − duration), v = end_v.
@@ -213,7 +216,8 @@ impl Profile {
             }
         };
 
-        let mut segs = [UNUSED; MAX_SEGMENTS];
+        let mut starts = [f64::INFINITY; MAX_SEGMENTS];
+        let mut states = [State::default(); MAX_SEGMENTS];
         let (mut t, mut p) = (0.0, 0.0);
         let mut len = 0u8;
         // Plateaus and jerks are exactly the limits (scaling back could be off by an ulp).
@@ -224,9 +228,9 @@ impl Profile {
                 x * scale
             }
         };
-        for (slot, ph) in segs.iter_mut().zip(plan.phases()) {
-            *slot = Segment {
-                t: t * t_scale,
+        for ((start_t, state), ph) in starts.iter_mut().zip(&mut states).zip(plan.phases()) {
+            *start_t = t * t_scale;
+            *state = State {
                 p: start.p + p * p_scale,
                 v: ph.v * v_scale,
                 a: exact(ph.a, lim.dec, limits.deceleration, a_scale),
@@ -244,7 +248,8 @@ impl Profile {
             plan.end_velocity() * v_scale
         };
         let profile = Profile {
-            segs,
+            starts,
+            states,
             len,
             duration: t * t_scale,
             end_p,
@@ -262,7 +267,8 @@ impl Profile {
     /// Standing still at `p`.
     pub fn hold(p: f64) -> Profile {
         Profile {
-            segs: [UNUSED; MAX_SEGMENTS],
+            starts: [f64::INFINITY; MAX_SEGMENTS],
+            states: [State::default(); MAX_SEGMENTS],
             len: 0,
             duration: 0.0,
             end_p: p,
@@ -291,14 +297,14 @@ impl Profile {
         if t >= self.duration {
             return self.after(t);
         }
-        let mut s = &self.segs[0];
-        for next in &self.segs[1..] {
-            if next.t > t {
+        let (mut t0, mut s) = (self.starts[0], &self.states[0]);
+        for (&next_t, next) in self.starts.iter().zip(&self.states).skip(1) {
+            if next_t > t {
                 break;
             }
-            s = next;
+            (t0, s) = (next_t, next);
         }
-        let dt = t - s.t;
+        let dt = t - t0;
         Sample {
             p: s.p + dt * (s.v + dt * (0.5 * s.a + dt * s.j * (1.0 / 6.0))),
             v: s.v + dt * (s.a + 0.5 * dt * s.j),
@@ -356,19 +362,43 @@ impl Profile {
 
     /// Start times of the segments, in order (the first is 0).
     pub fn segment_times(&self) -> impl Iterator<Item = f64> + '_ {
-        self.segs.iter().take(self.segment_count()).map(|s| s.t)
+        self.starts.iter().take(self.segment_count()).copied()
     }
 
+    /// The segments with their start times.
+    fn segments(&self) -> impl Iterator<Item = Segment> + '_ {
+        self.starts
+            .iter()
+            .zip(&self.states)
+            .take(self.segment_count())
+            .map(|(&t, s)| Segment {
+                t,
+                p: s.p,
+                v: s.v,
+                a: s.a,
+                j: s.j,
+            })
+    }
+
+    /// Whether every value, and every term `sample` adds up within a segment, is finite: then
+    /// sampling cannot overflow into ∞ − ∞ = NaN.
     fn is_finite(&self) -> bool {
+        let ends = self
+            .starts
+            .iter()
+            .skip(1)
+            .map(|&t| t.min(self.duration))
+            .chain(std::iter::once(self.duration));
         self.duration.is_finite()
             && self.end_p.is_finite()
             && self.end_v.is_finite()
             && self.arrival_v.is_finite()
-            && self
-                .segs
-                .iter()
-                .take(self.segment_count())
-                .all(|s| [s.t, s.p, s.v, s.a, s.j].iter().all(|x| x.is_finite()))
+            && self.segments().zip(ends).all(|(s, end)| {
+                let dt = end - s.t;
+                let reach =
+                    s.p.abs() + dt * (s.v.abs() + dt * (0.5 * s.a.abs() + dt * s.j.abs() / 6.0));
+                s.t.is_finite() && reach.is_finite()
+            })
     }
 }
 

@@ -223,10 +223,11 @@ fn check_profile(pb: &Problem, p: &Profile) -> Result<(), TestCaseError> {
     // Continuity across boundaries: the previous segment's polynomial at the boundary against
     // the next segment's start.
     let times: Vec<f64> = p.segment_times().collect();
+    let segs: Vec<Segment> = p.segments().collect();
     let tol_v = TOL * v_cap + dt_round * a_cap;
     let tol_a = TOL * a_cap + dt_round * lim.jerk;
     for (i, &t) in times.iter().enumerate().skip(1) {
-        let before = p.segs[i - 1];
+        let before = segs[i - 1];
         let dt = t - before.t;
         let left = Sample {
             p: before.p + dt * (before.v + dt * (0.5 * before.a + dt * before.j / 6.0)),
@@ -234,7 +235,7 @@ fn check_profile(pb: &Problem, p: &Profile) -> Result<(), TestCaseError> {
             a: before.a + dt * before.j,
             j: before.j,
         };
-        let right = p.segs[i];
+        let right = segs[i];
         prop_assert!(
             (left.p - right.p).abs() <= TOL * extent,
             "p jumps by {} at {t}",
@@ -256,7 +257,7 @@ fn check_profile(pb: &Problem, p: &Profile) -> Result<(), TestCaseError> {
 
     // The end.
     let left_end = if let Some(last) = times.len().checked_sub(1) {
-        let s = p.segs[last];
+        let s = segs[last];
         let dt = d - s.t;
         Sample {
             p: s.p + dt * (s.v + dt * (0.5 * s.a + dt * s.j / 6.0)),
@@ -614,9 +615,7 @@ fn moving_away_from_the_target_brakes_to_rest_then_reverses() {
     };
     let p = Profile::plan(start, to(5000.0), &limits, &Options::default()).unwrap();
     let stop = p
-        .segs
-        .iter()
-        .take(p.segment_count())
+        .segments()
         .find(|s| s.v == 0.0)
         .expect("a segment starts at rest");
     assert_eq!(stop.a, 0.0);
@@ -638,11 +637,7 @@ fn moving_away_from_the_target_brakes_to_rest_then_reverses() {
         &Options::default(),
     )
     .unwrap();
-    assert!(even
-        .segs
-        .iter()
-        .take(even.segment_count())
-        .all(|s| s.v != 0.0 || s.t == 0.0));
+    assert!(even.segments().all(|s| s.v != 0.0 || s.t == 0.0));
 }
 
 #[test]
