@@ -2,18 +2,26 @@
 //! position 0; `mod.rs` scales in and out).
 //!
 //! A position profile is ramp 1 `(v0, a0) → (vp, 0)`, an optional cruise at `vp`, and ramp 2
-//! `(vp, 0) → (e, 0)`. In a frame where the required distance `d` is at least the distance of
-//! the direct ramp `(v0, a0) → e`, the peak `vp` lies in `[lo, vmax]` with
-//! `lo = max(v_stop, e)`, and the distance `D(vp)` grows with `vp` there; beyond `D(vmax)` the
-//! profile cruises at `vmax`. The other case (`d` shorter than the direct ramp: the axis must
-//! dip below `e`, or go back to gain run-up) is the same problem mirrored. One family is not
-//! of this shape: when `a0` already brakes towards `e` (`a0 < 0 < v_stop − e`), distances
-//! between the direct ramp and `D(lo)` need the brake to be partly released first
-//! (`a0 → a1 ∈ [a0, 0]`, then ramp to `e`), which is the `release` branch.
+//! `(vp, 0) → (e, 0)`. The frame is chosen so that the target lies beyond the point where
+//! braking now would stop (the final approach comes from that side, which also fixes the sign
+//! of the end velocity `e`), and mirrored once more if the target is short of the direct ramp
+//! `(v0, a0) → e` (the axis must dip below `e` or back up for run-up). Then the peak `vp` lies
+//! in `[lo, vmax]` with `lo = max(v_stop, e)`, the distance `D(vp)` grows with `vp` (for
+//! `vp ≥ 0`), and beyond `D(vmax)` the profile cruises at `vmax`.
 //!
-//! Roots are found by a safeguarded Newton iteration in `u = sqrt(vp − lo)` (the distance has
-//! square-root terms at `lo`, which this substitution makes smooth) started from the trapezoid
-//! solution, and by Brent's method for the release branch. Both are bounded.
+//! One family is not of this shape: when `a0` already brakes towards `e`
+//! (`a0 < 0`, `v_stop > e`), distances between the direct ramp and `D(v_stop)` need the brake
+//! partly released first (`a0 → a1 ∈ [a0, 0]` at full jerk, then the ramp to `e`): the
+//! release branch. Arriving with a negative velocity, a release profile can also beat the
+//! peak-velocity one beyond `D(v_stop)`; both are then planned and the faster kept. Together
+//! these are Ruckig's UDDU/UDUD profile types for a target at rest acceleration, and the
+//! durations agree with rsruckig to about 1e-11 (see `tests_ruckig`).
+//!
+//! `D(vp) = d` is solved by a safeguarded Newton iteration in `u = sqrt(vp − lo)` (the ramps
+//! have square-root terms at `lo` that this makes smooth), started from the plateau model
+//! (exact for trapezoids and long moves) or, for short moves, from the cubic of two triangular
+//! ramps. `D` is evaluated in closed form from ramp symmetry where possible. The release
+//! branch uses Brent's method. Every loop is bounded.
 
 use super::ramp::{change, Change, Lim, Phase};
 
