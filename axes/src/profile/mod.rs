@@ -179,7 +179,12 @@ impl Profile {
             return Err(PlanError::Unrepresentable);
         }
         let mut v0 = start.v / v_scale;
-        let mut a0 = start.a / a_scale;
+        // A trapezoid's acceleration jumps, so the start acceleration does not matter.
+        let mut a0 = if limits.jerk.is_finite() {
+            start.a / a_scale
+        } else {
+            0.0
+        };
         let start_velocity = (options.start_velocity / v_scale).min(1.0);
 
         let mut plan = Plan::new();
