@@ -9,7 +9,7 @@
 use std::hint::black_box;
 use std::time::Instant;
 
-use axes::profile::{Goal, Limits, MotionState, Options, Profile};
+use axes::profile::{Goal, Limits, MotionState, Options, PlanError, Profile};
 use criterion::Criterion;
 use rsruckig::prelude::{InputParameter, Ruckig, ThrowErrorHandler, Trajectory};
 
@@ -88,7 +88,7 @@ fn problems(jerk_limited: bool) -> Vec<Problem> {
         .collect()
 }
 
-fn plan(p: &Problem) -> Option<Profile> {
+fn plan_result(p: &Problem) -> Result<Profile, PlanError> {
     Profile::plan(
         p.start,
         Goal::Position {
@@ -98,7 +98,10 @@ fn plan(p: &Problem) -> Option<Profile> {
         &p.limits,
         &Options::default(),
     )
-    .ok()
+}
+
+fn plan(p: &Problem) -> Option<Profile> {
+    plan_result(p).ok()
 }
 
 fn ruckig_input(p: &Problem) -> InputParameter<1> {
@@ -126,7 +129,7 @@ fn bench_plan(c: &mut Criterion, name: &str, jerk_limited: bool) {
         let mut i = 0;
         b.iter(|| {
             i = (i + 1) % PROBLEMS;
-            black_box(plan(black_box(&set[i])))
+            black_box(plan_result(black_box(&set[i])))
         })
     });
     group.bench_function("rsruckig", |b| {
@@ -227,7 +230,7 @@ fn summary() {
         let set = problems(jerk_limited);
         let inputs: Vec<InputParameter<1>> = set.iter().map(ruckig_input).collect();
         let ours = mean_ns(5, |i| {
-            black_box(plan(black_box(&set[i])));
+            let _ = black_box(plan_result(black_box(&set[i])));
         });
         let mut otg = Ruckig::<1, ThrowErrorHandler>::new(None, 0.001);
         let mut traj = Trajectory::new(None);
