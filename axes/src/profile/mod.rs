@@ -27,7 +27,7 @@ mod tests;
 #[cfg(test)]
 mod tests_ruckig;
 
-pub use smoothing::{MovingAverage, SmoothingError};
+pub use smoothing::{MovingAverage, SmoothingError, MAX_WINDOW_TICKS};
 
 use plan::{Plan, MAX_PHASES};
 use ramp::Lim;
