@@ -27,9 +27,9 @@ mod tests;
 #[cfg(test)]
 mod tests_ruckig;
 
-pub use smoothing::{MovingAverage, SmoothingError};
+pub use smoothing::{MovingAverage, SmoothingError, MAX_WINDOW_TICKS};
 
-use plan::MAX_PHASES;
+use plan::{Plan, MAX_PHASES};
 use ramp::Lim;
 
 /// Kinematic state of the commanded motion.
@@ -119,19 +119,22 @@ struct Segment {
     j: f64,
 }
 
-/// Unused slots start at +∞, so the segment search needs no length.
-const UNUSED: Segment = Segment {
-    t: f64::INFINITY,
-    p: 0.0,
-    v: 0.0,
-    a: 0.0,
-    j: 0.0,
-};
+/// The state at the start of a segment (its start time is kept apart, so that the search
+/// reads one compact array).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct State {
+    p: f64,
+    v: f64,
+    a: f64,
+    j: f64,
+}
 
 /// A planned 1-D profile. `Copy`, fixed size.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Profile {
-    segs: [Segment; MAX_SEGMENTS],
+    /// Segment start times; unused slots are +∞, so the search needs no length.
+    starts: [f64; MAX_SEGMENTS],
+    states: [State; MAX_SEGMENTS],
     len: u8,
     duration: f64,
     /// For t ≥ duration: p = end_p + end_v·(t − duration), v = end_v.
@@ -159,12 +162,12 @@ impl Profile {
         let t_scale = v_scale / a_scale;
         let p_scale = v_scale * t_scale;
         let j_scale = a_scale / t_scale;
-        let lim = Lim {
-            vmax: 1.0,
-            acc: 1.0,
-            dec: limits.deceleration / a_scale,
-            jerk: limits.jerk / j_scale,
-        };
+        let lim = Lim::new(
+            1.0,
+            1.0,
+            limits.deceleration / a_scale,
+            limits.jerk / j_scale,
+        );
         let usable = |x: f64| x.is_finite() && x > 0.0;
         let jerk_usable = lim.jerk > 0.0; // may be +∞
         if !(usable(t_scale)
@@ -176,10 +179,16 @@ impl Profile {
             return Err(PlanError::Unrepresentable);
         }
         let mut v0 = start.v / v_scale;
-        let mut a0 = start.a / a_scale;
+        // A trapezoid's acceleration jumps, so the start acceleration does not matter.
+        let mut a0 = if limits.jerk.is_finite() {
+            start.a / a_scale
+        } else {
+            0.0
+        };
         let start_velocity = (options.start_velocity / v_scale).min(1.0);
 
-        let (plan, end_p, end_v) = match goal {
+        let mut plan = Plan::new();
+        let (end_p, end_v) = match goal {
             Goal::Position {
                 target,
                 end_velocity,
@@ -198,7 +207,8 @@ impl Profile {
                 }
                 let e = (end_velocity / v_scale).min(1.0);
                 let jump = options.overshoot == Overshoot::JumpToZeroAtTarget;
-                (plan::position(v0, a0, d, e, &lim, jump), Some(target), 0.0)
+                plan::position(v0, a0, d, e, &lim, jump, &mut plan);
+                (Some(target), 0.0)
             }
             Goal::Velocity { target } => {
                 let vt = (target / v_scale).clamp(-1.0, 1.0);
@@ -206,25 +216,32 @@ impl Profile {
                     v0 = start_velocity.min(vt.abs()).copysign(vt);
                     a0 = 0.0;
                 }
-                let end_v = target.clamp(-v_scale, v_scale);
-                (plan::velocity(v0, a0, vt, &lim), None, end_v)
+                plan::velocity(v0, a0, vt, &lim, &mut plan);
+                (None, target.clamp(-v_scale, v_scale))
             }
         };
 
-        let mut segs = [UNUSED; MAX_SEGMENTS];
-        let (mut t, mut p, mut v) = (0.0, 0.0, v0);
+        let mut starts = [f64::INFINITY; MAX_SEGMENTS];
+        let mut states = [State::default(); MAX_SEGMENTS];
+        let (mut t, mut p) = (0.0, 0.0);
         let mut len = 0u8;
-        for (slot, ph) in segs.iter_mut().zip(plan.phases()) {
-            *slot = Segment {
-                t: t * t_scale,
+        // Plateaus and jerks are exactly the limits (scaling back could be off by an ulp).
+        let exact = |x: f64, normalised: f64, physical: f64, scale: f64| {
+            if x.abs() == normalised {
+                physical.copysign(x)
+            } else {
+                x * scale
+            }
+        };
+        for ((start_t, state), ph) in starts.iter_mut().zip(&mut states).zip(plan.phases()) {
+            *start_t = t * t_scale;
+            *state = State {
                 p: start.p + p * p_scale,
-                v: v * v_scale,
-                a: ph.a * a_scale,
-                j: ph.j * j_scale,
+                v: ph.v * v_scale,
+                a: exact(ph.a, lim.dec, limits.deceleration, a_scale),
+                j: exact(ph.j, lim.jerk, limits.jerk, j_scale),
             };
-            let (dp, dv) = ph.advance(v);
-            p += dp;
-            v += dv;
+            p += ph.advance().0;
             t += ph.t;
             len += 1;
         }
@@ -233,10 +250,11 @@ impl Profile {
         let arrival_v = if matches!(goal, Goal::Velocity { .. }) {
             end_v
         } else {
-            v * v_scale
+            plan.end_velocity() * v_scale
         };
         let profile = Profile {
-            segs,
+            starts,
+            states,
             len,
             duration: t * t_scale,
             end_p,
@@ -254,7 +272,8 @@ impl Profile {
     /// Standing still at `p`.
     pub fn hold(p: f64) -> Profile {
         Profile {
-            segs: [UNUSED; MAX_SEGMENTS],
+            starts: [f64::INFINITY; MAX_SEGMENTS],
+            states: [State::default(); MAX_SEGMENTS],
             len: 0,
             duration: 0.0,
             end_p: p,
@@ -283,14 +302,14 @@ impl Profile {
         if t >= self.duration {
             return self.after(t);
         }
-        let mut s = &self.segs[0];
-        for next in &self.segs[1..] {
-            if next.t > t {
+        let (mut t0, mut s) = (self.starts[0], &self.states[0]);
+        for (&next_t, next) in self.starts.iter().zip(&self.states).skip(1) {
+            if next_t > t {
                 break;
             }
-            s = next;
+            (t0, s) = (next_t, next);
         }
-        let dt = t - s.t;
+        let dt = t - t0;
         Sample {
             p: s.p + dt * (s.v + dt * (0.5 * s.a + dt * s.j * (1.0 / 6.0))),
             v: s.v + dt * (s.a + 0.5 * dt * s.j),
@@ -348,19 +367,43 @@ impl Profile {
 
     /// Start times of the segments, in order (the first is 0).
     pub fn segment_times(&self) -> impl Iterator<Item = f64> + '_ {
-        self.segs.iter().take(self.segment_count()).map(|s| s.t)
+        self.starts.iter().take(self.segment_count()).copied()
     }
 
+    /// The segments with their start times.
+    fn segments(&self) -> impl Iterator<Item = Segment> + '_ {
+        self.starts
+            .iter()
+            .zip(&self.states)
+            .take(self.segment_count())
+            .map(|(&t, s)| Segment {
+                t,
+                p: s.p,
+                v: s.v,
+                a: s.a,
+                j: s.j,
+            })
+    }
+
+    /// Whether every value, and every term `sample` adds up within a segment, is finite: then
+    /// sampling cannot overflow into ∞ − ∞ = NaN.
     fn is_finite(&self) -> bool {
+        let ends = self
+            .starts
+            .iter()
+            .skip(1)
+            .map(|&t| t.min(self.duration))
+            .chain(std::iter::once(self.duration));
         self.duration.is_finite()
             && self.end_p.is_finite()
             && self.end_v.is_finite()
             && self.arrival_v.is_finite()
-            && self
-                .segs
-                .iter()
-                .take(self.segment_count())
-                .all(|s| [s.t, s.p, s.v, s.a, s.j].iter().all(|x| x.is_finite()))
+            && self.segments().zip(ends).all(|(s, end)| {
+                let dt = end - s.t;
+                let reach =
+                    s.p.abs() + dt * (s.v.abs() + dt * (0.5 * s.a.abs() + dt * s.j.abs() / 6.0));
+                s.t.is_finite() && reach.is_finite()
+            })
     }
 }
 

@@ -3,49 +3,80 @@
 //! Everything here works in the planner's normalised units (velocity limit 1, acceleration
 //! limit 1, positions relative to the start; see `plan`), so the few tolerances are absolute.
 
-/// One phase of constant jerk. `a` is the acceleration at its start: stating it rather than
-/// integrating it lets a trapezoid jump in acceleration and keeps S-curves free of drift.
+/// One phase of constant jerk `j` and duration `t`, with the velocity `v` and acceleration `a`
+/// at its start. Stating them rather than integrating them lets a trapezoid jump in
+/// acceleration, and puts reversals exactly at v = 0 and cruises exactly at the limit.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct Phase {
+    pub v: f64,
     pub a: f64,
     pub j: f64,
     pub t: f64,
 }
 
 impl Phase {
-    /// Position and velocity change over the whole phase, starting at velocity `v`.
+    /// Position and velocity change over the whole phase.
     #[inline]
-    pub fn advance(&self, v: f64) -> (f64, f64) {
-        self.advance_by(v, self.t)
+    pub fn advance(&self) -> (f64, f64) {
+        self.advance_by(self.t)
     }
 
     /// Position and velocity change after `t` into the phase.
     #[inline]
-    pub fn advance_by(&self, v: f64, t: f64) -> (f64, f64) {
-        let dp = t * (v + t * (0.5 * self.a + t * self.j * (1.0 / 6.0)));
+    pub fn advance_by(&self, t: f64) -> (f64, f64) {
+        let dp = t * (self.v + t * (0.5 * self.a + t * self.j * (1.0 / 6.0)));
         let dv = t * (self.a + 0.5 * t * self.j);
         (dp, dv)
     }
 }
 
-/// Normalised limits. `jerk` may be infinite (trapezoid).
+/// Normalised limits. `jerk` may be infinite (trapezoid). The inverses turn the divisions of
+/// the hot path into multiplications.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Lim {
     pub vmax: f64,
     pub acc: f64,
     pub dec: f64,
     pub jerk: f64,
+    inv_acc: f64,
+    inv_dec: f64,
+    /// 1/jerk, 0 for a trapezoid.
+    inv_jerk: f64,
 }
 
 impl Lim {
+    pub fn new(vmax: f64, acc: f64, dec: f64, jerk: f64) -> Lim {
+        Lim {
+            vmax,
+            acc,
+            dec,
+            jerk,
+            inv_acc: 1.0 / acc,
+            inv_dec: 1.0 / dec,
+            inv_jerk: 1.0 / jerk,
+        }
+    }
+
     /// Velocity reached by bringing `a` to zero at full jerk (with infinite jerk `a` just
     /// vanishes).
     #[inline]
     pub fn v_stop(&self, v: f64, a: f64) -> f64 {
-        if self.jerk.is_finite() {
-            v + a * a.abs() / (2.0 * self.jerk)
+        v + 0.5 * a * a.abs() * self.inv_jerk
+    }
+
+    #[inline]
+    pub fn inv_jerk(&self) -> f64 {
+        self.inv_jerk
+    }
+
+    /// The plateau, and its inverse, of a ramp from `v_stop` to `v1`: acceleration while |v|
+    /// grows, deceleration while it shrinks.
+    #[inline]
+    pub fn plateau(&self, v_stop: f64, v1: f64) -> (f64, f64) {
+        if (v1 - v_stop) * v1 > 0.0 {
+            (self.acc, self.inv_acc)
         } else {
-            v
+            (self.dec, self.inv_dec)
         }
     }
 }
@@ -63,23 +94,19 @@ pub(crate) struct Ramp {
 }
 
 impl Ramp {
-    /// Distance covered, starting at velocity `v0`.
+    /// Distance covered.
     #[inline]
-    pub fn distance(&self, v0: f64) -> f64 {
-        let mut v = v0;
-        let mut p = 0.0;
-        for ph in &self.phases {
-            let (dp, dv) = ph.advance(v);
-            p += dp;
-            v += dv;
-        }
-        p
+    pub fn distance(&self) -> f64 {
+        self.phases.iter().map(|ph| ph.advance().0).sum()
     }
 }
 
-/// See [`Ramp`]. `amax > 0`; `jerk > 0`, possibly infinite.
-pub(crate) fn ramp(v0: f64, a0: f64, v1: f64, amax: f64, jerk: f64) -> Ramp {
+/// See [`Ramp`]. `amax > 0` with its inverse `inv_amax`; the jerk comes from `lim`.
+#[inline(always)]
+pub(crate) fn ramp(v0: f64, a0: f64, v1: f64, amax: f64, inv_amax: f64, lim: &Lim) -> Ramp {
+    let (jerk, inv_jerk) = (lim.jerk, lim.inv_jerk);
     const NONE: Phase = Phase {
+        v: 0.0,
         a: 0.0,
         j: 0.0,
         t: 0.0,
@@ -97,9 +124,10 @@ pub(crate) fn ramp(v0: f64, a0: f64, v1: f64, amax: f64, jerk: f64) -> Ramp {
         return Ramp {
             phases: [
                 Phase {
+                    v: v0,
                     a: dir * amax,
                     j: 0.0,
-                    t: dv.abs() / amax,
+                    t: dv.abs() * inv_amax,
                 },
                 NONE,
                 NONE,
@@ -108,7 +136,7 @@ pub(crate) fn ramp(v0: f64, a0: f64, v1: f64, amax: f64, jerk: f64) -> Ramp {
             dir,
         };
     }
-    let v_stop = v0 + a0 * a0.abs() / (2.0 * jerk);
+    let v_stop = v0 + 0.5 * a0 * a0.abs() * inv_jerk;
     let gap = v1 - v_stop;
     if gap == 0.0 || !gap.is_finite() {
         // Removing a0 lands exactly on v1 (or the input is unusable: a NaN phase is caught by
@@ -117,9 +145,10 @@ pub(crate) fn ramp(v0: f64, a0: f64, v1: f64, amax: f64, jerk: f64) -> Ramp {
         return Ramp {
             phases: [
                 Phase {
+                    v: v0,
                     a: a0,
                     j,
-                    t: a0.abs() / jerk,
+                    t: a0.abs() * inv_jerk,
                 },
                 NONE,
                 NONE,
@@ -135,36 +164,40 @@ pub(crate) fn ramp(v0: f64, a0: f64, v1: f64, amax: f64, jerk: f64) -> Ramp {
     let dvu = s * (v1 - v0);
     let (ap, t1, j1, plateau) = if au >= amax {
         // Beyond the limit (lowered mid-move): come back to it at full jerk first.
-        (amax, (au - amax) / jerk, -1.0, true)
+        (amax, (au - amax) * inv_jerk, -1.0, true)
     } else {
         let tri = (jerk * dvu + 0.5 * au * au).max(0.0).sqrt();
         if tri < amax {
-            (tri, (tri - au) / jerk, 1.0, false)
+            (tri, (tri - au) * inv_jerk, 1.0, false)
         } else {
-            (amax, (amax - au) / jerk, 1.0, true)
+            (amax, (amax - au) * inv_jerk, 1.0, true)
         }
     };
-    let t3 = ap / jerk;
+    let t3 = ap * inv_jerk;
+    let dv1 = 0.5 * (au + ap) * t1;
+    let dv3 = 0.5 * ap * t3;
     let t2 = if plateau {
-        let dv1 = 0.5 * (au + ap) * t1;
-        let dv3 = 0.5 * ap * t3;
-        ((dvu - dv1 - dv3) / ap).max(0.0)
+        ((dvu - dv1 - dv3) * inv_amax).max(0.0)
     } else {
         0.0
     };
     Ramp {
         phases: [
             Phase {
+                v: v0,
                 a: a0,
                 j: s * j1 * jerk,
                 t: t1,
             },
             Phase {
+                v: v0 + s * dv1,
                 a: s * ap,
                 j: 0.0,
                 t: t2,
             },
             Phase {
+                // Counted back from v1, so that the ramp ends on it.
+                v: v1 - s * dv3,
                 a: s * ap,
                 j: -s * jerk,
                 t: t3,
@@ -203,13 +236,12 @@ impl Change {
         &self.ramps[0]
     }
 
-    /// Distance covered, starting at velocity `v0`.
+    /// Distance covered.
     #[inline]
-    pub fn distance(&self, v0: f64) -> f64 {
-        let d = self.ramps[0].distance(v0);
+    pub fn distance(&self) -> f64 {
+        let d = self.ramps[0].distance();
         if self.split {
-            // The split point is v = 0 exactly.
-            d + self.ramps[1].distance(0.0)
+            d + self.ramps[1].distance()
         } else {
             d
         }
@@ -223,25 +255,22 @@ impl Change {
 }
 
 /// See [`Change`].
+#[inline(always)]
 pub(crate) fn change(v0: f64, a0: f64, v1: f64, lim: &Lim) -> Change {
     let v_stop = lim.v_stop(v0, a0);
     if lim.acc != lim.dec && v_stop * v1 < 0.0 {
         Change {
             ramps: [
-                ramp(v0, a0, 0.0, lim.dec, lim.jerk),
-                ramp(0.0, 0.0, v1, lim.acc, lim.jerk),
+                ramp(v0, a0, 0.0, lim.dec, lim.inv_dec, lim),
+                ramp(0.0, 0.0, v1, lim.acc, lim.inv_acc, lim),
             ],
             split: true,
         }
     } else {
         // |v| grows on the way from v_stop to v1 iff v1 lies beyond v_stop, away from zero.
-        let amax = if (v1 - v_stop) * v1 > 0.0 {
-            lim.acc
-        } else {
-            lim.dec
-        };
+        let (amax, inv) = lim.plateau(v_stop, v1);
         Change {
-            ramps: [ramp(v0, a0, v1, amax, lim.jerk), Ramp::default()],
+            ramps: [ramp(v0, a0, v1, amax, inv, lim), Ramp::default()],
             split: false,
         }
     }
@@ -251,12 +280,12 @@ pub(crate) fn change(v0: f64, a0: f64, v1: f64, lim: &Lim) -> Change {
 mod tests {
     use super::*;
 
-    fn end_state(r: &Ramp, v0: f64) -> (f64, f64) {
-        let mut v = v0;
+    fn end_state(r: &Ramp) -> (f64, f64) {
+        let mut v = r.phases[0].v;
         let mut a = r.phases[0].a;
         for ph in &r.phases {
-            let (_, dv) = ph.advance(v);
-            v += dv;
+            assert!((ph.v - v).abs() < 1e-12, "{ph:?} starts at {v}");
+            v = ph.v + ph.advance().1;
             a = ph.a + ph.j * ph.t;
         }
         (v, a)
@@ -273,8 +302,8 @@ mod tests {
             (0.0, 3.0, 0.5, 1.0, 2.0),
         ];
         for (v0, a0, v1, amax, j) in cases {
-            let r = ramp(v0, a0, v1, amax, j);
-            let (v, a) = end_state(&r, v0);
+            let r = ramp(v0, a0, v1, amax, 1.0 / amax, &Lim::new(1.0, amax, amax, j));
+            let (v, a) = end_state(&r);
             assert!((v - v1).abs() < 1e-12, "{v0} {a0} {v1}: v = {v}");
             assert!(a.abs() < 1e-12, "{v0} {a0} {v1}: a = {a}");
             assert!(r.phases.iter().all(|p| p.t >= 0.0));
@@ -284,29 +313,26 @@ mod tests {
     #[test]
     fn triangle_and_trapezoid_ramps_from_rest() {
         // Plateau: 0 → 2 with a = 1, j = 10: t1 = t3 = 0.1, t2 = 1.9.
-        let r = ramp(0.0, 0.0, 2.0, 1.0, 10.0);
+        let lim = Lim::new(1.0, 1.0, 1.0, 10.0);
+        let r = ramp(0.0, 0.0, 2.0, 1.0, 1.0, &lim);
         assert!((r.phases[1].t - 1.9).abs() < 1e-12);
         // Triangle: 0 → 0.01 with a = 1, j = 10: peak sqrt(0.1).
-        let r = ramp(0.0, 0.0, 0.01, 1.0, 10.0);
+        let r = ramp(0.0, 0.0, 0.01, 1.0, 1.0, &lim);
         assert!((r.peak - 0.1f64.sqrt()).abs() < 1e-12);
         assert_eq!(r.phases[1].t, 0.0);
     }
 
     #[test]
     fn reversal_is_split_only_when_limits_differ() {
-        let equal = Lim {
-            vmax: 1.0,
-            acc: 1.0,
-            dec: 1.0,
-            jerk: f64::INFINITY,
-        };
+        let equal = Lim::new(1.0, 1.0, 1.0, f64::INFINITY);
         assert!(!change(0.5, 0.0, -0.5, &equal).split);
-        let unequal = Lim { dec: 2.0, ..equal };
+        let unequal = Lim::new(1.0, 1.0, 2.0, f64::INFINITY);
         let c = change(0.5, 0.0, -0.5, &unequal);
         assert!(c.split);
         // Brake 0.5 at 2 (0.25 s), accelerate 0.5 at 1 (0.5 s).
         assert_eq!(c.ramps[0].phases[0].t, 0.25);
         assert_eq!(c.ramps[1].phases[0].t, 0.5);
-        assert_eq!(c.distance(0.5), 0.0625 - 0.125);
+        assert_eq!(c.distance(), 0.0625 - 0.125);
+        assert_eq!(c.ramps[1].phases[0].v, 0.0);
     }
 }
