@@ -41,7 +41,7 @@ fn step_cost(c: &mut Criterion) {
             group.bench_with_input(BenchmarkId::new(label, n), &n, |b, _| {
                 b.iter(|| {
                     engine.step();
-                    black_box(engine.axis_status(0));
+                    black_box(&mut engine);
                 })
             });
         }

@@ -16,6 +16,8 @@ use crate::status::{AxisFlags, AxisStatus, DriveStatus, IoImage, Snapshot};
 #[derive(Clone, Debug)]
 struct Io {
     image: IoImage,
+    /// Bumped on every change of `image`; starts at 1 so a fresh snapshot (0) always copies.
+    version: u64,
     di_forced: Vec<Option<bool>>,
     ai_forced: Vec<Option<f64>>,
     bindings: Vec<InputBinding>,
@@ -78,6 +80,7 @@ impl Engine {
             tick: 0,
             axes,
             io: Io {
+                version: 1,
                 image: IoImage {
                     di: vec![false; io.digital_inputs as usize],
                     do_: vec![false; io.digital_outputs as usize],
@@ -114,7 +117,8 @@ impl Engine {
         self.axes.len()
     }
 
-    pub fn axis_status(&self, axis: usize) -> Option<&AxisStatus> {
+    /// The status record of `axis`, assembled now (see `Axis::status`).
+    pub fn axis_status(&self, axis: usize) -> Option<AxisStatus> {
         self.axes.get(axis).map(Axis::status)
     }
 
@@ -163,16 +167,6 @@ impl Engine {
     }
 
     fn apply_to_axes(&mut self, command: Command) -> Result<Reply, EngineError> {
-        let addressed = command.axis();
-        let result = self.dispatch(command);
-        // Read-your-write: the status shows the command's effect before the next tick.
-        if let Some(axis) = addressed.and_then(|a| self.axes.get_mut(a as usize)) {
-            axis.publish();
-        }
-        result
-    }
-
-    fn dispatch(&mut self, command: Command) -> Result<Reply, EngineError> {
         let Engine {
             axes,
             io,
@@ -365,6 +359,7 @@ impl Engine {
                             count: io.image.di.len() as u16,
                         })?;
                 *slot = value;
+                io.version += 1;
                 // A forced level shows at once; a released unwired input reads low (a bound
                 // one follows its signal from the next tick).
                 if let Some(di) = io.image.di.get_mut(channel as usize) {
@@ -385,6 +380,7 @@ impl Engine {
                             count: io.image.ai.len() as u16,
                         })?;
                 *slot = value;
+                io.version += 1;
                 if let Some(ai) = io.image.ai.get_mut(channel as usize) {
                     *ai = value.unwrap_or(0.0);
                 }
@@ -402,6 +398,7 @@ impl Engine {
                             count,
                         })?;
                 *slot = value;
+                io.version += 1;
                 Ok(Reply::Done)
             }
             Command::WriteAnalogOutput { channel, value } => {
@@ -417,6 +414,7 @@ impl Engine {
                             count,
                         })?;
                 *slot = value;
+                io.version += 1;
                 Ok(Reply::Done)
             }
             Command::ReadObject {
@@ -471,7 +469,7 @@ impl Engine {
                 break;
             };
             let axis = slave.drive.config().axis as usize;
-            let Some(status) = self.axes.get(axis).map(|a| *a.status()) else {
+            let Some(status) = self.axes.get(axis).map(Axis::status) else {
                 continue;
             };
             if let Some(target) = slave.power {
@@ -521,7 +519,7 @@ impl Engine {
             let Some(axis) = self.axes.get(b.axis as usize) else {
                 continue;
             };
-            let f = axis.status().flags;
+            let f = axis.signal_flags();
             let level = match b.signal {
                 AxisSignal::LimitPos => f.contains(AxisFlags::HW_LIMIT_POS),
                 AxisSignal::LimitNeg => f.contains(AxisFlags::HW_LIMIT_NEG),
@@ -530,7 +528,10 @@ impl Engine {
                 AxisSignal::DriveAlarm => f.contains(AxisFlags::DRIVE_ALARM),
             };
             if let Some(di) = io.image.di.get_mut(ch) {
-                *di = level;
+                if *di != level {
+                    *di = level;
+                    io.version += 1;
+                }
             }
         }
     }
@@ -539,9 +540,14 @@ impl Engine {
     pub fn snapshot_into(&self, snapshot: &mut Snapshot) {
         snapshot.tick = self.tick;
         snapshot.period = self.period;
-        snapshot.axes.clear();
-        snapshot.axes.extend(self.axes.iter().map(|a| *a.status()));
-        snapshot.io.clone_from(&self.io.image);
+        snapshot.axes.resize(self.axes.len(), AxisStatus::default());
+        for (out, axis) in snapshot.axes.iter_mut().zip(&self.axes) {
+            axis.status_into(out);
+        }
+        if snapshot.io_version != self.io.version {
+            snapshot.io.clone_from(&self.io.image);
+            snapshot.io_version = self.io.version;
+        }
         snapshot.drives.clear();
         snapshot
             .drives

@@ -226,6 +226,9 @@ pub struct Snapshot {
     pub period: f64,
     pub axes: Vec<AxisStatus>,
     pub io: IoImage,
+    /// Changes whenever the I/O image changes: readers (and the snapshot refresh) can skip
+    /// comparing images that did not change.
+    pub io_version: u64,
     /// The CiA 402 drives, by slave number.
     pub drives: Vec<DriveStatus>,
 }

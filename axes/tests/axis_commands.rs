@@ -620,3 +620,69 @@ fn last_error_is_reported_in_status() {
     refused(&mut e, move_abs(f64::NAN));
     assert_eq!(status(&e).last_error, Some(ErrorKind::InvalidArgument));
 }
+
+#[test]
+fn io_writes_and_forces_show_in_every_snapshot() {
+    // Snapshots copy the I/O image only when its version changed; every kind of change must
+    // bump it, including a bound input following its axis. Each change alone, checked in two
+    // reused snapshot buffers (the runtime alternates two).
+    let mut cfg = axes::EngineConfig {
+        axes: vec![stepper_mm()],
+        ..axes::EngineConfig::default()
+    };
+    cfg.io.bindings.push(axes::config::InputBinding {
+        channel: 9,
+        axis: 0,
+        signal: axes::config::AxisSignal::LimitPos,
+    });
+    let mut e = axes::Engine::new(&cfg).unwrap();
+    let mut bufs = [e.snapshot(), e.snapshot()];
+    type Check = fn(&axes::status::IoImage) -> bool;
+    let changes: Vec<(Command, Check)> = vec![
+        (
+            Command::WriteDigitalOutput {
+                channel: 3,
+                value: true,
+            },
+            |io| io.do_[3],
+        ),
+        (
+            Command::WriteAnalogOutput {
+                channel: 1,
+                value: 2.5,
+            },
+            |io| io.ao[1] == 2.5,
+        ),
+        (
+            Command::ForceDigitalInput {
+                channel: 4,
+                value: Some(true),
+            },
+            |io| io.di[4],
+        ),
+        (
+            Command::ForceAnalogInput {
+                channel: 2,
+                value: Some(-1.0),
+            },
+            |io| io.ai[2] == -1.0,
+        ),
+        (
+            Command::ForceInput {
+                axis: 0,
+                input: axes::command::AxisInput::LimitPos,
+                value: Some(true),
+            },
+            |io| io.di[9],
+        ),
+    ];
+    for (command, visible) in changes {
+        ok(&mut e, command.clone());
+        e.step();
+        e.step();
+        for b in bufs.iter_mut() {
+            e.snapshot_into(b);
+            assert!(visible(&b.io), "{command:?} not in the snapshot");
+        }
+    }
+}

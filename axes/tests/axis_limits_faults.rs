@@ -507,3 +507,32 @@ fn cpu226h_ramp_from_min_speed() {
     let expected = 0.2 + (20_000.0 - 1100.0) / 10_500.0;
     assert!((t as f64 / 1000.0 - expected).abs() < 0.003, "{t}");
 }
+
+#[test]
+fn rollover_makes_the_axis_cyclic_at_run_time() {
+    // HIMC SetRollover (only while disabled): positions wrap into [0, rollover).
+    let mut e = one_axis();
+    set(&mut e, ParamId::Rollover, 360.0);
+    assert_eq!(param(&mut e, ParamId::RepMode), 1.0);
+    ok(&mut e, Command::Enable { axis: 0 });
+    assert!(matches!(
+        refused(
+            &mut e,
+            Command::SetParameter {
+                axis: 0,
+                name: ParamId::Rollover,
+                value: 90.0,
+                lenient: false
+            }
+        ),
+        EngineError::InvalidState { .. }
+    ));
+    ok(&mut e, jog(100.0));
+    run(&mut e, 5.0);
+    let s = status(&e);
+    assert!((0.0..360.0).contains(&s.cmd_pos), "{}", s.cmd_pos);
+    assert!(
+        !s.flags.contains(AxisFlags::HW_LIMIT_POS),
+        "cyclic axes ignore limits"
+    );
+}

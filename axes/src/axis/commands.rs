@@ -2,8 +2,8 @@
 //! immediate ones (enable, stop, set parameter …).
 
 use super::{
-    apply_rollover, counts_per_unit, limit_state, pulses_per_unit, smoothing_window, status_word,
-    wiring::Wiring, Action, Activity, Axis, Context, Goal1, Overrides, Queued, Ramp, Run, Source,
+    apply_rollover, counts_per_unit, limit_state, pulses_per_unit, setup::Setup, smoothing_window,
+    status_word, Action, Activity, Axis, Context, Goal1, Overrides, Queued, Ramp, Run, Source,
 };
 use crate::command::{
     bounded, finite, positive, AxisInput, BufferMode, CancelScope, CommandKind, CommandState,
@@ -26,7 +26,6 @@ pub(crate) struct MotionRequest {
 impl Axis {
     fn refuse<T>(&mut self, e: EngineError) -> Result<T, EngineError> {
         self.last_error = Some(e.kind());
-        self.status.last_error = self.last_error;
         Err(e)
     }
 
@@ -467,13 +466,11 @@ impl Axis {
             self.target_pos = self.raw.p;
             let _ = ctx;
         }
-        self.publish();
         Ok(Reply::Done)
     }
 
     pub(crate) fn disable(&mut self, ctx: &mut Context) -> Result<Reply, EngineError> {
         self.power_off(ctx, CommandState::Aborted);
-        self.publish();
         Ok(Reply::Done)
     }
 
@@ -498,7 +495,6 @@ impl Axis {
         }
         self.fe_over = 0;
         self.last_error = None;
-        self.publish();
         let remaining = self.latched & present;
         if remaining.is_empty() {
             Ok(Reply::Done)
@@ -553,7 +549,6 @@ impl Axis {
         }
         if !self.enabled {
             self.activity = Activity::Idle;
-            self.publish();
             return Ok(Reply::Done);
         }
         match mode {
@@ -576,7 +571,6 @@ impl Axis {
             self.activity = Activity::Idle;
         }
         self.target_pos = self.raw.p;
-        self.publish();
         Ok(Reply::Done)
     }
 
@@ -601,7 +595,6 @@ impl Axis {
         self.halted = true;
         let decel = deceleration.unwrap_or(self.param(ParamId::Decel));
         self.plan_stop(ctx.tick, decel);
-        self.publish();
         Ok(Reply::Done)
     }
 
@@ -620,7 +613,6 @@ impl Axis {
                 let _ = self.plan(ctx.tick, goal, limits);
             }
         }
-        self.publish();
         Ok(Reply::Done)
     }
 
@@ -703,7 +695,6 @@ impl Axis {
                         reason: "no profile reaches it with the current limits",
                     });
                 }
-                self.publish();
                 Ok(Reply::Accepted { id })
             }
             _ => self.refuse(EngineError::Unsupported {
@@ -752,7 +743,6 @@ impl Axis {
                 }
             }
         }
-        self.publish();
         Ok(Reply::Done)
     }
 
@@ -794,7 +784,6 @@ impl Axis {
                 self.act_pos += delta;
             }
         }
-        self.publish();
         Ok(Reply::Done)
     }
 
@@ -826,10 +815,7 @@ impl Axis {
         lenient: bool,
     ) -> Result<Reply, EngineError> {
         match self.try_set_parameter(id, value, lenient) {
-            Ok(()) => {
-                self.publish();
-                Ok(Reply::Done)
-            }
+            Ok(()) => Ok(Reply::Done),
             Err(e) => self.refuse(e),
         }
     }
@@ -897,12 +883,13 @@ impl Axis {
             }
             ParamId::Rollover => {
                 apply_rollover(&mut self.params, value);
+                self.setup = Setup::from_params(&self.params);
                 return Ok(());
             }
             _ => {}
         }
         self.params.set_unchecked(id, value);
-        self.wiring = Wiring::from_params(&self.params);
+        self.setup = Setup::from_params(&self.params);
         if corrected {
             // HMC §3.5.1: the corrected write latches AxisStatus bit 2.
             self.latched |= AxisFlags::PARAMETER_ERROR;
@@ -956,7 +943,7 @@ impl Axis {
     }
 
     pub(crate) fn get_parameter(&self, id: ParamId) -> f64 {
-        let s = &self.status;
+        let s = &self.status();
         match id {
             ParamId::CurrentCommand => s.current_command.map_or(0, |c| c.kind.code()) as f64,
             ParamId::NextCommand => s.next_command.map_or(0, |c| c.kind.code()) as f64,
@@ -1065,7 +1052,7 @@ impl Axis {
         tick: u64,
         spec: &HomingSpec,
     ) -> Result<Homing, EngineError> {
-        let w = self.wiring;
+        let w = self.setup;
         let hardware = HomingHardware {
             limit_pos: w.limit_pos.exists(self.switches.has_limit_pos()),
             limit_neg: w.limit_neg.exists(self.switches.has_limit_neg()),

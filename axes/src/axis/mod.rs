@@ -13,8 +13,8 @@
 
 mod commands;
 pub mod fifo;
+mod setup;
 mod supervision;
-mod wiring;
 
 use crate::command::{
     AxisIndex, CommandId, CommandKind, CommandState, Direction, ErrorKind, Setpoint, StopMode,
@@ -34,7 +34,7 @@ use crate::status::{AxisFlags, AxisState, AxisStatus, CommandRef};
 
 pub(crate) use commands::MotionRequest;
 pub use fifo::{Action, Fifo, Ledger, Overrides, Queued};
-use wiring::Wiring;
+use setup::Setup;
 
 /// What the engine lends an axis for one tick or one command.
 pub(crate) struct Context<'a> {
@@ -53,10 +53,12 @@ enum Source {
     /// Standing at `raw.p`.
     Hold,
     /// A planned profile: `raw` at tick n = `profile.sample((n − origin)·period)` + `shift`.
+    /// `segment` remembers where the last sample was, so each tick's search is O(1).
     Profile {
         profile: Profile,
         origin: u64,
         shift: f64,
+        segment: usize,
     },
     /// Cyclic setpoints from a master (CiA 402 CSP/CSV/CST, HMC_SetDposVal).
     External(Setpoint),
@@ -135,7 +137,8 @@ struct Inputs {
 pub struct Axis {
     index: AxisIndex,
     name: String,
-    params: ParamSet,
+    /// The full table, out of line: the tick reads `setup`.
+    params: Box<ParamSet>,
     class: AxisClass,
     period: f64,
 
@@ -150,7 +153,7 @@ pub struct Axis {
     /// Motor position of a virtual axis (no plant).
     virtual_motor: f64,
     forces: Forces,
-    wiring: Wiring,
+    setup: Setup,
     injected_fe: f64,
 
     // Frames.
@@ -196,7 +199,6 @@ pub struct Axis {
     last_error: Option<ErrorKind>,
     homing_phase: u8,
     target_pos: f64,
-    status: AxisStatus,
 }
 
 impl Axis {
@@ -236,7 +238,7 @@ impl Axis {
             home_active_low: sw.home.as_ref().is_some_and(|s| s.active_low),
             virtual_motor: 0.0,
             forces: Forces::default(),
-            wiring: Wiring::from_params(&params),
+            setup: Setup::from_params(&params),
             injected_fe: 0.0,
             cmd_offset: 0.0,
             act_offset: 0.0,
@@ -267,14 +269,12 @@ impl Axis {
             last_error: None,
             homing_phase: 0,
             target_pos: 0.0,
-            status: AxisStatus::default(),
-            params,
+            params: Box::new(params),
         };
         if let Some(f) = axis.smoothing.as_mut() {
             f.reset(0.0);
         }
         axis.refresh_inputs(0.0, 0.0, &[], EncoderTick::default());
-        axis.publish();
         axis
     }
 
@@ -286,8 +286,12 @@ impl Axis {
         &self.name
     }
 
-    pub fn status(&self) -> &AxisStatus {
-        &self.status
+    /// The live flags a general input can be wired to (cheaper than the whole status).
+    pub(crate) fn signal_flags(&self) -> AxisFlags {
+        let mut f = self.flags;
+        f.put(AxisFlags::HOME_SWITCH, self.inputs.home);
+        f.put(AxisFlags::INDEX, self.inputs.index);
+        f
     }
 
     pub fn params(&self) -> &ParamSet {
@@ -326,7 +330,7 @@ impl Axis {
     }
 
     fn finite_travel(&self) -> bool {
-        self.param(ParamId::RepMode) == 0.0
+        self.setup.cyclic.is_none()
     }
 
     // ------------------------------------------------------------------ per tick
@@ -374,15 +378,15 @@ impl Axis {
         // 8. Command progress.
         self.progress(ctx);
 
-        // 9. Status.
+        // 9. In-position timing. The status record itself is assembled when someone reads it
+        // (`status`): a snapshot, a drive, a dialect — not by every axis every tick.
         self.update_in_position();
-        self.publish();
     }
 
     /// Sample the command source for this tick.
     fn advance_source(&mut self, tick: u64) {
         let dt = self.period;
-        match &self.source {
+        match &mut self.source {
             Source::Hold => {
                 self.raw.v = 0.0;
                 self.raw.a = 0.0;
@@ -392,9 +396,10 @@ impl Axis {
                 profile,
                 origin,
                 shift,
+                segment,
             } => {
                 let t = tick.saturating_sub(*origin) as f64 * dt;
-                let s = profile.sample(t);
+                let s = profile.sample_from(t, segment);
                 self.raw = MotionState {
                     p: s.p + *shift,
                     v: s.v,
@@ -532,7 +537,7 @@ impl Axis {
             home_edge,
         } = self.switches.update(from, to);
         let f = self.forces;
-        let w = self.wiring;
+        let w = self.setup;
         // Forcing sets the switch's actuation, which then goes through the same wiring.
         let lp_level = f.limit_pos.unwrap_or(lp) ^ self.limit_pos_active_low;
         let ln_level = f.limit_neg.unwrap_or(ln) ^ self.limit_neg_active_low;
@@ -671,6 +676,7 @@ impl Axis {
             profile,
             origin: tick,
             shift: 0.0,
+            segment: 0,
         };
         Ok(())
     }
@@ -713,6 +719,7 @@ impl Axis {
                     profile,
                     origin: tick,
                     shift: 0.0,
+                    segment: 0,
                 },
                 // Limits come from validated parameters; if planning still fails, stop dead rather
                 // than leave the axis without a setpoint (Reflexxes-style fallback).
@@ -776,13 +783,9 @@ impl Axis {
 
     // ------------------------------------------------------------------ status
 
+    /// The commanded position is changing (HIMC IsMoving: "PG still outputting new positions").
     fn moving(&self) -> bool {
-        self.cmd.v != 0.0
-            || match &self.source {
-                Source::Hold => false,
-                Source::Profile { profile, .. } => profile.duration() > 0.0,
-                Source::External(_) => true,
-            } && !self.source_at_rest()
+        self.cmd.v != 0.0 || self.raw.v != 0.0 || self.raw.a != 0.0
     }
 
     fn source_at_rest(&self) -> bool {
@@ -791,7 +794,7 @@ impl Axis {
 
     fn update_in_position(&mut self) {
         let fe = (self.cmd.p - self.act_pos).abs();
-        if fe <= self.param(ParamId::InPositionWindow) {
+        if fe <= self.setup.in_position_window {
             self.in_window_for += self.period;
         } else {
             self.in_window_for = 0.0;
@@ -820,47 +823,53 @@ impl Axis {
     /// Wrap a user-frame position into the cyclic range (HMC §2.3 RepMode).
     #[inline]
     fn wrap(&self, p: f64) -> f64 {
-        match self.wiring.cyclic {
+        match self.setup.cyclic {
             Some(c) => c.wrap(p),
             None => p,
         }
     }
 
-    pub(crate) fn publish(&mut self) {
-        let mut flags = self.flags;
-        flags.put(AxisFlags::ENABLED, self.enabled);
+    /// Everything a front-end may want to know about the axis, as of the last tick.
+    pub fn status(&self) -> AxisStatus {
+        let mut status = AxisStatus::default();
+        self.status_into(&mut status);
+        status
+    }
+
+    /// [`Axis::status`] written in place (snapshots refresh their records every tick).
+    pub fn status_into(&self, out: &mut AxisStatus) {
         let moving = self.moving();
+        let (running, current) = match &self.activity {
+            Activity::Running(r) => (
+                true,
+                Some(CommandRef {
+                    id: r.id,
+                    kind: r.kind,
+                }),
+            ),
+            Activity::Streaming => (true, None),
+            _ => (false, None),
+        };
+        let in_position = self.enabled
+            && (!running || self.halted)
+            && !moving
+            && self.in_window_for >= self.params.get(ParamId::InPositionTime);
+        let mut flags = self.flags | self.latched;
+        flags.put(AxisFlags::ENABLED, self.enabled);
         flags.put(AxisFlags::MOVING, moving);
-        let running_done =
-            !matches!(self.activity, Activity::Running(_) | Activity::Streaming) || self.halted;
-        flags.put(
-            AxisFlags::IN_POSITION,
-            self.enabled
-                && running_done
-                && !moving
-                && self.in_window_for >= self.param(ParamId::InPositionTime),
-        );
+        flags.put(AxisFlags::IN_POSITION, in_position);
         flags.put(AxisFlags::HOME_SWITCH, self.inputs.home);
         flags.put(AxisFlags::INDEX, self.inputs.index);
         flags.put(AxisFlags::HALTED, self.halted);
         flags.put(AxisFlags::QUEUE_FULL, self.fifo.is_full());
-        flags.put(
-            AxisFlags::ACCELERATING,
-            self.cmd.v * self.cmd.a > 0.0 && moving,
-        );
-        flags |= self.latched;
-        let current = match &self.activity {
-            Activity::Running(r) => Some(CommandRef {
-                id: r.id,
-                kind: r.kind,
-            }),
-            _ => None,
-        };
-        let next_index = usize::from(current.is_some());
-        let next = self.fifo.get(next_index).map(|q| CommandRef {
-            id: q.id,
-            kind: q.kind,
-        });
+        flags.put(AxisFlags::ACCELERATING, self.cmd.v * self.cmd.a > 0.0);
+        let next = self
+            .fifo
+            .get(usize::from(current.is_some()))
+            .map(|q| CommandRef {
+                id: q.id,
+                kind: q.kind,
+            });
         let (pulses, last, freq, dir) = if self.class == AxisClass::Stepper {
             (
                 self.pulse.count(),
@@ -871,9 +880,15 @@ impl Axis {
         } else {
             (0, 0, 0.0, self.direction >= 0.0)
         };
-        let cmd_pos = self.wrap(self.cmd.p);
-        let act_pos = self.wrap(self.act_pos);
-        self.status = AxisStatus {
+        let (cmd_pos, act_pos, target_pos) = match self.setup.cyclic {
+            None => (self.cmd.p, self.act_pos, self.target_pos),
+            Some(c) => (
+                c.wrap(self.cmd.p),
+                c.wrap(self.act_pos),
+                c.wrap(self.target_pos),
+            ),
+        };
+        *out = AxisStatus {
             state: self.state(),
             flags,
             latched: self.latched,
@@ -883,7 +898,7 @@ impl Axis {
             act_pos,
             act_vel: self.act_vel,
             following_error: self.cmd.p - self.act_pos,
-            target_pos: self.wrap(self.target_pos),
+            target_pos,
             pulses,
             pulses_last_tick: last,
             pulse_frequency: freq,
@@ -993,7 +1008,7 @@ impl std::fmt::Debug for Axis {
         f.debug_struct("Axis")
             .field("index", &self.index)
             .field("name", &self.name)
-            .field("status", &self.status)
+            .field("status", &self.status())
             .finish_non_exhaustive()
     }
 }

@@ -2,7 +2,7 @@
 //! mask) and command progress (completion, stop ramps, the next command).
 
 use super::{
-    status_word, unbinding_velocity, wiring::Route, Activity, Axis, Context, Goal1, Ramp, Source,
+    setup::Route, status_word, unbinding_velocity, Activity, Axis, Context, Goal1, Ramp, Source,
 };
 use crate::command::{CommandState, Direction, ErrorKind, StopMode};
 use crate::homing::{HomingInputs, MotionRequest};
@@ -26,7 +26,7 @@ impl Axis {
 
     fn supervise_limits(&mut self, ctx: &mut Context, homing: bool, live: &mut AxisFlags) {
         let finite = self.finite_travel();
-        let ignore_hw = self.flag(ParamId::IgnoreHwLimits);
+        let ignore_hw = self.setup.ignore_hw_limits;
         // Hard limits (HMC LimitState bits 0/1, NMC LMTP/LMTN, HIMC IsHWRL/IsHWLL).
         let (lp, ln) = if finite {
             (self.inputs.limit_pos, self.inputs.limit_neg)
@@ -35,7 +35,7 @@ impl Axis {
         };
         live.put(AxisFlags::HW_LIMIT_POS, lp);
         live.put(AxisFlags::HW_LIMIT_NEG, ln);
-        if self.flag(ParamId::LimitLatch) {
+        if self.setup.limit_latch {
             // NMC: the flag stays until NMC_MtClrError after the input clears.
             if lp {
                 self.latched |= AxisFlags::HW_LIMIT_POS;
@@ -45,8 +45,10 @@ impl Axis {
             }
         }
         // Soft limits on the commanded position (HMC §3.3.5: Dpos ≥ FSLimit).
-        let (fs, rs) = (self.param(ParamId::FsLimit), self.param(ParamId::RsLimit));
-        let soft_on = finite && !self.flag(ParamId::IgnoreSwLimits) && !homing;
+        let (soft_on, (fs, rs)) = match self.setup.soft_limits {
+            Some(limits) => (finite && !homing, limits),
+            None => (false, (0.0, 0.0)),
+        };
         let bad_config = soft_on && fs <= rs;
         live.put(AxisFlags::SW_LIMIT_CONFIG, bad_config);
         let (sp, sn) = if soft_on && !bad_config {
@@ -94,13 +96,13 @@ impl Axis {
     /// HMC §3.3.3: one tick over FELimit sets the warning, `fe_fault_cycles` consecutive ticks
     /// latch the fault; the warning clears after `fe_warning_clear_cycles` good ticks.
     fn supervise_following_error(&mut self, ctx: &mut Context, live: &mut AxisFlags) {
-        let limit = self.param(ParamId::FeLimit);
+        let limit = self.setup.fe_limit;
         let fe = (self.cmd.p - self.act_pos).abs();
         if self.enabled && limit > 0.0 && fe > limit {
             self.fe_over = self.fe_over.saturating_add(1);
             self.fe_ok = 0;
             *live |= AxisFlags::FE_WARNING;
-            if self.fe_over as f64 >= self.param(ParamId::FeFaultCycles)
+            if self.fe_over >= self.setup.fe_fault_cycles
                 && !self.latched.contains(AxisFlags::FE_FAULT)
             {
                 self.latched |= AxisFlags::FE_FAULT;
@@ -116,7 +118,7 @@ impl Axis {
         } else {
             self.fe_over = 0;
             self.fe_ok = self.fe_ok.saturating_add(1);
-            if self.fe_ok as f64 >= self.param(ParamId::FeWarningClearCycles) {
+            if self.fe_ok >= self.setup.fe_warning_clear_cycles {
                 live.remove(AxisFlags::FE_WARNING);
             }
         }
@@ -139,7 +141,7 @@ impl Axis {
         // HMC §3.3.4: AxisStatus & AxisErrMask ≠ 0 switches the drive off.
         if self.enabled {
             let word = status_word(*live | self.latched);
-            let mask = self.param(ParamId::AxisErrMask) as u32;
+            let mask = self.setup.axis_err_mask;
             let hit = word & mask;
             if hit != 0 {
                 let mut causes = AxisFlags::empty();
@@ -336,6 +338,7 @@ impl Axis {
                 profile,
                 origin: tick,
                 shift: 0.0,
+                segment: 0,
             },
             // The homing machine validated its speeds; should planning still fail, stand still.
             Err(_) => Source::Hold,
@@ -357,7 +360,7 @@ impl Axis {
     pub(super) fn homing_inputs(&self, tick: u64) -> HomingInputs {
         let motion_done = self.source_done(tick);
         let i = &self.inputs;
-        let (w, f) = (&self.wiring, &self.forces);
+        let (w, f) = (&self.setup, &self.forces);
         // Exact edges exist only for the axis's own, unforced switches (a capture latch); they
         // come in the physical frame.
         let offset = self.act_offset;

@@ -66,7 +66,7 @@ impl Encoder {
 
     fn index_at_or_below(&self, count: i64) -> i64 {
         if self.counts_per_rev > 0 {
-            // In i128: a saturated counter must not overflow the arithmetic.
+            // In i128: an extreme counter must not overflow the arithmetic.
             let (c, o, r) = (
                 i128::from(count),
                 i128::from(self.index_offset),
@@ -91,12 +91,11 @@ impl Encoder {
     }
 
     fn counts_at(&self, position: f64) -> i64 {
-        super::round_to_i64((position - self.origin) * self.counts_per_unit)
-            .saturating_add(self.base)
+        super::round_to_i64((position - self.origin) * self.counts_per_unit).wrapping_add(self.base)
     }
 
     fn position_of(&self, counts: i64) -> f64 {
-        counts.saturating_sub(self.base) as f64 / self.counts_per_unit + self.origin
+        counts.wrapping_sub(self.base) as f64 / self.counts_per_unit + self.origin
     }
 
     /// Follow the motor to `position` (physical, user units).
@@ -111,7 +110,7 @@ impl Encoder {
             // travel, whatever the speed.
             let below = self.index_below;
             if self.raw > previous {
-                let next = below.saturating_add(cpr);
+                let next = below.wrapping_add(cpr);
                 if self.raw >= next {
                     tick.index_at = Some(self.position_of(next));
                 }
@@ -119,37 +118,35 @@ impl Encoder {
                 tick.index_at = Some(self.position_of(below));
             } else if below == previous {
                 // Starting on an index count, moving down first crosses the one before it.
-                let prior = below.saturating_sub(cpr);
+                let prior = below.wrapping_sub(cpr);
                 if self.raw <= prior {
                     tick.index_at = Some(self.position_of(prior));
                 }
             }
             // Keep `index_below` the index count at or below `raw`: one revolution on is the
             // common case; anything farther is recomputed.
-            if self.raw >= below.saturating_add(cpr) {
-                self.index_below = if self.raw < below.saturating_add(2 * cpr) {
-                    below.saturating_add(cpr)
+            if self.raw >= below.wrapping_add(cpr) {
+                self.index_below = if self.raw < below.wrapping_add(2 * cpr) {
+                    below.wrapping_add(cpr)
                 } else {
                     self.index_at_or_below(self.raw)
                 };
             } else if self.raw < below {
-                self.index_below = if self.raw >= below.saturating_sub(cpr) {
-                    below.saturating_sub(cpr)
+                self.index_below = if self.raw >= below.wrapping_sub(cpr) {
+                    below.wrapping_sub(cpr)
                 } else {
                     self.index_at_or_below(self.raw)
                 };
             }
         }
         if self.lost {
-            self.missed = self
-                .missed
-                .saturating_add(self.raw.saturating_sub(previous));
+            self.missed = self.missed.wrapping_add(self.raw.wrapping_sub(previous));
         } else {
-            self.counts = self.raw.saturating_sub(self.missed);
+            self.counts = self.raw.wrapping_sub(self.missed);
             if self.noise > 0.0 {
                 self.counts = self
                     .counts
-                    .saturating_add(super::round_to_i64(self.noise * self.rng.next_signed()));
+                    .wrapping_add(super::round_to_i64(self.noise * self.rng.next_signed()));
             }
         }
         tick
@@ -167,7 +164,7 @@ impl Encoder {
 
     /// Index (Z) level: high for `index_width` counts once per revolution.
     pub fn index(&self) -> bool {
-        self.counts_per_rev > 0 && self.raw.saturating_sub(self.index_below) < self.index_width
+        self.counts_per_rev > 0 && self.raw.wrapping_sub(self.index_below) < self.index_width
     }
 
     /// A/B levels: bit 0 = A, bit 1 = B; counting up steps 00 → 01 → 11 → 10 (A leads B).

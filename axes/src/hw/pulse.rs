@@ -1,4 +1,5 @@
-//! Pulse/direction output (ARCHITECTURE §3.2): commanded motion → integer pulses.
+//! Pulse/direction output (ARCHITECTURE §3.2): commanded motion → integer pulses. Counter
+//! arithmetic wraps, as in the encoder.
 //!
 //! The counter tracks `round(position × pulses_per_unit)`, so the fraction of a pulse is carried
 //! implicitly and never drifts. A command faster than `max_frequency` is clamped; the pulses owed
@@ -56,11 +57,11 @@ impl PulseOutput {
     pub fn update(&mut self, position: f64) -> i32 {
         // `as` saturates, so an absurd position gives a huge but finite target, never UB.
         let target = super::round_to_i64((position - self.origin) * self.pulses_per_unit);
-        let target = target.saturating_add(self.base);
+        let target = target.wrapping_add(self.base);
         let emit = target
-            .saturating_sub(self.count)
+            .wrapping_sub(self.count)
             .clamp(-self.max_per_tick, self.max_per_tick);
-        self.count = self.count.saturating_add(emit);
+        self.count = self.count.wrapping_add(emit);
         self.last = emit.clamp(i32::MIN as i64, i32::MAX as i64) as i32;
         if emit != 0 {
             self.direction = emit > 0;
@@ -70,7 +71,7 @@ impl PulseOutput {
 
     /// The physical position the emitted pulses stand for.
     pub fn position(&self) -> f64 {
-        self.count.saturating_sub(self.base) as f64 / self.pulses_per_unit + self.origin
+        self.count.wrapping_sub(self.base) as f64 / self.pulses_per_unit + self.origin
     }
 
     pub fn count(&self) -> i64 {
@@ -94,7 +95,7 @@ impl PulseOutput {
     /// Pulses commanded but not yet emitted because of the frequency clamp.
     pub fn owed(&self, position: f64) -> i64 {
         let target = super::round_to_i64((position - self.origin) * self.pulses_per_unit);
-        target.saturating_add(self.base).saturating_sub(self.count)
+        target.wrapping_add(self.base).wrapping_sub(self.count)
     }
 }
 

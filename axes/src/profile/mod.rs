@@ -318,6 +318,35 @@ impl Profile {
         }
     }
 
+    /// `sample(t)` for a caller that samples at increasing times, as the servo loop does: the
+    /// segment search resumes at `*segment` (from the previous call) instead of the first
+    /// segment, and leaves the segment it found there. Any `*segment` value is safe; a time
+    /// earlier than the hinted segment restarts the search.
+    #[inline]
+    pub fn sample_from(&self, t: f64, segment: &mut usize) -> Sample {
+        let t = if t > 0.0 { t } else { 0.0 };
+        if t >= self.duration {
+            return self.after(t);
+        }
+        let mut i = (*segment).min(MAX_SEGMENTS - 1);
+        if self.starts[i] > t {
+            i = 0;
+        }
+        // Unused slots start at +∞, so this stops at the last segment.
+        while i + 1 < MAX_SEGMENTS && self.starts[i + 1] <= t {
+            i += 1;
+        }
+        *segment = i;
+        let (t0, s) = (self.starts[i], &self.states[i]);
+        let dt = t - t0;
+        Sample {
+            p: s.p + dt * (s.v + dt * (0.5 * s.a + dt * s.j * (1.0 / 6.0))),
+            v: s.v + dt * (s.a + 0.5 * dt * s.j),
+            a: s.a + dt * s.j,
+            j: s.j,
+        }
+    }
+
     #[inline]
     fn after(&self, t: f64) -> Sample {
         let p = if self.end_v == 0.0 {

@@ -1001,3 +1001,39 @@ fn moving_average_is_exact_after_a_long_run() {
     assert_eq!(filter.next(last), last);
     assert!(filter.is_settled());
 }
+
+#[test]
+fn sample_from_matches_sample_bit_for_bit() {
+    let limits = Limits {
+        velocity: 3.0,
+        acceleration: 7.0,
+        deceleration: 5.0,
+        jerk: 40.0,
+    };
+    let start = MotionState {
+        p: -1.0,
+        v: 2.5,
+        a: -3.0,
+    };
+    for target in [-20.0, -0.5, 0.0, 0.7, 12.0] {
+        let goal = Goal::Position {
+            target,
+            end_velocity: 0.0,
+        };
+        let profile = Profile::plan(start, goal, &limits, &Options::default()).unwrap();
+        let mut hint = 0;
+        let n = 5000;
+        for k in 0..=n {
+            let t = profile.duration() * 1.1 * k as f64 / n as f64;
+            assert_eq!(
+                profile.sample_from(t, &mut hint),
+                profile.sample(t),
+                "t = {t}"
+            );
+        }
+        // A stale or absurd hint, and time going backwards, are still right.
+        for (t, mut h) in [(0.0, 12), (profile.duration() / 3.0, 99), (0.01, 5)] {
+            assert_eq!(profile.sample_from(t, &mut h), profile.sample(t));
+        }
+    }
+}

@@ -169,7 +169,7 @@ pub fn run_until(
     let n = (max_seconds / e.period()).round() as u64;
     for k in 1..=n {
         e.step();
-        if cond(e.axis_status(0).expect("axis 0")) {
+        if cond(&e.axis_status(0).expect("axis 0")) {
             return Some(k);
         }
     }
@@ -182,13 +182,13 @@ pub fn record(e: &mut Engine, seconds: f64) -> Vec<axes::AxisStatus> {
     let mut out = Vec::with_capacity(n);
     for _ in 0..n {
         e.step();
-        out.push(*e.axis_status(0).expect("axis 0"));
+        out.push(e.axis_status(0).expect("axis 0"));
     }
     out
 }
 
 pub fn status(e: &Engine) -> axes::AxisStatus {
-    *e.axis_status(0).expect("axis 0")
+    e.axis_status(0).expect("axis 0")
 }
 
 pub fn snapshot(e: &Engine) -> Snapshot {

@@ -1,6 +1,8 @@
-//! How the axis's logical inputs are wired: which physical input each one reads and whether the
-//! controller inverts it (HMC_HwLimitConfig, NMC_MtSetLmtCfg, CPU 226H SIGNAL_TYPE). Derived from
-//! the parameters when they change, so the per-tick path only follows it.
+//! The per-tick view of an axis's parameters: how its inputs are wired (which physical input each
+//! logical input reads and whether the controller inverts it: HMC_HwLimitConfig,
+//! NMC_MtSetLmtCfg, CPU 226H SIGNAL_TYPE), its travel (finite or cyclic), and the thresholds
+//! supervision checks every tick. Derived from the parameters when one changes, and compact, so
+//! the tick reads one or two cache lines instead of a dozen scattered parameters.
 
 use crate::param::{ParamId, ParamSet, DEDICATED_INPUT};
 
@@ -47,7 +49,7 @@ impl Route {
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) struct Wiring {
+pub(super) struct Setup {
     pub limit_pos: Route,
     pub limit_neg: Route,
     pub home: Route,
@@ -59,8 +61,18 @@ pub(super) struct Wiring {
     pub alarm_enabled: bool,
     pub alarm_invert: bool,
     /// Cyclic range of a rotary axis (HMC RepMode 1/2): positions wrap into
-    /// `[low, low + length)`. `None` for finite travel.
+    /// `[low, low + length)`. `None` for finite travel, where limits apply.
     pub cyclic: Option<Cyclic>,
+    pub ignore_hw_limits: bool,
+    pub limit_latch: bool,
+    /// Positive and negative soft limits, `None` while ignored.
+    pub soft_limits: Option<(f64, f64)>,
+    /// 0 disables the following-error check.
+    pub fe_limit: f64,
+    pub fe_fault_cycles: u32,
+    pub fe_warning_clear_cycles: u32,
+    pub axis_err_mask: u32,
+    pub in_position_window: f64,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -76,10 +88,10 @@ impl Cyclic {
     }
 }
 
-impl Wiring {
-    pub(super) fn from_params(p: &ParamSet) -> Wiring {
+impl Setup {
+    pub(super) fn from_params(p: &ParamSet) -> Setup {
         let hold = p.get(ParamId::HoldIn);
-        Wiring {
+        Setup {
             limit_pos: Route::from_param(p.get(ParamId::FhLimitIn)),
             limit_neg: Route::from_param(p.get(ParamId::RhLimitIn)),
             home: Route::from_param(p.get(ParamId::HomeIn)),
@@ -103,6 +115,15 @@ impl Wiring {
                     _ => None,
                 }
             },
+            ignore_hw_limits: p.flag(ParamId::IgnoreHwLimits),
+            limit_latch: p.flag(ParamId::LimitLatch),
+            soft_limits: (!p.flag(ParamId::IgnoreSwLimits))
+                .then(|| (p.get(ParamId::FsLimit), p.get(ParamId::RsLimit))),
+            fe_limit: p.get(ParamId::FeLimit),
+            fe_fault_cycles: p.get(ParamId::FeFaultCycles) as u32,
+            fe_warning_clear_cycles: p.get(ParamId::FeWarningClearCycles) as u32,
+            axis_err_mask: p.get(ParamId::AxisErrMask) as u32,
+            in_position_window: p.get(ParamId::InPositionWindow),
         }
     }
 }
