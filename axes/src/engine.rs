@@ -23,6 +23,56 @@ struct Io {
     bindings: Vec<InputBinding>,
 }
 
+/// One channel of an I/O image, or the error that names the image and its size.
+fn channel<'a, T>(
+    values: &'a mut [T],
+    channel: u16,
+    kind: &'static str,
+) -> Result<&'a mut T, EngineError> {
+    let count = values.len() as u16;
+    values
+        .get_mut(channel as usize)
+        .ok_or(EngineError::InvalidChannel {
+            kind,
+            channel,
+            count,
+        })
+}
+
+impl Io {
+    /// Force a digital input, or release it (`None`). A forced level shows at once; a released
+    /// unwired input reads low (a bound one follows its signal from the next tick).
+    fn force_digital_input(&mut self, ch: u16, value: Option<bool>) -> Result<(), EngineError> {
+        *channel(&mut self.di_forced, ch, "digital inputs")? = value;
+        *channel(&mut self.image.di, ch, "digital inputs")? = value.unwrap_or(false);
+        self.version += 1;
+        Ok(())
+    }
+
+    fn force_analog_input(&mut self, ch: u16, value: Option<f64>) -> Result<(), EngineError> {
+        if let Some(v) = value {
+            crate::command::finite("value", v)?;
+        }
+        *channel(&mut self.ai_forced, ch, "analog inputs")? = value;
+        *channel(&mut self.image.ai, ch, "analog inputs")? = value.unwrap_or(0.0);
+        self.version += 1;
+        Ok(())
+    }
+
+    fn write_digital_output(&mut self, ch: u16, value: bool) -> Result<(), EngineError> {
+        *channel(&mut self.image.do_, ch, "digital outputs")? = value;
+        self.version += 1;
+        Ok(())
+    }
+
+    fn write_analog_output(&mut self, ch: u16, value: f64) -> Result<(), EngineError> {
+        crate::command::finite("value", value)?;
+        *channel(&mut self.image.ao, ch, "analog outputs")? = value;
+        self.version += 1;
+        Ok(())
+    }
+}
+
 /// A CiA 402 drive on the engine's fieldbus.
 #[derive(Debug)]
 struct Slave {
@@ -350,72 +400,16 @@ impl Engine {
                 axis_mut(axes, axis)?.setpoint(&mut ctx, setpoint)
             }
             Command::ForceDigitalInput { channel, value } => {
-                let slot =
-                    io.di_forced
-                        .get_mut(channel as usize)
-                        .ok_or(EngineError::InvalidChannel {
-                            kind: "digital inputs",
-                            channel,
-                            count: io.image.di.len() as u16,
-                        })?;
-                *slot = value;
-                io.version += 1;
-                // A forced level shows at once; a released unwired input reads low (a bound
-                // one follows its signal from the next tick).
-                if let Some(di) = io.image.di.get_mut(channel as usize) {
-                    *di = value.unwrap_or(false);
-                }
-                Ok(Reply::Done)
+                io.force_digital_input(channel, value).map(|()| Reply::Done)
             }
             Command::ForceAnalogInput { channel, value } => {
-                if let Some(v) = value {
-                    crate::command::finite("value", v)?;
-                }
-                let slot =
-                    io.ai_forced
-                        .get_mut(channel as usize)
-                        .ok_or(EngineError::InvalidChannel {
-                            kind: "analog inputs",
-                            channel,
-                            count: io.image.ai.len() as u16,
-                        })?;
-                *slot = value;
-                io.version += 1;
-                if let Some(ai) = io.image.ai.get_mut(channel as usize) {
-                    *ai = value.unwrap_or(0.0);
-                }
-                Ok(Reply::Done)
+                io.force_analog_input(channel, value).map(|()| Reply::Done)
             }
-            Command::WriteDigitalOutput { channel, value } => {
-                let count = io.image.do_.len() as u16;
-                let slot =
-                    io.image
-                        .do_
-                        .get_mut(channel as usize)
-                        .ok_or(EngineError::InvalidChannel {
-                            kind: "digital outputs",
-                            channel,
-                            count,
-                        })?;
-                *slot = value;
-                io.version += 1;
-                Ok(Reply::Done)
-            }
+            Command::WriteDigitalOutput { channel, value } => io
+                .write_digital_output(channel, value)
+                .map(|()| Reply::Done),
             Command::WriteAnalogOutput { channel, value } => {
-                crate::command::finite("value", value)?;
-                let count = io.image.ao.len() as u16;
-                let slot =
-                    io.image
-                        .ao
-                        .get_mut(channel as usize)
-                        .ok_or(EngineError::InvalidChannel {
-                            kind: "analog outputs",
-                            channel,
-                            count,
-                        })?;
-                *slot = value;
-                io.version += 1;
-                Ok(Reply::Done)
+                io.write_analog_output(channel, value).map(|()| Reply::Done)
             }
             Command::ReadObject {
                 slave,

@@ -613,8 +613,7 @@ impl Axis {
         let jerk = match o.jerk {
             Some(j) if j > 0.0 => j,
             Some(_) => f64::INFINITY,
-            None if p.flag(ParamId::JerkMode) => p.get(ParamId::Jerk),
-            None => f64::INFINITY,
+            None => self.profile_jerk(),
         };
         Limits {
             velocity,
@@ -695,17 +694,23 @@ impl Axis {
         v.signum() * m
     }
 
+    /// The jerk limit of the axis's own profiles: `jerk` in S-curve mode, none (trapezoid)
+    /// otherwise (HMC JerkMode).
+    fn profile_jerk(&self) -> f64 {
+        if self.flag(ParamId::JerkMode) {
+            self.param(ParamId::Jerk)
+        } else {
+            f64::INFINITY
+        }
+    }
+
     /// Plan a ramp to rest with deceleration `decel`.
     fn plan_stop(&mut self, tick: u64, decel: f64) {
         if self.raw.v == 0.0 && self.raw.a == 0.0 {
             self.source = Source::Hold;
             return;
         }
-        let jerk = if self.flag(ParamId::JerkMode) {
-            self.param(ParamId::Jerk)
-        } else {
-            f64::INFINITY
-        };
+        let jerk = self.profile_jerk();
         let limits = Limits {
             velocity: unbinding_velocity(0.0, self.raw.v),
             acceleration: decel,

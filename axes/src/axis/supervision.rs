@@ -289,11 +289,7 @@ impl Axis {
 
     /// Homing motion uses its own speeds and acceleration, not the axis profile parameters.
     fn execute_homing_motion(&mut self, tick: u64, request: MotionRequest) {
-        let jerk = if self.flag(ParamId::JerkMode) {
-            self.param(ParamId::Jerk)
-        } else {
-            f64::INFINITY
-        };
+        let jerk = self.profile_jerk();
         let current = self.raw.v;
         let limits = |velocity: f64, acceleration: f64| Limits {
             velocity: unbinding_velocity(velocity, current),

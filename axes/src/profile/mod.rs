@@ -298,24 +298,7 @@ impl Profile {
     /// velocity. Times before 0 (and NaN) read as 0.
     #[inline]
     pub fn sample(&self, t: f64) -> Sample {
-        let t = if t > 0.0 { t } else { 0.0 };
-        if t >= self.duration {
-            return self.after(t);
-        }
-        let (mut t0, mut s) = (self.starts[0], &self.states[0]);
-        for (&next_t, next) in self.starts.iter().zip(&self.states).skip(1) {
-            if next_t > t {
-                break;
-            }
-            (t0, s) = (next_t, next);
-        }
-        let dt = t - t0;
-        Sample {
-            p: s.p + dt * (s.v + dt * (0.5 * s.a + dt * s.j * (1.0 / 6.0))),
-            v: s.v + dt * (s.a + 0.5 * dt * s.j),
-            a: s.a + dt * s.j,
-            j: s.j,
-        }
+        self.sample_from(t, &mut 0)
     }
 
     /// `sample(t)` for a caller that samples at increasing times, as the servo loop does: the
