@@ -56,7 +56,10 @@ pub struct AxisConfig {
     pub name: Option<String>,
     /// Slots of the command FIFO, the running command included (HMC: 64).
     pub fifo_depth: Option<u16>,
-    /// Parameter values by name or vendor alias, e.g. `speed = 100.0`, `FELimit = 5`.
+    /// Parameter values by name or vendor alias, e.g. `speed = 100.0`, `FELimit = 5`. Booleans
+    /// read as 0/1 and enumerated parameters also take their value names (`axis_type =
+    /// "stepper"`, `rep_mode = "finite"`).
+    #[serde(deserialize_with = "deserialize_params")]
     pub params: BTreeMap<ParamId, f64>,
     pub pulse: PulseConfig,
     pub encoder: EncoderConfig,
@@ -65,6 +68,52 @@ pub struct AxisConfig {
 }
 
 pub const DEFAULT_FIFO_DEPTH: u16 = 64;
+
+/// A parameter value as written in a config: a number, a boolean, or an enumerated value's name.
+#[derive(Deserialize)]
+#[serde(untagged)]
+enum ParamInput {
+    Number(f64),
+    Bool(bool),
+    Name(String),
+}
+
+fn deserialize_params<'de, D>(deserializer: D) -> Result<BTreeMap<ParamId, f64>, D::Error>
+where
+    D: serde::Deserializer<'de>,
+{
+    use serde::de::Error;
+    let raw = BTreeMap::<ParamId, ParamInput>::deserialize(deserializer)?;
+    let mut out = BTreeMap::new();
+    for (id, input) in raw {
+        let value = match input {
+            ParamInput::Number(v) => v,
+            ParamInput::Bool(b) => f64::from(u8::from(b)),
+            ParamInput::Name(name) => match id.def().kind {
+                crate::param::Kind::Enum(values) => values
+                    .iter()
+                    .find(|(_, n)| n.eq_ignore_ascii_case(&name))
+                    .map(|(code, _)| *code as f64)
+                    .ok_or_else(|| {
+                        let names: Vec<&str> = values.iter().map(|(_, n)| *n).collect();
+                        D::Error::custom(format!(
+                            "`{}` = \"{name}\": must be one of {}",
+                            id.name(),
+                            names.join(", ")
+                        ))
+                    })?,
+                _ => {
+                    return Err(D::Error::custom(format!(
+                        "`{}` = \"{name}\": must be a number",
+                        id.name()
+                    )))
+                }
+            },
+        };
+        out.insert(id, value);
+    }
+    Ok(out)
+}
 
 /// Pulse/direction output (ARCHITECTURE §3.2).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -438,6 +487,23 @@ mod tests {
         let e = c.validate().unwrap_err();
         assert_eq!(e.key, "axes[1].params.accel");
         assert!(e.reason.contains("greater than 0"), "{}", e.reason);
+    }
+
+    #[test]
+    fn params_take_booleans_and_enum_names() {
+        let c: AxisConfig = serde_json::from_str(
+            r#"{"params": {"axis_type": "stepper", "jerk_mode": true, "rep_mode": "FINITE", "speed": 5}}"#,
+        )
+        .unwrap();
+        assert_eq!(c.params[&ParamId::AxisType], 10.0);
+        assert_eq!(c.params[&ParamId::JerkMode], 1.0);
+        assert_eq!(c.params[&ParamId::RepMode], 0.0);
+        assert_eq!(c.params[&ParamId::Speed], 5.0);
+        let e = serde_json::from_str::<AxisConfig>(r#"{"params": {"axis_type": "steper"}}"#)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("must be one of unused, virtual, stepper"), "{e}");
+        assert!(serde_json::from_str::<AxisConfig>(r#"{"params": {"speed": "fast"}}"#).is_err());
     }
 
     #[test]

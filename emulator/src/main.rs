@@ -1,93 +1,136 @@
-//! `mcemu`: runs the motion engine on a machine config and serves its front-ends
-//! (ARCHITECTURE §6). The config loader, the front-ends and the control API arrive with the
-//! next issues; today `mcemu run` runs the embedded default machine on the realtime servo clock.
+//! `mcemu`: run a machine (`run`), check configs (`validate`), script it (`scenario`).
 
+use std::path::PathBuf;
 use std::process::ExitCode;
-use std::time::Duration;
 
-use axes::config::{AxisConfig, EngineConfig, HomeSwitchConfig, SwitchConfig};
-use axes::runtime::{ClockMode, Runtime, RuntimeOptions};
-use axes::{Engine, ParamId};
+use clap::{Parser, Subcommand};
+use mcemu::config::{ClockSetting, Config, DEFAULT_CONFIG_NAME};
 
-/// The embedded default machine: 4 stepper axes in mm (1000 pulses/mm, 10 000 counts/rev at
-/// 1000 counts/mm), ±500 mm travel with limit switches, a home cam at 100–120 mm, 1 ms period.
-fn default_machine() -> EngineConfig {
-    let axis = |i: usize| {
-        let mut a = AxisConfig {
-            name: Some(format!("axis{i}")),
-            ..AxisConfig::default()
-        };
-        for (p, v) in [
-            (ParamId::AxisType, 10.0),
-            (ParamId::Units, 1000.0),
-            (ParamId::RepMode, 0.0),
-            (ParamId::Speed, 100.0),
-            (ParamId::Accel, 1000.0),
-            (ParamId::Decel, 1000.0),
-            (ParamId::FastDecel, 10_000.0),
-        ] {
-            a.params.insert(p, v);
-        }
-        a.switches.limit_pos = Some(SwitchConfig {
-            position: 500.0,
-            filter: 0,
-            active_low: false,
-        });
-        a.switches.limit_neg = Some(SwitchConfig {
-            position: -500.0,
-            filter: 0,
-            active_low: false,
-        });
-        a.switches.home = Some(HomeSwitchConfig {
-            low: 100.0,
-            high: 120.0,
-            filter: 0,
-            active_low: false,
-        });
-        a
-    };
-    EngineConfig {
-        axes: (0..4).map(axis).collect(),
-        ..EngineConfig::default()
-    }
+#[derive(Parser)]
+#[command(
+    name = "mcemu",
+    version,
+    about = "A networked motion-controller emulator"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Cmd,
 }
 
-fn usage() -> ExitCode {
-    eprintln!("usage: mcemu run");
-    ExitCode::from(2)
+#[derive(Subcommand)]
+enum Cmd {
+    /// Run a machine and serve its front-ends until SIGINT/SIGTERM.
+    Run {
+        /// Machine config (TOML); without it, the embedded default machine.
+        #[arg(long)]
+        config: Option<PathBuf>,
+        /// Override the config's clock: realtime, virtual or scaled:K.
+        #[arg(long)]
+        clock: Option<ClockSetting>,
+        /// Override the servo period: seconds, or with a unit (250us, 1ms, 0.002s).
+        #[arg(long, value_parser = parse_period)]
+        period: Option<f64>,
+    },
+    /// Check config files without running them.
+    Validate {
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+    },
+    /// Run a scenario in virtual time; exits non-zero if an expectation fails.
+    Scenario {
+        file: PathBuf,
+        /// Write a CSV trace (one row per tick per axis).
+        #[arg(long)]
+        trace: Option<PathBuf>,
+    },
+}
+
+/// `0.001`, `1ms`, `250us`, `62.5us`, `0.002s`.
+fn parse_period(s: &str) -> Result<f64, String> {
+    let (number, scale) = if let Some(n) = s.strip_suffix("us") {
+        (n, 1e-6)
+    } else if let Some(n) = s.strip_suffix("ms") {
+        (n, 1e-3)
+    } else if let Some(n) = s.strip_suffix('s') {
+        (n, 1.0)
+    } else {
+        (s, 1.0)
+    };
+    number
+        .trim()
+        .parse::<f64>()
+        .map(|v| v * scale)
+        .map_err(|_| format!("`{s}` is not a period (e.g. 1ms, 250us, 0.002)"))
 }
 
 fn main() -> ExitCode {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    match args.first().map(String::as_str) {
-        Some("run") if args.len() == 1 => run(default_machine()),
-        _ => usage(),
+    tracing_subscriber::fmt()
+        .with_env_filter(
+            tracing_subscriber::EnvFilter::try_from_default_env()
+                .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new("warn")),
+        )
+        .with_writer(std::io::stderr)
+        .init();
+    let cli = Cli::parse();
+    match cli.command {
+        Cmd::Run {
+            config,
+            clock,
+            period,
+        } => {
+            let (loaded, file) = match &config {
+                Some(path) => (Config::load(path), path.display().to_string()),
+                None => (Config::default_machine(), DEFAULT_CONFIG_NAME.to_string()),
+            };
+            let mut config = match loaded {
+                Ok(c) => c,
+                Err(e) => return fail(&e),
+            };
+            if let Some(clock) = clock {
+                config.machine.clock = clock;
+            }
+            if let Some(period) = period {
+                config.machine.period = period;
+                if let Err(e) = config.check(&format!("{file} with --period")) {
+                    return fail(&e);
+                }
+            }
+            match mcemu::run::run(config, &file) {
+                Ok(()) => ExitCode::SUCCESS,
+                Err(e) => fail(&e),
+            }
+        }
+        Cmd::Validate { files } => {
+            let mut ok = true;
+            for file in files {
+                match Config::load(&file) {
+                    Ok(c) => println!(
+                        "{}: ok ({} axes, {} drives)",
+                        file.display(),
+                        c.axes.len(),
+                        c.drives.len()
+                    ),
+                    Err(e) => {
+                        eprintln!("mcemu: {e}");
+                        ok = false;
+                    }
+                }
+            }
+            if ok {
+                ExitCode::SUCCESS
+            } else {
+                ExitCode::FAILURE
+            }
+        }
+        Cmd::Scenario { file, trace } => {
+            let _ = (file, trace);
+            eprintln!("mcemu: scenarios are not built yet");
+            ExitCode::FAILURE
+        }
     }
 }
 
-fn run(config: EngineConfig) -> ExitCode {
-    let engine = match Engine::new(&config) {
-        Ok(e) => e,
-        Err(e) => {
-            eprintln!("mcemu: config: {e}");
-            return ExitCode::FAILURE;
-        }
-    };
-    let axes = engine.axis_count();
-    let period_ms = engine.period() * 1e3;
-    let (handle, _guard) =
-        match Runtime::start(engine, RuntimeOptions::with_clock(ClockMode::Realtime)) {
-            Ok(r) => r,
-            Err(e) => {
-                eprintln!("mcemu: cannot start the servo runtime: {e}");
-                return ExitCode::FAILURE;
-            }
-        };
-    println!("mcemu: {axes} axes, servo period {period_ms} ms, realtime clock");
-    println!("mcemu: no front-end listens yet (the control API and protocols are being built)");
-    while handle.is_running() {
-        std::thread::sleep(Duration::from_millis(200));
-    }
-    eprintln!("mcemu: the servo runtime stopped");
+fn fail(e: &dyn std::fmt::Display) -> ExitCode {
+    eprintln!("mcemu: {e}");
     ExitCode::FAILURE
 }

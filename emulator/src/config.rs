@@ -1,0 +1,315 @@
+//! The mcemu config file (ARCHITECTURE §6): TOML, every key known, and every error naming the
+//! file, the key path and the reason.
+//!
+//! ```toml
+//! [machine]              # name, period (s), clock, seed
+//! [[axes]]               # axes::config::AxisConfig: params, pulse, encoder, plant, switches
+//! [io]                   # I/O images and bindings
+//! [[drives]]             # CiA 402 drives bound to axes
+//! [frontends.control]    # one section per front-end: enabled, bind, its own settings
+//! ```
+
+use std::fmt;
+use std::net::SocketAddr;
+use std::path::Path;
+use std::str::FromStr;
+
+use axes::cia402::DriveConfig;
+use axes::config::{AxisConfig, EngineConfig, IoConfig, MAX_PERIOD, MIN_PERIOD};
+use axes::runtime::ClockMode;
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+/// The embedded default machine (`mcemu run` without `--config`).
+pub const DEFAULT_CONFIG: &str = include_str!("../../fixtures/default.toml");
+pub const DEFAULT_CONFIG_NAME: &str = "fixtures/default.toml (embedded)";
+
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Config {
+    #[serde(default)]
+    pub machine: MachineConfig,
+    #[serde(default)]
+    pub axes: Vec<AxisConfig>,
+    #[serde(default)]
+    pub io: IoConfig,
+    #[serde(default)]
+    pub drives: Vec<DriveConfig>,
+    #[serde(default)]
+    pub frontends: FrontendsConfig,
+}
+
+/// The machine as a whole.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct MachineConfig {
+    /// Shown in `mcemu run` and the control API.
+    pub name: String,
+    /// Servo period, seconds (62.5 µs … 10 ms).
+    pub period: f64,
+    /// `realtime`, `virtual` (advances only when asked) or `scaled:K` (K × real time).
+    pub clock: ClockSetting,
+    /// Seed of every random process (encoder noise, injected faults).
+    pub seed: u64,
+}
+
+impl Default for MachineConfig {
+    fn default() -> Self {
+        MachineConfig {
+            name: "mcemu".into(),
+            period: 1e-3,
+            clock: ClockSetting(ClockMode::Realtime),
+            seed: 0,
+        }
+    }
+}
+
+/// A clock as written in a config or on the command line: `realtime`, `virtual`, `scaled:K`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ClockSetting(pub ClockMode);
+
+impl FromStr for ClockSetting {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s {
+            "realtime" => Ok(ClockSetting(ClockMode::Realtime)),
+            "virtual" => Ok(ClockSetting(ClockMode::Virtual)),
+            _ => {
+                let k = s
+                    .strip_prefix("scaled:")
+                    .and_then(|k| k.parse::<f64>().ok())
+                    .ok_or_else(|| {
+                        format!("`{s}` is not a clock: use realtime, virtual or scaled:K")
+                    })?;
+                let (lo, hi) = (axes::runtime::MIN_SCALE, axes::runtime::MAX_SCALE);
+                if k.is_finite() && (lo..=hi).contains(&k) {
+                    Ok(ClockSetting(ClockMode::Scaled(k)))
+                } else {
+                    Err(format!("scale {k} is outside {lo} … {hi}"))
+                }
+            }
+        }
+    }
+}
+
+impl fmt::Display for ClockSetting {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.0 {
+            ClockMode::Realtime => f.write_str("realtime"),
+            ClockMode::Virtual => f.write_str("virtual"),
+            ClockMode::Scaled(k) => write!(f, "scaled:{k}"),
+        }
+    }
+}
+
+impl Serialize for ClockSetting {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_str(self)
+    }
+}
+
+impl<'de> Deserialize<'de> for ClockSetting {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let s = String::deserialize(d)?;
+        s.parse().map_err(serde::de::Error::custom)
+    }
+}
+
+/// The front-ends, one section each. The sections of front-ends later issues build are accepted
+/// with `enabled = false`, so fixtures can already carry them.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct FrontendsConfig {
+    pub control: ControlConfig,
+    pub modbus_tcp: Option<PlannedFrontend>,
+    pub modbus_rtu: Option<PlannedFrontend>,
+    pub modbus_rtu_over_tcp: Option<PlannedFrontend>,
+    pub canopen: Option<PlannedFrontend>,
+    pub socketcand: Option<PlannedFrontend>,
+    pub nmc: Option<PlannedFrontend>,
+    pub nmc_local: Option<PlannedFrontend>,
+    pub ascii_native: Option<PlannedFrontend>,
+    pub ascii_user: Option<PlannedFrontend>,
+}
+
+/// The HTTP control API (ARCHITECTURE §6).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ControlConfig {
+    pub enabled: bool,
+    /// Address to listen on; 127.0.0.1 unless you mean to expose the back door.
+    pub bind: SocketAddr,
+}
+
+impl Default for ControlConfig {
+    fn default() -> Self {
+        ControlConfig {
+            enabled: true,
+            bind: SocketAddr::from(([127, 0, 0, 1], 8700)),
+        }
+    }
+}
+
+/// A front-end section whose front-end is not built yet: it may be present, disabled.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct PlannedFrontend {
+    pub enabled: bool,
+    /// Address, device path or interface, as the front-end will take it.
+    pub bind: Option<String>,
+}
+
+/// A config that cannot run: which file, which key, why.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub struct ConfigError {
+    pub file: String,
+    /// Key path, e.g. `axes[1].params.accel`; empty for the file as a whole.
+    pub key: String,
+    pub reason: String,
+}
+
+impl fmt::Display for ConfigError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.key.is_empty() {
+            write!(f, "{}: {}", self.file, self.reason)
+        } else {
+            write!(f, "{}: {}: {}", self.file, self.key, self.reason)
+        }
+    }
+}
+
+impl Config {
+    /// Read and check a config file.
+    pub fn load(path: &Path) -> Result<Config, ConfigError> {
+        let file = path.display().to_string();
+        let text = std::fs::read_to_string(path).map_err(|e| ConfigError {
+            file: file.clone(),
+            key: String::new(),
+            reason: format!("cannot read it: {e}"),
+        })?;
+        Config::parse(&text, &file)
+    }
+
+    /// Parse and check config text; `file` names it in errors.
+    pub fn parse(text: &str, file: &str) -> Result<Config, ConfigError> {
+        let error = |key: String, reason: String| ConfigError {
+            file: file.to_string(),
+            key,
+            reason,
+        };
+        let deserializer = toml::Deserializer::parse(text)
+            .map_err(|e| error(String::new(), e.to_string().trim_end().to_string()))?;
+        let config: Config = serde_path_to_error::deserialize(deserializer).map_err(|e| {
+            let key = match e.path().to_string() {
+                p if p == "." => String::new(),
+                p => p,
+            };
+            error(key, e.inner().to_string().trim_end().to_string())
+        })?;
+        config.check(file)?;
+        Ok(config)
+    }
+
+    /// Check a config (after overrides such as `--period`); `file` names it in errors.
+    pub fn check(&self, file: &str) -> Result<(), ConfigError> {
+        self.validate().map_err(|(key, reason)| ConfigError {
+            file: file.to_string(),
+            key,
+            reason,
+        })
+    }
+
+    /// The embedded default machine.
+    pub fn default_machine() -> Result<Config, ConfigError> {
+        Config::parse(DEFAULT_CONFIG, DEFAULT_CONFIG_NAME)
+    }
+
+    /// What the engine needs of the config.
+    pub fn engine_config(&self) -> EngineConfig {
+        EngineConfig {
+            period: self.machine.period,
+            seed: self.machine.seed,
+            axes: self.axes.clone(),
+            io: self.io.clone(),
+            drives: self.drives.clone(),
+        }
+    }
+
+    /// Semantic checks; an error is (key path, reason).
+    fn validate(&self) -> Result<(), (String, String)> {
+        let period = self.machine.period;
+        if !(MIN_PERIOD..=MAX_PERIOD).contains(&period) {
+            return Err((
+                "machine.period".into(),
+                format!("{period} s is outside {MIN_PERIOD} … {MAX_PERIOD} s (62.5 µs … 10 ms)"),
+            ));
+        }
+        self.engine_config()
+            .validate()
+            .map_err(|e| (e.key, e.reason))?;
+        let f = &self.frontends;
+        for (name, section) in [
+            ("modbus_tcp", &f.modbus_tcp),
+            ("modbus_rtu", &f.modbus_rtu),
+            ("modbus_rtu_over_tcp", &f.modbus_rtu_over_tcp),
+            ("canopen", &f.canopen),
+            ("socketcand", &f.socketcand),
+            ("nmc", &f.nmc),
+            ("nmc_local", &f.nmc_local),
+            ("ascii_native", &f.ascii_native),
+            ("ascii_user", &f.ascii_user),
+        ] {
+            if section.as_ref().is_some_and(|s| s.enabled) {
+                return Err((
+                    format!("frontends.{name}.enabled"),
+                    "this front-end is not built yet; set enabled = false".into(),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_embedded_default_machine_is_valid() {
+        let c = Config::default_machine().unwrap();
+        assert_eq!(c.axes.len(), 4);
+        assert_eq!(c.machine.period, 1e-3);
+        assert!(c.frontends.control.enabled);
+    }
+
+    #[test]
+    fn errors_name_file_key_and_reason() {
+        let e = Config::parse("[machine]\nperiod = 0.5\n", "m.toml").unwrap_err();
+        assert_eq!(
+            (e.file.as_str(), e.key.as_str()),
+            ("m.toml", "machine.period")
+        );
+        let e = Config::parse("[[axes]]\n[axes.params]\naccel = -3\n", "m.toml").unwrap_err();
+        assert_eq!(e.key, "axes[0].params.accel");
+        assert!(e.reason.contains("greater than 0"), "{}", e.reason);
+        let e = Config::parse("[[axes]]\nfifo_dept = 3\n", "m.toml").unwrap_err();
+        assert_eq!(e.key, "axes[0].fifo_dept");
+        assert!(e.reason.contains("unknown field"), "{}", e.reason);
+        let e = Config::parse("[machine\n", "m.toml").unwrap_err();
+        assert_eq!(e.key, "");
+        assert!(e.to_string().starts_with("m.toml: TOML parse error"), "{e}");
+        let e = Config::parse("[machine]\nclock = \"fast\"\n", "m.toml").unwrap_err();
+        assert_eq!(e.key, "machine.clock");
+        let e = Config::parse("[frontends.nmc]\nenabled = true\n", "m.toml").unwrap_err();
+        assert_eq!(e.key, "frontends.nmc.enabled");
+    }
+
+    #[test]
+    fn clocks_parse_and_print() {
+        for s in ["realtime", "virtual", "scaled:2.5"] {
+            assert_eq!(s.parse::<ClockSetting>().unwrap().to_string(), s);
+        }
+        assert!("scaled:0".parse::<ClockSetting>().is_err());
+        assert!("scaled:x".parse::<ClockSetting>().is_err());
+    }
+}

@@ -1,0 +1,8 @@
+//! The `mcemu` binary's parts (ARCHITECTURE §6): the config file, running a machine with its
+//! front-ends, scenarios and traces, and the HTTP control API.
+
+pub mod config;
+pub mod control;
+pub mod run;
+pub mod scenario;
+pub mod trace;

@@ -1,0 +1,151 @@
+//! `mcemu run`: the engine on its servo runtime, every enabled front-end on a tokio runtime,
+//! until SIGINT or SIGTERM. Each listener prints `listening: <protocol> <address>` once bound.
+
+use std::io::Write;
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use axes::command::{Command, StopMode};
+use axes::runtime::{EngineHandle, Runtime, RuntimeOptions};
+use axes::{AxisState, Engine};
+use tokio::net::TcpListener;
+
+use crate::config::Config;
+use crate::control::{self, ControlState};
+
+/// Why a machine could not run.
+#[derive(Debug, thiserror::Error)]
+pub enum RunError {
+    #[error("{0}")]
+    Config(#[from] crate::config::ConfigError),
+    #[error("cannot start the servo runtime: {0}")]
+    Runtime(#[from] axes::runtime::RuntimeError),
+    #[error("cannot start the front-end runtime: {0}")]
+    Io(#[from] std::io::Error),
+    #[error("cannot listen on {address} for {protocol}: {error}")]
+    Bind {
+        protocol: &'static str,
+        address: String,
+        error: std::io::Error,
+    },
+}
+
+/// Run `config` until a signal arrives. `file` names the config in errors.
+pub fn run(config: Config, file: &str) -> Result<(), RunError> {
+    let engine = Engine::new(&config.engine_config()).map_err(|e| crate::config::ConfigError {
+        file: file.to_string(),
+        key: e.key,
+        reason: e.reason,
+    })?;
+    let axes = engine.axis_count();
+    let clock = config.machine.clock;
+    let (handle, guard) = Runtime::start(engine, RuntimeOptions::with_clock(clock.0))?;
+    println!(
+        "mcemu: machine {}, {axes} axes, servo period {} ms, clock {clock}",
+        config.machine.name,
+        config.machine.period * 1e3,
+    );
+    let frontends = tokio::runtime::Builder::new_multi_thread()
+        .worker_threads(2)
+        .thread_name("mcemu-io")
+        .enable_all()
+        .build()?;
+    let served = frontends.block_on(serve(&config, handle.clone()));
+    // Whatever ended the serving, stop the machine cleanly.
+    stop_axes(&handle, axes);
+    drop(frontends);
+    let _ = guard.stop();
+    println!("mcemu: stopped");
+    served
+}
+
+async fn serve(config: &Config, handle: EngineHandle) -> Result<(), RunError> {
+    let mut servers = tokio::task::JoinSet::new();
+    let control = &config.frontends.control;
+    if control.enabled {
+        let listener = bind("control", control.bind).await?;
+        let state = ControlState {
+            handle: handle.clone(),
+            machine: Arc::new(config.machine.name.clone()),
+        };
+        let app = control::router(state);
+        servers.spawn(async move {
+            if let Err(e) = axum::serve(listener, app).await {
+                tracing::error!(error = %e, "control API stopped");
+            }
+        });
+    }
+    wait_for_signal().await;
+    servers.abort_all();
+    Ok(())
+}
+
+/// Bind and announce a TCP listener.
+async fn bind(
+    protocol: &'static str,
+    address: std::net::SocketAddr,
+) -> Result<TcpListener, RunError> {
+    let listener = TcpListener::bind(address)
+        .await
+        .map_err(|error| RunError::Bind {
+            protocol,
+            address: address.to_string(),
+            error,
+        })?;
+    let local = listener.local_addr().unwrap_or(address);
+    println!("listening: {protocol} {local}");
+    // Tests and supervisors read these lines as they come.
+    let _ = std::io::stdout().flush();
+    Ok(listener)
+}
+
+async fn wait_for_signal() {
+    let ctrl_c = tokio::signal::ctrl_c();
+    #[cfg(unix)]
+    {
+        use tokio::signal::unix::{signal, SignalKind};
+        match signal(SignalKind::terminate()) {
+            Ok(mut term) => {
+                tokio::select! {
+                    _ = ctrl_c => {}
+                    _ = term.recv() => {}
+                }
+            }
+            Err(_) => {
+                let _ = ctrl_c.await;
+            }
+        }
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = ctrl_c.await;
+    }
+}
+
+/// Bring every axis to rest before the engine stops: an abrupt stop, then up to a second of
+/// wall time for the ramps (a virtual clock does not move without an advance, so it skips the
+/// wait).
+fn stop_axes(handle: &EngineHandle, axes: usize) {
+    for axis in 0..axes as u16 {
+        let _ = handle.call(Command::Stop {
+            axis,
+            mode: StopMode::Abrupt,
+            deceleration: None,
+        });
+    }
+    if handle.clock() == axes::runtime::ClockMode::Virtual {
+        return;
+    }
+    let deadline = Instant::now() + Duration::from_secs(1);
+    while Instant::now() < deadline {
+        let at_rest = handle
+            .snapshot()
+            .axes
+            .iter()
+            .all(|a| a.state != AxisState::Stopping && a.cmd_vel == 0.0);
+        if at_rest {
+            break;
+        }
+        std::thread::sleep(Duration::from_millis(5));
+    }
+}

@@ -1,0 +1,1 @@
+//! Scenarios: scripted, deterministic runs in virtual time (`mcemu scenario FILE`).
