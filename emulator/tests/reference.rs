@@ -40,3 +40,11 @@ fn mcemu_reference_prints_it() {
     assert!(out.status.success());
     assert_eq!(String::from_utf8(out.stdout).unwrap(), checked_in());
 }
+
+#[test]
+fn the_readme_links_the_reference() {
+    let readme =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../README.md"))
+            .unwrap();
+    assert!(readme.contains("docs/configuration.md"));
+}
