@@ -50,9 +50,11 @@ impl Default for EngineConfig {
 }
 
 /// One axis: its parameters (any row of the table) and its simulated hardware.
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct AxisConfig {
+    /// Shown in the control API and traces; default `axis<N>`.
     pub name: Option<String>,
     /// Slots of the command FIFO, the running command included (HMC: 64).
     pub fifo_depth: Option<u16>,
@@ -60,11 +62,25 @@ pub struct AxisConfig {
     /// read as 0/1 and enumerated parameters also take their value names (`axis_type =
     /// "stepper"`, `rep_mode = "finite"`).
     #[serde(deserialize_with = "deserialize_params")]
+    #[cfg_attr(feature = "schema", schemars(schema_with = "params_schema"))]
     pub params: BTreeMap<ParamId, f64>,
+    /// Pulse/direction output (stepper and bus-position types).
     pub pulse: PulseConfig,
+    /// Incremental encoder on the motor.
     pub encoder: EncoderConfig,
+    /// Drive and motor model.
     pub plant: PlantConfig,
+    /// Limit and home switches.
     pub switches: SwitchesConfig,
+}
+
+/// `params` is a table of parameter names to numbers, booleans or enumerated value names.
+#[cfg(feature = "schema")]
+fn params_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+    schemars::json_schema!({
+        "type": "object",
+        "additionalProperties": { "type": ["number", "boolean", "string"] }
+    })
 }
 
 pub const DEFAULT_FIFO_DEPTH: u16 = 64;
@@ -116,6 +132,7 @@ where
 }
 
 /// Pulse/direction output (ARCHITECTURE §3.2).
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct PulseConfig {
@@ -136,6 +153,7 @@ impl Default for PulseConfig {
 }
 
 /// Incremental encoder (ARCHITECTURE §3.2).
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct EncoderConfig {
@@ -161,6 +179,7 @@ impl Default for EncoderConfig {
 }
 
 /// The drive and motor that turn the command into actual motion.
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum PlantModel {
@@ -175,9 +194,12 @@ pub enum PlantModel {
     PositionLoop,
 }
 
+/// The drive and motor model: how the actual position follows the command.
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct PlantConfig {
+    /// How the motor follows the command.
     pub model: PlantModel,
     /// Lag time constant, seconds (model `lag`).
     pub time_constant: f64,
@@ -199,6 +221,7 @@ impl Default for PlantConfig {
 }
 
 /// Limit and home switches, computed from the actual position.
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct SwitchesConfig {
@@ -206,12 +229,15 @@ pub struct SwitchesConfig {
     pub limit_pos: Option<SwitchConfig>,
     /// Negative limit: active for actual position ≤ `position`.
     pub limit_neg: Option<SwitchConfig>,
+    /// Home switch (a cam): active for actual position in `[low, high]`.
     pub home: Option<HomeSwitchConfig>,
 }
 
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SwitchConfig {
+    /// Actual position (user units) where the switch becomes active.
     pub position: f64,
     /// The sensor outputs low while actuated (normally-closed wiring). The controller's
     /// `*_invert` parameter must match, or the input reads inverted — as on a real machine.
@@ -224,15 +250,20 @@ pub struct SwitchConfig {
 
 /// A home switch active on `[low, high]` (a cam). Leave one bound out for a switch that stays
 /// active to that side (CiA 402 "positive/negative home switch").
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct HomeSwitchConfig {
+    /// Lower end of the active range, user units; omitted: unbounded (active to −∞).
     #[serde(default = "neg_inf")]
     pub low: f64,
+    /// Upper end of the active range, user units; omitted: unbounded (active to +∞).
     #[serde(default = "pos_inf")]
     pub high: f64,
+    /// The sensor outputs low while actuated; `home_invert` must match.
     #[serde(default)]
     pub active_low: bool,
+    /// Ticks the raw level must be stable before the input follows it (debounce).
     #[serde(default)]
     pub filter: u32,
 }
@@ -245,12 +276,17 @@ fn pos_inf() -> f64 {
 }
 
 /// Machine I/O images.
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct IoConfig {
+    /// Number of digital input channels (DI 0 … n−1).
     pub digital_inputs: u16,
+    /// Number of digital output channels.
     pub digital_outputs: u16,
+    /// Number of analog input channels.
     pub analog_inputs: u16,
+    /// Number of analog output channels.
     pub analog_outputs: u16,
     /// DI channels driven by an axis signal (the wiring of a switch to a general input).
     pub bindings: Vec<InputBinding>,
@@ -269,22 +305,32 @@ impl Default for IoConfig {
 }
 
 /// `di[channel]` follows `signal` of `axis`.
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct InputBinding {
+    /// The DI channel that follows the signal.
     pub channel: u16,
+    /// The axis whose signal it follows.
     pub axis: u16,
+    /// Which signal of the axis.
     pub signal: AxisSignal,
 }
 
 /// An axis signal that can be wired to a general input.
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum AxisSignal {
+    /// The positive hard limit as the axis reads it.
     LimitPos,
+    /// The negative hard limit as the axis reads it.
     LimitNeg,
+    /// The home switch as the axis reads it.
     Home,
+    /// The encoder index (Z) pulse.
     Index,
+    /// The drive alarm.
     DriveAlarm,
 }
 

@@ -23,23 +23,29 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 pub const DEFAULT_CONFIG: &str = include_str!("../../fixtures/default.toml");
 pub const DEFAULT_CONFIG_NAME: &str = "fixtures/default.toml (embedded)";
 
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+/// A machine config file. Every section is optional; unknown keys are errors.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Config {
+    /// The machine as a whole.
     #[serde(default)]
     pub machine: MachineConfig,
+    /// The axes, numbered from 0 in file order.
     #[serde(default)]
     pub axes: Vec<AxisConfig>,
+    /// Machine I/O images.
     #[serde(default)]
     pub io: IoConfig,
+    /// CiA 402 drives, each bound to an axis; slave numbers are positions in this list.
     #[serde(default)]
     pub drives: Vec<DriveConfig>,
+    /// The front-ends, one section each.
     #[serde(default)]
     pub frontends: FrontendsConfig,
 }
 
 /// The machine as a whole.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct MachineConfig {
     /// Shown in `mcemu run` and the control API.
@@ -115,27 +121,55 @@ impl<'de> Deserialize<'de> for ClockSetting {
     }
 }
 
+impl schemars::JsonSchema for ClockSetting {
+    fn schema_name() -> std::borrow::Cow<'static, str> {
+        "ClockSetting".into()
+    }
+
+    fn inline_schema() -> bool {
+        true
+    }
+
+    fn json_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+        schemars::json_schema!({
+            "type": "string",
+            "pattern": "^(realtime|virtual|scaled:[0-9.eE+-]+)$"
+        })
+    }
+}
+
 /// The front-ends, one section each. The sections of front-ends later issues build are accepted
 /// with `enabled = false`, so fixtures can already carry them.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct FrontendsConfig {
+    /// The HTTP control API and dashboard.
     pub control: ControlConfig,
+    /// Modbus TCP server (register maps of the controller's variables or of a drive).
     pub modbus_tcp: Option<PlannedFrontend>,
+    /// Modbus RTU slave on a serial device (e.g. one end of a `socat` pty pair).
     pub modbus_rtu: Option<PlannedFrontend>,
+    /// Modbus RTU frames over TCP.
     pub modbus_rtu_over_tcp: Option<PlannedFrontend>,
+    /// CANopen slaves on a SocketCAN interface (e.g. `vcan0`).
     pub canopen: Option<PlannedFrontend>,
+    /// CANopen over the socketcand TCP protocol, for hosts without SocketCAN.
     pub socketcand: Option<PlannedFrontend>,
+    /// NMC protocol over TCP (network controllers, `NMC_DevOpenByIP`).
     pub nmc: Option<PlannedFrontend>,
+    /// NMC protocol on a local socket (PCIe card indices, `NMC_DevOpen`).
     pub nmc_local: Option<PlannedFrontend>,
+    /// HIMC Native ASCII server (HMPL calls as text; the controller's port is 3999).
     pub ascii_native: Option<PlannedFrontend>,
+    /// HIMC User ASCII server (declarative command patterns; the controller's port is 4000).
     pub ascii_user: Option<PlannedFrontend>,
 }
 
 /// The HTTP control API (ARCHITECTURE §6).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct ControlConfig {
+    /// Serve the control API.
     pub enabled: bool,
     /// Address to listen on; 127.0.0.1 unless you mean to expose the back door.
     pub bind: SocketAddr,
@@ -151,9 +185,10 @@ impl Default for ControlConfig {
 }
 
 /// A front-end section whose front-end is not built yet: it may be present, disabled.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct PlannedFrontend {
+    /// Must be `false` until the front-end is built.
     pub enabled: bool,
     /// Address, device path or interface, as the front-end will take it.
     pub bind: Option<String>,

@@ -43,6 +43,8 @@ enum Cmd {
         #[arg(long)]
         trace: Option<PathBuf>,
     },
+    /// Print the configuration reference (Markdown): every config key and every axis parameter.
+    Reference,
 }
 
 /// `0.001`, `1ms`, `250us`, `62.5us`, `0.002s`.
@@ -121,6 +123,10 @@ fn main() -> ExitCode {
             } else {
                 ExitCode::FAILURE
             }
+        }
+        Cmd::Reference => {
+            print!("{}", mcemu::reference::markdown());
+            ExitCode::SUCCESS
         }
         Cmd::Scenario { file, trace } => {
             let _ = (file, trace);

@@ -39,6 +39,7 @@ pub use objects::{error_code, obj, object_table, supported_drive_modes};
 pub use state::{controlword_for, cw, sw, DeviceCommand, OperationMode, PowerTarget, State};
 
 /// What a drive is: its axis, its units and its identity.
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct DriveConfig {
@@ -58,14 +59,18 @@ pub struct DriveConfig {
     pub hardware_version: String,
     /// 0x100A manufacturer software version.
     pub software_version: String,
-    /// 0x1018:01–04.
+    /// 0x1018:01 vendor ID.
     pub vendor_id: u32,
+    /// 0x1018:02 product code.
     pub product_code: u32,
+    /// 0x1018:03 revision number.
     pub revision: u32,
+    /// 0x1018:04 serial number.
     pub serial: u32,
 }
 
 /// Who drives a drive's controlword.
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum DriveMaster {
