@@ -5,12 +5,12 @@
 use crate::axis::{Action, Axis, Context, Ledger, MotionRequest, Overrides};
 use crate::cia402::{controlword_for, obj, Cia402Drive, DriveMaster, PowerTarget, State};
 use crate::command::{AxisIndex, Command, CommandKind, EngineError, Reply};
-use crate::config::{AxisSignal, ConfigError, EngineConfig, InputBinding};
+use crate::config::{ConfigError, EngineConfig, InputBinding};
 use crate::homing::HomingSpec;
 use crate::od::Value;
 use crate::param::ParamId;
 use crate::rng::Rng;
-use crate::status::{AxisFlags, AxisStatus, DriveStatus, IoImage, Snapshot};
+use crate::status::{AxisStatus, DriveStatus, IoImage, Snapshot};
 
 /// The machine's digital and analog I/O.
 #[derive(Clone, Debug)]
@@ -513,14 +513,8 @@ impl Engine {
             let Some(axis) = self.axes.get(b.axis as usize) else {
                 continue;
             };
-            let f = axis.signal_flags();
-            let level = match b.signal {
-                AxisSignal::LimitPos => f.contains(AxisFlags::HW_LIMIT_POS),
-                AxisSignal::LimitNeg => f.contains(AxisFlags::HW_LIMIT_NEG),
-                AxisSignal::Home => f.contains(AxisFlags::HOME_SWITCH),
-                AxisSignal::Index => f.contains(AxisFlags::INDEX),
-                AxisSignal::DriveAlarm => f.contains(AxisFlags::DRIVE_ALARM),
-            };
+            // A wire from the sensor: its electrical level, not the controller's reading of it.
+            let level = axis.sensor(b.signal);
             if let Some(di) = io.image.di.get_mut(ch) {
                 if *di != level {
                     *di = level;

@@ -314,9 +314,9 @@ param_table! {
         "positive hard limit input: −1 none, 0–63 a DI channel, 64 the axis's own switch" }
     RhLimitIn { "rh_limit_in", ["RHLimitIn"], Int, Unit::None, DEDICATED_INPUT, Between(-1.0, 64.0), RW, No,
         "negative hard limit input: −1 none, 0–63 a DI channel, 64 the axis's own switch" }
-    LimitPosInvert { "limit_pos_invert", ["posLmtSns"], Bool, Unit::None, 0.0, Any, RW, No,
+    LimitPosInvert { "limit_pos_invert", [], Bool, Unit::None, 0.0, Any, RW, No,
         "1: the positive limit is active low" }
-    LimitNegInvert { "limit_neg_invert", ["negLmtSns"], Bool, Unit::None, 0.0, Any, RW, No,
+    LimitNegInvert { "limit_neg_invert", [], Bool, Unit::None, 0.0, Any, RW, No,
         "1: the negative limit is active low" }
     IgnoreHwLimits { "ignore_hw_limits", ["IgnoreHWL"], Bool, Unit::None, 0.0, Any, RW, No,
         "1: hard limits are reported but do not stop or block motion (HIMC IgnoreHWL)" }
@@ -338,7 +338,7 @@ param_table! {
         "lower clamp of the servo output" }
     DriveAlarmEnable { "drive_alarm_enable", ["alarmEnable"], Bool, Unit::None, 1.0, Any, RW, No,
         "1: the drive alarm input faults the axis (NMC default is 0)" }
-    DriveAlarmInvert { "drive_alarm_invert", ["alarmSns"], Bool, Unit::None, 0.0, Any, RW, No,
+    DriveAlarmInvert { "drive_alarm_invert", [], Bool, Unit::None, 0.0, Any, RW, No,
         "1: the alarm input is active low" }
     // ---- In position (NMC arrival band, HIMC pos window) ----
     InPositionWindow { "in_position_window", ["arrivalBand", "PosWindow", "pos_tr"], Real, Unit::Position, 0.0, AtLeast(0.0), RW, No,
@@ -350,7 +350,7 @@ param_table! {
         "homing phase, 0 idle" }
     HomeIn { "home_in", ["HomeIn"], Int, Unit::None, DEDICATED_INPUT, Between(-1.0, 64.0), RW, No,
         "home switch input: −1 none, 0–63 a DI channel, 64 the axis's own switch" }
-    HomeInvert { "home_invert", ["homeSns"], Bool, Unit::None, 0.0, Any, RW, No,
+    HomeInvert { "home_invert", [], Bool, Unit::None, 0.0, Any, RW, No,
         "1: the home switch is active low" }
     HomeCapIn { "home_cap_in", ["HomeCapIn"], Int, Unit::None, -1.0, Any, RO, No,
         "capture channel of HMC_HomeEx, −1 none" }

@@ -144,3 +144,60 @@ fn homing_on_the_limit_switch_does_not_fault_the_axis() {
     assert!(home_reading.abs() < 1e-6, "{home_reading}");
     assert_eq!(s.state, AxisState::Standstill);
 }
+
+#[test]
+fn a_homing_run_that_fails_on_a_limit_ends_at_rest() {
+    // Method 3 searches positive for a home switch that lies beyond the positive limit: the
+    // limit ends the run with an error, and the axis must end stopped, not merely "standstill".
+    let mut cfg = stepper_mm();
+    cfg.switches.home = Some(HomeSwitchConfig {
+        low: 600.0,
+        high: 700.0,
+        filter: 0,
+        active_low: false,
+    });
+    let mut e = enabled(cfg);
+    let id = id_of(ok(&mut e, home(&cia(3, 0.0))));
+    assert!(run_until(&mut e, 60.0, |s| s.current_command.is_none()).is_some());
+    assert_eq!(state_of(&mut e, id), CommandState::Error(ErrorKind::Homing));
+    run(&mut e, 0.01);
+    let s = status(&e);
+    assert_eq!(s.state, AxisState::Standstill);
+    assert_eq!(s.cmd_vel, 0.0, "{s:?}");
+    assert!(!s.flags.contains(AxisFlags::MOVING), "{s:?}");
+    assert!(s.latched.contains(AxisFlags::HOMING_FAILED));
+}
+
+#[test]
+fn homing_and_stops_end_only_when_the_smoothed_command_has_settled() {
+    // HIMC SMTime: the command keeps moving one window after the profile stops; homing and stop
+    // ramps must not report rest before that.
+    let mut cfg = stepper_mm();
+    cfg.params.insert(axes::ParamId::SmoothTime, 0.05);
+    cfg.switches.home = Some(HomeSwitchConfig {
+        low: 600.0,
+        high: 700.0,
+        filter: 0,
+        active_low: false,
+    });
+    let mut e = enabled(cfg);
+    ok(&mut e, home(&cia(3, 0.0)));
+    assert!(run_until(&mut e, 60.0, |s| s.current_command.is_none()).is_some());
+    let s = status(&e);
+    assert_eq!(s.cmd_vel, 0.0, "{s:?}");
+    assert!(!s.flags.contains(AxisFlags::MOVING));
+    ok(&mut e, jog(-50.0));
+    run(&mut e, 1.0);
+    ok(
+        &mut e,
+        Command::Stop {
+            axis: 0,
+            mode: axes::command::StopMode::Smooth,
+            deceleration: None,
+        },
+    );
+    while status(&e).state == AxisState::Stopping {
+        e.step();
+    }
+    assert_eq!(status(&e).cmd_vel, 0.0);
+}

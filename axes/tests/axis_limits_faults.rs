@@ -536,3 +536,31 @@ fn rollover_makes_the_axis_cyclic_at_run_time() {
         "cyclic axes ignore limits"
     );
 }
+
+#[test]
+fn hmc_style_wiring_a_switch_to_a_di_and_the_limit_to_that_di() {
+    // HMC_HwLimitConfig(axis, 0, 5): the positive limit is DI 5, and DI 5 is wired to the axis's
+    // own limit switch. The binding carries the sensor's level, so the limit works through it.
+    let mut cfg = EngineConfig {
+        axes: vec![stepper_mm()],
+        ..EngineConfig::default()
+    };
+    cfg.axes[0].params.insert(ParamId::FhLimitIn, 5.0);
+    cfg.io.bindings.push(InputBinding {
+        channel: 5,
+        axis: 0,
+        signal: AxisSignal::LimitPos,
+    });
+    let mut e = Engine::new(&cfg).unwrap();
+    ok(&mut e, Command::Enable { axis: 0 });
+    ok(&mut e, jog(100.0));
+    assert!(run_until(&mut e, 10.0, |s| s.flags.contains(AxisFlags::HW_LIMIT_POS)).is_some());
+    assert!(e.io().di[5]);
+    assert!(run_until(&mut e, 1.0, |s| s.state == AxisState::Standstill).is_some());
+    let s = status(&e);
+    assert!(s.act_pos > 500.0 && s.act_pos < 501.0, "{}", s.act_pos);
+    assert!(matches!(
+        refused(&mut e, jog(1.0)),
+        EngineError::LimitActive { .. }
+    ));
+}

@@ -19,7 +19,7 @@ mod supervision;
 use crate::command::{
     AxisIndex, CommandId, CommandKind, CommandState, Direction, ErrorKind, Setpoint, StopMode,
 };
-use crate::config::{AxisConfig, PlantModel, DEFAULT_FIFO_DEPTH};
+use crate::config::{AxisConfig, AxisSignal, PlantModel, DEFAULT_FIFO_DEPTH};
 use crate::homing::Homing;
 use crate::hw::encoder::EncoderTick;
 use crate::hw::plant::{LoopGains, PlantInput};
@@ -126,6 +126,13 @@ struct Inputs {
     index: bool,
     drive_alarm: bool,
     hold: bool,
+    /// Electrical levels at the axis's connector (after forcing and each sensor's wiring,
+    /// before any routing or inversion by the controller): what a general input wired to the
+    /// sensor reads.
+    sensor_limit_pos: bool,
+    sensor_limit_neg: bool,
+    sensor_home: bool,
+    sensor_alarm: bool,
     /// Exact raw edges and index position of this tick, physical frame.
     home_edge: Option<Edge>,
     limit_pos_edge: Option<Edge>,
@@ -286,12 +293,17 @@ impl Axis {
         &self.name
     }
 
-    /// The live flags a general input can be wired to (cheaper than the whole status).
-    pub(crate) fn signal_flags(&self) -> AxisFlags {
-        let mut f = self.flags;
-        f.put(AxisFlags::HOME_SWITCH, self.inputs.home);
-        f.put(AxisFlags::INDEX, self.inputs.index);
-        f
+    /// The electrical level of one of the axis's sensors, as a general input wired to it reads
+    /// it (the HMC wires limit and home switches to DI channels: HMC_HwLimitConfig, HMC_Home).
+    pub fn sensor(&self, signal: AxisSignal) -> bool {
+        let i = &self.inputs;
+        match signal {
+            AxisSignal::LimitPos => i.sensor_limit_pos,
+            AxisSignal::LimitNeg => i.sensor_limit_neg,
+            AxisSignal::Home => i.sensor_home,
+            AxisSignal::Index => i.index,
+            AxisSignal::DriveAlarm => i.sensor_alarm,
+        }
     }
 
     pub fn params(&self) -> &ParamSet {
@@ -349,11 +361,17 @@ impl Axis {
         let previous = self.cmd;
         if let Some(filter) = self.smoothing.as_mut() {
             let p = filter.next(self.raw.p);
-            let v = (p - previous.p) * self.rate;
-            self.cmd = MotionState {
-                p,
-                v,
-                a: (v - previous.v) * self.rate,
+            self.cmd = if filter.is_settled() {
+                // The output has arrived and stays: at rest from this tick on (the difference
+                // below would still show the last step's motion).
+                MotionState { p, v: 0.0, a: 0.0 }
+            } else {
+                let v = (p - previous.p) * self.rate;
+                MotionState {
+                    p,
+                    v,
+                    a: (v - previous.v) * self.rate,
+                }
             };
         } else {
             self.cmd = self.raw;
@@ -565,6 +583,10 @@ impl Axis {
             index: f.index.unwrap_or_else(|| self.encoder.index()),
             drive_alarm: w.alarm_enabled && (f.drive_alarm.unwrap_or(false) ^ w.alarm_invert),
             hold,
+            sensor_limit_pos: lp_level,
+            sensor_limit_neg: ln_level,
+            sensor_home: home_level,
+            sensor_alarm: f.drive_alarm.unwrap_or(false),
             // Physical frame; only homing reads them (see `homing_inputs`).
             home_edge,
             limit_pos_edge: lp_edge,

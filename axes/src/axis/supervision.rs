@@ -194,7 +194,7 @@ impl Axis {
             Activity::Idle | Activity::Streaming => {}
             Activity::Ramping(ramp) => {
                 let ramp = *ramp;
-                if profile_done || matches!(self.source, Source::Hold) {
+                if self.motion_done(ctx.tick) {
                     self.source = Source::Hold;
                     self.target_pos = self.raw.p;
                     match ramp {
@@ -352,9 +352,15 @@ impl Axis {
         }
     }
 
+    /// The commanded motion has reached its goal: the source, and the smoothing filter behind
+    /// it (a smoothed command keeps moving for one window after the source stops).
+    pub(super) fn motion_done(&self, tick: u64) -> bool {
+        self.source_done(tick) && self.smoothing.as_ref().is_none_or(|f| f.is_settled())
+    }
+
     /// What the homing machine sees this tick (user frame, unwrapped).
     pub(super) fn homing_inputs(&self, tick: u64) -> HomingInputs {
-        let motion_done = self.source_done(tick);
+        let motion_done = self.motion_done(tick);
         let i = &self.inputs;
         let (w, f) = (&self.setup, &self.forces);
         // Exact edges exist only for the axis's own, unforced switches (a capture latch); they
