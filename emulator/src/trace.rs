@@ -1,10 +1,10 @@
 //! Traces: one CSV row per tick per axis, the columns named exactly as below (scenarios write
 //! them with `--trace`, the control API serves them at `GET /api/v1/trace`).
 //!
-//! Numbers are written in their shortest round-trip form (`ryu`, `itoa`): a reader that parses
+//! Numbers are written in their shortest round-trip form (`zmij`, `itoa`): a reader that parses
 //! them gets back the exact f64 the engine had. Integral floats drop the `.0` (`100`, not
-//! `100.0`); very large or small magnitudes use an exponent (`1e-7`), which every CSV reader
-//! parses.
+//! `100.0`); very large or small magnitudes use an exponent (`1e-7`, `2.5e+20`), which every CSV
+//! reader parses.
 
 use std::io::{self, Write};
 
@@ -23,9 +23,14 @@ pub fn write_row(out: &mut impl Write, time: f64, axis: usize, s: &AxisStatus) -
 
 /// Append one row (with its newline) to `buf`; [`write_row`] without the I/O.
 pub fn format_row(buf: &mut Vec<u8>, time: f64, axis: usize, s: &AxisStatus) {
+    push_f64(buf, &mut zmij::Buffer::new(), time);
+    format_fields(buf, axis, s);
+}
+
+/// Everything after the time column, from its comma to the newline.
+fn format_fields(buf: &mut Vec<u8>, axis: usize, s: &AxisStatus) {
     let mut ints = itoa::Buffer::new();
-    let mut floats = ryu::Buffer::new();
-    push_f64(buf, &mut floats, time);
+    let mut floats = zmij::Buffer::new();
     buf.push(b',');
     buf.extend_from_slice(ints.format(axis).as_bytes());
     buf.push(b',');
@@ -61,14 +66,14 @@ pub fn format_row(buf: &mut Vec<u8>, time: f64, axis: usize, s: &AxisStatus) {
     buf.push(b'\n');
 }
 
-fn push_f64(buf: &mut Vec<u8>, ryu: &mut ryu::Buffer, v: f64) {
+fn push_f64(buf: &mut Vec<u8>, floats: &mut zmij::Buffer, v: f64) {
     if v == 0.0 && v.is_sign_positive() {
         // Most columns of an axis at rest: skip the formatter.
         buf.push(b'0');
         return;
     }
     let text = if v.is_finite() {
-        ryu.format_finite(v)
+        floats.format_finite(v)
     } else if v.is_nan() {
         "NaN"
     } else if v > 0.0 {
@@ -112,6 +117,8 @@ impl TickClock {
 pub struct TraceWriter<W: Write> {
     out: W,
     buf: Vec<u8>,
+    /// The current tick's time column.
+    time: Vec<u8>,
     clock: TickClock,
     rows: u64,
     bytes: u64,
@@ -129,6 +136,7 @@ impl<W: Write> TraceWriter<W> {
         TraceWriter {
             out,
             buf,
+            time: Vec::with_capacity(32),
             clock: TickClock::new(period),
             rows: 0,
             bytes: 0,
@@ -141,9 +149,16 @@ impl<W: Write> TraceWriter<W> {
         tick: u64,
         axes: impl IntoIterator<Item = &'a AxisStatus>,
     ) -> io::Result<()> {
-        let time = self.clock.time(tick);
+        // Every axis's row starts with the same time: format it once.
+        self.time.clear();
+        push_f64(
+            &mut self.time,
+            &mut zmij::Buffer::new(),
+            self.clock.time(tick),
+        );
         for (axis, status) in axes.into_iter().enumerate() {
-            format_row(&mut self.buf, time, axis, status);
+            self.buf.extend_from_slice(&self.time);
+            format_fields(&mut self.buf, axis, status);
             self.rows += 1;
         }
         if self.buf.len() >= CHUNK {
@@ -203,7 +218,7 @@ mod tests {
         let line = row(&s, 0.035);
         assert_eq!(
             line,
-            "0.035,3,discrete_motion,0.30000000000000004,-1234.5,1e-7,100,-0,2.5e20,-42,9223372036854775807,0,1,0,1,limit_reached\n"
+            "0.035,3,discrete_motion,0.30000000000000004,-1234.5,1e-7,100,-0,2.5e+20,-42,9223372036854775807,0,1,0,1,limit_reached\n"
         );
         assert_eq!(
             line.trim_end().split(',').count(),
