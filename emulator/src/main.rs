@@ -138,14 +138,11 @@ fn scenario(file: &Path, trace: Option<&Path>) -> ExitCode {
             return ExitCode::from(CANNOT_RUN);
         }
     };
-    let mut out = match trace.map(std::fs::File::create).transpose() {
-        Ok(out) => out,
-        Err(e) => {
-            let path = trace.map(Path::display);
-            eprintln!(
-                "mcemu: cannot create the trace {}: {e}",
-                path.unwrap_or_else(|| file.display())
-            );
+    let mut out = match trace.map(|path| (path, std::fs::File::create(path))) {
+        None => None,
+        Some((_, Ok(file))) => Some(file),
+        Some((path, Err(e))) => {
+            eprintln!("mcemu: cannot create the trace {}: {e}", path.display());
             return ExitCode::from(CANNOT_RUN);
         }
     };
