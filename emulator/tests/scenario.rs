@@ -307,10 +307,12 @@ fn the_same_scenario_gives_the_same_trace() {
 }
 
 #[test]
-fn the_issue_example_passes() {
-    let out = mcemu(&["scenario", &fixture("issue-example.toml")]);
-    assert!(out.status.success(), "{}", stderr(&out));
-    assert!(stderr(&out).is_empty(), "{}", stderr(&out));
+fn the_shipped_scenarios_pass() {
+    for name in ["issue-example.toml", "inline-machine.toml"] {
+        let out = mcemu(&["scenario", &fixture(name)]);
+        assert!(out.status.success(), "{name}: {}", stderr(&out));
+        assert!(stderr(&out).is_empty(), "{name}: {}", stderr(&out));
+    }
 }
 
 /// A scenario on the default machine with `steps` after the header.
