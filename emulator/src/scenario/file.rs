@@ -179,7 +179,9 @@ impl<'de, A: MapAccess<'de>> MapAccess<'de> for &mut Split<A> {
                 return Ok(None);
             };
             match key.as_str() {
-                "config" => self.file.config_path = Some(self.map.next_value()?),
+                "config" => {
+                    self.file.config_path = Some(self.map.next_value::<ConfigPath>()?.0);
+                }
                 "end" => self.file.end = Some(self.map.next_value()?),
                 "step" => self.file.steps = self.map.next_value()?,
                 _ => {
@@ -222,5 +224,33 @@ impl<'de> DeserializeSeed<'de> for KeySeed {
             list(&SCENARIO_KEYS),
             list(self.sections)
         )))
+    }
+}
+
+/// `config = "path"`; a table there is the likely mistake of nesting an inline machine.
+struct ConfigPath(String);
+
+impl<'de> Deserialize<'de> for ConfigPath {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct PathVisitor;
+        impl<'de> Visitor<'de> for PathVisitor {
+            type Value = ConfigPath;
+
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str("the path of a config file")
+            }
+
+            fn visit_str<E: de::Error>(self, v: &str) -> Result<ConfigPath, E> {
+                Ok(ConfigPath(v.to_string()))
+            }
+
+            fn visit_map<A: MapAccess<'de>>(self, _: A) -> Result<ConfigPath, A::Error> {
+                Err(de::Error::custom(
+                    "`config` is the path of a config file; an inline machine's sections go at \
+                     the top level ([machine], [[axes]] …), not under [config]",
+                ))
+            }
+        }
+        d.deserialize_any(PathVisitor)
     }
 }

@@ -129,6 +129,9 @@ fn the_machine_is_given_once() {
         e.reason.contains("does/not/exist.toml: cannot read it"),
         "{e}"
     );
+    let e = err("end = 1.0\n[config.machine]\nperiod = 0.001\n");
+    assert_eq!(e.key, "config");
+    assert!(e.reason.contains("not under [config]"), "{e}");
     // Inline config errors are the config's own: key path and reason, named by the scenario.
     let e = err("end = 1.0\n[machine]\nperiod = 0.5\n");
     assert_eq!(
