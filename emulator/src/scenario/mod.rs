@@ -22,7 +22,7 @@
 //! ```
 //!
 //! Timing: the engine starts at tick 0 (time 0). A step with time `at` runs at tick
-//! ⌈at / period⌉ (an `at` within 1e-9 periods of a tick counts as that tick), after the engine has
+//! ⌈at / period⌉ (an `at` within rounding of a tick counts as that tick), after the engine has
 //! stepped to it; steps of one tick run in file order, so an `expect` sees the commands before it.
 //! The run ends at the tick of `end`, after that tick's steps. A trace has one row per axis for
 //! every tick from 0 to the end, written after that tick's steps.
@@ -301,12 +301,16 @@ impl Scenario {
     }
 }
 
-/// ⌈seconds / period⌉, forgiving rounding: 0.3 s at 0.1 s is tick 3, not 4.
+/// ⌈seconds / period⌉, forgiving binary rounding: 0.3 s at 0.1 s is tick 3, not 4.
 fn tick_of(seconds: f64, period: f64) -> Result<u64, String> {
     if !seconds.is_finite() || seconds < 0.0 {
         return Err(format!("{seconds}: must be a finite time ≥ 0 s"));
     }
-    let ticks = (seconds / period - 1e-9).ceil().max(0.0);
+    let exact = seconds / period;
+    // The decimal time and period are rounded in binary (and divided): forgive a few ulps, and
+    // at least 1e-9 of a tick, before rounding up.
+    let slack = (exact * 1e-15).max(1e-9);
+    let ticks = (exact - slack).ceil().max(0.0);
     if ticks > MAX_TICKS {
         return Err(format!(
             "{seconds} s is {ticks:e} ticks of {period} s; at most {MAX_TICKS:e}"

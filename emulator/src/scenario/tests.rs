@@ -41,6 +41,9 @@ fn ticks_round_up_forgiving_rounding() {
     assert_eq!(tick_of(0.0105, 1e-3), Ok(11));
     assert_eq!(tick_of(0.3, 0.1), Ok(3));
     assert_eq!(tick_of(3600.0, 1e-3), Ok(3_600_000));
+    assert_eq!(tick_of(1e9 * 0.1, 0.1), Ok(1_000_000_000));
+    assert_eq!(tick_of(1e9 * 1e-3 + 1e-3, 1e-3), Ok(1_000_000_001));
+    assert_eq!(tick_of(0.0015, 1e-3), Ok(2));
     assert!(tick_of(-1.0, 1e-3).is_err());
     assert!(tick_of(f64::NAN, 1e-3).is_err());
     assert!(tick_of(1e12, 1e-3).is_err());
