@@ -1,10 +1,11 @@
 //! `mcemu`: run a machine (`run`), check configs (`validate`), script it (`scenario`).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use mcemu::config::{ClockSetting, Config, DEFAULT_CONFIG_NAME};
+use mcemu::scenario::Scenario;
 
 #[derive(Parser)]
 #[command(
@@ -128,11 +129,61 @@ fn main() -> ExitCode {
             print!("{}", mcemu::reference::markdown());
             ExitCode::SUCCESS
         }
-        Cmd::Scenario { file, trace } => {
-            let _ = (file, trace);
-            eprintln!("mcemu: scenarios are not built yet");
-            ExitCode::FAILURE
+        Cmd::Scenario { file, trace } => scenario(&file, trace.as_deref()),
+    }
+}
+
+/// `mcemu scenario`: exit 0 when every expectation holds, 1 when one fails or a command is
+/// refused unexpectedly, 2 when the scenario cannot run (file, config, trace output).
+fn scenario(file: &Path, trace: Option<&Path>) -> ExitCode {
+    const CANNOT_RUN: u8 = 2;
+    let scenario = match Scenario::load(file) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("mcemu: {e}");
+            return ExitCode::from(CANNOT_RUN);
         }
+    };
+    let mut out = match trace.map(|path| (path, std::fs::File::create(path))) {
+        None => None,
+        Some((_, Ok(file))) => Some(file),
+        Some((path, Err(e))) => {
+            eprintln!("mcemu: cannot create the trace {}: {e}", path.display());
+            return ExitCode::from(CANNOT_RUN);
+        }
+    };
+    let report = match scenario.run(out.as_mut().map(|f| f as &mut dyn std::io::Write)) {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("mcemu: {e}");
+            return ExitCode::from(CANNOT_RUN);
+        }
+    };
+    for failure in &report.failures {
+        eprintln!("mcemu: {failure}");
+    }
+    let verdict = if report.passed() { "ok" } else { "FAILED" };
+    println!(
+        "{}: {verdict}: {} steps, {} expectations, {} failures; {} s of engine time in {} ticks",
+        file.display(),
+        report.steps,
+        report.expectations,
+        report.failures.len(),
+        scenario.end(),
+        report.ticks,
+    );
+    if let Some(path) = trace {
+        println!(
+            "trace: {} ({} rows, {} bytes)",
+            path.display(),
+            report.trace_rows,
+            report.trace_bytes
+        );
+    }
+    if report.passed() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
     }
 }
 

@@ -1,5 +1,10 @@
 //! Traces: one CSV row per tick per axis, the columns named exactly as below (scenarios write
 //! them with `--trace`, the control API serves them at `GET /api/v1/trace`).
+//!
+//! Numbers are written in their shortest round-trip form (`zmij`, `itoa`): a reader that parses
+//! them gets back the exact f64 the engine had. Integral floats drop the `.0` (`100`, not
+//! `100.0`); very large or small magnitudes use an exponent (`1e-7`, `2.5e+20`), which every CSV
+//! reader parses.
 
 use std::io::{self, Write};
 
@@ -9,26 +14,262 @@ use axes::{AxisFlags, AxisStatus};
 pub const HEADER: &str = "time_s,axis,state,cmd_pos,cmd_vel,cmd_acc,act_pos,act_vel,following_error,pulses,encoder_counts,limit_pos,limit_neg,home_switch,homed,error";
 
 /// Write one row: `time` in seconds of engine time, booleans as 0/1, `state` as its snake_case
-/// name, `error` the name of the last engine error or empty. Floats are written in Rust's
-/// shortest round-trip form, so a reader gets back the exact values.
+/// name, `error` the name of the last engine error or empty.
 pub fn write_row(out: &mut impl Write, time: f64, axis: usize, s: &AxisStatus) -> io::Result<()> {
-    let flag = |f: AxisFlags| u8::from(s.flags.contains(f));
-    writeln!(
-        out,
-        "{time},{axis},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
-        s.state.name(),
+    let mut row = Vec::with_capacity(192);
+    format_row(&mut row, time, axis, s);
+    out.write_all(&row)
+}
+
+/// Append one row (with its newline) to `buf`; [`write_row`] without the I/O.
+pub fn format_row(buf: &mut Vec<u8>, time: f64, axis: usize, s: &AxisStatus) {
+    push_f64(buf, &mut zmij::Buffer::new(), time);
+    format_fields(buf, axis, s);
+}
+
+/// Everything after the time column, from its comma to the newline.
+fn format_fields(buf: &mut Vec<u8>, axis: usize, s: &AxisStatus) {
+    let mut ints = itoa::Buffer::new();
+    let mut floats = zmij::Buffer::new();
+    buf.push(b',');
+    buf.extend_from_slice(ints.format(axis).as_bytes());
+    buf.push(b',');
+    buf.extend_from_slice(s.state.name().as_bytes());
+    for v in [
         s.cmd_pos,
         s.cmd_vel,
         s.cmd_acc,
         s.act_pos,
         s.act_vel,
         s.following_error,
-        s.pulses,
-        s.encoder_counts,
-        flag(AxisFlags::HW_LIMIT_POS),
-        flag(AxisFlags::HW_LIMIT_NEG),
-        flag(AxisFlags::HOME_SWITCH),
-        flag(AxisFlags::HOMED),
-        s.last_error.map_or("", |e| e.name()),
-    )
+    ] {
+        buf.push(b',');
+        push_f64(buf, &mut floats, v);
+    }
+    for v in [s.pulses, s.encoder_counts] {
+        buf.push(b',');
+        buf.extend_from_slice(ints.format(v).as_bytes());
+    }
+    for f in [
+        AxisFlags::HW_LIMIT_POS,
+        AxisFlags::HW_LIMIT_NEG,
+        AxisFlags::HOME_SWITCH,
+        AxisFlags::HOMED,
+    ] {
+        buf.push(b',');
+        buf.push(if s.flags.contains(f) { b'1' } else { b'0' });
+    }
+    buf.push(b',');
+    if let Some(e) = s.last_error {
+        buf.extend_from_slice(e.name().as_bytes());
+    }
+    buf.push(b'\n');
+}
+
+fn push_f64(buf: &mut Vec<u8>, floats: &mut zmij::Buffer, v: f64) {
+    if v == 0.0 && v.is_sign_positive() {
+        // Most columns of an axis at rest: skip the formatter.
+        buf.push(b'0');
+        return;
+    }
+    let text = if v.is_finite() {
+        floats.format_finite(v)
+    } else if v.is_nan() {
+        "NaN"
+    } else if v > 0.0 {
+        "inf"
+    } else {
+        "-inf"
+    };
+    buf.extend_from_slice(text.strip_suffix(".0").unwrap_or(text).as_bytes());
+}
+
+/// Engine time of `tick` as a trace writes it. When the period is 1/N s for an integer N (1 ms,
+/// 62.5 µs …) this is `tick / N`, the f64 nearest the decimal time, so rows read `0.035` rather
+/// than `tick × period` = `0.035000000000000003`; otherwise `tick × period`.
+#[derive(Clone, Copy, Debug)]
+pub struct TickClock {
+    period: f64,
+    /// Ticks per second when that is an integer whose reciprocal is exactly `period`.
+    rate: Option<f64>,
+}
+
+impl TickClock {
+    pub fn new(period: f64) -> TickClock {
+        let rate = (1.0 / period).round();
+        let exact = (1.0..1e15).contains(&rate) && 1.0 / rate == period;
+        TickClock {
+            period,
+            rate: exact.then_some(rate),
+        }
+    }
+
+    pub fn time(&self, tick: u64) -> f64 {
+        match self.rate {
+            Some(rate) => tick as f64 / rate,
+            None => tick as f64 * self.period,
+        }
+    }
+}
+
+/// Writes a trace: the header, then each tick's rows, buffered so that the underlying writer sees
+/// few large writes.
+pub struct TraceWriter<W: Write> {
+    out: W,
+    buf: Vec<u8>,
+    /// The current tick's time column.
+    time: Vec<u8>,
+    clock: TickClock,
+    rows: u64,
+    bytes: u64,
+}
+
+/// Rows are collected up to this many bytes before one write.
+const CHUNK: usize = 256 * 1024;
+
+impl<W: Write> TraceWriter<W> {
+    /// Start a trace of a machine with servo period `period` (seconds): writes the header.
+    pub fn new(out: W, period: f64) -> TraceWriter<W> {
+        let mut buf = Vec::with_capacity(CHUNK + 4096);
+        buf.extend_from_slice(HEADER.as_bytes());
+        buf.push(b'\n');
+        TraceWriter {
+            out,
+            buf,
+            time: Vec::with_capacity(32),
+            clock: TickClock::new(period),
+            rows: 0,
+            bytes: 0,
+        }
+    }
+
+    /// The rows of one tick, axis by axis.
+    pub fn write_tick<'a>(
+        &mut self,
+        tick: u64,
+        axes: impl IntoIterator<Item = &'a AxisStatus>,
+    ) -> io::Result<()> {
+        // Every axis's row starts with the same time: format it once.
+        self.time.clear();
+        push_f64(
+            &mut self.time,
+            &mut zmij::Buffer::new(),
+            self.clock.time(tick),
+        );
+        for (axis, status) in axes.into_iter().enumerate() {
+            self.buf.extend_from_slice(&self.time);
+            format_fields(&mut self.buf, axis, status);
+            self.rows += 1;
+        }
+        if self.buf.len() >= CHUNK {
+            self.flush_buffer()?;
+        }
+        Ok(())
+    }
+
+    fn flush_buffer(&mut self) -> io::Result<()> {
+        self.out.write_all(&self.buf)?;
+        self.bytes += self.buf.len() as u64;
+        self.buf.clear();
+        Ok(())
+    }
+
+    /// Rows written so far (the header not counted).
+    pub fn rows(&self) -> u64 {
+        self.rows
+    }
+
+    /// Write what is buffered, flush the writer, and return it with the bytes written.
+    pub fn finish(mut self) -> io::Result<(W, u64)> {
+        self.flush_buffer()?;
+        self.out.flush()?;
+        Ok((self.out, self.bytes))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use axes::command::ErrorKind;
+    use axes::AxisState;
+
+    fn row(s: &AxisStatus, time: f64) -> String {
+        let mut out = Vec::new();
+        write_row(&mut out, time, 3, s).unwrap();
+        String::from_utf8(out).unwrap()
+    }
+
+    #[test]
+    fn a_row_has_every_column_and_reads_back_exactly() {
+        let s = AxisStatus {
+            state: AxisState::DiscreteMotion,
+            flags: AxisFlags::HW_LIMIT_NEG | AxisFlags::HOMED | AxisFlags::ENABLED,
+            cmd_pos: 0.1 + 0.2,
+            cmd_vel: -1234.5,
+            cmd_acc: 1e-7,
+            act_pos: 100.0,
+            act_vel: -0.0,
+            following_error: 2.5e20,
+            pulses: -42,
+            encoder_counts: i64::MAX,
+            last_error: Some(ErrorKind::LimitReached),
+            ..AxisStatus::default()
+        };
+        let line = row(&s, 0.035);
+        assert_eq!(
+            line,
+            "0.035,3,discrete_motion,0.30000000000000004,-1234.5,1e-7,100,-0,2.5e+20,-42,9223372036854775807,0,1,0,1,limit_reached\n"
+        );
+        assert_eq!(
+            line.trim_end().split(',').count(),
+            HEADER.split(',').count()
+        );
+        let floats: Vec<f64> = line
+            .split(',')
+            .skip(3)
+            .take(6)
+            .map(|f| f.parse().unwrap())
+            .collect();
+        assert_eq!(
+            floats,
+            [
+                s.cmd_pos,
+                s.cmd_vel,
+                s.cmd_acc,
+                s.act_pos,
+                s.act_vel,
+                s.following_error
+            ]
+        );
+        assert!(floats[4].is_sign_negative());
+        let idle = row(&AxisStatus::default(), 0.0);
+        assert_eq!(idle, "0,3,disabled,0,0,0,0,0,0,0,0,0,0,0,0,\n");
+    }
+
+    #[test]
+    fn tick_times_are_the_decimal_times_when_the_period_allows() {
+        let ms = TickClock::new(1e-3);
+        assert_eq!(ms.time(35).to_string(), "0.035");
+        assert_eq!(ms.time(3_600_000), 3600.0);
+        let us = TickClock::new(62.5e-6);
+        assert_eq!(us.time(3), 187.5e-6);
+        let odd = TickClock::new(3e-4);
+        assert_eq!(odd.time(7), 7.0 * 3e-4);
+    }
+
+    #[test]
+    fn the_writer_starts_with_the_header_and_counts() {
+        let mut w = TraceWriter::new(Vec::new(), 1e-3);
+        let a = AxisStatus::default();
+        w.write_tick(0, [&a, &a]).unwrap();
+        w.write_tick(1, [&a, &a]).unwrap();
+        assert_eq!(w.rows(), 4);
+        let (out, bytes) = w.finish().unwrap();
+        let text = String::from_utf8(out).unwrap();
+        assert_eq!(bytes as usize, text.len());
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines[0], HEADER);
+        assert_eq!(lines.len(), 5);
+        assert!(lines[3].starts_with("0.001,0,"));
+    }
 }

@@ -1,1 +1,0 @@
-//! Scenarios: scripted, deterministic runs in virtual time (`mcemu scenario FILE`).

@@ -1,0 +1,500 @@
+//! Expectations: conditions on an axis, a command or the I/O image, checked at one tick.
+
+use std::fmt::Write as _;
+
+use axes::command::{CommandState, ErrorKind};
+use axes::{AxisFlags, AxisState, AxisStatus};
+use serde::de::IntoDeserializer;
+use serde::Deserialize;
+
+use super::file::ExpectSpec;
+
+/// One checked `expect`.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) struct Expectation {
+    pub axis: Option<u16>,
+    pub tolerance: f64,
+    pub checks: Vec<Check>,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub(super) enum Check {
+    State(AxisState),
+    Number(Quantity, f64),
+    /// All of these flags set.
+    Flags(AxisFlags),
+    /// None of these flags set.
+    NotFlags(AxisFlags),
+    /// The axis's last error (`None`: no error).
+    Error(Option<ErrorKind>),
+    /// The state of the command the step with this index issued.
+    CommandState {
+        step: usize,
+        state: ExpectedState,
+    },
+    Di {
+        channel: u16,
+        value: bool,
+    },
+    Do {
+        channel: u16,
+        value: bool,
+    },
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Quantity {
+    Position,
+    Velocity,
+    CommandPosition,
+    CommandVelocity,
+    FollowingError,
+}
+
+impl Quantity {
+    pub fn name(self) -> &'static str {
+        match self {
+            Quantity::Position => "position",
+            Quantity::Velocity => "velocity",
+            Quantity::CommandPosition => "command_position",
+            Quantity::CommandVelocity => "command_velocity",
+            Quantity::FollowingError => "following_error",
+        }
+    }
+
+    fn of(self, s: &AxisStatus) -> f64 {
+        match self {
+            Quantity::Position => s.act_pos,
+            Quantity::Velocity => s.act_vel,
+            Quantity::CommandPosition => s.cmd_pos,
+            Quantity::CommandVelocity => s.cmd_vel,
+            Quantity::FollowingError => s.following_error,
+        }
+    }
+}
+
+/// `waiting`, `running`, `done`, `aborted`, `error` (any error) or `error:<code>`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum ExpectedState {
+    Exactly(CommandState),
+    AnyError,
+}
+
+impl ExpectedState {
+    fn parse(s: &str) -> Result<ExpectedState, String> {
+        Ok(match s {
+            "waiting" => ExpectedState::Exactly(CommandState::Waiting),
+            "running" => ExpectedState::Exactly(CommandState::Running),
+            "done" => ExpectedState::Exactly(CommandState::Done),
+            "aborted" => ExpectedState::Exactly(CommandState::Aborted),
+            "error" => ExpectedState::AnyError,
+            _ => match s.strip_prefix("error:") {
+                Some(code) => ExpectedState::Exactly(CommandState::Error(error_kind(code)?)),
+                None => {
+                    return Err(format!(
+                        "`{s}` is not a command state: use waiting, running, done, aborted, \
+                         error or error:<code>"
+                    ))
+                }
+            },
+        })
+    }
+
+    pub fn matches(self, state: CommandState) -> bool {
+        match self {
+            ExpectedState::Exactly(s) => s == state,
+            ExpectedState::AnyError => matches!(state, CommandState::Error(_)),
+        }
+    }
+}
+
+impl std::fmt::Display for ExpectedState {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            ExpectedState::Exactly(s) => f.write_str(&command_state_name(*s)),
+            ExpectedState::AnyError => f.write_str("error"),
+        }
+    }
+}
+
+pub(super) fn command_state_name(s: CommandState) -> String {
+    match s {
+        CommandState::Waiting => "waiting".into(),
+        CommandState::Running => "running".into(),
+        CommandState::Done => "done".into(),
+        CommandState::Aborted => "aborted".into(),
+        CommandState::Error(kind) => format!("error:{}", kind.name()),
+    }
+}
+
+/// An engine error code by name (`limit_active`, `axis_disabled` …).
+pub(super) fn error_kind(name: &str) -> Result<ErrorKind, String> {
+    ErrorKind::deserialize(name.into_deserializer())
+        .map_err(|e: serde::de::value::Error| format!("`{name}` is not an error code: {e}"))
+}
+
+/// A set of flags by their snake_case names (`homed`, `hw_limit_pos` …).
+fn flags(names: &[String]) -> Result<AxisFlags, String> {
+    let mut out = AxisFlags::empty();
+    for name in names {
+        let flag = AxisFlags::from_name(&name.to_ascii_uppercase()).ok_or_else(|| {
+            format!(
+                "`{name}` is not an axis flag: use one of {}",
+                all_flag_names()
+            )
+        })?;
+        out |= flag;
+    }
+    Ok(out)
+}
+
+fn all_flag_names() -> String {
+    AxisFlags::all()
+        .iter_names()
+        .map(|(n, _)| n.to_ascii_lowercase())
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Flags as snake_case names, `none` when empty.
+pub(super) fn flag_names(f: AxisFlags) -> String {
+    if f.is_empty() {
+        return "none".into();
+    }
+    f.iter_names()
+        .map(|(n, _)| n.to_ascii_lowercase())
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// A refusal at load time: the key inside `expect` and why.
+pub(super) type SpecError = (&'static str, String);
+
+impl Expectation {
+    /// Check an `expect` table's shape (not yet against the machine).
+    pub fn from_spec(spec: ExpectSpec) -> Result<Expectation, SpecError> {
+        let mut checks = Vec::new();
+        if let Some(s) = spec.state {
+            checks.push(Check::State(s));
+        }
+        for (q, v) in [
+            (Quantity::Position, spec.position),
+            (Quantity::Velocity, spec.velocity),
+            (Quantity::CommandPosition, spec.command_position),
+            (Quantity::CommandVelocity, spec.command_velocity),
+            (Quantity::FollowingError, spec.following_error),
+        ] {
+            if let Some(v) = v {
+                if !v.is_finite() {
+                    return Err((q.name(), format!("{v} is not a finite number")));
+                }
+                checks.push(Check::Number(q, v));
+            }
+        }
+        let tolerance = spec.tolerance.unwrap_or(0.0);
+        if !(tolerance.is_finite() && tolerance >= 0.0) {
+            return Err((
+                "tolerance",
+                format!("{tolerance}: must be a finite number ≥ 0"),
+            ));
+        }
+        if spec.tolerance.is_some() && !checks.iter().any(|c| matches!(c, Check::Number(..))) {
+            return Err((
+                "tolerance",
+                "applies to position, velocity, command_position, command_velocity or \
+                 following_error, and none is given"
+                    .into(),
+            ));
+        }
+        if !spec.flags.is_empty() {
+            checks.push(Check::Flags(flags(&spec.flags).map_err(|e| ("flags", e))?));
+        }
+        if !spec.not_flags.is_empty() {
+            checks.push(Check::NotFlags(
+                flags(&spec.not_flags).map_err(|e| ("not_flags", e))?,
+            ));
+        }
+        if let Some(e) = &spec.error {
+            let kind = match e.as_str() {
+                "" => None,
+                name => Some(error_kind(name).map_err(|e| ("error", e))?),
+            };
+            checks.push(Check::Error(kind));
+        }
+        let axis_checks = !checks.is_empty();
+        if axis_checks && spec.axis.is_none() {
+            return Err(("axis", "missing: these conditions are about an axis".into()));
+        }
+        if spec.axis.is_some() && !axis_checks {
+            return Err((
+                "axis",
+                "no condition on it: give state, position, velocity, command_position, \
+                 command_velocity, following_error, flags, not_flags or error"
+                    .into(),
+            ));
+        }
+        match (spec.step, &spec.command_state) {
+            (Some(step), Some(state)) => checks.push(Check::CommandState {
+                step,
+                state: ExpectedState::parse(state).map_err(|e| ("command_state", e))?,
+            }),
+            (Some(_), None) => {
+                return Err(("command_state", "missing: `step` needs it".into()));
+            }
+            (None, Some(_)) => {
+                return Err((
+                    "step",
+                    "missing: the index of the step whose command is meant".into(),
+                ));
+            }
+            (None, None) => {}
+        }
+        match (spec.di, spec.do_, spec.value) {
+            (Some(_), Some(_), _) => {
+                return Err(("do", "give `di` or `do`, not both".into()));
+            }
+            (Some(channel), None, Some(value)) => checks.push(Check::Di { channel, value }),
+            (None, Some(channel), Some(value)) => checks.push(Check::Do { channel, value }),
+            (Some(_), None, None) | (None, Some(_), None) => {
+                return Err(("value", "missing: the level `di`/`do` must have".into()));
+            }
+            (None, None, Some(_)) => {
+                return Err((
+                    "value",
+                    "applies to `di` or `do`, and neither is given".into(),
+                ));
+            }
+            (None, None, None) => {}
+        }
+        if checks.is_empty() {
+            return Err((
+                "expect",
+                "no condition: give an axis with state, position, …, a step with \
+                 command_state, or di/do with value"
+                    .into(),
+            ));
+        }
+        Ok(Expectation {
+            axis: spec.axis,
+            tolerance,
+            checks,
+        })
+    }
+}
+
+/// What an expectation sees at its tick.
+pub(super) struct Seen<'a> {
+    pub axis: Option<&'a AxisStatus>,
+    pub di: &'a [bool],
+    pub do_: &'a [bool],
+    /// The state of the command step `k` issued: `Err` says why there is none.
+    pub command_state: &'a dyn Fn(usize) -> Result<CommandState, String>,
+}
+
+impl Expectation {
+    /// Each condition that does not hold, described.
+    pub fn failures(&self, seen: &Seen) -> Vec<String> {
+        let mut out = Vec::new();
+        let axis = self.axis.unwrap_or(0);
+        for check in &self.checks {
+            let mut msg = String::new();
+            // Writing to a String cannot fail.
+            let _ = match (check, seen.axis) {
+                (Check::State(want), Some(s)) if s.state != *want => {
+                    write!(msg, "axis {axis} state: expected {want}, saw {}", s.state)
+                }
+                (Check::Number(q, want), Some(s)) => {
+                    let got = q.of(s);
+                    if (got - want).abs() <= self.tolerance {
+                        continue;
+                    }
+                    write!(
+                        msg,
+                        "axis {axis} {}: expected {want} ± {}, saw {got} (off by {})",
+                        q.name(),
+                        self.tolerance,
+                        got - want
+                    )
+                }
+                (Check::Flags(want), Some(s)) if !s.flags.contains(*want) => write!(
+                    msg,
+                    "axis {axis} flags: expected {} set, missing {} (set: {})",
+                    flag_names(*want),
+                    flag_names(*want - s.flags),
+                    flag_names(s.flags)
+                ),
+                (Check::NotFlags(want), Some(s)) if s.flags.intersects(*want) => write!(
+                    msg,
+                    "axis {axis} flags: expected {} clear, set: {}",
+                    flag_names(*want),
+                    flag_names(*want & s.flags)
+                ),
+                (Check::Error(want), Some(s)) if s.last_error != *want => write!(
+                    msg,
+                    "axis {axis} error: expected {}, saw {}",
+                    want.map_or("none", |e| e.name()),
+                    s.last_error.map_or("none", |e| e.name())
+                ),
+                (Check::CommandState { step, state }, _) => match (seen.command_state)(*step) {
+                    Ok(got) if state.matches(got) => continue,
+                    Ok(got) => write!(
+                        msg,
+                        "command of step[{step}]: expected {state}, saw {}",
+                        command_state_name(got)
+                    ),
+                    Err(why) => write!(msg, "command of step[{step}]: expected {state}, but {why}"),
+                },
+                (Check::Di { channel, value }, _) => {
+                    let got = seen.di.get(*channel as usize).copied().unwrap_or(false);
+                    if got == *value {
+                        continue;
+                    }
+                    write!(msg, "di[{channel}]: expected {value}, saw {got}")
+                }
+                (Check::Do { channel, value }, _) => {
+                    let got = seen.do_.get(*channel as usize).copied().unwrap_or(false);
+                    if got == *value {
+                        continue;
+                    }
+                    write!(msg, "do[{channel}]: expected {value}, saw {got}")
+                }
+                _ => continue,
+            };
+            out.push(msg);
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn spec() -> ExpectSpec {
+        ExpectSpec::default()
+    }
+
+    #[test]
+    fn shapes_are_checked() {
+        let e = Expectation::from_spec(ExpectSpec {
+            axis: Some(1),
+            state: Some(AxisState::Standstill),
+            position: Some(100.0),
+            tolerance: Some(1e-6),
+            flags: vec!["homed".into(), "IN_POSITION".into()],
+            error: Some(String::new()),
+            ..spec()
+        })
+        .unwrap();
+        assert_eq!(e.checks.len(), 4);
+        assert_eq!(
+            e.checks[2],
+            Check::Flags(AxisFlags::HOMED | AxisFlags::IN_POSITION)
+        );
+        assert_eq!(e.checks[3], Check::Error(None));
+        let err = |s: ExpectSpec| Expectation::from_spec(s).unwrap_err();
+        assert_eq!(err(spec()).0, "expect");
+        assert_eq!(
+            err(ExpectSpec {
+                position: Some(1.0),
+                ..spec()
+            })
+            .0,
+            "axis"
+        );
+        let (key, why) = err(ExpectSpec {
+            axis: Some(0),
+            flags: vec!["homd".into()],
+            ..spec()
+        });
+        assert_eq!(key, "flags");
+        assert!(why.contains("homed"), "{why}");
+        assert_eq!(
+            err(ExpectSpec {
+                axis: Some(0),
+                error: Some("limit".into()),
+                ..spec()
+            })
+            .0,
+            "error"
+        );
+        assert_eq!(
+            err(ExpectSpec {
+                di: Some(3),
+                ..spec()
+            })
+            .0,
+            "value"
+        );
+        assert_eq!(
+            err(ExpectSpec {
+                step: Some(3),
+                ..spec()
+            })
+            .0,
+            "command_state"
+        );
+        assert_eq!(
+            err(ExpectSpec {
+                axis: Some(0),
+                state: Some(AxisState::Standstill),
+                tolerance: Some(0.1),
+                ..spec()
+            })
+            .0,
+            "tolerance"
+        );
+    }
+
+    #[test]
+    fn command_states_parse() {
+        assert_eq!(
+            ExpectedState::parse("error:limit_reached").unwrap(),
+            ExpectedState::Exactly(CommandState::Error(ErrorKind::LimitReached))
+        );
+        assert!(ExpectedState::parse("error")
+            .unwrap()
+            .matches(CommandState::Error(ErrorKind::Fault)));
+        assert!(ExpectedState::parse("finished").is_err());
+        assert!(ExpectedState::parse("error:nope").is_err());
+    }
+
+    #[test]
+    fn failures_say_what_was_expected_and_seen() {
+        let e = Expectation {
+            axis: Some(2),
+            tolerance: 0.5,
+            checks: vec![
+                Check::State(AxisState::Standstill),
+                Check::Number(Quantity::Position, 10.0),
+                Check::Flags(AxisFlags::HOMED),
+                Check::Di {
+                    channel: 1,
+                    value: true,
+                },
+            ],
+        };
+        let status = AxisStatus {
+            state: AxisState::DiscreteMotion,
+            act_pos: 10.4,
+            flags: AxisFlags::ENABLED,
+            ..AxisStatus::default()
+        };
+        let none = |_: usize| Err::<CommandState, String>("no".into());
+        let seen = Seen {
+            axis: Some(&status),
+            di: &[false, false],
+            do_: &[],
+            command_state: &none,
+        };
+        let f = e.failures(&seen);
+        assert_eq!(
+            f,
+            [
+                "axis 2 state: expected standstill, saw discrete_motion",
+                "axis 2 flags: expected homed set, missing homed (set: enabled)",
+                "di[1]: expected true, saw false",
+            ]
+        );
+    }
+}

@@ -1,0 +1,237 @@
+use super::*;
+
+fn parse(text: &str) -> Result<Scenario, ScenarioError> {
+    Scenario::parse(text, "s.toml", Path::new(""))
+}
+
+/// One stepper axis in mm, limits at ±500, 1 ms period.
+const MACHINE: &str = r#"
+[machine]
+period = 0.001
+[[axes]]
+[axes.params]
+axis_type = "stepper"
+units = 1000
+rep_mode = "finite"
+speed = 100
+accel = 1000
+decel = 1000
+[axes.switches.limit_pos]
+position = 500
+[axes.switches.limit_neg]
+position = -500
+"#;
+
+fn with_machine(scenario: &str) -> String {
+    // Top-level keys first: TOML puts keys after a table header into that table.
+    format!("{scenario}\n{MACHINE}")
+}
+
+fn err(text: &str) -> ScenarioError {
+    match parse(text) {
+        Ok(s) => panic!("parsed: {s:?}"),
+        Err(e) => e,
+    }
+}
+
+#[test]
+fn ticks_round_up_forgiving_rounding() {
+    assert_eq!(tick_of(0.0, 1e-3), Ok(0));
+    assert_eq!(tick_of(0.01, 1e-3), Ok(10));
+    assert_eq!(tick_of(0.0105, 1e-3), Ok(11));
+    assert_eq!(tick_of(0.3, 0.1), Ok(3));
+    assert_eq!(tick_of(3600.0, 1e-3), Ok(3_600_000));
+    assert_eq!(tick_of(1e9 * 0.1, 0.1), Ok(1_000_000_000));
+    assert_eq!(tick_of(1e9 * 1e-3 + 1e-3, 1e-3), Ok(1_000_000_001));
+    assert_eq!(tick_of(0.0015, 1e-3), Ok(2));
+    assert!(tick_of(-1.0, 1e-3).is_err());
+    assert!(tick_of(f64::NAN, 1e-3).is_err());
+    assert!(tick_of(1e12, 1e-3).is_err());
+}
+
+#[test]
+fn an_inline_scenario_parses_in_execution_order() {
+    let s = parse(&with_machine(
+        r#"
+end = 1.0
+[[step]]
+at = 0.5
+expect = { axis = 0, state = "standstill" }
+[[step]]
+at = 0.0
+command = { type = "enable", axis = 0 }
+[[step]]
+at = 0.5
+force = { axis = 0, input = "limit_pos", value = true }
+"#,
+    ))
+    .unwrap();
+    assert_eq!(s.end_tick(), 1000);
+    assert_eq!(s.config().axes.len(), 1);
+    let order: Vec<(usize, u64)> = s.steps.iter().map(|s| (s.index, s.tick)).collect();
+    assert_eq!(order, [(1, 0), (0, 500), (2, 500)]);
+}
+
+#[test]
+fn errors_name_the_key() {
+    let key = |text: &str| err(&with_machine(text)).key;
+    assert_eq!(key("end = 1.0\n[[step]]\nat = 0.5\n"), "step[0]");
+    assert_eq!(
+        key("end = 1.0\n[[step]]\nat = 0.5\ncommand = { type = \"enable\", axis = 0 }\nexpect = { axis = 0, state = \"standstill\" }\n"),
+        "step[0]"
+    );
+    assert_eq!(
+        key("end = 1.0\n[[step]]\nat = 2\ncommand = { type = \"enable\", axis = 0 }\n"),
+        "step[0].at"
+    );
+    assert_eq!(
+        key("end = 1.0\n[[step]]\nat = -1\ncommand = { type = \"enable\", axis = 0 }\n"),
+        "step[0].at"
+    );
+    assert_eq!(
+        key("end = 1.0\n[[step]]\nat = 0\nexpect = { axis = 4, state = \"standstill\" }\n"),
+        "step[0].expect.axis"
+    );
+    assert_eq!(
+        key("end = 1.0\n[[step]]\nat = 0\ncommand = { type = \"enable\", axis = 4 }\n"),
+        "step[0].command.axis"
+    );
+    assert_eq!(
+        key("end = 1.0\n[[step]]\nat = 0\nforce = { axis = 0, input = \"limit_up\" }\n"),
+        "step[0].force.input"
+    );
+    assert_eq!(
+        key("end = 1.0\n[[step]]\nat = 0\nforce = { di = 64, value = true }\n"),
+        "step[0].force.di"
+    );
+    assert_eq!(
+        key("end = 1.0\n[[step]]\nat = 0\nexpect = { axis = 0, positon = 1.0 }\n"),
+        "step[0].expect.positon"
+    );
+    assert_eq!(
+        key("[[step]]\nat = 0\nexpect = { di = 1, value = true }\n"),
+        "end"
+    );
+    assert_eq!(key("end = 1.0\nends = 2.0\n"), "ends");
+    let e = err(&with_machine("end = 1.0\nends = 2.0\n"));
+    assert!(e.reason.contains("unknown key `ends`"), "{e}");
+    assert!(e.reason.contains("`axes`"), "{e}");
+}
+
+#[test]
+fn the_machine_is_given_once() {
+    let e = err("end = 1.0\n");
+    assert_eq!(e.key, "config");
+    assert!(e.reason.contains("no machine"), "{e}");
+    let e = err(&with_machine("config = \"m.toml\"\nend = 1.0\n"));
+    assert!(["machine", "axes"].contains(&e.key.as_str()), "{e}");
+    assert!(e.reason.contains("given twice"), "{e}");
+    let e = err("config = \"does/not/exist.toml\"\nend = 1.0\n");
+    assert_eq!(e.key, "config");
+    assert!(
+        e.reason.contains("does/not/exist.toml: cannot read it"),
+        "{e}"
+    );
+    let e = err("end = 1.0\n[config.machine]\nperiod = 0.001\n");
+    assert_eq!(e.key, "config");
+    assert!(e.reason.contains("not under [config]"), "{e}");
+    // Inline config errors are the config's own: key path and reason, named by the scenario.
+    let e = err("end = 1.0\n[machine]\nperiod = 0.5\n");
+    assert_eq!(
+        (e.file.as_str(), e.key.as_str()),
+        ("s.toml", "machine.period")
+    );
+    let e = err("end = 1.0\n[[axes]]\n[axes.params]\naccel = -3\n");
+    assert_eq!(e.key, "axes[0].params.accel");
+}
+
+#[test]
+fn command_state_refers_to_an_earlier_motion_command() {
+    let base = "end = 1.0\n[[step]]\nat = 0\ncommand = { type = \"enable\", axis = 0 }\n[[step]]\nat = 0.1\ncommand = { type = \"move_relative\", axis = 0, distance = 1.0 }\n";
+    let ok =
+        format!("{base}[[step]]\nat = 0.1\nexpect = {{ step = 1, command_state = \"running\" }}\n");
+    parse(&with_machine(&ok)).unwrap();
+    for (target, at, why) in [
+        (0, "0.5", "not a motion command"),
+        (1, "0.05", "runs after this one"),
+        (7, "0.5", "no step[7]"),
+    ] {
+        let text = format!(
+            "{base}[[step]]\nat = {at}\nexpect = {{ step = {target}, command_state = \"done\" }}\n"
+        );
+        let e = err(&with_machine(&text));
+        assert_eq!(e.key, "step[2].expect.step");
+        assert!(e.reason.contains(why), "{e}");
+    }
+}
+
+#[test]
+fn a_run_reports_failures_and_refusals() {
+    let s = parse(&with_machine(
+        r#"
+end = 2.0
+[[step]]
+at = 0
+command = { type = "enable", axis = 0 }
+[[step]]
+at = 0.01
+command = { type = "move_absolute", axis = 0, position = 10.0, velocity = 50.0 }
+[[step]]
+at = 0.02
+command = { type = "move_absolute", axis = 0, position = 10.0, velocity = -1.0 }
+[[step]]
+at = 0.03
+command = { type = "enable", axis = 9 }
+expect_error = "invalid_axis"
+[[step]]
+at = 1.5
+expect = { axis = 0, state = "standstill", position = 10.0, flags = ["in_position"] }
+[[step]]
+at = 1.5
+expect = { axis = 0, position = 11.0, tolerance = 0.5 }
+[[step]]
+at = 1.5
+expect = { step = 1, command_state = "error" }
+"#,
+    ))
+    .unwrap();
+    let r = s.run(None).unwrap();
+    assert_eq!(r.ticks, 2000);
+    assert_eq!(r.expectations, 3);
+    assert_eq!(r.failures.len(), 3, "{:#?}", r.failures);
+    assert!(
+        r.failures[0]
+            .starts_with("s.toml: step[2] at 0.02 s: move_absolute refused (invalid_argument)"),
+        "{}",
+        r.failures[0]
+    );
+    assert!(
+        r.failures[1].contains("step[5] at 1.5 s: axis 0 position: expected 11 ± 0.5, saw 10"),
+        "{}",
+        r.failures[1]
+    );
+    assert!(
+        r.failures[2].contains("step[6] at 1.5 s: command of step[1]: expected error, saw"),
+        "{}",
+        r.failures[2]
+    );
+}
+
+#[test]
+fn the_trace_has_a_row_per_axis_per_tick_from_tick_0() {
+    let s = parse(&with_machine(
+        "end = 0.01\n[[step]]\nat = 0\ncommand = { type = \"enable\", axis = 0 }\n",
+    ))
+    .unwrap();
+    let mut out = Vec::new();
+    let r = s.run(Some(&mut out)).unwrap();
+    let text = String::from_utf8(out).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines[0], crate::trace::HEADER);
+    assert_eq!(lines.len(), 1 + 11);
+    assert_eq!(r.trace_rows, 11);
+    assert_eq!(r.trace_bytes as usize, text.len());
+    // Written after the tick's steps: the enable shows at tick 0.
+    assert!(lines[1].starts_with("0,0,standstill,"), "{}", lines[1]);
+    assert!(lines[11].starts_with("0.01,0,standstill,"), "{}", lines[11]);
+}
