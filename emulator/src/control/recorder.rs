@@ -225,15 +225,19 @@ impl TraceRecorder {
                 "`max_rows` = {max_rows}: must be between 1 and {MAX_TRACE_ROWS}"
             )));
         }
-        let (generation, previous) = {
+        // The whole cap is reserved here, off the servo thread: growing the buffer later would
+        // copy it there, mid-tick. Untouched pages of the reservation cost no memory.
+        let rows = Vec::with_capacity(max_rows);
+        let (generation, previous, old_rows) = {
             let mut rec = lock(&self.recording);
             rec.generation += 1;
             rec.state = TraceState::Recording;
             rec.axes = axes;
             rec.max_rows = max_rows;
-            rec.rows = Vec::new(); // frees the previous recording
-            (rec.generation, rec.observer.take())
+            let old_rows = std::mem::replace(&mut rec.rows, rows);
+            (rec.generation, rec.observer.take(), old_rows)
         };
+        drop(old_rows); // outside the lock the servo thread may be waiting for
         if let Some(id) = previous {
             // It would remove itself at its next tick (older generation); this is tidier.
             handle.remove_observer_async(id).await?;
