@@ -16,7 +16,7 @@ use serde::{Deserialize, Serialize};
 use super::error::ApiError;
 
 /// Row cap when a start request gives none, and the largest it may give: about 80 MB of buffer
-/// and 150 MB of CSV at most.
+/// and about 110 MB of CSV at most.
 pub const MAX_TRACE_ROWS: usize = 1_000_000;
 
 /// Rows copied out of the buffer per lock while a trace is read, so a long read never holds
@@ -293,8 +293,8 @@ impl TraceRecorder {
             }
             (rec.generation, rec.status())
         };
-        // About 150 bytes a row.
-        let mut out = Vec::with_capacity(status.rows.saturating_mul(150).min(1 << 28));
+        // About 110 bytes a row.
+        let mut out = Vec::with_capacity(status.rows.saturating_mul(110).min(1 << 28));
         out.extend_from_slice(crate::trace::HEADER.as_bytes());
         out.push(b'\n');
         let mut chunk = Vec::with_capacity(READ_CHUNK.min(status.rows));
