@@ -4,7 +4,8 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-use std::io::{BufRead, BufReader};
+use std::io::{BufRead, BufReader, Write};
+use std::net::TcpStream;
 use std::path::PathBuf;
 use std::process::{Child, Command, ExitStatus, Stdio};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -910,5 +911,45 @@ fn control_rejects_bad_requests_with_json_errors() {
 
     // After all that, the server still answers and the machine is intact.
     assert_eq!(m.state()["axes"][0]["state"], "standstill");
+    m.stop();
+}
+
+#[test]
+fn control_bounds_the_requests_in_flight_and_recovers() {
+    let m = Mcemu::start("virtual", &[]);
+    let address = m.base.trim_start_matches("http://").to_string();
+    // Requests whose bodies never come each hold a slot (until the 10 s body timeout).
+    let stalled: Vec<TcpStream> = (0..64)
+        .map(|_| {
+            let mut s = TcpStream::connect(&address).unwrap();
+            s.write_all(
+                b"POST /api/v1/commands HTTP/1.1\r\nHost: x\r\n\
+                  Content-Type: application/json\r\nContent-Length: 100\r\n\r\n{",
+            )
+            .unwrap();
+            s
+        })
+        .collect();
+    let deadline = Instant::now() + Duration::from_secs(8);
+    let busy = loop {
+        let r = m.get("/api/v1/state");
+        if r.status == 503 {
+            break r;
+        }
+        assert_eq!(r.status, 200, "{}", r.body);
+        assert!(
+            Instant::now() < deadline,
+            "64 stalled requests never filled the slots"
+        );
+        std::thread::sleep(Duration::from_millis(10));
+    };
+    assert_eq!(busy.json()["error"], "too_many_requests");
+    assert_eq!(busy.headers["retry-after"], "1");
+    drop(stalled);
+    let deadline = Instant::now() + Duration::from_secs(8);
+    while m.get("/api/v1/state").status != 200 {
+        assert!(Instant::now() < deadline, "the slots were not released");
+        std::thread::sleep(Duration::from_millis(10));
+    }
     m.stop();
 }

@@ -42,6 +42,8 @@ pub enum ApiError {
     UnsupportedMediaType { found: String },
     #[error("the body is larger than {limit} bytes")]
     BodyTooLarge { limit: usize },
+    #[error("the body did not arrive within {seconds} s")]
+    BodyTimeout { seconds: u64 },
     #[error("cannot read the body: {0}")]
     UnreadableBody(String),
     /// Well-formed but meaningless values (both `ticks` and `seconds`, a negative duration …).
@@ -61,6 +63,8 @@ pub enum ApiError {
     TraceRestarted,
     #[error("the engine's command queue is full ({capacity} requests); retry later")]
     Busy { capacity: usize },
+    #[error("{limit} requests are being handled; retry later")]
+    TooManyRequests { limit: usize },
     #[error("the runtime is stopped")]
     Stopped,
     #[error("the servo thread died; the engine is lost")]
@@ -88,10 +92,11 @@ impl ApiError {
             | NoSuchFrontend { .. } => StatusCode::BAD_REQUEST,
             UnsupportedMediaType { .. } => StatusCode::UNSUPPORTED_MEDIA_TYPE,
             BodyTooLarge { .. } => StatusCode::PAYLOAD_TOO_LARGE,
+            BodyTimeout { .. } => StatusCode::REQUEST_TIMEOUT,
             NotFound { .. } => StatusCode::NOT_FOUND,
             MethodNotAllowed { .. } => StatusCode::METHOD_NOT_ALLOWED,
             NotVirtual { .. } | NoTrace | TraceRestarted => StatusCode::CONFLICT,
-            Busy { .. } | Stopped => StatusCode::SERVICE_UNAVAILABLE,
+            Busy { .. } | TooManyRequests { .. } | Stopped => StatusCode::SERVICE_UNAVAILABLE,
             ServoDied | Internal(_) => StatusCode::INTERNAL_SERVER_ERROR,
             Engine { .. } => StatusCode::UNPROCESSABLE_ENTITY,
         }
@@ -105,6 +110,7 @@ impl ApiError {
             InvalidBody { .. } => "invalid_body",
             UnsupportedMediaType { .. } => "unsupported_media_type",
             BodyTooLarge { .. } => "body_too_large",
+            BodyTimeout { .. } => "body_timeout",
             UnreadableBody(_) => "unreadable_body",
             InvalidRequest(_) => "invalid_request",
             NotFound { .. } => "not_found",
@@ -114,6 +120,7 @@ impl ApiError {
             NoTrace => "no_trace",
             TraceRestarted => "trace_restarted",
             Busy { .. } => "runtime_busy",
+            TooManyRequests { .. } => "too_many_requests",
             Stopped => "runtime_stopped",
             ServoDied => "servo_died",
             Internal(_) => "internal",
@@ -185,7 +192,10 @@ impl serde::Serialize for Ordered {
 impl IntoResponse for ApiError {
     fn into_response(self) -> Response {
         let mut response = (self.status(), Json(Ordered(self.fields()))).into_response();
-        if matches!(self, ApiError::Busy { .. }) {
+        if matches!(
+            self,
+            ApiError::Busy { .. } | ApiError::TooManyRequests { .. }
+        ) {
             response
                 .headers_mut()
                 .insert(header::RETRY_AFTER, HeaderValue::from_static("1"));
@@ -437,6 +447,19 @@ fn check_json_content_type(headers: &HeaderMap) -> Result<(), ApiError> {
     }
 }
 
+/// How long a client may take to send a body: a stalled upload must not hold one of the
+/// bounded request slots for ever.
+pub const BODY_TIMEOUT: std::time::Duration = std::time::Duration::from_secs(10);
+
+async fn read_body<S: Send + Sync>(req: Request, state: &S) -> Result<Bytes, ApiError> {
+    match tokio::time::timeout(BODY_TIMEOUT, Bytes::from_request(req, state)).await {
+        Ok(read) => Ok(read?),
+        Err(_) => Err(ApiError::BodyTimeout {
+            seconds: BODY_TIMEOUT.as_secs(),
+        }),
+    }
+}
+
 /// A JSON request body (`Content-Type: application/json`, at most [`MAX_BODY_BYTES`]).
 pub struct JsonBody(pub Bytes);
 
@@ -445,7 +468,7 @@ impl<S: Send + Sync> FromRequest<S> for JsonBody {
 
     async fn from_request(req: Request, state: &S) -> Result<Self, ApiError> {
         check_json_content_type(req.headers())?;
-        Ok(JsonBody(Bytes::from_request(req, state).await?))
+        Ok(JsonBody(read_body(req, state).await?))
     }
 }
 
@@ -457,7 +480,7 @@ impl<S: Send + Sync> FromRequest<S> for OptionalJsonBody {
 
     async fn from_request(req: Request, state: &S) -> Result<Self, ApiError> {
         let headers = req.headers().clone();
-        let bytes = Bytes::from_request(req, state).await?;
+        let bytes = read_body(req, state).await?;
         if bytes.iter().all(u8::is_ascii_whitespace) {
             return Ok(OptionalJsonBody(None));
         }

@@ -26,10 +26,12 @@ use std::sync::Arc;
 use axes::runtime::EngineHandle;
 use axum::extract::{DefaultBodyLimit, State};
 use axum::http::{header, HeaderValue, Method, Uri};
+use axum::middleware::{self, Next};
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
 use axum::{Json, Router};
 use serde_json::{Map, Value};
+use tokio::sync::Semaphore;
 
 pub use commands::{AxisFault, CommandBody, FaultRequest, InputRequest, MAX_COMMANDS_PER_REQUEST};
 pub use error::{ApiError, MAX_BODY_BYTES};
@@ -64,6 +66,12 @@ impl MachineInfo {
     }
 }
 
+/// Requests handled at once; more are answered 503 at once. Each may hold a 1 MiB body.
+pub const MAX_CONCURRENT_REQUESTS: usize = 64;
+
+/// Traces rendered at once (each may be 110 MB of CSV); more wait their turn.
+const CONCURRENT_TRACE_READS: usize = 2;
+
 /// What every handler needs.
 #[derive(Clone)]
 pub struct ControlState {
@@ -72,6 +80,8 @@ pub struct ControlState {
     pub trace: TraceRecorder,
     /// Front-ends that take faults through `POST /faults` (none yet).
     pub frontends: Arc<Vec<Arc<dyn FrontendFaults>>>,
+    requests: Arc<Semaphore>,
+    trace_reads: Arc<Semaphore>,
 }
 
 impl ControlState {
@@ -85,6 +95,8 @@ impl ControlState {
             handle,
             trace: TraceRecorder::default(),
             frontends: Arc::new(Vec::new()),
+            requests: Arc::new(Semaphore::new(MAX_CONCURRENT_REQUESTS)),
+            trace_reads: Arc::new(Semaphore::new(CONCURRENT_TRACE_READS)),
         }
     }
 }
@@ -141,7 +153,25 @@ pub fn router(state: ControlState) -> Router {
         .fallback(not_found)
         .method_not_allowed_fallback(method_not_allowed)
         .layer(DefaultBodyLimit::max(MAX_BODY_BYTES))
+        .layer(middleware::from_fn_with_state(
+            Arc::clone(&state.requests),
+            limit_requests,
+        ))
         .with_state(state)
+}
+
+async fn limit_requests(
+    State(permits): State<Arc<Semaphore>>,
+    request: axum::extract::Request,
+    next: Next,
+) -> Response {
+    match permits.try_acquire_owned() {
+        Ok(_permit) => next.run(request).await,
+        Err(_) => ApiError::TooManyRequests {
+            limit: MAX_CONCURRENT_REQUESTS,
+        }
+        .into_response(),
+    }
 }
 
 async fn index() -> Response {
@@ -209,6 +239,9 @@ async fn trace_stop(State(state): State<ControlState>) -> Response {
 /// `text/csv`; `X-Mcemu-Trace-State` (recording, stopped, full) and `X-Mcemu-Trace-Rows` say
 /// what it holds. Rendering a large trace takes a while, so it runs off the async workers.
 async fn trace_csv(State(state): State<ControlState>) -> Response {
+    let Ok(_turn) = state.trace_reads.acquire().await else {
+        return ApiError::Internal("trace reader semaphore closed".into()).into_response();
+    };
     let period = state.handle.snapshot().period;
     let recorder = state.trace.clone();
     let rendered = tokio::task::spawn_blocking(move || recorder.csv(period)).await;
