@@ -2,7 +2,6 @@
 //! until SIGINT or SIGTERM. Each listener prints `listening: <protocol> <address>` once bound.
 
 use std::io::Write;
-use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use axes::command::{Command, StopMode};
@@ -64,11 +63,7 @@ async fn serve(config: &Config, handle: EngineHandle) -> Result<(), RunError> {
     let control = &config.frontends.control;
     if control.enabled {
         let listener = bind("control", control.bind).await?;
-        let state = ControlState {
-            handle: handle.clone(),
-            machine: Arc::new(config.machine.name.clone()),
-        };
-        let app = control::router(state);
+        let app = control::router(ControlState::new(handle.clone(), config));
         servers.spawn(async move {
             if let Err(e) = axum::serve(listener, app).await {
                 tracing::error!(error = %e, "control API stopped");

@@ -3,7 +3,8 @@
 //!
 //! [`Runtime::start`] moves an [`Engine`] onto the servo thread ("mcemu-servo") and returns an
 //! [`EngineHandle`], which front-ends clone freely (blocking and async calls, no tokio), and a
-//! [`RuntimeGuard`], which stops the thread and gives the engine back.
+//! [`RuntimeGuard`], which stops the thread and gives the engine back. Observers
+//! ([`EngineHandle::add_observer`]) see the engine after every tick, on the servo thread.
 //!
 //! Ordering guarantees:
 //! - commands are applied in the order the queue received them;
@@ -231,6 +232,14 @@ pub struct Until {
 /// Condition of [`EngineHandle::advance_until`], evaluated on the snapshot published after each
 /// tick (the same one readers get).
 pub type Condition = Box<dyn Fn(&Snapshot) -> bool + Send>;
+
+/// A per-tick observer ([`EngineHandle::add_observer`]): called on the servo thread with the
+/// engine after every step, for as long as it returns `true`.
+pub type Observer = Box<dyn FnMut(&Engine) -> bool + Send>;
+
+/// Names an installed [`Observer`] for [`EngineHandle::remove_observer`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+pub struct ObserverId(u64);
 
 /// The sending half of a reply: sending consumes it; dropping it unsent (the request was
 /// discarded at shutdown, or the servo thread unwound) replies `Stopped`, so every request gets
@@ -486,6 +495,65 @@ impl EngineHandle {
             reply,
         })?;
         Ok(pending)
+    }
+
+    /// Install `observer`: from the next tick on, the servo thread calls it with the engine right
+    /// after every step (virtual, realtime and scaled alike, caught-up ticks included) until it
+    /// returns `false` or is removed. It is how something sees every tick rather than polled
+    /// snapshots (trace recording).
+    ///
+    /// It runs inside the tick, so it must be short (copy out what it needs) and must not block;
+    /// blocking handle calls from it are refused (`OnServoThread`). A panic in it removes it;
+    /// the runtime goes on. Queued like a command, so it is ordered with commands and advances.
+    /// With no observer installed a tick pays one branch.
+    pub fn submit_observer(
+        &self,
+        observer: Observer,
+    ) -> Result<Pending<ObserverId, CallError>, SubmitError> {
+        let (reply, pending) = reply_channel();
+        self.enqueue(Request::Observe { observer, reply })?;
+        Ok(pending)
+    }
+
+    /// [`EngineHandle::submit_observer`] and block until it is installed.
+    pub fn add_observer(
+        &self,
+        observer: impl FnMut(&Engine) -> bool + Send + 'static,
+    ) -> Result<ObserverId, CallError> {
+        if self.shared.on_servo_thread() {
+            return Err(CallError::OnServoThread);
+        }
+        self.submit_observer(Box::new(observer))?.wait()
+    }
+
+    pub async fn add_observer_async(
+        &self,
+        observer: impl FnMut(&Engine) -> bool + Send + 'static,
+    ) -> Result<ObserverId, CallError> {
+        self.submit_observer(Box::new(observer))?.await
+    }
+
+    /// Remove an observer, ordered with commands and advances; the reply is `false` when it was
+    /// already gone (it returned `false`, panicked, or was removed before).
+    pub fn submit_remove_observer(
+        &self,
+        id: ObserverId,
+    ) -> Result<Pending<bool, CallError>, SubmitError> {
+        let (reply, pending) = reply_channel();
+        self.enqueue(Request::RemoveObserver { id, reply })?;
+        Ok(pending)
+    }
+
+    /// [`EngineHandle::submit_remove_observer`] and block until it is done.
+    pub fn remove_observer(&self, id: ObserverId) -> Result<bool, CallError> {
+        if self.shared.on_servo_thread() {
+            return Err(CallError::OnServoThread);
+        }
+        self.submit_remove_observer(id)?.wait()
+    }
+
+    pub async fn remove_observer_async(&self, id: ObserverId) -> Result<bool, CallError> {
+        self.submit_remove_observer(id)?.await
     }
 
     fn enqueue(&self, request: Request) -> Result<(), SubmitError> {

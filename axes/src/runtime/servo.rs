@@ -9,8 +9,8 @@ use std::time::Duration;
 use arc_swap::ArcSwap;
 
 use super::{
-    AdvanceError, CallError, Clock, Condition, ReplySender, RuntimeOptions, RuntimeStats, Shared,
-    Until,
+    AdvanceError, CallError, Clock, Condition, Observer, ObserverId, ReplySender, RuntimeOptions,
+    RuntimeStats, Shared, Until,
 };
 use crate::command::{Command, Reply};
 use crate::engine::Engine;
@@ -25,6 +25,14 @@ pub(super) enum Request {
         ticks: u64,
         until: Option<Condition>,
         reply: ReplySender<Until, AdvanceError>,
+    },
+    Observe {
+        observer: Observer,
+        reply: ReplySender<ObserverId, CallError>,
+    },
+    RemoveObserver {
+        id: ObserverId,
+        reply: ReplySender<bool, CallError>,
     },
     /// Wakes a virtual servo thread blocked on the queue, so that it sees the stop flag.
     Wake,
@@ -109,6 +117,9 @@ pub(super) struct Servo<C> {
     stats: RuntimeStats,
     /// Replies held back until the snapshot with their effect is published.
     replies: Vec<(ReplySender<Reply, CallError>, Result<Reply, CallError>)>,
+    /// Called after every step, in installation order.
+    observers: Vec<(ObserverId, Observer)>,
+    next_observer: u64,
 }
 
 /// Clears `running` when the servo thread ends, by return or by unwinding.
@@ -140,6 +151,8 @@ impl<C: Clock> Servo<C> {
             stats_publisher: Publisher::new(),
             stats,
             replies: Vec::with_capacity(options.max_commands_per_tick.min(4096)),
+            observers: Vec::new(),
+            next_observer: 1,
         }
     }
 
@@ -188,6 +201,8 @@ impl<C: Clock> Servo<C> {
                     self.publish_stats();
                     reply.send(result);
                 }
+                Request::Observe { observer, reply } => self.observe(observer, reply),
+                Request::RemoveObserver { id, reply } => self.remove_observer(id, reply),
                 Request::Wake => {}
             }
         }
@@ -198,9 +213,7 @@ impl<C: Clock> Servo<C> {
             if self.stopping() {
                 return Err(AdvanceError::Submit(super::SubmitError::Stopped));
             }
-            self.engine.step();
-            self.stats.ticks_run += 1;
-            self.publish_snapshot();
+            self.step();
             if let Some(condition) = until {
                 let snapshot = self.shared.snapshot.load();
                 // The condition is the caller's code: a panic in it fails this advance, not the
@@ -297,6 +310,8 @@ impl<C: Clock> Servo<C> {
                 Ok(Request::Advance { reply, .. }) => {
                     reply.send(Err(AdvanceError::NotVirtual(self.shared.clock)));
                 }
+                Ok(Request::Observe { observer, reply }) => self.observe(observer, reply),
+                Ok(Request::RemoveObserver { id, reply }) => self.remove_observer(id, reply),
                 Ok(Request::Wake) => {}
                 // Disconnected: the guard is gone, so the stop flag is set.
                 Err(TryRecvError::Empty | TryRecvError::Disconnected) => break,
@@ -305,9 +320,7 @@ impl<C: Clock> Servo<C> {
         if applied == self.max_commands_per_tick {
             self.stats.command_bound_hits += 1;
         }
-        self.engine.step();
-        self.stats.ticks_run += 1;
-        self.publish_snapshot();
+        self.step();
         self.send_replies();
         let busy = self.clock.now().saturating_sub(started);
         if busy > wall_period {
@@ -317,6 +330,38 @@ impl<C: Clock> Servo<C> {
     }
 
     // ---- common ----------------------------------------------------------------------------
+
+    /// One engine step, its observers, its snapshot.
+    fn step(&mut self) {
+        self.engine.step();
+        self.stats.ticks_run += 1;
+        if !self.observers.is_empty() {
+            self.notify_observers();
+        }
+        self.publish_snapshot();
+    }
+
+    fn notify_observers(&mut self) {
+        let engine = &self.engine;
+        self.observers.retain_mut(|(_, observer)| {
+            // The observer is the caller's code: a panic removes it, not the runtime (it only
+            // saw a shared reference, so the engine is intact).
+            catch_unwind(AssertUnwindSafe(|| observer(engine))).unwrap_or(false)
+        });
+    }
+
+    fn observe(&mut self, observer: Observer, reply: ReplySender<ObserverId, CallError>) {
+        let id = ObserverId(self.next_observer);
+        self.next_observer += 1;
+        self.observers.push((id, observer));
+        reply.send(Ok(id));
+    }
+
+    fn remove_observer(&mut self, id: ObserverId, reply: ReplySender<bool, CallError>) {
+        let before = self.observers.len();
+        self.observers.retain(|(installed, _)| *installed != id);
+        reply.send(Ok(self.observers.len() != before));
+    }
 
     fn apply(&mut self, command: Command, reply: ReplySender<Reply, CallError>) {
         let result = self.engine.apply(command).map_err(CallError::Engine);

@@ -651,6 +651,131 @@ fn options_and_stats_serialize() {
     assert_eq!(stats["lateness"]["count"], 0);
 }
 
+// ---- observers -------------------------------------------------------------------------------
+
+/// An observer that records the tick it saw, while it keeps returning `keep(tick)`.
+fn tick_recorder(
+    keep: impl Fn(u64) -> bool + Send + 'static,
+) -> (
+    Arc<Mutex<Vec<u64>>>,
+    impl FnMut(&Engine) -> bool + Send + 'static,
+) {
+    let seen = Arc::new(Mutex::new(Vec::new()));
+    let sink = Arc::clone(&seen);
+    let observer = move |engine: &Engine| {
+        sink.lock().unwrap().push(engine.tick());
+        keep(engine.tick())
+    };
+    (seen, observer)
+}
+
+#[test]
+fn observer_sees_every_tick_of_an_advance_and_nothing_else() {
+    let (handle, _guard) = virtual_runtime(1);
+    handle.advance(3).unwrap();
+    let (seen, observer) = tick_recorder(|_| true);
+    let id = handle.add_observer(observer).unwrap();
+    handle.call(enable(0)).unwrap(); // a command is not a tick
+    handle.advance(5).unwrap();
+    assert_eq!(*seen.lock().unwrap(), vec![4, 5, 6, 7, 8]);
+    assert_eq!(handle.remove_observer(id), Ok(true));
+    assert_eq!(handle.remove_observer(id), Ok(false));
+    handle.advance(2).unwrap();
+    assert_eq!(seen.lock().unwrap().len(), 5);
+}
+
+#[test]
+fn observer_sees_the_engine_after_the_step() {
+    let (handle, _guard) = virtual_runtime(1);
+    handle.call(enable(0)).unwrap();
+    handle
+        .call(Command::MoveVelocity {
+            axis: 0,
+            velocity: 10.0,
+            acceleration: None,
+            deceleration: None,
+            jerk: None,
+            buffer_mode: Default::default(),
+        })
+        .unwrap();
+    let positions = Arc::new(Mutex::new(Vec::new()));
+    let sink = Arc::clone(&positions);
+    handle
+        .add_observer(move |e: &Engine| {
+            sink.lock().unwrap().push(e.axis_status(0).unwrap().cmd_pos);
+            true
+        })
+        .unwrap();
+    handle.advance(20).unwrap();
+    let positions = positions.lock().unwrap();
+    assert_eq!(positions.len(), 20);
+    assert_eq!(
+        *positions.last().unwrap(),
+        handle.snapshot().axes[0].cmd_pos
+    );
+    assert!(positions.windows(2).all(|w| w[0] < w[1]), "{positions:?}");
+}
+
+#[test]
+fn observer_returning_false_or_panicking_is_removed() {
+    let (handle, _guard) = virtual_runtime(1);
+    let (stops, stopping) = tick_recorder(|tick| tick < 3);
+    let (panics, panicking) = tick_recorder(|tick| {
+        assert!(tick < 2, "observer panics at tick {tick}");
+        true
+    });
+    let (stays, staying) = tick_recorder(|_| true);
+    let stopping = handle.add_observer(stopping).unwrap();
+    let panicking = handle.add_observer(panicking).unwrap();
+    handle.add_observer(staying).unwrap();
+    handle.advance(6).unwrap();
+    assert_eq!(*stops.lock().unwrap(), vec![1, 2, 3]);
+    assert_eq!(*panics.lock().unwrap(), vec![1, 2]);
+    assert_eq!(*stays.lock().unwrap(), vec![1, 2, 3, 4, 5, 6]);
+    assert_eq!(handle.remove_observer(stopping), Ok(false));
+    assert_eq!(handle.remove_observer(panicking), Ok(false));
+    assert_eq!(handle.snapshot().tick, 6); // the runtime went on
+}
+
+#[test]
+fn observer_calls_back_into_the_handle_are_refused_not_deadlocked() {
+    let (handle, _guard) = virtual_runtime(1);
+    let inner = handle.clone();
+    let result = Arc::new(Mutex::new(None));
+    let sink = Arc::clone(&result);
+    handle
+        .add_observer(move |_: &Engine| {
+            *sink.lock().unwrap() = Some(inner.call(enable(0)));
+            false
+        })
+        .unwrap();
+    handle.advance(1).unwrap();
+    assert_eq!(*result.lock().unwrap(), Some(Err(CallError::OnServoThread)));
+}
+
+#[test]
+fn observers_work_async_and_on_paced_clocks_with_caught_up_ticks() {
+    let lateness = [Duration::ZERO, Duration::from_micros(4500)];
+    let (handle, guard, fake) =
+        paced_fake(ClockMode::Realtime, &lateness, RuntimeOptions::default());
+    fake.wait_at_gate();
+    let (seen, observer) = tick_recorder(|_| true);
+    let pending = handle.submit_observer(Box::new(observer)).unwrap();
+    fake.allow(1); // the tick that installs it (commands and observers come before the step)
+    let id = block_on(pending.into_future()).unwrap();
+    fake.allow(2); // one on time, one 4.5 ms late: 4 caught-up ticks
+    fake.wait_at_gate();
+    assert_eq!(*seen.lock().unwrap(), vec![1, 2, 3, 4, 5, 6, 7]);
+    assert_eq!(handle.stats().caught_up_ticks, 4);
+    // Removal is queued too: it takes effect at the start of the next tick.
+    let removal = handle.submit_remove_observer(id).unwrap();
+    fake.allow(1);
+    assert_eq!(block_on(removal.into_future()), Ok(true));
+    fake.wait_at_gate();
+    assert_eq!(seen.lock().unwrap().len(), 7);
+    drop(guard);
+}
+
 // ---- paced clocks, fake time -----------------------------------------------------------------
 
 #[test]

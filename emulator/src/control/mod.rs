@@ -1,32 +1,267 @@
-//! The HTTP + JSON control API (ARCHITECTURE §6): the back door tests and users need.
+//! The HTTP + JSON control API (ARCHITECTURE §6): the back door tests and users need, versioned
+//! under `/api/v1`. Routes, shapes and status codes: docs/decisions.md "Control API".
+//!
+//! | route | does |
+//! |---|---|
+//! | `GET /api/v1` | lists the routes |
+//! | `GET /api/v1/state` | machine, clock, axes, I/O, drives, runtime statistics, trace status |
+//! | `POST /api/v1/commands` | one `axes::Command` or an array, applied in order |
+//! | `POST /api/v1/inputs` | force or release an axis input, a digital or an analog input |
+//! | `POST /api/v1/faults` | inject or clear a drive alarm, encoder loss, following error |
+//! | `POST /api/v1/time/advance` | virtual clock: run ticks or seconds, optionally until … |
+//! | `POST /api/v1/trace/start`, `/trace/stop`, `GET /api/v1/trace` | record every tick, CSV |
+//!
+//! Nothing from a request can panic a handler: bodies are bounded, parsed by hand into typed
+//! errors, and every engine call goes through the runtime's queue.
+
+mod commands;
+mod error;
+mod names;
+mod recorder;
+mod state;
+mod time;
 
 use std::sync::Arc;
 
 use axes::runtime::EngineHandle;
-use axum::extract::State;
-use axum::routing::get;
+use axum::extract::{DefaultBodyLimit, State};
+use axum::http::{header, HeaderValue, Method, Uri};
+use axum::middleware::{self, Next};
+use axum::response::{IntoResponse, Response};
+use axum::routing::{get, post};
 use axum::{Json, Router};
+use serde_json::{Map, Value};
+use tokio::sync::Semaphore;
+
+pub use commands::{AxisFault, CommandBody, FaultRequest, InputRequest, MAX_COMMANDS_PER_REQUEST};
+pub use error::{ApiError, MAX_BODY_BYTES};
+pub use names::{flag_by_name, flag_names, FLAG_NAMES};
+pub use recorder::{TraceRecorder, TraceStart, TraceState, TraceStatus, MAX_TRACE_ROWS};
+pub use time::MAX_ADVANCE_TICKS;
+
+use crate::config::{ClockSetting, Config};
+
+/// A protocol front-end's own faults (frame delay/drop, Modbus exceptions …). A front-end that
+/// takes faults registers one in [`ControlState::frontends`]; `POST /faults` with
+/// `{"frontend": NAME, …}` reaches it.
+pub trait FrontendFaults: Send + Sync {
+    /// The name requests use: the front-end's config section (`modbus_tcp`, `canopen` …).
+    fn name(&self) -> &str;
+    /// Inject or clear a fault; `fault` is the request body without `frontend`.
+    fn inject(&self, fault: Map<String, Value>) -> Result<Value, ApiError>;
+}
+
+/// What the config says about the machine, for `/state`.
+#[derive(Debug, Default)]
+pub struct MachineInfo {
+    pub name: String,
+    /// `realtime`, `virtual` or `scaled:K`.
+    pub clock: String,
+    pub axis_names: Vec<Option<String>>,
+}
+
+impl MachineInfo {
+    pub fn axis_name(&self, axis: usize) -> Option<&str> {
+        self.axis_names.get(axis).and_then(|n| n.as_deref())
+    }
+}
+
+/// Requests handled at once; more are answered 503 at once. Each may hold a 1 MiB body.
+pub const MAX_CONCURRENT_REQUESTS: usize = 64;
+
+/// Traces rendered at once (each may be 110 MB of CSV); more wait their turn.
+const CONCURRENT_TRACE_READS: usize = 2;
 
 /// What every handler needs.
 #[derive(Clone)]
 pub struct ControlState {
     pub handle: EngineHandle,
-    pub machine: Arc<String>,
+    pub machine: Arc<MachineInfo>,
+    pub trace: TraceRecorder,
+    /// Front-ends that take faults through `POST /faults` (none yet).
+    pub frontends: Arc<Vec<Arc<dyn FrontendFaults>>>,
+    requests: Arc<Semaphore>,
+    trace_reads: Arc<Semaphore>,
 }
+
+impl ControlState {
+    pub fn new(handle: EngineHandle, config: &Config) -> ControlState {
+        ControlState {
+            machine: Arc::new(MachineInfo {
+                name: config.machine.name.clone(),
+                clock: ClockSetting(handle.clock()).to_string(),
+                axis_names: config.axes.iter().map(|a| a.name.clone()).collect(),
+            }),
+            handle,
+            trace: TraceRecorder::default(),
+            frontends: Arc::new(Vec::new()),
+            requests: Arc::new(Semaphore::new(MAX_CONCURRENT_REQUESTS)),
+            trace_reads: Arc::new(Semaphore::new(CONCURRENT_TRACE_READS)),
+        }
+    }
+}
+
+/// The routes, with their method, as `GET /api/v1` lists them.
+const ROUTES: [(&str, &str, &str); 9] = [
+    (
+        "GET",
+        "/api/v1/state",
+        "machine, clock, axes, I/O, drives, runtime statistics, trace",
+    ),
+    (
+        "POST",
+        "/api/v1/commands",
+        "one command or an array, e.g. {\"type\":\"enable\",\"axis\":0}",
+    ),
+    (
+        "POST",
+        "/api/v1/inputs",
+        "{\"axis\":0,\"input\":\"limit_pos\",\"value\":true}, {\"di\":N,…}, {\"ai\":N,…}",
+    ),
+    (
+        "POST",
+        "/api/v1/faults",
+        "{\"axis\":0,\"fault\":\"drive_alarm\",\"active\":true}, encoder_loss, following_error",
+    ),
+    (
+        "POST",
+        "/api/v1/time/advance",
+        "virtual clock: {\"ticks\":N} or {\"seconds\":S}, optional until",
+    ),
+    (
+        "POST",
+        "/api/v1/trace/start",
+        "optional {\"axes\":[0,1],\"max_rows\":N}",
+    ),
+    ("POST", "/api/v1/trace/stop", "stop recording"),
+    ("GET", "/api/v1/trace", "the recording as CSV"),
+    ("GET", "/api/v1", "this list"),
+];
 
 /// The API's routes, versioned under `/api/v1`.
 pub fn router(state: ControlState) -> Router {
     Router::new()
-        .route("/api/v1/state", get(get_state))
+        .route("/api/v1", get(index))
+        .route("/api/v1/state", get(state::get_state))
+        .route("/api/v1/commands", post(commands::post_commands))
+        .route("/api/v1/inputs", post(commands::post_inputs))
+        .route("/api/v1/faults", post(commands::post_faults))
+        .route("/api/v1/time/advance", post(time::post_advance))
+        .route("/api/v1/trace/start", post(trace_start))
+        .route("/api/v1/trace/stop", post(trace_stop))
+        .route("/api/v1/trace", get(trace_csv))
+        .fallback(not_found)
+        .method_not_allowed_fallback(method_not_allowed)
+        .layer(DefaultBodyLimit::max(MAX_BODY_BYTES))
+        .layer(middleware::from_fn_with_state(
+            Arc::clone(&state.requests),
+            limit_requests,
+        ))
         .with_state(state)
 }
 
-async fn get_state(State(state): State<ControlState>) -> Json<serde_json::Value> {
-    let snapshot = state.handle.snapshot();
-    Json(serde_json::json!({
-        "machine": state.machine.as_str(),
-        "tick": snapshot.tick,
-        "time": snapshot.time(),
-        "axes": snapshot.axes,
-    }))
+async fn limit_requests(
+    State(permits): State<Arc<Semaphore>>,
+    request: axum::extract::Request,
+    next: Next,
+) -> Response {
+    match permits.try_acquire_owned() {
+        Ok(_permit) => next.run(request).await,
+        Err(_) => ApiError::TooManyRequests {
+            limit: MAX_CONCURRENT_REQUESTS,
+        }
+        .into_response(),
+    }
+}
+
+async fn index() -> Response {
+    #[derive(serde::Serialize)]
+    struct Route {
+        method: &'static str,
+        path: &'static str,
+        does: &'static str,
+    }
+    #[derive(serde::Serialize)]
+    struct Index {
+        api: &'static str,
+        version: u32,
+        routes: Vec<Route>,
+    }
+    let index = Index {
+        api: "mcemu control",
+        version: 1,
+        routes: ROUTES
+            .iter()
+            .map(|&(method, path, does)| Route { method, path, does })
+            .collect(),
+    };
+    Json(index).into_response()
+}
+
+async fn not_found(method: Method, uri: Uri) -> ApiError {
+    ApiError::NotFound {
+        method: method.to_string(),
+        path: uri.path().to_string(),
+    }
+}
+
+async fn method_not_allowed(method: Method, uri: Uri) -> ApiError {
+    ApiError::MethodNotAllowed {
+        method: method.to_string(),
+        path: uri.path().to_string(),
+    }
+}
+
+async fn trace_start(
+    State(state): State<ControlState>,
+    error::OptionalJsonBody(body): error::OptionalJsonBody,
+) -> Response {
+    let request = match body
+        .map(|b| error::parse_json::<TraceStart>(&b))
+        .transpose()
+    {
+        Ok(r) => r.unwrap_or_default(),
+        Err(e) => return e.into_response(),
+    };
+    match state.trace.start(&state.handle, request).await {
+        Ok(status) => Json(status).into_response(),
+        Err(e) => e.into_response(),
+    }
+}
+
+async fn trace_stop(State(state): State<ControlState>) -> Response {
+    match state.trace.stop(&state.handle).await {
+        Ok(status) => Json(status).into_response(),
+        Err(e) => e.into_response(),
+    }
+}
+
+/// `text/csv`; `X-Mcemu-Trace-State` (recording, stopped, full) and `X-Mcemu-Trace-Rows` say
+/// what it holds. Rendering a large trace takes a while, so it runs off the async workers.
+async fn trace_csv(State(state): State<ControlState>) -> Response {
+    let Ok(_turn) = state.trace_reads.acquire().await else {
+        return ApiError::Internal("trace reader semaphore closed".into()).into_response();
+    };
+    let period = state.handle.snapshot().period;
+    let recorder = state.trace.clone();
+    let rendered = tokio::task::spawn_blocking(move || recorder.csv(period)).await;
+    let (csv, status) = match rendered {
+        Ok(Ok(done)) => done,
+        Ok(Err(e)) => return e.into_response(),
+        Err(e) => {
+            return ApiError::Internal(format!("trace rendering failed: {e}")).into_response()
+        }
+    };
+    let mut response = csv.into_response();
+    let headers = response.headers_mut();
+    headers.insert(
+        header::CONTENT_TYPE,
+        HeaderValue::from_static("text/csv; charset=utf-8"),
+    );
+    headers.insert(
+        "x-mcemu-trace-state",
+        HeaderValue::from_static(status.state.name()),
+    );
+    headers.insert("x-mcemu-trace-rows", HeaderValue::from(status.rows));
+    response
 }

@@ -1,0 +1,176 @@
+//! `GET /api/v1/state`: the machine as humans and scripts read it. Field names are part of the
+//! API (docs/decisions.md "Control API"); axis fields are named as the trace CSV columns.
+
+use axes::command::{Direction, ErrorKind};
+use axes::runtime::RuntimeStats;
+use axes::status::{AxisState, AxisStatus, CommandRef, DriveStatus, IoImage};
+use axum::extract::State;
+use axum::Json;
+use serde::Serialize;
+
+use super::names::{drive_state_name, flag_names};
+use super::recorder::TraceStatus;
+use super::ControlState;
+
+#[derive(Serialize)]
+pub struct StateView<'a> {
+    pub machine: &'a str,
+    /// `realtime`, `virtual` or `scaled:K`.
+    pub clock: &'a str,
+    /// Servo period, seconds.
+    pub period: f64,
+    pub tick: u64,
+    /// Engine time, seconds (tick × period).
+    pub time: f64,
+    pub axes: Vec<AxisView<'a>>,
+    pub io: IoView<'a>,
+    pub drives: Vec<DriveView>,
+    /// The servo runtime's counters and lateness histogram (`axes::runtime::RuntimeStats`).
+    pub runtime: RuntimeStats,
+    pub trace: TraceStatus,
+}
+
+#[derive(Serialize)]
+pub struct AxisView<'a> {
+    pub axis: usize,
+    /// The config's `name`, if it gave one.
+    pub name: Option<&'a str>,
+    pub state: AxisState,
+    /// Live flags and latched faults, by name (`enabled`, `moving`, `hw_limit_pos` …).
+    pub flags: Vec<&'static str>,
+    /// The subset of `flags` latched until a `reset`.
+    pub latched: Vec<&'static str>,
+    pub cmd_pos: f64,
+    pub cmd_vel: f64,
+    pub cmd_acc: f64,
+    pub act_pos: f64,
+    pub act_vel: f64,
+    pub following_error: f64,
+    pub target_pos: f64,
+    pub pulses: i64,
+    pub pulses_last_tick: i32,
+    pub pulse_frequency: f64,
+    pub direction: Direction,
+    pub encoder_counts: i64,
+    pub quadrature: u8,
+    pub dac_out: f64,
+    /// Commands in the FIFO, the running one included.
+    pub fifo_len: u16,
+    pub current_command: Option<CommandRef>,
+    pub next_command: Option<CommandRef>,
+    pub homing_phase: u8,
+    pub last_error: Option<ErrorKind>,
+}
+
+impl<'a> AxisView<'a> {
+    pub fn new(axis: usize, name: Option<&'a str>, s: &AxisStatus) -> AxisView<'a> {
+        AxisView {
+            axis,
+            name,
+            state: s.state,
+            flags: flag_names(s.flags),
+            latched: flag_names(s.latched),
+            cmd_pos: s.cmd_pos,
+            cmd_vel: s.cmd_vel,
+            cmd_acc: s.cmd_acc,
+            act_pos: s.act_pos,
+            act_vel: s.act_vel,
+            following_error: s.following_error,
+            target_pos: s.target_pos,
+            pulses: s.pulses,
+            pulses_last_tick: s.pulses_last_tick,
+            pulse_frequency: s.pulse_frequency,
+            direction: if s.direction {
+                Direction::Positive
+            } else {
+                Direction::Negative
+            },
+            encoder_counts: s.encoder_counts,
+            quadrature: s.quadrature,
+            dac_out: s.dac_out,
+            fifo_len: s.fifo_len,
+            current_command: s.current_command,
+            next_command: s.next_command,
+            homing_phase: s.homing_phase,
+            last_error: s.last_error,
+        }
+    }
+}
+
+/// I/O images by channel number.
+#[derive(Serialize)]
+pub struct IoView<'a> {
+    pub di: &'a [bool],
+    #[serde(rename = "do")]
+    pub do_: &'a [bool],
+    pub ai: &'a [f64],
+    pub ao: &'a [f64],
+}
+
+impl<'a> From<&'a IoImage> for IoView<'a> {
+    fn from(io: &'a IoImage) -> Self {
+        IoView {
+            di: &io.di,
+            do_: &io.do_,
+            ai: &io.ai,
+            ao: &io.ao,
+        }
+    }
+}
+
+#[derive(Serialize)]
+pub struct DriveView {
+    /// Slave number.
+    pub slave: usize,
+    pub axis: u16,
+    /// CiA 402 state decoded from the statusword (`operation_enabled` …).
+    pub state: Option<String>,
+    /// 0x6041.
+    pub statusword: u16,
+    /// 0x6061, modes of operation display.
+    pub mode: i8,
+    /// 0x603F.
+    pub error_code: u16,
+}
+
+impl DriveView {
+    fn new(slave: usize, d: &DriveStatus) -> DriveView {
+        DriveView {
+            slave,
+            axis: d.axis,
+            state: drive_state_name(d.statusword),
+            statusword: d.statusword,
+            mode: d.mode,
+            error_code: d.error_code,
+        }
+    }
+}
+
+pub async fn get_state(State(state): State<ControlState>) -> axum::response::Response {
+    use axum::response::IntoResponse;
+    let snapshot = state.handle.snapshot();
+    let machine = &state.machine;
+    let view = StateView {
+        machine: &machine.name,
+        clock: &machine.clock,
+        period: snapshot.period,
+        tick: snapshot.tick,
+        time: snapshot.time(),
+        axes: snapshot
+            .axes
+            .iter()
+            .enumerate()
+            .map(|(i, s)| AxisView::new(i, machine.axis_name(i), s))
+            .collect(),
+        io: IoView::from(&snapshot.io),
+        drives: snapshot
+            .drives
+            .iter()
+            .enumerate()
+            .map(|(i, d)| DriveView::new(i, d))
+            .collect(),
+        runtime: state.handle.stats(),
+        trace: state.trace.status(),
+    };
+    Json(view).into_response()
+}
