@@ -173,6 +173,14 @@ pub struct ControlConfig {
     pub enabled: bool,
     /// Address to listen on; 127.0.0.1 unless you mean to expose the back door.
     pub bind: SocketAddr,
+    /// Open connections at most; further clients wait in the kernel's backlog. Keep it above
+    /// `max_requests`, so a client can still connect to hear the 503.
+    pub max_connections: usize,
+    /// Requests handled at once; beyond it the API answers 503.
+    pub max_requests: usize,
+    /// Rows a trace recording may hold (rows = ticks × recorded axes); at the cap the
+    /// recording stops at a whole tick.
+    pub trace_max_rows: usize,
 }
 
 impl Default for ControlConfig {
@@ -180,6 +188,9 @@ impl Default for ControlConfig {
         ControlConfig {
             enabled: true,
             bind: SocketAddr::from(([127, 0, 0, 1], 8700)),
+            max_connections: 128,
+            max_requests: 64,
+            trace_max_rows: 1_000_000,
         }
     }
 }
@@ -282,6 +293,19 @@ impl Config {
         self.engine_config()
             .validate()
             .map_err(|e| (e.key, e.reason))?;
+        let c = &self.frontends.control;
+        for (key, value, max) in [
+            ("max_connections", c.max_connections, 4096),
+            ("max_requests", c.max_requests, 4096),
+            ("trace_max_rows", c.trace_max_rows, 100_000_000),
+        ] {
+            if !(1..=max).contains(&value) {
+                return Err((
+                    format!("frontends.control.{key}"),
+                    format!("{value} is outside 1 … {max}"),
+                ));
+            }
+        }
         let f = &self.frontends;
         for (name, section) in [
             ("modbus_tcp", &f.modbus_tcp),
@@ -337,6 +361,11 @@ mod tests {
         assert_eq!(e.key, "machine.clock");
         let e = Config::parse("[frontends.nmc]\nenabled = true\n", "m.toml").unwrap_err();
         assert_eq!(e.key, "frontends.nmc.enabled");
+        let e = Config::parse("[frontends.control]\nmax_requests = 0\n", "m.toml").unwrap_err();
+        assert_eq!(e.key, "frontends.control.max_requests");
+        assert!(e.reason.contains("outside 1"), "{}", e.reason);
+        let c = Config::parse("[frontends.control]\ntrace_max_rows = 10\n", "m.toml").unwrap();
+        assert_eq!(c.frontends.control.trace_max_rows, 10);
     }
 
     #[test]

@@ -3,6 +3,7 @@
 
 pub mod config;
 pub mod control;
+pub mod listener;
 pub mod reference;
 pub mod run;
 pub mod scenario;

@@ -11,6 +11,7 @@ use tokio::net::TcpListener;
 
 use crate::config::Config;
 use crate::control::{self, ControlState};
+use crate::listener::BoundedListener;
 
 /// Why a machine could not run.
 #[derive(Debug, thiserror::Error)]
@@ -62,7 +63,10 @@ async fn serve(config: &Config, handle: EngineHandle) -> Result<(), RunError> {
     let mut servers = tokio::task::JoinSet::new();
     let control = &config.frontends.control;
     if control.enabled {
-        let listener = bind("control", control.bind).await?;
+        let listener = BoundedListener::new(
+            bind("control", control.bind).await?,
+            control.max_connections,
+        );
         let app = control::router(ControlState::new(handle.clone(), config));
         servers.spawn(async move {
             if let Err(e) = axum::serve(listener, app).await {

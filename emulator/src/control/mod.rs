@@ -66,9 +66,6 @@ impl MachineInfo {
     }
 }
 
-/// Requests handled at once; more are answered 503 at once. Each may hold a 1 MiB body.
-pub const MAX_CONCURRENT_REQUESTS: usize = 64;
-
 /// Traces rendered at once (each may be 110 MB of CSV); more wait their turn.
 const CONCURRENT_TRACE_READS: usize = 2;
 
@@ -80,7 +77,8 @@ pub struct ControlState {
     pub trace: TraceRecorder,
     /// Front-ends that take faults through `POST /faults` (none yet).
     pub frontends: Arc<Vec<Arc<dyn FrontendFaults>>>,
-    requests: Arc<Semaphore>,
+    /// `[frontends.control] max_requests` permits, and that number for the 503 reply.
+    requests: (Arc<Semaphore>, usize),
     trace_reads: Arc<Semaphore>,
 }
 
@@ -93,9 +91,12 @@ impl ControlState {
                 axis_names: config.axes.iter().map(|a| a.name.clone()).collect(),
             }),
             handle,
-            trace: TraceRecorder::default(),
+            trace: TraceRecorder::with_limit(config.frontends.control.trace_max_rows),
             frontends: Arc::new(Vec::new()),
-            requests: Arc::new(Semaphore::new(MAX_CONCURRENT_REQUESTS)),
+            requests: (
+                Arc::new(Semaphore::new(config.frontends.control.max_requests)),
+                config.frontends.control.max_requests,
+            ),
             trace_reads: Arc::new(Semaphore::new(CONCURRENT_TRACE_READS)),
         }
     }
@@ -154,23 +155,21 @@ pub fn router(state: ControlState) -> Router {
         .method_not_allowed_fallback(method_not_allowed)
         .layer(DefaultBodyLimit::max(MAX_BODY_BYTES))
         .layer(middleware::from_fn_with_state(
-            Arc::clone(&state.requests),
+            state.requests.clone(),
             limit_requests,
         ))
         .with_state(state)
 }
 
+/// Requests beyond `max_requests` are answered 503 at once; each may hold a 1 MiB body.
 async fn limit_requests(
-    State(permits): State<Arc<Semaphore>>,
+    State((permits, limit)): State<(Arc<Semaphore>, usize)>,
     request: axum::extract::Request,
     next: Next,
 ) -> Response {
     match permits.try_acquire_owned() {
         Ok(_permit) => next.run(request).await,
-        Err(_) => ApiError::TooManyRequests {
-            limit: MAX_CONCURRENT_REQUESTS,
-        }
-        .into_response(),
+        Err(_) => ApiError::TooManyRequests { limit }.into_response(),
     }
 }
 

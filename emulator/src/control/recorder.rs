@@ -15,8 +15,8 @@ use serde::{Deserialize, Serialize};
 
 use super::error::ApiError;
 
-/// Row cap when a start request gives none, and the largest it may give: about 80 MB of buffer
-/// and about 110 MB of CSV at most.
+/// Default of `[frontends.control] trace_max_rows`: the row cap when a start request gives
+/// none, and the largest it may give — about 80 MB of buffer and about 110 MB of CSV at most.
 pub const MAX_TRACE_ROWS: usize = 1_000_000;
 
 /// Rows copied out of the buffer per lock while a trace is read, so a long read never holds
@@ -112,7 +112,8 @@ pub struct TraceStart {
     /// Axes to record, in this order; all when absent.
     #[serde(default)]
     pub axes: Option<Vec<u16>>,
-    /// Row cap (rows = ticks × axes), 1 … [`MAX_TRACE_ROWS`]; that maximum when absent.
+    /// Row cap (rows = ticks × axes), 1 … the configured `trace_max_rows`; that maximum when
+    /// absent.
     #[serde(default)]
     pub max_rows: Option<usize>,
 }
@@ -173,9 +174,17 @@ impl Recording {
 }
 
 /// The recording shared by the HTTP handlers and the servo thread's observer.
-#[derive(Clone, Default)]
+#[derive(Clone)]
 pub struct TraceRecorder {
     recording: Arc<Mutex<Recording>>,
+    /// Largest row cap a start request may ask for, and the cap when it asks for none.
+    limit: usize,
+}
+
+impl Default for TraceRecorder {
+    fn default() -> Self {
+        Self::with_limit(MAX_TRACE_ROWS)
+    }
 }
 
 /// Everything under the lock is plain data updated without panicking, so a poisoned lock
@@ -185,6 +194,14 @@ fn lock(recording: &Mutex<Recording>) -> MutexGuard<'_, Recording> {
 }
 
 impl TraceRecorder {
+    /// A recorder whose traces hold at most `limit` rows (at least one).
+    pub fn with_limit(limit: usize) -> Self {
+        Self {
+            recording: Arc::default(),
+            limit: limit.max(1),
+        }
+    }
+
     pub fn status(&self) -> TraceStatus {
         lock(&self.recording).status()
     }
@@ -219,10 +236,12 @@ impl TraceRecorder {
                 )));
             }
         }
-        let max_rows = request.max_rows.unwrap_or(MAX_TRACE_ROWS);
-        if !(1..=MAX_TRACE_ROWS).contains(&max_rows) {
+        let limit = self.limit;
+        let max_rows = request.max_rows.unwrap_or(limit);
+        if !(1..=limit).contains(&max_rows) {
             return Err(ApiError::InvalidRequest(format!(
-                "`max_rows` = {max_rows}: must be between 1 and {MAX_TRACE_ROWS}"
+                "`max_rows` = {max_rows}: must be between 1 and {limit} \
+                 (`[frontends.control] trace_max_rows`)"
             )));
         }
         // The whole cap is reserved here, off the servo thread: growing the buffer later would
@@ -407,6 +426,26 @@ mod tests {
         let status = recorder.status();
         assert_eq!((status.rows, status.first_tick), (4, Some(11)));
         assert_eq!(status.max_rows, MAX_TRACE_ROWS);
+    }
+
+    #[test]
+    fn the_configured_limit_caps_every_trace() {
+        let (handle, _guard) = runtime(2);
+        let recorder = TraceRecorder::with_limit(5);
+        let too_many = TraceStart {
+            axes: None,
+            max_rows: Some(6),
+        };
+        assert!(matches!(
+            block_on(recorder.start(&handle, too_many)),
+            Err(ApiError::InvalidRequest(_))
+        ));
+        let status = block_on(recorder.start(&handle, TraceStart::default())).unwrap();
+        assert_eq!(status.max_rows, 5);
+        handle.advance(10).unwrap();
+        // Two axes a tick: two whole ticks fit in five rows.
+        let status = recorder.status();
+        assert_eq!((status.state, status.rows), (TraceState::Full, 4));
     }
 
     #[test]
