@@ -14,16 +14,16 @@ use std::time::{Duration, Instant};
 
 use serde_json::{json, Value};
 
-/// Two stepper axes in mm with limit switches at ±500, 100 mm/s, 1000 mm/s², following-error
-/// limit 1 mm; some I/O. `{clock}` is filled in.
-const MACHINE: &str = r#"
-[machine]
-name = "control-test"
-period = 0.001
-clock = "{clock}"
-
+/// Two stepper axes (`x`, `y`) in mm with limit switches at ±500, 100 mm/s, 1000 mm/s²,
+/// following-error limit 1 mm; some I/O.
+fn machine(clock: &str) -> String {
+    let mut text =
+        format!("[machine]\nname = \"control-test\"\nperiod = 0.001\nclock = \"{clock}\"\n");
+    for name in ["x", "y"] {
+        text.push_str(&format!(
+            r#"
 [[axes]]
-name = "x"
+name = "{name}"
 [axes.params]
 axis_type = "stepper"
 units = 1000
@@ -37,23 +37,11 @@ fe_limit = 1
 position = 500
 [axes.switches.limit_neg]
 position = -500
-
-[[axes]]
-name = "y"
-[axes.params]
-axis_type = "stepper"
-units = 1000
-rep_mode = "finite"
-speed = 100
-accel = 1000
-decel = 1000
-fast_decel = 10000
-fe_limit = 1
-[axes.switches.limit_pos]
-position = 500
-[axes.switches.limit_neg]
-position = -500
-
+"#
+        ));
+    }
+    text.push_str(
+        r#"
 [io]
 digital_inputs = 16
 digital_outputs = 8
@@ -63,7 +51,10 @@ analog_outputs = 2
 [frontends.control]
 enabled = true
 bind = "127.0.0.1:0"
-"#;
+"#,
+    );
+    text
+}
 
 const PERIOD: f64 = 1e-3;
 
@@ -119,7 +110,7 @@ impl Mcemu {
             std::process::id(),
             N.fetch_add(1, Ordering::Relaxed)
         ));
-        std::fs::write(&path, MACHINE.replace("{clock}", clock)).unwrap();
+        std::fs::write(&path, machine(clock)).unwrap();
         let config = TempFile(path);
         let mut child = Command::new(env!("CARGO_BIN_EXE_mcemu"))
             .arg("run")
