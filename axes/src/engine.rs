@@ -11,6 +11,7 @@ use crate::od::Value;
 use crate::param::ParamId;
 use crate::rng::Rng;
 use crate::status::{AxisStatus, DriveStatus, IoImage, Snapshot};
+use std::sync::Arc;
 
 /// The machine's digital and analog I/O.
 #[derive(Clone, Debug)]
@@ -535,6 +536,13 @@ impl Engine {
         if snapshot.io_version != self.io.version {
             snapshot.io.clone_from(&self.io.image);
             snapshot.io_version = self.io.version;
+        }
+        // Parameters change rarely: share one copy until a version moves (versions only grow,
+        // so their sum moves exactly when one does).
+        let params_version = self.axes.iter().map(Axis::params_version).sum();
+        if snapshot.params_version != params_version || snapshot.params.len() != self.axes.len() {
+            snapshot.params = Arc::new(self.axes.iter().map(|a| a.params().clone()).collect());
+            snapshot.params_version = params_version;
         }
         snapshot.drives.clear();
         snapshot

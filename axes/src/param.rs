@@ -10,6 +10,7 @@
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use crate::command::EngineError;
+use crate::status::AxisStatus;
 
 /// How to read a parameter's `f64`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -559,6 +560,32 @@ impl ParamSet {
     #[allow(dead_code)] // used by the axis core
     pub(crate) fn set_unchecked(&mut self, id: ParamId, value: f64) {
         self.values[id as usize] = value;
+    }
+}
+
+/// The value `GetParameter` reads: the stored value, or for the live read-only parameters
+/// (positions, status words, FIFO contents …) the value derived from the axis status. A pure
+/// function of the two, so front-ends compute it from a snapshot exactly as the engine does.
+pub fn parameter_value(id: ParamId, status: &AxisStatus, params: &ParamSet) -> f64 {
+    let s = status;
+    match id {
+        ParamId::CurrentCommand => s.current_command.map_or(0, |c| c.kind.code()) as f64,
+        ParamId::NextCommand => s.next_command.map_or(0, |c| c.kind.code()) as f64,
+        ParamId::AxisStatusWord => crate::axis::status_word(s.flags) as f64,
+        ParamId::LimitState => crate::axis::limit_state(s.flags) as f64,
+        ParamId::ActualPosition => s.act_pos,
+        ParamId::CommandedPosition => s.cmd_pos,
+        ParamId::FollowingError => s.following_error,
+        ParamId::TargetPosition => s.target_pos,
+        ParamId::Remain => s.remaining,
+        ParamId::ActualVelocity => s.act_vel,
+        ParamId::CommandedSpeed => s.cmd_vel.abs(),
+        ParamId::MotionDirection => f64::from(s.motion_direction),
+        ParamId::HomeState => f64::from(s.homing_phase),
+        ParamId::EncoderValue => s.encoder_counts as f64,
+        ParamId::PulseNum => f64::from(s.pulses_last_tick),
+        ParamId::DacOut => s.dac_out.round(),
+        _ => params.get(id),
     }
 }
 

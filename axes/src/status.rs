@@ -151,6 +151,10 @@ pub struct AxisStatus {
     pub following_error: f64,
     /// Target of the running command (HMC EndPos).
     pub target_pos: f64,
+    /// Distance from the commanded position to the target, unwrapped on cyclic axes (HMC Remain).
+    pub remaining: f64,
+    /// Direction of the last motion, +1 or −1 (HMC Direction).
+    pub motion_direction: i8,
     /// Pulse output counter (integer pulses, signed).
     pub pulses: i64,
     /// Pulses emitted in the last tick (HMC PulseNum, signed).
@@ -231,6 +235,13 @@ pub struct Snapshot {
     pub io_version: u64,
     /// The CiA 402 drives, by slave number.
     pub drives: Vec<DriveStatus>,
+    /// Every axis's stored parameters, shared between snapshots until one changes, so that
+    /// front-ends read parameters without a round trip to the servo thread. Live values
+    /// (positions, status words) come from [`crate::param::parameter_value`].
+    #[serde(skip)]
+    pub params: std::sync::Arc<Vec<crate::param::ParamSet>>,
+    /// Changes whenever a parameter of any axis changes.
+    pub params_version: u64,
 }
 
 impl Snapshot {

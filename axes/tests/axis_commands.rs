@@ -686,3 +686,28 @@ fn io_writes_and_forces_show_in_every_snapshot() {
         }
     }
 }
+
+/// Front-ends read parameters from snapshots: the shared copy follows every change, and
+/// `parameter_value` on a snapshot gives exactly what `GetParameter` gives, live values included.
+#[test]
+fn snapshots_carry_the_parameters_and_read_them_as_get_parameter_does() {
+    let mut e = enabled(stepper_mm());
+    ok(&mut e, move_abs(25.0));
+    run(&mut e, 0.05);
+    set(&mut e, ParamId::Speed, 42.0);
+    let before = snapshot(&e);
+    assert_eq!(before.params[0].get(ParamId::Speed), 42.0);
+    for id in ParamId::all() {
+        let from_snapshot = axes::param::parameter_value(id, &before.axes[0], &before.params[0]);
+        assert_eq!(from_snapshot.to_bits(), param(&mut e, id).to_bits(), "{id}");
+    }
+    // The version stays while parameters do, and moves with a change.
+    run(&mut e, 0.01);
+    let same = snapshot(&e);
+    assert_eq!(same.params_version, before.params_version);
+    set(&mut e, ParamId::Accel, 123.0);
+    let after = snapshot(&e);
+    assert_ne!(after.params_version, before.params_version);
+    assert_eq!(after.params[0].get(ParamId::Accel), 123.0);
+    assert_eq!(before.params[0].get(ParamId::Accel), 1000.0);
+}

@@ -2,8 +2,8 @@
 //! immediate ones (enable, stop, set parameter …).
 
 use super::{
-    apply_rollover, counts_per_unit, limit_state, pulses_per_unit, setup::Setup, smoothing_window,
-    status_word, Action, Activity, Axis, Context, Goal1, Overrides, Queued, Ramp, Run, Source,
+    apply_rollover, counts_per_unit, pulses_per_unit, setup::Setup, smoothing_window, Action,
+    Activity, Axis, Context, Goal1, Overrides, Queued, Ramp, Run, Source,
 };
 use crate::command::{
     bounded, finite, positive, AxisInput, BufferMode, CancelScope, CommandKind, CommandState,
@@ -884,12 +884,14 @@ impl Axis {
             ParamId::Rollover => {
                 apply_rollover(&mut self.params, value);
                 self.setup = Setup::from_params(&self.params);
+                self.params_version += 1;
                 return Ok(());
             }
             _ => {}
         }
         self.params.set_unchecked(id, value);
         self.setup = Setup::from_params(&self.params);
+        self.params_version += 1;
         if corrected {
             // HMC §3.5.1: the corrected write latches AxisStatus bit 2.
             self.latched |= AxisFlags::PARAMETER_ERROR;
@@ -943,26 +945,7 @@ impl Axis {
     }
 
     pub(crate) fn get_parameter(&self, id: ParamId) -> f64 {
-        let s = &self.status();
-        match id {
-            ParamId::CurrentCommand => s.current_command.map_or(0, |c| c.kind.code()) as f64,
-            ParamId::NextCommand => s.next_command.map_or(0, |c| c.kind.code()) as f64,
-            ParamId::AxisStatusWord => status_word(s.flags) as f64,
-            ParamId::LimitState => limit_state(s.flags) as f64,
-            ParamId::ActualPosition => s.act_pos,
-            ParamId::CommandedPosition => s.cmd_pos,
-            ParamId::FollowingError => s.following_error,
-            ParamId::TargetPosition => s.target_pos,
-            ParamId::Remain => self.target_pos - self.cmd.p,
-            ParamId::ActualVelocity => s.act_vel,
-            ParamId::CommandedSpeed => s.cmd_vel.abs(),
-            ParamId::MotionDirection => self.direction,
-            ParamId::HomeState => s.homing_phase as f64,
-            ParamId::EncoderValue => s.encoder_counts as f64,
-            ParamId::PulseNum => s.pulses_last_tick as f64,
-            ParamId::DacOut => s.dac_out.round(),
-            _ => self.params.get(id),
-        }
+        crate::param::parameter_value(id, &self.status(), &self.params)
     }
 
     pub(crate) fn force_input(

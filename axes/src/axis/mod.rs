@@ -203,6 +203,7 @@ pub struct Axis {
     fe_ok: u32,
     in_window_for: f64,
     direction: f64,
+    params_version: u64,
     last_error: Option<ErrorKind>,
     homing_phase: u8,
     target_pos: f64,
@@ -273,6 +274,7 @@ impl Axis {
             fe_ok: 0,
             in_window_for: 0.0,
             direction: 1.0,
+            params_version: 0,
             last_error: None,
             homing_phase: 0,
             target_pos: 0.0,
@@ -308,6 +310,11 @@ impl Axis {
 
     pub fn params(&self) -> &ParamSet {
         &self.params
+    }
+
+    /// Counts parameter changes (snapshots copy the parameters when it moves).
+    pub fn params_version(&self) -> u64 {
+        self.params_version
     }
 
     /// Physical motor position (for traces and tests; the user frame is in the status).
@@ -926,6 +933,8 @@ impl Axis {
             act_vel: self.act_vel,
             following_error: self.cmd.p - self.act_pos,
             target_pos,
+            remaining: self.target_pos - self.cmd.p,
+            motion_direction: if self.direction < 0.0 { -1 } else { 1 },
             pulses,
             pulses_last_tick: last,
             pulse_frequency: freq,
@@ -990,7 +999,7 @@ pub(crate) fn apply_rollover(params: &mut ParamSet, rollover: f64) {
 }
 
 /// The HMC-layout axis status word (`axis_status`, HMC §3.3 table 2).
-pub(crate) fn status_word(flags: AxisFlags) -> u32 {
+pub fn status_word(flags: AxisFlags) -> u32 {
     let mut w = 0;
     if flags.contains(AxisFlags::FE_FAULT) {
         w |= 1;
@@ -1013,7 +1022,7 @@ pub(crate) fn status_word(flags: AxisFlags) -> u32 {
 }
 
 /// The HMC-layout limit state (`limit_state`, HMC §3.3).
-pub(crate) fn limit_state(flags: AxisFlags) -> u32 {
+pub fn limit_state(flags: AxisFlags) -> u32 {
     let mut w = 0;
     for (flag, bit) in [
         (AxisFlags::HW_LIMIT_POS, 1),
