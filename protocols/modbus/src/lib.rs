@@ -3,4 +3,5 @@
 //! snapshot reads, and thin tokio transports.
 
 pub mod frame;
+pub mod model;
 pub mod pdu;
