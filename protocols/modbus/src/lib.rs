@@ -3,5 +3,6 @@
 //! snapshot reads, and thin tokio transports.
 
 pub mod frame;
+pub mod map;
 pub mod model;
 pub mod pdu;
