@@ -1,4 +1,80 @@
 //! Declarative register maps (`fixtures/modbus/*.toml`): the file format, its compiler and the
 //! value codec.
 
+pub mod schema;
 pub mod value;
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod tests {
+    use super::schema::*;
+    use super::value::{PointType, WordOrder};
+
+    #[test]
+    fn the_file_format_reads_as_documented() {
+        let text = r#"
+[map]
+name = "example"
+word_order = "cdab"
+
+[identity]
+vendor_name = "mcemu"
+server_id = [77, 1]
+
+[[point]]
+table = "holding_registers"
+address = 8208
+name = "controller_status"
+read = "machine.error"
+values = { "0" = 2, "1" = 4 }
+
+[[block]]
+table = "holding_registers"
+base = 0
+stride = 100
+[[block.point]]
+offset = 0
+name = "motion_status"
+type = "u32"
+read = { bits = { 0 = "enabled", 1 = "moving" } }
+[[block.point]]
+offset = 30
+name = "enable"
+read = { bits = { 0 = "enabled" } }
+on_write = [
+  { when = "bit0", command = "enable" },
+  { when = "!bit0", command = "disable" },
+]
+[[block.point]]
+offset = 44
+name = "start"
+write = "memory"
+on_write = [{ when = "nonzero", command = "move_absolute", args = { position = "@target", velocity = 10.5 } }]
+
+[[memory]]
+name = "user_table"
+table = "holding_registers"
+start = 8704
+count = 256
+persist = true
+"#;
+        let file: MapFile = toml::from_str(text).unwrap();
+        assert_eq!(file.map.word_order, WordOrder::Cdab);
+        assert_eq!(file.identity.server_id, [77, 1]);
+        assert_eq!(file.point[0].values["1"], 4.0);
+        let block = &file.block[0];
+        assert_eq!(block.point[0].ty, Some(PointType::U32));
+        assert!(
+            matches!(&block.point[0].read, Some(ReadFile::Bits { bits }) if bits["1"] == "moving")
+        );
+        assert_eq!(block.point[1].on_write[1].when, "!bit0");
+        assert!(matches!(
+            block.point[2].on_write[0].args["position"],
+            ArgFile::Text(ref t) if t == "@target"
+        ));
+        assert!(file.memory[0].persist);
+        let e =
+            toml::from_str::<MapFile>("[map]\nname = \"x\"\nwordorder = \"abcd\"\n").unwrap_err();
+        assert!(e.to_string().contains("unknown field `wordorder`"), "{e}");
+    }
+}
