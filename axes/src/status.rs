@@ -124,6 +124,53 @@ impl AxisFlags {
         .union(AxisFlags::SW_LIMIT_NEG);
 }
 
+/// Every axis flag and its snake_case name, in bit order: the names the control API, traces and
+/// register maps use. A fixed table, so that renaming a constant cannot silently change them.
+pub const FLAG_NAMES: [(AxisFlags, &str); 25] = [
+    (AxisFlags::ENABLED, "enabled"),
+    (AxisFlags::MOVING, "moving"),
+    (AxisFlags::IN_POSITION, "in_position"),
+    (AxisFlags::HOMED, "homed"),
+    (AxisFlags::HW_LIMIT_POS, "hw_limit_pos"),
+    (AxisFlags::HW_LIMIT_NEG, "hw_limit_neg"),
+    (AxisFlags::SW_LIMIT_POS, "sw_limit_pos"),
+    (AxisFlags::SW_LIMIT_NEG, "sw_limit_neg"),
+    (AxisFlags::HOME_SWITCH, "home_switch"),
+    (AxisFlags::INDEX, "index"),
+    (AxisFlags::FE_WARNING, "fe_warning"),
+    (AxisFlags::FE_FAULT, "fe_fault"),
+    (AxisFlags::DRIVE_ALARM, "drive_alarm"),
+    (AxisFlags::ESTOP, "estop"),
+    (AxisFlags::CAPTURE_TRIGGERED, "capture_triggered"),
+    (AxisFlags::PARAMETER_ERROR, "parameter_error"),
+    (AxisFlags::QUEUE_FULL, "queue_full"),
+    (AxisFlags::IN_GROUP, "in_group"),
+    (AxisFlags::ENCODER_LOSS, "encoder_loss"),
+    (AxisFlags::HALTED, "halted"),
+    (AxisFlags::HOMING_FAILED, "homing_failed"),
+    (AxisFlags::MOTION_ERROR, "motion_error"),
+    (AxisFlags::SW_LIMIT_CONFIG, "sw_limit_config"),
+    (AxisFlags::BOTH_LIMITS, "both_limits"),
+    (AxisFlags::ACCELERATING, "accelerating"),
+];
+
+/// The names of the flags set in `flags`, in bit order.
+pub fn flag_names(flags: AxisFlags) -> Vec<&'static str> {
+    FLAG_NAMES
+        .iter()
+        .filter(|(flag, _)| flags.contains(*flag))
+        .map(|(_, name)| *name)
+        .collect()
+}
+
+/// The flag called `name`.
+pub fn flag_by_name(name: &str) -> Option<AxisFlags> {
+    FLAG_NAMES
+        .iter()
+        .find(|(_, n)| *n == name)
+        .map(|(flag, _)| *flag)
+}
+
 /// A reference to the command at a FIFO position.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct CommandRef {
@@ -248,5 +295,23 @@ impl Snapshot {
     /// Engine time, seconds.
     pub fn time(&self) -> f64 {
         self.tick as f64 * self.period
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_table_names_every_flag_as_its_constant_in_snake_case() {
+        let table: Vec<(AxisFlags, String)> = FLAG_NAMES
+            .iter()
+            .map(|(f, n)| (*f, n.to_string()))
+            .collect();
+        let constants: Vec<(AxisFlags, String)> = AxisFlags::all()
+            .iter_names()
+            .map(|(n, f)| (f, n.to_ascii_lowercase()))
+            .collect();
+        assert_eq!(table, constants);
     }
 }
