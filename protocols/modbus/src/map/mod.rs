@@ -2,6 +2,7 @@
 //! value codec.
 
 pub mod schema;
+pub mod source;
 pub mod value;
 
 #[cfg(test)]
