@@ -1,6 +1,7 @@
 //! Declarative register maps (`fixtures/modbus/*.toml`): the file format, its compiler and the
 //! value codec.
 
+pub mod compile;
 pub mod schema;
 pub mod source;
 pub mod value;
