@@ -3,6 +3,7 @@
 
 pub mod compile;
 pub mod schema;
+pub mod service;
 pub mod source;
 pub mod value;
 
