@@ -338,3 +338,91 @@ async fn each_kind_of_bad_request_gets_its_exception() {
     assert!(r.model.serves(1));
     assert!(!r.model.serves(2));
 }
+
+/// The shipped generic map drives an axis through its command register and maps the I/O the
+/// machine has, and no more.
+#[tokio::test]
+async fn the_generic_map_runs_a_command_code() {
+    let config: EngineConfig = toml::from_str(MACHINE).unwrap();
+    let (handle, guard) = Runtime::start(
+        Engine::new(&config).unwrap(),
+        RuntimeOptions::with_clock(ClockMode::Virtual),
+    )
+    .unwrap();
+    let machine = MachineShape {
+        axes: 2,
+        digital_inputs: 4,
+        digital_outputs: 4,
+        ..MachineShape::default()
+    };
+    let text = mcemu_modbus::map::shipped("generic").unwrap();
+    let unit = mcemu_modbus::map::load(
+        text,
+        "generic.toml",
+        &machine,
+        &Binding { axes: vec![0, 1] },
+    )
+    .unwrap();
+    let model = MapModel::new(vec![(
+        None,
+        Arc::new(UnitService::new(unit, handle.clone())),
+    )]);
+    let r = Rig {
+        handle: handle.clone(),
+        model,
+        _guard: guard,
+    };
+    r.run(Request::WriteSingleCoil {
+        address: 16,
+        value: true,
+    })
+    .await
+    .unwrap();
+    let target = 7.25f64.to_be_bytes();
+    let words: Vec<u16> = target
+        .chunks(2)
+        .map(|c| u16::from_be_bytes([c[0], c[1]]))
+        .collect();
+    r.write(32, &words).await.unwrap();
+    r.write(40, &[1]).await.unwrap(); // command 1: move absolute, velocity 0 = the axis speed
+    handle
+        .advance_until_async(
+            |s| s.axes[1].act_pos == 7.25 && !s.axes[1].flags.contains(AxisFlags::MOVING),
+            60_000,
+        )
+        .await
+        .unwrap();
+    let pos = match r
+        .run(Request::ReadInputRegisters {
+            address: 32,
+            quantity: 4,
+        })
+        .await
+        .unwrap()
+    {
+        Response::Registers { words, .. } => words,
+        other => panic!("{other:?}"),
+    };
+    let bytes: Vec<u8> = pos.iter().flat_map(|w| w.to_be_bytes()).collect();
+    assert_eq!(f64::from_be_bytes(bytes.try_into().unwrap()), 7.25);
+    // Machine I/O: coil 1000 + 2 is DO 2.
+    r.run(Request::WriteSingleCoil {
+        address: 1002,
+        value: true,
+    })
+    .await
+    .unwrap();
+    assert!(handle.snapshot().io.do_[2]);
+    let e = r
+        .run(Request::ReadCoils {
+            address: 1004,
+            quantity: 1,
+        })
+        .await
+        .unwrap_err();
+    assert_eq!(
+        e.0,
+        Exception::IllegalDataAddress,
+        "the machine has 4 outputs"
+    );
+}

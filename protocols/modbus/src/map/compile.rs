@@ -7,7 +7,10 @@ use std::collections::BTreeMap;
 use axes::Command;
 use serde_json::{Map, Value};
 
-use super::schema::{ActionFile, ArgFile, Gaps, InitValue, MapFile, PointFile, ReadFile, Table};
+use super::schema::{
+    ActionFile, ArgFile, ChannelKind, ChannelsFile, Gaps, InitValue, MapFile, PointFile, ReadFile,
+    Table,
+};
 use super::source::{parse_bits, parse_source, parse_target, MachineShape, Scope, Source, Target};
 use super::value::{encode, encode_string, PointType, WordOrder};
 use crate::model::DeviceIdentity;
@@ -37,6 +40,8 @@ pub enum When {
     BitClear(u8),
     /// Bit set now and clear in the previous write.
     RisingBit(u8),
+    /// The written value equals N (a command code register).
+    Equals(i64),
 }
 
 /// A command argument filled in at write time.
@@ -298,6 +303,16 @@ pub fn compile(
             cell,
         });
     }
+    for (i, c) in file.channels.iter().enumerate() {
+        channels(
+            c,
+            &format!("channels[{i}]"),
+            file,
+            machine,
+            &mut unit,
+            &mut keys,
+        )?;
+    }
     check_overlaps(&unit, &keys, file)?;
     for (i, p) in unit.points.iter().enumerate() {
         unit.tables.entry(p.table).or_default().push(i);
@@ -306,6 +321,86 @@ pub fn compile(
         list.sort_by_key(|&i| unit.points[i].address);
     }
     Ok(unit)
+}
+
+/// Expand a `[[channels]]` table into one point per channel.
+fn channels(
+    c: &ChannelsFile,
+    key: &str,
+    file: &MapFile,
+    machine: &MachineShape,
+    unit: &mut UnitMap,
+    keys: &mut Vec<String>,
+) -> Result<(), CompileError> {
+    let (count, analog, output) = match c.kind {
+        ChannelKind::Di => (machine.digital_inputs, false, false),
+        ChannelKind::Do => (machine.digital_outputs, false, true),
+        ChannelKind::Ai => (machine.analog_inputs, true, false),
+        ChannelKind::Ao => (machine.analog_outputs, true, true),
+    };
+    let ty = match (c.table.is_bits(), analog, c.ty) {
+        (true, true, _) => {
+            return Err(err(
+                format!("{key}.table"),
+                "analog channels need a register table",
+            ))
+        }
+        (true, false, _) => PointType::Bool,
+        (false, _, Some(PointType::String)) => {
+            return Err(err(format!("{key}.type"), "channels are numbers, not text"))
+        }
+        (false, _, Some(t)) => t,
+        (false, true, None) => PointType::F32,
+        (false, false, None) => PointType::U16,
+    };
+    let width = ty.registers(0);
+    let name = match c.kind {
+        ChannelKind::Di => "di",
+        ChannelKind::Do => "do",
+        ChannelKind::Ai => "ai",
+        ChannelKind::Ao => "ao",
+    };
+    for n in 0..count {
+        let address = u32::from(c.base) + n as u32 * u32::from(width);
+        let address = u16::try_from(address)
+            .ok()
+            .filter(|a| u32::from(*a) + u32::from(width) <= 65536)
+            .ok_or_else(|| {
+                err(
+                    format!("{key}.base"),
+                    format!("{name}.{n} runs past address 65535"),
+                )
+            })?;
+        let read = match c.kind {
+            ChannelKind::Di => Source::DigitalInput(n),
+            ChannelKind::Do => Source::DigitalOutput(n),
+            ChannelKind::Ai => Source::AnalogInput(n),
+            ChannelKind::Ao => Source::AnalogOutput(n),
+        };
+        let write = match (output && c.table.is_writable(), analog) {
+            (false, _) => None,
+            (true, false) => Some(Target::DigitalOutput(n)),
+            (true, true) => Some(Target::AnalogOutput(n)),
+        };
+        unit.points.push(Point {
+            name: format!("{name}.{n}"),
+            table: c.table,
+            address,
+            ty,
+            width,
+            order: file.map.word_order,
+            scale: c.scale.unwrap_or(1.0),
+            read: Read::Source(read),
+            names: Vec::new(),
+            numbers: Vec::new(),
+            default: None,
+            write,
+            actions: Vec::new(),
+            cell: None,
+        });
+        keys.push(key.to_string());
+    }
+    Ok(())
 }
 
 fn identity(file: &MapFile) -> DeviceIdentity {
@@ -486,7 +581,9 @@ fn parse_when(text: &str) -> Option<When> {
         "nonzero" => When::Nonzero,
         "zero" => When::Zero,
         _ => {
-            if let Some(n) = text.strip_prefix("rising_bit") {
+            if let Some(n) = text.strip_prefix('=') {
+                When::Equals(n.trim().parse().ok()?)
+            } else if let Some(n) = text.strip_prefix("rising_bit") {
                 When::RisingBit(bit(n)?)
             } else if let Some(n) = text.strip_prefix("!bit") {
                 When::BitClear(bit(n)?)
@@ -511,7 +608,7 @@ fn action(
         err(
             format!("{key}.when"),
             format!(
-                "`{}`: expected always, nonzero, zero, bitN, !bitN or rising_bitN",
+                "`{}`: expected always, nonzero, zero, =N, bitN, !bitN or rising_bitN",
                 a.when
             ),
         )

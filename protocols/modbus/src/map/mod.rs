@@ -7,6 +7,79 @@ pub mod service;
 pub mod source;
 pub mod value;
 
+use std::fmt;
+
+pub use compile::{compile, Binding, CompileError, UnitMap};
+pub use schema::MapFile;
+pub use service::{MapModel, UnitService};
+pub use source::MachineShape;
+
+/// The maps shipped in `fixtures/modbus/`, embedded so a config can name them without the
+/// fixtures directory: `map = "himc"`.
+pub const SHIPPED: &[(&str, &str)] = &[(
+    "generic",
+    include_str!("../../../../fixtures/modbus/generic.toml"),
+)];
+
+/// A map file that cannot be used: which file, which key, why.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct MapError {
+    pub file: String,
+    /// Key path inside the map file; empty for the file as a whole.
+    pub key: String,
+    pub reason: String,
+}
+
+impl fmt::Display for MapError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.key.is_empty() {
+            write!(f, "{}: {}", self.file, self.reason)
+        } else {
+            write!(f, "{}: {}: {}", self.file, self.key, self.reason)
+        }
+    }
+}
+
+impl std::error::Error for MapError {}
+
+/// Read a map file's text; `file` names it in errors.
+pub fn parse(text: &str, file: &str) -> Result<MapFile, MapError> {
+    let error = |key: String, reason: String| MapError {
+        file: file.to_string(),
+        key,
+        reason,
+    };
+    let deserializer = toml::Deserializer::parse(text)
+        .map_err(|e| error(String::new(), e.to_string().trim_end().to_string()))?;
+    serde_path_to_error::deserialize(deserializer).map_err(|e| {
+        let key = match e.path().to_string() {
+            p if p == "." => String::new(),
+            p => p,
+        };
+        error(key, e.inner().to_string().trim_end().to_string())
+    })
+}
+
+/// Parse and compile in one step, errors naming `file`.
+pub fn load(
+    text: &str,
+    file: &str,
+    machine: &MachineShape,
+    binding: &Binding,
+) -> Result<UnitMap, MapError> {
+    let map = parse(text, file)?;
+    compile(&map, machine, binding).map_err(|e| MapError {
+        file: file.to_string(),
+        key: e.key,
+        reason: e.reason,
+    })
+}
+
+/// The text of a shipped map by name.
+pub fn shipped(name: &str) -> Option<&'static str> {
+    SHIPPED.iter().find(|(n, _)| *n == name).map(|(_, t)| *t)
+}
+
 #[cfg(test)]
 #[allow(clippy::unwrap_used)]
 mod tests {

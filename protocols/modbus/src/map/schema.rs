@@ -50,6 +50,33 @@ pub struct MapFile {
     /// written.
     #[serde(default)]
     pub memory: Vec<MemoryFile>,
+    /// Every I/O channel of one kind the machine has, one point each from a base address.
+    #[serde(default)]
+    pub channels: Vec<ChannelsFile>,
+}
+
+/// `di`, `do`, `ai` or `ao` channel N at `base + N × width`; outputs take writes when the table
+/// does (coils, holding registers).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ChannelsFile {
+    pub table: Table,
+    pub base: u16,
+    pub kind: ChannelKind,
+    /// For analog channels in registers; `f32` unless given.
+    #[serde(default, rename = "type")]
+    pub ty: Option<PointType>,
+    #[serde(default)]
+    pub scale: Option<f64>,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ChannelKind {
+    Di,
+    Do,
+    Ai,
+    Ao,
 }
 
 #[derive(Clone, Debug, Deserialize)]
@@ -202,14 +229,17 @@ pub enum InitValue {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ActionFile {
-    /// When it fires: `always`, `nonzero`, `zero`, `bitN` (bit N of the written value is set),
+    /// When it fires: `always`, `nonzero`, `zero`, `=N` (the value is N), `bitN` (bit N of the
+    /// written value is set),
     /// `!bitN` (clear), `rising_bitN` (bit N went from 0 to 1 against the previous write).
     #[serde(default = "always")]
     pub when: String,
     /// The engine command's `type` (`enable`, `move_absolute` …); the axis is the block's.
     pub command: String,
     /// Its other fields: numbers, booleans, names, `"value"` (the written value, scaled), or
-    /// `"@point"` (the current value of another point of the same block or map).
+    /// `"@point"` (the current value of another point of the same block or map). A limit
+    /// (`velocity`, `acceleration`, `deceleration`, `jerk`) read from a point as 0 is left out,
+    /// so the axis parameter applies — except a jog's velocity.
     #[serde(default)]
     pub args: BTreeMap<String, ArgFile>,
 }

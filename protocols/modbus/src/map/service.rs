@@ -397,7 +397,7 @@ impl UnitService {
         if p.actions.is_empty() {
             return Ok(());
         }
-        let bits = raw_bits(raw, p.ty, v);
+        let bits = raw_bits(raw, p);
         let before = std::mem::replace(&mut lock(&self.previous)[i], bits);
         for action in &p.actions {
             if fires(action.when, bits, before) {
@@ -419,6 +419,13 @@ impl UnitService {
                     self.value_of(q, &snapshot).unwrap_or(0.0)
                 }
             };
+            // A limit left at 0 in a setpoint register means "the axis's own parameter".
+            let optional = OPTIONAL_LIMITS.contains(&field.as_str())
+                && template.get("type").and_then(Value::as_str) != Some("move_velocity");
+            if matches!(arg, Arg::Point(_)) && value == 0.0 && optional {
+                template.remove(field);
+                continue;
+            }
             let number = serde_json::Number::from_f64(value).ok_or_else(|| {
                 ExecError::new(
                     Exception::IllegalDataValue,
@@ -447,6 +454,9 @@ impl UnitService {
     }
 }
 
+/// Command fields that may be absent (the axis parameter applies); see [`Command`].
+const OPTIONAL_LIMITS: [&str; 4] = ["velocity", "acceleration", "deceleration", "jerk"];
+
 /// The engine's value checks are the point's value checks (03); other refusals are 04.
 fn engine_refusal(p: &Point, e: &EngineError) -> ExecError {
     let exception = match e.kind() {
@@ -456,17 +466,12 @@ fn engine_refusal(p: &Point, e: &EngineError) -> ExecError {
     ExecError::new(exception, format!("`{}`: {e}", p.name))
 }
 
-/// The written value as bits for `when`: the raw words for integers, the value for others.
-fn raw_bits(raw: &[u16], ty: PointType, value: f64) -> u64 {
-    if ty.is_integer() || ty == PointType::Bool {
-        // Integers are exact in f64 up to 2^53; reinterpret negatives as their two's complement.
-        if value < 0.0 {
-            (value as i64) as u64
-        } else {
-            value as u64
-        }
-    } else {
-        raw.iter().fold(0u64, |acc, &w| acc << 16 | u64::from(w))
+/// The written raw value (before the scale) as bits for `when`: integers as two's complement,
+/// other types as their words.
+fn raw_bits(raw: &[u16], p: &Point) -> u64 {
+    match decode(raw, p.ty, p.order) {
+        Some(v) if p.ty.is_integer() || p.ty == PointType::Bool => (v as i64) as u64,
+        _ => raw.iter().fold(0u64, |acc, &w| acc << 16 | u64::from(w)),
     }
 }
 
@@ -479,6 +484,7 @@ fn fires(when: When, now: u64, before: u64) -> bool {
         When::BitSet(n) => bit(now, n),
         When::BitClear(n) => !bit(now, n),
         When::RisingBit(n) => bit(now, n) && !bit(before, n),
+        When::Equals(n) => now == n as u64,
     }
 }
 
