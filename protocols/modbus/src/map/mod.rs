@@ -16,10 +16,16 @@ pub use source::MachineShape;
 
 /// The maps shipped in `fixtures/modbus/`, embedded so a config can name them without the
 /// fixtures directory: `map = "himc"`.
-pub const SHIPPED: &[(&str, &str)] = &[(
-    "generic",
-    include_str!("../../../../fixtures/modbus/generic.toml"),
-)];
+pub const SHIPPED: &[(&str, &str)] = &[
+    (
+        "generic",
+        include_str!("../../../../fixtures/modbus/generic.toml"),
+    ),
+    (
+        "ct-e10-servo",
+        include_str!("../../../../fixtures/modbus/ct-e10-servo.toml"),
+    ),
+];
 
 /// A map file that cannot be used: which file, which key, why.
 #[derive(Clone, Debug, PartialEq, Eq)]

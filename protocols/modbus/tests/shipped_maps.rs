@@ -1,0 +1,193 @@
+//! The shipped maps at the service level, over the machines their fixtures describe: each
+//! compiles, and the behaviour its header documents happens in the engine.
+
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+use std::sync::Arc;
+
+use axes::runtime::{ClockMode, EngineHandle, Runtime, RuntimeGuard, RuntimeOptions};
+use axes::{AxisFlags, Engine, EngineConfig, ParamId};
+use mcemu_modbus::map::{load, shipped, Binding, MachineShape, MapModel, UnitService};
+use mcemu_modbus::model::{DataModel, Peer, RequestContext};
+use mcemu_modbus::pdu::{decode_request, Exception, Response};
+
+/// The CPU 226H fixture's E10 on Modbus (fixtures/cpu226h.toml, axis 4), alone.
+const E10: &str = r#"
+[[axes]]
+[axes.params]
+axis_type = "bus_position"
+units = 1
+rep_mode = "cyclic_symmetric"
+rep_dist = 2147483648
+speed = 500000
+accel_time = 0.1
+decel_time = 0.2
+fast_decel = 50000000
+fe_limit = 30000
+[axes.encoder]
+counts_per_rev = 10000
+[axes.plant]
+model = "lag"
+time_constant = 0.005
+"#;
+
+struct Unit {
+    handle: EngineHandle,
+    model: MapModel,
+    _guard: RuntimeGuard,
+}
+
+fn unit(machine_toml: &str, map: &str, axes: usize) -> Unit {
+    let config: EngineConfig = toml::from_str(machine_toml).unwrap();
+    let shape = MachineShape {
+        axes,
+        ..MachineShape::default()
+    };
+    let (handle, guard) = Runtime::start(
+        Engine::new(&config).unwrap(),
+        RuntimeOptions::with_clock(ClockMode::Virtual),
+    )
+    .unwrap();
+    let compiled = load(
+        shipped(map).unwrap(),
+        map,
+        &shape,
+        &Binding {
+            axes: (0..axes).collect(),
+        },
+    )
+    .unwrap();
+    let service = Arc::new(UnitService::new(compiled, handle.clone()));
+    Unit {
+        handle,
+        model: MapModel::new(vec![(Some(2), service)]),
+        _guard: guard,
+    }
+}
+
+impl Unit {
+    /// Run a request PDU as the unit would, decode refusals included.
+    async fn pdu(&self, pdu: &[u8]) -> Response {
+        let request = match decode_request(pdu) {
+            Ok(r) => r,
+            Err(refusal) => return refusal.into(),
+        };
+        let context = RequestContext {
+            unit: 2,
+            broadcast: false,
+            peer: Peer::Serial("test".into()),
+        };
+        match self.model.execute(&context, &request).await {
+            Ok(r) => r,
+            Err(e) => Response::exception(request.function(), e.exception),
+        }
+    }
+}
+
+#[tokio::test]
+async fn the_e10_answers_the_cpu_226h_networks() {
+    let e10 = unit(E10, "ct-e10-servo", 1);
+    // Network 6 on a drive at rest, disabled, at 0: 30 zero registers (digest 003 TV-06).
+    let r = e10.pdu(&[0x03, 0x00, 0xC8, 0x00, 0x1E]).await;
+    assert_eq!(
+        r,
+        Response::Registers {
+            function: 3,
+            words: vec![0; 30]
+        }
+    );
+    // Network 3: P281 = 0, P282 = 1 → the servo is enabled (TV-01, TV-02).
+    let r = e10
+        .pdu(&[0x10, 0x01, 0x19, 0x00, 0x02, 0x04, 0x00, 0x00, 0x00, 0x01])
+        .await;
+    assert_eq!(
+        r,
+        Response::WriteMultiple {
+            function: 0x10,
+            address: 0x0119,
+            quantity: 2
+        }
+    );
+    assert!(e10.handle.snapshot().axes[0]
+        .flags
+        .contains(AxisFlags::ENABLED));
+    // Network 4: P324 = 100, echoed (TV-03).
+    let r = e10.pdu(&[0x06, 0x01, 0x44, 0x00, 0x64]).await;
+    assert_eq!(
+        r,
+        Response::WriteSingle {
+            function: 6,
+            address: 0x0144,
+            value: 100
+        }
+    );
+    // Network 5 as corrected: P113 = 100 ms, P114 = 200 ms (TV-04) …
+    let r = e10
+        .pdu(&[0x10, 0x00, 0x71, 0x00, 0x02, 0x04, 0x00, 0x64, 0x00, 0xC8])
+        .await;
+    assert!(matches!(r, Response::WriteMultiple { quantity: 2, .. }));
+    let params = &e10.handle.snapshot().params[0];
+    assert_eq!(params.get(ParamId::AccelTime), 0.1);
+    assert_eq!(params.get(ParamId::DecelTime), 0.2);
+    // … and as printed (quantity 4, byte count 0): exception 03 (TV-05).
+    let r = e10
+        .pdu(&[0x10, 0x00, 0x71, 0x00, 0x04, 0x00, 0x00, 0x64, 0x00, 0xC8])
+        .await;
+    assert_eq!(r, Response::exception(0x10, Exception::IllegalDataValue));
+    // R204 bit 0: servo ready after the enable (TV-08's readiness bit).
+    let r = e10.pdu(&[0x03, 0x00, 0xCC, 0x00, 0x01]).await;
+    assert!(
+        matches!(r, Response::Registers { ref words, .. } if words[0] & 1 == 1),
+        "{r:?}"
+    );
+}
+
+#[tokio::test]
+async fn the_e10_runs_at_an_internal_speed_and_positions_to_p290() {
+    let e10 = unit(E10, "ct-e10-servo", 1);
+    // P97 (3rd internal speed) = 600 rpm = 100 000 counts/s; enable; P281 = 3.
+    e10.pdu(&[0x06, 0x00, 0x61, 0x02, 0x58]).await;
+    e10.pdu(&[0x06, 0x01, 0x1A, 0x00, 0x01]).await;
+    e10.pdu(&[0x06, 0x01, 0x19, 0x00, 0x03]).await;
+    e10.handle.advance(500).unwrap();
+    let s = e10.handle.snapshot();
+    assert!(
+        (s.axes[0].cmd_vel - 100_000.0).abs() < 1e-6,
+        "{}",
+        s.axes[0].cmd_vel
+    );
+    // R221 feedback speed in rpm.
+    let r = e10.pdu(&[0x03, 0x00, 0xDD, 0x00, 0x01]).await;
+    assert!(
+        matches!(r, Response::Registers { ref words, .. } if (i32::from(words[0] as i16) - 600).abs() <= 1),
+        "{r:?}"
+    );
+    // P281 = 0 stops; then P290 = 123 456 and a rising P282 bit 1 positions there.
+    e10.pdu(&[0x06, 0x01, 0x19, 0x00, 0x00]).await;
+    e10.handle
+        .advance_until(|s| !s.axes[0].flags.contains(AxisFlags::MOVING), 10_000)
+        .unwrap();
+    let target: i32 = 123_456;
+    let [a, b, c, d] = target.to_be_bytes();
+    e10.pdu(&[0x10, 0x01, 0x22, 0x00, 0x02, 0x04, a, b, c, d])
+        .await;
+    e10.pdu(&[0x06, 0x01, 0x1A, 0x00, 0x03]).await;
+    e10.handle
+        .advance_until(
+            |s| s.axes[0].cmd_pos == 123_456.0 && !s.axes[0].flags.contains(AxisFlags::MOVING),
+            60_000,
+        )
+        .unwrap();
+    e10.handle.advance(200).unwrap();
+    let r = e10.pdu(&[0x03, 0x00, 0xD8, 0x00, 0x02]).await;
+    let Response::Registers { words, .. } = r else {
+        panic!("{r:?}")
+    };
+    let pos = i32::from_be_bytes([
+        (words[0] >> 8) as u8,
+        words[0] as u8,
+        (words[1] >> 8) as u8,
+        words[1] as u8,
+    ]);
+    assert!((pos - target).abs() <= 1, "R216 = {pos}");
+}
