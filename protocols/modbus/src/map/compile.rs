@@ -11,7 +11,9 @@ use super::schema::{
     ActionFile, ArgFile, ChannelKind, ChannelsFile, Gaps, InitValue, MapFile, PointFile, ReadFile,
     Table,
 };
-use super::source::{parse_bits, parse_source, parse_target, MachineShape, Scope, Source, Target};
+use super::source::{
+    parse_bits, parse_select, parse_source, parse_target, MachineShape, Scope, Source, Target,
+};
 use super::value::{encode, encode_string, PointType, WordOrder};
 use crate::model::DeviceIdentity;
 
@@ -86,6 +88,8 @@ pub struct Point {
     pub names: Vec<(String, f64)>,
     pub numbers: Vec<(f64, f64)>,
     pub default: Option<f64>,
+    /// `code << 24 | axis << 16 | value` for nonzero values (HIMC axis error codes).
+    pub axis_code: Option<u8>,
     /// Writes: where the value goes, `None` with no actions = read-only.
     pub write: Option<Target>,
     pub actions: Vec<Action>,
@@ -254,6 +258,7 @@ pub fn compile(
             &pl.name,
             file,
             machine,
+            &binding.axes,
             &mut unit.initial_memory,
         )?;
         unit.points.push(point);
@@ -394,6 +399,7 @@ fn channels(
             names: Vec::new(),
             numbers: Vec::new(),
             default: None,
+            axis_code: None,
             write,
             actions: Vec::new(),
             cell: None,
@@ -427,6 +433,7 @@ fn point(
     name: &str,
     file: &MapFile,
     machine: &MachineShape,
+    binding_axes: &[usize],
     memory: &mut Vec<u16>,
 ) -> Result<Point, CompileError> {
     let scope = Scope { machine, axis };
@@ -476,6 +483,21 @@ fn point(
             Ok(s) => Read::Source(s),
             Err(reason) => return Err(err(format!("{key}.read"), reason)),
         },
+        Some(ReadFile::Select { first, all_axes }) => {
+            if !ty.is_integer() {
+                return Err(err(
+                    format!("{key}.type"),
+                    "a `first` table gives codes: use an integer type",
+                ));
+            }
+            let axes = match (*all_axes, axis) {
+                (true, _) => binding_axes.to_vec(),
+                (false, Some(a)) => vec![a],
+                (false, None) => Vec::new(),
+            };
+            let cases = first.iter().map(|c| (c.when.as_str(), c.value));
+            Read::Source(parse_select(cases, axes).map_err(|r| err(format!("{key}.read"), r))?)
+        }
         Some(ReadFile::Bits { bits }) => {
             let w = u8::try_from(16 * width).unwrap_or(64).min(64);
             if ty.is_integer() || ty == PointType::Bool {
@@ -561,6 +583,7 @@ fn point(
         names,
         numbers,
         default: p.default,
+        axis_code: p.axis_code,
         write,
         actions: Vec::new(),
         cell,

@@ -202,6 +202,10 @@ pub struct PointFile {
     /// Value for a read the lookup does not list; without it such a read passes through.
     #[serde(default)]
     pub default: Option<f64>,
+    /// Compose a nonzero value with its axis as `code << 24 | axis << 16 | value` (the HIMC's
+    /// `0x83NNVVVV` axis error codes, digest 004 §5).
+    #[serde(default)]
+    pub axis_code: Option<u8>,
     /// Initial value of a memory cell or constant.
     #[serde(default)]
     pub init: Option<InitValue>,
@@ -216,6 +220,24 @@ pub enum ReadFile {
     Bits {
         bits: BTreeMap<String, String>,
     },
+    /// The value of the first case that holds, else 0: a vendor's error-code table.
+    /// `{ first = [{ when = "latched.drive_alarm", value = 0x03f2 }, …] }`. With
+    /// `all_axes = true` the cases are tried on each served axis in turn and the first axis
+    /// with a nonzero value answers (a controller-wide "latest error").
+    Select {
+        first: Vec<CaseFile>,
+        #[serde(default)]
+        all_axes: bool,
+    },
+}
+
+/// A case of a `first` table: a flag, `latched.FLAG`, `state.NAME` (each may start with `!`) or
+/// `last_error.KIND`; and the value it gives.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CaseFile {
+    pub when: String,
+    pub value: f64,
 }
 
 #[derive(Clone, Debug, Deserialize)]

@@ -2,6 +2,7 @@
 //! `do.3`, `machine.error` …), parsed once when the map is compiled and evaluated on a snapshot
 //! for every read.
 
+use axes::command::ErrorKind;
 use axes::param::{parameter_value, ParamId};
 use axes::status::{flag_by_name, AxisState, AxisStatus, Snapshot};
 use axes::AxisFlags;
@@ -135,6 +136,18 @@ pub enum Source {
         axis: usize,
         bits: Vec<(u8, BitSource, bool)>,
     },
+    /// The first case that holds on the first axis (in order) where one does.
+    Select {
+        axes: Vec<usize>,
+        cases: Vec<(Case, f64)>,
+    },
+}
+
+/// A condition of a `first` table.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Case {
+    Bit { bit: BitSource, invert: bool },
+    LastError(ErrorKind),
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -163,11 +176,17 @@ pub enum Target {
 pub struct Datum {
     pub number: f64,
     pub name: Option<&'static str>,
+    /// The axis the value belongs to, where it has one (for `axis_code`).
+    pub axis: Option<usize>,
 }
 
 impl Datum {
     fn number(number: f64) -> Datum {
-        Datum { number, name: None }
+        Datum {
+            number,
+            name: None,
+            axis: None,
+        }
     }
 }
 
@@ -356,6 +375,35 @@ pub fn parse_bits<'b>(
     Ok(Source::Bits { axis, bits: out })
 }
 
+/// Parse a `{ first = [...] }` table for the scope's axis, or for `axes` in turn.
+pub fn parse_select<'c>(
+    cases: impl IntoIterator<Item = (&'c str, f64)>,
+    axes: Vec<usize>,
+) -> Result<Source, String> {
+    if axes.is_empty() {
+        return Err(
+            "a `first` table needs an axis: use it in a block or give the front-end an axis".into(),
+        );
+    }
+    let mut out = Vec::new();
+    for (when, value) in cases {
+        let case = match when.strip_prefix("last_error.") {
+            Some(kind) => {
+                let kind: ErrorKind =
+                    serde_json::from_value(serde_json::Value::String(kind.into()))
+                        .map_err(|_| format!("`{kind}` is not an engine error kind"))?;
+                Case::LastError(kind)
+            }
+            None => {
+                let (bit, invert) = bit_source(when)?;
+                Case::Bit { bit, invert }
+            }
+        };
+        out.push((case, value));
+    }
+    Ok(Source::Select { axes, cases: out })
+}
+
 /// Parse a write target.
 pub fn parse_target(path: &str, scope: &Scope<'_>) -> Result<Target, String> {
     let m = scope.machine;
@@ -466,7 +514,42 @@ impl Source {
                     .fold(0u64, |w, (n, _, _)| w | 1 << n);
                 Datum::number(word as f64)
             }
+            Source::Select { axes, cases } => {
+                for &axis in axes {
+                    let status = snapshot.axes.get(axis)?;
+                    let hit = cases.iter().find(|(case, _)| match case {
+                        Case::Bit { bit, invert } => bit_value(status, *bit) != *invert,
+                        Case::LastError(kind) => status.last_error == Some(*kind),
+                    });
+                    if let Some((_, value)) = hit {
+                        return Some(Datum {
+                            number: *value,
+                            name: None,
+                            axis: Some(axis),
+                        });
+                    }
+                }
+                Datum::number(0.0)
+            }
         })
+        .map(|d| match (d.axis, self.axis()) {
+            (None, Some(axis)) => Datum {
+                axis: Some(axis),
+                ..d
+            },
+            _ => d,
+        })
+    }
+
+    /// The axis a per-axis source reads.
+    fn axis(&self) -> Option<usize> {
+        match self {
+            Source::Axis { axis, .. }
+            | Source::AxisBit { axis, .. }
+            | Source::Param { axis, .. }
+            | Source::Bits { axis, .. } => Some(*axis),
+            _ => None,
+        }
     }
 }
 
@@ -476,6 +559,7 @@ fn axis_field(s: &AxisStatus, field: AxisField) -> Datum {
         AxisField::State => Datum {
             number: AXIS_STATES.iter().position(|x| *x == s.state).unwrap_or(0) as f64,
             name: Some(s.state.name()),
+            axis: None,
         },
         AxisField::Flags => n(f64::from(s.flags.bits())),
         AxisField::Latched => n(f64::from(s.latched.bits())),
@@ -499,10 +583,12 @@ fn axis_field(s: &AxisStatus, field: AxisField) -> Datum {
             None => Datum {
                 number: 0.0,
                 name: Some("none"),
+                axis: None,
             },
             Some(kind) => Datum {
                 number: f64::from(kind as u8) + 1.0,
                 name: Some(kind.name()),
+                axis: None,
             },
         },
     }
@@ -512,7 +598,6 @@ fn axis_field(s: &AxisStatus, field: AxisField) -> Datum {
 #[allow(clippy::unwrap_used)]
 mod tests {
     use super::*;
-    use axes::command::ErrorKind;
 
     fn machine() -> MachineShape {
         MachineShape {
