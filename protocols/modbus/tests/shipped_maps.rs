@@ -191,3 +191,121 @@ async fn the_e10_runs_at_an_internal_speed_and_positions_to_p290() {
     ]);
     assert!((pos - target).abs() <= 1, "R216 = {pos}");
 }
+
+/// Two stepper axes in mm with limit switches at ±50 mm.
+const STEPPERS: &str = r#"
+[[axes]]
+[axes.params]
+axis_type = "stepper"
+units = 1000
+rep_mode = "finite"
+speed = 100
+accel = 1000
+decel = 1000
+[axes.switches.limit_pos]
+position = 50
+[axes.switches.limit_neg]
+position = -50
+[[axes]]
+[axes.params]
+axis_type = "stepper"
+units = 1000
+rep_mode = "finite"
+speed = 100
+accel = 1000
+decel = 1000
+[axes.switches.limit_pos]
+position = 50
+[axes.switches.limit_neg]
+position = -50
+"#;
+
+fn cdab_f64(words: &[u16]) -> f64 {
+    let mut b = [0u8; 8];
+    for (i, w) in words.iter().rev().enumerate() {
+        b[2 * i..2 * i + 2].copy_from_slice(&w.to_be_bytes());
+    }
+    f64::from_be_bytes(b)
+}
+
+fn f64_cdab(v: f64) -> Vec<u8> {
+    let b = v.to_be_bytes();
+    (0..4)
+        .rev()
+        .flat_map(|i| [b[2 * i], b[2 * i + 1]])
+        .collect()
+}
+
+impl Unit {
+    async fn registers(&self, address: u16, quantity: u16) -> Vec<u16> {
+        let [ah, al] = address.to_be_bytes();
+        let [qh, ql] = quantity.to_be_bytes();
+        match self.pdu(&[0x03, ah, al, qh, ql]).await {
+            Response::Registers { words, .. } => words,
+            other => panic!("read {address}: {other:?}"),
+        }
+    }
+
+    async fn write(&self, address: u16, data: &[u8]) -> Response {
+        let [ah, al] = address.to_be_bytes();
+        let n = (data.len() / 2) as u16;
+        let mut pdu = vec![0x10, ah, al, 0, n as u8, data.len() as u8];
+        pdu.extend_from_slice(data);
+        self.pdu(&pdu).await
+    }
+}
+
+#[tokio::test]
+async fn the_himc_map_enables_moves_and_reports_errors_as_the_controller_does() {
+    let himc = unit(STEPPERS, "himc", 2);
+    assert_eq!(himc.registers(8208, 1).await, [2], "synchronous: ready");
+    // HR 30 = 1 enables axis 0 (digest 004 §1.9); HR 130 is axis 1's.
+    himc.pdu(&[0x06, 0x00, 0x1E, 0x00, 0x01]).await;
+    assert_eq!(
+        himc.registers(0, 2).await,
+        [0b101, 0],
+        "motion status: enabled, in position"
+    );
+    assert_eq!(himc.registers(100, 2).await, [0, 0]);
+    // Target 12.5 mm, command 1 (move absolute), in one request.
+    let mut data = f64_cdab(12.5);
+    data.extend_from_slice(&[0, 0, 0, 0, 0, 0, 0, 0, 0, 1]);
+    himc.write(40, &data).await;
+    himc.handle
+        .advance_until(
+            |s| s.axes[0].act_pos == 12.5 && !s.axes[0].flags.contains(AxisFlags::MOVING),
+            60_000,
+        )
+        .unwrap();
+    himc.handle.advance(50).unwrap();
+    assert_eq!(cdab_f64(&himc.registers(4, 4).await), 12.5);
+    assert_eq!(
+        himc.registers(0, 1).await[0] & 0b101,
+        0b101,
+        "enabled, in position"
+    );
+    // Max velocity reads the parameter, low word first.
+    assert_eq!(cdab_f64(&himc.registers(16, 4).await), 100.0);
+    // Drive into the + limit: fault bit 3, error stop, 0x8300_07EE at 58 and at 8210.
+    let mut data = f64_cdab(80.0);
+    data.extend_from_slice(&[0, 0, 0, 0, 0, 0, 0, 0, 0, 1]);
+    himc.pdu(&[0x06, 0x00, 0x30, 0x00, 0x00]).await; // command 0 first, so 1 is written anew
+    himc.write(40, &data).await;
+    himc.handle.advance(2000).unwrap();
+    let fault = himc.registers(2, 2).await;
+    assert_ne!(fault[0] & 1 << 3, 0, "right hardware limit: {fault:?}");
+    let code = |w: Vec<u16>| u32::from(w[1]) << 16 | u32::from(w[0]);
+    assert_eq!(code(himc.registers(58, 2).await), 0x8300_07EE);
+    assert_eq!(code(himc.registers(8210, 2).await), 0x8300_07EE);
+    assert_eq!(code(himc.registers(158, 2).await), 0, "axis 1 has no error");
+    // The user table holds floats low word first (0.85 → 0x999A, 0x3F59).
+    himc.write(8704, &[0x99, 0x9A, 0x3F, 0x59]).await;
+    let w = himc.registers(8704, 2).await;
+    assert_eq!(
+        f32::from_bits(u32::from(w[1]) << 16 | u32::from(w[0])),
+        0.85
+    );
+    // Axis 2 does not exist on this machine: its block is not mapped.
+    let r = himc.pdu(&[0x03, 0x00, 200, 0x00, 0x01]).await;
+    assert_eq!(r, Response::exception(3, Exception::IllegalDataAddress));
+}

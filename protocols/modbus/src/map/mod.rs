@@ -25,6 +25,10 @@ pub const SHIPPED: &[(&str, &str)] = &[
         "ct-e10-servo",
         include_str!("../../../../fixtures/modbus/ct-e10-servo.toml"),
     ),
+    (
+        "himc",
+        include_str!("../../../../fixtures/modbus/himc.toml"),
+    ),
 ];
 
 /// A map file that cannot be used: which file, which key, why.

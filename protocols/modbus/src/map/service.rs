@@ -165,15 +165,17 @@ impl UnitService {
                     .name
                     .and_then(|n| point.names.iter().find(|(k, _)| k == n));
                 let by_number = || point.numbers.iter().find(|(k, _)| *k == datum.number);
-                Some(
-                    match by_name
-                        .map(|(_, v)| *v)
-                        .or_else(|| by_number().map(|(_, v)| *v))
-                    {
-                        Some(v) => v,
-                        None => point.default.unwrap_or(datum.number),
-                    },
-                )
+                let looked_up = by_name
+                    .map(|(_, v)| *v)
+                    .or_else(|| by_number().map(|(_, v)| *v));
+                let value = looked_up.unwrap_or(point.default.unwrap_or(datum.number));
+                Some(match (point.axis_code, datum.axis) {
+                    (Some(code), Some(axis)) if value != 0.0 => {
+                        let low = (value as i64 as u64) & 0xFFFF;
+                        ((u64::from(code) << 24) | ((axis as u64 & 0xFF) << 16) | low) as f64
+                    }
+                    _ => value,
+                })
             }
         }
     }
