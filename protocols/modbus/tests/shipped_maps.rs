@@ -309,3 +309,47 @@ async fn the_himc_map_enables_moves_and_reports_errors_as_the_controller_does() 
     let r = himc.pdu(&[0x03, 0x00, 200, 0x00, 0x01]).await;
     assert_eq!(r, Response::exception(3, Exception::IllegalDataAddress));
 }
+
+fn f64_abcd(words: &[u16]) -> f64 {
+    let b: Vec<u8> = words.iter().flat_map(|w| w.to_be_bytes()).collect();
+    f64::from_be_bytes(b.try_into().unwrap())
+}
+
+#[tokio::test]
+async fn the_hmc_map_reads_and_writes_parameters_as_the_hmc_allows_and_runs_instructions() {
+    let hmc = unit(STEPPERS, "hollysys-mc", 2);
+    // Speed (offset 42 in the block, f64 high word first) reads the parameter; axis 1's block
+    // starts at 200, and its AxisID reads 1.
+    assert_eq!(f64_abcd(&hmc.registers(200 + 42, 4).await), 100.0);
+    assert_eq!(hmc.registers(200, 1).await, [1]);
+    // The HMC rule: a negative Speed is made positive and latches AxisStatus bit 2.
+    let r = hmc.write(42, &(-40.0f64).to_be_bytes()).await;
+    assert!(matches!(r, Response::WriteMultiple { .. }), "{r:?}");
+    assert_eq!(f64_abcd(&hmc.registers(42, 4).await), 40.0);
+    let status = hmc.registers(8, 2).await;
+    assert_eq!(status, [0, 4], "AxisStatus bit 2");
+    // MPos is read-only: 02.
+    let r = hmc.write(13, &1.0f64.to_be_bytes()).await;
+    assert_eq!(r, Response::exception(0x10, Exception::IllegalDataAddress));
+    // Drive enable, then HMC_MoveAbs to 3.5 (argument 1, command 14).
+    hmc.pdu(&[0x06, 0x00, 199, 0x00, 0x01]).await;
+    let mut data = 3.5f64.to_be_bytes().to_vec();
+    data.extend_from_slice(&[0; 8]);
+    data.extend_from_slice(&[0, 14]);
+    let r = hmc.write(190, &data).await;
+    assert!(matches!(r, Response::WriteMultiple { .. }), "{r:?}");
+    // MCmdType shows HMC__MoveAbs (14) while it runs.
+    hmc.handle.advance(1).unwrap();
+    assert_eq!(hmc.registers(6, 1).await, [14]);
+    hmc.handle
+        .advance_until(
+            |s| !s.axes[0].flags.contains(AxisFlags::MOVING) && s.axes[0].cmd_pos == 3.5,
+            60_000,
+        )
+        .unwrap();
+    assert_eq!(f64_abcd(&hmc.registers(17, 4).await), 3.5, "DPos");
+    // HMC_Reverse (20) jogs at −Speed.
+    hmc.pdu(&[0x06, 0x00, 198, 0x00, 20]).await;
+    hmc.handle.advance(1000).unwrap();
+    assert_eq!(hmc.handle.snapshot().axes[0].cmd_vel, -40.0);
+}

@@ -51,8 +51,9 @@ pub enum When {
 pub enum Arg {
     /// The written value (scaled).
     Written,
-    /// The current value of another point, by index into the unit's points.
-    Point(usize),
+    /// The current value of another point, by index into the unit's points; `negate` for
+    /// `-@name`.
+    Point { index: usize, negate: bool },
 }
 
 /// A command a write issues: a JSON template of `axes::Command` with holes.
@@ -649,8 +650,12 @@ fn action(
                 holes.push((field.clone(), Arg::Written));
                 Value::from(0.0)
             }
-            ArgFile::Text(t) => match t.strip_prefix('@') {
-                Some(name) => {
+            ArgFile::Text(t) => match t
+                .strip_prefix('@')
+                .map(|n| (n, false))
+                .or_else(|| t.strip_prefix("-@").map(|n| (n, true)))
+            {
+                Some((name, negate)) => {
                     let target = resolve(name, axis, pending).ok_or_else(|| {
                         err(
                             format!("{key}.args.{field}"),
@@ -665,7 +670,13 @@ fn action(
                             format!("`{name}` cannot be an argument (the point itself, or text)"),
                         ));
                     }
-                    holes.push((field.clone(), Arg::Point(target)));
+                    holes.push((
+                        field.clone(),
+                        Arg::Point {
+                            index: target,
+                            negate,
+                        },
+                    ));
                     Value::from(0.0)
                 }
                 None => Value::String(t.clone()),
@@ -834,7 +845,16 @@ on_write = [{ when = "rising_bit0", command = "move_absolute", args = { position
         );
         let start = &unit.points[7];
         assert_eq!(start.actions[0].when, When::RisingBit(0));
-        assert_eq!(start.actions[0].holes, [("position".into(), Arg::Point(6))]);
+        assert_eq!(
+            start.actions[0].holes,
+            [(
+                "position".into(),
+                Arg::Point {
+                    index: 6,
+                    negate: false
+                }
+            )]
+        );
         assert_eq!(start.actions[0].template["axis"], 2);
         assert_eq!(unit.points[0].numbers, [(0.0, 2.0), (1.0, 4.0)]);
         assert_eq!(unit.points[3].order, WordOrder::Cdab);

@@ -29,6 +29,10 @@ pub const SHIPPED: &[(&str, &str)] = &[
         "himc",
         include_str!("../../../../fixtures/modbus/himc.toml"),
     ),
+    (
+        "hollysys-mc",
+        include_str!("../../../../fixtures/modbus/hollysys-mc.toml"),
+    ),
 ];
 
 /// A map file that cannot be used: which file, which key, why.

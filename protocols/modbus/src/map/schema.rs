@@ -259,7 +259,8 @@ pub struct ActionFile {
     /// The engine command's `type` (`enable`, `move_absolute` …); the axis is the block's.
     pub command: String,
     /// Its other fields: numbers, booleans, names, `"value"` (the written value, scaled), or
-    /// `"@point"` (the current value of another point of the same block or map). A limit
+    /// `"@point"` (the current value of another point of the same block or map; `"-@point"`
+    /// negated). A limit
     /// (`velocity`, `acceleration`, `deceleration`, `jerk`) read from a point as 0 is left out,
     /// so the axis parameter applies — except a jog's velocity.
     #[serde(default)]

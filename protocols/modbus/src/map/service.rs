@@ -416,15 +416,20 @@ impl UnitService {
         for (field, arg) in &action.holes {
             let value = match arg {
                 Arg::Written => written,
-                Arg::Point(j) => {
-                    let q = &self.map.points[*j];
-                    self.value_of(q, &snapshot).unwrap_or(0.0)
+                Arg::Point { index, negate } => {
+                    let q = &self.map.points[*index];
+                    let v = self.value_of(q, &snapshot).unwrap_or(0.0);
+                    if *negate {
+                        -v
+                    } else {
+                        v
+                    }
                 }
             };
             // A limit left at 0 in a setpoint register means "the axis's own parameter".
             let optional = OPTIONAL_LIMITS.contains(&field.as_str())
                 && template.get("type").and_then(Value::as_str) != Some("move_velocity");
-            if matches!(arg, Arg::Point(_)) && value == 0.0 && optional {
+            if matches!(arg, Arg::Point { .. }) && value == 0.0 && optional {
                 template.remove(field);
                 continue;
             }

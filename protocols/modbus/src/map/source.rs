@@ -22,6 +22,8 @@ pub struct MachineShape {
 /// A field of the axis status.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum AxisField {
+    /// The machine's number of the axis (HMC AxisID).
+    Index,
     /// The PLCopen state: its position in [`AXIS_STATES`], or its name in a `values` lookup.
     State,
     Flags,
@@ -48,6 +50,7 @@ pub enum AxisField {
 }
 
 const AXIS_FIELDS: &[(&str, AxisField)] = &[
+    ("index", AxisField::Index),
     ("state", AxisField::State),
     ("flags", AxisField::Flags),
     ("latched", AxisField::Latched),
@@ -468,6 +471,10 @@ impl Source {
         let io = &snapshot.io;
         Some(match self {
             Source::Memory => return None,
+            Source::Axis {
+                axis,
+                field: AxisField::Index,
+            } => Datum::number(*axis as f64),
             Source::Axis { axis, field } => axis_field(snapshot.axes.get(*axis)?, *field),
             Source::AxisBit { axis, bit, invert } => {
                 Datum::number(flag(bit_value(snapshot.axes.get(*axis)?, *bit) != *invert))
@@ -556,6 +563,8 @@ impl Source {
 fn axis_field(s: &AxisStatus, field: AxisField) -> Datum {
     let n = |v: f64| Datum::number(v);
     match field {
+        // Resolved by the caller, which knows the axis.
+        AxisField::Index => n(0.0),
         AxisField::State => Datum {
             number: AXIS_STATES.iter().position(|x| *x == s.state).unwrap_or(0) as f64,
             name: Some(s.state.name()),
