@@ -262,9 +262,12 @@ async fn a_truncated_frame_times_out_and_an_idle_connection_too() {
 
     let mut half = connect(server.addr).await;
     let started = Instant::now();
-    half.write_all(&mbap(1, 1, &[3, 0, 100, 0, 1])[..8])
+    // A whole request, then the start of another that never completes.
+    let request = mbap(1, 1, &[3, 0, 100, 0, 1]);
+    half.write_all(&[&request[..], &request[..8]].concat())
         .await
         .unwrap();
+    assert_eq!(read_mbap(&mut half).await, mbap(1, 1, &[3, 2, 0, 0]));
     assert!(closed_by_peer(&mut half).await);
     assert!(started.elapsed() >= Duration::from_millis(150));
 
