@@ -565,3 +565,21 @@ async fn configured_faults_apply_from_the_start() {
     assert!(serde_json::from_value::<TcpConfig>(json!({"faults": [{"fault": "delay"}]})).is_err());
     server.shutdown().await;
 }
+
+#[tokio::test]
+async fn shutdown_does_not_wait_for_a_delayed_reply() {
+    let server = start_tcp(model_100_to_199(), TcpConfig::default()).await;
+    server
+        .state
+        .inject(&object(json!({"fault": "delay", "ms": 60_000})))
+        .unwrap();
+    let mut s = connect(server.addr).await;
+    s.write_all(&mbap(1, 1, &[3, 0, 100, 0, 1])).await.unwrap();
+    eventually("the delay is running", || {
+        server.state.counters.snapshot().faults_applied.delay == 1
+    })
+    .await;
+    // `shutdown` gives up after MUST_HAPPEN (5 s), far below the 60 s delay.
+    server.shutdown().await;
+    assert!(closed_by_peer(&mut s).await);
+}

@@ -99,6 +99,18 @@ pub(crate) async fn stopping(stop: &mut watch::Receiver<bool>) {
     }
 }
 
+/// Run `work` unless the accept loop says stop first (a `delay` fault or a slow model must not
+/// hold up shutdown).
+pub(crate) async fn unless_stopping<T>(
+    work: impl Future<Output = T>,
+    stop: &mut watch::Receiver<bool>,
+) -> Option<T> {
+    tokio::select! {
+        r = work => Some(r),
+        () = stopping(stop) => None,
+    }
+}
+
 /// Sleep until `deadline`, or forever without one.
 pub(crate) async fn sleep_until(deadline: Option<Instant>) {
     match deadline {

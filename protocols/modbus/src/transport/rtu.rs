@@ -311,7 +311,10 @@ async fn serve_line<D: DataModel>(
                         break;
                     }
                     let frame: Vec<u8> = buf.drain(..len).collect();
-                    respond(fd, server, &frame, peer).await?;
+                    tokio::select! {
+                        r = respond(fd, server, &frame, peer) => r?,
+                        () = &mut shutdown => return Ok(()),
+                    }
                 }
             }
             () = sleep_until(silence_end) => {
@@ -319,7 +322,10 @@ async fn serve_line<D: DataModel>(
                 discarding = false;
                 let frame = std::mem::take(&mut buf);
                 if !frame.is_empty() {
-                    respond(fd, server, &frame, peer).await?;
+                    tokio::select! {
+                        r = respond(fd, server, &frame, peer) => r?,
+                        () = &mut shutdown => return Ok(()),
+                    }
                 }
             }
         }

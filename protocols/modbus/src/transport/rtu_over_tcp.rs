@@ -14,7 +14,10 @@ use tokio::sync::watch;
 use tokio::time::Instant;
 
 use super::rtu::{answer, Verdict};
-use super::{accept_loop, earliest, expired, sleep_until, stopping, write_reply, Close, Deadlines};
+use super::{
+    accept_loop, earliest, expired, sleep_until, stopping, unless_stopping, write_reply, Close,
+    Deadlines,
+};
 use crate::config::{ConnectionLimits, RtuOverTcpConfig};
 use crate::frame::rtu::{self, Length, MAX_ADU};
 use crate::model::{DataModel, Peer};
@@ -83,7 +86,10 @@ async fn run<D: DataModel>(
                     break;
                 }
             };
-            let verdict = answer(server, buf.get(..n).unwrap_or_default(), &peer_id).await;
+            let frame = buf.get(..n).unwrap_or_default();
+            let Some(verdict) = unless_stopping(answer(server, frame, &peer_id), stop).await else {
+                return Close::Shutdown;
+            };
             match verdict {
                 Verdict::Reply(reply) => {
                     if let Err(close) = write_reply(stream, &reply, counters, &limits, stop).await {
@@ -132,7 +138,11 @@ async fn run<D: DataModel>(
                 if silence_end.is_some_and(|s| Instant::now() >= s) {
                     // Silence ends the frame (Serial Line §2.5.1.1): whatever arrived is one.
                     let frame = std::mem::take(&mut buf);
-                    if let Verdict::Reply(reply) = answer(server, &frame, &peer_id).await {
+                    let Some(verdict) = unless_stopping(answer(server, &frame, &peer_id), stop).await
+                    else {
+                        return Close::Shutdown;
+                    };
+                    if let Verdict::Reply(reply) = verdict {
                         if let Err(close) =
                             write_reply(stream, &reply, counters, &limits, stop).await
                         {

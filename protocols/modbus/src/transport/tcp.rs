@@ -9,7 +9,9 @@ use tokio::io::AsyncReadExt;
 use tokio::net::{TcpListener, TcpStream};
 use tokio::sync::watch;
 
-use super::{accept_loop, expired, sleep_until, stopping, write_reply, Close, Deadlines};
+use super::{
+    accept_loop, expired, sleep_until, stopping, unless_stopping, write_reply, Close, Deadlines,
+};
 use crate::config::{ConnectionLimits, TcpConfig};
 use crate::frame::tcp::{self, Decoded};
 use crate::model::{DataModel, Peer};
@@ -71,7 +73,12 @@ async fn run<D: DataModel>(
                     pdu,
                     consumed: n,
                 } => {
-                    if let Outcome::Reply(reply) = server.handle(header.unit, pdu, &peer_id).await {
+                    let Some(outcome) =
+                        unless_stopping(server.handle(header.unit, pdu, &peer_id), stop).await
+                    else {
+                        return Close::Shutdown;
+                    };
+                    if let Outcome::Reply(reply) = outcome {
                         out.clear();
                         // The reply echoes the transaction and unit ids (§3.1.3).
                         tcp::encode(header, &reply, &mut out);
