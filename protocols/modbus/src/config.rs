@@ -1,0 +1,155 @@
+//! Transport settings, one struct per config section: `[frontends.modbus_tcp]`,
+//! `[frontends.modbus_rtu]`, `[frontends.modbus_rtu_over_tcp]`. Every key is optional.
+
+use std::net::SocketAddr;
+use std::time::Duration;
+
+use serde::{Deserialize, Serialize};
+
+use crate::faults::FaultSpec;
+
+/// `[frontends.modbus_tcp]`: Modbus TCP server (MBAP framing).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(deny_unknown_fields, default)]
+pub struct TcpConfig {
+    /// Serve this front-end.
+    pub enabled: bool,
+    /// Address to listen on (502 is the registered port, but needs privileges).
+    pub bind: SocketAddr,
+    /// Open connections at most; a connection beyond it is accepted and closed at once.
+    pub max_connections: usize,
+    /// Close a connection that sends nothing for this long (ms; 0 = never).
+    pub idle_timeout_ms: u64,
+    /// Close a connection whose started frame is not complete this long after its first byte,
+    /// or that does not take a reply in this time (ms; 0 = never).
+    pub frame_timeout_ms: u64,
+    /// Faults in force from the start (see `faults` in the crate docs).
+    pub faults: Vec<FaultSpec>,
+}
+
+impl Default for TcpConfig {
+    fn default() -> Self {
+        TcpConfig {
+            enabled: true,
+            bind: SocketAddr::from(([127, 0, 0, 1], 1502)),
+            max_connections: 16,
+            idle_timeout_ms: 60_000,
+            frame_timeout_ms: 5_000,
+            faults: Vec::new(),
+        }
+    }
+}
+
+/// `[frontends.modbus_rtu_over_tcp]`: RTU frames (address, PDU, CRC) over TCP.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(deny_unknown_fields, default)]
+pub struct RtuOverTcpConfig {
+    /// Serve this front-end.
+    pub enabled: bool,
+    /// Address to listen on.
+    pub bind: SocketAddr,
+    /// Open connections at most; a connection beyond it is accepted and closed at once.
+    pub max_connections: usize,
+    /// Close a connection that sends nothing for this long (ms; 0 = never).
+    pub idle_timeout_ms: u64,
+    /// Close a connection whose started frame is not complete this long after its first byte,
+    /// or that does not take a reply in this time (ms; 0 = never).
+    pub frame_timeout_ms: u64,
+    /// A frame whose length cannot be predicted from its function code ends after this much
+    /// silence (ms); it is then checked by its CRC like any other.
+    pub silence_ms: u64,
+    /// Faults in force from the start.
+    pub faults: Vec<FaultSpec>,
+}
+
+impl Default for RtuOverTcpConfig {
+    fn default() -> Self {
+        RtuOverTcpConfig {
+            enabled: true,
+            bind: SocketAddr::from(([127, 0, 0, 1], 1503)),
+            max_connections: 16,
+            idle_timeout_ms: 60_000,
+            frame_timeout_ms: 5_000,
+            silence_ms: 20,
+            faults: Vec::new(),
+        }
+    }
+}
+
+/// Serial parity.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(rename_all = "snake_case")]
+pub enum Parity {
+    None,
+    Even,
+    Odd,
+}
+
+/// `[frontends.modbus_rtu]`: a Modbus RTU slave on a serial line.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(deny_unknown_fields, default)]
+pub struct RtuConfig {
+    /// Serve this front-end.
+    pub enabled: bool,
+    /// `"pty"`: create a pseudo-terminal and print its `/dev/pts/N` for the client; otherwise
+    /// a tty device to open (`/dev/ttyUSB0`, one end of a `socat` pty pair …).
+    pub device: String,
+    /// Line speed; it also sets the 3.5-character silence that ends a frame (1.75 ms above
+    /// 19 200 baud).
+    pub baud: u32,
+    /// Modbus over Serial Line §2.5.1 makes even parity the default.
+    pub parity: Parity,
+    /// 1 or 2 (the specification asks for 2 without parity). Data bits are always 8.
+    pub stop_bits: u8,
+    /// Faults in force from the start.
+    pub faults: Vec<FaultSpec>,
+}
+
+impl Default for RtuConfig {
+    fn default() -> Self {
+        RtuConfig {
+            enabled: true,
+            device: "pty".into(),
+            baud: 19_200,
+            parity: Parity::Even,
+            stop_bits: 1,
+            faults: Vec::new(),
+        }
+    }
+}
+
+/// Connection rules shared by the TCP transports.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ConnectionLimits {
+    pub max_connections: usize,
+    pub idle_timeout: Option<Duration>,
+    pub frame_timeout: Option<Duration>,
+}
+
+fn millis(ms: u64) -> Option<Duration> {
+    (ms > 0).then(|| Duration::from_millis(ms))
+}
+
+impl TcpConfig {
+    pub(crate) fn limits(&self) -> ConnectionLimits {
+        ConnectionLimits {
+            max_connections: self.max_connections.max(1),
+            idle_timeout: millis(self.idle_timeout_ms),
+            frame_timeout: millis(self.frame_timeout_ms),
+        }
+    }
+}
+
+impl RtuOverTcpConfig {
+    pub(crate) fn limits(&self) -> ConnectionLimits {
+        ConnectionLimits {
+            max_connections: self.max_connections.max(1),
+            idle_timeout: millis(self.idle_timeout_ms),
+            frame_timeout: millis(self.frame_timeout_ms),
+        }
+    }
+}

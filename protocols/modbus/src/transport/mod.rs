@@ -1,0 +1,254 @@
+//! Tokio transports: Modbus TCP, RTU on a serial line, RTU over TCP. Each owns its sockets or
+//! file descriptors and hands request PDUs to a [`Server`](crate::server::Server).
+
+pub mod rtu;
+pub mod rtu_over_tcp;
+pub mod tcp;
+
+use std::future::Future;
+use std::io;
+use std::net::SocketAddr;
+use std::sync::Arc;
+use std::time::Duration;
+
+use tokio::io::AsyncWriteExt;
+use tokio::net::{TcpListener, TcpStream};
+use tokio::sync::{watch, Semaphore};
+use tokio::task::JoinSet;
+use tokio::time::Instant;
+use tracing::Instrument;
+
+use crate::config::ConnectionLimits;
+use crate::counters::Counters;
+use crate::state::FrontendState;
+
+/// Pause after a failed `accept` (out of file descriptors …) so the loop does not spin.
+const ACCEPT_BACKOFF: Duration = Duration::from_millis(100);
+
+/// Accept connections until `shutdown`, at most `limits.max_connections` open at once: one
+/// beyond is accepted and closed at once (counted), so its client learns at once instead of
+/// waiting in the backlog. Each connection runs `serve` in its own task with a tracing span;
+/// at shutdown the connections are told to stop and awaited.
+pub(crate) async fn accept_loop<F, Fut>(
+    listener: TcpListener,
+    limits: ConnectionLimits,
+    state: Arc<FrontendState>,
+    shutdown: impl Future<Output = ()>,
+    serve: F,
+) where
+    F: Fn(TcpStream, SocketAddr, watch::Receiver<bool>) -> Fut,
+    Fut: Future<Output = ()> + Send + 'static,
+{
+    let permits = Arc::new(Semaphore::new(limits.max_connections));
+    let (stop, stopped) = watch::channel(false);
+    let mut tasks = JoinSet::new();
+    let name = state.name().to_owned();
+    tokio::pin!(shutdown);
+    loop {
+        tokio::select! {
+            () = &mut shutdown => break,
+            // Reap finished connections so the set stays small.
+            Some(_) = tasks.join_next(), if !tasks.is_empty() => {}
+            accepted = listener.accept() => {
+                let (stream, peer) = match accepted {
+                    Ok(a) => a,
+                    Err(e) => {
+                        tracing::warn!(frontend = %name, error = %e, "accept failed");
+                        tokio::time::sleep(ACCEPT_BACKOFF).await;
+                        continue;
+                    }
+                };
+                let counters = &state.counters;
+                let Ok(permit) = Arc::clone(&permits).try_acquire_owned() else {
+                    counters.connections_refused_at_limit.inc();
+                    tracing::info!(
+                        frontend = %name, %peer, max = limits.max_connections,
+                        "connection refused: at the connection limit"
+                    );
+                    drop(stream);
+                    continue;
+                };
+                let _ = stream.set_nodelay(true);
+                counters.connections_opened.inc();
+                let span = tracing::info_span!("modbus_connection", frontend = %name, %peer);
+                let conn = serve(stream, peer, stopped.clone());
+                let state = Arc::clone(&state);
+                tasks.spawn(
+                    async move {
+                        tracing::debug!("connection opened");
+                        conn.await;
+                        state.counters.connections_closed.inc();
+                        drop(permit);
+                        tracing::debug!("connection closed");
+                    }
+                    .instrument(span),
+                );
+            }
+        }
+    }
+    let _ = stop.send(true);
+    while tasks.join_next().await.is_some() {}
+}
+
+/// Resolves when the accept loop says stop (or is gone).
+pub(crate) async fn stopping(stop: &mut watch::Receiver<bool>) {
+    while !*stop.borrow_and_update() {
+        if stop.changed().await.is_err() {
+            return;
+        }
+    }
+}
+
+/// Run `work` unless the accept loop says stop first (a `delay` fault or a slow model must not
+/// hold up shutdown).
+pub(crate) async fn unless_stopping<T>(
+    work: impl Future<Output = T>,
+    stop: &mut watch::Receiver<bool>,
+) -> Option<T> {
+    tokio::select! {
+        r = work => Some(r),
+        () = stopping(stop) => None,
+    }
+}
+
+/// Sleep until `deadline`, or forever without one.
+pub(crate) async fn sleep_until(deadline: Option<Instant>) {
+    match deadline {
+        Some(d) => tokio::time::sleep_until(d).await,
+        None => std::future::pending().await,
+    }
+}
+
+/// The earlier of two optional deadlines.
+pub(crate) fn earliest(a: Option<Instant>, b: Option<Instant>) -> Option<Instant> {
+    match (a, b) {
+        (Some(a), Some(b)) => Some(a.min(b)),
+        (a, None) => a,
+        (None, b) => b,
+    }
+}
+
+/// Why a connection ends.
+#[derive(Debug)]
+pub(crate) enum Close {
+    /// The peer closed, or the socket failed.
+    Peer,
+    /// Shutdown of the front-end.
+    Shutdown,
+    /// A timeout or protocol violation, already counted and logged.
+    Ours,
+}
+
+/// The deadlines of one connection: the idle timeout runs from the last byte received; the
+/// frame timeout from the first byte of a frame that is still incomplete.
+pub(crate) struct Deadlines {
+    limits: ConnectionLimits,
+    last_rx: Instant,
+    frame_started: Option<Instant>,
+}
+
+/// Which deadline passed.
+pub(crate) enum Expired {
+    Idle,
+    Frame,
+}
+
+impl Deadlines {
+    pub fn new(limits: ConnectionLimits) -> Deadlines {
+        Deadlines {
+            limits,
+            last_rx: Instant::now(),
+            frame_started: None,
+        }
+    }
+
+    pub fn received(&mut self) {
+        self.last_rx = Instant::now();
+    }
+
+    /// After framing: `consumed` whether a frame was taken from the buffer, `pending` whether
+    /// bytes of an incomplete frame remain.
+    pub fn framed(&mut self, consumed: bool, pending: bool) {
+        self.frame_started = match (pending, consumed) {
+            (false, _) => None,
+            // What remains started with the last read.
+            (true, true) => Some(self.last_rx),
+            (true, false) => self.frame_started.or(Some(self.last_rx)),
+        };
+    }
+
+    pub fn next(&self) -> Option<(Instant, Expired)> {
+        let idle = self
+            .limits
+            .idle_timeout
+            .map(|d| (self.last_rx + d, Expired::Idle));
+        let frame = self
+            .frame_started
+            .zip(self.limits.frame_timeout)
+            .map(|(t, d)| (t + d, Expired::Frame));
+        match (idle, frame) {
+            (Some(i), Some(f)) => Some(if f.0 < i.0 { f } else { i }),
+            (i, None) => i,
+            (None, f) => f,
+        }
+    }
+}
+
+/// Count and log an expired deadline.
+pub(crate) fn expired(counters: &Counters, which: &Expired, limits: &ConnectionLimits) {
+    match which {
+        Expired::Idle => {
+            counters.idle_timeouts.inc();
+            tracing::info!(
+                timeout_ms = limits.idle_timeout.map_or(0, |d| d.as_millis()),
+                "closing idle connection"
+            );
+        }
+        Expired::Frame => {
+            counters.frame_timeouts.inc();
+            tracing::info!(
+                timeout_ms = limits.frame_timeout.map_or(0, |d| d.as_millis()),
+                "closing connection: frame not completed in time"
+            );
+        }
+    }
+}
+
+/// Write a reply, within the frame timeout: a client that does not read cannot hold the
+/// connection's task forever.
+pub(crate) async fn write_reply(
+    stream: &mut TcpStream,
+    bytes: &[u8],
+    counters: &Counters,
+    limits: &ConnectionLimits,
+    stop: &mut watch::Receiver<bool>,
+) -> Result<(), Close> {
+    let write = stream.write_all(bytes);
+    let deadline = limits.frame_timeout.map(|d| Instant::now() + d);
+    tokio::select! {
+        r = write => match r {
+            Ok(()) => {
+                counters.bytes_out.add(bytes.len() as u64);
+                Ok(())
+            }
+            Err(e) => {
+                tracing::debug!(error = %e, "write failed");
+                Err(Close::Peer)
+            }
+        },
+        () = sleep_until(deadline) => {
+            counters.frame_timeouts.inc();
+            tracing::info!("closing connection: the client does not take its replies");
+            Err(Close::Ours)
+        }
+        () = stopping(stop) => Err(Close::Shutdown),
+    }
+}
+
+/// A read error that only means "try again".
+pub(crate) fn transient(e: &io::Error) -> bool {
+    matches!(
+        e.kind(),
+        io::ErrorKind::Interrupted | io::ErrorKind::WouldBlock
+    )
+}

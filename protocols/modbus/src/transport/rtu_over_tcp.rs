@@ -1,0 +1,163 @@
+//! RTU frames (address, PDU, CRC) over TCP, as serial-to-Ethernet converters carry them. TCP
+//! has no silence between frames, so a frame's length is predicted from its function code
+//! (`frame::rtu::request_length`); only when the function code does not tell is a frame ended
+//! by silence. Connection bound and timeouts as for Modbus TCP.
+
+use std::future::Future;
+use std::net::SocketAddr;
+use std::sync::Arc;
+use std::time::Duration;
+
+use tokio::io::AsyncReadExt;
+use tokio::net::{TcpListener, TcpStream};
+use tokio::sync::watch;
+use tokio::time::Instant;
+
+use super::rtu::{answer, Verdict};
+use super::{
+    accept_loop, earliest, expired, sleep_until, stopping, unless_stopping, write_reply, Close,
+    Deadlines,
+};
+use crate::config::{ConnectionLimits, RtuOverTcpConfig};
+use crate::frame::rtu::{self, Length, MAX_ADU};
+use crate::model::{DataModel, Peer};
+use crate::server::Server;
+
+use crate::state::FrontendState;
+
+/// Serve RTU over TCP on `listener` until `shutdown` resolves. `state` should have
+/// [`Framing::RtuOverTcp`](crate::state::Framing::RtuOverTcp).
+pub async fn serve_rtu_over_tcp<D: DataModel>(
+    listener: TcpListener,
+    model: Arc<D>,
+    config: &RtuOverTcpConfig,
+    state: Arc<FrontendState>,
+    shutdown: impl Future<Output = ()>,
+) {
+    let limits = config.limits();
+    let silence = Duration::from_millis(config.silence_ms.max(1));
+    let server = Server::new(model, Arc::clone(&state));
+    accept_loop(
+        listener,
+        limits,
+        state,
+        shutdown,
+        move |stream, peer, stop| connection(server.clone(), stream, peer, limits, silence, stop),
+    )
+    .await;
+}
+
+async fn connection<D: DataModel>(
+    server: Server<D>,
+    mut stream: TcpStream,
+    peer: SocketAddr,
+    limits: ConnectionLimits,
+    silence: Duration,
+    mut stop: watch::Receiver<bool>,
+) {
+    let why = run(&server, &mut stream, peer, limits, silence, &mut stop).await;
+    tracing::debug!(?why, "connection ends");
+}
+
+async fn run<D: DataModel>(
+    server: &Server<D>,
+    stream: &mut TcpStream,
+    peer: SocketAddr,
+    limits: ConnectionLimits,
+    silence: Duration,
+    stop: &mut watch::Receiver<bool>,
+) -> Close {
+    let counters = &server.state().counters;
+    let peer_id = Peer::Tcp(peer);
+    let mut buf: Vec<u8> = Vec::with_capacity(2 * MAX_ADU);
+    let mut chunk = [0u8; 4096];
+    let mut deadlines = Deadlines::new(limits);
+    let mut last_rx = Instant::now();
+    loop {
+        let mut consumed = false;
+        // Set when the buffer's frame can only be delimited by silence.
+        let mut by_silence = false;
+        while !buf.is_empty() {
+            let n = match rtu::request_length(&buf) {
+                Length::Known(n) if buf.len() >= n => n,
+                Length::Known(_) | Length::NeedMore => break,
+                Length::Unknown => {
+                    by_silence = true;
+                    break;
+                }
+            };
+            let frame = buf.get(..n).unwrap_or_default();
+            let Some(verdict) = unless_stopping(answer(server, frame, &peer_id), stop).await else {
+                return Close::Shutdown;
+            };
+            match verdict {
+                Verdict::Reply(reply) => {
+                    if let Err(close) = write_reply(stream, &reply, counters, &limits, stop).await {
+                        return close;
+                    }
+                    buf.drain(..n);
+                }
+                Verdict::Silent => {
+                    buf.drain(..n);
+                }
+                Verdict::Dropped => {
+                    // A bad CRC means the length prediction may be off too: resynchronise by
+                    // dropping everything received so far.
+                    buf.clear();
+                }
+            }
+            consumed = true;
+        }
+        if by_silence && buf.len() > MAX_ADU {
+            // No frame is that long: drop the lot (counted) and wait for a clean start.
+            counters.too_long.inc();
+            counters.diagnostics.bus_character_overrun.inc();
+            buf.clear();
+            by_silence = false;
+        }
+        deadlines.framed(consumed, !buf.is_empty());
+        let next = deadlines.next();
+        let silence_end = by_silence.then_some(last_rx + silence);
+        let deadline = earliest(next.as_ref().map(|(t, _)| *t), silence_end);
+        tokio::select! {
+            r = stream.read(&mut chunk) => match r {
+                Ok(0) => return Close::Peer,
+                Ok(n) => {
+                    counters.bytes_in.add(n as u64);
+                    buf.extend_from_slice(chunk.get(..n).unwrap_or_default());
+                    deadlines.received();
+                    last_rx = Instant::now();
+                }
+                Err(e) if super::transient(&e) => {}
+                Err(e) => {
+                    tracing::debug!(error = %e, "read failed");
+                    return Close::Peer;
+                }
+            },
+            () = sleep_until(deadline) => {
+                if silence_end.is_some_and(|s| Instant::now() >= s) {
+                    // Silence ends the frame (Serial Line §2.5.1.1): whatever arrived is one.
+                    let frame = std::mem::take(&mut buf);
+                    let Some(verdict) = unless_stopping(answer(server, &frame, &peer_id), stop).await
+                    else {
+                        return Close::Shutdown;
+                    };
+                    if let Verdict::Reply(reply) = verdict {
+                        if let Err(close) =
+                            write_reply(stream, &reply, counters, &limits, stop).await
+                        {
+                            return close;
+                        }
+                    }
+                    deadlines.framed(true, false);
+                    continue;
+                }
+                if let Some((_, which)) = next {
+                    expired(counters, &which, &limits);
+                }
+                return Close::Ours;
+            }
+            () = stopping(stop) => return Close::Shutdown,
+        }
+    }
+}

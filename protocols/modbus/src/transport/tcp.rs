@@ -1,0 +1,140 @@
+//! Modbus TCP server (Messaging on TCP/IP Implementation Guide V1.0b): MBAP framing, one task
+//! per connection, pipelined requests answered in order.
+
+use std::future::Future;
+use std::net::SocketAddr;
+use std::sync::Arc;
+
+use tokio::io::AsyncReadExt;
+use tokio::net::{TcpListener, TcpStream};
+use tokio::sync::watch;
+
+use super::{
+    accept_loop, expired, sleep_until, stopping, unless_stopping, write_reply, Close, Deadlines,
+};
+use crate::config::{ConnectionLimits, TcpConfig};
+use crate::frame::tcp::{self, Decoded};
+use crate::model::{DataModel, Peer};
+use crate::server::{Outcome, Server};
+use crate::state::FrontendState;
+
+/// Serve Modbus TCP on `listener` until `shutdown` resolves; then stop accepting, close every
+/// connection and return. `state` should have [`Framing::Tcp`](crate::state::Framing::Tcp).
+pub async fn serve_tcp<D: DataModel>(
+    listener: TcpListener,
+    model: Arc<D>,
+    config: &TcpConfig,
+    state: Arc<FrontendState>,
+    shutdown: impl Future<Output = ()>,
+) {
+    let limits = config.limits();
+    let server = Server::new(model, Arc::clone(&state));
+    accept_loop(
+        listener,
+        limits,
+        state,
+        shutdown,
+        move |stream, peer, stop| connection(server.clone(), stream, peer, limits, stop),
+    )
+    .await;
+}
+
+async fn connection<D: DataModel>(
+    server: Server<D>,
+    mut stream: TcpStream,
+    peer: SocketAddr,
+    limits: ConnectionLimits,
+    mut stop: watch::Receiver<bool>,
+) {
+    let why = run(&server, &mut stream, peer, limits, &mut stop).await;
+    tracing::debug!(?why, "connection ends");
+}
+
+async fn run<D: DataModel>(
+    server: &Server<D>,
+    stream: &mut TcpStream,
+    peer: SocketAddr,
+    limits: ConnectionLimits,
+    stop: &mut watch::Receiver<bool>,
+) -> Close {
+    let counters = &server.state().counters;
+    let peer_id = Peer::Tcp(peer);
+    let mut buf: Vec<u8> = Vec::with_capacity(2 * tcp::MAX_ADU);
+    let mut chunk = [0u8; 4096];
+    let mut out = Vec::with_capacity(tcp::MAX_ADU);
+    let mut deadlines = Deadlines::new(limits);
+    loop {
+        // Answer every complete frame in the buffer, in order.
+        let mut consumed = false;
+        loop {
+            match tcp::decode(&buf) {
+                Decoded::Frame {
+                    header,
+                    pdu,
+                    consumed: n,
+                } => {
+                    let Some(outcome) =
+                        unless_stopping(server.handle(header.unit, pdu, &peer_id), stop).await
+                    else {
+                        return Close::Shutdown;
+                    };
+                    if let Outcome::Reply(reply) = outcome {
+                        out.clear();
+                        // The reply echoes the transaction and unit ids (§3.1.3).
+                        tcp::encode(header, &reply, &mut out);
+                        if let Err(close) = write_reply(stream, &out, counters, &limits, stop).await
+                        {
+                            return close;
+                        }
+                    }
+                    buf.drain(..n);
+                    consumed = true;
+                }
+                Decoded::Discard {
+                    consumed: n,
+                    protocol,
+                } => {
+                    // Not Modbus, but well delimited: skip it, keep the connection.
+                    counters.not_modbus.inc();
+                    counters.diagnostics.bus_communication_error.inc();
+                    tracing::debug!(protocol, "frame with a non-Modbus protocol id skipped");
+                    buf.drain(..n);
+                    consumed = true;
+                }
+                Decoded::Close { length } => {
+                    // The length cannot be trusted, so neither can any later byte.
+                    counters.bad_length.inc();
+                    counters.diagnostics.bus_communication_error.inc();
+                    tracing::info!(length, "closing connection: impossible MBAP length");
+                    return Close::Ours;
+                }
+                Decoded::NeedMore => break,
+            }
+        }
+        deadlines.framed(consumed, !buf.is_empty());
+        let next = deadlines.next();
+        let deadline = next.as_ref().map(|(t, _)| *t);
+        tokio::select! {
+            r = stream.read(&mut chunk) => match r {
+                Ok(0) => return Close::Peer,
+                Ok(n) => {
+                    counters.bytes_in.add(n as u64);
+                    buf.extend_from_slice(chunk.get(..n).unwrap_or_default());
+                    deadlines.received();
+                }
+                Err(e) if super::transient(&e) => {}
+                Err(e) => {
+                    tracing::debug!(error = %e, "read failed");
+                    return Close::Peer;
+                }
+            },
+            () = sleep_until(deadline) => {
+                if let Some((_, which)) = next {
+                    expired(counters, &which, &limits);
+                }
+                return Close::Ours;
+            }
+            () = stopping(stop) => return Close::Shutdown,
+        }
+    }
+}
