@@ -426,3 +426,44 @@ async fn the_generic_map_runs_a_command_code() {
         "the machine has 4 outputs"
     );
 }
+
+/// An RTU broadcast reaches every unit of the line.
+#[tokio::test]
+async fn a_broadcast_writes_every_unit() {
+    let config: EngineConfig = toml::from_str(MACHINE).unwrap();
+    let (handle, _guard) = Runtime::start(
+        Engine::new(&config).unwrap(),
+        RuntimeOptions::with_clock(ClockMode::Virtual),
+    )
+    .unwrap();
+    let machine = MachineShape {
+        axes: 2,
+        digital_inputs: 4,
+        digital_outputs: 4,
+        ..MachineShape::default()
+    };
+    let file: MapFile = toml::from_str(MAP).unwrap();
+    let service = |axis| {
+        let unit = compile(&file, &machine, &Binding { axes: vec![axis] }).unwrap();
+        Arc::new(UnitService::new(unit, handle.clone()))
+    };
+    let model = MapModel::new(vec![(Some(1), service(0)), (Some(2), service(1))]);
+    let broadcast = RequestContext {
+        unit: 0,
+        broadcast: true,
+        peer: Peer::Serial("line".into()),
+    };
+    // Register 7 is each unit's enable: both axes come up.
+    model
+        .execute(
+            &broadcast,
+            &Request::WriteSingleRegister {
+                address: 7,
+                value: 1,
+            },
+        )
+        .await
+        .unwrap();
+    let s = handle.snapshot();
+    assert!(s.axes.iter().all(|a| a.flags.contains(AxisFlags::ENABLED)));
+}

@@ -672,6 +672,27 @@ impl DataModel for MapModel {
         context: &'a RequestContext,
         request: &'a Request<'a>,
     ) -> Result<Response, ExecError> {
+        if context.broadcast {
+            // An RTU broadcast (address 0) is a write to every unit on the line; nothing is
+            // answered, so the first failure is only counted and logged by the server.
+            let (mut first_error, mut answered) = (None, None);
+            for (_, service) in &self.units {
+                match service.execute(request).await {
+                    Ok(r) => answered = Some(r),
+                    Err(e) => {
+                        first_error.get_or_insert(e);
+                    }
+                }
+            }
+            return match (first_error, answered) {
+                (Some(e), _) => Err(e),
+                (None, Some(r)) => Ok(r),
+                (None, None) => Err(ExecError::new(
+                    Exception::GatewayTargetFailed,
+                    "no unit to broadcast to",
+                )),
+            };
+        }
         match self.unit(context.unit) {
             Some(service) => service.execute(request).await,
             None => Err(ExecError::new(
