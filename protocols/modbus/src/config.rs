@@ -26,6 +26,16 @@ pub struct TcpConfig {
     pub frame_timeout_ms: u64,
     /// Faults in force from the start (see `faults` in the crate docs).
     pub faults: Vec<FaultSpec>,
+    /// The register map every unit uses unless it names its own: a shipped map by name
+    /// (`generic`, `himc`, `hollysys-mc`, `ct-e10-servo`) or a `.toml` path relative to the
+    /// config file.
+    pub map: String,
+    /// Axes the map's per-axis blocks repeat for, by index or name, in block order; all the
+    /// machine's axes when empty.
+    pub axes: Vec<AxisRef>,
+    /// Units with their own id, map or axes (a multi-drop of drives). Empty: one unit that answers
+    /// every unit id.
+    pub units: Vec<UnitConfig>,
 }
 
 impl Default for TcpConfig {
@@ -37,8 +47,35 @@ impl Default for TcpConfig {
             idle_timeout_ms: 60_000,
             frame_timeout_ms: 5_000,
             faults: Vec::new(),
+            map: "generic".into(),
+            axes: Vec::new(),
+            units: Vec::new(),
         }
     }
+}
+
+/// An axis by its index in the machine or its `name`.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(untagged)]
+pub enum AxisRef {
+    Index(usize),
+    Name(String),
+}
+
+/// `[[frontends.modbus_*.units]]`: one unit (slave address) of a front-end.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(deny_unknown_fields)]
+pub struct UnitConfig {
+    /// Unit identifier (TCP) or slave address (RTU, 1 … 247).
+    pub id: u8,
+    /// This unit's map; the section's `map` when absent.
+    #[serde(default)]
+    pub map: Option<String>,
+    /// This unit's axes; the section's `axes` when empty.
+    #[serde(default)]
+    pub axes: Vec<AxisRef>,
 }
 
 /// `[frontends.modbus_rtu_over_tcp]`: RTU frames (address, PDU, CRC) over TCP.
@@ -62,6 +99,16 @@ pub struct RtuOverTcpConfig {
     pub silence_ms: u64,
     /// Faults in force from the start.
     pub faults: Vec<FaultSpec>,
+    /// The register map every unit uses unless it names its own: a shipped map by name
+    /// (`generic`, `himc`, `hollysys-mc`, `ct-e10-servo`) or a `.toml` path relative to the
+    /// config file.
+    pub map: String,
+    /// Axes the map's per-axis blocks repeat for, by index or name, in block order; all the
+    /// machine's axes when empty.
+    pub axes: Vec<AxisRef>,
+    /// Units with their own id, map or axes (a multi-drop of drives). Empty: one unit at
+    /// address 1.
+    pub units: Vec<UnitConfig>,
 }
 
 impl Default for RtuOverTcpConfig {
@@ -74,6 +121,9 @@ impl Default for RtuOverTcpConfig {
             frame_timeout_ms: 5_000,
             silence_ms: 20,
             faults: Vec::new(),
+            map: "generic".into(),
+            axes: Vec::new(),
+            units: Vec::new(),
         }
     }
 }
@@ -107,6 +157,16 @@ pub struct RtuConfig {
     pub stop_bits: u8,
     /// Faults in force from the start.
     pub faults: Vec<FaultSpec>,
+    /// The register map every unit uses unless it names its own: a shipped map by name
+    /// (`generic`, `himc`, `hollysys-mc`, `ct-e10-servo`) or a `.toml` path relative to the
+    /// config file.
+    pub map: String,
+    /// Axes the map's per-axis blocks repeat for, by index or name, in block order; all the
+    /// machine's axes when empty.
+    pub axes: Vec<AxisRef>,
+    /// Units with their own id, map or axes (a multi-drop of drives). Empty: one unit at
+    /// address 1.
+    pub units: Vec<UnitConfig>,
 }
 
 impl Default for RtuConfig {
@@ -118,6 +178,9 @@ impl Default for RtuConfig {
             parity: Parity::Even,
             stop_bits: 1,
             faults: Vec::new(),
+            map: "generic".into(),
+            axes: Vec::new(),
+            units: Vec::new(),
         }
     }
 }
@@ -151,5 +214,36 @@ impl RtuOverTcpConfig {
             idle_timeout: millis(self.idle_timeout_ms),
             frame_timeout: millis(self.frame_timeout_ms),
         }
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod unit_keys {
+    use super::*;
+
+    #[test]
+    fn sections_name_maps_axes_and_units() {
+        let c: RtuConfig = toml::from_str(
+            r#"
+device = "/dev/ttyUSB0"
+map = "ct-e10-servo"
+axes = ["e10_rtu"]
+[[units]]
+id = 2
+[[units]]
+id = 3
+map = "fixtures/modbus/my-drive.toml"
+axes = [5]
+"#,
+        )
+        .unwrap();
+        assert_eq!(c.map, "ct-e10-servo");
+        assert_eq!(c.axes, [AxisRef::Name("e10_rtu".into())]);
+        assert_eq!(c.units[0].map, None);
+        assert_eq!(c.units[1].axes, [AxisRef::Index(5)]);
+        let t = TcpConfig::default();
+        assert_eq!((t.map.as_str(), t.units.len()), ("generic", 0));
+        assert!(toml::from_str::<TcpConfig>("[[units]]\nid = 1\nmapp = \"x\"\n").is_err());
     }
 }
