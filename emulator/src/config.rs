@@ -146,11 +146,12 @@ pub struct FrontendsConfig {
     /// The HTTP control API and dashboard.
     pub control: ControlConfig,
     /// Modbus TCP server (register maps of the controller's variables or of a drive).
-    pub modbus_tcp: Option<PlannedFrontend>,
-    /// Modbus RTU slave on a serial device (e.g. one end of a `socat` pty pair).
-    pub modbus_rtu: Option<PlannedFrontend>,
+    pub modbus_tcp: Option<mcemu_modbus::config::TcpConfig>,
+    /// Modbus RTU slave on a pty mcemu creates or a serial device (e.g. one end of a `socat`
+    /// pty pair).
+    pub modbus_rtu: Option<mcemu_modbus::config::RtuConfig>,
     /// Modbus RTU frames over TCP.
-    pub modbus_rtu_over_tcp: Option<PlannedFrontend>,
+    pub modbus_rtu_over_tcp: Option<mcemu_modbus::config::RtuOverTcpConfig>,
     /// CANopen slaves on a SocketCAN interface (e.g. `vcan0`).
     pub canopen: Option<PlannedFrontend>,
     /// CANopen over the socketcand TCP protocol, for hosts without SocketCAN.
@@ -262,7 +263,9 @@ impl Config {
             file: file.to_string(),
             key,
             reason,
-        })
+        })?;
+        // Register maps compile against this machine, or the config is refused.
+        self.modbus_units(file).map(|_| ())
     }
 
     /// The embedded default machine.
@@ -279,6 +282,39 @@ impl Config {
             io: self.io.clone(),
             drives: self.drives.clone(),
         }
+    }
+
+    /// The units of every Modbus section present, enabled or not (so a fixture's maps are
+    /// checked before anyone enables them): (section, units).
+    pub fn modbus_units(
+        &self,
+        file: &str,
+    ) -> Result<Vec<(&'static str, Vec<crate::modbus::Unit>)>, ConfigError> {
+        let f = &self.frontends;
+        let mut out = Vec::new();
+        if let Some(c) = f.modbus_tcp.as_ref() {
+            let units =
+                crate::modbus::units(self, file, "modbus_tcp", &c.map, &c.axes, &c.units, None)?;
+            out.push(("modbus_tcp", units));
+        }
+        if let Some(c) = f.modbus_rtu.as_ref() {
+            let units =
+                crate::modbus::units(self, file, "modbus_rtu", &c.map, &c.axes, &c.units, Some(1))?;
+            out.push(("modbus_rtu", units));
+        }
+        if let Some(c) = f.modbus_rtu_over_tcp.as_ref() {
+            let units = crate::modbus::units(
+                self,
+                file,
+                "modbus_rtu_over_tcp",
+                &c.map,
+                &c.axes,
+                &c.units,
+                Some(1),
+            )?;
+            out.push(("modbus_rtu_over_tcp", units));
+        }
+        Ok(out)
     }
 
     /// Semantic checks; an error is (key path, reason).
@@ -307,10 +343,30 @@ impl Config {
             }
         }
         let f = &self.frontends;
+        // `mcemu run` does not serve Modbus yet (the sections are read and their maps checked),
+        // so enabling one would promise a listener that never comes.
+        for (name, enabled) in [
+            (
+                "modbus_tcp",
+                f.modbus_tcp.as_ref().is_some_and(|s| s.enabled),
+            ),
+            (
+                "modbus_rtu",
+                f.modbus_rtu.as_ref().is_some_and(|s| s.enabled),
+            ),
+            (
+                "modbus_rtu_over_tcp",
+                f.modbus_rtu_over_tcp.as_ref().is_some_and(|s| s.enabled),
+            ),
+        ] {
+            if enabled {
+                return Err((
+                    format!("frontends.{name}.enabled"),
+                    "this front-end is not built yet; set enabled = false".into(),
+                ));
+            }
+        }
         for (name, section) in [
-            ("modbus_tcp", &f.modbus_tcp),
-            ("modbus_rtu", &f.modbus_rtu),
-            ("modbus_rtu_over_tcp", &f.modbus_rtu_over_tcp),
             ("canopen", &f.canopen),
             ("socketcand", &f.socketcand),
             ("nmc", &f.nmc),
@@ -366,6 +422,30 @@ mod tests {
         assert!(e.reason.contains("outside 1"), "{}", e.reason);
         let c = Config::parse("[frontends.control]\ntrace_max_rows = 10\n", "m.toml").unwrap();
         assert_eq!(c.frontends.control.trace_max_rows, 10);
+    }
+
+    #[test]
+    fn modbus_sections_are_checked_map_and_all() {
+        let e = Config::parse(
+            "[[axes]]\n[frontends.modbus_tcp]\nenabled = false\nmap = \"nope\"\n",
+            "m.toml",
+        )
+        .unwrap_err();
+        assert_eq!(e.key, "frontends.modbus_tcp.map");
+        assert!(e.reason.contains("not a shipped map"), "{}", e.reason);
+        let e = Config::parse(
+            "[[axes]]\n[frontends.modbus_rtu]\nenabled = false\nmap = \"ct-e10-servo\"\n[[frontends.modbus_rtu.units]]\nid = 2\naxes = [\"e10\"]\n",
+            "m.toml",
+        )
+        .unwrap_err();
+        assert_eq!(e.key, "frontends.modbus_rtu.units[0].axes");
+        // A map path is relative to the config file, and a missing one says so.
+        let e = Config::parse(
+            "[[axes]]\n[frontends.modbus_tcp]\nenabled = false\nmap = \"missing.toml\"\n",
+            "/tmp/m.toml",
+        )
+        .unwrap_err();
+        assert!(e.reason.contains("cannot read map"), "{}", e.reason);
     }
 
     #[test]

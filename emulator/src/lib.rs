@@ -4,6 +4,7 @@
 pub mod config;
 pub mod control;
 pub mod listener;
+pub mod modbus;
 pub mod reference;
 pub mod run;
 pub mod scenario;

@@ -111,6 +111,7 @@ fn field_orders() -> BTreeMap<&'static str, Vec<&'static str>> {
         AxisConfig, EncoderConfig, HomeSwitchConfig, InputBinding, IoConfig, PlantConfig,
         PulseConfig, SwitchConfig, SwitchesConfig,
     };
+    use mcemu_modbus::config::{RtuConfig, RtuOverTcpConfig, TcpConfig, UnitConfig};
     BTreeMap::from([
         ("Config", field_order::<Config>()),
         ("MachineConfig", field_order::<MachineConfig>()),
@@ -127,6 +128,17 @@ fn field_orders() -> BTreeMap<&'static str, Vec<&'static str>> {
         ("FrontendsConfig", field_order::<FrontendsConfig>()),
         ("ControlConfig", field_order::<ControlConfig>()),
         ("PlannedFrontend", field_order::<PlannedFrontend>()),
+        ("TcpConfig", field_order::<TcpConfig>()),
+        ("RtuConfig", field_order::<RtuConfig>()),
+        ("RtuOverTcpConfig", field_order::<RtuOverTcpConfig>()),
+        ("UnitConfig", field_order::<UnitConfig>()),
+        // An internally tagged enum: its keys, tag first.
+        (
+            "FaultSpec",
+            vec![
+                "fault", "ms", "code", "function", "address", "bytes", "byte", "bit", "count",
+            ],
+        ),
     ])
 }
 

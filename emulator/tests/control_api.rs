@@ -243,7 +243,8 @@ impl Mcemu {
             assert!(Instant::now() < deadline, "mcemu did not stop on SIGTERM");
             std::thread::sleep(Duration::from_millis(10));
         };
-        let rest = self.stdout.try_iter().collect();
+        // The process has exited: the reader thread ends at EOF, after the last line.
+        let rest = self.stdout.iter().collect();
         (status, rest)
     }
 

@@ -64,7 +64,8 @@ impl Mcemu {
     /// Wait for the exit; returns the status and everything left on stdout.
     fn wait(mut self) -> (std::process::ExitStatus, Vec<String>) {
         let status = self.child.wait().expect("wait");
-        let rest: Vec<String> = self.lines.try_iter().collect();
+        // The process has exited: the reader thread ends at EOF, after the last line.
+        let rest: Vec<String> = self.lines.iter().collect();
         (status, rest)
     }
 }
