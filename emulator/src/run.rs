@@ -60,6 +60,7 @@ pub fn run(config: Config, file: &str) -> Result<(), RunError> {
 }
 
 async fn serve(config: &Config, handle: EngineHandle) -> Result<(), RunError> {
+    let stop = signals();
     let mut servers = tokio::task::JoinSet::new();
     let control = &config.frontends.control;
     if control.enabled {
@@ -74,7 +75,7 @@ async fn serve(config: &Config, handle: EngineHandle) -> Result<(), RunError> {
             }
         });
     }
-    wait_for_signal().await;
+    stop.await;
     servers.abort_all();
     Ok(())
 }
@@ -98,26 +99,35 @@ async fn bind(
     Ok(listener)
 }
 
-async fn wait_for_signal() {
-    let ctrl_c = tokio::signal::ctrl_c();
+/// Register SIGINT and SIGTERM handlers now, before any listener is announced (a supervisor or
+/// test may signal as soon as it reads a `listening:` line), and return the wait for either.
+fn signals() -> impl std::future::Future<Output = ()> {
     #[cfg(unix)]
     {
         use tokio::signal::unix::{signal, SignalKind};
-        match signal(SignalKind::terminate()) {
-            Ok(mut term) => {
-                tokio::select! {
-                    _ = ctrl_c => {}
-                    _ = term.recv() => {}
+        let streams = (
+            signal(SignalKind::interrupt()),
+            signal(SignalKind::terminate()),
+        );
+        async move {
+            match streams {
+                (Ok(mut int), Ok(mut term)) => {
+                    tokio::select! {
+                        _ = int.recv() => {}
+                        _ = term.recv() => {}
+                    }
                 }
-            }
-            Err(_) => {
-                let _ = ctrl_c.await;
+                _ => {
+                    let _ = tokio::signal::ctrl_c().await;
+                }
             }
         }
     }
     #[cfg(not(unix))]
     {
-        let _ = ctrl_c.await;
+        async {
+            let _ = tokio::signal::ctrl_c().await;
+        }
     }
 }
 
