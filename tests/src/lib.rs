@@ -18,7 +18,7 @@ use std::io::{BufRead, BufReader, Read, Write};
 use std::os::unix::fs::PermissionsExt;
 use std::path::{Path, PathBuf};
 use std::process::{Child, ChildStderr, ChildStdout, Command, ExitStatus, Output, Stdio};
-use std::sync::mpsc;
+use std::sync::{mpsc, Arc, Mutex};
 use std::thread::{self, JoinHandle};
 use std::time::{Duration, Instant};
 
@@ -224,7 +224,9 @@ impl Drop for KillOnDrop {
 
 /// Start `command` and wait until a line of its stdout starts with `prefix`; return the
 /// process and the rest of that line (e.g. the address after `ready `). The remaining stdout
-/// and the stderr are drained on threads so the process never blocks on a full pipe.
+/// and the stderr are drained on threads so the process never blocks on a full pipe. Its stdin
+/// is a pipe that stays open until the process is dropped: a child may treat the end of its
+/// input as its parent being gone.
 ///
 /// Panics with the process's stderr when it exits first or says nothing within `timeout`.
 pub fn spawn_until_line(
@@ -234,7 +236,7 @@ pub fn spawn_until_line(
 ) -> (KillOnDrop, String) {
     let what = format!("{command:?}");
     let mut child = command
-        .stdin(Stdio::null())
+        .stdin(Stdio::piped())
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
@@ -246,35 +248,36 @@ pub fn spawn_until_line(
         stderr: Some(drain(stderr)),
     };
     let (tx, rx) = mpsc::channel();
+    let seen = Arc::new(Mutex::new(Vec::<String>::new()));
+    let seen_by_reader = Arc::clone(&seen);
     let prefix_owned = prefix.to_string();
     thread::spawn(move || {
         let mut lines = BufReader::new(stdout).lines();
-        let mut seen = Vec::new();
         for line in lines.by_ref() {
             let Ok(line) = line else { break };
             if let Some(rest) = line.strip_prefix(&prefix_owned) {
-                let _ = tx.send(Ok(rest.trim().to_string()));
+                let _ = tx.send(Some(rest.trim().to_string()));
                 // Keep draining.
                 for _ in lines.by_ref() {}
                 return;
             }
-            seen.push(line);
+            if let Ok(mut seen) = seen_by_reader.lock() {
+                seen.push(line);
+            }
         }
-        let _ = tx.send(Err(seen.join("\n")));
+        let _ = tx.send(None);
     });
-    match rx.recv_timeout(timeout) {
-        Ok(Ok(rest)) => (process, rest),
-        Ok(Err(seen)) => {
-            let stderr = process.kill();
-            panic!(
-                "{what} exited before printing `{prefix}…`\n--- stdout\n{seen}\n--- stderr\n{stderr}"
-            )
-        }
-        Err(_) => {
-            let stderr = process.kill();
-            panic!("{what} did not print `{prefix}…` within {timeout:?}\n--- stderr\n{stderr}")
-        }
+    let outcome = rx.recv_timeout(timeout);
+    if let Ok(Some(rest)) = outcome {
+        return (process, rest);
     }
+    let stderr = process.kill();
+    let seen = seen.lock().map(|s| s.join("\n")).unwrap_or_default();
+    let why = match outcome {
+        Ok(_) => "exited before printing".to_string(),
+        Err(_) => format!("did not print within {timeout:?}"),
+    };
+    panic!("{what} {why} `{prefix}…`\n--- stdout\n{seen}\n--- stderr\n{stderr}")
 }
 
 /// The plain pymodbus server of `tests/python/modbus_server_pymodbus.py` (a harness peer and

@@ -295,3 +295,22 @@ fn dropping_a_pty_pair_ends_socat() {
     // Reaped by the drop: no zombie, no process.
     assert!(!proc_dir.exists());
 }
+
+/// A server that exits without its ready line fails the helper, which shows what it printed.
+#[test]
+fn spawn_until_line_reports_a_process_that_exits_first() {
+    let result = std::panic::catch_unwind(|| {
+        let mut command = Command::new("sh");
+        command.args(["-c", "echo starting; echo oops >&2; exit 3"]);
+        mcemu_tests::spawn_until_line(command, "ready ", Duration::from_secs(20))
+    });
+    let message = *result.unwrap_err().downcast::<String>().unwrap();
+    assert!(
+        message.contains("exited before printing `ready …`"),
+        "{message}"
+    );
+    assert!(
+        message.contains("starting") && message.contains("oops"),
+        "{message}"
+    );
+}
