@@ -223,8 +223,9 @@ fn rtu_clients_over_a_pty_pair() {
             device,
             "--baud",
             "19200",
+            // minimalmodbus waits this long after each exception answer (3 here).
             "--timeout",
-            "0.5",
+            "1.0",
         ]);
         eprintln!("{client} over the pty pair: {:?}", started.elapsed());
     }
