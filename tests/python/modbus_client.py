@@ -15,9 +15,9 @@ Clients and transports:
                  (ModbusTcpClient with the RTU framer). Sync client, no retries.
   minimalmodbus  rtu only (Instrument on --device). Operations minimalmodbus has no method for
                  (mask_write_register, readwrite_registers, report_server_id,
-                 read_device_information, diag_echo) go through its request/response path
-                 (`_perform_command`: its framing, CRC and exception checks) with a 50 ms
-                 inter-byte timeout ending the variable-length responses.
+                 read_device_information, diag_echo) are framed and checked by its own
+                 `_embed_payload`/`_extract_payload` (address, function, exception, CRC); the
+                 driver reads their answers' length from their first bytes.
 
 Operations (stdin: a JSON array of objects; "op" names the operation; addresses are PDU
 addresses, from 0):
@@ -58,6 +58,7 @@ import logging
 import re
 import struct
 import sys
+import time
 from typing import Any, Callable
 
 Result = dict[str, Any]
@@ -334,16 +335,53 @@ class MinimalmodbusDriver:
             return {"error": f"{type(e).__name__}: {e}"}
 
     def raw(self, function: int, payload: bytes) -> bytes:
-        """One request through minimalmodbus's own framing, CRC and exception checks, for the
-        functions it has no method for. The answer's length is unknown in advance: a silence of
-        50 ms after its first byte ends it."""
+        """One request for a function minimalmodbus has no method for. The frame is built and
+        the answer checked (address, function, exception, CRC) by minimalmodbus's own
+        `_embed_payload` and `_extract_payload`; the answer's length, which minimalmodbus cannot
+        predict for these functions, is read from its first bytes as a server's would be."""
+        mm = self.mm
         port = self.instrument.serial
-        saved = port.inter_byte_timeout
-        port.inter_byte_timeout = 0.05
-        try:
-            return self.instrument._perform_command(function, payload)  # noqa: SLF001
-        finally:
-            port.inter_byte_timeout = saved
+        address = self.instrument.address
+        request = mm._embed_payload(address, mm.MODE_RTU, function, payload)  # noqa: SLF001
+        port.reset_input_buffer()
+        # The 3.5-character silence before a request, kept as minimalmodbus keeps it.
+        silence = mm._calculate_minimum_silent_period(port.baudrate)  # noqa: SLF001
+        since_read = time.monotonic() - mm._latest_read_times.get(port.port, 0)  # noqa: SLF001
+        if since_read < silence:
+            time.sleep(silence - since_read)
+        port.write(request)
+        port.flush()
+        answer = bytearray()
+
+        def need(n: int) -> None:
+            while len(answer) < n:
+                chunk = port.read(n - len(answer))
+                if not chunk:
+                    if not answer:
+                        raise mm.NoResponseError("No communication with the instrument (no answer)")
+                    raise mm.InvalidResponseError(f"answer ends after {bytes(answer).hex()}")
+                answer.extend(chunk)
+
+        need(3)
+        if answer[1] & 0x80:
+            need(5)
+        elif function in (0x11, 0x17):  # byte count at 2
+            need(3 + answer[2] + 2)
+        elif function == 0x08:  # echo
+            need(len(request))
+        elif function == 0x16:
+            need(10)
+        elif function == 0x2B:  # MEI header, then (id, length, value) objects
+            need(8)
+            at = 8
+            for _ in range(answer[7]):
+                need(at + 2)
+                at += 2 + answer[at + 1]
+            need(at + 2)
+        else:
+            raise UsageError(f"raw function {function} has no known answer length")
+        mm._latest_read_times[port.port] = time.monotonic()  # noqa: SLF001
+        return mm._extract_payload(bytes(answer), address, mm.MODE_RTU, function)  # noqa: SLF001
 
     def op_read_coils(self, op: dict) -> Result:
         bits = self.instrument.read_bits(int(arg(op, "address")), int(arg(op, "count")), 1)
