@@ -1,0 +1,385 @@
+//! Modbus TCP load: FC 3 reading 10 holding registers, as fast as the server answers, with 1
+//! and 16 concurrent clients for a fixed time each; requests/s and p50/p99 latency per target,
+//! beside two baselines measured in the same run.
+//!
+//! ```sh
+//! cargo bench -p mcemu --bench modbus_load
+//! MCEMU_LOAD_SECONDS=10 cargo bench -p mcemu --bench modbus_load
+//! MCEMU_LOAD_MCEMU_CONFIG=machine.toml cargo bench -p mcemu --bench modbus_load
+//! ```
+//!
+//! Targets, each a process of its own so that no server shares a runtime with the clients:
+//! - `tokio-modbus`: a bare `tokio-modbus` TCP server over a `Vec<u16>` in memory (this bench
+//!   binary re-executed with `MCEMU_BENCH_ROLE=tokio-modbus-server`): the floor of what a
+//!   Rust Modbus server costs.
+//! - `pymodbus`: `tests/python/modbus_server_pymodbus.py` (pymodbus 3.16.1, in memory) with the
+//!   venv of `scripts/setup`.
+//! - `mcemu`: `mcemu run --config` on a copy of `$MCEMU_LOAD_MCEMU_CONFIG` (a relative path
+//!   is taken from the workspace root) whose
+//!   `bind = "127.0.0.1:N"` addresses are turned into port 0; the config must enable
+//!   `[frontends.modbus_tcp]`, and the address comes from mcemu's `listening: modbus-tcp ADDR`.
+//!   Without the variable this target prints `mcemu target: not configured`.
+//!
+//! Client: a minimal MBAP client on raw tokio `TcpStream`s, all on one current-thread runtime,
+//! one outstanding request per connection, every answer checked (transaction id, function,
+//! byte count). Each run connects, warms up with 50 requests per connection, then counts for
+//! `MCEMU_LOAD_SECONDS` (default 3) seconds. Every loop is bounded by that deadline or a count,
+//! and every read by a 5 s timeout; only 127.0.0.1.
+
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+use std::io::Read;
+use std::net::SocketAddr;
+use std::process::Command;
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+use mcemu_tests::{python, python_script, spawn_until_line, KillOnDrop, READY_TIMEOUT};
+use tokio::io::{AsyncReadExt, AsyncWriteExt};
+use tokio::net::{TcpListener, TcpStream};
+
+const ROLE_VAR: &str = "MCEMU_BENCH_ROLE";
+const TOKIO_MODBUS_ROLE: &str = "tokio-modbus-server";
+const REGISTERS: u16 = 10;
+const WARMUP_REQUESTS: usize = 50;
+const READ_TIMEOUT: Duration = Duration::from_secs(5);
+const CLIENT_COUNTS: [usize; 2] = [1, 16];
+
+fn main() {
+    if std::env::var(ROLE_VAR).as_deref() == Ok(TOKIO_MODBUS_ROLE) {
+        tokio_modbus_server::run();
+        return;
+    }
+    // `cargo bench` passes `--bench`; nothing else is accepted.
+    let seconds: f64 = std::env::var("MCEMU_LOAD_SECONDS")
+        .ok()
+        .map(|s| {
+            s.parse()
+                .unwrap_or_else(|_| panic!("MCEMU_LOAD_SECONDS={s}: not a number"))
+        })
+        .unwrap_or(3.0);
+    let duration = Duration::from_secs_f64(seconds);
+    println!(
+        "modbus_load: FC 3, {REGISTERS} registers at 0; {seconds} s per run after {WARMUP_REQUESTS} \
+         warm-up requests per connection; client: raw MBAP, one tokio thread, one request in \
+         flight per connection"
+    );
+
+    let mut rows: Vec<Row> = Vec::new();
+
+    {
+        let mut command = Command::new(std::env::current_exe().unwrap());
+        command.env(ROLE_VAR, TOKIO_MODBUS_ROLE);
+        let (mut server, addr) =
+            spawn_until_line(command, "listening: tokio-modbus ", READY_TIMEOUT);
+        for clients in CLIENT_COUNTS {
+            rows.push(measure("tokio-modbus", &addr, clients, duration));
+        }
+        server.kill();
+    }
+
+    {
+        let mut command = Command::new(python());
+        command
+            .arg(python_script("modbus_server_pymodbus.py"))
+            .args(["--port", "0"]);
+        let (mut server, addr) = spawn_until_line(command, "ready ", READY_TIMEOUT);
+        for clients in CLIENT_COUNTS {
+            rows.push(measure("pymodbus", &addr, clients, duration));
+        }
+        server.kill();
+    }
+
+    match std::env::var_os("MCEMU_LOAD_MCEMU_CONFIG") {
+        None => println!("mcemu target: not configured (set MCEMU_LOAD_MCEMU_CONFIG=machine.toml with [frontends.modbus_tcp] enabled)"),
+        Some(config) => {
+            // cargo runs benches in emulator/: a relative path is taken from the workspace root.
+            let config = mcemu_tests::workspace_root().join(config);
+            let (mut server, addr) = start_mcemu(&config);
+            for clients in CLIENT_COUNTS {
+                rows.push(measure("mcemu", &addr, clients, duration));
+            }
+            server.kill();
+        }
+    }
+
+    print_table(&rows);
+}
+
+/// mcemu on a copy of `config` with every `bind = "127.0.0.1:N"` on port 0.
+fn start_mcemu(config: &std::path::Path) -> (KillOnDrop, String) {
+    let text = std::fs::read_to_string(config)
+        .unwrap_or_else(|e| panic!("MCEMU_LOAD_MCEMU_CONFIG={}: {e}", config.display()));
+    let text: String = text
+        .lines()
+        .map(|line| {
+            let trimmed = line.trim_start();
+            match trimmed.strip_prefix("bind") {
+                Some(rest) if rest.trim_start().starts_with('=') && line.contains("127.0.0.1:") => {
+                    "bind = \"127.0.0.1:0\"".to_string()
+                }
+                _ => line.to_string(),
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n");
+    struct RemoveOnDrop(std::path::PathBuf);
+    impl Drop for RemoveOnDrop {
+        fn drop(&mut self) {
+            let _ = std::fs::remove_file(&self.0);
+        }
+    }
+    let copy = RemoveOnDrop(
+        std::env::temp_dir().join(format!("mcemu-modbus-load-{}.toml", std::process::id())),
+    );
+    std::fs::write(&copy.0, text).unwrap();
+    let mut command = Command::new(env!("CARGO_BIN_EXE_mcemu"));
+    command.args(["run", "--config"]).arg(&copy.0);
+    spawn_until_line(command, "listening: modbus-tcp ", READY_TIMEOUT)
+}
+
+struct Row {
+    target: &'static str,
+    clients: usize,
+    requests: usize,
+    elapsed: Duration,
+    p50: Duration,
+    p99: Duration,
+}
+
+impl Row {
+    fn rate(&self) -> f64 {
+        self.requests as f64 / self.elapsed.as_secs_f64()
+    }
+}
+
+/// One run: `clients` connections to `addr`, each with one request in flight, for `duration`.
+fn measure(target: &'static str, addr: &str, clients: usize, duration: Duration) -> Row {
+    let addr: SocketAddr = addr
+        .parse()
+        .unwrap_or_else(|e| panic!("{target}: bad address {addr:?}: {e}"));
+    assert!(addr.ip().is_loopback(), "{target}: {addr} is not loopback");
+    let runtime = tokio::runtime::Builder::new_current_thread()
+        .enable_all()
+        .build()
+        .unwrap();
+    runtime.block_on(async move {
+        let mut connections = Vec::with_capacity(clients);
+        for _ in 0..clients {
+            let stream = TcpStream::connect(addr)
+                .await
+                .unwrap_or_else(|e| panic!("{target}: connect {addr}: {e}"));
+            stream.set_nodelay(true).unwrap();
+            connections.push(Client::new(stream));
+        }
+        // Warm-up (not counted), bounded by count.
+        for c in &mut connections {
+            for _ in 0..WARMUP_REQUESTS {
+                c.request(target).await;
+            }
+        }
+        let start = Instant::now();
+        let deadline = start + duration;
+        let tasks: Vec<_> = connections
+            .into_iter()
+            .map(|mut c| {
+                tokio::spawn(async move {
+                    let mut latencies = Vec::with_capacity(1 << 16);
+                    while Instant::now() < deadline {
+                        latencies.push(c.request(target).await);
+                    }
+                    latencies
+                })
+            })
+            .collect();
+        let mut all: Vec<Duration> = Vec::new();
+        for t in tasks {
+            all.extend(t.await.unwrap());
+        }
+        let elapsed = start.elapsed();
+        assert!(!all.is_empty(), "{target}: no request completed");
+        all.sort_unstable();
+        let at = |q: f64| all[((all.len() - 1) as f64 * q).round() as usize];
+        let row = Row {
+            target,
+            clients,
+            requests: all.len(),
+            elapsed,
+            p50: at(0.50),
+            p99: at(0.99),
+        };
+        println!(
+            "  {target:<12} clients={clients:<2} {:>9.0} req/s, p50 {:>8.1?}, p99 {:>8.1?} ({} requests)",
+            row.rate(),
+            row.p50,
+            row.p99,
+            row.requests
+        );
+        row
+    })
+}
+
+/// A minimal Modbus TCP client: FC 3, address 0, 10 registers, one request in flight.
+struct Client {
+    stream: TcpStream,
+    transaction: u16,
+    response: Vec<u8>,
+}
+
+impl Client {
+    fn new(stream: TcpStream) -> Client {
+        Client {
+            stream,
+            transaction: 0,
+            response: vec![0; 260],
+        }
+    }
+
+    /// One request and its answer; returns the round-trip time. Panics on a wrong answer.
+    async fn request(&mut self, target: &str) -> Duration {
+        self.transaction = self.transaction.wrapping_add(1);
+        let t = self.transaction.to_be_bytes();
+        let q = REGISTERS.to_be_bytes();
+        let request = [t[0], t[1], 0, 0, 0, 6, 1, 3, 0, 0, q[0], q[1]];
+        let sent = Instant::now();
+        self.stream.write_all(&request).await.unwrap();
+        let header = &mut self.response[..7];
+        tokio::time::timeout(READ_TIMEOUT, self.stream.read_exact(header))
+            .await
+            .unwrap_or_else(|_| panic!("{target}: no answer within {READ_TIMEOUT:?}"))
+            .unwrap_or_else(|e| panic!("{target}: read: {e}"));
+        let length = usize::from(u16::from_be_bytes([header[4], header[5]]));
+        assert!(
+            header[..2] == t && header[2..4] == [0, 0] && (2..=254).contains(&length),
+            "{target}: bad MBAP header {header:02x?}"
+        );
+        let body = &mut self.response[7..6 + length];
+        tokio::time::timeout(READ_TIMEOUT, self.stream.read_exact(body))
+            .await
+            .unwrap_or_else(|_| panic!("{target}: truncated answer"))
+            .unwrap_or_else(|e| panic!("{target}: read: {e}"));
+        let rtt = sent.elapsed();
+        let expected_count = 2 * usize::from(REGISTERS);
+        assert!(
+            body[0] == 3 && usize::from(body[1]) == expected_count && length == 3 + expected_count,
+            "{target}: unexpected answer {body:02x?} (an exception is 0x83 then its code)"
+        );
+        rtt
+    }
+}
+
+fn print_table(rows: &[Row]) {
+    println!();
+    println!(
+        "{:<14} {:>7} {:>10} {:>10} {:>10} {:>8} {:>8} {:>8}",
+        "target", "clients", "req/s", "p50", "p99", "req/s ×", "p50 ×", "p99 ×"
+    );
+    for r in rows {
+        let base = rows
+            .iter()
+            .find(|b| b.target == "tokio-modbus" && b.clients == r.clients);
+        let ratio = |a: f64, b: f64| format!("{:.2}", a / b);
+        let (rr, r50, r99) = match base {
+            Some(b) => (
+                ratio(r.rate(), b.rate()),
+                ratio(r.p50.as_secs_f64(), b.p50.as_secs_f64()),
+                ratio(r.p99.as_secs_f64(), b.p99.as_secs_f64()),
+            ),
+            None => ("-".into(), "-".into(), "-".into()),
+        };
+        println!(
+            "{:<14} {:>7} {:>10.0} {:>10} {:>10} {:>8} {:>8} {:>8}",
+            r.target,
+            r.clients,
+            r.rate(),
+            format!("{:.1?}", r.p50),
+            format!("{:.1?}", r.p99),
+            rr,
+            r50,
+            r99
+        );
+    }
+    println!("(× = ratio to the tokio-modbus baseline with the same number of clients)");
+}
+
+/// The `tokio-modbus` baseline server: FC 3, 6 and 16 over 10 000 registers in memory.
+mod tokio_modbus_server {
+    use super::*;
+    use std::future::{ready, Ready};
+    use tokio_modbus::server::tcp::{accept_tcp_connection, Server};
+    use tokio_modbus::{ExceptionCode, Request, Response};
+
+    const SIZE: usize = 10_000;
+
+    struct Memory {
+        registers: Arc<Mutex<Vec<u16>>>,
+    }
+
+    impl tokio_modbus::server::Service for Memory {
+        type Request = Request<'static>;
+        type Response = Response;
+        type Exception = ExceptionCode;
+        type Future = Ready<Result<Response, ExceptionCode>>;
+
+        fn call(&self, req: Request<'static>) -> Self::Future {
+            let mut regs = self.registers.lock().unwrap();
+            let range = |addr: u16, n: usize| {
+                let start = usize::from(addr);
+                (start + n <= SIZE).then_some(start..start + n)
+            };
+            ready(match req {
+                Request::ReadHoldingRegisters(addr, n) => match range(addr, usize::from(n)) {
+                    Some(r) => Ok(Response::ReadHoldingRegisters(regs[r].to_vec())),
+                    None => Err(ExceptionCode::IllegalDataAddress),
+                },
+                Request::WriteSingleRegister(addr, value) => match range(addr, 1) {
+                    Some(r) => {
+                        regs[r.start] = value;
+                        Ok(Response::WriteSingleRegister(addr, value))
+                    }
+                    None => Err(ExceptionCode::IllegalDataAddress),
+                },
+                Request::WriteMultipleRegisters(addr, values) => match range(addr, values.len()) {
+                    Some(r) => {
+                        regs[r].copy_from_slice(&values);
+                        Ok(Response::WriteMultipleRegisters(addr, values.len() as u16))
+                    }
+                    None => Err(ExceptionCode::IllegalDataAddress),
+                },
+                _ => Err(ExceptionCode::IllegalFunction),
+            })
+        }
+    }
+
+    /// Serve on 127.0.0.1:0, print `listening: tokio-modbus ADDR`, exit when stdin ends (the
+    /// bench process holds it open and dies or drops it at the end).
+    pub fn run() {
+        std::thread::spawn(|| {
+            let mut sink = Vec::new();
+            let _ = std::io::stdin().read_to_end(&mut sink);
+            std::process::exit(0);
+        });
+        let runtime = tokio::runtime::Builder::new_multi_thread()
+            .enable_all()
+            .build()
+            .unwrap();
+        runtime.block_on(async {
+            let listener = TcpListener::bind("127.0.0.1:0").await.unwrap();
+            println!("listening: tokio-modbus {}", listener.local_addr().unwrap());
+            let registers = Arc::new(Mutex::new((0..SIZE as u16).collect::<Vec<u16>>()));
+            let server = Server::new(listener);
+            let on_connected = |stream, socket_addr| {
+                let registers = Arc::clone(&registers);
+                async move {
+                    accept_tcp_connection(stream, socket_addr, move |_| {
+                        Ok(Some(Memory {
+                            registers: Arc::clone(&registers),
+                        }))
+                    })
+                }
+            };
+            let on_process_error = |err| eprintln!("tokio-modbus server: {err}");
+            server.serve(&on_connected, on_process_error).await.unwrap();
+        });
+    }
+}
