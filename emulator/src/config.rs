@@ -56,6 +56,10 @@ pub struct MachineConfig {
     pub clock: ClockSetting,
     /// Seed of every random process (encoder noise, injected faults).
     pub seed: u64,
+    /// Directory for state that outlives a run (Modbus memory areas marked `persist`),
+    /// relative to the config file. Absent: `$XDG_STATE_HOME/mcemu/<name>` (else
+    /// `~/.local/state/mcemu/<name>`); `mcemu run --state-dir` overrides both.
+    pub state_dir: Option<String>,
 }
 
 impl Default for MachineConfig {
@@ -65,6 +69,7 @@ impl Default for MachineConfig {
             period: 1e-3,
             clock: ClockSetting(ClockMode::Realtime),
             seed: 0,
+            state_dir: None,
         }
     }
 }
@@ -237,6 +242,58 @@ impl Config {
         Config::parse(&text, &file)
     }
 
+    /// Parse config text, apply `overrides` (`key.path=value`, as `mcemu run --set` takes them:
+    /// the value is TOML, or a bare string), then check it. `file` names it in errors.
+    pub fn parse_with(text: &str, file: &str, overrides: &[String]) -> Result<Config, ConfigError> {
+        if overrides.is_empty() {
+            return Config::parse(text, file);
+        }
+        let error = |key: &str, reason: String| ConfigError {
+            file: file.to_string(),
+            key: key.to_string(),
+            reason,
+        };
+        let mut table: toml::Table = text
+            .parse()
+            .map_err(|e: toml::de::Error| error("", e.to_string().trim_end().to_string()))?;
+        for o in overrides {
+            let (key, value) = o.split_once('=').ok_or_else(|| {
+                error(
+                    o,
+                    "--set takes key.path=value (e.g. frontends.control.bind=127.0.0.1:0)".into(),
+                )
+            })?;
+            let key = key.trim();
+            let value = value.trim();
+            // A TOML value if it is one (numbers, booleans, quoted strings, arrays), else a string.
+            let value = format!("v = {value}")
+                .parse::<toml::Table>()
+                .ok()
+                .and_then(|mut t| t.remove("v"))
+                .unwrap_or_else(|| toml::Value::String(value.to_string()));
+            let mut at = &mut table;
+            let parts: Vec<&str> = key.split('.').collect();
+            let (last, path) = parts
+                .split_last()
+                .filter(|(l, _)| !l.is_empty())
+                .ok_or_else(|| error(key, "--set needs a key".into()))?;
+            for (depth, part) in path.iter().enumerate() {
+                let entry = at
+                    .entry(part.to_string())
+                    .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+                at = entry.as_table_mut().ok_or_else(|| {
+                    error(
+                        &parts[..=depth].join("."),
+                        "is not a table, so --set cannot reach into it".into(),
+                    )
+                })?;
+            }
+            at.insert(last.to_string(), value);
+        }
+        let text = toml::to_string(&table).map_err(|e| error("", e.to_string()))?;
+        Config::parse(&text, &format!("{file} with --set"))
+    }
+
     /// Parse and check config text; `file` names it in errors.
     pub fn parse(text: &str, file: &str) -> Result<Config, ConfigError> {
         let error = |key: String, reason: String| ConfigError {
@@ -264,6 +321,7 @@ impl Config {
             key,
             reason,
         })?;
+        crate::modbus::check_faults(self, file)?;
         // Register maps compile against this machine, or the config is refused.
         self.modbus_units(file).map(|_| ())
     }
@@ -343,29 +401,6 @@ impl Config {
             }
         }
         let f = &self.frontends;
-        // `mcemu run` does not serve Modbus yet (the sections are read and their maps checked),
-        // so enabling one would promise a listener that never comes.
-        for (name, enabled) in [
-            (
-                "modbus_tcp",
-                f.modbus_tcp.as_ref().is_some_and(|s| s.enabled),
-            ),
-            (
-                "modbus_rtu",
-                f.modbus_rtu.as_ref().is_some_and(|s| s.enabled),
-            ),
-            (
-                "modbus_rtu_over_tcp",
-                f.modbus_rtu_over_tcp.as_ref().is_some_and(|s| s.enabled),
-            ),
-        ] {
-            if enabled {
-                return Err((
-                    format!("frontends.{name}.enabled"),
-                    "this front-end is not built yet; set enabled = false".into(),
-                ));
-            }
-        }
         for (name, section) in [
             ("canopen", &f.canopen),
             ("socketcand", &f.socketcand),

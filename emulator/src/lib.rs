@@ -8,4 +8,5 @@ pub mod modbus;
 pub mod reference;
 pub mod run;
 pub mod scenario;
+pub mod state_dir;
 pub mod trace;

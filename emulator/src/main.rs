@@ -6,6 +6,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 use mcemu::config::{ClockSetting, Config, DEFAULT_CONFIG_NAME};
 use mcemu::scenario::Scenario;
+use mcemu::state_dir::StateDir;
 
 #[derive(Parser)]
 #[command(
@@ -31,6 +32,14 @@ enum Cmd {
         /// Override the servo period: seconds, or with a unit (250us, 1ms, 0.002s).
         #[arg(long, value_parser = parse_period)]
         period: Option<f64>,
+        /// Keep persisted state (Modbus memory areas marked `persist`) in this directory
+        /// instead of the config's `machine.state_dir` or ~/.local/state/mcemu/<machine>.
+        #[arg(long)]
+        state_dir: Option<PathBuf>,
+        /// Override one config key: `--set frontends.modbus_tcp.bind=127.0.0.1:0`. The value is
+        /// TOML (numbers, booleans, strings); repeat for more keys.
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
     },
     /// Check config files without running them.
     Validate {
@@ -80,10 +89,26 @@ fn main() -> ExitCode {
             config,
             clock,
             period,
+            state_dir,
+            set,
         } => {
             let (loaded, file) = match &config {
-                Some(path) => (Config::load(path), path.display().to_string()),
-                None => (Config::default_machine(), DEFAULT_CONFIG_NAME.to_string()),
+                Some(path) => (
+                    std::fs::read_to_string(path)
+                        .map_err(|e| mcemu::config::ConfigError {
+                            file: path.display().to_string(),
+                            key: String::new(),
+                            reason: format!("cannot read it: {e}"),
+                        })
+                        .and_then(|text| {
+                            Config::parse_with(&text, &path.display().to_string(), &set)
+                        }),
+                    path.display().to_string(),
+                ),
+                None => (
+                    Config::parse_with(mcemu::config::DEFAULT_CONFIG, DEFAULT_CONFIG_NAME, &set),
+                    DEFAULT_CONFIG_NAME.to_string(),
+                ),
             };
             let mut config = match loaded {
                 Ok(c) => c,
@@ -98,7 +123,8 @@ fn main() -> ExitCode {
                     return fail(&e);
                 }
             }
-            match mcemu::run::run(config, &file) {
+            let state_dir = StateDir::resolve(&config, &file, state_dir.as_deref());
+            match mcemu::run::run(config, &file, state_dir) {
                 Ok(()) => ExitCode::SUCCESS,
                 Err(e) => fail(&e),
             }

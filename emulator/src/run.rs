@@ -2,16 +2,20 @@
 //! until SIGINT or SIGTERM. Each listener prints `listening: <protocol> <address>` once bound.
 
 use std::io::Write;
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use axes::command::{Command, StopMode};
 use axes::runtime::{EngineHandle, Runtime, RuntimeOptions};
 use axes::{AxisState, Engine};
 use tokio::net::TcpListener;
+use tokio::sync::watch;
 
 use crate::config::Config;
-use crate::control::{self, ControlState};
+use crate::control::{self, ControlState, Frontend};
 use crate::listener::BoundedListener;
+use crate::modbus::serve as modbus;
+use crate::state_dir::StateDir;
 
 /// Why a machine could not run.
 #[derive(Debug, thiserror::Error)]
@@ -30,8 +34,9 @@ pub enum RunError {
     },
 }
 
-/// Run `config` until a signal arrives. `file` names the config in errors.
-pub fn run(config: Config, file: &str) -> Result<(), RunError> {
+/// Run `config` until a signal arrives. `file` names the config in errors and is where relative
+/// paths start; `state_dir` is where persisted state lives (`None`: nowhere, it lasts the run).
+pub fn run(config: Config, file: &str, state_dir: Option<StateDir>) -> Result<(), RunError> {
     let engine = Engine::new(&config.engine_config()).map_err(|e| crate::config::ConfigError {
         file: file.to_string(),
         key: e.key,
@@ -50,7 +55,7 @@ pub fn run(config: Config, file: &str) -> Result<(), RunError> {
         .thread_name("mcemu-io")
         .enable_all()
         .build()?;
-    let served = frontends.block_on(serve(&config, handle.clone()));
+    let served = frontends.block_on(serve(&config, file, handle.clone(), state_dir.as_ref()));
     // Whatever ended the serving, stop the machine cleanly.
     stop_axes(&handle, axes);
     drop(frontends);
@@ -59,29 +64,65 @@ pub fn run(config: Config, file: &str) -> Result<(), RunError> {
     served
 }
 
-async fn serve(config: &Config, handle: EngineHandle) -> Result<(), RunError> {
+/// Start every enabled front-end, the control API last (so its `listening:` line says all the
+/// others are up), and serve until a signal; then stop them and save what they persist.
+async fn serve(
+    config: &Config,
+    file: &str,
+    handle: EngineHandle,
+    state_dir: Option<&StateDir>,
+) -> Result<(), RunError> {
     let stop = signals();
+    let (shutdown_tx, shutdown) = watch::channel(false);
     let mut servers = tokio::task::JoinSet::new();
+    let cx = modbus::Context {
+        config,
+        file,
+        handle: &handle,
+        state_dir,
+        shutdown: &shutdown,
+    };
+    let modbus = modbus::start(&cx, &mut servers).await?;
+    let frontends: Vec<Arc<dyn Frontend>> = modbus
+        .iter()
+        .map(|m| Arc::clone(m) as Arc<dyn Frontend>)
+        .collect();
     let control = &config.frontends.control;
+    let mut control_task = None;
     if control.enabled {
         let listener = BoundedListener::new(
             bind("control", control.bind).await?,
             control.max_connections,
         );
-        let app = control::router(ControlState::new(handle.clone(), config));
-        servers.spawn(async move {
+        let app =
+            control::router(ControlState::new(handle.clone(), config).with_frontends(frontends));
+        control_task = Some(tokio::spawn(async move {
             if let Err(e) = axum::serve(listener, app).await {
                 tracing::error!(error = %e, "control API stopped");
             }
-        });
+        }));
     }
     stop.await;
-    servers.abort_all();
+    if let Some(task) = control_task {
+        task.abort();
+    }
+    // Front-ends stop accepting and close their connections; a second is plenty.
+    let _ = shutdown_tx.send(true);
+    let drained = tokio::time::timeout(Duration::from_secs(1), async {
+        while servers.join_next().await.is_some() {}
+    })
+    .await;
+    if drained.is_err() {
+        servers.abort_all();
+    }
+    for frontend in &modbus {
+        frontend.save_if_changed();
+    }
     Ok(())
 }
 
 /// Bind and announce a TCP listener.
-async fn bind(
+pub(crate) async fn bind(
     protocol: &'static str,
     address: std::net::SocketAddr,
 ) -> Result<TcpListener, RunError> {
@@ -93,10 +134,14 @@ async fn bind(
             error,
         })?;
     let local = listener.local_addr().unwrap_or(address);
-    println!("listening: {protocol} {local}");
-    // Tests and supervisors read these lines as they come.
-    let _ = std::io::stdout().flush();
+    announce(protocol, local);
     Ok(listener)
+}
+
+/// Print `listening: <protocol> <address>`: tests and supervisors read these lines as they come.
+pub(crate) fn announce(protocol: &str, address: impl std::fmt::Display) {
+    println!("listening: {protocol} {address}");
+    let _ = std::io::stdout().flush();
 }
 
 /// Register SIGINT and SIGTERM handlers now, before any listener is announced (a supervisor or

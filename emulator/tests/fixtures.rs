@@ -518,8 +518,18 @@ fn a_period_out_of_range_is_refused() {
 fn enabling_a_front_end_that_is_not_built_is_refused() {
     refused(
         "frontend",
-        "[frontends.modbus_tcp]\nenabled = true\nbind = \"127.0.0.1:5020\"\n",
-        &["frontends.modbus_tcp.enabled", "not built yet"],
+        "[frontends.canopen]\nenabled = true\nbind = \"vcan0\"\n",
+        &["frontends.canopen.enabled", "not built yet"],
+    );
+}
+
+#[test]
+fn a_fault_that_cannot_apply_to_its_transport_is_refused() {
+    refused(
+        "fault",
+        "[[axes]]\n[frontends.modbus_tcp]\nenabled = false\n\
+         [[frontends.modbus_tcp.faults]]\nfault = \"corrupt\"\nbit = 1\n",
+        &["frontends.modbus_tcp.faults[0]", "RTU"],
     );
 }
 

@@ -93,10 +93,22 @@ fn the_default_machine_comes_up_reports_its_listeners_and_stops_on_sigint() {
         banner.starts_with("mcemu: machine default, 4 axes, servo period 1 ms, clock realtime"),
         "{banner}"
     );
-    let listening = m.until("listening: ");
-    assert_eq!(listening, "listening: control 127.0.0.1:8700");
-    // The port really is open.
-    TcpStream::connect("127.0.0.1:8700").expect("control port accepts connections");
+    // Every front-end of the default machine, the control API last.
+    let listening: Vec<String> = (0..4).map(|_| m.until("listening: ")).collect();
+    assert_eq!(listening[0], "listening: modbus-tcp 127.0.0.1:1502");
+    let pty = listening[1]
+        .strip_prefix("listening: modbus-rtu /dev/pts/")
+        .unwrap_or_else(|| panic!("{listening:?}"));
+    assert!(std::path::Path::new(&format!("/dev/pts/{pty}")).exists());
+    assert_eq!(
+        listening[2],
+        "listening: modbus-rtu-over-tcp 127.0.0.1:1503"
+    );
+    assert_eq!(listening[3], "listening: control 127.0.0.1:8700");
+    // The ports really are open.
+    for port in [1502, 1503, 8700] {
+        TcpStream::connect(("127.0.0.1", port)).expect("the port accepts connections");
+    }
     m.signal("INT");
     let (status, rest) = m.wait();
     assert!(status.success(), "{status}");

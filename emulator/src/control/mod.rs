@@ -41,14 +41,16 @@ pub use time::MAX_ADVANCE_TICKS;
 
 use crate::config::{ClockSetting, Config};
 
-/// A protocol front-end's own faults (frame delay/drop, Modbus exceptions …). A front-end that
-/// takes faults registers one in [`ControlState::frontends`]; `POST /faults` with
-/// `{"frontend": NAME, …}` reaches it.
-pub trait FrontendFaults: Send + Sync {
+/// A running protocol front-end as the control API sees it: its own faults (frame delay/drop,
+/// Modbus exceptions …) through `POST /faults` with `{"frontend": NAME, …}`, and its counters
+/// in `GET /state`.
+pub trait Frontend: Send + Sync {
     /// The name requests use: the front-end's config section (`modbus_tcp`, `canopen` …).
     fn name(&self) -> &str;
     /// Inject or clear a fault; `fault` is the request body without `frontend`.
     fn inject(&self, fault: Map<String, Value>) -> Result<Value, ApiError>;
+    /// Counters, active faults and last error, for `GET /state`'s `frontends`.
+    fn state(&self) -> Value;
 }
 
 /// What the config says about the machine, for `/state`.
@@ -75,8 +77,8 @@ pub struct ControlState {
     pub handle: EngineHandle,
     pub machine: Arc<MachineInfo>,
     pub trace: TraceRecorder,
-    /// Front-ends that take faults through `POST /faults` (none yet).
-    pub frontends: Arc<Vec<Arc<dyn FrontendFaults>>>,
+    /// The running protocol front-ends.
+    pub frontends: Arc<Vec<Arc<dyn Frontend>>>,
     /// `[frontends.control] max_requests` permits, and that number for the 503 reply.
     requests: (Arc<Semaphore>, usize),
     trace_reads: Arc<Semaphore>,
@@ -99,6 +101,12 @@ impl ControlState {
             ),
             trace_reads: Arc::new(Semaphore::new(CONCURRENT_TRACE_READS)),
         }
+    }
+
+    /// The same state serving `frontends`.
+    pub fn with_frontends(mut self, frontends: Vec<Arc<dyn Frontend>>) -> ControlState {
+        self.frontends = Arc::new(frontends);
+        self
     }
 }
 

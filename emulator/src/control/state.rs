@@ -28,6 +28,8 @@ pub struct StateView<'a> {
     /// The servo runtime's counters and lateness histogram (`axes::runtime::RuntimeStats`).
     pub runtime: RuntimeStats,
     pub trace: TraceStatus,
+    /// Each running protocol front-end: counters, active faults, last error.
+    pub frontends: Vec<serde_json::Value>,
 }
 
 #[derive(Serialize)]
@@ -171,6 +173,7 @@ pub async fn get_state(State(state): State<ControlState>) -> axum::response::Res
             .collect(),
         runtime: state.handle.stats(),
         trace: state.trace.status(),
+        frontends: state.frontends.iter().map(|f| f.state()).collect(),
     };
     Json(view).into_response()
 }

@@ -8,6 +8,7 @@
 //! ends the request with 04 (the writes before it stay done: Modbus has no transactions). The
 //! engine's own value checks (a parameter's range, a command's arguments) answer 03.
 
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 
 use axes::command::{EngineError, ErrorKind};
@@ -30,6 +31,8 @@ pub struct UnitService {
     memory: Mutex<Vec<u16>>,
     /// The last raw value written to each point, for `rising_bitN`.
     previous: Mutex<Vec<u64>>,
+    /// Bumped by every write to memory, so a saver knows when persisted areas may have changed.
+    memory_writes: AtomicU64,
 }
 
 fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
@@ -66,11 +69,18 @@ impl UnitService {
             handle,
             memory,
             previous,
+            memory_writes: AtomicU64::new(0),
         }
     }
 
     pub fn map(&self) -> &UnitMap {
         &self.map
+    }
+
+    /// How many writes to memory this unit has taken; a saver compares it with the count at its
+    /// last save.
+    pub fn memory_writes(&self) -> u64 {
+        self.memory_writes.load(Ordering::Acquire)
     }
 
     /// Contents of the persisted memory areas, by name.
@@ -336,6 +346,7 @@ impl UnitService {
             match step {
                 Step::Area { cell, at, width } => {
                     lock(&self.memory)[cell..cell + width].copy_from_slice(&words[at..at + width]);
+                    self.memory_writes.fetch_add(1, Ordering::Release);
                 }
                 Step::Point { index, at, value } => {
                     let p = &self.map.points[index];
@@ -361,6 +372,7 @@ impl UnitService {
             Some(Target::Memory) => {
                 if let Some(cell) = p.cell {
                     lock(&self.memory)[cell..cell + raw.len()].copy_from_slice(raw);
+                    self.memory_writes.fetch_add(1, Ordering::Release);
                 }
             }
             Some(Target::Param { axis, id }) => {

@@ -6,6 +6,9 @@ use std::path::{Path, PathBuf};
 
 use mcemu_modbus::config::{AxisRef, UnitConfig};
 use mcemu_modbus::map::{self, Binding, MachineShape, UnitMap};
+use mcemu_modbus::state::{Framing, FrontendState};
+
+pub mod serve;
 
 use crate::config::{Config, ConfigError};
 
@@ -13,6 +16,41 @@ use crate::config::{Config, ConfigError};
 pub struct Unit {
     pub id: Option<u8>,
     pub map: UnitMap,
+}
+
+/// Every fault a Modbus section configures can be installed on its framing (corrupted bytes
+/// only on RTU, codes that are exceptions …).
+pub fn check_faults(config: &Config, file: &str) -> Result<(), ConfigError> {
+    let f = &config.frontends;
+    let sections = [
+        (
+            "modbus_tcp",
+            Framing::Tcp,
+            f.modbus_tcp.as_ref().map(|c| &c.faults),
+        ),
+        (
+            "modbus_rtu",
+            Framing::Rtu,
+            f.modbus_rtu.as_ref().map(|c| &c.faults),
+        ),
+        (
+            "modbus_rtu_over_tcp",
+            Framing::RtuOverTcp,
+            f.modbus_rtu_over_tcp.as_ref().map(|c| &c.faults),
+        ),
+    ];
+    for (section, framing, faults) in sections {
+        for (i, fault) in faults.into_iter().flatten().enumerate() {
+            FrontendState::new(section, framing, std::slice::from_ref(fault)).map_err(|e| {
+                ConfigError {
+                    file: file.to_string(),
+                    key: format!("frontends.{section}.faults[{i}]"),
+                    reason: e.message,
+                }
+            })?;
+        }
+    }
+    Ok(())
 }
 
 /// What the machine has, as the maps see it.
