@@ -14,11 +14,11 @@
 //!   Rust Modbus server costs.
 //! - `pymodbus`: `tests/python/modbus_server_pymodbus.py` (pymodbus 3.16.1, in memory) with the
 //!   venv of `scripts/setup`.
-//! - `mcemu`: `mcemu run --config` on a copy of `$MCEMU_LOAD_MCEMU_CONFIG` (a relative path
-//!   is taken from the workspace root) whose
-//!   `bind = "127.0.0.1:N"` addresses are turned into port 0; the config must enable
-//!   `[frontends.modbus_tcp]`, and the address comes from mcemu's `listening: modbus-tcp ADDR`.
-//!   Without the variable this target prints `mcemu target: not configured`.
+//! - `mcemu`: `mcemu run --config fixtures/himc.toml` (or `$MCEMU_LOAD_MCEMU_CONFIG`, a path
+//!   relative to the workspace root, which must enable `[frontends.modbus_tcp]`) with its
+//!   listeners moved to free ports by `--set`. Registers 0–9 of the himc map are axis 0's motion
+//!   and fault status and its position and velocity feedback: every request goes through the
+//!   map and the engine's snapshot.
 //!
 //! Client: a minimal MBAP client on raw tokio `TcpStream`s, all on one current-thread runtime,
 //! one outstanding request per connection, every answer checked (transaction id, function,
@@ -90,51 +90,34 @@ fn main() {
         server.kill();
     }
 
-    match std::env::var_os("MCEMU_LOAD_MCEMU_CONFIG") {
-        None => println!("mcemu target: not configured (set MCEMU_LOAD_MCEMU_CONFIG=machine.toml with [frontends.modbus_tcp] enabled)"),
-        Some(config) => {
-            // cargo runs benches in emulator/: a relative path is taken from the workspace root.
-            let config = mcemu_tests::workspace_root().join(config);
-            let (mut server, addr) = start_mcemu(&config);
-            for clients in CLIENT_COUNTS {
-                rows.push(measure("mcemu", &addr, clients, duration));
-            }
-            server.kill();
+    {
+        // cargo runs benches in emulator/: a relative path is taken from the workspace root.
+        let config = std::env::var_os("MCEMU_LOAD_MCEMU_CONFIG")
+            .map_or_else(|| "fixtures/himc.toml".into(), std::path::PathBuf::from);
+        let config = mcemu_tests::workspace_root().join(config);
+        let (mut server, addr) = start_mcemu(&config);
+        for clients in CLIENT_COUNTS {
+            rows.push(measure("mcemu", &addr, clients, duration));
         }
+        server.kill();
     }
 
     print_table(&rows);
 }
 
-/// mcemu on a copy of `config` with every `bind = "127.0.0.1:N"` on port 0.
+/// mcemu on `config` with its Modbus TCP and control listeners moved to free ports, state kept
+/// in a temporary directory.
 fn start_mcemu(config: &std::path::Path) -> (KillOnDrop, String) {
-    let text = std::fs::read_to_string(config)
-        .unwrap_or_else(|e| panic!("MCEMU_LOAD_MCEMU_CONFIG={}: {e}", config.display()));
-    let text: String = text
-        .lines()
-        .map(|line| {
-            let trimmed = line.trim_start();
-            match trimmed.strip_prefix("bind") {
-                Some(rest) if rest.trim_start().starts_with('=') && line.contains("127.0.0.1:") => {
-                    "bind = \"127.0.0.1:0\"".to_string()
-                }
-                _ => line.to_string(),
-            }
-        })
-        .collect::<Vec<_>>()
-        .join("\n");
-    struct RemoveOnDrop(std::path::PathBuf);
-    impl Drop for RemoveOnDrop {
-        fn drop(&mut self) {
-            let _ = std::fs::remove_file(&self.0);
-        }
-    }
-    let copy = RemoveOnDrop(
-        std::env::temp_dir().join(format!("mcemu-modbus-load-{}.toml", std::process::id())),
-    );
-    std::fs::write(&copy.0, text).unwrap();
+    let state = std::env::temp_dir().join(format!("mcemu-modbus-load-{}", std::process::id()));
     let mut command = Command::new(env!("CARGO_BIN_EXE_mcemu"));
-    command.args(["run", "--config"]).arg(&copy.0);
+    command
+        .args(["run", "--config"])
+        .arg(config)
+        .arg("--state-dir")
+        .arg(&state)
+        .args(["--set", "frontends.modbus_tcp.bind=127.0.0.1:0"])
+        .args(["--set", "frontends.modbus_tcp.max_connections=64"])
+        .args(["--set", "frontends.control.bind=127.0.0.1:0"]);
     spawn_until_line(command, "listening: modbus-tcp ", READY_TIMEOUT)
 }
 
