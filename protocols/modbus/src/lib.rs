@@ -26,4 +26,5 @@ pub mod model;
 pub mod pdu;
 pub mod server;
 pub mod state;
+pub mod tables;
 pub mod transport;

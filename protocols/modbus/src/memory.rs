@@ -6,16 +6,10 @@ use std::ops::Range;
 use std::sync::{Mutex, MutexGuard};
 
 use crate::model::{DataModel, DeviceIdentity, ExecError, RequestContext};
-use crate::pdu::{fc, Exception, Request, Response};
+use crate::pdu::{Exception, Request, Response};
+use crate::tables::{self, TableAccess};
 
-/// The four Modbus tables.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Table {
-    Coils,
-    DiscreteInputs,
-    InputRegisters,
-    HoldingRegisters,
-}
+pub use crate::tables::Table;
 
 /// Addresses `start .. start + len` of one table.
 #[derive(Clone, Debug)]
@@ -183,146 +177,76 @@ impl MemoryModel {
             Err(_) => false,
         }
     }
+}
 
-    fn execute_now(&self, request: &Request<'_>) -> Result<Response, ExecError> {
-        let mut t = self.lock();
-        let words = |bytes: &[u8]| -> Vec<u16> {
-            bytes
-                .chunks_exact(2)
-                .map(|w| u16::from_be_bytes([w[0], w[1]]))
-                .collect()
-        };
-        match *request {
-            Request::ReadCoils { address, quantity } => {
-                let r = t.coils.range("coils", address, quantity)?;
-                Ok(Response::Bits {
-                    function: fc::READ_COILS,
-                    bits: t.coils.values[r].to_vec(),
-                })
+impl TableAccess for MemoryModel {
+    fn read(&self, table: Table, address: u16, count: u16) -> Result<Vec<u16>, ExecError> {
+        let t = self.lock();
+        let name = table.name();
+        Ok(match table {
+            Table::Coils => bits(&t.coils, name, address, count)?,
+            Table::DiscreteInputs => bits(&t.discrete_inputs, name, address, count)?,
+            Table::InputRegisters => {
+                let r = t.input_registers.range(name, address, count)?;
+                t.input_registers.values[r].to_vec()
             }
-            Request::ReadDiscreteInputs { address, quantity } => {
-                let r = t
-                    .discrete_inputs
-                    .range("discrete inputs", address, quantity)?;
-                Ok(Response::Bits {
-                    function: fc::READ_DISCRETE_INPUTS,
-                    bits: t.discrete_inputs.values[r].to_vec(),
-                })
+            Table::HoldingRegisters => {
+                let r = t.holding_registers.range(name, address, count)?;
+                t.holding_registers.values[r].to_vec()
             }
-            Request::ReadHoldingRegisters { address, quantity } => {
-                let r = t
-                    .holding_registers
-                    .range("holding registers", address, quantity)?;
-                Ok(Response::Registers {
-                    function: fc::READ_HOLDING_REGISTERS,
-                    words: t.holding_registers.values[r].to_vec(),
-                })
-            }
-            Request::ReadInputRegisters { address, quantity } => {
-                let r = t
-                    .input_registers
-                    .range("input registers", address, quantity)?;
-                Ok(Response::Registers {
-                    function: fc::READ_INPUT_REGISTERS,
-                    words: t.input_registers.values[r].to_vec(),
-                })
-            }
-            Request::WriteSingleCoil { address, value } => {
-                let r = t.coils.range("coils", address, 1)?;
-                t.coils.values[r].fill(value);
-                Ok(Response::WriteSingle {
-                    function: fc::WRITE_SINGLE_COIL,
-                    address,
-                    value: if value { 0xFF00 } else { 0 },
-                })
-            }
-            Request::WriteSingleRegister { address, value } => {
-                let r = t.holding_registers.range("holding registers", address, 1)?;
-                t.holding_registers.values[r].fill(value);
-                Ok(Response::WriteSingle {
-                    function: fc::WRITE_SINGLE_REGISTER,
-                    address,
-                    value,
-                })
-            }
-            Request::WriteMultipleCoils {
-                address,
-                quantity,
-                values,
-            } => {
-                let r = t.coils.range("coils", address, quantity)?;
-                for (k, slot) in t.coils.values[r].iter_mut().enumerate() {
-                    // Packed LSB first (§6.11).
-                    *slot = values.get(k / 8).is_some_and(|b| b & (1 << (k % 8)) != 0);
-                }
-                Ok(Response::WriteMultiple {
-                    function: fc::WRITE_MULTIPLE_COILS,
-                    address,
-                    quantity,
-                })
-            }
-            Request::WriteMultipleRegisters {
-                address,
-                quantity,
-                values,
-            } => {
-                let r = t
-                    .holding_registers
-                    .range("holding registers", address, quantity)?;
-                for (slot, w) in t.holding_registers.values[r].iter_mut().zip(words(values)) {
-                    *slot = w;
-                }
-                Ok(Response::WriteMultiple {
-                    function: fc::WRITE_MULTIPLE_REGISTERS,
-                    address,
-                    quantity,
-                })
-            }
-            Request::MaskWriteRegister {
-                address,
-                and_mask,
-                or_mask,
-            } => {
-                let r = t.holding_registers.range("holding registers", address, 1)?;
-                for v in &mut t.holding_registers.values[r] {
-                    // §6.16: (current AND and_mask) OR (or_mask AND NOT and_mask).
-                    *v = (*v & and_mask) | (or_mask & !and_mask);
-                }
-                Ok(Response::MaskWrite {
-                    address,
-                    and_mask,
-                    or_mask,
-                })
-            }
-            Request::ReadWriteMultipleRegisters {
-                read_address,
-                read_quantity,
-                write_address,
-                write_quantity,
-                values,
-            } => {
-                let hr = &mut t.holding_registers;
-                // Both ranges are checked before anything is written.
-                let w = hr.range("holding registers", write_address, write_quantity)?;
-                let r = hr.range("holding registers", read_address, read_quantity)?;
-                // §6.17: the write is performed before the read.
-                for (slot, v) in hr.values[w].iter_mut().zip(words(values)) {
-                    *slot = v;
-                }
-                Ok(Response::Registers {
-                    function: fc::READ_WRITE_MULTIPLE_REGISTERS,
-                    words: hr.values[r].to_vec(),
-                })
-            }
-            // The server answers these itself.
-            Request::Diagnostics { .. }
-            | Request::ReportServerId
-            | Request::ReadDeviceIdentification { .. } => Err(ExecError::new(
-                Exception::IllegalFunction,
-                "not a data request",
-            )),
+        })
+    }
+
+    fn check_read(&self, table: Table, address: u16, count: u16) -> Result<(), ExecError> {
+        let t = self.lock();
+        let name = table.name();
+        match table {
+            Table::Coils => t.coils.range(name, address, count).map(drop),
+            Table::DiscreteInputs => t.discrete_inputs.range(name, address, count).map(drop),
+            Table::InputRegisters => t.input_registers.range(name, address, count).map(drop),
+            Table::HoldingRegisters => t.holding_registers.range(name, address, count).map(drop),
         }
     }
+
+    fn write(
+        &self,
+        table: Table,
+        address: u16,
+        words: &[u16],
+    ) -> impl Future<Output = Result<(), ExecError>> + Send {
+        let mut t = self.lock();
+        let name = table.name();
+        let count = u16::try_from(words.len()).unwrap_or(u16::MAX);
+        let written = match table {
+            Table::Coils | Table::DiscreteInputs => {
+                let area = if table == Table::Coils {
+                    &mut t.coils
+                } else {
+                    &mut t.discrete_inputs
+                };
+                area.range(name, address, count).map(|r| {
+                    for (slot, w) in area.values[r].iter_mut().zip(words) {
+                        *slot = *w != 0;
+                    }
+                })
+            }
+            Table::InputRegisters | Table::HoldingRegisters => {
+                let area = if table == Table::HoldingRegisters {
+                    &mut t.holding_registers
+                } else {
+                    &mut t.input_registers
+                };
+                area.range(name, address, count)
+                    .map(|r| area.values[r].copy_from_slice(words))
+            }
+        };
+        std::future::ready(written)
+    }
+}
+
+fn bits(area: &Area<bool>, name: &str, address: u16, count: u16) -> Result<Vec<u16>, ExecError> {
+    let r = area.range(name, address, count)?;
+    Ok(area.values[r].iter().map(|&b| u16::from(b)).collect())
 }
 
 impl DataModel for MemoryModel {
@@ -339,7 +263,7 @@ impl DataModel for MemoryModel {
         _context: &'a RequestContext,
         request: &'a Request<'a>,
     ) -> impl Future<Output = Result<Response, ExecError>> + Send + 'a {
-        std::future::ready(self.execute_now(request))
+        tables::execute(self, request)
     }
 }
 
@@ -348,7 +272,12 @@ mod tests {
     use super::*;
 
     fn run(m: &MemoryModel, r: Request<'_>) -> Result<Response, Exception> {
-        m.execute_now(&r).map_err(|e| e.exception)
+        let runtime = tokio::runtime::Builder::new_current_thread()
+            .build()
+            .map_err(|_| Exception::ServerDeviceFailure)?;
+        runtime
+            .block_on(tables::execute(m, &r))
+            .map_err(|e| e.exception)
     }
 
     #[test]

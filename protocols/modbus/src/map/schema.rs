@@ -108,36 +108,7 @@ pub enum Gaps {
     Zero,
 }
 
-/// The four Modbus data tables.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Table {
-    Coils,
-    DiscreteInputs,
-    InputRegisters,
-    HoldingRegisters,
-}
-
-impl Table {
-    /// Bit tables hold one bool per address.
-    pub fn is_bits(self) -> bool {
-        matches!(self, Table::Coils | Table::DiscreteInputs)
-    }
-
-    /// Whether Modbus lets a client write the table at all.
-    pub fn is_writable(self) -> bool {
-        matches!(self, Table::Coils | Table::HoldingRegisters)
-    }
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Table::Coils => "coils",
-            Table::DiscreteInputs => "discrete_inputs",
-            Table::InputRegisters => "input_registers",
-            Table::HoldingRegisters => "holding_registers",
-        }
-    }
-}
+pub use crate::tables::Table;
 
 #[derive(Clone, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -21,7 +21,8 @@ use super::schema::{Gaps, Table};
 use super::source::Target;
 use super::value::{decode, encode, PointType};
 use crate::model::{DataModel, DeviceIdentity, ExecError, RequestContext};
-use crate::pdu::{fc, Exception, Request, Response};
+use crate::pdu::{Exception, Request, Response};
+use crate::tables::{self, TableAccess};
 
 /// One unit's map over the engine.
 pub struct UnitService {
@@ -206,7 +207,7 @@ impl UnitService {
         }
     }
 
-    fn read(&self, table: Table, start: u16, count: u16) -> Result<Vec<u16>, ExecError> {
+    fn read_table(&self, table: Table, start: u16, count: u16) -> Result<Vec<u16>, ExecError> {
         let snapshot = self.handle.snapshot();
         let mut words = Vec::with_capacity(usize::from(count));
         let mut at = start;
@@ -275,7 +276,7 @@ impl UnitService {
     }
 
     /// Check a write of `words` at `start`, then execute it.
-    async fn write(&self, table: Table, start: u16, words: &[u16]) -> Result<(), ExecError> {
+    async fn write_table(&self, table: Table, start: u16, words: &[u16]) -> Result<(), ExecError> {
         let count = u16::try_from(words.len()).unwrap_or(u16::MAX);
         let items = self.cover(table, start, count).map_err(|missing| {
             ExecError::new(
@@ -507,142 +508,35 @@ fn fires(when: When, now: u64, before: u64) -> bool {
     }
 }
 
-fn unpack_bits(bytes: &[u8], count: u16) -> Vec<u16> {
-    (0..usize::from(count))
-        .map(|i| u16::from(bytes.get(i / 8).is_some_and(|b| b >> (i % 8) & 1 == 1)))
-        .collect()
-}
-
-fn be_words(bytes: &[u8]) -> Vec<u16> {
-    bytes
-        .chunks_exact(2)
-        .map(|c| u16::from_be_bytes([c[0], c[1]]))
-        .collect()
-}
-
 impl UnitService {
     /// Execute a data request (see [`DataModel::execute`]).
     pub async fn execute(&self, request: &Request<'_>) -> Result<Response, ExecError> {
-        let registers = |function, words| Response::Registers { function, words };
-        let bits = |function, words: Vec<u16>| Response::Bits {
-            function,
-            bits: words.into_iter().map(|w| w != 0).collect(),
-        };
-        match *request {
-            Request::ReadCoils { address, quantity } => Ok(bits(
-                fc::READ_COILS,
-                self.read(Table::Coils, address, quantity)?,
-            )),
-            Request::ReadDiscreteInputs { address, quantity } => Ok(bits(
-                fc::READ_DISCRETE_INPUTS,
-                self.read(Table::DiscreteInputs, address, quantity)?,
-            )),
-            Request::ReadHoldingRegisters { address, quantity } => Ok(registers(
-                fc::READ_HOLDING_REGISTERS,
-                self.read(Table::HoldingRegisters, address, quantity)?,
-            )),
-            Request::ReadInputRegisters { address, quantity } => Ok(registers(
-                fc::READ_INPUT_REGISTERS,
-                self.read(Table::InputRegisters, address, quantity)?,
-            )),
-            Request::WriteSingleCoil { address, value } => {
-                self.write(Table::Coils, address, &[u16::from(value)])
-                    .await?;
-                Ok(Response::WriteSingle {
-                    function: fc::WRITE_SINGLE_COIL,
-                    address,
-                    value: if value { 0xFF00 } else { 0 },
-                })
-            }
-            Request::WriteSingleRegister { address, value } => {
-                self.write(Table::HoldingRegisters, address, &[value])
-                    .await?;
-                Ok(Response::WriteSingle {
-                    function: fc::WRITE_SINGLE_REGISTER,
-                    address,
-                    value,
-                })
-            }
-            Request::WriteMultipleCoils {
-                address,
-                quantity,
-                values,
-            } => {
-                self.write(Table::Coils, address, &unpack_bits(values, quantity))
-                    .await?;
-                Ok(Response::WriteMultiple {
-                    function: fc::WRITE_MULTIPLE_COILS,
-                    address,
-                    quantity,
-                })
-            }
-            Request::WriteMultipleRegisters {
-                address,
-                quantity,
-                values,
-            } => {
-                self.write(Table::HoldingRegisters, address, &be_words(values))
-                    .await?;
-                Ok(Response::WriteMultiple {
-                    function: fc::WRITE_MULTIPLE_REGISTERS,
-                    address,
-                    quantity,
-                })
-            }
-            Request::MaskWriteRegister {
-                address,
-                and_mask,
-                or_mask,
-            } => {
-                // Spec §6.16: result = (current AND and_mask) OR (or_mask AND NOT and_mask).
-                let current = self.read(Table::HoldingRegisters, address, 1)?;
-                let value = (current[0] & and_mask) | (or_mask & !and_mask);
-                self.write(Table::HoldingRegisters, address, &[value])
-                    .await?;
-                Ok(Response::MaskWrite {
-                    address,
-                    and_mask,
-                    or_mask,
-                })
-            }
-            Request::ReadWriteMultipleRegisters {
-                read_address,
-                read_quantity,
-                write_address,
-                values,
-                ..
-            } => {
-                // Spec §6.17: the write is performed before the read. Both ranges are checked
-                // before either happens.
-                self.cover(Table::HoldingRegisters, read_address, read_quantity)
-                    .map_err(|missing| {
-                        ExecError::new(
-                            Exception::IllegalDataAddress,
-                            format!(
-                                "holding_registers {missing} is not in map `{}`",
-                                self.map.name
-                            ),
-                        )
-                    })
-                    .or_else(|e| {
-                        if self.map.gaps == Gaps::Zero {
-                            Ok(Vec::new())
-                        } else {
-                            Err(e)
-                        }
-                    })?;
-                self.write(Table::HoldingRegisters, write_address, &be_words(values))
-                    .await?;
-                Ok(registers(
-                    fc::READ_WRITE_MULTIPLE_REGISTERS,
-                    self.read(Table::HoldingRegisters, read_address, read_quantity)?,
-                ))
-            }
-            _ => Err(ExecError::new(
-                Exception::IllegalFunction,
-                "not a data request",
+        tables::execute(self, request).await
+    }
+}
+
+impl TableAccess for UnitService {
+    fn read(&self, table: Table, address: u16, count: u16) -> Result<Vec<u16>, ExecError> {
+        self.read_table(table, address, count)
+    }
+
+    fn check_read(&self, table: Table, address: u16, count: u16) -> Result<(), ExecError> {
+        match self.cover(table, address, count) {
+            Ok(_) => Ok(()),
+            Err(_) if self.map.gaps == Gaps::Zero => Ok(()),
+            Err(missing) => Err(ExecError::new(
+                Exception::IllegalDataAddress,
+                format!(
+                    "{} {missing} is not in map `{}`",
+                    table.name(),
+                    self.map.name
+                ),
             )),
         }
+    }
+
+    async fn write(&self, table: Table, address: u16, words: &[u16]) -> Result<(), ExecError> {
+        self.write_table(table, address, words).await
     }
 }
 
