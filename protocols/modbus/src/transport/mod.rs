@@ -111,6 +111,48 @@ pub(crate) async fn unless_stopping<T>(
     }
 }
 
+/// What ended a wait for bytes.
+pub(crate) enum Wait {
+    /// Bytes were appended to the buffer.
+    Received,
+    /// `deadline` passed first.
+    Deadline,
+}
+
+/// Read what the peer sends next into `buf` (counted, and the idle deadline restarted), unless
+/// `deadline` passes or the front-end stops first. A closed or failed socket, or shutdown, ends
+/// the connection.
+pub(crate) async fn wait_for_bytes(
+    stream: &mut TcpStream,
+    buf: &mut Vec<u8>,
+    counters: &Counters,
+    deadlines: &mut Deadlines,
+    deadline: Option<Instant>,
+    stop: &mut watch::Receiver<bool>,
+) -> Result<Wait, Close> {
+    let mut chunk = [0u8; 4096];
+    loop {
+        tokio::select! {
+            r = tokio::io::AsyncReadExt::read(stream, &mut chunk) => match r {
+                Ok(0) => return Err(Close::Peer),
+                Ok(n) => {
+                    counters.bytes_in.add(n as u64);
+                    buf.extend_from_slice(chunk.get(..n).unwrap_or_default());
+                    deadlines.received();
+                    return Ok(Wait::Received);
+                }
+                Err(e) if transient(&e) => {}
+                Err(e) => {
+                    tracing::debug!(error = %e, "read failed");
+                    return Err(Close::Peer);
+                }
+            },
+            () = sleep_until(deadline) => return Ok(Wait::Deadline),
+            () = stopping(stop) => return Err(Close::Shutdown),
+        }
+    }
+}
+
 /// Sleep until `deadline`, or forever without one.
 pub(crate) async fn sleep_until(deadline: Option<Instant>) {
     match deadline {

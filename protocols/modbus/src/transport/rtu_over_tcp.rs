@@ -8,15 +8,14 @@ use std::net::SocketAddr;
 use std::sync::Arc;
 use std::time::Duration;
 
-use tokio::io::AsyncReadExt;
 use tokio::net::{TcpListener, TcpStream};
 use tokio::sync::watch;
 use tokio::time::Instant;
 
 use super::rtu::{answer, Verdict};
 use super::{
-    accept_loop, earliest, expired, sleep_until, stopping, unless_stopping, write_reply, Close,
-    Deadlines,
+    accept_loop, earliest, expired, unless_stopping, wait_for_bytes, write_reply, Close, Deadlines,
+    Wait,
 };
 use crate::config::{ConnectionLimits, RtuOverTcpConfig};
 use crate::frame::rtu::{self, Length, MAX_ADU};
@@ -70,7 +69,6 @@ async fn run<D: DataModel>(
     let counters = &server.state().counters;
     let peer_id = Peer::Tcp(peer);
     let mut buf: Vec<u8> = Vec::with_capacity(2 * MAX_ADU);
-    let mut chunk = [0u8; 4096];
     let mut deadlines = Deadlines::new(limits);
     let mut last_rx = Instant::now();
     loop {
@@ -119,26 +117,14 @@ async fn run<D: DataModel>(
         let next = deadlines.next();
         let silence_end = by_silence.then_some(last_rx + silence);
         let deadline = earliest(next.as_ref().map(|(t, _)| *t), silence_end);
-        tokio::select! {
-            r = stream.read(&mut chunk) => match r {
-                Ok(0) => return Close::Peer,
-                Ok(n) => {
-                    counters.bytes_in.add(n as u64);
-                    buf.extend_from_slice(chunk.get(..n).unwrap_or_default());
-                    deadlines.received();
-                    last_rx = Instant::now();
-                }
-                Err(e) if super::transient(&e) => {}
-                Err(e) => {
-                    tracing::debug!(error = %e, "read failed");
-                    return Close::Peer;
-                }
-            },
-            () = sleep_until(deadline) => {
+        match wait_for_bytes(stream, &mut buf, counters, &mut deadlines, deadline, stop).await {
+            Ok(Wait::Received) => last_rx = Instant::now(),
+            Ok(Wait::Deadline) => {
                 if silence_end.is_some_and(|s| Instant::now() >= s) {
                     // Silence ends the frame (Serial Line §2.5.1.1): whatever arrived is one.
                     let frame = std::mem::take(&mut buf);
-                    let Some(verdict) = unless_stopping(answer(server, &frame, &peer_id), stop).await
+                    let Some(verdict) =
+                        unless_stopping(answer(server, &frame, &peer_id), stop).await
                     else {
                         return Close::Shutdown;
                     };
@@ -157,7 +143,7 @@ async fn run<D: DataModel>(
                 }
                 return Close::Ours;
             }
-            () = stopping(stop) => return Close::Shutdown,
+            Err(close) => return close,
         }
     }
 }

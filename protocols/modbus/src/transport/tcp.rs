@@ -5,12 +5,11 @@ use std::future::Future;
 use std::net::SocketAddr;
 use std::sync::Arc;
 
-use tokio::io::AsyncReadExt;
 use tokio::net::{TcpListener, TcpStream};
 use tokio::sync::watch;
 
 use super::{
-    accept_loop, expired, sleep_until, stopping, unless_stopping, write_reply, Close, Deadlines,
+    accept_loop, expired, unless_stopping, wait_for_bytes, write_reply, Close, Deadlines, Wait,
 };
 use crate::config::{ConnectionLimits, TcpConfig};
 use crate::frame::tcp::{self, Decoded};
@@ -60,7 +59,6 @@ async fn run<D: DataModel>(
     let counters = &server.state().counters;
     let peer_id = Peer::Tcp(peer);
     let mut buf: Vec<u8> = Vec::with_capacity(2 * tcp::MAX_ADU);
-    let mut chunk = [0u8; 4096];
     let mut out = Vec::with_capacity(tcp::MAX_ADU);
     let mut deadlines = Deadlines::new(limits);
     loop {
@@ -114,27 +112,15 @@ async fn run<D: DataModel>(
         deadlines.framed(consumed, !buf.is_empty());
         let next = deadlines.next();
         let deadline = next.as_ref().map(|(t, _)| *t);
-        tokio::select! {
-            r = stream.read(&mut chunk) => match r {
-                Ok(0) => return Close::Peer,
-                Ok(n) => {
-                    counters.bytes_in.add(n as u64);
-                    buf.extend_from_slice(chunk.get(..n).unwrap_or_default());
-                    deadlines.received();
-                }
-                Err(e) if super::transient(&e) => {}
-                Err(e) => {
-                    tracing::debug!(error = %e, "read failed");
-                    return Close::Peer;
-                }
-            },
-            () = sleep_until(deadline) => {
+        match wait_for_bytes(stream, &mut buf, counters, &mut deadlines, deadline, stop).await {
+            Ok(Wait::Received) => {}
+            Ok(Wait::Deadline) => {
                 if let Some((_, which)) = next {
                     expired(counters, &which, &limits);
                 }
                 return Close::Ours;
             }
-            () = stopping(stop) => return Close::Shutdown,
+            Err(close) => return close,
         }
     }
 }
