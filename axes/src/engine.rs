@@ -502,6 +502,17 @@ impl Engine {
         self.slaves.get(slave).map(|s| &s.drive)
     }
 
+    /// A drive for its fieldbus ([`crate::runtime::Fieldbus`]): SDO and PDO access to its
+    /// dictionary between steps.
+    pub fn drive_mut(&mut self, slave: usize) -> Option<&mut Cia402Drive> {
+        self.slaves.get_mut(slave).map(|s| &mut s.drive)
+    }
+
+    /// Number of CiA 402 drives (slave numbers 0 …).
+    pub fn drive_count(&self) -> usize {
+        self.slaves.len()
+    }
+
     /// Digital inputs wired to axis signals follow them (last tick's levels), unless forced.
     /// Forced and unwired channels change only by command, so nothing else runs per tick.
     fn update_inputs(&mut self) {

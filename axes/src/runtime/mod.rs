@@ -237,6 +237,20 @@ pub type Condition = Box<dyn Fn(&Snapshot) -> bool + Send>;
 /// engine after every step, for as long as it returns `true`.
 pub type Observer = Box<dyn FnMut(&Engine) -> bool + Send>;
 
+/// A fieldbus served inside the servo tick ([`EngineHandle::add_fieldbus`]): a protocol whose
+/// slaves must see every tick and answer within it (CANopen SYNC, PDOs and SDOs on the engine's
+/// CiA 402 drives), rather than go through the command queue and the snapshots.
+///
+/// Both calls run on the servo thread, inside the tick: they must be short and must not block
+/// (exchange frames through lock-free or bounded queues; blocking handle calls are refused).
+pub trait Fieldbus: Send {
+    /// Before every step, and when an idle virtual runtime is poked
+    /// ([`EngineHandle::poke`]): take what arrived and apply it (SDO writes, RPDOs, NMT).
+    fn before_step(&mut self, engine: &mut Engine);
+    /// After every step: send what the step produced (TPDOs on SYNC, heartbeats, EMCY).
+    fn after_step(&mut self, engine: &mut Engine);
+}
+
 /// Names an installed [`Observer`] for [`EngineHandle::remove_observer`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
 pub struct ObserverId(u64);
@@ -495,6 +509,36 @@ impl EngineHandle {
             reply,
         })?;
         Ok(pending)
+    }
+
+    /// Install `fieldbus`: from the next tick on, the servo thread serves it before and after
+    /// every step, for as long as the runtime runs (a panic in it removes it). Queued like a
+    /// command.
+    pub fn submit_fieldbus(
+        &self,
+        fieldbus: Box<dyn Fieldbus>,
+    ) -> Result<Pending<(), CallError>, SubmitError> {
+        let (reply, pending) = reply_channel();
+        self.enqueue(Request::AddFieldbus { fieldbus, reply })?;
+        Ok(pending)
+    }
+
+    /// [`EngineHandle::submit_fieldbus`] and block until it is installed.
+    pub fn add_fieldbus(&self, fieldbus: impl Fieldbus + 'static) -> Result<(), CallError> {
+        if self.shared.on_servo_thread() {
+            return Err(CallError::OnServoThread);
+        }
+        self.submit_fieldbus(Box::new(fieldbus))?.wait()
+    }
+
+    /// Tell the servo thread that a fieldbus has input waiting. A virtual runtime, which does
+    /// not tick by itself, serves it at once at the current tick (so a master's SDO is answered
+    /// while time stands still); a paced one serves it at its next tick anyway, so the poke is
+    /// dropped when the queue is full.
+    pub fn poke(&self) {
+        if self.shared.clock == ClockMode::Virtual {
+            let _ = self.tx.try_send(Request::Poke);
+        }
     }
 
     /// Install `observer`: from the next tick on, the servo thread calls it with the engine right

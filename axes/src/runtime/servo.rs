@@ -9,8 +9,8 @@ use std::time::Duration;
 use arc_swap::ArcSwap;
 
 use super::{
-    AdvanceError, CallError, Clock, Condition, Observer, ObserverId, ReplySender, RuntimeOptions,
-    RuntimeStats, Shared, Until,
+    AdvanceError, CallError, Clock, Condition, Fieldbus, Observer, ObserverId, ReplySender,
+    RuntimeOptions, RuntimeStats, Shared, Until,
 };
 use crate::command::{Command, Reply};
 use crate::engine::Engine;
@@ -34,6 +34,12 @@ pub(super) enum Request {
         id: ObserverId,
         reply: ReplySender<bool, CallError>,
     },
+    AddFieldbus {
+        fieldbus: Box<dyn Fieldbus>,
+        reply: ReplySender<(), CallError>,
+    },
+    /// A fieldbus has input waiting: a virtual runtime serves it at the current tick.
+    Poke,
     /// Wakes a virtual servo thread blocked on the queue, so that it sees the stop flag.
     Wake,
 }
@@ -105,6 +111,13 @@ impl Schedule {
     }
 }
 
+/// Which side of a step a fieldbus is served on.
+#[derive(Clone, Copy)]
+enum Phase {
+    Input,
+    Output,
+}
+
 pub(super) struct Servo<C> {
     engine: Engine,
     rx: Receiver<Request>,
@@ -120,6 +133,8 @@ pub(super) struct Servo<C> {
     /// Called after every step, in installation order.
     observers: Vec<(ObserverId, Observer)>,
     next_observer: u64,
+    /// Served around every step, in installation order.
+    fieldbuses: Vec<Box<dyn Fieldbus>>,
 }
 
 /// Clears `running` when the servo thread ends, by return or by unwinding.
@@ -153,6 +168,7 @@ impl<C: Clock> Servo<C> {
             replies: Vec::with_capacity(options.max_commands_per_tick.min(4096)),
             observers: Vec::new(),
             next_observer: 1,
+            fieldbuses: Vec::new(),
         }
     }
 
@@ -203,6 +219,18 @@ impl<C: Clock> Servo<C> {
                 }
                 Request::Observe { observer, reply } => self.observe(observer, reply),
                 Request::RemoveObserver { id, reply } => self.remove_observer(id, reply),
+                Request::AddFieldbus { fieldbus, reply } => {
+                    self.fieldbuses.push(fieldbus);
+                    reply.send(Ok(()));
+                }
+                Request::Poke => {
+                    // Time stands still: what arrived is served at the current tick, and what
+                    // it changed is published.
+                    if !self.fieldbuses.is_empty() {
+                        self.serve_fieldbuses(Phase::Input);
+                        self.publish_snapshot();
+                    }
+                }
                 Request::Wake => {}
             }
         }
@@ -312,7 +340,12 @@ impl<C: Clock> Servo<C> {
                 }
                 Ok(Request::Observe { observer, reply }) => self.observe(observer, reply),
                 Ok(Request::RemoveObserver { id, reply }) => self.remove_observer(id, reply),
-                Ok(Request::Wake) => {}
+                Ok(Request::AddFieldbus { fieldbus, reply }) => {
+                    self.fieldbuses.push(fieldbus);
+                    reply.send(Ok(()));
+                }
+                // The next step serves it.
+                Ok(Request::Poke | Request::Wake) => {}
                 // Disconnected: the guard is gone, so the stop flag is set.
                 Err(TryRecvError::Empty | TryRecvError::Disconnected) => break,
             }
@@ -331,14 +364,34 @@ impl<C: Clock> Servo<C> {
 
     // ---- common ----------------------------------------------------------------------------
 
-    /// One engine step, its observers, its snapshot.
+    /// One engine step with its fieldbuses around it, its observers, its snapshot.
     fn step(&mut self) {
+        if !self.fieldbuses.is_empty() {
+            self.serve_fieldbuses(Phase::Input);
+        }
         self.engine.step();
+        if !self.fieldbuses.is_empty() {
+            self.serve_fieldbuses(Phase::Output);
+        }
         self.stats.ticks_run += 1;
         if !self.observers.is_empty() {
             self.notify_observers();
         }
         self.publish_snapshot();
+    }
+
+    fn serve_fieldbuses(&mut self, phase: Phase) {
+        let engine = &mut self.engine;
+        self.fieldbuses.retain_mut(|bus| {
+            // The fieldbus is the caller's code: a panic removes it, not the runtime. It may
+            // have left a slave's dictionary half-written, which a master sees as odd values,
+            // never as unsafety.
+            catch_unwind(AssertUnwindSafe(|| match phase {
+                Phase::Input => bus.before_step(engine),
+                Phase::Output => bus.after_step(engine),
+            }))
+            .is_ok()
+        });
     }
 
     fn notify_observers(&mut self) {

@@ -988,3 +988,104 @@ fn system_realtime_clock_ticks_and_keeps_consistent_stats() {
 fn system_scaled_clock_ticks_and_keeps_consistent_stats() {
     system_clock_smoke(ClockMode::Scaled(50.0), 200);
 }
+
+// ---- fieldbuses ------------------------------------------------------------------------------
+
+/// A fieldbus that logs its calls with the tick and, before each step, writes the controlword it
+/// is given to drive 0 (what an RPDO does).
+struct LoggingBus {
+    log: Arc<Mutex<Vec<(&'static str, u64)>>>,
+    controlword: Arc<Mutex<Option<u16>>>,
+    panic_at: Option<u64>,
+}
+
+impl Fieldbus for LoggingBus {
+    fn before_step(&mut self, engine: &mut Engine) {
+        self.log.lock().unwrap().push(("before", engine.tick()));
+        if self.panic_at == Some(engine.tick()) {
+            panic!("fieldbus test panic");
+        }
+        if let Some(cw) = self.controlword.lock().unwrap().take() {
+            let drive = engine.drive_mut(0).unwrap();
+            drive
+                .write(crate::cia402::obj::CONTROLWORD, 0, crate::od::Value::U16(cw))
+                .unwrap();
+        }
+    }
+
+    fn after_step(&mut self, engine: &mut Engine) {
+        self.log.lock().unwrap().push(("after", engine.tick()));
+    }
+}
+
+fn drive_runtime() -> (EngineHandle, RuntimeGuard) {
+    let config = EngineConfig {
+        axes: vec![AxisConfig::default()],
+        drives: vec![crate::cia402::DriveConfig::default()],
+        ..EngineConfig::default()
+    };
+    let engine = Engine::new(&config).unwrap();
+    Runtime::start(engine, RuntimeOptions::with_clock(ClockMode::Virtual)).unwrap()
+}
+
+#[allow(clippy::type_complexity)]
+fn logging_bus(
+    panic_at: Option<u64>,
+) -> (
+    LoggingBus,
+    Arc<Mutex<Vec<(&'static str, u64)>>>,
+    Arc<Mutex<Option<u16>>>,
+) {
+    let log = Arc::new(Mutex::new(Vec::new()));
+    let controlword = Arc::new(Mutex::new(None));
+    let bus = LoggingBus {
+        log: Arc::clone(&log),
+        controlword: Arc::clone(&controlword),
+        panic_at,
+    };
+    (bus, log, controlword)
+}
+
+#[test]
+fn a_fieldbus_is_served_around_every_step_and_its_writes_reach_the_drive() {
+    let (handle, _guard) = drive_runtime();
+    let (bus, log, controlword) = logging_bus(None);
+    handle.add_fieldbus(bus).unwrap();
+    handle.advance(2).unwrap();
+    assert_eq!(
+        *log.lock().unwrap(),
+        vec![("before", 0), ("after", 1), ("before", 1), ("after", 2)]
+    );
+    // Shutdown (6) then switch on (7): the drive walks the state machine on its next steps.
+    *controlword.lock().unwrap() = Some(0x06);
+    handle.advance(2).unwrap();
+    *controlword.lock().unwrap() = Some(0x07);
+    handle.advance(2).unwrap();
+    let sw = handle.snapshot().drives[0].statusword;
+    assert_eq!(sw & 0x6F, 0x23, "switched on, statusword {sw:#06x}");
+}
+
+#[test]
+fn a_poke_serves_input_on_a_virtual_clock_without_a_tick() {
+    let (handle, _guard) = drive_runtime();
+    let (bus, log, _) = logging_bus(None);
+    handle.add_fieldbus(bus).unwrap();
+    handle.poke();
+    // The poke is queued before this command, so it has been served when the reply comes.
+    handle.call(enable(0)).ok();
+    assert_eq!(*log.lock().unwrap(), vec![("before", 0)]);
+    assert_eq!(handle.snapshot().tick, 0);
+}
+
+#[test]
+fn a_panicking_fieldbus_is_removed_and_the_runtime_goes_on() {
+    let (handle, _guard) = drive_runtime();
+    let (bus, log, _) = logging_bus(Some(1));
+    handle.add_fieldbus(bus).unwrap();
+    handle.advance(3).unwrap();
+    assert_eq!(
+        *log.lock().unwrap(),
+        vec![("before", 0), ("after", 1), ("before", 1)]
+    );
+    assert_eq!(handle.snapshot().tick, 3);
+}
