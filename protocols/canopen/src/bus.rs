@@ -76,7 +76,11 @@ impl<D: Device> Bus<D> {
         let mut seen = Vec::new();
         for k in 0..self.nodes.len() {
             let now = self.now;
-            let sent = self.nodes.get_mut(k).map(|n| n.start(now)).unwrap_or_default();
+            let sent = self
+                .nodes
+                .get_mut(k)
+                .map(|n| n.start(now))
+                .unwrap_or_default();
             self.spread(Some(k), sent, &mut seen);
         }
         seen
@@ -115,20 +119,19 @@ impl<D: Device> Bus<D> {
     pub fn tick(&mut self, seen: &mut Vec<CanFrame>) {
         for k in 0..self.nodes.len() {
             let now = self.now;
-            let mut out = std::mem::take(&mut self.scratch);
+            let mut out = Vec::new();
             if let Some(n) = self.nodes.get_mut(k) {
                 n.on_tick_into(now, &mut out);
             }
-            let frames: Vec<CanFrame> = out.drain(..).collect();
-            self.scratch = out;
-            self.spread(Some(k), frames, seen);
+            self.spread(Some(k), out, seen);
         }
     }
 
     /// Deliver `frames` sent by `from` (None: the master) to everyone else, then what those
     /// deliveries caused, in order.
     fn spread(&mut self, from: Option<usize>, frames: Vec<CanFrame>, seen: &mut Vec<CanFrame>) {
-        let mut queue: VecDeque<(Option<usize>, CanFrame)> = frames.into_iter().map(|f| (from, f)).collect();
+        let mut queue: VecDeque<(Option<usize>, CanFrame)> =
+            frames.into_iter().map(|f| (from, f)).collect();
         let mut routed = 0;
         let mut out = std::mem::take(&mut self.scratch);
         while let Some((sender, frame)) = queue.pop_front() {
@@ -164,14 +167,21 @@ pub fn sample_dictionary() -> ObjectDictionary {
     let e = EntryDef::new;
     let table = [
         e(0x2000, 0, "Parameter", Rw, Value::U32(0)).range(Value::U32(0), Value::U32(1000)),
-        e(0x2001, 0, "Signed parameter", Rw, Value::I16(0)).range(Value::I16(-100), Value::I16(100)),
+        e(0x2001, 0, "Signed parameter", Rw, Value::I16(0))
+            .range(Value::I16(-100), Value::I16(100)),
         e(0x2002, 0, "Command", Wo, Value::U8(0)),
         e(0x2003, 0, "Text", Rw, Value::String(String::new())),
         e(0x2004, 0, "Blob", Rw, Value::Bytes(Vec::new())).data_type(DataType::Domain),
         e(0x2005, 0, "Input", Ro, Value::U16(0)).pdo(),
         e(0x2006, 0, "Output", Rww, Value::I32(0)).pdo(),
         e(0x2007, 0, "Small output", Rww, Value::U8(0)).pdo(),
-        e(0x2008, 0, "Firmware", Const, Value::String("mcemu sample firmware 1.0".into())),
+        e(
+            0x2008,
+            0,
+            "Firmware",
+            Const,
+            Value::String("mcemu sample firmware 1.0".into()),
+        ),
         e(0x2009, 0, "Process value", Rwr, Value::U32(0)).pdo(),
         e(0x200A, 0, "Wide", Rw, Value::U64(0)).pdo(),
         e(0x200B, 0, "Array: count", Const, Value::U8(2)),

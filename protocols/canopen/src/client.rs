@@ -73,19 +73,30 @@ impl SdoClient {
             .ok_or(ClientError::NoResponse)?;
         let r = reply.padded();
         if r[0] == 0x80 {
-            return Err(ClientError::Abort(SdoAbort(u32::from_le_bytes([r[4], r[5], r[6], r[7]]))));
+            return Err(ClientError::Abort(SdoAbort(u32::from_le_bytes([
+                r[4], r[5], r[6], r[7],
+            ]))));
         }
         Ok(r)
     }
 
     /// Expedited or segmented upload.
-    pub fn upload<D: Device>(&self, bus: &mut Bus<D>, index: u16, sub: u8) -> Result<Vec<u8>, ClientError> {
+    pub fn upload<D: Device>(
+        &self,
+        bus: &mut Bus<D>,
+        index: u16,
+        sub: u8,
+    ) -> Result<Vec<u8>, ClientError> {
         let r = self.request(bus, mux(0x40, index, sub, [0; 4]))?;
         if r[0] & 0xE0 != 0x40 {
             return Err(ClientError::Protocol(frame(self.tx(), r)));
         }
         if r[0] & 0x02 != 0 {
-            let n = if r[0] & 0x01 != 0 { 4 - usize::from((r[0] >> 2) & 3) } else { 4 };
+            let n = if r[0] & 0x01 != 0 {
+                4 - usize::from((r[0] >> 2) & 3)
+            } else {
+                4
+            };
             return Ok(r.get(4..4 + n).unwrap_or_default().to_vec());
         }
         let mut data = Vec::new();
@@ -105,7 +116,13 @@ impl SdoClient {
     }
 
     /// Expedited (≤ 4 bytes) or segmented download.
-    pub fn download<D: Device>(&self, bus: &mut Bus<D>, index: u16, sub: u8, data: &[u8]) -> Result<(), ClientError> {
+    pub fn download<D: Device>(
+        &self,
+        bus: &mut Bus<D>,
+        index: u16,
+        sub: u8,
+        data: &[u8],
+    ) -> Result<(), ClientError> {
         if (1..=4).contains(&data.len()) {
             let mut tail = [0u8; 4];
             for (slot, b) in tail.iter_mut().zip(data) {
@@ -113,7 +130,11 @@ impl SdoClient {
             }
             let n = (4 - data.len()) as u8;
             let r = self.request(bus, mux(0x23 | (n << 2), index, sub, tail))?;
-            return if r[0] == 0x60 { Ok(()) } else { Err(ClientError::Protocol(frame(self.tx(), r))) };
+            return if r[0] == 0x60 {
+                Ok(())
+            } else {
+                Err(ClientError::Protocol(frame(self.tx(), r)))
+            };
         }
         let size = (data.len() as u32).to_le_bytes();
         let r = self.request(bus, mux(0x21, index, sub, size))?;
@@ -124,7 +145,11 @@ impl SdoClient {
         let mut chunks = data.chunks(7).peekable();
         if data.is_empty() {
             let r = self.request(bus, [0x0F, 0, 0, 0, 0, 0, 0, 0])?;
-            return if r[0] == 0x20 { Ok(()) } else { Err(ClientError::Protocol(frame(self.tx(), r))) };
+            return if r[0] == 0x20 {
+                Ok(())
+            } else {
+                Err(ClientError::Protocol(frame(self.tx(), r)))
+            };
         }
         while let Some(chunk) = chunks.next() {
             let last = chunks.peek().is_none();
@@ -196,13 +221,20 @@ impl SdoClient {
                 bus.send_into(frame(self.rx(), d), &mut seen);
             }
             skipped_once = true;
+            if !seen.iter().any(|f| f.id() == self.tx()) {
+                // The end of the sub-block was lost: the server acknowledges after a pause.
+                let until = bus.now() + Duration::from_millis(200);
+                seen.extend(bus.advance(until, Duration::from_millis(10)));
+            }
             let reply = seen
                 .iter()
                 .find(|f| f.id() == self.tx())
                 .ok_or(ClientError::NoResponse)?
                 .padded();
             if reply[0] == 0x80 {
-                return Err(ClientError::Abort(SdoAbort(u32::from_le_bytes([reply[4], reply[5], reply[6], reply[7]]))));
+                return Err(ClientError::Abort(SdoAbort(u32::from_le_bytes([
+                    reply[4], reply[5], reply[6], reply[7],
+                ]))));
             }
             if reply[0] != 0xA2 {
                 return Err(ClientError::Protocol(frame(self.tx(), reply)));
@@ -228,12 +260,22 @@ impl SdoClient {
     }
 
     /// Block upload with CRC check; `pst` is the protocol switch threshold.
-    pub fn block_upload<D: Device>(&self, bus: &mut Bus<D>, index: u16, sub: u8, pst: u8) -> Result<Vec<u8>, ClientError> {
+    pub fn block_upload<D: Device>(
+        &self,
+        bus: &mut Bus<D>,
+        index: u16,
+        sub: u8,
+        pst: u8,
+    ) -> Result<Vec<u8>, ClientError> {
         let r = self.request(bus, mux(0xA4, index, sub, [self.block_size, pst, 0, 0]))?;
         if r[0] & 0xE0 == 0x40 {
             // The server switched to a normal upload.
             if r[0] & 0x02 != 0 {
-                let n = if r[0] & 0x01 != 0 { 4 - usize::from((r[0] >> 2) & 3) } else { 4 };
+                let n = if r[0] & 0x01 != 0 {
+                    4 - usize::from((r[0] >> 2) & 3)
+                } else {
+                    4
+                };
                 return Ok(r.get(4..4 + n).unwrap_or_default().to_vec());
             }
             let mut data = Vec::new();
@@ -264,7 +306,10 @@ impl SdoClient {
                     done |= d[0] & 0x80 != 0;
                 }
             }
-            let reply = bus.send(frame(self.rx(), [0xA2, ackseq, self.block_size, 0, 0, 0, 0, 0]));
+            let reply = bus.send(frame(
+                self.rx(),
+                [0xA2, ackseq, self.block_size, 0, 0, 0, 0, 0],
+            ));
             if done {
                 let end = reply
                     .iter()
@@ -277,7 +322,10 @@ impl SdoClient {
                 let unused = usize::from((end[0] >> 2) & 7);
                 data.truncate(data.len().saturating_sub(unused));
                 if crc16(&data) != u16::from_le_bytes([end[1], end[2]]) {
-                    let _ = bus.send(frame(self.rx(), mux(0x80, index, sub, SdoAbort::CRC.0.to_le_bytes())));
+                    let _ = bus.send(frame(
+                        self.rx(),
+                        mux(0x80, index, sub, SdoAbort::CRC.0.to_le_bytes()),
+                    ));
                     return Err(ClientError::Abort(SdoAbort::CRC));
                 }
                 bus.send(frame(self.rx(), [0xA1, 0, 0, 0, 0, 0, 0, 0]));

@@ -62,14 +62,23 @@ impl Emcy {
 
     /// A new error: 0x1001 and 0x1003 updated and an EMCY queued. `false` if the code was
     /// already active (no repeated EMCY).
-    pub(crate) fn raise(&mut self, od: &mut ObjectDictionary, code: u16, bits: u8, info: [u8; 5]) -> bool {
+    pub(crate) fn raise(
+        &mut self,
+        od: &mut ObjectDictionary,
+        code: u16,
+        bits: u8,
+        info: [u8; 5],
+    ) -> bool {
         if code == code::RESET || self.is_active(code) {
             return false;
         }
         self.active.push((code, bits));
         let reg = self.register();
         set_uint(od, idx::ERROR_REGISTER, 0, u64::from(reg));
-        push_history(od, u32::from(code) | u32::from(u16::from_le_bytes([info[0], info[1]])) << 16);
+        push_history(
+            od,
+            u32::from(code) | u32::from(u16::from_le_bytes([info[0], info[1]])) << 16,
+        );
         let c = code.to_le_bytes();
         self.enqueue([c[0], c[1], reg, info[0], info[1], info[2], info[3], info[4]]);
         true
@@ -106,14 +115,22 @@ impl Emcy {
 
     /// Send what the inhibit time (0x1015, 100 µs units) allows; `allowed` is false in states
     /// without EMCY, where queued messages are dropped (the history keeps them).
-    pub(crate) fn flush(&mut self, od: &ObjectDictionary, now: Duration, allowed: bool, out: &mut Vec<CanFrame>) {
+    pub(crate) fn flush(
+        &mut self,
+        od: &ObjectDictionary,
+        now: Duration,
+        allowed: bool,
+        out: &mut Vec<CanFrame>,
+    ) {
         let cob = get_u32(od, idx::COB_ID_EMCY, 0).unwrap_or(0x8000_0000);
         if !allowed || cob & 0x8000_0000 != 0 {
             self.dropped += self.queue.len() as u64;
             self.queue.clear();
             return;
         }
-        let inhibit = Duration::from_micros(100 * u64::from(crate::device::get_u16(od, idx::EMCY_INHIBIT, 0).unwrap_or(0)));
+        let inhibit = Duration::from_micros(
+            100 * u64::from(crate::device::get_u16(od, idx::EMCY_INHIBIT, 0).unwrap_or(0)),
+        );
         while now >= self.next_allowed {
             let Some(frame) = self.queue.pop_front() else {
                 break;
@@ -143,7 +160,12 @@ fn push_history(od: &mut ObjectDictionary, value: u32) {
     }
     set_uint(od, idx::ERROR_HISTORY, 1, u64::from(value));
     let count = get_u8(od, idx::ERROR_HISTORY, 0).unwrap_or(0);
-    set_uint(od, idx::ERROR_HISTORY, 0, u64::from(count.saturating_add(1).min(capacity)));
+    set_uint(
+        od,
+        idx::ERROR_HISTORY,
+        0,
+        u64::from(count.saturating_add(1).min(capacity)),
+    );
 }
 
 /// 0x1003:00 = 0 (CiA 301 §7.5.2.4: writing 0 deletes the history).

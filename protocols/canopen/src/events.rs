@@ -16,7 +16,10 @@ pub enum LossCause {
 /// [`Node::poll_event`](crate::Node::poll_event) after each call.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum NodeEvent {
-    NmtStateChanged { from: NmtState, to: NmtState },
+    NmtStateChanged {
+        from: NmtState,
+        to: NmtState,
+    },
     /// NMT reset node: the application resets its own state (the drive to power-on); the
     /// node has already reset the application area of the dictionary to power-on values.
     ResetNode,
@@ -24,26 +27,53 @@ pub enum NodeEvent {
     ResetCommunication,
     /// A SYNC was consumed (Pre-operational or Operational); synchronous RPDOs were applied
     /// just before this event.
-    Sync { counter: Option<u8> },
+    Sync {
+        counter: Option<u8>,
+    },
     /// RPDO `pdo` (0-based: 0x1400 + pdo) wrote its mapped objects.
-    RpdoReceived { pdo: u16 },
+    RpdoReceived {
+        pdo: u16,
+    },
     /// An SDO download stored a value.
-    ObjectWritten { index: u16, subindex: u8 },
+    ObjectWritten {
+        index: u16,
+        subindex: u8,
+    },
     /// The master (a heartbeat producer of 0x1016, or the guarding master) is gone. The node
     /// has sent EMCY 0x8130 and applied 0x1029:01; the CiA 402 binding calls the drive's
     /// `connection_lost` (0x6007).
-    MasterLost { node_id: Option<u8>, cause: LossCause },
-    MasterRecovered { node_id: Option<u8>, cause: LossCause },
+    MasterLost {
+        node_id: Option<u8>,
+        cause: LossCause,
+    },
+    MasterRecovered {
+        node_id: Option<u8>,
+        cause: LossCause,
+    },
     /// A monitored node sent its boot-up message.
-    RemoteBootUp { node_id: u8 },
+    RemoteBootUp {
+        node_id: u8,
+    },
     /// 0x1010 "save": write `image` (the whole new parameter image) atomically, then call
     /// [`Node::finish_persist`](crate::Node::finish_persist).
-    StoreRequested { group: ParameterGroup, image: Vec<u8> },
+    StoreRequested {
+        group: ParameterGroup,
+        image: Vec<u8>,
+    },
     /// 0x1011 "load": write `image` (the stored image without `group`) atomically, then call
     /// `finish_persist`; the defaults apply from the next reset.
-    RestoreRequested { group: ParameterGroup, image: Vec<u8> },
+    RestoreRequested {
+        group: ParameterGroup,
+        image: Vec<u8>,
+    },
     /// LSS store configuration: persist the node id and bit timing.
-    LssStoreRequested { node_id: u8, bit_timing: u8 },
+    LssStoreRequested {
+        node_id: u8,
+        bit_timing: u8,
+    },
     /// LSS activate bit timing: switch the interface's bit rate after the delay.
-    BitTimingActivated { table_index: u8, delay_ms: u16 },
+    BitTimingActivated {
+        table_index: u8,
+        delay_ms: u16,
+    },
 }

@@ -142,10 +142,16 @@ mod tests {
     #[test]
     fn construction_refuses_long_data_and_wide_ids() {
         assert_eq!(CanFrame::new(0x123, &[0; 9]), Err(FrameError::TooLong(9)));
-        assert_eq!(CanFrame::new(0x800, &[]), Err(FrameError::IdTooLarge(0x800)));
+        assert_eq!(
+            CanFrame::new(0x800, &[]),
+            Err(FrameError::IdTooLarge(0x800))
+        );
         assert_eq!(CanFrame::remote(0x701, 9), Err(FrameError::TooLong(9)));
         let f = CanFrame::new(0x701, &[0x7F]).unwrap();
-        assert_eq!((f.id(), f.data(), f.len(), f.is_rtr()), (0x701, &[0x7F][..], 1, false));
+        assert_eq!(
+            (f.id(), f.data(), f.len(), f.is_rtr()),
+            (0x701, &[0x7F][..], 1, false)
+        );
         assert_eq!(f.to_string(), "701#7F");
         let r = CanFrame::remote(0x701, 1).unwrap();
         assert_eq!((r.data(), r.len(), r.is_rtr()), (&[][..], 1, true));

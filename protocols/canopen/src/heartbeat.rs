@@ -17,7 +17,12 @@ pub(crate) struct Producer {
 
 impl Producer {
     /// Read 0x1017; `restart_at` is when the next heartbeat goes out (None: one period on).
-    pub(crate) fn load(&mut self, od: &ObjectDictionary, now: Duration, restart_at: Option<Duration>) {
+    pub(crate) fn load(
+        &mut self,
+        od: &ObjectDictionary,
+        now: Duration,
+        restart_at: Option<Duration>,
+    ) {
         let ms = get_u16(od, idx::PRODUCER_HEARTBEAT, 0).unwrap_or(0);
         self.period = Duration::from_millis(u64::from(ms));
         self.next = (ms > 0).then(|| restart_at.unwrap_or(now + self.period));
@@ -42,7 +47,11 @@ impl Producer {
         match self.next {
             Some(next) if now >= next => {
                 let following = next + self.period;
-                self.next = Some(if following > now { following } else { now + self.period });
+                self.next = Some(if following > now {
+                    following
+                } else {
+                    now + self.period
+                });
                 true
             }
             _ => false,
@@ -123,7 +132,12 @@ impl Consumers {
     }
 
     /// A heartbeat or boot-up message from `node` with `state`.
-    pub(crate) fn on_heartbeat(&mut self, node: u8, state: u8, now: Duration) -> Option<ConsumerEvent> {
+    pub(crate) fn on_heartbeat(
+        &mut self,
+        node: u8,
+        state: u8,
+        now: Duration,
+    ) -> Option<ConsumerEvent> {
         let m = self.list.iter_mut().find(|m| m.node == node)?;
         m.deadline = Some(now + m.timeout);
         if std::mem::take(&mut m.lost) {

@@ -41,8 +41,14 @@ pub enum LssMode {
 pub(crate) enum LssEffect {
     /// Configuration → waiting: an unconfigured node takes its new node id now.
     BackToWaiting,
-    ActivateBitTiming { table_index: u8, delay_ms: u16 },
-    Store { node_id: u8, bit_timing: u8 },
+    ActivateBitTiming {
+        table_index: u8,
+        delay_ms: u16,
+    },
+    Store {
+        node_id: u8,
+        bit_timing: u8,
+    },
 }
 
 #[derive(Debug, Default)]
@@ -89,7 +95,8 @@ impl LssSlave {
             cs::SWITCH_GLOBAL => match d[1] {
                 0 => {
                     let was = std::mem::take(&mut self.mode);
-                    let effect = (was == LssMode::Configuration).then_some(LssEffect::BackToWaiting);
+                    let effect =
+                        (was == LssMode::Configuration).then_some(LssEffect::BackToWaiting);
                     (None, effect)
                 }
                 1 => {
@@ -150,9 +157,10 @@ impl LssSlave {
                 (Some([c, v[0], v[1], v[2], v[3], 0, 0, 0]), None)
             }
             cs::INQUIRE_NODE_ID if config => (reply(cs::INQUIRE_NODE_ID, active_id, 0), None),
-            c @ cs::IDENTIFY_VENDOR..=cs::IDENTIFY_SERIAL_HIGH => {
-                (self.identify_step(c - cs::IDENTIFY_VENDOR, value, identity), None)
-            }
+            c @ cs::IDENTIFY_VENDOR..=cs::IDENTIFY_SERIAL_HIGH => (
+                self.identify_step(c - cs::IDENTIFY_VENDOR, value, identity),
+                None,
+            ),
             cs::IDENTIFY_NON_CONFIGURED if active_id == UNCONFIGURED => {
                 (reply(cs::NON_CONFIGURED, 0, 0), None)
             }
@@ -184,7 +192,13 @@ impl LssSlave {
     }
 
     /// LSS fastscan (CiA 305 §6.7): only an unconfigured slave in waiting state takes part.
-    fn fastscan_step(&mut self, d: &[u8; 8], value: u32, id: [u32; 4], active_id: u8) -> Option<[u8; 8]> {
+    fn fastscan_step(
+        &mut self,
+        d: &[u8; 8],
+        value: u32,
+        id: [u32; 4],
+        active_id: u8,
+    ) -> Option<[u8; 8]> {
         let (bitcheck, sub, next) = (d[5], d[6], d[7]);
         let answer = Some([cs::IDENTIFIED, 0, 0, 0, 0, 0, 0, 0]);
         if self.mode != LssMode::Waiting || active_id != UNCONFIGURED {

@@ -126,7 +126,10 @@ mod tests {
             (Initialising, [false; 6]),
         ];
         for (state, allowed) in rows {
-            for (service, want) in [Nmt, ErrorControl, Sdo, Sync, Emcy, Pdo].into_iter().zip(allowed) {
+            for (service, want) in [Nmt, ErrorControl, Sdo, Sync, Emcy, Pdo]
+                .into_iter()
+                .zip(allowed)
+            {
                 assert_eq!(state.allows(service), want, "{state:?} {service:?}");
             }
         }
@@ -135,7 +138,10 @@ mod tests {
     #[test]
     fn commands_parse_for_own_id_and_broadcast_only() {
         assert_eq!(NmtCommand::parse(&[1, 0], 5), Some(NmtCommand::Start));
-        assert_eq!(NmtCommand::parse(&[0x81, 5], 5), Some(NmtCommand::ResetNode));
+        assert_eq!(
+            NmtCommand::parse(&[0x81, 5], 5),
+            Some(NmtCommand::ResetNode)
+        );
         assert_eq!(NmtCommand::parse(&[1, 6], 5), None);
         assert_eq!(NmtCommand::parse(&[3, 0], 5), None);
         assert_eq!(NmtCommand::parse(&[1], 5), None);

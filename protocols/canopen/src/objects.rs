@@ -156,7 +156,13 @@ pub fn communication_objects(config: &NodeConfig, node_id: u8) -> Vec<EntryDef> 
     let id = u32::from(node_id & 0x7F);
     let e = EntryDef::new;
     let mut t = vec![
-        e(DEVICE_TYPE, 0, "Device type", Const, U32(config.device_type)),
+        e(
+            DEVICE_TYPE,
+            0,
+            "Device type",
+            Const,
+            U32(config.device_type),
+        ),
         e(ERROR_REGISTER, 0, "Error register", Ro, U8(0)).pdo(),
         e(ERROR_HISTORY, 0, "Number of errors", Rw, U8(0)),
     ];
@@ -166,7 +172,13 @@ pub fn communication_objects(config: &NodeConfig, node_id: u8) -> Vec<EntryDef> 
     t.extend([
         e(COB_ID_SYNC, 0, "COB-ID SYNC", Rw, U32(0x80)),
         e(SYNC_PERIOD, 0, "Communication cycle period", Rw, U32(0)),
-        e(DEVICE_NAME, 0, "Manufacturer device name", Const, S(config.device_name.clone())),
+        e(
+            DEVICE_NAME,
+            0,
+            "Manufacturer device name",
+            Const,
+            S(config.device_name.clone()),
+        ),
         e(GUARD_TIME, 0, "Guard time", Rw, U16(0)),
         e(LIFE_TIME_FACTOR, 0, "Life time factor", Rw, U8(0)),
         e(STORE, 0, "Highest sub-index supported", Const, U8(3)),
@@ -175,34 +187,100 @@ pub fn communication_objects(config: &NodeConfig, node_id: u8) -> Vec<EntryDef> 
         e(STORE, 3, "Save application parameters", Rw, U32(1)),
         e(RESTORE, 0, "Highest sub-index supported", Const, U8(3)),
         e(RESTORE, 1, "Restore all default parameters", Rw, U32(1)),
-        e(RESTORE, 2, "Restore communication default parameters", Rw, U32(1)),
-        e(RESTORE, 3, "Restore application default parameters", Rw, U32(1)),
+        e(
+            RESTORE,
+            2,
+            "Restore communication default parameters",
+            Rw,
+            U32(1),
+        ),
+        e(
+            RESTORE,
+            3,
+            "Restore application default parameters",
+            Rw,
+            U32(1),
+        ),
         e(COB_ID_EMCY, 0, "COB-ID EMCY", Rw, U32(0x80 + id)),
         e(EMCY_INHIBIT, 0, "Inhibit time EMCY", Rw, U16(0)),
-        e(CONSUMER_HEARTBEAT, 0, "Highest sub-index supported", Const, U8(config.heartbeat_consumers)),
+        e(
+            CONSUMER_HEARTBEAT,
+            0,
+            "Highest sub-index supported",
+            Const,
+            U8(config.heartbeat_consumers),
+        ),
     ]);
     for n in 1..=config.heartbeat_consumers {
-        t.push(e(CONSUMER_HEARTBEAT, n, "Consumer heartbeat time", Rw, U32(0)));
+        t.push(e(
+            CONSUMER_HEARTBEAT,
+            n,
+            "Consumer heartbeat time",
+            Rw,
+            U32(0),
+        ));
     }
     let ident = config.identity;
     t.extend([
-        e(PRODUCER_HEARTBEAT, 0, "Producer heartbeat time", Rw, U16(config.heartbeat_ms)),
+        e(
+            PRODUCER_HEARTBEAT,
+            0,
+            "Producer heartbeat time",
+            Rw,
+            U16(config.heartbeat_ms),
+        ),
         e(IDENTITY, 0, "Highest sub-index supported", Const, U8(4)),
         e(IDENTITY, 1, "Vendor-ID", Ro, U32(ident.vendor_id)),
         e(IDENTITY, 2, "Product code", Ro, U32(ident.product_code)),
         e(IDENTITY, 3, "Revision number", Ro, U32(ident.revision)),
         e(IDENTITY, 4, "Serial number", Ro, U32(ident.serial)),
-        e(SYNC_OVERFLOW, 0, "Synchronous counter overflow value", Rw, U8(0)),
-        e(ERROR_BEHAVIOUR, 0, "Highest sub-index supported", Const, U8(1)),
-        e(ERROR_BEHAVIOUR, 1, "Communication error", Rw, U8(config.error_behaviour.code())),
+        e(
+            SYNC_OVERFLOW,
+            0,
+            "Synchronous counter overflow value",
+            Rw,
+            U8(0),
+        ),
+        e(
+            ERROR_BEHAVIOUR,
+            0,
+            "Highest sub-index supported",
+            Const,
+            U8(1),
+        ),
+        e(
+            ERROR_BEHAVIOUR,
+            1,
+            "Communication error",
+            Rw,
+            U8(config.error_behaviour.code()),
+        ),
         e(SDO_SERVER, 0, "Highest sub-index supported", Const, U8(2)),
-        e(SDO_SERVER, 1, "COB-ID client to server", Ro, U32(0x600 + id)),
-        e(SDO_SERVER, 2, "COB-ID server to client", Ro, U32(0x580 + id)),
+        e(
+            SDO_SERVER,
+            1,
+            "COB-ID client to server",
+            Ro,
+            U32(0x600 + id),
+        ),
+        e(
+            SDO_SERVER,
+            2,
+            "COB-ID server to client",
+            Ro,
+            U32(0x580 + id),
+        ),
     ]);
     for n in 0..config.rpdos.min(idx::PDO_RANGE) {
         let cob = predefined_pdo_cob(0x200, n, id);
         t.extend([
-            e(RPDO_COMM + n, 0, "Highest sub-index supported", Const, U8(5)),
+            e(
+                RPDO_COMM + n,
+                0,
+                "Highest sub-index supported",
+                Const,
+                U8(5),
+            ),
             e(RPDO_COMM + n, 1, "COB-ID used by RPDO", Rw, U32(cob)),
             e(RPDO_COMM + n, 2, "Transmission type", Rw, U8(254)),
             e(RPDO_COMM + n, 5, "Event-timer", Rw, U16(0)),
@@ -215,7 +293,13 @@ pub fn communication_objects(config: &NodeConfig, node_id: u8) -> Vec<EntryDef> 
     for n in 0..config.tpdos.min(idx::PDO_RANGE) {
         let cob = predefined_pdo_cob(0x180, n, id);
         t.extend([
-            e(TPDO_COMM + n, 0, "Highest sub-index supported", Const, U8(6)),
+            e(
+                TPDO_COMM + n,
+                0,
+                "Highest sub-index supported",
+                Const,
+                U8(6),
+            ),
             e(TPDO_COMM + n, 1, "COB-ID used by TPDO", Rw, U32(cob)),
             e(TPDO_COMM + n, 2, "Transmission type", Rw, U8(254)),
             e(TPDO_COMM + n, 3, "Inhibit time", Rw, U16(0)),

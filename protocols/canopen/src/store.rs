@@ -53,7 +53,10 @@ impl ParameterGroup {
 /// (`rww`/`rwr`), read-only values, the error history and the store/restore commands are not.
 pub fn storable(entry: &Entry) -> bool {
     entry.def.access == Access::Rw
-        && !matches!(entry.def.index, idx::ERROR_HISTORY | idx::STORE | idx::RESTORE)
+        && !matches!(
+            entry.def.index,
+            idx::ERROR_HISTORY | idx::STORE | idx::RESTORE
+        )
 }
 
 /// One stored value.
@@ -73,7 +76,9 @@ pub enum ImageError {
     Version(u8),
     #[error("parameter image is truncated")]
     Truncated,
-    #[error("parameter image checksum mismatch (stored {stored:#010x}, computed {computed:#010x})")]
+    #[error(
+        "parameter image checksum mismatch (stored {stored:#010x}, computed {computed:#010x})"
+    )]
     Checksum { stored: u32, computed: u32 },
     #[error("parameter image entry {index:#06x}:{subindex} is invalid")]
     Entry { index: u16, subindex: u8 },
@@ -132,7 +137,11 @@ pub fn remove(previous: Option<&[u8]>, group: ParameterGroup) -> Vec<u8> {
 }
 
 /// Apply the entries of `group` in `image` to the dictionary (device access).
-pub fn load(od: &mut ObjectDictionary, image: &[u8], group: ParameterGroup) -> Result<LoadReport, ImageError> {
+pub fn load(
+    od: &mut ObjectDictionary,
+    image: &[u8],
+    group: ParameterGroup,
+) -> Result<LoadReport, ImageError> {
     let mut report = LoadReport::default();
     for e in decode(image)? {
         if !group.contains(e.index) {
@@ -185,7 +194,9 @@ pub fn decode(image: &[u8]) -> Result<Vec<StoredEntry>, ImageError> {
     if stored != computed {
         return Err(ImageError::Checksum { stored, computed });
     }
-    let mut r = Reader { rest: content.get(8..).unwrap_or_default() };
+    let mut r = Reader {
+        rest: content.get(8..).unwrap_or_default(),
+    };
     let version = r.take(1)?.first().copied().unwrap_or(0);
     if version != VERSION {
         return Err(ImageError::Version(version));
@@ -201,7 +212,11 @@ pub fn decode(image: &[u8]) -> Result<Vec<StoredEntry>, ImageError> {
         let bad = ImageError::Entry { index, subindex };
         let data_type = DataType::from_code(code).ok_or(bad.clone())?;
         let value = Value::from_le_bytes(data_type, bytes).map_err(|_| bad)?;
-        out.push(StoredEntry { index, subindex, value });
+        out.push(StoredEntry {
+            index,
+            subindex,
+            value,
+        });
     }
     if !r.rest.is_empty() {
         return Err(ImageError::Truncated);
@@ -234,7 +249,11 @@ pub fn crc32(data: &[u8]) -> u32 {
     for &b in data {
         crc ^= u32::from(b);
         for _ in 0..8 {
-            crc = if crc & 1 != 0 { (crc >> 1) ^ 0xEDB8_8320 } else { crc >> 1 };
+            crc = if crc & 1 != 0 {
+                (crc >> 1) ^ 0xEDB8_8320
+            } else {
+                crc >> 1
+            };
         }
     }
     !crc
@@ -268,7 +287,13 @@ mod tests {
         assert_eq!(crc32(b"123456789"), 0xCBF4_3926);
         let mut dst = od();
         let report = load(&mut dst, &image, ParameterGroup::Communication).unwrap();
-        assert_eq!(report, LoadReport { applied: 1, skipped: 0 });
+        assert_eq!(
+            report,
+            LoadReport {
+                applied: 1,
+                skipped: 0
+            }
+        );
         assert_eq!(dst.get(0x1017, 0), Some(&Value::U16(100)));
         assert_eq!(dst.get(0x2000, 0), Some(&Value::F32(1.0)));
         load(&mut dst, &image, ParameterGroup::All).unwrap();
@@ -295,8 +320,16 @@ mod tests {
         a.write(0x2000, 0, Value::F32(4.0)).unwrap();
         let merged = merge(Some(&all), &a, ParameterGroup::Communication);
         let entries = decode(&merged).unwrap();
-        assert!(entries.contains(&StoredEntry { index: 0x1017, subindex: 0, value: Value::U16(7) }));
-        assert!(entries.contains(&StoredEntry { index: 0x2000, subindex: 0, value: Value::F32(3.0) }));
+        assert!(entries.contains(&StoredEntry {
+            index: 0x1017,
+            subindex: 0,
+            value: Value::U16(7)
+        }));
+        assert!(entries.contains(&StoredEntry {
+            index: 0x2000,
+            subindex: 0,
+            value: Value::F32(3.0)
+        }));
         let removed = remove(Some(&merged), ParameterGroup::Application);
         assert!(decode(&removed).unwrap().iter().all(|e| e.index < 0x2000));
     }

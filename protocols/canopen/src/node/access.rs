@@ -25,7 +25,12 @@ enum Action {
 
 impl<D: Device> Node<D> {
     /// The node's rules for a write of `value` to a communication object.
-    fn check_comm_write(&self, index: u16, subindex: u8, value: &Value) -> Result<Action, SdoAbort> {
+    fn check_comm_write(
+        &self,
+        index: u16,
+        subindex: u8,
+        value: &Value,
+    ) -> Result<Action, SdoAbort> {
         let od = self.device.od();
         let v = match value {
             Value::Bool(b) => u64::from(*b),
@@ -133,10 +138,18 @@ impl<D: Device> Node<D> {
 
 impl<D: Device> ObjectAccess for Node<D> {
     fn upload(&mut self, index: u16, subindex: u8) -> Result<Vec<u8>, SdoAbort> {
-        self.device.od().read_bytes(index, subindex).map_err(SdoAbort::from)
+        self.device
+            .od()
+            .read_bytes(index, subindex)
+            .map_err(SdoAbort::from)
     }
 
-    fn check_download(&mut self, index: u16, subindex: u8, size: Option<usize>) -> Result<(), SdoAbort> {
+    fn check_download(
+        &mut self,
+        index: u16,
+        subindex: u8,
+        size: Option<usize>,
+    ) -> Result<(), SdoAbort> {
         if self.local_control {
             return Err(SdoAbort::LOCAL_CONTROL);
         }
@@ -152,7 +165,13 @@ impl<D: Device> ObjectAccess for Node<D> {
     }
 
     fn fixed_size(&self, index: u16, subindex: u8) -> Option<usize> {
-        self.device.od().entry(index, subindex).ok()?.def.data_type.size()
+        self.device
+            .od()
+            .entry(index, subindex)
+            .ok()?
+            .def
+            .data_type
+            .size()
     }
 
     fn download(&mut self, index: u16, subindex: u8, data: &[u8]) -> Result<Completion, SdoAbort> {

@@ -21,11 +21,12 @@ use crate::heartbeat::{ConsumerEvent, Consumers, Guarding, Producer};
 use crate::lss::{LssEffect, LssSlave, LSS_RX_ID, LSS_TX_ID};
 use crate::nmt::{NmtCommand, NmtState, Service};
 use crate::objects::{
-    add_missing, communication_objects, idx, valid_node_id, ErrorBehaviour, NodeConfig, UNCONFIGURED,
+    add_missing, communication_objects, idx, valid_node_id, ErrorBehaviour, NodeConfig,
+    UNCONFIGURED,
 };
 use crate::pdo::rpdo::{Received, Rpdo};
 use crate::pdo::tpdo::Tpdo;
-use crate::sdo::{SdoServer, SdoCounters};
+use crate::sdo::{SdoCounters, SdoServer};
 use crate::sync::SyncConsumer;
 
 /// Events held for the application; older ones are dropped (and counted) beyond this.
@@ -98,7 +99,11 @@ impl<D: Device> Node<D> {
         let mut emcy = Emcy::default();
         emcy.capacity = config.emcy_queue;
         Ok(Node {
-            sdo: SdoServer::new(config.sdo_timeout, config.sdo_block_size, config.sdo_max_len),
+            sdo: SdoServer::new(
+                config.sdo_timeout,
+                config.sdo_block_size,
+                config.sdo_max_len,
+            ),
             lss: LssSlave::new(id, config.bit_timing),
             node_id: id,
             config,
@@ -224,7 +229,8 @@ impl<D: Device> Node<D> {
         if !self.route(frame, now, out) {
             self.counters.ignored += 1;
         }
-        self.emcy.flush(self.device.od(), now, self.nmt.allows(Service::Emcy), out);
+        self.emcy
+            .flush(self.device.od(), now, self.nmt.allows(Service::Emcy), out);
         self.counters.frames_out += (out.len() - before) as u64;
     }
 
@@ -248,7 +254,11 @@ impl<D: Device> Node<D> {
                 return self.on_guarding(now, out);
             }
             if state.allows(Service::Pdo) {
-                if let Some(t) = self.tpdos.iter_mut().find(|t| t.active() && t.comm.can_id() == id) {
+                if let Some(t) = self
+                    .tpdos
+                    .iter_mut()
+                    .find(|t| t.active() && t.comm.can_id() == id)
+                {
                     t.on_rtr(self.device.od(), now, out);
                     return true;
                 }
@@ -273,7 +283,11 @@ impl<D: Device> Node<D> {
             return true;
         }
         if state.allows(Service::Pdo) {
-            if let Some(k) = self.rpdos.iter().position(|r| r.active() && r.comm.can_id() == id) {
+            if let Some(k) = self
+                .rpdos
+                .iter()
+                .position(|r| r.active() && r.comm.can_id() == id)
+            {
                 self.on_rpdo(k, frame.data(), now);
                 return true;
             }
@@ -325,7 +339,11 @@ impl<D: Device> Node<D> {
     }
 
     fn send_heartbeat(&mut self, out: &mut Vec<CanFrame>) {
-        out.push(CanFrame::short(0x700 + u16::from(self.node_id), [self.nmt.code(), 0, 0, 0, 0, 0, 0, 0], 1));
+        out.push(CanFrame::short(
+            0x700 + u16::from(self.node_id),
+            [self.nmt.code(), 0, 0, 0, 0, 0, 0, 0],
+            1,
+        ));
     }
 
     fn on_guarding(&mut self, now: Duration, out: &mut Vec<CanFrame>) -> bool {
@@ -334,14 +352,24 @@ impl<D: Device> Node<D> {
             return false;
         }
         let (reply, recovered) = self.guarding.on_rtr(self.nmt.code(), now);
-        out.push(CanFrame::short(0x700 + u16::from(self.node_id), [reply, 0, 0, 0, 0, 0, 0, 0], 1));
+        out.push(CanFrame::short(
+            0x700 + u16::from(self.node_id),
+            [reply, 0, 0, 0, 0, 0, 0, 0],
+            1,
+        ));
         if recovered {
             self.recovered(None, LossCause::LifeGuarding, now);
         }
         true
     }
 
-    fn on_heartbeat(&mut self, node: u8, data: &[u8], now: Duration, _out: &mut Vec<CanFrame>) -> bool {
+    fn on_heartbeat(
+        &mut self,
+        node: u8,
+        data: &[u8],
+        now: Duration,
+        _out: &mut Vec<CanFrame>,
+    ) -> bool {
         let [state] = *data else {
             return false;
         };
@@ -397,7 +425,11 @@ impl<D: Device> Node<D> {
         self.counters.rpdos += 1;
         if too_long {
             self.counters.rpdo_length_errors += 1;
-            self.raise(emcy::code::PDO_LENGTH_EXCEEDED, register::COMMUNICATION, [0; 5]);
+            self.raise(
+                emcy::code::PDO_LENGTH_EXCEEDED,
+                register::COMMUNICATION,
+                [0; 5],
+            );
         } else {
             self.clear(emcy::code::PDO_LENGTH);
             self.clear(emcy::code::PDO_LENGTH_EXCEEDED);
@@ -438,11 +470,11 @@ impl<D: Device> Node<D> {
             out.push(CanFrame::full(LSS_TX_ID, r));
         }
         match effect {
-            Some(LssEffect::BackToWaiting) => {
-                // CiA 305: an unconfigured node takes its new id on leaving configuration.
-                if self.node_id == UNCONFIGURED && valid_node_id(self.lss.pending_id) {
-                    self.reset_communication(now, out);
-                }
+            // CiA 305: an unconfigured node takes its new id on leaving configuration.
+            Some(LssEffect::BackToWaiting)
+                if self.node_id == UNCONFIGURED && valid_node_id(self.lss.pending_id) =>
+            {
+                self.reset_communication(now, out);
             }
             Some(LssEffect::ActivateBitTiming {
                 table_index,
@@ -451,10 +483,14 @@ impl<D: Device> Node<D> {
                 table_index,
                 delay_ms,
             }),
-            Some(LssEffect::Store { node_id, bit_timing }) => {
-                self.event(NodeEvent::LssStoreRequested { node_id, bit_timing })
-            }
-            None => {}
+            Some(LssEffect::Store {
+                node_id,
+                bit_timing,
+            }) => self.event(NodeEvent::LssStoreRequested {
+                node_id,
+                bit_timing,
+            }),
+            Some(LssEffect::BackToWaiting) | None => {}
         }
         true
     }
@@ -499,7 +535,8 @@ impl<D: Device> Node<D> {
                 }
             }
         }
-        self.emcy.flush(self.device.od(), now, self.nmt.allows(Service::Emcy), out);
+        self.emcy
+            .flush(self.device.od(), now, self.nmt.allows(Service::Emcy), out);
         self.counters.frames_out += (out.len() - before) as u64;
     }
 
@@ -521,7 +558,11 @@ impl<D: Device> Node<D> {
                 .tpdos
                 .iter()
                 .filter_map(Tpdo::deadline)
-                .chain(self.rpdos.iter().filter_map(|r| r.deadline.map(|x| x + Duration::from_nanos(1))))
+                .chain(
+                    self.rpdos
+                        .iter()
+                        .filter_map(|r| r.deadline.map(|x| x + Duration::from_nanos(1))),
+                )
                 .min();
             d = match (d, pdo) {
                 (Some(a), Some(b)) => Some(a.min(b)),
@@ -533,7 +574,13 @@ impl<D: Device> Node<D> {
 
     // ---- communication errors ----
 
-    fn lost(&mut self, node_id: Option<u8>, cause: LossCause, now: Duration, out: &mut Vec<CanFrame>) {
+    fn lost(
+        &mut self,
+        node_id: Option<u8>,
+        cause: LossCause,
+        now: Duration,
+        out: &mut Vec<CanFrame>,
+    ) {
         self.event(NodeEvent::MasterLost { node_id, cause });
         self.raise(emcy::code::HEARTBEAT, register::COMMUNICATION, [0; 5]);
         let behaviour = get_u8(self.device.od(), idx::ERROR_BEHAVIOUR, 1)
@@ -568,7 +615,13 @@ impl<D: Device> Node<D> {
     /// Raise an error (CiA 301 §7.2.7): 0x1001 gains `register_bits` (and bit 0), 0x1003 the
     /// code, and an EMCY goes out as the inhibit time (0x1015) and NMT state allow. An error
     /// already active is not sent again.
-    pub fn raise_error(&mut self, code: u16, register_bits: u8, manufacturer: [u8; 5], now: Duration) -> Vec<CanFrame> {
+    pub fn raise_error(
+        &mut self,
+        code: u16,
+        register_bits: u8,
+        manufacturer: [u8; 5],
+        now: Duration,
+    ) -> Vec<CanFrame> {
         self.raise(code, register_bits, manufacturer);
         self.flush_emcy(now)
     }
@@ -586,7 +639,12 @@ impl<D: Device> Node<D> {
     fn flush_emcy(&mut self, now: Duration) -> Vec<CanFrame> {
         let mut out = Vec::new();
         self.now = now;
-        self.emcy.flush(self.device.od(), now, self.nmt.allows(Service::Emcy), &mut out);
+        self.emcy.flush(
+            self.device.od(),
+            now,
+            self.nmt.allows(Service::Emcy),
+            &mut out,
+        );
         self.counters.frames_out += out.len() as u64;
         out
     }
@@ -611,7 +669,8 @@ impl<D: Device> Node<D> {
             }
             self.sdo.finish_deferred(Ok(()), &mut out);
         } else {
-            self.sdo.finish_deferred(Err(crate::sdo::SdoAbort::HARDWARE), &mut out);
+            self.sdo
+                .finish_deferred(Err(crate::sdo::SdoAbort::HARDWARE), &mut out);
         }
         self.counters.frames_out += out.len() as u64;
         out

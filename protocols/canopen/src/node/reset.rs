@@ -45,7 +45,7 @@ impl<D: Device> Node<D> {
     }
 
     pub(super) fn reset_node(&mut self, now: Duration, out: &mut Vec<CanFrame>) {
-        self.to_initialising();
+        self.enter_initialising();
         restore_defaults(self.device.od_mut(), APPLICATION_AREA);
         self.apply_stored(ParameterGroup::Application);
         self.emcy.reset(self.device.od_mut());
@@ -54,7 +54,7 @@ impl<D: Device> Node<D> {
     }
 
     pub(super) fn reset_communication(&mut self, now: Duration, out: &mut Vec<CanFrame>) {
-        self.to_initialising();
+        self.enter_initialising();
         self.reset_communication_inner(now, out);
     }
 
@@ -65,7 +65,7 @@ impl<D: Device> Node<D> {
         self.initialise_communication(now, out);
     }
 
-    fn to_initialising(&mut self) {
+    fn enter_initialising(&mut self) {
         let from = self.nmt;
         if from != NmtState::Initialising {
             self.nmt = NmtState::Initialising;
@@ -111,9 +111,17 @@ impl<D: Device> Node<D> {
         self.consumers.load(od);
         self.guarding.load(od);
         self.sync.load(od);
-        let count = |base: u16| (0..idx::PDO_RANGE).take_while(|&n| od.contains_object(base + n)).count() as u16;
-        self.rpdos = (0..count(idx::RPDO_COMM)).map(|n| Rpdo::load(od, n)).collect();
-        self.tpdos = (0..count(idx::TPDO_COMM)).map(|n| Tpdo::load(od, n)).collect();
+        let count = |base: u16| {
+            (0..idx::PDO_RANGE)
+                .take_while(|&n| od.contains_object(base + n))
+                .count() as u16
+        };
+        self.rpdos = (0..count(idx::RPDO_COMM))
+            .map(|n| Rpdo::load(od, n))
+            .collect();
+        self.tpdos = (0..count(idx::TPDO_COMM))
+            .map(|n| Tpdo::load(od, n))
+            .collect();
     }
 
     /// Reload what a write to `index` changed.
@@ -157,7 +165,12 @@ fn fix_node_id_cobs(od: &mut ObjectDictionary, node_id: u8) {
     for (index, subindex, base) in NODE_ID_COBS {
         if let Some(v) = get_u32(od, index, subindex) {
             if (base..=base + 0x7F).contains(&(v & 0x7FF)) {
-                set_uint(od, index, subindex, u64::from((v & !0x7FF) | (base + u32::from(node_id))));
+                set_uint(
+                    od,
+                    index,
+                    subindex,
+                    u64::from((v & !0x7FF) | (base + u32::from(node_id))),
+                );
             }
         }
     }

@@ -21,10 +21,18 @@ impl PdoObject {
         use PdoDirection::{Receive, Transmit};
         let r = idx::PDO_RANGE;
         Some(match index {
-            i if (idx::RPDO_COMM..idx::RPDO_COMM + r).contains(&i) => PdoObject::Comm(Receive, i - idx::RPDO_COMM),
-            i if (idx::RPDO_MAP..idx::RPDO_MAP + r).contains(&i) => PdoObject::Map(Receive, i - idx::RPDO_MAP),
-            i if (idx::TPDO_COMM..idx::TPDO_COMM + r).contains(&i) => PdoObject::Comm(Transmit, i - idx::TPDO_COMM),
-            i if (idx::TPDO_MAP..idx::TPDO_MAP + r).contains(&i) => PdoObject::Map(Transmit, i - idx::TPDO_MAP),
+            i if (idx::RPDO_COMM..idx::RPDO_COMM + r).contains(&i) => {
+                PdoObject::Comm(Receive, i - idx::RPDO_COMM)
+            }
+            i if (idx::RPDO_MAP..idx::RPDO_MAP + r).contains(&i) => {
+                PdoObject::Map(Receive, i - idx::RPDO_MAP)
+            }
+            i if (idx::TPDO_COMM..idx::TPDO_COMM + r).contains(&i) => {
+                PdoObject::Comm(Transmit, i - idx::TPDO_COMM)
+            }
+            i if (idx::TPDO_MAP..idx::TPDO_MAP + r).contains(&i) => {
+                PdoObject::Map(Transmit, i - idx::TPDO_MAP)
+            }
             _ => return None,
         })
     }
@@ -57,7 +65,13 @@ pub(crate) fn check_write(
     }
 }
 
-fn check_comm(od: &ObjectDictionary, dir: PdoDirection, n: u16, sub: u8, value: u64) -> Result<(), SdoAbort> {
+fn check_comm(
+    od: &ObjectDictionary,
+    dir: PdoDirection,
+    n: u16,
+    sub: u8,
+    value: u64,
+) -> Result<(), SdoAbort> {
     let comm = PdoComm::load(od, comm_index(dir, n));
     match sub {
         1 => {
@@ -76,7 +90,8 @@ fn check_comm(od: &ObjectDictionary, dir: PdoDirection, n: u16, sub: u8, value: 
                 }
                 // Validating needs a consistent mapping.
                 let count = get_u8(od, map_index(dir, n), 0).unwrap_or(0);
-                Mapping::check(od, map_index(dir, n), dir, count).map_err(|_| SdoAbort::PARAMETER_INCOMPATIBLE)?;
+                Mapping::check(od, map_index(dir, n), dir, count)
+                    .map_err(|_| SdoAbort::PARAMETER_INCOMPATIBLE)?;
             }
             Ok(())
         }
@@ -102,7 +117,13 @@ fn check_comm(od: &ObjectDictionary, dir: PdoDirection, n: u16, sub: u8, value: 
     }
 }
 
-fn check_map(od: &ObjectDictionary, dir: PdoDirection, n: u16, sub: u8, value: u64) -> Result<(), SdoAbort> {
+fn check_map(
+    od: &ObjectDictionary,
+    dir: PdoDirection,
+    n: u16,
+    sub: u8,
+    value: u64,
+) -> Result<(), SdoAbort> {
     let comm = PdoComm::load(od, comm_index(dir, n));
     let index = map_index(dir, n);
     // Mapping changes only while the PDO is invalid (step 1 of the procedure).
@@ -112,7 +133,9 @@ fn check_map(od: &ObjectDictionary, dir: PdoDirection, n: u16, sub: u8, value: u
     let raw = u32::try_from(value).map_err(|_| SdoAbort::INVALID_VALUE)?;
     if sub == 0 {
         let count = u8::try_from(raw).map_err(|_| SdoAbort::VALUE_HIGH)?;
-        let available = (1..=u8::MAX).take_while(|&s| get_u32(od, index, s).is_some()).count();
+        let available = (1..=u8::MAX)
+            .take_while(|&s| get_u32(od, index, s).is_some())
+            .count();
         if usize::from(count) > available {
             return Err(SdoAbort::VALUE_HIGH);
         }

@@ -76,7 +76,12 @@ impl Mapping {
     }
 
     /// The mapping that `count` entries of the record would make, or why it cannot be.
-    pub(crate) fn check(od: &ObjectDictionary, index: u16, dir: PdoDirection, count: u8) -> Result<Mapping, SdoAbort> {
+    pub(crate) fn check(
+        od: &ObjectDictionary,
+        index: u16,
+        dir: PdoDirection,
+        count: u8,
+    ) -> Result<Mapping, SdoAbort> {
         let mut m = Mapping::default();
         for sub in 1..=count {
             let raw = get_u32(od, index, sub).ok_or(SdoAbort::VALUE_HIGH)?;
@@ -96,7 +101,10 @@ impl Mapping {
         let mut pos = 0;
         for e in &self.entries {
             if !e.dummy {
-                let bytes = od.get(e.index, e.subindex).map(Value::to_le_bytes).unwrap_or_default();
+                let bytes = od
+                    .get(e.index, e.subindex)
+                    .map(Value::to_le_bytes)
+                    .unwrap_or_default();
                 for (i, b) in bytes.iter().take(e.len).enumerate() {
                     if let Some(slot) = buf.get_mut(pos + i) {
                         *slot = *b;
@@ -110,12 +118,16 @@ impl Mapping {
 }
 
 /// Check one mapping entry value (index << 16 | sub-index << 8 | bit length).
-pub(crate) fn check_entry(od: &ObjectDictionary, raw: u32, dir: PdoDirection) -> Result<MapEntry, SdoAbort> {
+pub(crate) fn check_entry(
+    od: &ObjectDictionary,
+    raw: u32,
+    dir: PdoDirection,
+) -> Result<MapEntry, SdoAbort> {
     let index = (raw >> 16) as u16;
     let subindex = (raw >> 8) as u8;
     let bits = (raw & 0xFF) as usize;
     // Byte-granular mapping only (bit-wise mapping is optional in CiA 301).
-    if bits == 0 || bits % 8 != 0 {
+    if bits == 0 || !bits.is_multiple_of(8) {
         return Err(SdoAbort::NOT_MAPPABLE);
     }
     let len = bits / 8;
@@ -136,10 +148,12 @@ pub(crate) fn check_entry(od: &ObjectDictionary, raw: u32, dir: PdoDirection) ->
             _ => Err(SdoAbort::NOT_MAPPABLE),
         };
     }
-    let entry = od.check_mappable(index, subindex, dir).map_err(|e| match e {
-        OdError::NotMappable { .. } => SdoAbort::NOT_MAPPABLE,
-        other => SdoAbort::from(other),
-    })?;
+    let entry = od
+        .check_mappable(index, subindex, dir)
+        .map_err(|e| match e {
+            OdError::NotMappable { .. } => SdoAbort::NOT_MAPPABLE,
+            other => SdoAbort::from(other),
+        })?;
     if entry.def.data_type.size() != Some(len) {
         return Err(SdoAbort::NOT_MAPPABLE);
     }

@@ -36,7 +36,11 @@ impl Rpdo {
         Rpdo {
             n,
             comm: PdoComm::load(od, comm_index(PdoDirection::Receive, n)),
-            map: Mapping::load(od, map_index(PdoDirection::Receive, n), PdoDirection::Receive),
+            map: Mapping::load(
+                od,
+                map_index(PdoDirection::Receive, n),
+                PdoDirection::Receive,
+            ),
             buffered: None,
             deadline: None,
         }

@@ -37,7 +37,11 @@ impl Tpdo {
         Tpdo {
             n,
             comm: PdoComm::load(od, comm_index(PdoDirection::Transmit, n)),
-            map: Mapping::load(od, map_index(PdoDirection::Transmit, n), PdoDirection::Transmit),
+            map: Mapping::load(
+                od,
+                map_index(PdoDirection::Transmit, n),
+                PdoDirection::Transmit,
+            ),
             ..Tpdo::default()
         }
     }
@@ -91,7 +95,14 @@ impl Tpdo {
     }
 
     /// A SYNC was received (Operational).
-    pub(crate) fn on_sync(&mut self, counter: Option<u8>, overflow: u8, od: &ObjectDictionary, now: Duration, out: &mut Vec<CanFrame>) {
+    pub(crate) fn on_sync(
+        &mut self,
+        counter: Option<u8>,
+        overflow: u8,
+        od: &ObjectDictionary,
+        now: Duration,
+        out: &mut Vec<CanFrame>,
+    ) {
         if !self.active() {
             return;
         }
@@ -142,7 +153,12 @@ impl Tpdo {
 
     /// Event-driven transmission: on change of a mapped value, request or event timer, once
     /// the inhibit time has passed. Type 0 only records that a change happened.
-    pub(crate) fn on_tick(&mut self, od: &ObjectDictionary, now: Duration, out: &mut Vec<CanFrame>) {
+    pub(crate) fn on_tick(
+        &mut self,
+        od: &ObjectDictionary,
+        now: Duration,
+        out: &mut Vec<CanFrame>,
+    ) {
         if !self.active() {
             return;
         }
@@ -166,7 +182,11 @@ impl Tpdo {
         if !self.active() || !self.event_driven() {
             return None;
         }
-        let wake = if self.pending { Some(self.inhibit_until) } else { self.event_due };
+        let wake = if self.pending {
+            Some(self.inhibit_until)
+        } else {
+            self.event_due
+        };
         wake.map(|w| w.max(self.inhibit_until))
     }
 }

@@ -96,7 +96,10 @@ impl BlockDownload {
         let end_of_subblock = seq == self.blksize || (last && in_order);
         if end_of_subblock || (last && self.gap) {
             let ackseq = self.expected - 1;
-            out.push(CanFrame::full(tx_id, [0xA2, ackseq, self.blksize, 0, 0, 0, 0, 0]));
+            out.push(CanFrame::full(
+                tx_id,
+                [0xA2, ackseq, self.blksize, 0, 0, 0, 0, 0],
+            ));
             if last && in_order {
                 self.phase = DownPhase::End;
             }
@@ -104,6 +107,21 @@ impl BlockDownload {
             self.gap = false;
         }
         Ok(())
+    }
+
+    /// Segments of this sub-block arrived but its end did not (the last one was lost).
+    pub(crate) fn awaiting_rest(&self) -> bool {
+        self.phase == DownPhase::Subblock && (self.expected > 1 || self.gap)
+    }
+
+    /// Acknowledge what arrived so far, so the client repeats the rest.
+    pub(crate) fn ack_now(&mut self, tx_id: u16, out: &mut Vec<CanFrame>) {
+        out.push(CanFrame::full(
+            tx_id,
+            [0xA2, self.expected - 1, self.blksize, 0, 0, 0, 0, 0],
+        ));
+        self.expected = 1;
+        self.gap = false;
     }
 
     /// CiA 301 §7.2.4.3.11: end block download; returns the data once length and CRC check.
@@ -240,7 +258,12 @@ impl BlockUpload {
         for (i, chunk) in chunks.enumerate() {
             let seq = (i + 1) as u8;
             let mut frame = [0u8; 8];
-            frame[0] = seq | if self.sent_last && i + 1 == count { 0x80 } else { 0 };
+            frame[0] = seq
+                | if self.sent_last && i + 1 == count {
+                    0x80
+                } else {
+                    0
+                };
             frame
                 .get_mut(1..1 + chunk.len())
                 .unwrap_or_default()

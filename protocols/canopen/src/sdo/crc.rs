@@ -10,7 +10,11 @@ const fn table() -> [u16; 256] {
         let mut c = (i as u16) << 8;
         let mut bit = 0;
         while bit < 8 {
-            c = if c & 0x8000 != 0 { (c << 1) ^ 0x1021 } else { c << 1 };
+            c = if c & 0x8000 != 0 {
+                (c << 1) ^ 0x1021
+            } else {
+                c << 1
+            };
             bit += 1;
         }
         t[i] = c;

@@ -28,8 +28,12 @@ pub(crate) trait ObjectAccess {
     /// The value's bytes for an upload, or why not.
     fn upload(&mut self, index: u16, subindex: u8) -> Result<Vec<u8>, SdoAbort>;
     /// Whether a download of `size` bytes (if indicated) to the entry may start.
-    fn check_download(&mut self, index: u16, subindex: u8, size: Option<usize>)
-        -> Result<(), SdoAbort>;
+    fn check_download(
+        &mut self,
+        index: u16,
+        subindex: u8,
+        size: Option<usize>,
+    ) -> Result<(), SdoAbort>;
     /// The encoded size of the entry's type, if fixed.
     fn fixed_size(&self, index: u16, subindex: u8) -> Option<usize>;
     /// Store a downloaded value.
@@ -49,5 +53,7 @@ pub(crate) fn word(d: &[u8; 8]) -> u32 {
 /// An SDO frame with command byte and multiplexer.
 pub(crate) fn with_mux(cmd: u8, index: u16, subindex: u8, tail: [u8; 4]) -> [u8; 8] {
     let i = index.to_le_bytes();
-    [cmd, i[0], i[1], subindex, tail[0], tail[1], tail[2], tail[3]]
+    [
+        cmd, i[0], i[1], subindex, tail[0], tail[1], tail[2], tail[3],
+    ]
 }

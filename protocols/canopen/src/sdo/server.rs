@@ -157,7 +157,9 @@ impl SdoServer {
                     State::BlockDownload(b)
                 })
             }
-            (ccs::BLOCK_UPLOAD, _) if d[0] & 0x03 == 0 => self.initiate_block_upload(d, access, out),
+            (ccs::BLOCK_UPLOAD, _) if d[0] & 0x03 == 0 => {
+                self.initiate_block_upload(d, access, out)
+            }
             (
                 ccs::DOWNLOAD_SEGMENT,
                 State::Download {
@@ -181,7 +183,14 @@ impl SdoServer {
             (ccs::BLOCK_DOWNLOAD, State::BlockDownload(b)) => {
                 let (index, subindex) = b.mux();
                 b.end(d).and_then(|data| {
-                    self.finish_download(index, subindex, &data, [0xA1, 0, 0, 0, 0, 0, 0, 0], access, out)
+                    self.finish_download(
+                        index,
+                        subindex,
+                        &data,
+                        [0xA1, 0, 0, 0, 0, 0, 0, 0],
+                        access,
+                        out,
+                    )
                 })
             }
             (ccs::BLOCK_UPLOAD, State::BlockUpload(mut b)) => {
@@ -227,7 +236,9 @@ impl SdoServer {
                     .filter(|&s| s <= 4)
                     .unwrap_or(4)
             };
-            access.check_download(index, subindex, Some(len)).map_err(fail)?;
+            access
+                .check_download(index, subindex, Some(len))
+                .map_err(fail)?;
             let data = d.get(4..4 + len).unwrap_or_default();
             return self.finish_download(index, subindex, data, reply, access, out);
         }
@@ -422,7 +433,11 @@ impl SdoServer {
     }
 
     /// The application finished a deferred download.
-    pub(crate) fn finish_deferred(&mut self, result: Result<(), SdoAbort>, out: &mut Vec<CanFrame>) {
+    pub(crate) fn finish_deferred(
+        &mut self,
+        result: Result<(), SdoAbort>,
+        out: &mut Vec<CanFrame>,
+    ) {
         if let State::Deferred {
             index,
             subindex,
@@ -440,16 +455,33 @@ impl SdoServer {
         }
     }
 
+    /// A sub-block whose end does not come is acknowledged after this silence, so the client
+    /// repeats the missing segments before the SDO timeout aborts.
+    fn subblock_timeout(&self) -> Duration {
+        self.timeout / 10
+    }
+
     /// When the transfer in progress times out, if one does.
     pub(crate) fn deadline(&self) -> Option<Duration> {
-        match self.state {
+        match &self.state {
             State::Idle | State::Deferred { .. } => None,
+            State::BlockDownload(b) if b.awaiting_rest() => {
+                Some(self.last_activity + self.subblock_timeout())
+            }
             _ => Some(self.last_activity + self.timeout),
         }
     }
 
     /// Abort a transfer whose client has been silent for the timeout (0x05040000).
     pub(crate) fn on_tick(&mut self, now: Duration, out: &mut Vec<CanFrame>) {
+        let partial = now >= self.last_activity + self.subblock_timeout();
+        if let State::BlockDownload(b) = &mut self.state {
+            if b.awaiting_rest() && partial {
+                b.ack_now(self.tx_id, out);
+                self.last_activity = now;
+                return;
+            }
+        }
         if self.deadline().is_some_and(|d| now >= d) {
             if let Some((index, subindex)) = self.state.mux() {
                 self.counters.timeouts += 1;
