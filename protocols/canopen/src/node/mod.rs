@@ -229,6 +229,10 @@ impl<D: Device> Node<D> {
         if !self.route(frame, now, out) {
             self.counters.ignored += 1;
         }
+        // A producer time written just now starts at once.
+        if self.nmt != NmtState::Initialising && self.producer.due(now) {
+            self.send_heartbeat(out);
+        }
         self.emcy
             .flush(self.device.od(), now, self.nmt.allows(Service::Emcy), out);
         self.counters.frames_out += (out.len() - before) as u64;
@@ -583,6 +587,9 @@ impl<D: Device> Node<D> {
     ) {
         self.event(NodeEvent::MasterLost { node_id, cause });
         self.raise(emcy::code::HEARTBEAT, register::COMMUNICATION, [0; 5]);
+        // The EMCY goes out before the reaction (which may be Stopped, where EMCY is silent).
+        self.emcy
+            .flush(self.device.od(), now, self.nmt.allows(Service::Emcy), out);
         let behaviour = get_u8(self.device.od(), idx::ERROR_BEHAVIOUR, 1)
             .and_then(ErrorBehaviour::from_code)
             .unwrap_or_default();
