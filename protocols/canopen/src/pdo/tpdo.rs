@@ -116,13 +116,15 @@ impl Tpdo {
             t @ 1..=240 => {
                 // §7.5.2.35 sub-index 6: with a counter, start at the SYNC whose counter
                 // equals the start value.
+                // Without one, the n-th SYNC after entering Operational is the first.
                 if !self.started {
                     let start = self.comm.sync_start;
-                    if overflow > 0 && start > 0 && counter != Some(start) {
+                    let with_start = overflow > 0 && start > 0;
+                    if with_start && counter != Some(start) {
                         return;
                     }
                     self.started = true;
-                    self.syncs = t - 1;
+                    self.syncs = if with_start { t - 1 } else { 0 };
                 }
                 self.syncs += 1;
                 if self.syncs >= t {
