@@ -137,7 +137,7 @@ impl Emcy {
             };
             out.push(CanFrame::full((cob & 0x7FF) as u16, frame));
             self.sent += 1;
-            self.next_allowed = now + inhibit;
+            self.next_allowed = now.saturating_add(inhibit);
         }
     }
 

@@ -25,7 +25,7 @@ impl Producer {
     ) {
         let ms = get_u16(od, idx::PRODUCER_HEARTBEAT, 0).unwrap_or(0);
         self.period = Duration::from_millis(u64::from(ms));
-        self.next = (ms > 0).then(|| restart_at.unwrap_or(now + self.period));
+        self.next = (ms > 0).then(|| restart_at.unwrap_or(now.saturating_add(self.period)));
     }
 
     pub(crate) fn enabled(&self) -> bool {
@@ -36,7 +36,7 @@ impl Producer {
     /// and restart the period.
     pub(crate) fn send_now(&mut self, now: Duration) -> bool {
         if self.next.is_some() {
-            self.next = Some(now + self.period);
+            self.next = Some(now.saturating_add(self.period));
             return true;
         }
         false
@@ -46,11 +46,11 @@ impl Producer {
     pub(crate) fn due(&mut self, now: Duration) -> bool {
         match self.next {
             Some(next) if now >= next => {
-                let following = next + self.period;
+                let following = next.saturating_add(self.period);
                 self.next = Some(if following > now {
                     following
                 } else {
-                    now + self.period
+                    now.saturating_add(self.period)
                 });
                 true
             }
@@ -139,7 +139,7 @@ impl Consumers {
         now: Duration,
     ) -> Option<ConsumerEvent> {
         let m = self.list.iter_mut().find(|m| m.node == node)?;
-        m.deadline = Some(now + m.timeout);
+        m.deadline = Some(now.saturating_add(m.timeout));
         if std::mem::take(&mut m.lost) {
             return Some(ConsumerEvent::Recovered(node));
         }
@@ -165,7 +165,7 @@ impl Consumers {
             .iter()
             .filter_map(|m| m.deadline)
             .min()
-            .map(|d| d + Duration::from_nanos(1))
+            .map(|d| d.saturating_add(Duration::from_nanos(1)))
     }
 }
 
@@ -200,7 +200,7 @@ impl Guarding {
         let reply = state | if self.toggle { 0x80 } else { 0 };
         self.toggle = !self.toggle;
         if !self.life.is_zero() {
-            self.deadline = Some(now + self.life);
+            self.deadline = Some(now.saturating_add(self.life));
         }
         (reply, std::mem::take(&mut self.lost))
     }
@@ -216,6 +216,7 @@ impl Guarding {
     }
 
     pub(crate) fn deadline(&self) -> Option<Duration> {
-        self.deadline.map(|d| d + Duration::from_nanos(1))
+        self.deadline
+            .map(|d| d.saturating_add(Duration::from_nanos(1)))
     }
 }

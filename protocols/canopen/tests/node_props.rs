@@ -126,3 +126,25 @@ proptest! {
         prop_assert_eq!(vendor, Ok(vec![4]));
     }
 }
+
+#[test]
+fn time_at_the_end_of_the_clock_does_not_overflow() {
+    let mut node = Node::new(
+        NodeConfig {
+            node_id: ID,
+            heartbeat_ms: 100,
+            ..NodeConfig::default()
+        },
+        sample_dictionary(),
+    )
+    .unwrap();
+    node.start(Duration::MAX - Duration::from_millis(1));
+    node.on_frame(
+        &CanFrame::new(0x601, &[0x21, 0x04, 0x20, 0, 9, 0, 0, 0]).unwrap(),
+        Duration::MAX,
+    );
+    node.on_frame(&CanFrame::remote(0x701, 1).unwrap(), Duration::MAX);
+    node.raise_error(0x1000, 0, [0; 5], Duration::MAX);
+    node.on_tick(Duration::MAX);
+    assert!(node.next_deadline().is_some());
+}

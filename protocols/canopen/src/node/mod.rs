@@ -562,11 +562,10 @@ impl<D: Device> Node<D> {
                 .tpdos
                 .iter()
                 .filter_map(Tpdo::deadline)
-                .chain(
-                    self.rpdos
-                        .iter()
-                        .filter_map(|r| r.deadline.map(|x| x + Duration::from_nanos(1))),
-                )
+                .chain(self.rpdos.iter().filter_map(|r| {
+                    r.deadline
+                        .map(|x| x.saturating_add(Duration::from_nanos(1)))
+                }))
                 .min();
             d = match (d, pdo) {
                 (Some(a), Some(b)) => Some(a.min(b)),

@@ -59,7 +59,8 @@ impl Rpdo {
             return Received::TooShort;
         }
         if self.comm.event_ms > 0 {
-            self.deadline = Some(now + Duration::from_millis(u64::from(self.comm.event_ms)));
+            self.deadline =
+                Some(now.saturating_add(Duration::from_millis(u64::from(self.comm.event_ms))));
         }
         let too_long = data.len() > self.map.len;
         if self.synchronous() {

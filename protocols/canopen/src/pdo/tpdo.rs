@@ -78,7 +78,7 @@ impl Tpdo {
 
     fn timer(&self, now: Duration) -> Option<Duration> {
         (self.event_driven() && self.comm.event_ms > 0)
-            .then(|| now + Duration::from_millis(u64::from(self.comm.event_ms)))
+            .then(|| now.saturating_add(Duration::from_millis(u64::from(self.comm.event_ms))))
     }
 
     pub(crate) fn request(&mut self) {
@@ -90,7 +90,8 @@ impl Tpdo {
         self.sent += 1;
         self.last = Some(data);
         self.pending = false;
-        self.inhibit_until = now + Duration::from_micros(100 * u64::from(self.comm.inhibit));
+        self.inhibit_until =
+            now.saturating_add(Duration::from_micros(100 * u64::from(self.comm.inhibit)));
         self.event_due = self.timer(now);
     }
 

@@ -466,15 +466,15 @@ impl SdoServer {
         match &self.state {
             State::Idle | State::Deferred { .. } => None,
             State::BlockDownload(b) if b.awaiting_rest() => {
-                Some(self.last_activity + self.subblock_timeout())
+                Some(self.last_activity.saturating_add(self.subblock_timeout()))
             }
-            _ => Some(self.last_activity + self.timeout),
+            _ => Some(self.last_activity.saturating_add(self.timeout)),
         }
     }
 
     /// Abort a transfer whose client has been silent for the timeout (0x05040000).
     pub(crate) fn on_tick(&mut self, now: Duration, out: &mut Vec<CanFrame>) {
-        let partial = now >= self.last_activity + self.subblock_timeout();
+        let partial = now >= self.last_activity.saturating_add(self.subblock_timeout());
         if let State::BlockDownload(b) = &mut self.state {
             if b.awaiting_rest() && partial {
                 b.ack_now(self.tx_id, out);
