@@ -27,8 +27,9 @@ pub use error::OdError;
 pub use value::{DataType, DecodeError, Value};
 
 /// Longest VISIBLE_STRING, OCTET_STRING or DOMAIN value a bus write may store. Bounds memory
-/// a master can make a device hold (ARCHITECTURE §8: request sizes are bounded).
-pub const MAX_VARIABLE_LEN: usize = 65_536;
+/// a master can make a device hold (ARCHITECTURE §8: request sizes are bounded). 1 MiB: large
+/// enough for the 100 kB DOMAIN block transfers of issue 5's conformance tests.
+pub const MAX_VARIABLE_LEN: usize = 1 << 20;
 
 /// Access type of an entry (CiA 306 EDS `AccessType`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -225,6 +226,19 @@ impl ObjectDictionary {
             }
         }
         Ok(ObjectDictionary { entries })
+    }
+
+    /// Add one entry after construction (a protocol stack adding the communication objects a
+    /// device table lacks). Checks as [`from_defs`](Self::from_defs) does; the entry starts at
+    /// its default.
+    pub fn insert(&mut self, def: EntryDef) -> Result<(), DefinitionError> {
+        let (index, subindex) = (def.index, def.subindex);
+        if self.entries.contains_key(&(index, subindex)) {
+            return Err(DefinitionError::Duplicate { index, subindex });
+        }
+        let single = ObjectDictionary::from_defs([def])?;
+        self.entries.extend(single.entries);
+        Ok(())
     }
 
     pub fn len(&self) -> usize {

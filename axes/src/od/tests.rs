@@ -479,3 +479,36 @@ fn values_compare_across_integer_widths() {
     assert_eq!(Value::I16(-3).as_u64(), None);
     assert_eq!(Value::Bytes(vec![0xAB, 1]).to_string(), "0xab01");
 }
+
+#[test]
+fn insert_adds_entries_and_refuses_duplicates_and_bad_defaults() {
+    let mut od = sample();
+    let before = od.len();
+    od.insert(EntryDef::new(
+        0x1017,
+        0,
+        "Producer heartbeat time",
+        Access::Rw,
+        Value::U16(0),
+    ))
+    .unwrap();
+    assert_eq!(od.len(), before + 1);
+    assert_eq!(od.read(0x1017, 0).unwrap(), Value::U16(0));
+    assert_eq!(
+        od.insert(EntryDef::new(0x1017, 0, "again", Access::Rw, Value::U16(1))),
+        Err(DefinitionError::Duplicate {
+            index: 0x1017,
+            subindex: 0
+        })
+    );
+    let bad = EntryDef::new(0x1019, 0, "bad", Access::Rw, Value::U16(9))
+        .range(Value::U16(0), Value::U16(2));
+    assert_eq!(
+        od.insert(bad),
+        Err(DefinitionError::DefaultOutOfRange {
+            index: 0x1019,
+            subindex: 0
+        })
+    );
+    assert_eq!(od.len(), before + 1);
+}
