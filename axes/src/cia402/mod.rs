@@ -403,6 +403,12 @@ impl Cia402Drive {
         &self.od
     }
 
+    /// Device access to the dictionary, for a fieldbus stack that keeps its own communication
+    /// state in it (CANopen 0x1000–0x1FFF). Master writes go through [`write`](Self::write).
+    pub fn od_mut(&mut self) -> &mut ObjectDictionary {
+        &mut self.od
+    }
+
     // ---- bus access ----
 
     pub fn read(&self, index: u16, subindex: u8) -> Result<Value, OdError> {

@@ -1008,7 +1008,11 @@ impl Fieldbus for LoggingBus {
         if let Some(cw) = self.controlword.lock().unwrap().take() {
             let drive = engine.drive_mut(0).unwrap();
             drive
-                .write(crate::cia402::obj::CONTROLWORD, 0, crate::od::Value::U16(cw))
+                .write(
+                    crate::cia402::obj::CONTROLWORD,
+                    0,
+                    crate::od::Value::U16(cw),
+                )
                 .unwrap();
         }
     }

@@ -6,6 +6,7 @@
 //! test master in-process with virtual time.
 
 pub mod bus;
+pub mod cia402;
 pub mod client;
 pub mod device;
 pub mod emcy;
