@@ -472,6 +472,10 @@ impl Endpoint {
         self.sender.id
     }
 
+    pub fn hub(&self) -> &Hub {
+        &self.sender.hub
+    }
+
     /// See [`FrameSender::send`].
     pub fn send(&self, frame: WireFrame) -> Result<(), TxQueueFull> {
         self.sender.send(frame)
