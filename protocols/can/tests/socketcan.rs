@@ -130,8 +130,13 @@ fn the_bridge_carries_frames_both_ways() {
         node.send(frame).unwrap();
     }
     assert_eq!(read_outside(&other, &frames()), frames());
-    let stats = bridge.stats();
-    assert!(stats.frames_in >= 6 && stats.frames_out >= 6, "{stats:?}");
+    // The counter moves after the write returns, which may be after the frame was read.
+    let deadline = Instant::now() + Duration::from_secs(5);
+    while bridge.stats().frames_out < 6 {
+        assert!(Instant::now() < deadline, "{:?}", bridge.stats());
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    assert!(bridge.stats().frames_in >= 6, "{:?}", bridge.stats());
     assert_eq!(bridge.state(), LinkState::Up);
     rt.block_on(bridge.stop());
     assert_eq!(hub.counters().endpoints.len(), 1, "the bridge detached");
