@@ -49,7 +49,10 @@ fuzz_target!(|data: &[u8]| {
             one_element(reply);
         }
     }
-    let stamp = Timestamp { secs: 1_700_000_000, micros: 1 };
+    let stamp = Timestamp {
+        secs: 1_700_000_000,
+        micros: 1,
+    };
     for frame in frames {
         let mut text = String::new();
         encode_frame(&mut text, stamp, &frame);
@@ -58,7 +61,12 @@ fuzz_target!(|data: &[u8]| {
             format!("< sendrtr {} {} >", frame.id(), frame.dlc())
         } else {
             let bytes: Vec<String> = frame.data().iter().map(|b| format!("{b:x}")).collect();
-            format!("< send {} {} {} >", frame.id(), frame.dlc(), bytes.join(" "))
+            format!(
+                "< send {} {} {} >",
+                frame.id(),
+                frame.dlc(),
+                bytes.join(" ")
+            )
         };
         let mut again = Vec::new();
         Decoder::new().decode(command.as_bytes(), |c| again.push(c));
