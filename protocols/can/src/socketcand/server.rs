@@ -1,0 +1,363 @@
+//! The socketcand TCP server: a thin tokio transport around [`Session`] and [`Decoder`] that
+//! serves hubs by bus name, so hosts without SocketCAN (or tools that prefer TCP) reach the
+//! emulated bus: `can.Bus(interface="socketcand", host=…, port=…, channel="vcan0")`.
+//!
+//! Bounded: at most `max_connections` clients (the next gets `< error … >` and is closed),
+//! [`super::codec::MAX_ELEMENT`] bytes per element, the hub's receive queue per client (a
+//! client that does not read loses frames, counted on the hub), and a write that cannot
+//! finish within `write_timeout` closes that connection.
+
+use std::collections::BTreeMap;
+use std::io;
+use std::net::{Ipv4Addr, SocketAddr};
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::Arc;
+use std::time::Duration;
+
+use tokio::io::{AsyncReadExt, AsyncWriteExt};
+use tokio::net::tcp::OwnedWriteHalf;
+use tokio::net::{TcpListener, TcpStream};
+use tokio::sync::{watch, Semaphore};
+use tokio::task::JoinSet;
+use tokio::time::Instant;
+use tracing::Instrument;
+
+use crate::hub::{Delivery, Endpoint, EndpointOptions, Hub};
+use crate::socketcand::codec::{encode_error_reply, Decoder, HI};
+use crate::socketcand::session::{Action, Session};
+
+/// socketcand's default port.
+pub const DEFAULT_PORT: u16 = 29536;
+
+/// How the server listens.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SocketcandConfig {
+    /// 127.0.0.1:29536 by default (ARCHITECTURE §8: loopback unless configured).
+    pub bind: SocketAddr,
+    pub max_connections: usize,
+    /// After `< rawmode >`'s `< ok >`, frames wait this long before they flow. python-can
+    /// reads the `< ok >` with a single `recv` and fails if a frame arrived in the same read;
+    /// on a busy bus (SYNC at 1 kHz) that would be most connections. Frames are held (in the
+    /// client's bounded queue), not dropped.
+    pub rawmode_settle: Duration,
+    /// A write to a client that takes longer closes the connection.
+    pub write_timeout: Duration,
+}
+
+impl Default for SocketcandConfig {
+    fn default() -> Self {
+        Self {
+            bind: SocketAddr::from((Ipv4Addr::LOCALHOST, DEFAULT_PORT)),
+            max_connections: 16,
+            rawmode_settle: Duration::from_millis(20),
+            write_timeout: Duration::from_secs(10),
+        }
+    }
+}
+
+/// The server's counters.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SocketcandStats {
+    pub accepted: u64,
+    /// Connections refused because `max_connections` were open.
+    pub refused: u64,
+    pub active: u64,
+    /// Elements received (commands and errors).
+    pub commands: u64,
+    /// Elements answered with `< error … >`.
+    pub errors: u64,
+    /// Frames clients put on the bus.
+    pub frames_from_clients: u64,
+    /// Frames sent to clients.
+    pub frames_to_clients: u64,
+}
+
+#[derive(Default)]
+struct Stats {
+    accepted: AtomicU64,
+    refused: AtomicU64,
+    active: AtomicU64,
+    commands: AtomicU64,
+    errors: AtomicU64,
+    frames_from_clients: AtomicU64,
+    frames_to_clients: AtomicU64,
+}
+
+impl Stats {
+    fn add(counter: &AtomicU64, n: u64) {
+        counter.fetch_add(n, Ordering::Relaxed);
+    }
+
+    fn snapshot(&self) -> SocketcandStats {
+        let get = |c: &AtomicU64| c.load(Ordering::Relaxed);
+        SocketcandStats {
+            accepted: get(&self.accepted),
+            refused: get(&self.refused),
+            active: get(&self.active),
+            commands: get(&self.commands),
+            errors: get(&self.errors),
+            frames_from_clients: get(&self.frames_from_clients),
+            frames_to_clients: get(&self.frames_to_clients),
+        }
+    }
+}
+
+/// Why the server could not start.
+#[derive(Debug, thiserror::Error)]
+pub enum SocketcandError {
+    #[error("socketcand: cannot listen on {addr}: {source}")]
+    Bind { addr: SocketAddr, source: io::Error },
+    #[error("socketcand: two buses are named {0}")]
+    DuplicateBus(String),
+    #[error("socketcand: no bus to serve")]
+    NoBus,
+}
+
+/// A running server; [`SocketcandServer::shutdown`] stops it and its connections.
+pub struct SocketcandServer {
+    local_addr: SocketAddr,
+    stats: Arc<Stats>,
+    shutdown: watch::Sender<bool>,
+    task: tokio::task::JoinHandle<()>,
+}
+
+struct Shared {
+    config: SocketcandConfig,
+    buses: BTreeMap<String, Hub>,
+    served: Vec<String>,
+    stats: Arc<Stats>,
+}
+
+impl SocketcandServer {
+    /// Listen and serve `buses` (each under its hub's name) on a spawned task.
+    pub async fn start(config: SocketcandConfig, buses: Vec<Hub>) -> Result<Self, SocketcandError> {
+        let mut by_name = BTreeMap::new();
+        for hub in buses {
+            let name = hub.name().to_string();
+            if by_name.insert(name.clone(), hub).is_some() {
+                return Err(SocketcandError::DuplicateBus(name));
+            }
+        }
+        if by_name.is_empty() {
+            return Err(SocketcandError::NoBus);
+        }
+        let listener =
+            TcpListener::bind(config.bind)
+                .await
+                .map_err(|source| SocketcandError::Bind {
+                    addr: config.bind,
+                    source,
+                })?;
+        let local_addr = listener
+            .local_addr()
+            .map_err(|source| SocketcandError::Bind {
+                addr: config.bind,
+                source,
+            })?;
+        let stats = Arc::new(Stats::default());
+        let shared = Arc::new(Shared {
+            served: by_name.keys().cloned().collect(),
+            buses: by_name,
+            config,
+            stats: Arc::clone(&stats),
+        });
+        let (shutdown, stop) = watch::channel(false);
+        let task = tokio::spawn(accept_loop(listener, shared, stop));
+        Ok(Self {
+            local_addr,
+            stats,
+            shutdown,
+            task,
+        })
+    }
+
+    pub fn local_addr(&self) -> SocketAddr {
+        self.local_addr
+    }
+
+    pub fn stats(&self) -> SocketcandStats {
+        self.stats.snapshot()
+    }
+
+    /// Stop accepting, close every connection, and wait for them.
+    pub async fn shutdown(self) {
+        let _ = self.shutdown.send(true);
+        let _ = self.task.await;
+    }
+}
+
+async fn accept_loop(listener: TcpListener, shared: Arc<Shared>, mut stop: watch::Receiver<bool>) {
+    let slots = Arc::new(Semaphore::new(shared.config.max_connections));
+    let mut connections = JoinSet::new();
+    loop {
+        while connections.try_join_next().is_some() {}
+        let accepted = tokio::select! {
+            _ = stop.changed() => break,
+            accepted = listener.accept() => accepted,
+        };
+        let (stream, peer) = match accepted {
+            Ok(conn) => conn,
+            Err(e) => {
+                // Out of file descriptors and the like: wait a little rather than spin.
+                tracing::warn!("socketcand: accept failed: {e}");
+                tokio::time::sleep(Duration::from_millis(50)).await;
+                continue;
+            }
+        };
+        let Ok(permit) = Arc::clone(&slots).try_acquire_owned() else {
+            Stats::add(&shared.stats.refused, 1);
+            connections.spawn(refuse(stream, shared.config.max_connections));
+            continue;
+        };
+        Stats::add(&shared.stats.accepted, 1);
+        let shared = Arc::clone(&shared);
+        let stop = stop.clone();
+        let span = tracing::info_span!("socketcand", %peer);
+        connections.spawn(
+            async move {
+                Stats::add(&shared.stats.active, 1);
+                if let Err(e) = serve(stream, peer, &shared, stop).await {
+                    tracing::debug!("connection ended: {e}");
+                }
+                shared.stats.active.fetch_sub(1, Ordering::Relaxed);
+                drop(permit);
+            }
+            .instrument(span),
+        );
+    }
+    connections.shutdown().await;
+}
+
+async fn refuse(mut stream: TcpStream, max: usize) {
+    let mut out = String::new();
+    encode_error_reply(&mut out, &format!("too many connections (at most {max})"));
+    let _ = tokio::time::timeout(Duration::from_secs(1), stream.write_all(out.as_bytes())).await;
+}
+
+/// Where frames for this client come from: its endpoint once a bus is open, held back until
+/// `hold_until` after entering raw mode.
+struct Feed {
+    endpoint: Option<Endpoint>,
+    hold_until: Option<Instant>,
+}
+
+impl Feed {
+    async fn next(&mut self) -> Option<Delivery> {
+        let Some(endpoint) = self.endpoint.as_mut() else {
+            return std::future::pending().await;
+        };
+        if let Some(until) = self.hold_until {
+            tokio::time::sleep_until(until).await;
+            self.hold_until = None;
+        }
+        endpoint.recv().await
+    }
+}
+
+async fn serve(
+    stream: TcpStream,
+    peer: SocketAddr,
+    shared: &Shared,
+    mut stop: watch::Receiver<bool>,
+) -> io::Result<()> {
+    let stats = &shared.stats;
+    let _ = stream.set_nodelay(true);
+    let (mut reader, mut writer) = stream.into_split();
+    let mut out = String::from(HI);
+    write(&mut writer, &mut out, shared.config.write_timeout).await?;
+    let mut session = Session::new();
+    let mut decoder = Decoder::new();
+    let mut feed = Feed {
+        endpoint: None,
+        hold_until: None,
+    };
+    let mut actions = Vec::new();
+    let mut buf = vec![0u8; 4096];
+    loop {
+        tokio::select! {
+            _ = stop.changed() => return Ok(()),
+            read = reader.read(&mut buf) => {
+                let n = read?;
+                if n == 0 {
+                    return Ok(());
+                }
+                decoder.decode(buf.get(..n).unwrap_or_default(), |command| {
+                    Stats::add(&stats.commands, 1);
+                    session.on_command(command, &shared.served, &mut actions);
+                });
+                for action in actions.drain(..) {
+                    match action {
+                        Action::Reply(reply) => {
+                            Stats::add(&stats.errors, u64::from(reply.starts_with("< error")));
+                            out.push_str(&reply);
+                        }
+                        Action::Attach(bus) => {
+                            if let Some(hub) = shared.buses.get(&bus) {
+                                let name = format!("socketcand {peer}");
+                                feed.endpoint = Some(hub.attach(EndpointOptions::new(name)));
+                            }
+                        }
+                        Action::Transmit(frame) => {
+                            let sent = feed.endpoint.as_ref().map(|e| e.send(frame));
+                            match sent {
+                                Some(Ok(())) => Stats::add(&stats.frames_from_clients, 1),
+                                Some(Err(full)) => {
+                                    Stats::add(&stats.errors, 1);
+                                    encode_error_reply(&mut out, &full.to_string());
+                                }
+                                None => {}
+                            }
+                        }
+                        Action::EnteredRawMode => {
+                            // Frames of the BCM phase were never asked for.
+                            if let Some(endpoint) = feed.endpoint.as_mut() {
+                                while endpoint.try_recv().is_some() {}
+                            }
+                            feed.hold_until = Some(Instant::now() + shared.config.rawmode_settle);
+                        }
+                    }
+                }
+                write(&mut writer, &mut out, shared.config.write_timeout).await?;
+            }
+            delivery = feed.next() => {
+                let Some(first) = delivery else { return Ok(()) };
+                let Some(hub) = feed.endpoint.as_ref().map(|e| e.hub().clone()) else {
+                    continue;
+                };
+                // Batch what is already queued into one write.
+                let mut next = Some(first);
+                let mut batched = 0;
+                while let Some(delivery) = next {
+                    if session.on_frame(hub.stamp(delivery.at), &delivery.frame, &mut out) {
+                        Stats::add(&stats.frames_to_clients, 1);
+                    }
+                    batched += 1;
+                    next = if batched < 64 {
+                        feed.endpoint.as_mut().and_then(Endpoint::try_recv)
+                    } else {
+                        None
+                    };
+                }
+                write(&mut writer, &mut out, shared.config.write_timeout).await?;
+            }
+        }
+    }
+}
+
+/// Write and clear `out`; an empty `out` writes nothing.
+async fn write(writer: &mut OwnedWriteHalf, out: &mut String, limit: Duration) -> io::Result<()> {
+    if out.is_empty() {
+        return Ok(());
+    }
+    match tokio::time::timeout(limit, writer.write_all(out.as_bytes())).await {
+        Ok(result) => result?,
+        Err(_) => {
+            return Err(io::Error::new(
+                io::ErrorKind::TimedOut,
+                format!("the client did not read for {limit:?}"),
+            ))
+        }
+    }
+    out.clear();
+    Ok(())
+}
