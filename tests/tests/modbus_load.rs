@@ -21,9 +21,10 @@
 //! read-back every 20 ms, the clients spread over the cycle (3 200 requests/s: 32 HMIs polling
 //! at 50 Hz), judge the servo statistics too. Overruns count ticks that took longer than the
 //! period in wall time, so a stall of the whole VM (5–20 ms on a shared one, docs/decisions.md
-//! "Runtime") or another process on CPU 1 is counted as well: an overrun the load causes recurs
-//! in every window, a stall of the host does not, so the first window without an overrun
-//! passes, and there are at most three.
+//! "Runtime") or another process on CPU 1 is counted as well. An overrun the load causes recurs
+//! in every window, a stall of the host does not: windows are measured until one has no
+//! overrun, at most three, and the best of them may show no more than the host alone causes
+//! ([`HOST_OVERRUNS`], 0.1 % of the ticks).
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
@@ -41,8 +42,14 @@ const BURST: Duration = Duration::from_secs(3);
 const WINDOW: Duration = Duration::from_secs(10);
 /// A write and its read-back per client per cycle, on an absolute schedule.
 const CYCLE: Duration = Duration::from_millis(20);
-/// Paced windows measured at most.
+/// Paced windows measured at most (fewer when one has no overrun).
 const WINDOWS: usize = 3;
+/// Overruns the best window may still show: 0.1 % of its ticks. What the host alone causes
+/// (measured on this shared VM: about 1 per 30 s idle, 0–8 per window under this load with the
+/// servo thread pinned apart, with stalls of up to 0.5 s when other jobs load it); a load that
+/// reaches the servo thread (a lock it shares with the I/O threads, work per request on the
+/// servo thread) overruns on a large share of its ticks, in every window.
+const HOST_OVERRUNS: u64 = 10;
 /// Bound of one request's answer.
 const ANSWER: Duration = Duration::from_secs(10);
 
@@ -381,6 +388,7 @@ fn thirty_two_clients_write_and_read_without_a_lost_write_or_an_overrun() {
     assert_eq!(burst.dropped, 0, "dropped ticks: {line}");
 
     let mut seen = Vec::new();
+    let mut best = u64::MAX;
     for n in 1..=WINDOWS {
         let w = phase(&m, &address, WINDOW, Some(CYCLE));
         let line = w.report(&format!("window {n}"));
@@ -388,14 +396,18 @@ fn thirty_two_clients_write_and_read_without_a_lost_write_or_an_overrun() {
         assert_eq!(w.dropped, 0, "dropped ticks: {line}");
         assert_eq!(w.command_bound_hits, 0, "command queue saturated: {line}");
         seen.push(line);
+        best = best.min(w.overruns);
         if w.overruns == 0 {
-            let exit = m.terminate();
-            assert!(exit.status.success(), "{exit:?}");
-            return;
+            break;
         }
     }
-    panic!(
-        "the servo thread overran its period in each of {WINDOWS} windows of load:\n{}",
+    assert!(
+        best <= HOST_OVERRUNS,
+        "the servo thread overran its period more than {HOST_OVERRUNS} times in each of {} \
+         windows of load:\n{}",
+        seen.len(),
         seen.join("\n")
     );
+    let exit = m.terminate();
+    assert!(exit.status.success(), "{exit:?}");
 }
