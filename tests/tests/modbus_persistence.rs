@@ -89,11 +89,6 @@ fn the_user_table_survives_sigterm_and_a_restart() {
     assert_eq!(r[0], json!({"ok": [1, 65535, 0, 4242, 7, 0]}));
     assert_eq!(r[1], json!({"ok": [99]}));
     assert_eq!(r[2], json!({"ok": 0.0}), "analog outputs start at 0");
-    assert!(
-        !m.stderr_text().contains("not restored"),
-        "{}",
-        m.stderr_text()
-    );
     // Another front-end's memory is its own (and its own file).
     let port = m.port("modbus-rtu-over-tcp");
     let r = run_python_client(
@@ -108,7 +103,8 @@ fn the_user_table_survives_sigterm_and_a_restart() {
         &json!([{"op": "read_holding_registers", "address": 3000, "count": 2}]),
     );
     assert_eq!(r[0], json!({"ok": [0, 0]}));
-    stop(m);
+    let stderr = stop(m);
+    assert!(!stderr.contains("not restored"), "{stderr}");
 }
 
 #[test]
@@ -163,11 +159,12 @@ fn a_corrupt_state_file_is_reported_and_does_not_stop_the_start() {
     ] {
         std::fs::write(&file, content).unwrap();
         let m = start(dir.path());
-        let stderr = m.stderr_text();
         let expected = format!("mcemu: {shown}: persisted Modbus memory not restored: {reason}");
-        assert!(
-            stderr.contains(&expected),
-            "{expected}\n--- stderr\n{stderr}"
+        // Printed before the listeners, but stderr is another pipe, read on its own thread.
+        wait_for(
+            &format!("`{expected}` on stderr"),
+            Duration::from_secs(10),
+            || m.stderr_text().contains(&expected).then_some(()),
         );
         // It runs, from the initial values, and its next save replaces the file.
         let r = pymodbus(
@@ -185,15 +182,11 @@ fn a_corrupt_state_file_is_reported_and_does_not_stop_the_start() {
     }
     // The replaced file restores cleanly.
     let m = start(dir.path());
-    assert!(
-        !m.stderr_text().contains("not restored"),
-        "{}",
-        m.stderr_text()
-    );
     let r = pymodbus(
         &m,
         json!([{"op": "read_holding_registers", "address": 3000, "count": 2}]),
     );
     assert_eq!(r[0], json!({"ok": [0, 5]}));
-    stop(m);
+    let stderr = stop(m);
+    assert!(!stderr.contains("not restored"), "{stderr}");
 }
