@@ -22,6 +22,15 @@ use std::sync::{mpsc, Arc, Mutex};
 use std::thread::{self, JoinHandle};
 use std::time::{Duration, Instant};
 
+mod mcemu;
+mod modbus;
+
+pub use mcemu::{mcemu_bin, wait_for, Mcemu, McemuExit, TempDir, STOP_TIMEOUT};
+pub use modbus::{
+    crc16, hex, mbap_frame, mbpoll, mbpoll_values, rtu_frame, to_hex, ByteLink, MbapClient,
+    MbapReply, RawSerial, REPLY_TIMEOUT,
+};
+
 /// How long [`run_python_client`] lets one client run before killing it.
 pub const CLIENT_TIMEOUT: Duration = Duration::from_secs(60);
 /// How long a server or `socat` may take to say it is ready.

@@ -85,6 +85,14 @@ async fn run<D: DataModel>(
                 }
             };
             let frame = buf.get(..n).unwrap_or_default();
+            if matches!(rtu::decode(frame), rtu::Decoded::BadCrc) {
+                // The frame's own length fields may be wrong (CPU 226H §10.1 network 5 as
+                // printed: 4 registers, byte count 0, 4 data bytes, a CRC over all 13): let
+                // silence end it, as on a serial line. Its CRC then decides; a bad one drops
+                // everything buffered, as before.
+                by_silence = true;
+                break;
+            }
             let Some(verdict) = unless_stopping(answer(server, frame, &peer_id), stop).await else {
                 return Close::Shutdown;
             };
