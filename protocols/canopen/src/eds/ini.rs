@@ -1,0 +1,177 @@
+//! The INI layer of CiA 306 files: `[section]` headers, `key=value` lines and `;` comments.
+//! Section names and keys are case-insensitive; CRLF and a UTF-8 byte-order mark are accepted.
+//! A key given twice, or a section defined twice, is an error: which one a tool would use is
+//! not defined, and silently taking one hides a broken file.
+
+use std::collections::HashMap;
+
+use super::error::{EdsError, Place, Reason};
+
+/// One `key=value` line.
+#[derive(Clone, Debug)]
+pub(crate) struct Item<'a> {
+    pub key: &'a str,
+    pub value: &'a str,
+    pub line: usize,
+}
+
+/// One section with its items, in file order.
+#[derive(Clone, Debug)]
+pub(crate) struct Section<'a> {
+    pub name: &'a str,
+    pub line: usize,
+    pub items: Vec<Item<'a>>,
+    /// Lower-case key → position in `items`.
+    by_key: HashMap<String, usize>,
+}
+
+impl<'a> Section<'a> {
+    /// The item with `key` (which must be lower case).
+    pub fn get(&self, key: &str) -> Option<&Item<'a>> {
+        debug_assert_eq!(key, key.to_ascii_lowercase());
+        self.by_key.get(key).and_then(|&i| self.items.get(i))
+    }
+
+    pub fn place(&self) -> Place<'a> {
+        Place::section(self.name, self.line)
+    }
+}
+
+impl<'a> Item<'a> {
+    pub fn place(&self, section: &Section<'a>) -> Place<'a> {
+        Place::key(section.name, self.key, self.line)
+    }
+}
+
+/// A parsed file: sections in file order, found by case-insensitive name.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Document<'a> {
+    pub sections: Vec<Section<'a>>,
+    by_name: HashMap<String, usize>,
+}
+
+impl<'a> Document<'a> {
+    /// The section called `name` (which must be lower case).
+    pub fn section(&self, name: &str) -> Option<&Section<'a>> {
+        debug_assert_eq!(name, name.to_ascii_lowercase());
+        self.by_name.get(name).and_then(|&i| self.sections.get(i))
+    }
+
+    pub fn parse(file: &str, text: &'a str) -> Result<Document<'a>, EdsError> {
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+        let mut doc = Document::default();
+        for (n, raw) in text.split('\n').enumerate() {
+            let line = n + 1;
+            let trimmed = raw.trim();
+            if trimmed.is_empty() || trimmed.starts_with(';') || trimmed.starts_with('#') {
+                continue;
+            }
+            let at = Place {
+                line: Some(line),
+                ..Place::default()
+            };
+            if let Some(rest) = trimmed.strip_prefix('[') {
+                let name = rest
+                    .strip_suffix(']')
+                    .ok_or_else(|| at.error(file, Reason::UnclosedSection))?
+                    .trim();
+                if name.is_empty() {
+                    return Err(at.error(file, Reason::EmptySectionName));
+                }
+                let lower = name.to_ascii_lowercase();
+                if let Some(first) = doc.by_name.get(&lower).and_then(|&i| doc.sections.get(i)) {
+                    let first_line = first.line;
+                    return Err(Place::section(name, line)
+                        .error(file, Reason::DuplicateSection { first_line }));
+                }
+                doc.by_name.insert(lower, doc.sections.len());
+                doc.sections.push(Section {
+                    name,
+                    line,
+                    items: Vec::new(),
+                    by_key: HashMap::new(),
+                });
+                continue;
+            }
+            let Some((key, value)) = trimmed.split_once('=') else {
+                let mut shown: String = trimmed.chars().take(40).collect();
+                if shown.len() < trimmed.len() {
+                    shown.push('…');
+                }
+                return Err(at.error(file, Reason::Syntax(shown)));
+            };
+            let (key, value) = (key.trim(), value.trim());
+            let Some(section) = doc.sections.last_mut() else {
+                return Err(at.error(file, Reason::KeyOutsideSection));
+            };
+            if key.is_empty() {
+                return Err(Place::section(section.name, line).error(file, Reason::EmptyKey));
+            }
+            let lower = key.to_ascii_lowercase();
+            if let Some(first) = section
+                .by_key
+                .get(&lower)
+                .and_then(|&i| section.items.get(i))
+            {
+                let first_line = first.line;
+                return Err(Place::key(section.name, key, line)
+                    .error(file, Reason::DuplicateKey { first_line }));
+            }
+            section.by_key.insert(lower, section.items.len());
+            section.items.push(Item { key, value, line });
+        }
+        Ok(doc)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+    use super::*;
+
+    #[test]
+    fn sections_keys_comments_crlf_and_bom() {
+        let text = "\u{feff}; header\r\n[FileInfo]\r\nFileName = x.eds \r\n\r\n# also a comment\n[1000]\nDataType=0x0007\nDefaultValue=\n";
+        let doc = Document::parse("x.eds", text).unwrap();
+        assert_eq!(doc.sections.len(), 2);
+        let info = doc.section("fileinfo").unwrap();
+        assert_eq!(info.get("filename").unwrap().value, "x.eds");
+        assert_eq!(info.line, 2);
+        let obj = doc.section("1000").unwrap();
+        assert_eq!(obj.get("datatype").unwrap().line, 7);
+        assert_eq!(obj.get("defaultvalue").unwrap().value, "");
+    }
+
+    #[test]
+    fn names_and_keys_are_case_insensitive() {
+        let doc = Document::parse("x", "[1018SUB0]\nPARAMETERNAME=a\n").unwrap();
+        let sub = doc.section("1018sub0").unwrap();
+        assert_eq!(sub.name, "1018SUB0");
+        assert_eq!(sub.get("parametername").unwrap().key, "PARAMETERNAME");
+    }
+
+    #[test]
+    fn syntax_errors_name_the_line() {
+        let cases: [(&str, Reason); 6] = [
+            ("[a\n", Reason::UnclosedSection),
+            ("[ ]\n", Reason::EmptySectionName),
+            ("k=v\n", Reason::KeyOutsideSection),
+            ("[a]\n=v\n", Reason::EmptyKey),
+            ("[a]\nk=1\nK=2\n", Reason::DuplicateKey { first_line: 2 }),
+            ("[a]\n[A]\n", Reason::DuplicateSection { first_line: 1 }),
+        ];
+        for (text, reason) in cases {
+            let err = Document::parse("f.eds", text).unwrap_err();
+            assert_eq!(err.reason, reason, "{text:?}");
+            assert_eq!(&*err.file, "f.eds");
+            assert!(err.line.is_some());
+        }
+        let err = Document::parse("f.eds", "[a]\njust words\n").unwrap_err();
+        assert_eq!(err.reason, Reason::Syntax("just words".into()));
+        assert_eq!(
+            err.to_string(),
+            "f.eds: expected `[section]`, `key=value` or a `;` comment, found \"just words\" (line 2)"
+        );
+    }
+}
