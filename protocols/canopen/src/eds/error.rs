@@ -132,8 +132,10 @@ pub enum Reason {
     SubIndexZeroType { data_type: DataType },
     #[error("with CompactSubObj the object has no sub-index sections, but [{section}] exists")]
     CompactWithSubs { section: String },
-    #[error("entry {entry} is beyond NrOfEntries / CompactSubObj {count}")]
+    #[error("entry {entry} is outside the sub-indices 1–{count} of CompactSubObj")]
     CompactEntryBeyond { entry: u32, count: u32 },
+    #[error("says {declared}, but the section has {found} entries")]
+    EntryCountMismatch { declared: u32, found: usize },
 
     #[error("entry beyond SupportedObjects={count}: ignored")]
     ListEntryBeyond { count: u16 },

@@ -10,7 +10,7 @@ use axes::od::{Access, DataType, EntryDef, Value};
 use super::error::{EdsError, Reason};
 use super::fields::Fields;
 use super::ini::{Item, Section};
-use super::value::{format_value, parse_value, zero, EdsValue, NODE_IDS};
+use super::value::{format_value, parse_integer, parse_value, zero, EdsValue, NODE_IDS};
 
 /// CiA 306 `ObjectType` (CiA 301 Table 42 object codes). NULL (0) has no use in a file.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -344,31 +344,52 @@ fn compact_count(f: Fields<'_, '_>) -> Result<Option<u8>, EdsError> {
         .filter(|&n| n > 0))
 }
 
-/// `n=…` entries of a `[xxxxName]` / `[xxxxValue]` section, checked against `NrOfEntries` and
-/// the compact count.
+/// `n=…` entries of a `[xxxxName]` / `[xxxxValue]` section: sub-indices 1 to the compact count;
+/// `NrOfEntries`, where given, counts them.
 fn numbered_entries<'d, 'a>(
     f: Fields<'d, 'a>,
     count: u8,
 ) -> Result<Vec<(u8, &'d Item<'a>)>, EdsError> {
     let mut entries = Vec::new();
-    let declared = f.unsigned::<u32>("NrOfEntries", "0–254")?;
-    let limit = declared.map_or(u32::from(count), |d| d.min(u32::from(count)));
     for item in &f.section.items {
         if item.key.eq_ignore_ascii_case("NrOfEntries") {
             continue;
         }
-        let entry: u32 = f.parse_unsigned(item, "1–254")?;
-        if entry == 0 || entry > limit {
+        let entry = parse_integer(item.key)
+            .ok()
+            .and_then(|l| u32::try_from(l.value).ok())
+            .ok_or_else(|| {
+                f.error(
+                    item,
+                    Reason::NotANumber {
+                        text: item.key.to_string(),
+                        why: "keys are entry numbers 1–254 or NrOfEntries",
+                    },
+                )
+            })?;
+        match u8::try_from(entry) {
+            Ok(subindex) if (1..=count).contains(&subindex) => entries.push((subindex, item)),
+            _ => {
+                return Err(f.error(
+                    item,
+                    Reason::CompactEntryBeyond {
+                        entry,
+                        count: u32::from(count),
+                    },
+                ))
+            }
+        }
+    }
+    if let Some(item) = f.item("NrOfEntries") {
+        let declared: u32 = f.parse_unsigned(item, "0–254")?;
+        if usize::try_from(declared).ok() != Some(entries.len()) {
             return Err(f.error(
                 item,
-                Reason::CompactEntryBeyond {
-                    entry,
-                    count: limit,
+                Reason::EntryCountMismatch {
+                    declared,
+                    found: entries.len(),
                 },
             ));
-        }
-        if let Ok(subindex) = u8::try_from(entry) {
-            entries.push((subindex, item));
         }
     }
     Ok(entries)
