@@ -330,7 +330,7 @@ impl ObjectSections<'_, '_> {
                 if let Some(sub) = subs.get_mut(&subindex) {
                     let value = parse_value(item.value, sub.data_type)
                         .map_err(|reason| values.error(item, reason))?;
-                    check_limits(values, item, sub, &value)?;
+                    check_limits(values, Some(item), item.key, sub, &value)?;
                     sub.parameter_value = Some(value);
                 }
             }
@@ -339,9 +339,22 @@ impl ObjectSections<'_, '_> {
     }
 }
 
+/// `CompactSubObj`: 0 or absent = sub-index sections; 1–254 (sub-index 255 is reserved).
 fn compact_count(f: Fields<'_, '_>) -> Result<Option<u8>, EdsError> {
-    Ok(f.unsigned::<u8>("CompactSubObj", "0–254")?
-        .filter(|&n| n > 0))
+    let Some(item) = f.item("CompactSubObj") else {
+        return Ok(None);
+    };
+    match f.parse_unsigned::<u8>(item, "0–254")? {
+        0 => Ok(None),
+        255 => Err(f.error(
+            item,
+            Reason::OutOfRangeFor {
+                text: item.value.to_string(),
+                range: "0–254",
+            },
+        )),
+        n => Ok(Some(n)),
+    }
 }
 
 /// `n=…` entries of a `[xxxxName]` / `[xxxxValue]` section: sub-indices 1 to the compact count;
@@ -477,12 +490,17 @@ fn read_sub_object(
             }
         }
     }
-    if let Some(item) = f.item("DefaultValue") {
-        check_limits(f, item, &sub, &sub.default)?;
-    }
+    // An absent DefaultValue is the type's zero, which must lie within the limits too.
+    check_limits(
+        f,
+        f.item("DefaultValue"),
+        "DefaultValue",
+        &sub,
+        &sub.default,
+    )?;
     if let Some(item) = f.item("ParameterValue") {
         let value = parse_value(item.value, data_type).map_err(|reason| f.error(item, reason))?;
-        check_limits(f, item, &sub, &value)?;
+        check_limits(f, Some(item), "ParameterValue", &sub, &value)?;
         sub.parameter_value = Some(value);
     }
     Ok(sub)
@@ -496,39 +514,48 @@ fn is_numeric(data_type: DataType) -> bool {
 }
 
 /// A value must lie within the limits for every node id (checked at the extremes: values and
-/// limits move with the node id by a constant).
+/// limits move with the node id by a constant). The error names `item`, or `key` of the section
+/// when the value was not written.
 fn check_limits(
     f: Fields<'_, '_>,
-    item: &Item<'_>,
+    item: Option<&Item<'_>>,
+    key: &str,
     sub: &SubObject,
     value: &EdsValue,
 ) -> Result<(), EdsError> {
+    let error = |reason| match item {
+        Some(item) => f.error(item, reason),
+        None => {
+            let mut e = f.section_error(reason);
+            e.key = Some(key.into());
+            e
+        }
+    };
     for node_id in [*NODE_IDS.start(), *NODE_IDS.end()] {
         let Some(v) = value.resolve(node_id) else {
             continue;
+        };
+        let shown = if value.depends_on_node_id() {
+            format!("{value} = {} for node id {node_id},", format_value(&v))
+        } else {
+            format_value(&v)
         };
         let limit = |l: &Option<EdsValue>| l.as_ref().and_then(|l| l.resolve(node_id));
         // A NaN is outside every limit, as the dictionary treats it.
         if let Some(low) = limit(&sub.low) {
             if v.compare(&low).is_none_or(|o| o == Ordering::Less) {
-                return Err(f.error(
-                    item,
-                    Reason::BelowLowLimit {
-                        value: format_value(&v),
-                        low: format_value(&low),
-                    },
-                ));
+                return Err(error(Reason::BelowLowLimit {
+                    value: shown,
+                    low: format_value(&low),
+                }));
             }
         }
         if let Some(high) = limit(&sub.high) {
             if v.compare(&high).is_none_or(|o| o == Ordering::Greater) {
-                return Err(f.error(
-                    item,
-                    Reason::AboveHighLimit {
-                        value: format_value(&v),
-                        high: format_value(&high),
-                    },
-                ));
+                return Err(error(Reason::AboveHighLimit {
+                    value: shown,
+                    high: format_value(&high),
+                }));
             }
         }
     }
