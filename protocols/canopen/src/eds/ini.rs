@@ -1,4 +1,5 @@
-//! The INI layer of CiA 306 files: `[section]` headers, `key=value` lines and `;` comments.
+//! The INI layer of CiA 306 files: `[section]` headers, `key=value` lines and `;` comments
+//! (whole lines, or after whitespace at the end of a line).
 //! Section names and keys are case-insensitive; CRLF and a UTF-8 byte-order mark are accepted.
 //! A key given twice, or a section defined twice, is an error: which one a tool would use is
 //! not defined, and silently taking one hides a broken file.
@@ -62,7 +63,7 @@ impl<'a> Document<'a> {
         let mut doc = Document::default();
         for (n, raw) in text.split('\n').enumerate() {
             let line = n + 1;
-            let trimmed = raw.trim();
+            let trimmed = strip_inline_comment(raw).trim();
             if trimmed.is_empty() || trimmed.starts_with(';') || trimmed.starts_with('#') {
                 continue;
             }
@@ -124,6 +125,19 @@ impl<'a> Document<'a> {
     }
 }
 
+/// Cut a `;` comment that follows whitespace (`DefaultValue=0x10 ; why`), as python-canopen's
+/// reader does; a `;` right after other text (`a;b`) is part of the value.
+fn strip_inline_comment(line: &str) -> &str {
+    let bytes = line.as_bytes();
+    let cut = bytes
+        .windows(2)
+        .position(|w| (w[0] == b' ' || w[0] == b'\t') && w[1] == b';');
+    match cut {
+        Some(at) => line.get(..at).unwrap_or(line),
+        None => line,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
@@ -141,6 +155,19 @@ mod tests {
         let obj = doc.section("1000").unwrap();
         assert_eq!(obj.get("datatype").unwrap().line, 7);
         assert_eq!(obj.get("defaultvalue").unwrap().value, "");
+    }
+
+    #[test]
+    fn inline_comments_follow_whitespace() {
+        let doc = Document::parse(
+            "x",
+            "[a] ; the a section\nk=0x10 ; why\nn=a;b\nt=x\t; tab\n",
+        )
+        .unwrap();
+        let a = doc.section("a").unwrap();
+        assert_eq!(a.get("k").unwrap().value, "0x10");
+        assert_eq!(a.get("n").unwrap().value, "a;b");
+        assert_eq!(a.get("t").unwrap().value, "x");
     }
 
     #[test]
