@@ -18,7 +18,7 @@ impl<'d, 'a> Fields<'d, 'a> {
     }
 
     pub fn item(&self, key: &str) -> Option<&'d Item<'a>> {
-        self.section.get(&key.to_ascii_lowercase())
+        self.section.get(key)
     }
 
     pub fn text(&self, key: &str) -> Option<&'a str> {

@@ -22,15 +22,39 @@ pub(crate) struct Section<'a> {
     pub name: &'a str,
     pub line: usize,
     pub items: Vec<Item<'a>>,
-    /// Lower-case key → position in `items`.
-    by_key: HashMap<String, usize>,
+    /// Lower-case key → position in `items`, once a section has more keys than a scan is
+    /// cheap for (object sections have about eight; a hostile file may have millions).
+    by_key: Option<HashMap<String, usize>>,
 }
 
+/// Up to this many keys a section is searched by scanning.
+const SCANNED_KEYS: usize = 16;
+
 impl<'a> Section<'a> {
-    /// The item with `key` (which must be lower case).
+    /// The item with `key`, in any case.
     pub fn get(&self, key: &str) -> Option<&Item<'a>> {
-        debug_assert_eq!(key, key.to_ascii_lowercase());
-        self.by_key.get(key).and_then(|&i| self.items.get(i))
+        match &self.by_key {
+            None => self.items.iter().find(|i| i.key.eq_ignore_ascii_case(key)),
+            Some(map) => map
+                .get(&key.to_ascii_lowercase())
+                .and_then(|&i| self.items.get(i)),
+        }
+    }
+
+    fn push(&mut self, item: Item<'a>) {
+        if let Some(map) = &mut self.by_key {
+            map.insert(item.key.to_ascii_lowercase(), self.items.len());
+        }
+        self.items.push(item);
+        if self.by_key.is_none() && self.items.len() > SCANNED_KEYS {
+            let map = self
+                .items
+                .iter()
+                .enumerate()
+                .map(|(i, item)| (item.key.to_ascii_lowercase(), i))
+                .collect();
+            self.by_key = Some(map);
+        }
     }
 
     pub fn place(&self) -> Place<'a> {
@@ -90,7 +114,7 @@ impl<'a> Document<'a> {
                     name,
                     line,
                     items: Vec::new(),
-                    by_key: HashMap::new(),
+                    by_key: None,
                 });
                 continue;
             }
@@ -108,18 +132,12 @@ impl<'a> Document<'a> {
             if key.is_empty() {
                 return Err(Place::section(section.name, line).error(file, Reason::EmptyKey));
             }
-            let lower = key.to_ascii_lowercase();
-            if let Some(first) = section
-                .by_key
-                .get(&lower)
-                .and_then(|&i| section.items.get(i))
-            {
+            if let Some(first) = section.get(key) {
                 let first_line = first.line;
                 return Err(Place::key(section.name, key, line)
                     .error(file, Reason::DuplicateKey { first_line }));
             }
-            section.by_key.insert(lower, section.items.len());
-            section.items.push(Item { key, value, line });
+            section.push(Item { key, value, line });
         }
         Ok(doc)
     }
@@ -155,6 +173,20 @@ mod tests {
         let obj = doc.section("1000").unwrap();
         assert_eq!(obj.get("datatype").unwrap().line, 7);
         assert_eq!(obj.get("defaultvalue").unwrap().value, "");
+    }
+
+    #[test]
+    fn long_sections_find_keys_and_duplicates_too() {
+        let keys: String = (0..40).map(|i| format!("Key{i}={i}\n")).collect();
+        let text = format!("[a]\n{keys}");
+        let doc = Document::parse("x", &text).unwrap();
+        let a = doc.section("a").unwrap();
+        assert_eq!(a.get("KEY3").unwrap().value, "3");
+        assert_eq!(a.get("key39").unwrap().line, 41);
+        let err = Document::parse("x", &format!("[a]\n{keys}KEY3=again\n")).unwrap_err();
+        assert_eq!(err.reason, Reason::DuplicateKey { first_line: 5 });
+        let err = Document::parse("x", &format!("[a]\n{keys}key39=again\n")).unwrap_err();
+        assert_eq!(err.reason, Reason::DuplicateKey { first_line: 41 });
     }
 
     #[test]
