@@ -102,8 +102,55 @@ pub(crate) fn load(file: &str, text: &str) -> Result<Eds, EdsError> {
         .map(read_comments)
         .unwrap_or_default();
 
-    // ---- object lists ----
-    let mut listed: BTreeMap<u16, (ObjectList, Place<'_>)> = BTreeMap::new();
+    let listed = read_object_lists(&doc, file, &mut warnings)?;
+    let objects = gather_object_sections(&doc, file)?;
+
+    for (&index, (_, place)) in &listed {
+        if !objects.contains_key(&index) {
+            return Err(place.error(file, Reason::ListedObjectMissing { index }));
+        }
+    }
+    let mut model = BTreeMap::new();
+    for (&index, sections) in &objects {
+        let list = listed.get(&index).map(|(list, _)| *list);
+        if list.is_none() && !listed.is_empty() {
+            warnings.push(sections.main.place().error(file, Reason::Unlisted));
+        }
+        model.insert(index, sections.read(file, list)?);
+    }
+    for index in MANDATORY {
+        if !model.contains_key(&index) {
+            return Err(Place {
+                section: Some(ObjectList::Mandatory.section()),
+                ..Place::default()
+            }
+            .error(file, Reason::MandatoryObjectMissing { index }));
+        }
+    }
+
+    let mut eds = Eds {
+        file_name: file.to_string(),
+        file_info,
+        device_info,
+        dummy_usage,
+        commissioning,
+        comments,
+        objects: model,
+        warnings,
+    };
+    pdo::check(&eds)?;
+    eds.warnings.extend(pdo_count_warnings(&eds, &doc));
+    Ok(eds)
+}
+
+/// [MandatoryObjects], [OptionalObjects], [ManufacturerObjects]: index → list and the place of
+/// its entry.
+fn read_object_lists<'d>(
+    doc: &'d Document<'_>,
+    file: &str,
+    warnings: &mut Vec<EdsError>,
+) -> Result<BTreeMap<u16, (ObjectList, Place<'d>)>, EdsError> {
+    let mut listed = BTreeMap::new();
     for list in ObjectList::ALL {
         let Some(section) = doc.section(&list.section().to_ascii_lowercase()) else {
             continue;
@@ -112,11 +159,7 @@ pub(crate) fn load(file: &str, text: &str) -> Result<Eds, EdsError> {
         let count_item = f.required("SupportedObjects")?;
         let count: u16 = f.parse_unsigned(count_item, "0–65535")?;
         for n in 1..=count {
-            let key = n.to_string();
-            let item = f.required(&key).map_err(|mut e| {
-                e.key = Some(key.as_str().into());
-                e
-            })?;
+            let item = f.required(&n.to_string())?;
             let index: u16 = f.parse_unsigned(item, "an object index 0x0001–0xFFFF")?;
             if index == 0 {
                 return Err(f.error(item, Reason::IndexZero));
@@ -135,8 +178,14 @@ pub(crate) fn load(file: &str, text: &str) -> Result<Eds, EdsError> {
             warnings.push(f.error(item, Reason::ListEntryBeyond { count }));
         }
     }
+    Ok(listed)
+}
 
-    // ---- object sections ----
+/// The sections of each object: its own, its sub-indices, and a compact array's names and values.
+fn gather_object_sections<'d, 'a>(
+    doc: &'d Document<'a>,
+    file: &str,
+) -> Result<BTreeMap<u16, ObjectSections<'d, 'a>>, EdsError> {
     let mut objects: BTreeMap<u16, ObjectSections<'_, '_>> = BTreeMap::new();
     let mut subs: Vec<(u16, u8, &Section<'_>)> = Vec::new();
     let mut names: Vec<(u16, &Section<'_>)> = Vec::new();
@@ -188,43 +237,7 @@ pub(crate) fn load(file: &str, text: &str) -> Result<Eds, EdsError> {
         }
     }
 
-    for (&index, (_, place)) in &listed {
-        if !objects.contains_key(&index) {
-            return Err(place.error(file, Reason::ListedObjectMissing { index }));
-        }
-    }
-    let mut model = BTreeMap::new();
-    for (&index, sections) in &objects {
-        let list = listed.get(&index).map(|(list, _)| *list);
-        if list.is_none() && !listed.is_empty() {
-            warnings.push(sections.main.place().error(file, Reason::Unlisted));
-        }
-        model.insert(index, sections.read(file, list)?);
-    }
-    for index in MANDATORY {
-        if !model.contains_key(&index) {
-            return Err(Place {
-                section: Some(ObjectList::Mandatory.section()),
-                ..Place::default()
-            }
-            .error(file, Reason::MandatoryObjectMissing { index }));
-        }
-    }
-
-    let eds = Eds {
-        file_name: file.to_string(),
-        file_info,
-        device_info,
-        dummy_usage,
-        commissioning,
-        comments,
-        objects: model,
-        warnings,
-    };
-    pdo::check(&eds)?;
-    let mut eds = eds;
-    eds.warnings.extend(pdo_count_warnings(&eds, &doc));
-    Ok(eds)
+    Ok(objects)
 }
 
 /// `NrOfRXPDO` / `NrOfTXPDO` against the PDO objects present.
