@@ -9,6 +9,7 @@ pub mod bus;
 pub mod cia402;
 pub mod client;
 pub mod device;
+pub mod eds;
 pub mod emcy;
 pub mod events;
 pub mod frame;
