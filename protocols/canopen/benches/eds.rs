@@ -1,7 +1,7 @@
 // Benches fail loudly.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-//! Loading `fixtures/canopen/cia402-drive.eds` (2 000 lines, 93 objects, 213 entries): parse and
+//! Loading `fixtures/canopen/cia402-drive.eds` (2 060 lines, 94 objects, 215 entries): parse and
 //! check, then build the dictionary for a node, beside two baselines measured in the same run on
 //! the same text:
 //! - `baseline/line_split`: the INI floor — split into lines, trim, skip comments, split
