@@ -14,7 +14,7 @@
 use std::time::Duration;
 
 use axes::cia402::Cia402Drive;
-use axes::od::{ObjectDictionary, OdError, Value};
+use axes::od::{EntryDef, ObjectDictionary, OdError, Value};
 use axes::runtime::Fieldbus;
 use axes::Engine;
 
@@ -67,6 +67,10 @@ pub trait Persister: Send {
 pub struct DriveNodeSpec {
     pub slave: usize,
     pub config: NodeConfig,
+    /// Objects of the node's EDS; those the drive's dictionary lacks are added to it (PDO
+    /// parameters with the EDS's default mappings, store/restore, manufacturer objects). The
+    /// drive's own objects keep the drive's definitions.
+    pub objects: Vec<EntryDef>,
     /// The stored parameter image from an earlier run, if any.
     pub stored_image: Option<Vec<u8>>,
 }
@@ -89,6 +93,11 @@ impl DriveNode {
             .drive_mut(slave)
             .ok_or(BindError::NoSuchDrive(slave))?;
         // The stand-in the engine holds while the node is built; it never runs a step.
+        for def in spec.objects {
+            if drive.od().entry(def.index, def.subindex).is_err() {
+                drive.od_mut().insert(def).map_err(BindError::Object)?;
+            }
+        }
         let stand_in = drive.clone();
         let real = std::mem::replace(drive, stand_in);
         let mut node = Node::new(spec.config, real).map_err(BindError::Node)?;
@@ -137,6 +146,8 @@ pub enum BindError {
     NoSuchDrive(usize),
     #[error(transparent)]
     Node(NodeError),
+    #[error("cannot add an EDS object to the drive's dictionary: {0}")]
+    Object(axes::od::DefinitionError),
 }
 
 /// What the binding has done, for `GET /state`.

@@ -60,6 +60,7 @@ impl Rig {
                 node_id: NODE,
                 ..NodeConfig::default()
             },
+            objects: Vec::new(),
             stored_image: None,
         };
         handle
