@@ -87,9 +87,7 @@ impl Rig {
             .push_back(CanFrame::new(id, data).unwrap());
         self.handle.poke();
         // A command queued after the poke: when it is answered, the poke was served.
-        let _ = self.handle.call(Command::CommandState {
-            id: 0,
-        });
+        let _ = self.handle.call(Command::CommandState { id: 0 });
         self.sent()
     }
 
@@ -101,7 +99,11 @@ impl Rig {
             .find(|f| f.id() == 0x580 + u16::from(NODE))
             .unwrap_or_else(|| panic!("no SDO answer for {index:04x}:{sub}: {reply:?}"));
         let d = r.data();
-        assert_eq!(d[0] & 0xF3, 0x43, "expedited upload of {index:04x}:{sub}: {d:02x?}");
+        assert_eq!(
+            d[0] & 0xF3,
+            0x43,
+            "expedited upload of {index:04x}:{sub}: {d:02x?}"
+        );
         u32::from_le_bytes([d[4], d[5], d[6], d[7]])
     }
 
@@ -147,7 +149,10 @@ fn boot_up_then_sdo_answers_while_virtual_time_stands_still() {
     assert_eq!(rig.sdo_upload(0x1000, 0) & 0xFFFF, 402);
     assert_eq!(rig.handle.snapshot().tick, tick, "the answer took no tick");
     // An object the drive has is answered from the drive's own dictionary.
-    assert_eq!(rig.sdo_upload(0x6061, 0), rig.handle.snapshot().drives[0].mode as u8 as u32);
+    assert_eq!(
+        rig.sdo_upload(0x6061, 0),
+        rig.handle.snapshot().drives[0].mode as u8 as u32
+    );
 }
 
 #[test]
