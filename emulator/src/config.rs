@@ -158,9 +158,9 @@ pub struct FrontendsConfig {
     /// Modbus RTU frames over TCP.
     pub modbus_rtu_over_tcp: Option<mcemu_modbus::config::RtuOverTcpConfig>,
     /// CANopen slaves on a SocketCAN interface (e.g. `vcan0`).
-    pub canopen: Option<PlannedFrontend>,
+    pub canopen: Option<crate::canopen::config::CanopenConfig>,
     /// CANopen over the socketcand TCP protocol, for hosts without SocketCAN.
-    pub socketcand: Option<PlannedFrontend>,
+    pub socketcand: Option<crate::canopen::config::SocketcandFrontendConfig>,
     /// NMC protocol over TCP (network controllers, `NMC_DevOpenByIP`).
     pub nmc: Option<PlannedFrontend>,
     /// NMC protocol on a local socket (PCIe card indices, `NMC_DevOpen`).
@@ -322,6 +322,7 @@ impl Config {
             reason,
         })?;
         crate::modbus::check_faults(self, file)?;
+        crate::canopen::node_specs(self, file)?;
         // Register maps compile against this machine, or the config is refused.
         self.modbus_units(file).map(|_| ())
     }
@@ -402,8 +403,6 @@ impl Config {
         }
         let f = &self.frontends;
         for (name, section) in [
-            ("canopen", &f.canopen),
-            ("socketcand", &f.socketcand),
             ("nmc", &f.nmc),
             ("nmc_local", &f.nmc_local),
             ("ascii_native", &f.ascii_native),

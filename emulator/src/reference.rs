@@ -105,6 +105,7 @@ fn field_order<T: DeserializeOwned>() -> Vec<&'static str> {
 /// Field order of every struct in the config, by schema name. A struct missing here is listed
 /// alphabetically (and `every_config_struct_has_its_field_order` fails).
 fn field_orders() -> BTreeMap<&'static str, Vec<&'static str>> {
+    use crate::canopen::config::{CanopenConfig, CanopenNodeConfig, SocketcandFrontendConfig};
     use crate::config::{ControlConfig, FrontendsConfig, MachineConfig, PlannedFrontend};
     use axes::cia402::DriveConfig;
     use axes::config::{
@@ -132,6 +133,12 @@ fn field_orders() -> BTreeMap<&'static str, Vec<&'static str>> {
         ("RtuConfig", field_order::<RtuConfig>()),
         ("RtuOverTcpConfig", field_order::<RtuOverTcpConfig>()),
         ("UnitConfig", field_order::<UnitConfig>()),
+        ("CanopenConfig", field_order::<CanopenConfig>()),
+        ("CanopenNodeConfig", field_order::<CanopenNodeConfig>()),
+        (
+            "SocketcandFrontendConfig",
+            field_order::<SocketcandFrontendConfig>(),
+        ),
         // An internally tagged enum: its keys, tag first.
         (
             "FaultSpec",

@@ -83,10 +83,21 @@ async fn serve(
         shutdown: &shutdown,
     };
     let modbus = modbus::start(&cx, &mut servers).await?;
-    let frontends: Vec<Arc<dyn Frontend>> = modbus
+    let mut frontends: Vec<Arc<dyn Frontend>> = modbus
         .iter()
         .map(|m| Arc::clone(m) as Arc<dyn Frontend>)
         .collect();
+    let canopen_cx = crate::canopen::serve::Context {
+        config,
+        file,
+        handle: &handle,
+        state_dir,
+        shutdown: &shutdown,
+    };
+    let canopen = crate::canopen::serve::start(&canopen_cx, &mut servers).await?;
+    if let Some(c) = &canopen {
+        frontends.push(Arc::clone(c) as Arc<dyn Frontend>);
+    }
     let control = &config.frontends.control;
     let mut control_task = None;
     if control.enabled {
@@ -108,6 +119,9 @@ async fn serve(
     }
     // Front-ends stop accepting and close their connections; a second is plenty.
     let _ = shutdown_tx.send(true);
+    if let Some(c) = &canopen {
+        let _ = tokio::time::timeout(Duration::from_secs(1), c.stop()).await;
+    }
     let drained = tokio::time::timeout(Duration::from_secs(1), async {
         while servers.join_next().await.is_some() {}
     })

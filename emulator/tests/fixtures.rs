@@ -17,6 +17,7 @@ use serde_json::json;
 
 /// Every machine config in `fixtures/`; a new one must be added here (and tested below).
 const FIXTURES: &[&str] = &[
+    "cia402-can.toml",
     "cpu226h.toml",
     "default.toml",
     "gaochuan-gcn.toml",
@@ -58,6 +59,28 @@ fn every_fixture_validates_through_the_binary() {
             String::from_utf8_lossy(&out.stderr)
         );
         assert!(stdout.contains(": ok ("), "{name}: {stdout}");
+    }
+}
+
+#[test]
+fn the_cia402_can_fixture_puts_each_drive_on_the_bus_with_the_shipped_eds() {
+    let path = fixtures_dir().join("cia402-can.toml");
+    let config = Config::load(&path).unwrap();
+    let specs = mcemu::canopen::node_specs(&config, path.to_str().unwrap()).unwrap();
+    let nodes: Vec<(u8, usize)> = specs.iter().map(|s| (s.config.node_id, s.slave)).collect();
+    assert_eq!(nodes, [(1, 0), (2, 1), (3, 2), (4, 3)]);
+    for s in &specs {
+        // The EDS brings the CiA 402 pre-defined PDO mapping: TPDO1 = statusword.
+        let tpdo1 = s
+            .objects
+            .iter()
+            .find(|d| d.index == 0x1A00 && d.subindex == 1);
+        assert_eq!(
+            tpdo1.map(|d| d.default.clone()),
+            Some(axes::od::Value::U32(0x6041_0010)),
+            "node {}",
+            s.config.node_id
+        );
     }
 }
 
@@ -518,8 +541,8 @@ fn a_period_out_of_range_is_refused() {
 fn enabling_a_front_end_that_is_not_built_is_refused() {
     refused(
         "frontend",
-        "[frontends.canopen]\nenabled = true\nbind = \"vcan0\"\n",
-        &["frontends.canopen.enabled", "not built yet"],
+        "[frontends.nmc]\nenabled = true\nbind = \"127.0.0.1:5600\"\n",
+        &["frontends.nmc.enabled", "not built yet"],
     );
 }
 
