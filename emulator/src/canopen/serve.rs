@@ -5,20 +5,18 @@
 use std::sync::mpsc::{self, Receiver, Sender};
 use std::sync::{Arc, Mutex};
 
-use axes::runtime::{ClockMode, EngineHandle};
+use axes::runtime::ClockMode;
 use mcemu_can::socketcan::{SocketCanBridge, SocketCanConfig};
 use mcemu_can::socketcand::{SocketcandConfig, SocketcandServer};
 use mcemu_can::{BitTiming, CandumpLog, Endpoint, EndpointOptions, Hub, HubConfig, WireFrame};
 use mcemu_canopen::cia402::{CanopenFieldbus, FramePort, NodeStatus, Persister};
 use mcemu_canopen::CanFrame;
 use serde_json::{json, Map, Value};
-use tokio::sync::watch;
 use tokio::task::JoinSet;
 
-use crate::config::{Config, ConfigError};
+use crate::config::ConfigError;
 use crate::control::{ApiError, Frontend};
-use crate::run::{announce, RunError};
-use crate::state_dir::StateDir;
+use crate::run::{announce, FrontendContext, RunError};
 
 /// The running CAN bus, for the control API.
 pub struct CanopenFrontend {
@@ -162,19 +160,10 @@ fn image_file(node_id: u8) -> String {
     format!("canopen/node-{node_id}.img")
 }
 
-/// What `start` needs of `mcemu run`.
-pub struct Context<'a> {
-    pub config: &'a Config,
-    pub file: &'a str,
-    pub handle: &'a EngineHandle,
-    pub state_dir: Option<&'a StateDir>,
-    pub shutdown: &'a watch::Receiver<bool>,
-}
-
 /// Start the bus if `[frontends.canopen]` is enabled: nodes installed as a fieldbus, then the
 /// transports, each announced.
 pub async fn start(
-    cx: &Context<'_>,
+    cx: &FrontendContext<'_>,
     tasks: &mut JoinSet<()>,
 ) -> Result<Option<Arc<CanopenFrontend>>, RunError> {
     let Some(c) = cx.config.frontends.canopen.as_ref().filter(|c| c.enabled) else {
