@@ -43,7 +43,8 @@ impl Default for CanopenConfig {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CanopenNodeConfig {
-    /// Node id, 1 … 127.
+    /// Node id, 1 … 127; 255: an unconfigured LSS slave that a master commissions over LSS
+    /// (CiA 305: switch state, configure node id, inquire identity).
     pub node_id: u8,
     /// The drive: its position in `[[drives]]` (the slave number). Its `master` must be
     /// `external`.

@@ -61,10 +61,14 @@ pub fn node_specs(config: &Config, file: &str) -> Result<Vec<DriveNodeSpec>, Con
     let mut specs: Vec<DriveNodeSpec> = Vec::new();
     for (i, n) in c.nodes.iter().enumerate() {
         let key = |k: &str| format!("frontends.canopen.nodes[{i}].{k}");
-        if !(1..=127).contains(&n.node_id) {
+        // 255: an unconfigured LSS slave (CiA 305), which a master commissions over LSS.
+        if !((1..=127).contains(&n.node_id) || n.node_id == 255) {
             return Err(error(
                 key("node_id"),
-                format!("{} is not a node id (1 … 127)", n.node_id),
+                format!(
+                    "{} is not a node id (1 … 127, or 255 for an unconfigured LSS slave)",
+                    n.node_id
+                ),
             ));
         }
         if specs.iter().any(|s| s.config.node_id == n.node_id) {
@@ -100,7 +104,10 @@ pub fn node_specs(config: &Config, file: &str) -> Result<Vec<DriveNodeSpec>, Con
             ));
         }
         let eds = load_eds(&n.eds, file).map_err(|reason| error(key("eds"), reason))?;
-        let objects = eds.entry_defs(n.node_id).map_err(|e| ConfigError {
+        // An unconfigured node's $NODEID values are resolved as node 1; the node moves its
+        // COB-IDs to the id LSS gives it (reset communication).
+        let eds_node = if n.node_id == 255 { 1 } else { n.node_id };
+        let objects = eds.entry_defs(eds_node).map_err(|e| ConfigError {
             file: e.file.to_string(),
             key: String::new(),
             reason: format!("{e} (used by {file}: {})", key("eds")),
