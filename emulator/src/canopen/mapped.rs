@@ -74,6 +74,9 @@ pub struct Backed {
     pub register: u16,
     pub data_type: DataType,
     pub words: Words,
+    /// Its registers issue engine commands when written (`on_write`): within one RPDO such
+    /// objects are written after the set-points (P282 after P290).
+    pub commands: bool,
 }
 
 /// The backed objects of `od` over `map`: every entry in [`BACKED`] must be an 8/16/32-bit
@@ -129,11 +132,17 @@ pub fn backed_objects(od: &ObjectDictionary, map: &UnitMap) -> Result<Vec<Backed
                 map.name
             ));
         }
+        let span = register..register + words.count();
+        let commands = holding.iter().any(|p| {
+            !p.actions.is_empty()
+                && (p.address..p.address.saturating_add(p.width)).any(|a| span.contains(&a))
+        });
         out.push(Backed {
             index,
             register,
             data_type,
             words,
+            commands,
         });
     }
     Ok(out)
@@ -246,8 +255,15 @@ pub struct MapDevice<R: Registers> {
     od: ObjectDictionary,
     registers: R,
     backed: Vec<Backed>,
+    /// Set while the node handles an RPDO (see [`MapDevice::begin_rpdo`]).
+    in_rpdo: bool,
+    /// An RPDO's changed objects, written by [`MapDevice::finish_rpdo`]: (backed, raw).
+    pending: Vec<(usize, u32)>,
     /// Reads the map refused during refreshes (the object keeps its last value).
     pub refresh_errors: u64,
+    /// RPDO values the map refused (an RPDO has no answer; the object returns to the map's
+    /// value at the next refresh).
+    pub rpdo_write_errors: u64,
 }
 
 impl<R: Registers> MapDevice<R> {
@@ -257,8 +273,49 @@ impl<R: Registers> MapDevice<R> {
             od,
             registers,
             backed,
+            in_rpdo: false,
+            pending: Vec::new(),
             refresh_errors: 0,
+            rpdo_write_errors: 0,
         }
+    }
+
+    /// Whether `cob_id` is one of the node's valid RPDOs (0x1400–0x15FF sub-index 1).
+    pub fn is_rpdo(&self, cob_id: u16) -> bool {
+        self.od
+            .entries()
+            .filter(|e| (0x1400..=0x15FF).contains(&e.def.index) && e.def.subindex == 1)
+            .filter_map(|e| e.value.as_u64())
+            .any(|v| v & 1 << 31 == 0 && v & 0x7FF == u64::from(cob_id))
+    }
+
+    /// The next writes come from an RPDO: the master's process image, sent whole every time.
+    /// Only an object whose value changed is an action for the map (P281 = 0 in every RPDO1
+    /// must not stop the drive each time, P282 bit 0 not re-enable it), and the changed ones
+    /// are written at [`finish_rpdo`](Self::finish_rpdo), set-points before command registers,
+    /// so "P290 and P282 bit 1" in one RPDO positions to the new P290.
+    pub fn begin_rpdo(&mut self) {
+        self.in_rpdo = true;
+        self.pending.clear();
+    }
+
+    /// Write what the RPDO changed; returns how many writes the map refused.
+    pub fn finish_rpdo(&mut self) -> u64 {
+        self.in_rpdo = false;
+        let mut pending = std::mem::take(&mut self.pending);
+        pending.sort_by_key(|(b, _)| self.backed.get(*b).is_some_and(|b| b.commands));
+        let mut refused = 0;
+        for (b, raw) in pending {
+            let Some(b) = self.backed.get(b) else {
+                continue;
+            };
+            if let Err(e) = self.registers.write(b.register, &b.words.encode(raw)) {
+                tracing::debug!(index = b.index, reason = %e.reason, "RPDO value refused by the map");
+                refused += 1;
+            }
+        }
+        self.rpdo_write_errors += refused;
+        refused
     }
 
     pub fn backed(&self) -> &[Backed] {
@@ -297,20 +354,29 @@ impl<R: Registers> Device for MapDevice<R> {
     }
 
     /// The dictionary's checks (access, type, limits), then the map's write for a backed
-    /// object (its checks and commands), then the store.
+    /// object (its checks and commands), then the store. Within an RPDO the map's write waits
+    /// for [`MapDevice::finish_rpdo`].
     fn write(&mut self, index: u16, subindex: u8, value: Value) -> Result<(), OdError> {
         self.od.validate(index, subindex, &value)?;
-        if let Some(b) = self
+        let found = self
             .backed
             .iter()
-            .find(|b| b.index == index && subindex == 0)
-        {
+            .enumerate()
+            .find(|(_, b)| b.index == index && subindex == 0);
+        if let Some((k, b)) = found {
             let raw = raw_bits(&value).ok_or_else(|| OdError::WrongType {
                 index,
                 subindex,
                 expected: b.data_type,
                 found: value.data_type(),
             })?;
+            if self.in_rpdo {
+                if self.od.get(index, subindex) != Some(&value) {
+                    self.pending.retain(|(p, _)| *p != k);
+                    self.pending.push((k, raw));
+                }
+                return self.od.write(index, subindex, value);
+            }
             self.registers
                 .write(b.register, &b.words.encode(raw))
                 .map_err(|e| od_error(index, subindex, &e))?;
@@ -545,5 +611,48 @@ on_write = [{ when = "=1", command = "move_velocity", args = { velocity = 10 } }
         // A move of a disabled axis: refused in the engine's state, exception 04.
         let e = d.write(0x2006, 0, Value::U16(1)).unwrap_err();
         assert_eq!(e.sdo_abort_code(), 0x0800_0022, "{e}");
+    }
+
+    #[test]
+    fn an_rpdo_writes_changed_values_set_points_first() {
+        #[derive(Default)]
+        struct Log(RefCell<Vec<(u16, Vec<u16>)>>);
+        impl Registers for Log {
+            fn read(&self, _: u16, count: u16) -> Result<Vec<u16>, ExecError> {
+                Ok(vec![0; usize::from(count)])
+            }
+            fn write(&self, address: u16, words: &[u16]) -> Result<(), ExecError> {
+                self.0.borrow_mut().push((address, words.to_vec()));
+                Ok(())
+            }
+        }
+        let od = e10_od();
+        let backed = backed_objects(&od, &e10_map()).unwrap();
+        let mut d = MapDevice::new(od, Log::default(), backed);
+        assert!(d.is_rpdo(0x202) && d.is_rpdo(0x302) && !d.is_rpdo(0x182));
+        // RPDO1 in mapping order: P282 = 3 (enable, start), P281 = 0 (unchanged), P290 = 5000.
+        d.begin_rpdo();
+        d.write(0x211A, 0, Value::U16(3)).unwrap();
+        d.write(0x2119, 0, Value::U16(0)).unwrap();
+        d.write(0x2122, 0, Value::I32(5000)).unwrap();
+        assert!(
+            d.registers.0.borrow().is_empty(),
+            "nothing before the RPDO ends"
+        );
+        assert_eq!(d.finish_rpdo(), 0);
+        assert_eq!(
+            *d.registers.0.borrow(),
+            [(290, vec![0, 5000]), (282, vec![3])],
+            "P290 first, P282 (commands) after, P281 unchanged: not written"
+        );
+        // The same image again: no action.
+        d.begin_rpdo();
+        d.write(0x211A, 0, Value::U16(3)).unwrap();
+        d.write(0x2122, 0, Value::I32(5000)).unwrap();
+        d.finish_rpdo();
+        assert_eq!(d.registers.0.borrow().len(), 2);
+        // An SDO write always acts, changed or not.
+        d.write(0x211A, 0, Value::U16(3)).unwrap();
+        assert_eq!(d.registers.0.borrow().len(), 3);
     }
 }

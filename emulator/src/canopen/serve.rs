@@ -94,6 +94,7 @@ impl Frontend for CanopenFrontend {
                     "nmt": format!("{:?}", n.nmt),
                     "counters": format!("{:?}", n.counters),
                     "refresh_errors": n.refresh_errors,
+                    "rpdo_write_errors": n.rpdo_write_errors,
                 })
             })
             .collect();
@@ -399,6 +400,7 @@ struct MappedStatus {
     nmt: mcemu_canopen::NmtState,
     counters: mcemu_canopen::NodeCounters,
     refresh_errors: u64,
+    rpdo_write_errors: u64,
 }
 
 /// Paced clocks: how often (engine time) a map-backed node runs its tick when no deadline comes
@@ -446,6 +448,7 @@ impl MappedNodeTask {
                 nmt: node.nmt_state(),
                 counters: node.counters(),
                 refresh_errors: 0,
+                rpdo_write_errors: 0,
             });
             s.len() - 1
         };
@@ -488,7 +491,14 @@ impl MappedNodeTask {
             Incoming::Frame(f) => {
                 self.refresh();
                 let now = self.now();
+                let rpdo = self.node.device().is_rpdo(f.id());
+                if rpdo {
+                    self.node.device_mut().begin_rpdo();
+                }
                 self.node.on_frame_into(&f, now, &mut self.out);
+                if rpdo {
+                    self.node.device_mut().finish_rpdo();
+                }
                 // A write may have issued commands: the next call reads the map again.
                 self.refreshed = None;
                 self.handle_events(now);
@@ -539,6 +549,7 @@ impl MappedNodeTask {
                     nmt: self.node.nmt_state(),
                     counters: self.node.counters(),
                     refresh_errors: self.node.device().refresh_errors,
+                    rpdo_write_errors: self.node.device().rpdo_write_errors,
                 };
             }
         }
