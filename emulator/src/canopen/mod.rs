@@ -154,56 +154,6 @@ pub fn node_specs(config: &Config, file: &str) -> Result<NodeSpecs, ConfigError>
                 ))
             }
         }
-<<<<<<< HEAD
-        let drive = config.drives.get(n.drive).ok_or_else(|| {
-            error(
-                key("drive"),
-                format!(
-                    "drive {} does not exist (the machine has {} [[drives]])",
-                    n.drive,
-                    config.drives.len()
-                ),
-            )
-        })?;
-        if drive.master != DriveMaster::External {
-            return Err(error(
-                key("drive"),
-                format!(
-                    "drive {} is mastered by the engine (master = \"engine\"); a CANopen master \
-                     needs master = \"external\"",
-                    n.drive
-                ),
-            ));
-        }
-        let eds = load_eds(&n.eds, file).map_err(|reason| error(key("eds"), reason))?;
-        // An unconfigured node's $NODEID values are resolved as node 1; the node moves its
-        // COB-IDs to the id LSS gives it (reset communication).
-        let eds_node = if n.node_id == 255 { 1 } else { n.node_id };
-        let objects = eds.entry_defs(eds_node).map_err(|e| ConfigError {
-            file: e.file.to_string(),
-            key: String::new(),
-            reason: format!("{e} (used by {file}: {})", key("eds")),
-        })?;
-        let mut node = NodeConfig {
-            node_id: n.node_id,
-            device_name: drive.name.clone(),
-            ..NodeConfig::default()
-        };
-        node.identity.vendor_id = drive.vendor_id;
-        node.identity.product_code = drive.product_code;
-        node.identity.revision = drive.revision;
-        node.identity.serial = drive.serial;
-        if let Some(ms) = n.heartbeat_ms {
-            node.heartbeat_ms = ms;
-        }
-        specs.push(DriveNodeSpec {
-            slave: n.drive,
-            config: node,
-            objects,
-            stored_image: None,
-        });
-=======
->>>>>>> e10
     }
     Ok(specs)
 }
@@ -248,7 +198,10 @@ fn drive_spec(
     }
     let eds_name = n.eds.as_deref().unwrap_or(DEFAULT_DRIVE_EDS);
     let eds = load_eds(eds_name, file).map_err(|reason| error(key("eds"), reason))?;
-    let objects = eds.entry_defs(n.node_id).map_err(|e| ConfigError {
+    // An unconfigured node's $NODEID values are resolved as node 1; the node moves its COB-IDs
+    // to the id LSS gives it (reset communication).
+    let eds_node = if n.node_id == 255 { 1 } else { n.node_id };
+    let objects = eds.entry_defs(eds_node).map_err(|e| ConfigError {
         file: e.file.to_string(),
         key: String::new(),
         reason: format!("{e} (used by {file}: {})", key("eds")),
