@@ -265,6 +265,9 @@ pub async fn start(
     let (to_writer, from_fieldbus) = mpsc::channel::<(u8, Vec<u8>)>();
     let (done_tx, done) = mpsc::channel();
     let dir = cx.state_dir.cloned();
+    // On the virtual clock nothing serves the nodes until a frame or an advance comes: the
+    // writer pokes the servo thread, so the master gets its 0x1010/0x1011 confirmation at once.
+    let poker = cx.handle.clone();
     std::thread::Builder::new()
         .name("mcemu-canopen-store".into())
         .spawn(move || {
@@ -278,6 +281,7 @@ pub async fn start(
                 if done_tx.send((node_id, saved.is_ok())).is_err() {
                     break;
                 }
+                poker.poke();
             }
         })
         .map_err(RunError::Io)?;

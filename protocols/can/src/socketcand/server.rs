@@ -254,6 +254,20 @@ impl Feed {
     }
 }
 
+/// Acknowledge what was read at once rather than after the delayed-ACK timer (40 ms on Linux).
+/// A client that leaves Nagle's algorithm on (python-can's socketcand bus unless `tcp_tune`)
+/// holds each small `send` until the previous one is acknowledged: bursts of frames such as an
+/// SDO block (127 frames, then the server's answer) would otherwise cost 40 ms each. Linux
+/// leaves quick-ack mode on its own, so it is set again after every read.
+fn quick_ack(reader: &tokio::net::tcp::OwnedReadHalf) {
+    #[cfg(target_os = "linux")]
+    {
+        let _ = socket2::SockRef::from(reader.as_ref()).set_tcp_quickack(true);
+    }
+    #[cfg(not(target_os = "linux"))]
+    let _ = reader;
+}
+
 async fn serve(
     stream: TcpStream,
     peer: SocketAddr,
@@ -281,6 +295,7 @@ async fn serve(
                 if n == 0 {
                     return Ok(());
                 }
+                quick_ack(&reader);
                 decoder.decode(buf.get(..n).unwrap_or_default(), |command| {
                     Stats::add(&stats.commands, 1);
                     session.on_command(command, &shared.served, &mut actions);
