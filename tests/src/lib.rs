@@ -25,7 +25,9 @@ use std::time::{Duration, Instant};
 mod mcemu;
 mod modbus;
 
-pub use mcemu::{mcemu_bin, wait_for, Mcemu, McemuExit, TempDir, STOP_TIMEOUT};
+pub use mcemu::{
+    cargo_test_executable, mcemu_bin, wait_for, Mcemu, McemuExit, TempDir, STOP_TIMEOUT,
+};
 pub use modbus::{
     crc16, hex, mbap_frame, mbpoll, mbpoll_values, rtu_frame, to_hex, ByteLink, MbapClient,
     MbapReply, RawSerial, REPLY_TIMEOUT,

@@ -33,17 +33,12 @@ pub fn mcemu_bin() -> PathBuf {
             assert!(bin.is_file(), "MCEMU_BIN={} is not a file", bin.display());
             return bin;
         }
-        let exe = std::env::current_exe().expect("the test executable's path");
-        // target/<profile>/deps/<test>-<hash>
-        let profile_dir = exe
-            .parent()
-            .and_then(Path::parent)
-            .expect("the test executable lives in <target>/<profile>/deps");
+        let profile_dir = profile_dir();
         let bin = profile_dir.join("mcemu");
         let built = modified(&bin);
         let newest_source = newest_source();
         if built.is_none_or(|b| newest_source.is_some_and(|s| s > b)) {
-            build_mcemu(profile_dir);
+            build_mcemu(&profile_dir);
         }
         assert!(bin.is_file(), "{} was not built", bin.display());
         bin
@@ -72,37 +67,49 @@ fn newest_source() -> Option<SystemTime> {
     }
     let root = workspace_root();
     let mut newest = None;
-    for dir in [
-        "axes/src",
-        "protocols/modbus/src",
-        "protocols/can/src",
-        "protocols/canopen/src",
-        "emulator/src",
-        "fixtures",
-    ] {
-        walk(&root.join(dir), &mut newest);
+    let mut dirs = vec![
+        root.join("axes/src"),
+        root.join("emulator/src"),
+        root.join("fixtures"),
+    ];
+    let mut files = vec![
+        root.join("Cargo.lock"),
+        root.join("axes/Cargo.toml"),
+        root.join("emulator/Cargo.toml"),
+    ];
+    // Every protocol crate (Modbus, CAN, CANopen …): the binary links them all.
+    if let Ok(entries) = std::fs::read_dir(root.join("protocols")) {
+        for entry in entries.flatten() {
+            dirs.push(entry.path().join("src"));
+            files.push(entry.path().join("Cargo.toml"));
+        }
     }
-    for file in [
-        "Cargo.lock",
-        "axes/Cargo.toml",
-        "protocols/modbus/Cargo.toml",
-        "protocols/can/Cargo.toml",
-        "protocols/canopen/Cargo.toml",
-        "emulator/Cargo.toml",
-    ] {
-        if let Some(t) = modified(&root.join(file)) {
+    for dir in &dirs {
+        walk(dir, &mut newest);
+    }
+    for file in &files {
+        if let Some(t) = modified(file) {
             newest = Some(newest.map_or(t, |n: SystemTime| n.max(t)));
         }
     }
     newest
 }
 
-fn build_mcemu(profile_dir: &Path) {
+/// The directory of the running test executable's profile (`<target>/debug`).
+fn profile_dir() -> PathBuf {
+    let exe = std::env::current_exe().expect("the test executable's path");
+    // target/<profile>/deps/<test>-<hash>
+    exe.parent()
+        .and_then(Path::parent)
+        .expect("the test executable lives in <target>/<profile>/deps")
+        .to_path_buf()
+}
+
+/// `cargo` with the target directory and profile of the running test executable.
+fn cargo_in_profile(profile_dir: &Path, subcommand: &[&str]) -> Command {
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
     let mut command = Command::new(cargo);
-    command
-        .current_dir(workspace_root())
-        .args(["build", "-p", "mcemu", "--bin", "mcemu"]);
+    command.current_dir(workspace_root()).args(subcommand);
     if let Some(target) = profile_dir.parent() {
         command.arg("--target-dir").arg(target);
     }
@@ -115,6 +122,46 @@ fn build_mcemu(profile_dir: &Path) {
             command.args(["--profile", profile]);
         }
     }
+    command
+}
+
+/// The executable of integration test `test` of package `package`, in this build's target
+/// directory and profile: `cargo test -p PACKAGE --test TEST --no-run` (which builds it when its
+/// sources changed, and otherwise only checks) names it. For tests that run another crate's
+/// tests elsewhere, e.g. inside the vcan VM.
+pub fn cargo_test_executable(package: &str, test: &str) -> PathBuf {
+    let mut command = cargo_in_profile(
+        &profile_dir(),
+        &[
+            "test",
+            "-p",
+            package,
+            "--test",
+            test,
+            "--no-run",
+            "--message-format=json-render-diagnostics",
+        ],
+    );
+    let what = format!("{command:?}");
+    let output = command
+        .stderr(Stdio::piped())
+        .output()
+        .unwrap_or_else(|e| panic!("cannot run {what}: {e}"));
+    assert!(
+        output.status.success(),
+        "{what} failed\n{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    String::from_utf8_lossy(&output.stdout)
+        .lines()
+        .filter_map(|line| serde_json::from_str::<Value>(line).ok())
+        .filter(|m| m["reason"] == "compiler-artifact" && m["target"]["name"] == test)
+        .find_map(|m| m["executable"].as_str().map(PathBuf::from))
+        .unwrap_or_else(|| panic!("{what} named no executable for test `{test}`"))
+}
+
+fn build_mcemu(profile_dir: &Path) {
+    let mut command = cargo_in_profile(profile_dir, &["build", "-p", "mcemu", "--bin", "mcemu"]);
     let what = format!("{command:?}");
     let output = command
         .output()
