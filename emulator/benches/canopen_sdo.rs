@@ -165,13 +165,29 @@ fn report_servo(server: &str, mcemu: &Mcemu) {
     );
 }
 
-/// python-canopen's client: `transfers` (mode, size), `reps` times each.
+/// python-canopen's client: `transfers` (mode, size), `reps` times each, a process per
+/// transfer kind (after a failed transfer python-canopen's queue of responses can be out of
+/// step, which would fail every later transfer of the same process).
 fn python_client(
     t: &Transport,
     node: u8,
     server: &str,
     reps: usize,
     transfers: &[(&str, usize)],
+    tcp_tune: bool,
+) -> Vec<Value> {
+    transfers
+        .iter()
+        .flat_map(|transfer| python_process(t, node, server, reps, transfer, tcp_tune))
+        .collect()
+}
+
+fn python_process(
+    t: &Transport,
+    node: u8,
+    server: &str,
+    reps: usize,
+    (mode, size): &(&str, usize),
     tcp_tune: bool,
 ) -> Vec<Value> {
     let mut command = Command::new(python());
@@ -181,10 +197,8 @@ fn python_client(
         .args(["--node", &node.to_string()])
         .args(["--index", &format!("{INDEX:#x}")])
         .args(["--reps", &reps.to_string()])
-        .args(["--tcp-tune", if tcp_tune { "on" } else { "off" }]);
-    for (mode, size) in transfers {
-        command.args(["--transfer", &format!("{mode}:{size}")]);
-    }
+        .args(["--tcp-tune", if tcp_tune { "on" } else { "off" }])
+        .args(["--transfer", &format!("{mode}:{size}")]);
     let what = format!("{command:?}");
     let output = run_with_timeout(command, b"", Duration::from_secs(1500));
     let stdout = String::from_utf8_lossy(&output.stdout);
@@ -373,13 +387,19 @@ fn cell(row: Option<&Value>) -> (String, Option<f64>) {
         .as_array()
         .map(|a| a.iter().filter_map(Value::as_f64).collect())
         .unwrap_or_default();
+    // A failure after some good repetitions: the figures of those, marked "!" (the
+    // failures are listed under the table).
+    let mark = if row["error"].is_string() { "!" } else { "" };
     match (spread(&ms), row["error"].as_str()) {
-        (Some(_), Some(e)) if e.starts_with("unverified") => ("(refused: see log)".into(), None),
+        (Some(_), Some(e)) if e.starts_with("unverified") => ("(unverified) !".into(), None),
         (Some((med, lo, hi)), _) if ms.len() > 1 => {
-            (format!("{med:.1} [{lo:.1}–{hi:.1}]"), Some(med))
+            (format!("{med:.1} [{lo:.1}–{hi:.1}]{mark}"), Some(med))
         }
-        (Some((med, _, _)), _) => (format!("{med:.1}"), Some(med)),
-        (None, Some(e)) => (e.chars().take(24).collect(), None),
+        (Some((med, _, _)), _) => (format!("{med:.1}{mark}"), Some(med)),
+        (None, Some(e)) => {
+            let e = e.trim_start_matches("SdoCommunicationError: ");
+            (e.chars().take(24).collect(), None)
+        }
         (None, None) => ("-".into(), None),
     }
 }
@@ -489,6 +509,28 @@ fn print_table(rows: &[Value]) {
             "",
             "",
         ]);
+    }
+    let failures: Vec<&Value> = rows.iter().filter(|r| r["error"].is_string()).collect();
+    if !failures.is_empty() {
+        println!("failures (a transfer's remaining repetitions were not run after one):");
+        for r in failures {
+            println!(
+                "  {} {} {} {} {} B {}: {} (after {} good)",
+                r["transport"].as_str().unwrap_or(""),
+                r["server"].as_str().unwrap_or(""),
+                r["client"].as_str().unwrap_or(""),
+                r["mode"].as_str().unwrap_or(""),
+                r["size"],
+                r["direction"].as_str().unwrap_or(""),
+                r["error"].as_str().unwrap_or(""),
+                r["ms"].as_array().map_or(0, Vec::len)
+                    - usize::from(
+                        r["error"]
+                            .as_str()
+                            .is_some_and(|e| e.starts_with("unverified"))
+                    ),
+            );
+        }
     }
     println!(
         "(aim: 100 kB block below 50 ms both ways. ÷ = ratio of medians, < 1 faster than the \
