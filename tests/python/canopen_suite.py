@@ -1395,43 +1395,62 @@ def r_csp(cx):
     syncs = after["sync"] - before["sync"]
     rpdos = after["rpdos"] - before["rpdos"]
     frames_out = after["frames_out"] - before["frames_out"]
-    # The set-points: on SocketCAN the RPDO3 frames themselves (bus timestamps); over
-    # socketcand (the server does not return a client's own frames) the master's updates.
-    if cx.interface == "socketcan":
-        sent = [(t, struct.unpack("<i", d[2:6])[0]) for t, d in bus.of(0x404)]
-    else:
-        sent = updates
-    samples = [(t, struct.unpack("<Hi", d)[1]) for t, d in bus.of(0x384)]
-    # From a set-point to TPDO3 showing it: the task's period, the bus, the servo tick that
-    # takes the RPDO, the step, the next SYNC. Under qemu's TCG the debug build's servo thread
-    # falls behind in bursts (frames queue, then a catch-up serves them).
-    lag = 1.0 if IN_VM else 0.05
+    # Each TPDO3 position must lie between an earlier set-point and the newest one the node
+    # could have taken. Over socketcand (the server does not return a client's own frames) the
+    # set-points are the master's updates on the wall clock, and "earlier" is `lag` before: the
+    # task's period, the bus, the servo tick that takes the RPDO, the step, the next SYNC. On
+    # SocketCAN candump has the RPDO3 and TPDO3 frames in bus order, which is the order the node
+    # takes them in, and "earlier" is a count of RPDOs: a tick serves at most
+    # MAX_FRAMES_PER_TICK = 256 queued frames (128 cycles of SYNC + RPDO), so a servo thread that
+    # fell behind (qemu's TCG, a loaded machine) answers a burst of SYNCs with the position of
+    # the step before the burst, at most 128 RPDOs old, plus a few ticks of the 1 ms lag plant.
     tol = 50
     worst = 0
     lags = []
     outside = []
-    for stamp, pos in samples:
-        newest = [p for ts, p in sent if ts <= stamp]
-        if not newest:
-            continue
-        older = [p for ts, p in sent if ts <= stamp - lag]
-        hi = newest[-1]
-        lo = older[-1] if older else start
-        if not lo - tol <= pos <= hi + tol:
-            outside.append(f"{pos} at {stamp - sent[0][0]:.3f} s outside [{lo}, {hi}]")
-        worst = max(worst, hi - pos)
-        if pos < final - tol:
-            # How long ago the master first asked for this position (the ramp is monotonic).
-            lags.append(stamp - next((ts for ts, p in sent if p >= pos - tol), stamp))
+    samples = []
+    if cx.interface == "socketcan":
+        behind = 128 + 12
+        lag = f"{behind} RPDOs"
+        seen = []
+        for stamp, can_id, data in bus.frames:
+            if can_id == 0x404:
+                seen.append((stamp, struct.unpack("<i", data[2:6])[0]))
+            elif can_id == 0x384 and seen:
+                pos = struct.unpack("<Hi", data)[1]
+                samples.append((stamp, pos))
+                hi = seen[-1][1]
+                lo = seen[-1 - behind][1] if len(seen) > behind else start
+                if not lo - tol <= pos <= hi + tol:
+                    outside.append(f"{pos} at {stamp - seen[0][0]:.3f} s outside [{lo}, {hi}]")
+                worst = max(worst, hi - pos)
+                if pos < final - tol:
+                    lags.append(stamp - next((t for t, p in seen if p >= pos - tol), stamp))
+    else:
+        lag = "0.05 s"
+        samples = [(t, struct.unpack("<Hi", d)[1]) for t, d in bus.of(0x384)]
+        for stamp, pos in samples:
+            newest = [p for ts, p in updates if ts <= stamp]
+            if not newest:
+                continue
+            older = [p for ts, p in updates if ts <= stamp - 0.05]
+            hi = newest[-1]
+            lo = older[-1] if older else start
+            if not lo - tol <= pos <= hi + tol:
+                outside.append(f"{pos} at {stamp - updates[0][0]:.3f} s outside [{lo}, {hi}]")
+            worst = max(worst, hi - pos)
+            if pos < final - tol:
+                # How long ago the master first asked for this position (the ramp is monotonic).
+                lags.append(stamp - next((ts for ts, p in updates if p >= pos - tol), stamp))
     lags.sort()
     on_bus = bus.counts
     notes = {"window_s": round(window, 3), "setpoint_updates": len(updates) - 1,
              "syncs_on_bus": on_bus[0x080], "syncs_taken": syncs, "rpdos_on_bus": on_bus[0x404],
              "rpdos_taken": rpdos, "frames_out": frames_out, "tpdo3_seen": len(samples),
-             "max_lag_increments": worst,
+             "max_lag_increments": worst, "lag_bound": lag,
              "lag_ms_median": round(1000 * lags[len(lags) // 2], 1) if lags else None,
              "lag_ms_max": round(1000 * lags[-1], 1) if lags else None}
-    check(not outside, f"TPDO3 positions outside the set-points of the {lag} s before them: "
+    check(not outside, f"TPDO3 positions outside the set-points of the {lag} before them: "
                        f"{outside[:5]} ({len(outside)} in all; {notes})")
     # The node took every SYNC and every RPDO on the bus, and answered each SYNC (TPDO3 and
     # TPDO4 are synchronous).
