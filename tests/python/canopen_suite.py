@@ -318,7 +318,8 @@ PDOMapping=0
     check(len(parts) == 5, "the fixture no longer has four [[axes]]")
     encoder = "[axes.encoder]\ncounts_per_rev = 10000"
     check(encoder in parts[3] and 'name = "z"' in parts[3], "axis z's encoder section moved")
-    parts[3] = parts[3].replace(encoder, encoder + "\nindex_offset = 2500 # test: index at k + 0.25 mm", 1)
+    offset = "\nindex_offset = 2500  # test: the index at k + 0.25 mm"
+    parts[3] = parts[3].replace(encoder, encoder + offset, 1)
     # The fixture's directory is read-only in the VM: the config goes to the workdir (its EDS
     # names are shipped ones or absolute paths).
     config = os.path.join(workdir, "cia402-can-test.toml")
@@ -414,11 +415,13 @@ def v_sdo_objects(cx):
     objects = {}
     for obj in od.values():
         if obj.index in mandatory or 0x1000 <= obj.index <= 0x1FFF:
-            subs = [obj] if isinstance(obj, canopen.objectdictionary.ODVariable) else list(obj.values())
+            variable = isinstance(obj, canopen.objectdictionary.ODVariable)
+            subs = [obj] if variable else list(obj.values())
             objects[obj.index] = subs
     entries = [v for subs in objects.values() for v in subs]
     check(len(entries) > 150, f"only {len(entries)} communication entries in the EDS")
-    check(mandatory <= set(objects), f"mandatory objects missing from the EDS: {mandatory - set(objects)}")
+    missing = mandatory - set(objects)
+    check(not missing, f"mandatory objects not in the EDS: {missing}")
     counted = {"uploads": 0, "round_trips": 0, "read_only": 0}
 
     def name(var):
@@ -470,7 +473,8 @@ def v_sdo_objects(cx):
                     node.sdo.download(var.index, 0, b"\0")
             data = encode(var, test)
             node.sdo.download(var.index, var.subindex, data)
-            eq(node.sdo.upload(var.index, var.subindex), data, f"{name(var)} after writing {fmt(test)}")
+            eq(node.sdo.upload(var.index, var.subindex), data,
+               f"{name(var)} after writing {fmt(test)}")
             node.sdo.download(var.index, var.subindex, original)
             if is_pdo and var.index != comm and var.subindex > 0:
                 node.sdo.download(var.index, 0, encode(subs[0], expected_value(subs[0], 2)))
@@ -481,7 +485,8 @@ def v_sdo_objects(cx):
     upload_all("after the round trips")
     # 5. The node's own rules for communication objects (CiA 301 §7.5.2).
     expect_abort(0x06090030, lambda: node.sdo.download(0x1003, 0, b"\x01"), "0x1003:00 = 1")
-    expect_abort(0x08000020, lambda: node.sdo.download(0x1010, 1, b"nope"), "0x1010:01 bad signature")
+    expect_abort(0x08000020, lambda: node.sdo.download(0x1010, 1, b"nope"),
+                 "0x1010:01 bad signature")
     expect_abort(0x08000020, lambda: node.sdo.download(0x1011, 1, b"save"), "0x1011:01 'save'")
     expect_abort(0x06090030, lambda: node.sdo.download(0x1019, 0, b"\x01"), "0x1019 = 1")
     expect_abort(0x06090030, lambda: node.sdo.download(0x1014, 0, struct.pack("<I", 0x85)),
@@ -1048,7 +1053,8 @@ def r_heartbeat(cx):
     notes.update(min_gap_s=round(min(gaps), 4), max_gap_s=round(max(gaps), 4))
     if not IN_VM:
         # Receive times: a shared 2-core machine may stall a thread for tens of ms.
-        check(all(0.03 <= g <= 0.17 for g in gaps), f"heartbeat intervals {[round(g, 4) for g in gaps]}")
+        check(all(0.03 <= g <= 0.17 for g in gaps),
+              f"heartbeat intervals {[round(g, 4) for g in gaps]}")
     eq({f[2] for f in frames}, {b"\x7f"}, "heartbeat state bytes")
     node.sdo.download(0x1017, 0, b"\0\0")
     time.sleep(0.1 * SLOW)
@@ -1094,7 +1100,8 @@ def pp_move(cx, node, axis, target, timeout):
     wait_until("set-point acknowledge (bit 12)", 2 * SLOW, lambda: statusword(node) & 0x1000)
     node.controlword = 0x000F
     wait_until(f"target {target} reached (bit 10)", timeout,
-               lambda: statusword(node) & 0x0400 and sdo_i32(node, 0x6064) == target, interval=0.02)
+               lambda: statusword(node) & 0x0400 and sdo_i32(node, 0x6064) == target,
+               interval=0.02)
     return wait_rest(cx, axis, timeout)
 
 
@@ -1169,9 +1176,12 @@ def r_ds402(cx):
                lambda: statusword(node) & 0x0400 and sdo_i32(node, 0x606C) == 100_000)
     # Over 0.3 s of the engine's time (the VM's engine may run slower than the wall clock).
     a = cx.mcemu.state()
-    b = wait_until("0.3 s of engine time", 10 * SLOW,
-                   lambda: (lambda s_: s_ if s_["time"] - a["time"] >= 0.3 else None)(cx.mcemu.state()),
-                   interval=0.05)
+
+    def later():
+        state = cx.mcemu.state()
+        return state if state["time"] - a["time"] >= 0.3 else None
+
+    b = wait_until("0.3 s of engine time", 10 * SLOW, later, interval=0.05)
     dt = b["time"] - a["time"]
     v = (b["axes"][1]["act_pos"] - a["axes"][1]["act_pos"]) / dt
     notes["pv_velocity_mm_s"] = round(v, 4)
@@ -1468,7 +1478,8 @@ def r_csp(cx):
             check(n / window >= 0.8 / CSP_CYCLE, f"{what} at {n / window:.0f} Hz ({notes})")
     check(len(samples) >= 0.6 * syncs, f"only {len(samples)} TPDO3 seen ({notes})")
     moving = [pos for _, pos in samples if start + 0.1 * distance < pos < start + 0.9 * distance]
-    check(len(moving) >= (20 if IN_VM else 300), f"only {len(moving)} samples while moving ({notes})")
+    check(len(moving) >= (20 if IN_VM else 300),
+          f"only {len(moving)} samples while moving ({notes})")
     axis = wait_rest(cx, 3, 2 * SLOW)
     eq(sdo_i32(node, 0x6064), final, "0x6064 after the stream")
     eq(round(axis["act_pos"] * INC_PER_MM), final, "engine act_pos after the stream")
