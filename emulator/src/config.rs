@@ -483,6 +483,70 @@ mod tests {
     }
 
     #[test]
+    fn canopen_nodes_are_a_drive_or_an_axis_with_a_map() {
+        let node = |keys: &str| {
+            format!(
+                "[[axes]]\nname = \"e10\"\n[frontends.canopen]\nenabled = false\n\
+                 [[frontends.canopen.nodes]]\nnode_id = 2\n{keys}"
+            )
+        };
+        let error = |keys: &str| Config::parse(&node(keys), "m.toml").unwrap_err();
+        let ok = Config::parse(
+            &node("axis = \"e10\"\nmap = \"ct-e10-servo\"\neds = \"ct-e10\"\n"),
+            "m.toml",
+        );
+        assert!(ok.is_ok(), "{ok:?}");
+        let cases = [
+            ("", "frontends.canopen.nodes[0].drive", "missing"),
+            (
+                "drive = 0\naxis = \"e10\"\nmap = \"ct-e10-servo\"\n",
+                "frontends.canopen.nodes[0].drive",
+                "not both",
+            ),
+            (
+                "axis = \"e10\"\neds = \"ct-e10\"\n",
+                "frontends.canopen.nodes[0].map",
+                "needs the register map",
+            ),
+            (
+                "map = \"ct-e10-servo\"\neds = \"ct-e10\"\n",
+                "frontends.canopen.nodes[0].axis",
+                "needs the axis",
+            ),
+            (
+                "axis = \"x\"\nmap = \"ct-e10-servo\"\neds = \"ct-e10\"\n",
+                "frontends.canopen.nodes[0].axis",
+                "no axis is named `x`",
+            ),
+            (
+                "axis = \"e10\"\nmap = \"ct-e10-servo\"\n",
+                "frontends.canopen.nodes[0].eds",
+                "needs the EDS",
+            ),
+            (
+                "axis = \"e10\"\nmap = \"nope\"\neds = \"ct-e10\"\n",
+                "frontends.canopen.nodes[0].map",
+                "not a shipped map",
+            ),
+            // The generic map has no holding register 95 (P95): the EDS cannot be served over it.
+            (
+                "axis = \"e10\"\nmap = \"generic\"\neds = \"ct-e10\"\n",
+                "frontends.canopen.nodes[0].eds",
+                "which map `generic` does not have",
+            ),
+        ];
+        for (keys, key, reason) in cases {
+            let e = error(keys);
+            assert_eq!(
+                (e.file.as_str(), e.key.as_str()),
+                ("m.toml", key),
+                "{keys}: {e}"
+            );
+            assert!(e.reason.contains(reason), "{keys}: {e}");
+        }
+    }
+
+    #[test]
     fn clocks_parse_and_print() {
         for s in ["realtime", "virtual", "scaled:2.5"] {
             assert_eq!(s.parse::<ClockSetting>().unwrap().to_string(), s);

@@ -17,6 +17,17 @@ use crate::listener::BoundedListener;
 use crate::modbus::serve as modbus;
 use crate::state_dir::StateDir;
 
+/// What a protocol front-end needs of `mcemu run` to start.
+pub struct FrontendContext<'a> {
+    pub config: &'a Config,
+    /// The config file: errors name it, relative paths start from it.
+    pub file: &'a str,
+    pub handle: &'a EngineHandle,
+    pub state_dir: Option<&'a StateDir>,
+    /// Turns `true` when the machine stops.
+    pub shutdown: &'a watch::Receiver<bool>,
+}
+
 /// Why a machine could not run.
 #[derive(Debug, thiserror::Error)]
 pub enum RunError {
@@ -75,7 +86,7 @@ async fn serve(
     let stop = signals();
     let (shutdown_tx, shutdown) = watch::channel(false);
     let mut servers = tokio::task::JoinSet::new();
-    let cx = modbus::Context {
+    let cx = FrontendContext {
         config,
         file,
         handle: &handle,
@@ -87,14 +98,7 @@ async fn serve(
         .iter()
         .map(|m| Arc::clone(m) as Arc<dyn Frontend>)
         .collect();
-    let canopen_cx = crate::canopen::serve::Context {
-        config,
-        file,
-        handle: &handle,
-        state_dir,
-        shutdown: &shutdown,
-    };
-    let canopen = crate::canopen::serve::start(&canopen_cx, &mut servers).await?;
+    let canopen = crate::canopen::serve::start(&cx, &mut servers).await?;
     if let Some(c) = &canopen {
         frontends.push(Arc::clone(c) as Arc<dyn Frontend>);
     }

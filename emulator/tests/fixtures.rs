@@ -67,9 +67,14 @@ fn the_cia402_can_fixture_puts_each_drive_on_the_bus_with_the_shipped_eds() {
     let path = fixtures_dir().join("cia402-can.toml");
     let config = Config::load(&path).unwrap();
     let specs = mcemu::canopen::node_specs(&config, path.to_str().unwrap()).unwrap();
-    let nodes: Vec<(u8, usize)> = specs.iter().map(|s| (s.config.node_id, s.slave)).collect();
+    let nodes: Vec<(u8, usize)> = specs
+        .drives
+        .iter()
+        .map(|s| (s.config.node_id, s.slave))
+        .collect();
     assert_eq!(nodes, [(1, 0), (2, 1), (3, 2), (4, 3)]);
-    for s in &specs {
+    assert!(specs.mapped.is_empty());
+    for s in &specs.drives {
         // The EDS brings the CiA 402 pre-defined PDO mapping: TPDO1 = statusword.
         let tpdo1 = s
             .objects
@@ -82,6 +87,36 @@ fn the_cia402_can_fixture_puts_each_drive_on_the_bus_with_the_shipped_eds() {
             s.config.node_id
         );
     }
+}
+
+#[test]
+fn the_cpu226h_fixture_puts_its_can_e10_on_the_bus_over_the_e10_map() {
+    let path = fixtures_dir().join("cpu226h.toml");
+    let config = Config::load(&path).unwrap();
+    let c = config.frontends.canopen.as_ref().unwrap();
+    assert!(c.enabled);
+    let specs = mcemu::canopen::node_specs(&config, path.to_str().unwrap()).unwrap();
+    assert!(specs.drives.is_empty());
+    let [e10] = specs.mapped.as_slice() else {
+        panic!("one map-backed node expected");
+    };
+    assert_eq!(
+        (e10.config.node_id, e10.axis),
+        (2, 5),
+        "node 2 = axis e10_can"
+    );
+    assert_eq!(e10.map.name, "ct-e10-servo");
+    let register = |index: u16| {
+        e10.backed
+            .iter()
+            .find(|b| b.index == index)
+            .map(|b| b.register)
+    };
+    // P282 control word, R204 output state, P290 given position, P113 ramps.
+    assert_eq!(register(0x211A), Some(282));
+    assert_eq!(register(0x20CC), Some(204));
+    assert_eq!(register(0x2122), Some(290));
+    assert_eq!(register(0x2071), Some(113));
 }
 
 #[test]

@@ -251,10 +251,10 @@ fn has_section(config_text: &str, section: &str) -> bool {
 
 impl Mcemu {
     /// `mcemu run [--config CONFIG] ARGS…` with, before `args` (which may override them): the
-    /// control API and every TCP Modbus section of the config on `127.0.0.1:0`, and a fresh
-    /// temporary `--state-dir` unless `args` has one. Returns once the control API's
-    /// `listening:` line (printed last, so every listener is up) has been read; panics with what
-    /// the process printed if it exits or stays silent first.
+    /// control API, every TCP Modbus section and the socketcand server of the config on
+    /// `127.0.0.1:0`, and a fresh temporary `--state-dir` unless `args` has one. Returns once
+    /// the control API's `listening:` line (printed last, so every listener is up) has been
+    /// read; panics with what the process printed if it exits or stays silent first.
     pub fn start(config: Option<&Path>, args: &[&str]) -> Mcemu {
         let text = match config {
             Some(path) => std::fs::read_to_string(path)
@@ -269,7 +269,7 @@ impl Mcemu {
             command.arg("--config").arg(path);
         }
         command.args(["--set", "frontends.control.bind=127.0.0.1:0"]);
-        for section in ["modbus_tcp", "modbus_rtu_over_tcp"] {
+        for section in ["modbus_tcp", "modbus_rtu_over_tcp", "socketcand"] {
             if has_section(&text, section) {
                 command.args(["--set", &format!("frontends.{section}.bind=127.0.0.1:0")]);
             }

@@ -265,6 +265,26 @@ impl Probe {
     }
 }
 
+/// A CSP interpolation segment.
+#[derive(Clone, Copy, Debug)]
+struct CspSegment {
+    from: f64,
+    to: i64,
+    started: f64,
+}
+
+impl CspSegment {
+    /// The set-point at time `t` (end of the tick being computed).
+    fn at(self, t: f64, period: f64) -> f64 {
+        let to = self.to as f64;
+        if period <= 0.0 {
+            return to;
+        }
+        let f = ((t - self.started) / period).clamp(0.0, 1.0);
+        self.from + (to - self.from) * f
+    }
+}
+
 /// A CiA 402 drive bound to one engine axis.
 #[derive(Clone, Debug)]
 pub struct Cia402Drive {
@@ -298,6 +318,12 @@ pub struct Cia402Drive {
     streaming: bool,
     stream_accepted: bool,
     torque_demand: i64,
+    /// CSP: the segment being interpolated, from the set-point in force when a new target came
+    /// to that target, over the interpolation period (0x60C2).
+    csp_segment: Option<CspSegment>,
+    /// Engine time of the current step, and the time since the one before, seconds.
+    now: f64,
+    dt: f64,
     homing: Homing,
     homing_offset: i64,
     /// 0x6063/0x60FC = 0x6064/0x6062 − shift; the home offset of the last homing.
@@ -343,6 +369,9 @@ impl Cia402Drive {
             streaming: false,
             stream_accepted: false,
             torque_demand: 0,
+            csp_segment: None,
+            now: 0.0,
+            dt: 0.0,
             homing: Homing::NotStarted,
             homing_offset: 0,
             home_shift: 0,
@@ -483,6 +512,8 @@ impl Cia402Drive {
     /// axis's status after the previous engine step; `now` is engine time in seconds.
     pub fn step(&mut self, axis: &AxisStatus, now: f64, out: &mut Vec<Command>) {
         self.steps += 1;
+        self.dt = (now - self.now).max(0.0);
+        self.now = now;
         self.transitions.clear();
         let cw = self.int(obj::CONTROLWORD, 0) as u16;
         let rises = cw & !self.previous_cw;
@@ -881,6 +912,7 @@ impl Cia402Drive {
 
     fn enter_mode(&mut self, axis: &AxisStatus) {
         self.set_point_ack = false;
+        self.csp_segment = None;
         self.pp_reference = self.to_increments(axis.cmd_pos);
         self.pp_target = None;
         self.last_velocity_command = None;
@@ -1145,6 +1177,36 @@ impl Cia402Drive {
         self.home_shift = self.homing_offset;
     }
 
+    /// The interpolation period (0x60C2), seconds; 0 when unset.
+    fn interpolation_period(&self) -> f64 {
+        let value = self.int(obj::INTERPOLATION_TIME_PERIOD, 1) as f64;
+        let index = self.int(obj::INTERPOLATION_TIME_PERIOD, 2) as i32;
+        value * 10f64.powi(index)
+    }
+
+    /// CSP (CiA 402 §6.3.4): a new target is reached linearly over the interpolation period
+    /// from where the set-point stood, so a master whose SYNC is slower than the servo tick
+    /// still gives a smooth stream; a period at or below the tick passes targets through.
+    fn interpolate(&mut self, target: i64) -> f64 {
+        let period = self.interpolation_period();
+        let current = match self.csp_segment {
+            Some(s) => s.at(self.now, period),
+            None => target as f64,
+        };
+        match self.csp_segment {
+            Some(s) if s.to == target => {}
+            _ => {
+                self.csp_segment = Some(CspSegment {
+                    from: current,
+                    to: target,
+                    started: self.now,
+                })
+            }
+        }
+        self.csp_segment
+            .map_or(target as f64, |s| s.at(self.now + self.dt, period))
+    }
+
     /// CSP/CSV/CST: one setpoint every tick from 0x607A / 0x60FF / 0x6071; halt ends the stream
     /// and stops with 0x605D's ramp.
     fn cyclic(&mut self, halt: bool, rises: u16, out: &mut Vec<Command>) {
@@ -1187,8 +1249,9 @@ impl Cia402Drive {
             _ => {
                 let (position, clamped) = self.clamp_position(self.int(obj::TARGET_POSITION, 0));
                 self.clamped = clamped;
+                let interpolated = self.interpolate(position);
                 Setpoint::Position {
-                    position: self.to_units(position),
+                    position: self.to_units_f64(interpolated),
                 }
             }
         };
@@ -1425,6 +1488,10 @@ impl Cia402Drive {
 
     fn to_units(&self, increments: i64) -> f64 {
         increments as f64 / self.config.increments_per_unit
+    }
+
+    fn to_units_f64(&self, increments: f64) -> f64 {
+        increments / self.config.increments_per_unit
     }
 
     /// User units → increments, rounded; saturating (and NaN → 0) by `as`.

@@ -62,6 +62,7 @@ pub mod obj {
     pub const TOUCH_PROBE_1_NEGATIVE: u16 = 0x60BB;
     pub const TOUCH_PROBE_2_POSITIVE: u16 = 0x60BC;
     pub const TOUCH_PROBE_2_NEGATIVE: u16 = 0x60BD;
+    pub const INTERPOLATION_TIME_PERIOD: u16 = 0x60C2;
     pub const FOLLOWING_ERROR_ACTUAL: u16 = 0x60F4;
     pub const POSITION_DEMAND_INTERNAL: u16 = 0x60FC;
     pub const DIGITAL_INPUTS: u16 = 0x60FD;
@@ -220,6 +221,30 @@ pub fn object_table(config: &DriveConfig) -> Vec<EntryDef> {
         e(POSITION_WINDOW, 0, "Position window", Rw, U32(100)).pdo(),
         e(POSITION_WINDOW_TIME, 0, "Position window time", Rw, U16(0)).pdo(),
         e(TARGET_POSITION, 0, "Target position", Rww, I32(0)).pdo(),
+        // CiA 402 §6.3.4: the cycle of CSP/CSV/CST set-points, value × 10^index s (1 ms). The
+        // drive interpolates CSP targets linearly over it.
+        e(
+            INTERPOLATION_TIME_PERIOD,
+            0,
+            "Interpolation time period: highest sub-index",
+            Const,
+            U8(2),
+        ),
+        e(
+            INTERPOLATION_TIME_PERIOD,
+            1,
+            "Interpolation time period value",
+            Rw,
+            U8(1),
+        ),
+        e(
+            INTERPOLATION_TIME_PERIOD,
+            2,
+            "Interpolation time index",
+            Rw,
+            I8(-3),
+        )
+        .range(I8(-6), I8(0)),
         e(HOME_OFFSET, 0, "Home offset", Rw, I32(0)).pdo(),
         e(
             SOFTWARE_POSITION_LIMIT,

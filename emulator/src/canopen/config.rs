@@ -3,6 +3,7 @@
 
 use std::net::SocketAddr;
 
+use mcemu_modbus::config::AxisRef;
 use serde::{Deserialize, Serialize};
 
 /// `[frontends.canopen]`: the machine's CAN bus with its CiA 402 drives as CANopen nodes.
@@ -22,7 +23,7 @@ pub struct CanopenConfig {
     pub bitrate: u32,
     /// A `candump -L` log of every frame on the bus, relative to the config file; empty: none.
     pub log: String,
-    /// The nodes: one per CiA 402 drive served on the bus.
+    /// The nodes: CiA 402 drives and map-backed axes served on the bus.
     pub nodes: Vec<CanopenNodeConfig>,
 }
 
@@ -39,27 +40,36 @@ impl Default for CanopenConfig {
     }
 }
 
-/// `[[frontends.canopen.nodes]]`: one CiA 402 drive as a CANopen node.
+/// `[[frontends.canopen.nodes]]`: one CANopen node on the bus — a CiA 402 drive (`drive`), or an
+/// axis whose parameters a Modbus register map defines (`axis` + `map`, e.g. the CT E10 servo:
+/// object 0x2000 + n is holding register n of the map).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CanopenNodeConfig {
-    /// Node id, 1 … 127.
+    /// Node id, 1 … 127; 255: an unconfigured LSS slave that a master commissions over LSS
+    /// (CiA 305: switch state, configure node id, inquire identity).
     pub node_id: u8,
-    /// The drive: its position in `[[drives]]` (the slave number). Its `master` must be
-    /// `external`.
-    pub drive: usize,
-    /// The EDS whose objects the node adds to the drive's dictionary (PDO defaults,
-    /// store/restore …): a shipped one by name (`cia402-drive`, `ct-e10`) or a `.eds`/`.dcf`
-    /// path relative to the config file.
-    #[serde(default = "default_eds")]
-    pub eds: String,
+    /// The CiA 402 drive: its position in `[[drives]]` (the slave number). Its `master` must be
+    /// `external`. Give either `drive` or `axis` + `map`.
+    #[serde(default)]
+    pub drive: Option<usize>,
+    /// A map-backed node's axis: its index or `name`. Its objects 0x2000–0x23FF are holding
+    /// registers 0x0000–0x03FF of `map` for this axis.
+    #[serde(default)]
+    pub axis: Option<AxisRef>,
+    /// A map-backed node's register map: a shipped one by name (`ct-e10-servo` …) or a `.toml`
+    /// path relative to the config file. Needs `axis`.
+    #[serde(default)]
+    pub map: Option<String>,
+    /// The EDS whose objects the node serves (for a drive: those its dictionary lacks — PDO
+    /// defaults, store/restore …): a shipped one by name (`cia402-drive`, `ct-e10`) or a
+    /// `.eds`/`.dcf` path relative to the config file. Absent: `cia402-drive` for a drive; a
+    /// map-backed node must name one.
+    #[serde(default)]
+    pub eds: Option<String>,
     /// Heartbeat producer time at power-on (0x1017, ms); absent: the EDS's default.
     #[serde(default)]
     pub heartbeat_ms: Option<u16>,
-}
-
-fn default_eds() -> String {
-    "cia402-drive".into()
 }
 
 /// `[frontends.socketcand]`: the CAN bus over the socketcand protocol (python-can's

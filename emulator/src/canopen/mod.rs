@@ -1,19 +1,25 @@
-//! The CANopen front-end of a machine: the CiA 402 drives named in `[frontends.canopen]` as
-//! nodes on one CAN bus, reached through SocketCAN and/or socketcand. This module resolves and
-//! checks the config (EDS files, node ids, drives) for `mcemu validate` and `mcemu run` alike;
-//! [`serve`] runs it.
+//! The CANopen front-end of a machine: the CiA 402 drives and map-backed axes named in
+//! `[frontends.canopen]` as nodes on one CAN bus, reached through SocketCAN and/or socketcand.
+//! This module resolves and checks the config (EDS files, node ids, drives, maps) for
+//! `mcemu validate` and `mcemu run` alike; [`serve`] runs it.
 
 pub mod config;
+pub mod mapped;
 pub mod serve;
 
 use std::path::Path;
 
 use axes::cia402::DriveMaster;
+use axes::od::ObjectDictionary;
 use mcemu_canopen::cia402::DriveNodeSpec;
 use mcemu_canopen::eds::Eds;
 use mcemu_canopen::NodeConfig;
+use mcemu_modbus::config::AxisRef;
+use mcemu_modbus::map::{Binding, UnitMap};
 
 use crate::config::{Config, ConfigError};
+use config::CanopenNodeConfig;
+use mapped::Backed;
 
 /// EDS files embedded in the binary, by name.
 pub const SHIPPED_EDS: [(&str, &str); 2] = [
@@ -27,10 +33,32 @@ pub const SHIPPED_EDS: [(&str, &str); 2] = [
     ),
 ];
 
-/// The nodes of `[frontends.canopen]`, ready for the binding (empty when the section is absent).
-pub fn node_specs(config: &Config, file: &str) -> Result<Vec<DriveNodeSpec>, ConfigError> {
+/// A node whose manufacturer objects are a register map's holding registers (`axis` + `map`).
+pub struct MappedNodeSpec {
+    pub config: NodeConfig,
+    /// The axis (index) the map is compiled for.
+    pub axis: usize,
+    /// The EDS's dictionary for the node id.
+    pub od: ObjectDictionary,
+    /// Its objects in 0x2000–0x23FF and their registers.
+    pub backed: Vec<Backed>,
+    pub map: UnitMap,
+    /// The stored parameter image from an earlier run, if any.
+    pub stored_image: Option<Vec<u8>>,
+}
+
+/// The nodes of `[frontends.canopen]`: CiA 402 drives (served inside the servo tick) and
+/// map-backed axes (served by a task of their own).
+#[derive(Default)]
+pub struct NodeSpecs {
+    pub drives: Vec<DriveNodeSpec>,
+    pub mapped: Vec<MappedNodeSpec>,
+}
+
+/// The nodes of `[frontends.canopen]`, ready for the binding (none when the section is absent).
+pub fn node_specs(config: &Config, file: &str) -> Result<NodeSpecs, ConfigError> {
     let Some(c) = config.frontends.canopen.as_ref() else {
-        return Ok(Vec::new());
+        return Ok(NodeSpecs::default());
     };
     let error = |key: String, reason: String| ConfigError {
         file: file.to_string(),
@@ -58,74 +86,225 @@ pub fn node_specs(config: &Config, file: &str) -> Result<Vec<DriveNodeSpec>, Con
             format!("{} bit/s is not a CAN bit rate", c.bitrate),
         ));
     }
-    let mut specs: Vec<DriveNodeSpec> = Vec::new();
+    let mut specs = NodeSpecs::default();
+    let mut ids: Vec<u8> = Vec::new();
     for (i, n) in c.nodes.iter().enumerate() {
         let key = |k: &str| format!("frontends.canopen.nodes[{i}].{k}");
-        if !(1..=127).contains(&n.node_id) {
+        // 255: an unconfigured LSS slave (CiA 305), which a master commissions over LSS.
+        if !((1..=127).contains(&n.node_id) || n.node_id == 255) {
             return Err(error(
                 key("node_id"),
-                format!("{} is not a node id (1 … 127)", n.node_id),
+                format!(
+                    "{} is not a node id (1 … 127, or 255 for an unconfigured LSS slave)",
+                    n.node_id
+                ),
             ));
         }
-        if specs.iter().any(|s| s.config.node_id == n.node_id) {
+        if ids.contains(&n.node_id) {
             return Err(error(
                 key("node_id"),
                 format!("node {} is listed twice", n.node_id),
             ));
         }
-        if specs.iter().any(|s| s.slave == n.drive) {
-            return Err(error(
-                key("drive"),
-                format!("drive {} is already a node", n.drive),
-            ));
+        ids.push(n.node_id);
+        match (n.drive, &n.axis, &n.map) {
+            (Some(drive), None, None) => {
+                specs
+                    .drives
+                    .push(drive_spec(config, file, i, n, drive, &specs.drives)?)
+            }
+            (None, Some(axis), Some(map)) => {
+                let spec = mapped_spec(config, file, i, n, axis, map)?;
+                if specs.mapped.iter().any(|m| m.axis == spec.axis) {
+                    return Err(error(
+                        key("axis"),
+                        format!("axis {} is already a node", spec.axis),
+                    ));
+                }
+                specs.mapped.push(spec);
+            }
+            (Some(_), _, _) => {
+                return Err(error(
+                    key("drive"),
+                    "a node is either a CiA 402 drive (`drive`) or a map-backed axis (`axis` + \
+                     `map`), not both"
+                        .into(),
+                ))
+            }
+            (None, Some(_), None) => {
+                return Err(error(
+                    key("map"),
+                    "a map-backed node needs the register map that gives its objects' meaning \
+                     (`map = \"ct-e10-servo\"` …)"
+                        .into(),
+                ))
+            }
+            (None, None, Some(_)) => {
+                return Err(error(
+                    key("axis"),
+                    "a map-backed node needs the axis its map is compiled for".into(),
+                ))
+            }
+            (None, None, None) => {
+                return Err(error(
+                    key("drive"),
+                    "missing: give `drive` (a CiA 402 drive in [[drives]]) or `axis` + `map` (a \
+                     map-backed node)"
+                        .into(),
+                ))
+            }
         }
-        let drive = config.drives.get(n.drive).ok_or_else(|| {
-            error(
-                key("drive"),
-                format!(
-                    "drive {} does not exist (the machine has {} [[drives]])",
-                    n.drive,
-                    config.drives.len()
-                ),
-            )
-        })?;
-        if drive.master != DriveMaster::External {
-            return Err(error(
-                key("drive"),
-                format!(
-                    "drive {} is mastered by the engine (master = \"engine\"); a CANopen master \
-                     needs master = \"external\"",
-                    n.drive
-                ),
-            ));
-        }
-        let eds = load_eds(&n.eds, file).map_err(|reason| error(key("eds"), reason))?;
-        let objects = eds.entry_defs(n.node_id).map_err(|e| ConfigError {
-            file: e.file.to_string(),
-            key: String::new(),
-            reason: format!("{e} (used by {file}: {})", key("eds")),
-        })?;
-        let mut node = NodeConfig {
-            node_id: n.node_id,
-            device_name: drive.name.clone(),
-            ..NodeConfig::default()
-        };
-        node.identity.vendor_id = drive.vendor_id;
-        node.identity.product_code = drive.product_code;
-        node.identity.revision = drive.revision;
-        node.identity.serial = drive.serial;
-        if let Some(ms) = n.heartbeat_ms {
-            node.heartbeat_ms = ms;
-        }
-        specs.push(DriveNodeSpec {
-            slave: n.drive,
-            config: node,
-            objects,
-            stored_image: None,
-        });
     }
     Ok(specs)
 }
+
+fn drive_spec(
+    config: &Config,
+    file: &str,
+    i: usize,
+    n: &CanopenNodeConfig,
+    slave: usize,
+    done: &[DriveNodeSpec],
+) -> Result<DriveNodeSpec, ConfigError> {
+    let key = |k: &str| format!("frontends.canopen.nodes[{i}].{k}");
+    let error = |key: String, reason: String| ConfigError {
+        file: file.to_string(),
+        key,
+        reason,
+    };
+    if done.iter().any(|s| s.slave == slave) {
+        return Err(error(
+            key("drive"),
+            format!("drive {slave} is already a node"),
+        ));
+    }
+    let drive = config.drives.get(slave).ok_or_else(|| {
+        error(
+            key("drive"),
+            format!(
+                "drive {slave} does not exist (the machine has {} [[drives]])",
+                config.drives.len()
+            ),
+        )
+    })?;
+    if drive.master != DriveMaster::External {
+        return Err(error(
+            key("drive"),
+            format!(
+                "drive {slave} is mastered by the engine (master = \"engine\"); a CANopen master \
+                 needs master = \"external\""
+            ),
+        ));
+    }
+    let eds_name = n.eds.as_deref().unwrap_or(DEFAULT_DRIVE_EDS);
+    let eds = load_eds(eds_name, file).map_err(|reason| error(key("eds"), reason))?;
+    // An unconfigured node's $NODEID values are resolved as node 1; the node moves its COB-IDs
+    // to the id LSS gives it (reset communication).
+    let eds_node = if n.node_id == 255 { 1 } else { n.node_id };
+    let objects = eds.entry_defs(eds_node).map_err(|e| ConfigError {
+        file: e.file.to_string(),
+        key: String::new(),
+        reason: format!("{e} (used by {file}: {})", key("eds")),
+    })?;
+    let mut node = NodeConfig {
+        node_id: n.node_id,
+        device_name: drive.name.clone(),
+        ..NodeConfig::default()
+    };
+    node.identity.vendor_id = drive.vendor_id;
+    node.identity.product_code = drive.product_code;
+    node.identity.revision = drive.revision;
+    node.identity.serial = drive.serial;
+    if let Some(ms) = n.heartbeat_ms {
+        node.heartbeat_ms = ms;
+    }
+    Ok(DriveNodeSpec {
+        slave,
+        config: node,
+        objects,
+        stored_image: None,
+    })
+}
+
+fn mapped_spec(
+    config: &Config,
+    file: &str,
+    i: usize,
+    n: &CanopenNodeConfig,
+    axis: &AxisRef,
+    map: &str,
+) -> Result<MappedNodeSpec, ConfigError> {
+    let key = |k: &str| format!("frontends.canopen.nodes[{i}].{k}");
+    let error = |key: String, reason: String| ConfigError {
+        file: file.to_string(),
+        key,
+        reason,
+    };
+    let axis = match axis {
+        AxisRef::Index(a) if *a < config.axes.len() => *a,
+        AxisRef::Index(a) => {
+            return Err(error(
+                key("axis"),
+                format!(
+                    "axis {a} does not exist (the machine has {})",
+                    config.axes.len()
+                ),
+            ))
+        }
+        AxisRef::Name(name) => config
+            .axes
+            .iter()
+            .position(|a| a.name.as_deref() == Some(name.as_str()))
+            .ok_or_else(|| error(key("axis"), format!("no axis is named `{name}`")))?,
+    };
+    let unit_map = crate::modbus::compile_map(
+        config,
+        file,
+        map,
+        &Binding { axes: vec![axis] },
+        &key("map"),
+    )?;
+    let eds_name = n.eds.as_deref().ok_or_else(|| {
+        error(
+            key("eds"),
+            "a map-backed node needs the EDS of its objects (`eds = \"ct-e10\"` …)".into(),
+        )
+    })?;
+    let eds = load_eds(eds_name, file).map_err(|reason| error(key("eds"), reason))?;
+    let od = eds.dictionary(n.node_id).map_err(|e| ConfigError {
+        file: e.file.to_string(),
+        key: String::new(),
+        reason: format!("{e} (used by {file}: {})", key("eds")),
+    })?;
+    let backed = mapped::backed_objects(&od, &unit_map).map_err(|reason| {
+        error(
+            key("eds"),
+            format!("{reason} ({eds_name} served over map {map})"),
+        )
+    })?;
+    let mut node = NodeConfig {
+        node_id: n.node_id,
+        device_name: config
+            .axes
+            .get(axis)
+            .and_then(|a| a.name.clone())
+            .unwrap_or_else(|| format!("axis {axis}")),
+        ..NodeConfig::default()
+    };
+    if let Some(ms) = n.heartbeat_ms {
+        node.heartbeat_ms = ms;
+    }
+    Ok(MappedNodeSpec {
+        config: node,
+        axis,
+        od,
+        backed,
+        map: unit_map,
+        stored_image: None,
+    })
+}
+
+const DEFAULT_DRIVE_EDS: &str = "cia402-drive";
 
 /// A shipped EDS by name, or a file relative to the config file's directory.
 fn load_eds(name: &str, config_file: &str) -> Result<Eds, String> {

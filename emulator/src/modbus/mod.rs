@@ -78,7 +78,6 @@ pub fn units(
     units: &[UnitConfig],
     default_id: Option<u8>,
 ) -> Result<Vec<Unit>, ConfigError> {
-    let shape = machine_shape(config);
     let error = |key: String, reason: String| ConfigError {
         file: file.to_string(),
         key,
@@ -131,8 +130,6 @@ pub fn units(
             return Err(error(key("id"), format!("unit {} is listed twice", u.id)));
         }
         let map_name = u.map.as_deref().unwrap_or(map);
-        let (text, map_file) =
-            map_text(map_name, file).map_err(|reason| error(key("map"), reason))?;
         let own_axes = if u.axes.is_empty() { axes } else { &u.axes };
         let axes_key = if u.axes.is_empty() {
             format!("frontends.{section}.axes")
@@ -142,11 +139,7 @@ pub fn units(
         let binding = Binding {
             axes: resolve_axes(own_axes, &axes_key)?,
         };
-        let compiled = map::load(&text, &map_file, &shape, &binding).map_err(|e| ConfigError {
-            file: e.file,
-            key: e.key,
-            reason: format!("{} (used by {file}: {})", e.reason, key("map")),
-        })?;
+        let compiled = compile_map(config, file, map_name, &binding, &key("map"))?;
         let id = if units.is_empty() {
             default_id
         } else {
@@ -155,6 +148,27 @@ pub fn units(
         out.push(Unit { id, map: compiled });
     }
     Ok(out)
+}
+
+/// Compile map `map_name` (shipped name or path) for `binding` on this machine; `key` is the
+/// config key that names the map, for errors.
+pub fn compile_map(
+    config: &Config,
+    file: &str,
+    map_name: &str,
+    binding: &Binding,
+    key: &str,
+) -> Result<UnitMap, ConfigError> {
+    let (text, map_file) = map_text(map_name, file).map_err(|reason| ConfigError {
+        file: file.to_string(),
+        key: key.to_string(),
+        reason,
+    })?;
+    map::load(&text, &map_file, &machine_shape(config), binding).map_err(|e| ConfigError {
+        file: e.file,
+        key: e.key,
+        reason: format!("{} (used by {file}: {key})", e.reason),
+    })
 }
 
 /// A shipped map by name, or a `.toml` path relative to the config file's directory.

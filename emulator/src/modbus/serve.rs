@@ -6,7 +6,6 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 use std::time::Duration;
 
-use axes::runtime::EngineHandle;
 use mcemu_modbus::faults::FaultSpec;
 use mcemu_modbus::map::{MapModel, UnitService};
 use mcemu_modbus::state::{Framing, FrontendState};
@@ -17,9 +16,9 @@ use serde_json::{json, Map, Value};
 use tokio::sync::watch;
 use tokio::task::JoinSet;
 
-use crate::config::{Config, ConfigError};
+use crate::config::ConfigError;
 use crate::control::{ApiError, Frontend};
-use crate::run::{announce, bind, RunError};
+use crate::run::{announce, bind, FrontendContext, RunError};
 use crate::state_dir::StateDir;
 
 /// How often a front-end with persisted areas checks for writes to save.
@@ -146,20 +145,10 @@ impl Frontend for ModbusFrontend {
     }
 }
 
-/// What `start` needs of `mcemu run`.
-pub struct Context<'a> {
-    pub config: &'a Config,
-    pub file: &'a str,
-    pub handle: &'a EngineHandle,
-    pub state_dir: Option<&'a StateDir>,
-    /// Turns `true` when the machine stops.
-    pub shutdown: &'a watch::Receiver<bool>,
-}
-
 /// Bind, open and announce every enabled Modbus section and spawn its transport (and its saver)
 /// on `tasks`.
 pub async fn start(
-    cx: &Context<'_>,
+    cx: &FrontendContext<'_>,
     tasks: &mut JoinSet<()>,
 ) -> Result<Vec<Arc<ModbusFrontend>>, RunError> {
     let f = &cx.config.frontends;
@@ -243,7 +232,7 @@ impl ModbusFrontend {
 }
 
 fn frontend(
-    cx: &Context<'_>,
+    cx: &FrontendContext<'_>,
     section: &str,
     framing: Framing,
     faults: &[FaultSpec],

@@ -775,3 +775,45 @@ fn digital_inputs_and_touch_probes() {
     rig.tick();
     assert_eq!(rig.int(obj::TOUCH_PROBE_STATUS), 0);
 }
+
+#[test]
+fn csp_targets_are_interpolated_over_the_interpolation_period() {
+    // A master whose SYNC is 4 ticks: 0x60C2 = 4 × 10⁻³ s. A new target is reached in four
+    // equal steps from where the set-point stood (CiA 402 §6.3.4).
+    let mut rig = Rig::new();
+    rig.set(obj::INTERPOLATION_TIME_PERIOD, 1, Value::U8(4));
+    rig.mode(OperationMode::CyclicPosition);
+    rig.set(obj::TARGET_POSITION, 0, Value::I32(0));
+    rig.operation_enabled();
+    let position = |r: &Rig| {
+        r.last
+            .iter()
+            .find_map(|c| match c {
+                Command::Setpoint {
+                    setpoint: Some(Setpoint::Position { position }),
+                    ..
+                } => Some(*position),
+                _ => None,
+            })
+            .expect("a CSP set-point")
+    };
+    rig.set(obj::TARGET_POSITION, 0, Value::I32(4000));
+    let mut seen = Vec::new();
+    for _ in 0..6 {
+        rig.tick();
+        seen.push((position(&rig) * IPU).round() as i64);
+    }
+    assert_eq!(seen, [1000, 2000, 3000, 4000, 4000, 4000]);
+    // A target changed mid-segment starts the next segment where the set-point is.
+    rig.set(obj::TARGET_POSITION, 0, Value::I32(0));
+    rig.tick();
+    rig.set(obj::TARGET_POSITION, 0, Value::I32(8000));
+    rig.tick();
+    let p = (position(&rig) * IPU).round() as i64;
+    assert_eq!(p, 3000 + (8000 - 3000) / 4, "from 3000 toward 8000");
+    // The default period (1 ms, one tick) passes targets straight through.
+    rig.set(obj::INTERPOLATION_TIME_PERIOD, 1, Value::U8(1));
+    rig.set(obj::TARGET_POSITION, 0, Value::I32(500));
+    rig.tick();
+    assert_eq!((position(&rig) * IPU).round() as i64, 500);
+}

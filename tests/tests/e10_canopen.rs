@@ -1,0 +1,217 @@
+//! The CT E10 servo of the CPU 226H's CANopen example (digest 003 §6, manual §10.2) as mcemu
+//! serves it: node 2 of `fixtures/cpu226h.toml`, objects from `fixtures/canopen/ct-e10.eds`,
+//! parameter semantics from the Modbus map `ct-e10-servo` — driven by python-canopen (a real
+//! master) over mcemu's socketcand server, on a virtual clock.
+
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+use std::process::Command;
+use std::time::Duration;
+
+use mcemu_tests::Mcemu;
+use mcemu_tests::{python, python_script, run_with_timeout, workspace_root};
+use serde_json::{json, Value};
+
+const AXIS: usize = 5; // e10_can
+const NODE: u8 = 2;
+
+/// One python-canopen session: the ops' results (see tests/python/canopen_e10.py).
+fn session(m: &Mcemu, ops: &Value) -> Vec<Value> {
+    session_at(&m.port("socketcand"), ops)
+}
+
+fn session_at(port: &str, ops: &Value) -> Vec<Value> {
+    let mut command = Command::new(python());
+    command
+        .arg(python_script("canopen_e10.py"))
+        .args(["--host", "127.0.0.1", "--port", port])
+        .args(["--channel", "vcan0", "--node", &NODE.to_string()])
+        .arg("--eds")
+        .arg(workspace_root().join("fixtures/canopen/ct-e10.eds"));
+    let what = format!("{command:?}");
+    let out = run_with_timeout(command, ops.to_string().as_bytes(), Duration::from_secs(60));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        out.status.success(),
+        "{what} failed\n--- stdout\n{stdout}\n--- stderr\n{stderr}"
+    );
+    let r: Value = serde_json::from_str(&stdout)
+        .unwrap_or_else(|e| panic!("{what}: no JSON ({e})\n{stdout}\n{stderr}"));
+    r.as_array().unwrap().clone()
+}
+
+fn bytes(result: &Value) -> Vec<u8> {
+    let hex = result["ok"]
+        .as_str()
+        .unwrap_or_else(|| panic!("not bytes: {result}"));
+    (0..hex.len())
+        .step_by(2)
+        .map(|i| u8::from_str_radix(&hex[i..i + 2], 16).unwrap())
+        .collect()
+}
+
+fn u16_of(result: &Value) -> u16 {
+    let b = bytes(result);
+    assert_eq!(b.len(), 2, "{result}");
+    u16::from_le_bytes([b[0], b[1]])
+}
+
+fn i32_at(b: &[u8], at: usize) -> i32 {
+    i32::from_le_bytes([b[at], b[at + 1], b[at + 2], b[at + 3]])
+}
+
+fn has(axis: &Value, flag: &str) -> bool {
+    axis["flags"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .any(|f| f.as_str() == Some(flag))
+}
+
+fn abort(result: &Value) -> u64 {
+    result["abort"]
+        .as_u64()
+        .unwrap_or_else(|| panic!("an SDO abort expected: {result}"))
+}
+
+#[test]
+fn python_canopen_enables_reads_and_positions_the_e10_at_node_2() {
+    let m = Mcemu::start(
+        Some(&workspace_root().join("fixtures/cpu226h.toml")),
+        &["--clock", "virtual"],
+    );
+    assert!(!has(&m.axis(AXIS), "enabled"));
+
+    // ---- enable over SDO (P282 bit 0), ready back (R204 bit 0), the process image ----------
+    let r = session(
+        &m,
+        &json!([
+            {"op": "sdo_read", "index": 0x20CC},
+            {"op": "read_pdo_config"},
+            {"op": "sdo_write", "index": 0x211A, "data": "0100"},
+            {"op": "sdo_read", "index": 0x20CC},
+            {"op": "sdo_read", "index": 0x2071},
+            {"op": "sdo_write", "index": 0x2071, "data": "6400c800"},
+            {"op": "sdo_read", "index": 0x2071},
+            {"op": "sdo_write", "index": 0x20CC, "data": "0100"},
+            {"op": "sdo_write", "index": 0x211A, "data": "010000"},
+            {"op": "nmt", "state": "OPERATIONAL"},
+            {"op": "sleep", "seconds": 0.3},
+            {"op": "frames", "cob_id": 0x182},
+        ]),
+    );
+    assert_eq!(
+        u16_of(&r[0]) & 1,
+        0,
+        "R204 bit 0 before the enable: {}",
+        r[0]
+    );
+    // The default PDOs are the §10.2 process image, read back over SDO by python-canopen.
+    assert_eq!(
+        r[1]["ok"],
+        json!({
+            "rpdo1": [0x211A, 0x2119, 0x2122],
+            "rpdo2": [0x2061, 0x2071, 0x2065],
+            "rpdo3": [0x2066],
+            "tpdo1": [0x20CA, 0x20CC, 0x20D8],
+            "tpdo2": [0x20DD],
+        }),
+        "{}",
+        r[1]
+    );
+    assert_eq!(r[2]["ok"], true, "{}", r[2]);
+    let state = m.axis(AXIS);
+    assert!(
+        has(&state, "enabled"),
+        "P282 bit 0 enables e10_can: {state}"
+    );
+    assert_eq!(u16_of(&r[3]) & 1, 1, "R204 bit 0 ready: {}", r[3]);
+    // P113: acceleration time (ms) in bits 0–15, deceleration time in bits 16–31 — the
+    // fixture's 0.1 s / 0.1 s, then the Modbus example's 100 / 200 ms written as one object.
+    assert_eq!(bytes(&r[4]), [100, 0, 100, 0]);
+    assert_eq!(r[5]["ok"], true, "{}", r[5]);
+    assert_eq!(bytes(&r[6]), [100, 0, 200, 0], "decel 200 ms read back");
+    assert_eq!(abort(&r[7]), 0x0601_0002, "R204 is a monitor");
+    assert_eq!(abort(&r[8]), 0x0607_0012, "3 bytes into a 16-bit object");
+    // TPDO1 (R202, R204, R216) goes out on entering Operational, ready set.
+    let frames = r[11]["ok"].as_array().unwrap();
+    let tpdo1 =
+        bytes(&json!({"ok": frames.first().unwrap_or_else(|| panic!("no TPDO1: {}", r[11]))}));
+    assert_eq!(tpdo1.len(), 8, "{tpdo1:02x?}");
+    assert_eq!(
+        u16::from_le_bytes([tpdo1[0], tpdo1[1]]),
+        0,
+        "R202: no error"
+    );
+    assert_eq!(tpdo1[2] & 1, 1, "R204 bit 0 in TPDO1: {tpdo1:02x?}");
+
+    // ---- positioning as the PLC does it: RPDO1 = P282 P281 P290 --------------------------
+    // P282 = 3 (enable, bit 1 rising = position to P290), P281 = 0, P290 = 20 000 counts, in
+    // one frame: the set-point is taken before the start.
+    let r = session(
+        &m,
+        &json!([
+            {"op": "send", "cob_id": 0x202, "data": "03000000204e0000"},
+            {"op": "sleep", "seconds": 0.3},
+        ]),
+    );
+    assert_eq!(r[0]["ok"], true);
+    let state = m.axis(AXIS);
+    assert_eq!(state["state"], "discrete_motion", "{state}");
+    assert_eq!(state["target_pos"], 20000.0, "{state}");
+    let until = m.advance(&json!({
+        "seconds": 5.0,
+        "until": {"axis": AXIS, "state": "standstill"}
+    }));
+    assert_eq!(until["met"], true, "{until}");
+    // The drive's own loop lags the set-point (first order, 5 ms).
+    m.advance(&json!({"seconds": 0.1}));
+    let state = m.axis(AXIS);
+    let act = state["act_pos"].as_f64().unwrap();
+    assert!((act - 20000.0).abs() <= 1.0, "{state}");
+
+    // ---- live values: TPDO1 by its event timer as time advances, SDO uploads ------------
+    let handle = {
+        let ops = json!([
+            {"op": "wait_frame", "cob_id": 0x182, "timeout": 20},
+            {"op": "sdo_read", "index": 0x20D8},
+            {"op": "sdo_read", "index": 0x20CC},
+            // Disabled, the drive refuses a run command (P281 = 1): the map's 04.
+            {"op": "sdo_write", "index": 0x211A, "data": "0000"},
+            {"op": "sdo_write", "index": 0x2119, "data": "0100"},
+        ]);
+        let port = m.port("socketcand");
+        std::thread::spawn(move || session_at(&port, &ops))
+    };
+    // Time stands still until advanced: the event timer (100 ms) fires in the advance.
+    std::thread::sleep(Duration::from_secs(2));
+    m.advance(&json!({"seconds": 0.2}));
+    let r = handle.join().unwrap();
+    let tpdo1 = bytes(&r[0]);
+    let state = m.axis(AXIS);
+    assert!(!has(&state, "enabled"), "P282 = 0 disables: {state}");
+    let act = state["act_pos"].as_f64().unwrap().round() as i32;
+    assert_eq!(
+        i32_at(&tpdo1, 4),
+        act,
+        "R216 in TPDO1: {tpdo1:02x?} {state}"
+    );
+    assert_eq!(
+        tpdo1[2] & 0b111,
+        0b011,
+        "ready, in position, still: {tpdo1:02x?}"
+    );
+    assert_eq!(i32_at(&bytes(&r[1]), 0), act, "R216 over SDO");
+    assert_eq!(u16_of(&r[2]) & 0b111, 0b011, "R204 over SDO");
+    assert_eq!(r[3]["ok"], true, "{}", r[3]);
+    assert_eq!(abort(&r[4]), 0x0800_0022, "a disabled drive cannot run");
+
+    let canopen = m.frontend("canopen");
+    let node = &canopen["mapped_nodes"][0];
+    assert_eq!(node["node_id"], 2, "{canopen}");
+    assert_eq!(node["axis"], AXIS, "{canopen}");
+    assert_eq!(node["nmt"], "Operational", "{canopen}");
+    assert_eq!(node["refresh_errors"], 0, "{canopen}");
+    assert_eq!(node["rpdo_write_errors"], 0, "{canopen}");
+}
