@@ -107,6 +107,11 @@ class Mcemu:
         args = [binary, "run", "--config", config, "--clock", clock, "--state-dir", state_dir,
                 "--set", "frontends.control.bind=127.0.0.1:0",
                 "--set", "frontends.socketcand.bind=127.0.0.1:0"]
+        # Over socketcand, mcemu's own candump log of its bus: the frames in the order the nodes
+        # took them (on SocketCAN candump sees that order itself).
+        self.bus_log = os.path.join(log_dir, f"bus-{label}.log")
+        if interface == "socketcand":
+            args += ["--set", f'frontends.canopen.log="{self.bus_log}"']
         if interface == "socketcan":
             # The bridge to vcan0 must open: no silent fallback to socketcand only.
             args += ["--set", "frontends.canopen.interface_optional=false"]
@@ -1264,18 +1269,33 @@ def r_homing(cx):
     return {"homing_s": round(took, 3), "home_counts": home_counts}
 
 
+def read_candump(path, ids):
+    """(timestamp, id, data) of the frames with `ids` in a `candump -L` file, in its order."""
+    frames = []
+    with open(path) as f:
+        for line in f:
+            parts = line.split()
+            if len(parts) != 3 or "#" not in parts[2]:
+                continue
+            can_id, data = parts[2].split("#", 1)
+            can_id = int(can_id, 16)
+            if can_id in ids and not data.startswith("R"):
+                frames.append((float(parts[0].strip("()")), can_id, bytes.fromhex(data)))
+    return frames
+
+
 class BusLog:
     """The frames of some CAN-IDs on the bus while it runs. Over socketcand: those this process
-    writes, counted (python-can's periodic tasks call bus.send), and those it receives. On
-    SocketCAN, where the kernel's BCM sends the periodic frames: everything candump logs (in C,
-    with a large receive buffer, kernel timestamps), so that python-can under TCG, which reads
-    far fewer than 1000 frames/s, need not read them at all."""
+    writes, counted (python-can's periodic tasks call bus.send). On SocketCAN, where the kernel's
+    BCM sends the periodic frames: everything candump logs (in C, with a large receive buffer,
+    kernel timestamps), so that python-can under TCG, which reads far fewer than 1000 frames/s,
+    need not read them at all."""
 
-    def __init__(self, cx, sent_ids, received_ids):
+    def __init__(self, cx, ids):
         self.cx = cx
-        self.ids = set(sent_ids) | set(received_ids)
+        self.ids = set(ids)
         self.counts = {i: 0 for i in self.ids}
-        self.frames = []  # (timestamp, id, data)
+        self.frames = []  # (timestamp, id, data), SocketCAN only
         if cx.interface == "socketcand":
             self.bus = cx.net.bus
             self.send = self.bus.send
@@ -1286,9 +1306,6 @@ class BusLog:
                 return self.send(msg, timeout)
 
             self.bus.send = send
-            self.received = list(received_ids)
-            for i in self.received:
-                cx.net.subscribe(i, self.on_frame)
             return
         self.path = os.path.join(cx.workdir, "csp.candump")
         self.log = open(self.path, "w")
@@ -1304,30 +1321,17 @@ class BusLog:
 
         wait_until("candump logging", 10 * SLOW, ready, interval=0.2)
 
-    def on_frame(self, can_id, data, timestamp):
-        self.frames.append((timestamp, can_id, bytes(data)))
-        self.counts[can_id] += 1
-
     def stop(self):
         if self.cx.interface == "socketcand":
             self.bus.send = self.send
-            for i in self.received:
-                self.cx.net.unsubscribe(i, self.on_frame)
             return
         self.dump.terminate()
         self.dump.wait()
         self.log.close()
-        with open(self.path) as f:
-            for line in f:
-                stamp, _, frame = line.split()
-                can_id, data = frame.split("#")
-                can_id = int(can_id, 16)
-                if can_id in self.counts:
-                    self.counts[can_id] += 1
-                    self.frames.append((float(stamp.strip("()")), can_id, bytes.fromhex(data)))
+        self.frames = read_candump(self.path, self.ids)
+        for _, can_id, _ in self.frames:
+            self.counts[can_id] += 1
 
-    def of(self, can_id):
-        return [(t, d) for t, i, d in self.frames if i == can_id]
 
 
 # The CSP cycle: 1 ms. Under qemu's TCG a debug build of mcemu cannot serve 1 kHz of SYNC,
@@ -1358,15 +1362,12 @@ def r_csp(cx):
         return start + round(distance * (1 - math.cos(math.pi * x)) / 2)
 
     # What python-canopen itself reads (filtered in the kernel on SocketCAN).
-    read = [0x084, 0x184, 0x284, 0x584, 0x704]
-    if cx.interface == "socketcand":
-        read.append(0x384)  # this process reads TPDO3 itself (python-can filters in Python)
-    cx.net.bus.set_filters([{"can_id": i, "can_mask": 0x7FF} for i in read])
-    bus = BusLog(cx, [0x080, 0x404], [0x384])
+    cx.net.bus.set_filters([{"can_id": i, "can_mask": 0x7FF}
+                            for i in (0x084, 0x184, 0x284, 0x584, 0x704)])
+    bus = BusLog(cx, [0x080, 0x404, 0x384])
     before = cx.mcemu.node_counters(4)
-    # Set-points as the master puts them into the periodic RPDO: (wall time, target). The
-    # task sends the newest one each period.
-    updates = [(time.time(), start)]
+    # The task sends the newest set-point the master put into it each period.
+    updates = 0
     rpdo["Controlword"].raw = 0x000F
     rpdo["Target position"].raw = start
     # Under TCG the master updates less often, leaving the VM's CPU to the emulator; the
@@ -1381,9 +1382,8 @@ def r_csp(cx):
             t = time.monotonic() - t0
             p = setpoint(t)
             rpdo["Target position"].raw = p
-            # Stamped before the task has it: the drive cannot see it earlier.
-            updates.append((time.time(), p))
             rpdo.update()
+            updates += 1
             if t > duration + 0.3:
                 break
             next_update += update_period
@@ -1396,7 +1396,7 @@ def r_csp(cx):
     finally:
         cx.net.sync.stop()
         rpdo.stop()
-    # The node serves what is queued, the master reads what it received.
+    # The node serves what is still queued; the logs are flushed.
     time.sleep(0.3 * SLOW)
     after = cx.mcemu.node_counters(4)
     bus.stop()
@@ -1405,55 +1405,42 @@ def r_csp(cx):
     rpdos = after["rpdos"] - before["rpdos"]
     frames_out = after["frames_out"] - before["frames_out"]
     # Each TPDO3 position must lie between an earlier set-point and the newest one the node
-    # could have taken. Over socketcand (the server does not return a client's own frames) the
-    # set-points are the master's updates on the wall clock, and "earlier" is `lag` before: the
-    # task's period, the bus, the servo tick that takes the RPDO, the step, the next SYNC. On
-    # SocketCAN candump has the RPDO3 and TPDO3 frames in bus order, which is the order the node
-    # takes them in, and "earlier" is a count of RPDOs: a tick serves at most
-    # MAX_FRAMES_PER_TICK = 256 queued frames (128 cycles of SYNC + RPDO), so a servo thread that
-    # fell behind (qemu's TCG, a loaded machine) answers a burst of SYNCs with the position of
-    # the step before the burst, at most 128 RPDOs old, plus a few ticks of the 1 ms lag plant.
+    # could have taken, in bus order, which is the order the node takes frames in: on SocketCAN
+    # what candump saw, over socketcand (whose server does not return a client's own frames) the
+    # emulator's own log of its bus. "Earlier" is a count of RPDOs, not a time: a tick serves at
+    # most MAX_FRAMES_PER_TICK = 256 queued frames (128 cycles of SYNC + RPDO), so a servo thread
+    # that fell behind (qemu's TCG, a loaded machine) answers a burst of SYNCs with the position
+    # of the step before the burst, at most 128 RPDOs old, plus a few ticks of the 1 ms lag
+    # plant. A wall-clock bound did not hold: 75 ms stalls on a loaded host, 0.8 s in the VM.
+    if cx.interface == "socketcan":
+        order = bus.frames
+    else:
+        order = read_candump(cx.mcemu.bus_log, {0x404, 0x384})
+    behind = 128 + 12
+    lag = f"{behind} RPDOs"
     tol = 50
     worst = 0
     lags = []
     outside = []
     samples = []
-    if cx.interface == "socketcan":
-        behind = 128 + 12
-        lag = f"{behind} RPDOs"
-        seen = []
-        for stamp, can_id, data in bus.frames:
-            if can_id == 0x404:
-                seen.append((stamp, struct.unpack("<i", data[2:6])[0]))
-            elif can_id == 0x384 and seen:
-                pos = struct.unpack("<Hi", data)[1]
-                samples.append((stamp, pos))
-                hi = seen[-1][1]
-                lo = seen[-1 - behind][1] if len(seen) > behind else start
-                if not lo - tol <= pos <= hi + tol:
-                    outside.append(f"{pos} at {stamp - seen[0][0]:.3f} s outside [{lo}, {hi}]")
-                worst = max(worst, hi - pos)
-                if pos < final - tol:
-                    lags.append(stamp - next((t for t, p in seen if p >= pos - tol), stamp))
-    else:
-        lag = "0.05 s"
-        samples = [(t, struct.unpack("<Hi", d)[1]) for t, d in bus.of(0x384)]
-        for stamp, pos in samples:
-            newest = [p for ts, p in updates if ts <= stamp]
-            if not newest:
-                continue
-            older = [p for ts, p in updates if ts <= stamp - 0.05]
-            hi = newest[-1]
-            lo = older[-1] if older else start
+    seen = []
+    for stamp, can_id, data in order:
+        if can_id == 0x404:
+            seen.append((stamp, struct.unpack("<i", data[2:6])[0]))
+        elif can_id == 0x384 and seen:
+            pos = struct.unpack("<Hi", data)[1]
+            samples.append((stamp, pos))
+            hi = seen[-1][1]
+            lo = seen[-1 - behind][1] if len(seen) > behind else start
             if not lo - tol <= pos <= hi + tol:
-                outside.append(f"{pos} at {stamp - updates[0][0]:.3f} s outside [{lo}, {hi}]")
+                outside.append(f"{pos} at {stamp - seen[0][0]:.3f} s outside [{lo}, {hi}]")
             worst = max(worst, hi - pos)
             if pos < final - tol:
-                # How long ago the master first asked for this position (the ramp is monotonic).
-                lags.append(stamp - next((ts for ts, p in updates if p >= pos - tol), stamp))
+                # How long before on the bus the master first asked for this position.
+                lags.append(stamp - next((t for t, p in seen if p >= pos - tol), stamp))
     lags.sort()
     on_bus = bus.counts
-    notes = {"window_s": round(window, 3), "setpoint_updates": len(updates) - 1,
+    notes = {"window_s": round(window, 3), "setpoint_updates": updates,
              "syncs_on_bus": on_bus[0x080], "syncs_taken": syncs, "rpdos_on_bus": on_bus[0x404],
              "rpdos_taken": rpdos, "frames_out": frames_out, "tpdo3_seen": len(samples),
              "max_lag_increments": worst, "lag_bound": lag,
