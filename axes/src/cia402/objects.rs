@@ -3,7 +3,7 @@
 //! increments/s, accelerations in increments/s², torques in ‰ of rated torque (CiA 402 §6.3
 //! without a factor group: user units = internal units = increments).
 
-use crate::od::{Access, EntryDef, Value};
+use crate::od::{Access, DataType, EntryDef, Value};
 
 use super::state::OperationMode;
 use super::DriveConfig;
@@ -16,6 +16,8 @@ pub mod obj {
     pub const HARDWARE_VERSION: u16 = 0x1009;
     pub const SOFTWARE_VERSION: u16 = 0x100A;
     pub const IDENTITY: u16 = 0x1018;
+    /// Manufacturer-specific: a DOMAIN for SDO block transfers (no meaning to the drive).
+    pub const DATA_DOMAIN: u16 = 0x2F00;
     pub const ABORT_CONNECTION_OPTION: u16 = 0x6007;
     pub const ERROR_CODE: u16 = 0x603F;
     pub const CONTROLWORD: u16 = 0x6040;
@@ -143,6 +145,12 @@ pub fn object_table(config: &DriveConfig) -> Vec<EntryDef> {
         e(IDENTITY, 2, "Product code", Ro, U32(config.product_code)),
         e(IDENTITY, 3, "Revision number", Ro, U32(config.revision)),
         e(IDENTITY, 4, "Serial number", Ro, U32(config.serial)),
+        // ---- Manufacturer-specific ----
+        // Any bytes a master wants to move (SDO block transfers without a user EDS), up to the
+        // dictionary's bound for variable-length values, `od::MAX_VARIABLE_LEN` (1 MiB); longer
+        // downloads get 0x06070012. Held in memory only: a DOMAIN is not a stored parameter
+        // (docs/decisions.md, "CiA 402 drive").
+        e(DATA_DOMAIN, 0, "Data domain", Rw, Value::Bytes(Vec::new())).data_type(DataType::Domain),
         // ---- CiA 402 device control ----
         e(
             ABORT_CONNECTION_OPTION,

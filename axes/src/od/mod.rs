@@ -161,6 +161,15 @@ impl EntryDef {
         self.data_type = data_type;
         self
     }
+
+    /// The most bytes a bus write may bring: the type's size, or [`MAX_VARIABLE_LEN`] for
+    /// strings and DOMAINs. More is "length too high" (SDO abort 0x06070012).
+    pub const fn max_len(&self) -> usize {
+        match self.data_type.size() {
+            Some(size) => size,
+            None => MAX_VARIABLE_LEN,
+        }
+    }
 }
 
 /// An entry with its current value.

@@ -50,9 +50,13 @@ impl ParameterGroup {
 }
 
 /// Whether an entry is a stored parameter: read-write (`rw`) entries; process data
-/// (`rww`/`rwr`), read-only values, the error history and the store/restore commands are not.
+/// (`rww`/`rwr`), read-only values, the error history, the store/restore commands and DOMAINs
+/// are not. A DOMAIN is a block of data (up to 1 MiB), not a parameter: storing it would put
+/// whatever a master last transferred into every power-on image (docs/decisions.md, "CANopen
+/// node").
 pub fn storable(entry: &Entry) -> bool {
     entry.def.access == Access::Rw
+        && entry.def.data_type != DataType::Domain
         && !matches!(
             entry.def.index,
             idx::ERROR_HISTORY | idx::STORE | idx::RESTORE

@@ -3,8 +3,9 @@
 
 //! `fixtures/canopen/cia402-drive.eds` describes the drive that `axes::cia402` implements: every
 //! object of the drive model's table is in the EDS with the same data type, access, PDO
-//! mappability, default and limits, and every device-profile object (0x6000–0x9FFF) of the EDS
-//! is in the drive model. Change one, and this test says what to change in the other.
+//! mappability, default and limits, and every manufacturer (0x2000–0x5FFF) and device-profile
+//! (0x6000–0x9FFF) object of the EDS is in the drive model. Change one, and this test says what
+//! to change in the other.
 
 use axes::cia402::{object_table, DriveConfig};
 use axes::od::EntryDef;
@@ -78,11 +79,11 @@ fn every_drive_model_object_is_in_the_eds_unchanged() {
 }
 
 #[test]
-fn every_device_profile_object_of_the_eds_is_in_the_drive_model() {
+fn every_manufacturer_and_device_profile_object_of_the_eds_is_in_the_drive_model() {
     let model = object_table(&DriveConfig::default());
     let extra: Vec<String> = eds_entries()
         .iter()
-        .filter(|e| (0x6000..=0x9FFF).contains(&e.index))
+        .filter(|e| (0x2000..=0x9FFF).contains(&e.index))
         .filter(|e| {
             !model
                 .iter()

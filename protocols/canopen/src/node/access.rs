@@ -157,11 +157,17 @@ impl<D: Device> ObjectAccess for Node<D> {
         if !entry.def.access.writable() {
             return Err(SdoAbort::READ_ONLY);
         }
+        // A size beyond the object's maximum (a DOMAIN's 1 MiB too) is refused before any data
+        // comes (CiA 301 Table 22: 0x06070012).
         match (entry.def.data_type.size(), size) {
-            (Some(fixed), Some(s)) if s > fixed => Err(SdoAbort::LENGTH_HIGH),
+            (_, Some(s)) if s > entry.def.max_len() => Err(SdoAbort::LENGTH_HIGH),
             (Some(fixed), Some(s)) if s < fixed => Err(SdoAbort::LENGTH_LOW),
             _ => Ok(()),
         }
+    }
+
+    fn max_len(&self, index: u16, subindex: u8) -> Option<usize> {
+        Some(self.device.od().entry(index, subindex).ok()?.def.max_len())
     }
 
     fn fixed_size(&self, index: u16, subindex: u8) -> Option<usize> {

@@ -3,7 +3,7 @@
 //! from there), CRC over the whole data.
 
 use super::server::Failure;
-use super::{crc, mux, with_mux, word, ObjectAccess, SdoAbort};
+use super::{crc, mux, with_mux, word, Limit, ObjectAccess, SdoAbort};
 use crate::frame::CanFrame;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -20,6 +20,7 @@ pub(crate) struct BlockDownload {
     subindex: u8,
     crc: bool,
     size: Option<usize>,
+    limit: Limit,
     data: Vec<u8>,
     phase: DownPhase,
     blksize: u8,
@@ -40,16 +41,19 @@ impl BlockDownload {
         let (index, subindex) = mux(&d);
         let fail = |a| (index, subindex, a);
         let size = (d[0] & 0x02 != 0).then(|| word(&d) as usize);
-        if size.is_some_and(|s| s > max_len) {
-            return Err(fail(SdoAbort::OUT_OF_MEMORY));
-        }
+        // The object's checks first (beyond its maximum: 0x06070012), then the server's buffer.
         access.check_download(index, subindex, size).map_err(fail)?;
+        let limit = Limit::new(access.max_len(index, subindex), max_len);
+        if size.is_some_and(|s| s > limit.len) {
+            return Err(fail(limit.abort));
+        }
         let b = BlockDownload {
             index,
             subindex,
             crc: d[0] & 0x04 != 0,
             size,
-            data: Vec::with_capacity(size.unwrap_or(0).min(max_len)),
+            limit,
+            data: Vec::with_capacity(size.unwrap_or(0).min(limit.len)),
             phase: DownPhase::Subblock,
             blksize,
             expected: 1,
@@ -73,7 +77,6 @@ impl BlockDownload {
     pub(crate) fn on_segment(
         &mut self,
         d: [u8; 8],
-        max_len: usize,
         tx_id: u16,
         out: &mut Vec<CanFrame>,
     ) -> Result<(), Failure> {
@@ -85,8 +88,8 @@ impl BlockDownload {
         let in_order = !self.gap && seq == self.expected;
         if in_order {
             // Data already at the limit: this segment would carry more.
-            if self.data.len() >= max_len {
-                return Err((self.index, self.subindex, SdoAbort::OUT_OF_MEMORY));
+            if self.data.len() >= self.limit.len {
+                return Err((self.index, self.subindex, self.limit.abort));
             }
             self.data.extend_from_slice(d.get(1..).unwrap_or_default());
             self.expected = seq + 1;

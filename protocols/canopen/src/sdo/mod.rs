@@ -36,8 +36,34 @@ pub(crate) trait ObjectAccess {
     ) -> Result<(), SdoAbort>;
     /// The encoded size of the entry's type, if fixed.
     fn fixed_size(&self, index: u16, subindex: u8) -> Option<usize>;
+    /// The most bytes a download to the entry may bring (its size if fixed), if it exists.
+    fn max_len(&self, index: u16, subindex: u8) -> Option<usize>;
     /// Store a downloaded value.
     fn download(&mut self, index: u16, subindex: u8, data: &[u8]) -> Result<Completion, SdoAbort>;
+}
+
+/// How many bytes a download may bring, and the abort once it brings more: the object's own
+/// maximum (0x06070012, "length of service parameter too high") or the server's buffer
+/// (`sdo_max_len`, 0x05040005 "out of memory"), whichever is smaller.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Limit {
+    pub len: usize,
+    pub abort: SdoAbort,
+}
+
+impl Limit {
+    pub(crate) fn new(object: Option<usize>, server: usize) -> Limit {
+        match object {
+            Some(len) if len <= server => Limit {
+                len,
+                abort: SdoAbort::LENGTH_HIGH,
+            },
+            _ => Limit {
+                len: server,
+                abort: SdoAbort::OUT_OF_MEMORY,
+            },
+        }
+    }
 }
 
 /// Multiplexer (index, sub-index) of an SDO frame.

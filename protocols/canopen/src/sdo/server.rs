@@ -4,7 +4,7 @@
 use std::time::Duration;
 
 use super::block::{BlockDownload, BlockUpload};
-use super::{mux, with_mux, word, Completion, ObjectAccess, SdoAbort};
+use super::{mux, with_mux, word, Completion, Limit, ObjectAccess, SdoAbort};
 use crate::frame::CanFrame;
 
 /// Command specifiers of client requests (bits 7–5 of byte 0).
@@ -27,6 +27,7 @@ pub(crate) enum State {
         subindex: u8,
         toggle: bool,
         size: Option<usize>,
+        limit: Limit,
         data: Vec<u8>,
     },
     Upload {
@@ -75,6 +76,16 @@ pub struct SdoCounters {
     pub aborts_sent: u64,
     pub aborts_received: u64,
     pub timeouts: u64,
+}
+
+/// What a segmented download in progress knows besides its data.
+#[derive(Clone, Copy, Debug)]
+struct Segment {
+    index: u16,
+    subindex: u8,
+    toggle: bool,
+    size: Option<usize>,
+    limit: Limit,
 }
 
 /// A failed step: the multiplexer to report and the code.
@@ -131,7 +142,7 @@ impl SdoServer {
         // During a block download sub-block every frame is a segment, except an abort.
         let state = match state {
             State::BlockDownload(mut b) if b.in_subblock() && d[0] != 0x80 => {
-                self.state = match b.on_segment(d, self.max_len, self.tx_id, out) {
+                self.state = match b.on_segment(d, self.tx_id, out) {
                     Ok(()) => State::BlockDownload(b),
                     Err(f) => {
                         self.send_abort(f, out);
@@ -167,9 +178,19 @@ impl SdoServer {
                     subindex,
                     toggle,
                     size,
+                    limit,
                     data,
                 },
-            ) => self.download_segment(d, index, subindex, toggle, size, data, access, out),
+            ) => {
+                let segment = Segment {
+                    index,
+                    subindex,
+                    toggle,
+                    size,
+                    limit,
+                };
+                self.download_segment(d, segment, data, access, out)
+            }
             (
                 ccs::UPLOAD_SEGMENT,
                 State::Upload {
@@ -243,33 +264,40 @@ impl SdoServer {
             return self.finish_download(index, subindex, data, reply, access, out);
         }
         let size = sized.then(|| word(&d) as usize);
-        if size.is_some_and(|s| s > self.max_len) {
-            return Err(fail(SdoAbort::OUT_OF_MEMORY));
-        }
+        // The object's own checks first (a size beyond its maximum is 0x06070012), then what
+        // the server can buffer.
         access.check_download(index, subindex, size).map_err(fail)?;
+        let limit = Limit::new(access.max_len(index, subindex), self.max_len);
+        if size.is_some_and(|s| s > limit.len) {
+            return Err(fail(limit.abort));
+        }
         self.send(reply, out);
         Ok(State::Download {
             index,
             subindex,
             toggle: false,
             size,
-            data: Vec::with_capacity(size.unwrap_or(0).min(self.max_len)),
+            limit,
+            data: Vec::with_capacity(size.unwrap_or(0).min(limit.len)),
         })
     }
 
     /// CiA 301 §7.2.4.3.4: one download segment.
-    #[allow(clippy::too_many_arguments)]
     fn download_segment(
         &mut self,
         d: [u8; 8],
-        index: u16,
-        subindex: u8,
-        toggle: bool,
-        size: Option<usize>,
+        segment: Segment,
         mut data: Vec<u8>,
         access: &mut dyn ObjectAccess,
         out: &mut Vec<CanFrame>,
     ) -> Result<State, Failure> {
+        let Segment {
+            index,
+            subindex,
+            toggle,
+            size,
+            limit,
+        } = segment;
         let fail = |a| (index, subindex, a);
         let t = d[0] & 0x10 != 0;
         if t != toggle {
@@ -277,12 +305,11 @@ impl SdoServer {
         }
         let len = 7 - usize::from((d[0] >> 1) & 0x07);
         data.extend_from_slice(d.get(1..1 + len).unwrap_or_default());
-        if data.len() > self.max_len || size.is_some_and(|s| data.len() > s) {
-            return Err(fail(if data.len() > self.max_len {
-                SdoAbort::OUT_OF_MEMORY
-            } else {
-                SdoAbort::LENGTH
-            }));
+        if data.len() > limit.len {
+            return Err(fail(limit.abort));
+        }
+        if size.is_some_and(|s| data.len() > s) {
+            return Err(fail(SdoAbort::LENGTH));
         }
         let reply = [0x20 | (u8::from(t) << 4), 0, 0, 0, 0, 0, 0, 0];
         if d[0] & 0x01 == 0 {
@@ -292,6 +319,7 @@ impl SdoServer {
                 subindex,
                 toggle: !toggle,
                 size,
+                limit,
                 data,
             });
         }
