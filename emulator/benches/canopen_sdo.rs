@@ -21,8 +21,8 @@
 //!   this machine (its kernel has no CAN), where CPU-bound code runs 10–30 times slower, so
 //!   these figures bound what the VM can do rather than what mcemu can.
 //!
-//! Servers: mcemu on `fixtures/bench/canopen-sdo.toml` (node 1, a manufacturer DOMAIN 0x2FF0
-//! from `fixtures/bench/sdo-domain.eds`), at its 1 ms servo period and again at 250 µs
+//! Servers: mcemu on `fixtures/bench/canopen-sdo.toml` (node 1, the manufacturer DOMAIN 0x2F00
+//! of the shipped `cia402-drive.eds`), at its 1 ms servo period and again at 250 µs
 //! (`--period 250us`, to show what the servo tick costs); `tests/python/canopen_bench_localnode.py`
 //! (python-canopen 2.4 `LocalNode`, node 2): it has no block transfers (it aborts a block
 //! download with 0x05040001 and answers a block upload as segmented, which python-canopen's
@@ -47,7 +47,7 @@ use mcemu_tests::{python, python_script, run_with_timeout, spawn_until_line, Mce
 use serde_json::{json, Value};
 
 const VCAN_ROLE: &str = "sdo-vcan";
-const INDEX: u16 = 0x2FF0;
+const INDEX: u16 = 0x2F00;
 const BIG: usize = 100 * 1024;
 const SMALL: usize = 1024;
 const CONFIG: &str = "fixtures/bench/canopen-sdo.toml";

@@ -1,6 +1,6 @@
 """python-canopen's LocalNode serving a DOMAIN: the baseline server of emulator/benches/canopen_sdo.rs.
 
-    canopen_bench_localnode.py --interface socketcan --channel vcan0 --node 2 --index 0x2FF0
+    canopen_bench_localnode.py --interface socketcan --channel vcan0 --node 2 --index 0x2F00
     canopen_bench_localnode.py --interface socketcand --host 127.0.0.1 --port P --channel vcan0 ...
 
 Serves node NODE with one read-write DOMAIN at INDEX:0 (python-canopen's SdoServer: expedited
@@ -23,7 +23,7 @@ def main():
     p.add_argument("--host", default="127.0.0.1")
     p.add_argument("--port", type=int, default=29536)
     p.add_argument("--node", type=int, required=True)
-    p.add_argument("--index", type=lambda s: int(s, 0), default=0x2FF0)
+    p.add_argument("--index", type=lambda s: int(s, 0), default=0x2F00)
     args = p.parse_args()
     logging.basicConfig(level=logging.CRITICAL)
 

@@ -1,6 +1,6 @@
 """python-canopen's SDO client timing transfers of a DOMAIN, for emulator/benches/canopen_sdo.rs.
 
-    canopen_bench_sdo.py --interface socketcan --channel vcan0 --node 1 --index 0x2FF0 \
+    canopen_bench_sdo.py --interface socketcan --channel vcan0 --node 1 --index 0x2F00 \
         --reps 3 --transfer block:102400 --transfer segmented:1024
     canopen_bench_sdo.py --interface socketcand --host 127.0.0.1 --port 29536 --channel vcan0 ...
 
@@ -113,7 +113,7 @@ def main():
     p.add_argument("--port", type=int, default=29536)
     p.add_argument("--tcp-tune", choices=["on", "off"], default="on")
     p.add_argument("--node", type=int, required=True)
-    p.add_argument("--index", type=lambda s: int(s, 0), default=0x2FF0)
+    p.add_argument("--index", type=lambda s: int(s, 0), default=0x2F00)
     p.add_argument("--reps", type=int, default=3)
     p.add_argument("--timeout", type=float, default=5.0)
     p.add_argument("--transfer", action="append", required=True, help="MODE:SIZE")

@@ -13,11 +13,10 @@ processes itself (the bus of a vcan0 has to be served from inside the VM):
   restart; heartbeat timing, BaseNode402 (state machine, PP, PV, homing, quick stop, fault), CSP
   with a periodic SYNC. The master needs time to pass, so assertions are ranges.
 
-The machine is fixtures/cia402-can.toml with two test additions (written to --workdir): node 1
-serves a user EDS, the shipped cia402-drive.eds plus a manufacturer DOMAIN object 0x2F00 (the
-shipped drive has none; 100 kB block transfers need one), and axis z's encoder has its index at
-0.25 mm past each mm (index_offset = 2500), so that homing onto the index is told apart from
-homing onto the cam edge at 100 mm.
+The machine is fixtures/cia402-can.toml with one test addition (written to --workdir): axis z's
+encoder has its index at 0.25 mm past each mm (index_offset = 2500), so that homing onto the
+index is told apart from homing onto the cam edge at 100 mm. The 100 kB block transfers go to the
+shipped drive's manufacturer DOMAIN 0x2F00 (cia402-drive.eds has it).
 
 Writes one result per case to --out (JSON: name, ok, seconds, error, notes) and exits 1 if any
 case failed. The Rust side (tests/tests/canopen_masters.rs) checks that every expected case ran
@@ -292,32 +291,13 @@ def expect_abort(code, fn, what):
 # ---- the test configuration ------------------------------------------------------------------
 
 def write_test_files(workdir):
-    """The fixture with a DOMAIN object on node 1 (a user EDS) and axis z's index moved."""
+    """The fixture with axis z's index moved."""
     with open(EDS, encoding="utf-8") as f:
         eds = f.read()
-    check("[ManufacturerObjects]" not in eds,
-          "cia402-drive.eds has manufacturer objects now: revisit the test's DOMAIN object")
-    eds += f"""
-[ManufacturerObjects]
-SupportedObjects=1
-1=0x{DOMAIN_INDEX:04X}
-
-[{DOMAIN_INDEX:04X}]
-ParameterName=Test data (DOMAIN)
-ObjectType=0x7
-DataType=0x000F
-AccessType=rw
-PDOMapping=0
-"""
-    eds_path = os.path.join(workdir, "cia402-drive-domain.eds")
-    with open(eds_path, "w", encoding="utf-8") as f:
-        f.write(eds)
-
+    check(f"[{DOMAIN_INDEX:04X}]" in eds and "DataType=0x000F" in eds,
+          f"cia402-drive.eds no longer has the DOMAIN 0x{DOMAIN_INDEX:04X}")
     with open(FIXTURE, encoding="utf-8") as f:
         toml = f.read()
-    first_eds = 'node_id = 1\ndrive = 0\neds = "cia402-drive"'
-    check(toml.count(first_eds) == 1, f"the fixture's node 1 is no longer `{first_eds}`")
-    toml = toml.replace(first_eds, f'node_id = 1\ndrive = 0\neds = "{eds_path}"')
     # Axis z is the third [[axes]]: its encoder gets index_offset = 2500 (0.25 mm).
     parts = toml.split("[[axes]]")
     check(len(parts) == 5, "the fixture no longer has four [[axes]]")
@@ -330,7 +310,7 @@ PDOMapping=0
     config = os.path.join(workdir, "cia402-can-test.toml")
     with open(config, "w", encoding="utf-8") as f:
         f.write("[[axes]]".join(parts))
-    return config, eds_path
+    return config
 
 
 # ---- V: virtual clock ------------------------------------------------------------------------
@@ -564,8 +544,18 @@ def v_sdo_segmented(cx):
 
 
 def v_sdo_block_domain(cx):
-    """Block download and upload of 100 kB to the DOMAIN object 0x2F00 (with CRC)."""
+    """Block download and upload of 100 kB to the shipped DOMAIN object 0x2F00 (with CRC); a
+    download longer than its 1 MiB is refused at the initiate with 0x06070012."""
     node = cx.node(1)
+
+    def too_long(block):
+        # The initiate carries the size: the server refuses before any data moves.
+        with node.sdo.open(DOMAIN_INDEX, 0, "wb", size=(1 << 20) + 1,
+                           block_transfer=block) as f:
+            f.write(b"never sent")
+
+    expect_abort(0x06070012, lambda: too_long(True), "block download of 1 MiB + 1")
+    expect_abort(0x06070012, lambda: too_long(False), "segmented download of 1 MiB + 1")
     data = random.Random(2).randbytes(100_000)
     # The server's answers only: wrapping the master's 14 300 sends would slow it (in the VM).
     sniff = Recorder(cx.net, [0x581])
@@ -1492,8 +1482,7 @@ class Context:
 
     def node(self, node_id):
         if node_id not in self.nodes:
-            eds = self.domain_eds if node_id == 1 else EDS
-            self.nodes[node_id] = remote(self.net, node_id, eds)
+            self.nodes[node_id] = remote(self.net, node_id, EDS)
         if self.net.nodes.get(node_id) is not self.nodes[node_id]:
             self.net.add_node(self.nodes[node_id])
         return self.nodes[node_id]
@@ -1547,7 +1536,7 @@ def main():
               file=sys.stderr, flush=True)
 
     try:
-        config, domain_eds = write_test_files(args.workdir)
+        config = write_test_files(args.workdir)
     except Exception as e:  # noqa: BLE001 - reported as a failed case
         record("setup", False, 0.0, f"{e}")
         config = None
@@ -1574,7 +1563,6 @@ def main():
                       f"mcemu did not bridge vcan0: {mcemu.lines}")
             network = connect(mcemu, args.interface)
             cx = Context(args, mcemu, network, state_dir)
-            cx.domain_eds = domain_eds
             record(f"start_{label}", True, time.monotonic() - t)
             for c in cases:
                 t = time.monotonic()

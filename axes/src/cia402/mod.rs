@@ -501,8 +501,39 @@ impl Cia402Drive {
             obj::MOTION_PROFILE_TYPE if !matches!(v, 0 | 3) => {
                 invalid(format!("motion profile type {v} is not supported (0, 3)"))
             }
+            obj::SOFTWARE_POSITION_LIMIT if matches!(subindex, 1 | 2) => {
+                self.check_position_limits(subindex, value)
+            }
             _ => Ok(()),
         }
+    }
+
+    /// 0x607D: a write must not make the max position limit less than the min (CiA 301 abort
+    /// 0x06090036, "maximum value is less than minimum value"). Each sub-index is checked
+    /// against the other's present value, so moving the window past itself takes the writes
+    /// in the right order (max first when moving up). Equal limits are accepted: they switch
+    /// the limits off, as min > max did before this check (`clamp_position`).
+    fn check_position_limits(&self, subindex: u8, value: &Value) -> Result<(), OdError> {
+        let other = |sub| {
+            self.od
+                .get(obj::SOFTWARE_POSITION_LIMIT, sub)
+                .cloned()
+                .unwrap_or(Value::I32(0))
+        };
+        let (min, max) = if subindex == 1 {
+            (value.clone(), other(2))
+        } else {
+            (other(1), value.clone())
+        };
+        if max.compare(&min) == Some(std::cmp::Ordering::Less) {
+            return Err(OdError::MaxBelowMin {
+                index: obj::SOFTWARE_POSITION_LIMIT,
+                subindex,
+                min,
+                max,
+            });
+        }
+        Ok(())
     }
 
     // ---- the servo tick ----

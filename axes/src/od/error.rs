@@ -21,7 +21,9 @@ use super::value::{DataType, Value};
 /// | `ValueTooLow`    | `0x0609_0032`  | Value of parameter written too low (download only)            |
 /// | `InvalidValue`   | `0x0609_0030`  | Invalid value for parameter (download only)                   |
 /// | `NotMappable`    | `0x0604_0041`  | Object cannot be mapped to the PDO                            |
+/// | `MaxBelowMin`    | `0x0609_0036`  | Maximum value is less than minimum value                      |
 /// | `DeviceState`    | `0x0800_0022`  | Data cannot be transferred or stored to the application because of the present device state |
+/// | `DeviceFailure`  | `0x0800_0000`  | General error                                                 |
 #[derive(Clone, Debug, PartialEq, thiserror::Error, Serialize, Deserialize)]
 #[serde(tag = "reason", rename_all = "snake_case")]
 pub enum OdError {
@@ -76,8 +78,26 @@ pub enum OdError {
     },
     #[error("object {index:#06x}:{subindex} cannot be mapped to this PDO")]
     NotMappable { index: u16, subindex: u8 },
+    /// The write would leave a configured range with its maximum below its minimum (0x607D
+    /// software position limits …); `min` and `max` are the pair the write would make.
+    #[error(
+        "object {index:#06x}:{subindex}: the maximum {max} would be less than the minimum {min}"
+    )]
+    MaxBelowMin {
+        index: u16,
+        subindex: u8,
+        min: Value,
+        max: Value,
+    },
     #[error("object {index:#06x}:{subindex} cannot be written now: {detail}")]
     DeviceState {
+        index: u16,
+        subindex: u8,
+        detail: String,
+    },
+    /// The device failed inside, for a reason no other variant names (its back end is gone …).
+    #[error("object {index:#06x}:{subindex}: the device failed: {detail}")]
+    DeviceFailure {
         index: u16,
         subindex: u8,
         detail: String,
@@ -99,7 +119,9 @@ impl OdError {
             OdError::ValueTooLow { .. } => 0x0609_0032,
             OdError::InvalidValue { .. } => 0x0609_0030,
             OdError::NotMappable { .. } => 0x0604_0041,
+            OdError::MaxBelowMin { .. } => 0x0609_0036,
             OdError::DeviceState { .. } => 0x0800_0022,
+            OdError::DeviceFailure { .. } => 0x0800_0000,
         }
     }
 
@@ -117,7 +139,9 @@ impl OdError {
             | OdError::ValueTooLow { index, .. }
             | OdError::InvalidValue { index, .. }
             | OdError::NotMappable { index, .. }
-            | OdError::DeviceState { index, .. } => index,
+            | OdError::MaxBelowMin { index, .. }
+            | OdError::DeviceState { index, .. }
+            | OdError::DeviceFailure { index, .. } => index,
         }
     }
 }

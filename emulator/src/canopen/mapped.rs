@@ -188,12 +188,49 @@ pub fn from_bits(data_type: DataType, raw: u32) -> Option<Value> {
     })
 }
 
-/// A Modbus exception from the map as the SDO abort a master gets (decisions.md, "CT E10 on
-/// CANopen"): 02 (no such register, or not one that takes writes) → object does not exist
+/// Why a register write did not happen.
+#[derive(Clone, Debug, PartialEq)]
+pub enum WriteError {
+    /// The map refused it, with its Modbus exception (the value, the engine's state …).
+    Refused(ExecError),
+    /// The map could not run at all: no runtime for its write, or the engine it commands has
+    /// stopped. The device failed inside; no Modbus exception says more than that.
+    Failed(String),
+}
+
+impl WriteError {
+    pub fn reason(&self) -> &str {
+        match self {
+            WriteError::Refused(e) => &e.reason,
+            WriteError::Failed(why) => why,
+        }
+    }
+}
+
+impl From<ExecError> for WriteError {
+    fn from(e: ExecError) -> WriteError {
+        WriteError::Refused(e)
+    }
+}
+
+/// A failed register write as the SDO abort a master gets (decisions.md, "CT E10 on CANopen"):
+/// exception 02 (no such register, or not one that takes writes) → object does not exist
 /// 0x06020000; 03 (the value is refused: a parameter's range, a command argument) → invalid
-/// value 0x06090030; anything else (04: the engine refused in its present state, 06: its queue
-/// is full) → 0x08000022, cannot be stored because of the present device state.
-pub fn od_error(index: u16, subindex: u8, e: &ExecError) -> OdError {
+/// value 0x06090030; any other exception (04: the engine refused in its present state, 06: its
+/// queue is full) → 0x08000022, cannot be stored because of the present device state. A map
+/// that could not run at all → 0x08000000, general error (CiA 301 Table 22: no more specific
+/// code fits an internal failure).
+pub fn od_error(index: u16, subindex: u8, e: &WriteError) -> OdError {
+    let e = match e {
+        WriteError::Refused(e) => e,
+        WriteError::Failed(why) => {
+            return OdError::DeviceFailure {
+                index,
+                subindex,
+                detail: why.clone(),
+            }
+        }
+    };
     match e.exception {
         Exception::IllegalDataAddress => OdError::NoObject { index },
         Exception::IllegalDataValue => OdError::InvalidValue {
@@ -212,7 +249,7 @@ pub fn od_error(index: u16, subindex: u8, e: &ExecError) -> OdError {
 /// Word access to the holding registers behind the objects.
 pub trait Registers {
     fn read(&self, address: u16, count: u16) -> Result<Vec<u16>, ExecError>;
-    fn write(&self, address: u16, words: &[u16]) -> Result<(), ExecError>;
+    fn write(&self, address: u16, words: &[u16]) -> Result<(), WriteError>;
 }
 
 /// The map service of the node's axis.
@@ -230,23 +267,33 @@ impl Registers for ServiceRegisters {
     /// tick on a paced clock; at once on a virtual one, which applies commands without
     /// advancing). Deferring the write until after the node call would answer the SDO before
     /// knowing whether the map accepted the value, losing the abort.
-    fn write(&self, address: u16, words: &[u16]) -> Result<(), ExecError> {
-        let refuse = |why: &str| Err(ExecError::new(Exception::ServerDeviceFailure, why));
+    fn write(&self, address: u16, words: &[u16]) -> Result<(), WriteError> {
+        let fail = |why: &str| Err(WriteError::Failed(why.to_string()));
         let Ok(runtime) = tokio::runtime::Handle::try_current() else {
-            return refuse("no async runtime to run the map's write on");
+            return fail("no async runtime to run the map's write on");
         };
         if runtime.runtime_flavor() != tokio::runtime::RuntimeFlavor::MultiThread {
-            return refuse("the map's write needs the multi-threaded runtime");
+            return fail("the map's write needs the multi-threaded runtime");
         }
         let service = &*self.0;
-        tokio::task::block_in_place(|| {
+        let written = tokio::task::block_in_place(|| {
             runtime.block_on(TableAccess::write(
                 service,
                 Table::HoldingRegisters,
                 address,
                 words,
             ))
-        })
+        });
+        match written {
+            Ok(()) => Ok(()),
+            // The map says 04 both for the engine's refusals and for an engine that is gone;
+            // only the latter is a failure of the device.
+            Err(e) if !service.handle().is_running() => Err(WriteError::Failed(format!(
+                "the engine has stopped ({})",
+                e.reason
+            ))),
+            Err(e) => Err(WriteError::Refused(e)),
+        }
     }
 }
 
@@ -310,7 +357,7 @@ impl<R: Registers> MapDevice<R> {
                 continue;
             };
             if let Err(e) = self.registers.write(b.register, &b.words.encode(raw)) {
-                tracing::debug!(index = b.index, reason = %e.reason, "RPDO value refused by the map");
+                tracing::debug!(index = b.index, reason = %e.reason(), "RPDO value refused by the map");
                 refused += 1;
             }
         }
@@ -434,9 +481,9 @@ mod tests {
                 .collect())
         }
 
-        fn write(&self, address: u16, words: &[u16]) -> Result<(), ExecError> {
+        fn write(&self, address: u16, words: &[u16]) -> Result<(), WriteError> {
             if let Some((a, e)) = self.refuse.filter(|(a, _)| *a == address) {
-                return Err(ExecError::new(e, format!("register {a} refused")));
+                return Err(ExecError::new(e, format!("register {a} refused")).into());
             }
             let mut w = self.words.borrow_mut();
             for (i, v) in words.iter().enumerate() {
@@ -562,7 +609,7 @@ mod tests {
             ..EngineConfig::default()
         };
         let engine = Engine::new(&config).unwrap();
-        let (handle, _guard) =
+        let (handle, guard) =
             Runtime::start(engine, RuntimeOptions::with_clock(ClockMode::Virtual)).unwrap();
         let text = r#"
 [map]
@@ -611,6 +658,34 @@ on_write = [{ when = "=1", command = "move_velocity", args = { velocity = 10 } }
         // A move of a disabled axis: refused in the engine's state, exception 04.
         let e = d.write(0x2006, 0, Value::U16(1)).unwrap_err();
         assert_eq!(e.sdo_abort_code(), 0x0800_0022, "{e}");
+        // The engine gone (the map answers 04 here too): a failure of the device, 0x08000000.
+        guard.stop().unwrap();
+        let e = d.write(0x2005, 0, Value::I16(100)).unwrap_err();
+        assert_eq!(e.sdo_abort_code(), 0x0800_0000, "{e}");
+        assert_eq!(d.od().get(0x2005, 0), Some(&Value::I16(1234)));
+    }
+
+    /// Outside a multi-threaded runtime the map's write cannot run at all: general error.
+    #[test]
+    fn a_map_service_without_its_runtime_is_a_device_failure() {
+        use axes::config::{AxisConfig, EngineConfig};
+        use axes::runtime::{ClockMode, Runtime, RuntimeOptions};
+        use axes::Engine;
+
+        let config = EngineConfig {
+            axes: vec![AxisConfig::default()],
+            ..EngineConfig::default()
+        };
+        let engine = Engine::new(&config).unwrap();
+        let (handle, _guard) =
+            Runtime::start(engine, RuntimeOptions::with_clock(ClockMode::Virtual)).unwrap();
+        let service = Arc::new(UnitService::new(e10_map(), handle));
+        let od = e10_od();
+        let backed = backed_objects(&od, service.map()).unwrap();
+        let mut d = MapDevice::new(od, ServiceRegisters(service), backed);
+        let e = d.write(0x2071, 0, Value::U32(5)).unwrap_err();
+        assert_eq!(e.sdo_abort_code(), 0x0800_0000, "{e}");
+        assert!(matches!(e, OdError::DeviceFailure { .. }), "{e:?}");
     }
 
     #[test]
@@ -621,7 +696,7 @@ on_write = [{ when = "=1", command = "move_velocity", args = { velocity = 10 } }
             fn read(&self, _: u16, count: u16) -> Result<Vec<u16>, ExecError> {
                 Ok(vec![0; usize::from(count)])
             }
-            fn write(&self, address: u16, words: &[u16]) -> Result<(), ExecError> {
+            fn write(&self, address: u16, words: &[u16]) -> Result<(), WriteError> {
                 self.0.borrow_mut().push((address, words.to_vec()));
                 Ok(())
             }

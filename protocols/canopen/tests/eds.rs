@@ -332,9 +332,17 @@ fn dcf_parameter_values_replace_defaults_and_commissioning_is_read() {
 
 #[test]
 fn compact_arrays_take_names_and_dcf_values() {
-    let text = std::fs::read_to_string(fixture("cia402-drive.eds")).unwrap()
-        + "\n[ManufacturerObjects]\nSupportedObjects=1\n1=0x2100\n\n\
-           [2100]\nParameterName=Gains\nObjectType=0x8\nDataType=0x0003\nAccessType=rw\n\
+    let listed = "[ManufacturerObjects]\nSupportedObjects=1\n1=0x2F00\n";
+    let shipped = std::fs::read_to_string(fixture("cia402-drive.eds")).unwrap();
+    assert!(
+        shipped.contains(listed),
+        "the shipped manufacturer objects changed"
+    );
+    let text = shipped.replace(
+        listed,
+        "[ManufacturerObjects]\nSupportedObjects=2\n1=0x2F00\n2=0x2100\n",
+    )
+        + "\n[2100]\nParameterName=Gains\nObjectType=0x8\nDataType=0x0003\nAccessType=rw\n\
            PDOMapping=1\nDefaultValue=7\nLowLimit=-100\nHighLimit=100\nCompactSubObj=3\n\n\
            [2100Name]\nNrOfEntries=2\n1=Kp\n3=Kd\n\n\
            [2100Value]\nNrOfEntries=1\n2=-5\n\n\

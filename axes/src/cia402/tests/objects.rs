@@ -251,3 +251,27 @@ fn same_inputs_same_outputs() {
     };
     assert_eq!(run(), run());
 }
+
+/// 0x607D: a write that would make the max position limit less than the min is refused with
+/// `MaxBelowMin` (SDO abort 0x06090036) and stores nothing; equal limits are accepted.
+#[test]
+fn software_position_limits_keep_max_at_or_above_min() {
+    let mut drive = Cia402Drive::new(DriveConfig::default()).unwrap();
+    assert_eq!(drive.write(0x607D, 2, Value::I32(-10)), Ok(()));
+    let e = drive.write(0x607D, 1, Value::I32(-9)).unwrap_err();
+    assert_eq!(e.sdo_abort_code(), 0x0609_0036, "{e}");
+    assert_eq!(
+        e,
+        OdError::MaxBelowMin {
+            index: 0x607D,
+            subindex: 1,
+            min: Value::I32(-9),
+            max: Value::I32(-10),
+        }
+    );
+    assert_eq!(drive.read(0x607D, 1), Ok(Value::I32(i32::MIN)));
+    assert_eq!(drive.write(0x607D, 1, Value::I32(-10)), Ok(()));
+    let e = drive.write(0x607D, 2, Value::I32(-11)).unwrap_err();
+    assert_eq!(e.sdo_abort_code(), 0x0609_0036, "{e}");
+    assert_eq!(drive.read(0x607D, 2), Ok(Value::I32(-10)));
+}

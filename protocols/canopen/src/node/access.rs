@@ -1,7 +1,7 @@
 //! What an SDO client may read and write: the device's dictionary behind the node's rules for
 //! communication objects (CiA 301 §7.5.2).
 
-use axes::od::Value;
+use axes::od::{DataType, Value};
 
 use super::Node;
 use crate::device::{get_u32, Device};
@@ -32,6 +32,16 @@ impl<D: Device> Node<D> {
         value: &Value,
     ) -> Result<Action, SdoAbort> {
         let od = self.device.od();
+        // The node reads its communication objects as unsigned integers (CiA 301 §7.5.2 gives
+        // each one's UNSIGNEDn type). A device table or user EDS/DCF may define one otherwise
+        // (a VISIBLE_STRING 0x1017, an INTEGER32 COB-ID): the node then cannot act on the
+        // value, which CiA 301 Table 22 calls a general internal incompatibility in the device.
+        if interprets(index) {
+            let data_type = od.entry(index, subindex).map(|e| e.def.data_type);
+            if data_type.is_ok_and(|t| !is_unsigned(t)) {
+                return Err(SdoAbort::INTERNAL_INCOMPATIBLE);
+            }
+        }
         let v = match value {
             Value::Bool(b) => u64::from(*b),
             other => other.as_u64().unwrap_or(u64::MAX),
@@ -134,6 +144,34 @@ impl<D: Device> Node<D> {
         });
         Completion::Deferred
     }
+}
+
+/// Communication objects whose values the node acts on (and so reads as unsigned integers).
+fn interprets(index: u16) -> bool {
+    matches!(
+        index,
+        idx::ERROR_HISTORY
+            | idx::COB_ID_SYNC
+            | idx::SYNC_PERIOD
+            | idx::GUARD_TIME
+            | idx::LIFE_TIME_FACTOR
+            | idx::STORE
+            | idx::RESTORE
+            | idx::COB_ID_EMCY
+            | idx::EMCY_INHIBIT
+            | idx::CONSUMER_HEARTBEAT
+            | idx::PRODUCER_HEARTBEAT
+            | idx::SYNC_OVERFLOW
+            | idx::ERROR_BEHAVIOUR
+            | idx::SDO_SERVER
+    ) || PdoObject::of(index).is_some()
+}
+
+fn is_unsigned(data_type: DataType) -> bool {
+    matches!(
+        data_type,
+        DataType::Unsigned8 | DataType::Unsigned16 | DataType::Unsigned32 | DataType::Unsigned64
+    )
 }
 
 impl<D: Device> ObjectAccess for Node<D> {

@@ -78,6 +78,11 @@ impl UnitService {
         &self.map
     }
 
+    /// The engine the unit's commands and parameter writes go to.
+    pub fn handle(&self) -> &EngineHandle {
+        &self.handle
+    }
+
     /// How many writes to memory this unit has taken; a saver compares it with the count at its
     /// last save.
     pub fn memory_writes(&self) -> u64 {
