@@ -109,8 +109,14 @@ async fn serve(
             bind("control", control.bind).await?,
             control.max_connections,
         );
-        let app =
-            control::router(ControlState::new(handle.clone(), config).with_frontends(frontends));
+        let can_log = canopen
+            .as_ref()
+            .map(|c| Arc::new(c.bus_log()) as Arc<dyn control::CanLog>);
+        let app = control::router(
+            ControlState::new(handle.clone(), config)
+                .with_frontends(frontends)
+                .with_can_log(can_log),
+        );
         control_task = Some(tokio::spawn(async move {
             if let Err(e) = axum::serve(listener, app).await {
                 tracing::error!(error = %e, "control API stopped");

@@ -728,6 +728,37 @@ fn control_trace_cap_stops_the_recording_at_a_whole_tick() {
     m.stop();
 }
 
+// ---- CAN bus log -------------------------------------------------------------------------------
+
+/// A machine without `[frontends.canopen]` has no bus to log: both routes answer 409.
+#[test]
+fn control_can_log_needs_a_can_bus() {
+    let m = Mcemu::start("virtual", &[]);
+    let e = m
+        .post("/api/v1/canopen/log/start", json!({"path": "bus.log"}))
+        .expect(409);
+    assert_eq!(e["error"], "no_can_bus");
+    assert!(
+        e["detail"]
+            .as_str()
+            .unwrap()
+            .contains("[frontends.canopen]"),
+        "{e}"
+    );
+    let e = m.post("/api/v1/canopen/log/stop", json!({})).expect(409);
+    assert_eq!(e["error"], "no_can_bus");
+    let index = m.get("/api/v1").expect(200);
+    let paths: Vec<&str> = index["routes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(|r| r["path"].as_str())
+        .collect();
+    assert!(paths.contains(&"/api/v1/canopen/log/start"), "{index}");
+    assert!(paths.contains(&"/api/v1/canopen/log/stop"), "{index}");
+    m.stop();
+}
+
 // ---- realtime --------------------------------------------------------------------------------
 
 #[test]

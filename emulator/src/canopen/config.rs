@@ -22,6 +22,8 @@ pub struct CanopenConfig {
     /// identifier, bus load); 0: frames take no time. Needs a realtime or scaled clock.
     pub bitrate: u32,
     /// A `candump -L` log of every frame on the bus, relative to the config file; empty: none.
+    /// Created or truncated at start; `POST /api/v1/canopen/log/stop` ends it, `/start` begins
+    /// another at run time.
     pub log: String,
     /// The nodes: CiA 402 drives and map-backed axes served on the bus.
     pub nodes: Vec<CanopenNodeConfig>,

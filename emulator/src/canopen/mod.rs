@@ -3,6 +3,7 @@
 //! This module resolves and checks the config (EDS files, node ids, drives, maps) for
 //! `mcemu validate` and `mcemu run` alike; [`serve`] runs it.
 
+pub mod buslog;
 pub mod config;
 pub mod mapped;
 pub mod serve;

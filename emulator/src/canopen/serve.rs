@@ -8,7 +8,7 @@ use std::sync::{Arc, Mutex};
 use axes::runtime::ClockMode;
 use mcemu_can::socketcan::{SocketCanBridge, SocketCanConfig};
 use mcemu_can::socketcand::{SocketcandConfig, SocketcandServer};
-use mcemu_can::{BitTiming, CandumpLog, Endpoint, EndpointOptions, Hub, HubConfig, WireFrame};
+use mcemu_can::{BitTiming, Endpoint, EndpointOptions, Hub, HubConfig, WireFrame};
 use mcemu_canopen::cia402::{CanopenFieldbus, FramePort, NodeStatus, Persister};
 use std::time::Duration;
 
@@ -20,6 +20,7 @@ use serde_json::{json, Map, Value};
 use tokio::sync::{watch, Notify};
 use tokio::task::JoinSet;
 
+use super::buslog::BusLog;
 use super::mapped::{MapDevice, ServiceRegisters};
 use crate::state_dir::StateDir;
 
@@ -34,9 +35,15 @@ pub struct CanopenFrontend {
     mapped: Arc<Mutex<Vec<MappedStatus>>>,
     socketcan: Mutex<Option<SocketCanBridge>>,
     socketcand: Mutex<Option<SocketcandServer>>,
+    log: BusLog,
 }
 
 impl CanopenFrontend {
+    /// The bus's candump log, for the control API.
+    pub fn bus_log(&self) -> BusLog {
+        self.log.clone()
+    }
+
     /// Close the transports (at shutdown).
     pub async fn stop(&self) {
         let bridge = self.socketcan.lock().ok().and_then(|mut b| b.take());
@@ -115,6 +122,8 @@ impl Frontend for CanopenFrontend {
             "load_percent": c.load_percent(),
             "nodes": nodes,
             "mapped_nodes": mapped,
+            "log": self.log.status(),
+            "log_dropped": c.log_dropped,
         })
     }
 }
@@ -238,19 +247,13 @@ pub async fn start(
         let h = hub.clone();
         tasks.spawn(async move { h.drive_realtime().await });
     }
+    let log = BusLog::new(hub.clone(), super::buslog::config_dir(cx.file));
     if !c.log.is_empty() {
-        let base = std::path::Path::new(cx.file)
-            .parent()
-            .unwrap_or(std::path::Path::new(""));
-        let path = base.join(&c.log);
-        let log = CandumpLog::create(&path, &bus_name, mcemu_can::log::DEFAULT_LOG_QUEUE).map_err(
-            |e| ConfigError {
-                file: cx.file.to_string(),
-                key: "frontends.canopen.log".into(),
-                reason: format!("cannot write {}: {e}", path.display()),
-            },
-        )?;
-        let _ = hub.start_log(log);
+        log.start_from_config(&c.log).map_err(|e| ConfigError {
+            file: cx.file.to_string(),
+            key: "frontends.canopen.log".into(),
+            reason: format!("cannot write it: {e}"),
+        })?;
     }
 
     // Stored images from earlier runs; saves go to a writer task.
@@ -353,6 +356,7 @@ pub async fn start(
         mapped,
         socketcan: Mutex::new(None),
         socketcand: Mutex::new(None),
+        log,
     });
     if !c.interface.is_empty() {
         let config = SocketCanConfig {

@@ -61,6 +61,16 @@ pub enum ApiError {
     NoTrace,
     #[error("the trace was restarted while it was being read; read it again")]
     TraceRestarted,
+    #[error("this machine has no CAN bus ([frontends.canopen] is absent or disabled)")]
+    NoCanBus,
+    #[error("the CAN bus is already logged to {path}; POST /api/v1/canopen/log/stop first")]
+    AlreadyLogging { path: String },
+    #[error("no CAN bus log is running")]
+    NotLogging,
+    #[error("{path} exists; the API writes a log only to a new file")]
+    LogExists { path: String },
+    #[error("cannot create {path}: {reason}")]
+    LogNotWritable { path: String, reason: String },
     #[error("the engine's command queue is full ({capacity} requests); retry later")]
     Busy { capacity: usize },
     #[error("{limit} requests are being handled; retry later")]
@@ -89,13 +99,20 @@ impl ApiError {
             | InvalidBody { .. }
             | UnreadableBody(_)
             | InvalidRequest(_)
-            | NoSuchFrontend { .. } => StatusCode::BAD_REQUEST,
+            | NoSuchFrontend { .. }
+            | LogNotWritable { .. } => StatusCode::BAD_REQUEST,
             UnsupportedMediaType { .. } => StatusCode::UNSUPPORTED_MEDIA_TYPE,
             BodyTooLarge { .. } => StatusCode::PAYLOAD_TOO_LARGE,
             BodyTimeout { .. } => StatusCode::REQUEST_TIMEOUT,
             NotFound { .. } => StatusCode::NOT_FOUND,
             MethodNotAllowed { .. } => StatusCode::METHOD_NOT_ALLOWED,
-            NotVirtual { .. } | NoTrace | TraceRestarted => StatusCode::CONFLICT,
+            NotVirtual { .. }
+            | NoTrace
+            | TraceRestarted
+            | NoCanBus
+            | AlreadyLogging { .. }
+            | NotLogging
+            | LogExists { .. } => StatusCode::CONFLICT,
             Busy { .. } | TooManyRequests { .. } | Stopped => StatusCode::SERVICE_UNAVAILABLE,
             ServoDied | Internal(_) => StatusCode::INTERNAL_SERVER_ERROR,
             Engine { .. } => StatusCode::UNPROCESSABLE_ENTITY,
@@ -119,6 +136,11 @@ impl ApiError {
             NoSuchFrontend { .. } => "no_such_frontend",
             NoTrace => "no_trace",
             TraceRestarted => "trace_restarted",
+            NoCanBus => "no_can_bus",
+            AlreadyLogging { .. } => "already_logging",
+            NotLogging => "not_logging",
+            LogExists { .. } => "log_exists",
+            LogNotWritable { .. } => "log_not_writable",
             Busy { .. } => "runtime_busy",
             TooManyRequests { .. } => "too_many_requests",
             Stopped => "runtime_stopped",

@@ -10,6 +10,7 @@
 //! | `POST /api/v1/faults` | inject or clear a drive alarm, encoder loss, following error |
 //! | `POST /api/v1/time/advance` | virtual clock: run ticks or seconds, optionally until … |
 //! | `POST /api/v1/trace/start`, `/trace/stop`, `GET /api/v1/trace` | record every tick, CSV |
+//! | `POST /api/v1/canopen/log/start`, `/canopen/log/stop` | a `candump -L` log of the CAN bus |
 //!
 //! Nothing from a request can panic a handler: bodies are bounded, parsed by hand into typed
 //! errors, and every engine call goes through the runtime's queue.
@@ -53,6 +54,14 @@ pub trait Frontend: Send + Sync {
     fn state(&self) -> Value;
 }
 
+/// The CAN bus's `candump -L` log, started and stopped at run time (`/canopen/log/*`).
+pub trait CanLog: Send + Sync {
+    /// Start logging to `path` (relative: from the config file's directory); what runs now.
+    fn start(&self, path: &str) -> Result<Value, ApiError>;
+    /// Stop the log that runs, whoever started it; what it wrote.
+    fn stop(&self) -> Result<Value, ApiError>;
+}
+
 /// What the config says about the machine, for `/state`.
 #[derive(Debug, Default)]
 pub struct MachineInfo {
@@ -79,6 +88,8 @@ pub struct ControlState {
     pub trace: TraceRecorder,
     /// The running protocol front-ends.
     pub frontends: Arc<Vec<Arc<dyn Frontend>>>,
+    /// The CAN bus's log, when the machine has a bus (`[frontends.canopen]` enabled).
+    pub can_log: Option<Arc<dyn CanLog>>,
     /// `[frontends.control] max_requests` permits, and that number for the 503 reply.
     requests: (Arc<Semaphore>, usize),
     trace_reads: Arc<Semaphore>,
@@ -95,6 +106,7 @@ impl ControlState {
             handle,
             trace: TraceRecorder::with_limit(config.frontends.control.trace_max_rows),
             frontends: Arc::new(Vec::new()),
+            can_log: None,
             requests: (
                 Arc::new(Semaphore::new(config.frontends.control.max_requests)),
                 config.frontends.control.max_requests,
@@ -108,10 +120,16 @@ impl ControlState {
         self.frontends = Arc::new(frontends);
         self
     }
+
+    /// The same state with the CAN bus's log.
+    pub fn with_can_log(mut self, log: Option<Arc<dyn CanLog>>) -> ControlState {
+        self.can_log = log;
+        self
+    }
 }
 
 /// The routes, with their method, as `GET /api/v1` lists them.
-const ROUTES: [(&str, &str, &str); 9] = [
+const ROUTES: [(&str, &str, &str); 11] = [
     (
         "GET",
         "/api/v1/state",
@@ -144,6 +162,16 @@ const ROUTES: [(&str, &str, &str); 9] = [
     ),
     ("POST", "/api/v1/trace/stop", "stop recording"),
     ("GET", "/api/v1/trace", "the recording as CSV"),
+    (
+        "POST",
+        "/api/v1/canopen/log/start",
+        "{\"path\":\"bus.log\"}: a candump -L log of the CAN bus to a new file",
+    ),
+    (
+        "POST",
+        "/api/v1/canopen/log/stop",
+        "stop the CAN bus log (the config's too)",
+    ),
     ("GET", "/api/v1", "this list"),
 ];
 
@@ -159,6 +187,8 @@ pub fn router(state: ControlState) -> Router {
         .route("/api/v1/trace/start", post(trace_start))
         .route("/api/v1/trace/stop", post(trace_stop))
         .route("/api/v1/trace", get(trace_csv))
+        .route("/api/v1/canopen/log/start", post(can_log_start))
+        .route("/api/v1/canopen/log/stop", post(can_log_stop))
         .fallback(not_found)
         .method_not_allowed_fallback(method_not_allowed)
         .layer(DefaultBodyLimit::max(MAX_BODY_BYTES))
@@ -271,4 +301,43 @@ async fn trace_csv(State(state): State<ControlState>) -> Response {
     );
     headers.insert("x-mcemu-trace-rows", HeaderValue::from(status.rows));
     response
+}
+
+/// `POST /canopen/log/start` body.
+#[derive(Debug, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CanLogStart {
+    /// The file to create; relative paths start from the config file's directory.
+    path: String,
+}
+
+async fn can_log_start(
+    State(state): State<ControlState>,
+    error::JsonBody(body): error::JsonBody,
+) -> Response {
+    let Some(log) = state.can_log.clone() else {
+        return ApiError::NoCanBus.into_response();
+    };
+    let request = match error::parse_json::<CanLogStart>(&body) {
+        Ok(r) => r,
+        Err(e) => return e.into_response(),
+    };
+    // Creating the file and starting its writer thread touch the disk: off the async workers.
+    run_blocking(move || log.start(&request.path)).await
+}
+
+/// No body needed; the writer flushes the whole log before the answer.
+async fn can_log_stop(State(state): State<ControlState>) -> Response {
+    let Some(log) = state.can_log.clone() else {
+        return ApiError::NoCanBus.into_response();
+    };
+    run_blocking(move || log.stop()).await
+}
+
+async fn run_blocking(f: impl FnOnce() -> Result<Value, ApiError> + Send + 'static) -> Response {
+    match tokio::task::spawn_blocking(f).await {
+        Ok(Ok(reply)) => Json(reply).into_response(),
+        Ok(Err(e)) => e.into_response(),
+        Err(e) => ApiError::Internal(format!("the log request failed: {e}")).into_response(),
+    }
 }
