@@ -192,7 +192,9 @@ class Mcemu:
 
     def node_counters(self, node_id):
         node = next(n for n in self.canopen_frontend()["nodes"] if n["node_id"] == node_id)
-        return {k: int(v) for k, v in re.findall(r"(\w+): (\d+)", node["counters"])}
+        counters = dict(node["counters"])
+        counters.update(counters.pop("sdo"))  # aborts_sent, requests, … beside the node's own
+        return counters
 
     def stop(self):
         if self.proc.poll() is None:

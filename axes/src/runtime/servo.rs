@@ -434,7 +434,8 @@ impl<C: Clock> Servo<C> {
             Some(o) => {
                 let wall = self.clock.now().saturating_sub(o.wall_start);
                 let scaled = Duration::try_from_secs_f64(wall.as_secs_f64() * o.scale);
-                o.engine_start.saturating_add(scaled.unwrap_or(Duration::MAX))
+                o.engine_start
+                    .saturating_add(scaled.unwrap_or(Duration::MAX))
             }
         }
     }

@@ -1036,7 +1036,11 @@ fn drive_engine() -> Engine {
 }
 
 fn drive_runtime() -> (EngineHandle, RuntimeGuard) {
-    Runtime::start(drive_engine(), RuntimeOptions::with_clock(ClockMode::Virtual)).unwrap()
+    Runtime::start(
+        drive_engine(),
+        RuntimeOptions::with_clock(ClockMode::Virtual),
+    )
+    .unwrap()
 }
 
 #[allow(clippy::type_complexity)]
@@ -1112,7 +1116,10 @@ fn a_virtual_fieldbus_runs_on_engine_time() {
     handle.poke();
     handle.call(enable(0)).ok();
     // Default period 1 ms: before/after each step, then the poke at tick 2.
-    assert_eq!(*times.lock().unwrap(), vec![Duration::ZERO, MS, MS, 2 * MS, 2 * MS]);
+    assert_eq!(
+        *times.lock().unwrap(),
+        vec![Duration::ZERO, MS, MS, 2 * MS, 2 * MS]
+    );
 }
 
 /// Polls `log` until it has `len` entries (the servo thread is driven by a fake clock and a
@@ -1129,7 +1136,8 @@ fn wait_for_calls(log: &Mutex<Vec<(&'static str, u64)>>, len: usize) {
 fn a_poke_on_a_paced_clock_serves_input_between_ticks() {
     let fake = FakeClock::new(&[]);
     let options = RuntimeOptions::with_clock(ClockMode::Realtime);
-    let (handle, _guard) = Runtime::start_with_clock(drive_engine(), options, fake.clone()).unwrap();
+    let (handle, _guard) =
+        Runtime::start_with_clock(drive_engine(), options, fake.clone()).unwrap();
     let (bus, log, _) = logging_bus(None);
     let times = Arc::clone(&bus.times);
     let installed = handle.submit_fieldbus(Box::new(bus)).unwrap();
@@ -1150,7 +1158,8 @@ fn a_catch_up_burst_does_not_run_bus_time_ahead_of_the_clock() {
     // The first wake-up is 4 ms late: ticks 1–5 run back to back at clock time 5 ms.
     let fake = FakeClock::new(&[4 * MS]);
     let options = RuntimeOptions::with_clock(ClockMode::Realtime);
-    let (handle, _guard) = Runtime::start_with_clock(drive_engine(), options, fake.clone()).unwrap();
+    let (handle, _guard) =
+        Runtime::start_with_clock(drive_engine(), options, fake.clone()).unwrap();
     let (bus, log, _) = logging_bus(None);
     let times = Arc::clone(&bus.times);
     let installed = handle.submit_fieldbus(Box::new(bus)).unwrap();
@@ -1162,7 +1171,11 @@ fn a_catch_up_burst_does_not_run_bus_time_ahead_of_the_clock() {
     assert_eq!(log.len(), 10, "{log:?}");
     // Engine time ran 0 → 5 ms within the burst; bus time stayed at the clock's 5 ms, so a
     // protocol timer does not see 5 ms pass where the bus saw none.
-    assert!(times.lock().unwrap().iter().all(|t| *t == 5 * MS), "{:?}", times.lock().unwrap());
+    assert!(
+        times.lock().unwrap().iter().all(|t| *t == 5 * MS),
+        "{:?}",
+        times.lock().unwrap()
+    );
 }
 
 #[test]

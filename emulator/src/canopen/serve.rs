@@ -73,12 +73,9 @@ impl Frontend for CanopenFrontend {
             .unwrap_or_default()
             .iter()
             .map(|n| {
-                json!({
-                    "node_id": n.node_id,
-                    "drive": n.slave,
-                    "nmt": format!("{:?}", n.nmt),
-                    "counters": format!("{:?}", n.counters),
-                })
+                let mut v = node_json(n.node_id, n.nmt, &n.counters);
+                v.insert("drive".into(), json!(n.slave));
+                Value::Object(v)
             })
             .collect();
         let mapped: Vec<Value> = self
@@ -88,14 +85,11 @@ impl Frontend for CanopenFrontend {
             .unwrap_or_default()
             .iter()
             .map(|n| {
-                json!({
-                    "node_id": n.node_id,
-                    "axis": n.axis,
-                    "nmt": format!("{:?}", n.nmt),
-                    "counters": format!("{:?}", n.counters),
-                    "refresh_errors": n.refresh_errors,
-                    "rpdo_write_errors": n.rpdo_write_errors,
-                })
+                let mut v = node_json(n.node_id, n.nmt, &n.counters);
+                v.insert("axis".into(), json!(n.axis));
+                v.insert("refresh_errors".into(), json!(n.refresh_errors));
+                v.insert("rpdo_write_errors".into(), json!(n.rpdo_write_errors));
+                Value::Object(v)
             })
             .collect();
         let link = self
@@ -117,6 +111,19 @@ impl Frontend for CanopenFrontend {
             "mapped_nodes": mapped,
         })
     }
+}
+
+/// What `/state` shows of any node: id, NMT state and counters.
+fn node_json(
+    node_id: u8,
+    nmt: mcemu_canopen::NmtState,
+    counters: &mcemu_canopen::NodeCounters,
+) -> Map<String, Value> {
+    let mut v = Map::new();
+    v.insert("node_id".into(), json!(node_id));
+    v.insert("nmt".into(), json!(nmt));
+    v.insert("counters".into(), json!(counters));
+    v
 }
 
 /// A hub frame as a CANopen node sees it.

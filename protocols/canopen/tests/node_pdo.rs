@@ -400,7 +400,7 @@ fn a_frame_a_node_does_not_accept_is_one_it_ignores() {
                 assert!(out.is_empty(), "{frame:?} in {state:?} answered {out:?}");
                 assert_eq!(node.nmt_state(), state, "{frame:?}");
                 assert_eq!(after.ignored, before.ignored + 1, "{frame:?} in {state:?}");
-                let mut expected = before.clone();
+                let mut expected = before;
                 expected.frames_in += 1;
                 expected.ignored += 1;
                 assert_eq!(after, expected, "{frame:?} in {state:?}");

@@ -105,7 +105,11 @@ fn an_edge_written_between_two_steps_is_not_lost() {
     rig.set(obj::CONTROLWORD, 0, Value::U16(0x0F));
     rig.set(obj::CONTROLWORD, 0, Value::U16(0x1F));
     rig.tick();
-    assert_eq!(rig.sent(moves).len(), 1, "the rising edge of bit 4 took the set-point");
+    assert_eq!(
+        rig.sent(moves).len(),
+        1,
+        "the rising edge of bit 4 took the set-point"
+    );
     assert_ne!(rig.sw() & B12, 0);
     // Held high, then 1 → 0 → 1 between steps: a second edge, a second set-point.
     rig.tick();
@@ -114,7 +118,11 @@ fn an_edge_written_between_two_steps_is_not_lost() {
     rig.set(obj::CONTROLWORD, 0, Value::U16(0x0F));
     rig.set(obj::CONTROLWORD, 0, Value::U16(0x1F));
     rig.tick();
-    assert_eq!(rig.sent(moves).len(), 1, "the second edge took the second set-point");
+    assert_eq!(
+        rig.sent(moves).len(),
+        1,
+        "the second edge took the second set-point"
+    );
 }
 
 #[test]

@@ -33,7 +33,7 @@ use crate::sync::SyncConsumer;
 const EVENT_CAPACITY: usize = 4096;
 
 /// Counters of what the node received and did, for metrics.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
 pub struct NodeCounters {
     pub frames_in: u64,
     pub frames_out: u64,
@@ -252,12 +252,18 @@ impl<D: Device> Node<D> {
         let own = u16::from(self.node_id);
         if frame.is_rtr() {
             return id == 0x700 + own
-                || self.tpdos.iter().any(|t| t.active() && t.comm.can_id() == id);
+                || self
+                    .tpdos
+                    .iter()
+                    .any(|t| t.active() && t.comm.can_id() == id);
         }
         id == 0x600 + own
             || self.sync.can_id == Some(id)
             || ((0x701..=0x77F).contains(&id) && self.consumers.monitors((id - 0x700) as u8))
-            || self.rpdos.iter().any(|r| r.active() && r.comm.can_id() == id)
+            || self
+                .rpdos
+                .iter()
+                .any(|r| r.active() && r.comm.can_id() == id)
     }
 
     /// A frame this node was not handed because it does not [`accept`](Self::accepts) it:
