@@ -649,22 +649,14 @@ fn bus_window(a: &Value, b: &Value) -> Value {
             .unwrap_or(0)
             .saturating_sub(fa[k].as_u64().unwrap_or(0))
     };
-    // Node counters come as text (`NodeCounters { frames_in: 1, … }`): sum one field.
+    // Sum one field of the nodes' counters.
     let sum = |f: &Value, field: &str| -> u64 {
         f["nodes"]
             .as_array()
             .map(|nodes| {
                 nodes
                     .iter()
-                    .filter_map(|n| {
-                        let text = n["counters"].as_str()?;
-                        let at = text.find(&format!(" {field}: "))? + field.len() + 3;
-                        text[at..]
-                            .split(|c: char| !c.is_ascii_digit())
-                            .next()?
-                            .parse::<u64>()
-                            .ok()
-                    })
+                    .filter_map(|n| n["counters"][field].as_u64())
                     .sum()
             })
             .unwrap_or(0)
@@ -806,7 +798,7 @@ fn print_table(rows: &[Value], settings: &Settings) {
     println!();
     println!(
         "servo runtime over the window (GET /api/v1/state, mcemu rows; its runtime statistics \
-         are published after each batch of ticks, so they lag while the thread catches up):"
+         are published at least every 64 ticks of a catch-up batch):"
     );
     for r in rows.iter().filter(|r| !r["servo"].is_null()) {
         let s = &r["servo"];

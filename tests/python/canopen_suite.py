@@ -191,7 +191,9 @@ class Mcemu:
 
     def node_counters(self, node_id):
         node = next(n for n in self.canopen_frontend()["nodes"] if n["node_id"] == node_id)
-        return {k: int(v) for k, v in re.findall(r"(\w+): (\d+)", node["counters"])}
+        counters = dict(node["counters"])
+        counters.update(counters.pop("sdo"))  # aborts_sent, requests, … beside the node's own
+        return counters
 
     def stop(self):
         if self.proc.poll() is None:
@@ -1085,9 +1087,9 @@ def statusword(node):
 def pp_move(cx, node, axis, target, timeout):
     """Profile position: 0x607A, new set-point edge, until target reached and at rest."""
     node.sdo.download(0x607A, 0, struct.pack("<i", target))
-    # The drive sees controlword edges at servo-tick resolution. The SDO answer that shows
-    # 0x000F comes from the tick that took the RPDO, whose step runs before anything sent after
-    # the answer: the edge to 0x001F is then seen.
+    # SDOs and RPDOs are served as they arrive, so both controlwords may come within one servo
+    # tick; the drive keeps the edges written between two steps, so 0x001F after 0x000F is a
+    # new set-point either way. The read-back shows the RPDO took effect.
     node.controlword = 0x000F
     eq(node.sdo.upload(0x6040, 0), b"\x0f\x00", "controlword from RPDO1")
     node.controlword = 0x001F

@@ -295,6 +295,11 @@ pub struct Cia402Drive {
     /// Steps taken; stamps commands so that their effect is looked for only afterwards.
     steps: u64,
     previous_cw: u16,
+    /// Controlword bits that rose in a master's writes since the last step. A master may write
+    /// several controlwords between two steps (SDOs and RPDOs are served as they arrive): an
+    /// edge among them is an edge, as on a drive whose RPDO handler runs on reception, even if
+    /// the step sees only the last value.
+    written_rises: u16,
     transitions: Vec<u8>,
     // ---- power ----
     /// Step at which the drive asked the axis for power; `None` while it wants none.
@@ -355,6 +360,7 @@ impl Cia402Drive {
             mode: OperationMode::NoMode,
             steps: 0,
             previous_cw: 0,
+            written_rises: 0,
             transitions: vec![0],
             powered_since: None,
             power_confirmed: false,
@@ -452,6 +458,11 @@ impl Cia402Drive {
     pub fn write(&mut self, index: u16, subindex: u8, value: Value) -> Result<(), OdError> {
         self.od.validate(index, subindex, &value)?;
         self.check_device_rules(index, subindex, &value)?;
+        if (index, subindex) == (obj::CONTROLWORD, 0) {
+            let before = self.int(obj::CONTROLWORD, 0) as u16;
+            let after = value.as_i64().unwrap_or(0) as u16;
+            self.written_rises |= after & !before;
+        }
         self.od.write(index, subindex, value)
     }
 
@@ -547,7 +558,7 @@ impl Cia402Drive {
         self.now = now;
         self.transitions.clear();
         let cw = self.int(obj::CONTROLWORD, 0) as u16;
-        let rises = cw & !self.previous_cw;
+        let rises = (cw & !self.previous_cw) | std::mem::take(&mut self.written_rises);
         let falls = self.previous_cw & !cw;
         if axis.flags.contains(AxisFlags::ENABLED) && self.powered_since.is_some() {
             self.power_confirmed = true;

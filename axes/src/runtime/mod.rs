@@ -243,12 +243,19 @@ pub type Observer = Box<dyn FnMut(&Engine) -> bool + Send>;
 ///
 /// Both calls run on the servo thread, inside the tick: they must be short and must not block
 /// (exchange frames through lock-free or bounded queues; blocking handle calls are refused).
+///
+/// `now` is bus time, what the protocol's own timers (heartbeats, SDO timeouts, inhibit times)
+/// run on. On the virtual clock it is engine time, so runs are reproducible. On the paced
+/// clocks it is wall time since the start (× the scale factor) added to the engine time at the
+/// start: after a stall the servo thread catches up a burst of ticks in a few milliseconds, and
+/// timers on engine time would see a second pass in that burst while the bus saw none (an SDO
+/// block transfer aborted mid-sub-block, a master's heartbeat declared lost).
 pub trait Fieldbus: Send {
-    /// Before every step, and when an idle virtual runtime is poked
-    /// ([`EngineHandle::poke`]): take what arrived and apply it (SDO writes, RPDOs, NMT).
-    fn before_step(&mut self, engine: &mut Engine);
+    /// Before every step, and whenever input is waiting ([`EngineHandle::poke`]) between steps:
+    /// take what arrived and apply it (SDO writes, RPDOs, NMT, SYNC).
+    fn before_step(&mut self, engine: &mut Engine, now: Duration);
     /// After every step: send what the step produced (TPDOs on SYNC, heartbeats, EMCY).
-    fn after_step(&mut self, engine: &mut Engine);
+    fn after_step(&mut self, engine: &mut Engine, now: Duration);
 }
 
 /// Names an installed [`Observer`] for [`EngineHandle::remove_observer`].
@@ -346,6 +353,11 @@ struct Shared {
     stop: AtomicBool,
     running: AtomicBool,
     servo_thread: OnceLock<ThreadId>,
+    /// The servo thread, to wake a paced one from its sleep when a fieldbus is poked.
+    servo_waker: OnceLock<std::thread::Thread>,
+    /// A fieldbus has input waiting: set by a poke, cleared when the servo thread starts to
+    /// serve it (on the virtual clock the poke also queues a request, to keep it in order).
+    poked: AtomicBool,
 }
 
 impl Shared {
@@ -389,6 +401,8 @@ impl Runtime {
             stop: AtomicBool::new(false),
             running: AtomicBool::new(true),
             servo_thread: OnceLock::new(),
+            servo_waker: OnceLock::new(),
+            poked: AtomicBool::new(false),
         });
         let servo = Servo::new(engine, rx, Arc::clone(&shared), clock, &options);
         let thread = std::thread::Builder::new()
@@ -531,13 +545,24 @@ impl EngineHandle {
         self.submit_fieldbus(Box::new(fieldbus))?.wait()
     }
 
-    /// Tell the servo thread that a fieldbus has input waiting. A virtual runtime, which does
-    /// not tick by itself, serves it at once at the current tick (so a master's SDO is answered
-    /// while time stands still); a paced one serves it at its next tick anyway, so the poke is
-    /// dropped when the queue is full.
+    /// Tell the servo thread that a fieldbus has input waiting; it serves its fieldbuses'
+    /// input at once, between steps, at the current tick. A virtual runtime, which does not
+    /// tick by itself, so answers a master's SDO while time stands still (the poke is queued
+    /// in order with commands and advances). A paced one is woken from its sleep until the
+    /// next deadline, so an SDO server answers as frames arrive rather than once per tick, as
+    /// a drive's does (a 100 kB block transfer is ~120 request/answer round trips). Pokes
+    /// coalesce: many before the servo thread wakes cost one service.
     pub fn poke(&self) {
+        if self.shared.poked.swap(true, Ordering::AcqRel) {
+            return; // a service is already due; it will see this input too
+        }
         if self.shared.clock == ClockMode::Virtual {
-            let _ = self.tx.try_send(Request::Poke);
+            if self.tx.try_send(Request::Poke).is_err() {
+                // Queue full: the requests in it get served anyway; let the next poke queue.
+                self.shared.poked.store(false, Ordering::Release);
+            }
+        } else if let Some(servo) = self.shared.servo_waker.get() {
+            servo.unpark();
         }
     }
 

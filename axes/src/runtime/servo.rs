@@ -135,7 +135,23 @@ pub(super) struct Servo<C> {
     next_observer: u64,
     /// Served around every step, in installation order.
     fieldbuses: Vec<Box<dyn Fieldbus>>,
+    /// Paced clocks: how bus time is derived from the clock ([`Fieldbus`]); `None` on the
+    /// virtual clock, where bus time is engine time.
+    bus_origin: Option<BusOrigin>,
 }
+
+/// Bus time on a paced clock: `engine_start + (clock.now() - wall_start) × scale`.
+#[derive(Clone, Copy, Debug)]
+struct BusOrigin {
+    wall_start: Duration,
+    engine_start: Duration,
+    /// Engine seconds per wall second (the scaled clock's k; 1 in real time).
+    scale: f64,
+}
+
+/// Stats are published at least every this many ticks of a catch-up batch, so readers do not
+/// see figures a whole batch old.
+const STATS_EVERY_TICKS: u64 = 64;
 
 /// Clears `running` when the servo thread ends, by return or by unwinding.
 struct RunningFlag(Arc<Shared>);
@@ -169,11 +185,13 @@ impl<C: Clock> Servo<C> {
             observers: Vec::new(),
             next_observer: 1,
             fieldbuses: Vec::new(),
+            bus_origin: None,
         }
     }
 
     pub(super) fn run(mut self) -> Engine {
         let _ = self.shared.servo_thread.set(std::thread::current().id());
+        let _ = self.shared.servo_waker.set(std::thread::current());
         let running = RunningFlag(Arc::clone(&self.shared));
         match self.shared.clock.wall_period(self.engine.period()) {
             None => self.run_virtual(),
@@ -225,11 +243,9 @@ impl<C: Clock> Servo<C> {
                 }
                 Request::Poke => {
                     // Time stands still: what arrived is served at the current tick, and what
-                    // it changed is published.
-                    if !self.fieldbuses.is_empty() {
-                        self.serve_fieldbuses(Phase::Input);
-                        self.publish_snapshot();
-                    }
+                    // it changed is published. Input arriving from now on needs a new poke.
+                    self.shared.poked.store(false, Ordering::Release);
+                    self.serve_poke();
                 }
                 Request::Wake => {}
             }
@@ -272,6 +288,11 @@ impl<C: Clock> Servo<C> {
 
     fn run_paced(&mut self, wall_period: f64) {
         let schedule = Schedule::new(self.clock.now(), wall_period);
+        self.bus_origin = Some(BusOrigin {
+            wall_start: schedule.start,
+            engine_start: self.engine_time(),
+            scale: self.engine.period() / wall_period,
+        });
         self.paced_loop(&schedule);
         // A stop can come in mid-batch: the final statistics get a drift of their own.
         self.update_drift(&schedule);
@@ -289,6 +310,11 @@ impl<C: Clock> Servo<C> {
                 while now < deadline {
                     if self.stopping() {
                         return;
+                    }
+                    // Input that arrived while the thread slept is served now, not at the
+                    // deadline (EngineHandle::poke).
+                    if self.shared.poked.swap(false, Ordering::AcqRel) {
+                        self.serve_poke();
                     }
                     self.clock.sleep_until(deadline);
                     now = self.clock.now();
@@ -311,6 +337,10 @@ impl<C: Clock> Servo<C> {
                 // Counted as run, so a stop in mid-batch keeps caught_up ⊆ ticks_run.
                 if n > 0 {
                     self.stats.caught_up_ticks += 1;
+                    if n % STATS_EVERY_TICKS == 0 {
+                        self.update_drift(schedule);
+                        self.publish_stats();
+                    }
                 }
             }
             self.update_drift(schedule);
@@ -353,6 +383,8 @@ impl<C: Clock> Servo<C> {
         if applied == self.max_commands_per_tick {
             self.stats.command_bound_hits += 1;
         }
+        // The step serves whatever input is waiting.
+        self.shared.poked.store(false, Ordering::Release);
         self.step();
         self.send_replies();
         let busy = self.clock.now().saturating_sub(started);
@@ -380,15 +412,44 @@ impl<C: Clock> Servo<C> {
         self.publish_snapshot();
     }
 
+    /// Serve the fieldbuses' waiting input between steps, at the current tick, and publish
+    /// what it changed.
+    fn serve_poke(&mut self) {
+        if !self.fieldbuses.is_empty() {
+            self.serve_fieldbuses(Phase::Input);
+            self.publish_snapshot();
+        }
+    }
+
+    /// Engine time of the current tick, in integer nanoseconds (exact multiples of the period).
+    fn engine_time(&self) -> Duration {
+        let period_ns = (self.engine.period() * 1e9).round() as u64;
+        Duration::from_nanos(self.engine.tick().saturating_mul(period_ns))
+    }
+
+    /// What the fieldbuses' timers run on ([`Fieldbus`]).
+    fn bus_time(&self) -> Duration {
+        match self.bus_origin {
+            None => self.engine_time(),
+            Some(o) => {
+                let wall = self.clock.now().saturating_sub(o.wall_start);
+                let scaled = Duration::try_from_secs_f64(wall.as_secs_f64() * o.scale);
+                o.engine_start
+                    .saturating_add(scaled.unwrap_or(Duration::MAX))
+            }
+        }
+    }
+
     fn serve_fieldbuses(&mut self, phase: Phase) {
+        let now = self.bus_time();
         let engine = &mut self.engine;
         self.fieldbuses.retain_mut(|bus| {
             // The fieldbus is the caller's code: a panic removes it, not the runtime. It may
             // have left a slave's dictionary half-written, which a master sees as odd values,
             // never as unsafety.
             catch_unwind(AssertUnwindSafe(|| match phase {
-                Phase::Input => bus.before_step(engine),
-                Phase::Output => bus.after_step(engine),
+                Phase::Input => bus.before_step(engine, now),
+                Phase::Output => bus.after_step(engine, now),
             }))
             .is_ok()
         });

@@ -995,13 +995,16 @@ fn system_scaled_clock_ticks_and_keeps_consistent_stats() {
 /// is given to drive 0 (what an RPDO does).
 struct LoggingBus {
     log: Arc<Mutex<Vec<(&'static str, u64)>>>,
+    /// The bus time of each call, in the order of `log`.
+    times: Arc<Mutex<Vec<Duration>>>,
     controlword: Arc<Mutex<Option<u16>>>,
     panic_at: Option<u64>,
 }
 
 impl Fieldbus for LoggingBus {
-    fn before_step(&mut self, engine: &mut Engine) {
+    fn before_step(&mut self, engine: &mut Engine, now: Duration) {
         self.log.lock().unwrap().push(("before", engine.tick()));
+        self.times.lock().unwrap().push(now);
         if self.panic_at == Some(engine.tick()) {
             panic!("fieldbus test panic");
         }
@@ -1017,19 +1020,27 @@ impl Fieldbus for LoggingBus {
         }
     }
 
-    fn after_step(&mut self, engine: &mut Engine) {
+    fn after_step(&mut self, engine: &mut Engine, now: Duration) {
         self.log.lock().unwrap().push(("after", engine.tick()));
+        self.times.lock().unwrap().push(now);
     }
 }
 
-fn drive_runtime() -> (EngineHandle, RuntimeGuard) {
+fn drive_engine() -> Engine {
     let config = EngineConfig {
         axes: vec![AxisConfig::default()],
         drives: vec![crate::cia402::DriveConfig::default()],
         ..EngineConfig::default()
     };
-    let engine = Engine::new(&config).unwrap();
-    Runtime::start(engine, RuntimeOptions::with_clock(ClockMode::Virtual)).unwrap()
+    Engine::new(&config).unwrap()
+}
+
+fn drive_runtime() -> (EngineHandle, RuntimeGuard) {
+    Runtime::start(
+        drive_engine(),
+        RuntimeOptions::with_clock(ClockMode::Virtual),
+    )
+    .unwrap()
 }
 
 #[allow(clippy::type_complexity)]
@@ -1044,6 +1055,7 @@ fn logging_bus(
     let controlword = Arc::new(Mutex::new(None));
     let bus = LoggingBus {
         log: Arc::clone(&log),
+        times: Arc::default(),
         controlword: Arc::clone(&controlword),
         panic_at,
     };
@@ -1092,4 +1104,104 @@ fn a_panicking_fieldbus_is_removed_and_the_runtime_goes_on() {
         vec![("before", 0), ("after", 1), ("before", 1)]
     );
     assert_eq!(handle.snapshot().tick, 3);
+}
+
+#[test]
+fn a_virtual_fieldbus_runs_on_engine_time() {
+    let (handle, _guard) = drive_runtime();
+    let (bus, _, _) = logging_bus(None);
+    let times = Arc::clone(&bus.times);
+    handle.add_fieldbus(bus).unwrap();
+    handle.advance(2).unwrap();
+    handle.poke();
+    handle.call(enable(0)).ok();
+    // Default period 1 ms: before/after each step, then the poke at tick 2.
+    assert_eq!(
+        *times.lock().unwrap(),
+        vec![Duration::ZERO, MS, MS, 2 * MS, 2 * MS]
+    );
+}
+
+/// Polls `log` until it has `len` entries (the servo thread is driven by a fake clock and a
+/// poke, not by time passing).
+fn wait_for_calls(log: &Mutex<Vec<(&'static str, u64)>>, len: usize) {
+    let give_up = Instant::now() + Duration::from_secs(60);
+    while log.lock().unwrap().len() < len {
+        assert!(Instant::now() < give_up, "{:?}", log.lock().unwrap());
+        std::thread::sleep(Duration::from_millis(1));
+    }
+}
+
+#[test]
+fn a_poke_on_a_paced_clock_serves_input_between_ticks() {
+    let fake = FakeClock::new(&[]);
+    let options = RuntimeOptions::with_clock(ClockMode::Realtime);
+    let (handle, _guard) =
+        Runtime::start_with_clock(drive_engine(), options, fake.clone()).unwrap();
+    let (bus, log, _) = logging_bus(None);
+    let times = Arc::clone(&bus.times);
+    let installed = handle.submit_fieldbus(Box::new(bus)).unwrap();
+    fake.allow(1); // tick 1 installs the fieldbus (before its step)
+    installed.wait().unwrap();
+    fake.wait_at_gate();
+    assert_eq!(*log.lock().unwrap(), vec![("before", 0), ("after", 1)]);
+    // No deadline passes (the gate holds the clock); the poke is served anyway, at tick 1.
+    handle.poke();
+    wait_for_calls(&log, 3);
+    assert_eq!(log.lock().unwrap()[2], ("before", 1));
+    // Bus time is the clock's: 1 ms after the start, the deadline the gate let through.
+    assert_eq!(times.lock().unwrap()[2], MS);
+}
+
+#[test]
+fn a_catch_up_burst_does_not_run_bus_time_ahead_of_the_clock() {
+    // The first wake-up is 4 ms late: ticks 1–5 run back to back at clock time 5 ms.
+    let fake = FakeClock::new(&[4 * MS]);
+    let options = RuntimeOptions::with_clock(ClockMode::Realtime);
+    let (handle, _guard) =
+        Runtime::start_with_clock(drive_engine(), options, fake.clone()).unwrap();
+    let (bus, log, _) = logging_bus(None);
+    let times = Arc::clone(&bus.times);
+    let installed = handle.submit_fieldbus(Box::new(bus)).unwrap();
+    fake.allow(1);
+    installed.wait().unwrap();
+    fake.wait_at_gate();
+    assert_eq!(handle.snapshot().tick, 5);
+    let log = log.lock().unwrap();
+    assert_eq!(log.len(), 10, "{log:?}");
+    // Engine time ran 0 → 5 ms within the burst; bus time stayed at the clock's 5 ms, so a
+    // protocol timer does not see 5 ms pass where the bus saw none.
+    assert!(
+        times.lock().unwrap().iter().all(|t| *t == 5 * MS),
+        "{:?}",
+        times.lock().unwrap()
+    );
+}
+
+#[test]
+fn stats_are_published_during_a_long_catch_up_batch() {
+    // One wake-up 199 ms late: a batch of 200 ticks back to back.
+    let lateness = [Duration::ZERO, Duration::from_millis(199)];
+    let (handle, guard, fake) =
+        paced_fake(ClockMode::Realtime, &lateness, RuntimeOptions::default());
+    fake.wait_at_gate();
+    let seen_at_150 = Arc::new(Mutex::new(None));
+    let (reader, seen) = (handle.clone(), Arc::clone(&seen_at_150));
+    let pending = handle
+        .submit_observer(Box::new(move |engine: &Engine| {
+            if engine.tick() == 151 {
+                *seen.lock().unwrap() = Some(reader.stats().ticks_run);
+            }
+            true
+        }))
+        .unwrap();
+    fake.allow(1); // tick 1 installs the observer
+    block_on(pending.into_future()).unwrap();
+    fake.allow(1);
+    fake.wait_at_gate();
+    assert_eq!(handle.snapshot().tick, 201);
+    // 150 ticks into the batch a reader sees figures from within it, not from before it.
+    let seen = seen_at_150.lock().unwrap().unwrap();
+    assert!(seen > 100, "stats at tick 151 said {seen} ticks run");
+    drop(guard);
 }

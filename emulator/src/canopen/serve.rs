@@ -80,12 +80,9 @@ impl Frontend for CanopenFrontend {
             .unwrap_or_default()
             .iter()
             .map(|n| {
-                json!({
-                    "node_id": n.node_id,
-                    "drive": n.slave,
-                    "nmt": format!("{:?}", n.nmt),
-                    "counters": format!("{:?}", n.counters),
-                })
+                let mut v = node_json(n.node_id, n.nmt, &n.counters);
+                v.insert("drive".into(), json!(n.slave));
+                Value::Object(v)
             })
             .collect();
         let mapped: Vec<Value> = self
@@ -95,14 +92,11 @@ impl Frontend for CanopenFrontend {
             .unwrap_or_default()
             .iter()
             .map(|n| {
-                json!({
-                    "node_id": n.node_id,
-                    "axis": n.axis,
-                    "nmt": format!("{:?}", n.nmt),
-                    "counters": format!("{:?}", n.counters),
-                    "refresh_errors": n.refresh_errors,
-                    "rpdo_write_errors": n.rpdo_write_errors,
-                })
+                let mut v = node_json(n.node_id, n.nmt, &n.counters);
+                v.insert("axis".into(), json!(n.axis));
+                v.insert("refresh_errors".into(), json!(n.refresh_errors));
+                v.insert("rpdo_write_errors".into(), json!(n.rpdo_write_errors));
+                Value::Object(v)
             })
             .collect();
         let link = self
@@ -126,6 +120,19 @@ impl Frontend for CanopenFrontend {
             "log_dropped": c.log_dropped,
         })
     }
+}
+
+/// What `/state` shows of any node: id, NMT state and counters.
+fn node_json(
+    node_id: u8,
+    nmt: mcemu_canopen::NmtState,
+    counters: &mcemu_canopen::NodeCounters,
+) -> Map<String, Value> {
+    let mut v = Map::new();
+    v.insert("node_id".into(), json!(node_id));
+    v.insert("nmt".into(), json!(nmt));
+    v.insert("counters".into(), json!(counters));
+    v
 }
 
 /// A hub frame as a CANopen node sees it.
@@ -173,6 +180,19 @@ struct HubPort {
     error_frames: u64,
 }
 
+impl HubPort {
+    /// The nodes' endpoint: each frame queued for it pokes the servo thread, which serves it
+    /// between ticks (an SDO answered as it arrives, a TPDO right after its SYNC).
+    fn attach(hub: &Hub, handle: &EngineHandle) -> HubPort {
+        let engine = handle.clone();
+        let options = EndpointOptions::new("canopen nodes").on_delivery(move || engine.poke());
+        HubPort {
+            endpoint: hub.attach(options),
+            error_frames: 0,
+        }
+    }
+}
+
 impl FramePort for HubPort {
     fn try_recv(&mut self) -> Option<CanFrame> {
         while let Some(delivery) = self.endpoint.try_recv() {
@@ -191,6 +211,15 @@ impl FramePort for HubPort {
 
     fn take_error_frames(&mut self) -> u64 {
         std::mem::take(&mut self.error_frames)
+    }
+
+    /// On the virtual clock the bus keeps engine time, so candump and socketcand stamps (and
+    /// the bit-rate model) are reproducible.
+    fn set_time(&mut self, now: Duration) {
+        let hub = self.endpoint.hub();
+        if hub.clock() == mcemu_can::Clock::Virtual {
+            hub.advance(now);
+        }
     }
 }
 
@@ -239,6 +268,9 @@ pub async fn start(
         c.interface.clone()
     };
     let mut hub_config = HubConfig::new(bus_name.clone());
+    if cx.handle.clock() == ClockMode::Virtual {
+        hub_config = hub_config.with_clock(mcemu_can::Clock::Virtual);
+    }
     if let Some(timing) = BitTiming::new(c.bitrate).filter(|_| c.bitrate > 0) {
         hub_config = hub_config.with_timing(timing);
     }
@@ -289,10 +321,7 @@ pub async fn start(
         })
         .map_err(RunError::Io)?;
 
-    let port = HubPort {
-        endpoint: hub.attach(EndpointOptions::new("canopen nodes")),
-        error_frames: 0,
-    };
+    let port = HubPort::attach(&hub, cx.handle);
     let fieldbus = CanopenFieldbus::new(port, specs)
         .with_persister(Box::new(ImagePersister { to_writer, done }));
     let nodes = fieldbus.status();
@@ -301,23 +330,6 @@ pub async fn start(
         .map_err(|e| RunError::Io(std::io::Error::other(e.to_string())))?
         .await
         .map_err(|e| RunError::Io(std::io::Error::other(e.to_string())))?;
-    if cx.handle.clock() == ClockMode::Virtual {
-        // Time stands still: a frame for the nodes pokes the servo thread, which serves them
-        // at the current tick.
-        let mut watcher = hub.attach(EndpointOptions::new("virtual-clock poke"));
-        let (handle, mut shutdown) = (cx.handle.clone(), cx.shutdown.clone());
-        tasks.spawn(async move {
-            loop {
-                tokio::select! {
-                    d = watcher.recv() => match d {
-                        Some(_) => handle.poke(),
-                        None => break,
-                    },
-                    _ = shutdown.wait_for(|s| *s) => break,
-                }
-            }
-        });
-    }
 
     let mapped = Arc::new(Mutex::new(Vec::new()));
     if !mapped_specs.is_empty() {

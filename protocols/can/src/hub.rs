@@ -98,6 +98,26 @@ impl std::fmt::Display for EndpointId {
     }
 }
 
+/// Called after a frame is queued for an endpoint (by the thread that delivered it, with the
+/// hub locked: it must be short and must not touch the hub). It is how a reader that does not
+/// await its endpoint, such as the servo thread polling it, learns that a frame is waiting.
+#[derive(Clone)]
+pub struct OnDelivery(pub Arc<dyn Fn() + Send + Sync>);
+
+impl std::fmt::Debug for OnDelivery {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("OnDelivery")
+    }
+}
+
+impl PartialEq for OnDelivery {
+    fn eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.0, &other.0)
+    }
+}
+
+impl Eq for OnDelivery {}
+
 /// How an endpoint attaches.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct EndpointOptions {
@@ -107,6 +127,7 @@ pub struct EndpointOptions {
     pub receive_own: bool,
     /// Receive-queue length; `None`: the hub's default.
     pub queue_capacity: Option<usize>,
+    pub on_delivery: Option<OnDelivery>,
 }
 
 impl EndpointOptions {
@@ -115,6 +136,14 @@ impl EndpointOptions {
             name: name.into(),
             receive_own: false,
             queue_capacity: None,
+            on_delivery: None,
+        }
+    }
+
+    pub fn on_delivery(self, f: impl Fn() + Send + Sync + 'static) -> Self {
+        Self {
+            on_delivery: Some(OnDelivery(Arc::new(f))),
+            ..self
         }
     }
 
@@ -164,6 +193,7 @@ struct Slot {
     name: String,
     receive_own: bool,
     tx: mpsc::Sender<Delivery>,
+    on_delivery: Option<OnDelivery>,
     sent: u64,
     received: u64,
     dropped: u64,
@@ -245,6 +275,7 @@ impl Hub {
             name: options.name,
             receive_own: options.receive_own,
             tx,
+            on_delivery: options.on_delivery,
             sent: 0,
             received: 0,
             dropped: 0,
@@ -435,7 +466,12 @@ impl Hub {
                 continue;
             }
             match slot.tx.try_send(delivery) {
-                Ok(()) => slot.received += 1,
+                Ok(()) => {
+                    slot.received += 1;
+                    if let Some(f) = &slot.on_delivery {
+                        (f.0)();
+                    }
+                }
                 Err(TrySendError::Full(_)) => {
                     slot.dropped += 1;
                     totals.rx_dropped += 1;

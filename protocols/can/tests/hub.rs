@@ -74,6 +74,31 @@ fn a_slow_endpoint_loses_frames_and_the_sender_never_waits() {
 }
 
 #[test]
+fn on_delivery_runs_for_each_frame_queued_for_that_endpoint_only() {
+    use std::sync::atomic::{AtomicU64, Ordering};
+    use std::sync::Arc;
+    let hub = virtual_hub();
+    let calls = Arc::new(AtomicU64::new(0));
+    let c = Arc::clone(&calls);
+    let mut polled = hub.attach(
+        EndpointOptions::new("polled")
+            .queue_capacity(2)
+            .on_delivery(move || {
+                c.fetch_add(1, Ordering::Relaxed);
+            }),
+    );
+    let other = hub.attach(EndpointOptions::new("other"));
+    other.send(frame(0x601, &[0x40])).unwrap();
+    assert_eq!(calls.load(Ordering::Relaxed), 1);
+    // Its own frames are not delivered to it, so they do not call it; nor do dropped ones.
+    polled.send(frame(0x581, &[0x43])).unwrap();
+    other.send(frame(0x601, &[0x40])).unwrap();
+    other.send(frame(0x601, &[0x40])).unwrap(); // the queue holds 2: dropped
+    assert_eq!(calls.load(Ordering::Relaxed), 2);
+    assert_eq!(std::iter::from_fn(|| polled.try_recv()).count(), 2);
+}
+
+#[test]
 fn dropping_the_receiver_detaches_the_endpoint() {
     let hub = virtual_hub();
     let a = hub.attach(EndpointOptions::new("a"));

@@ -399,3 +399,169 @@ fn a_client_that_does_not_read_loses_frames_without_slowing_the_bus() {
     assert!(socketcand.dropped > 0, "{socketcand:?}");
     assert_eq!(socketcand.received + socketcand.dropped, 500_000);
 }
+
+/// A client that sends but never reads, with the bus flooding frames towards it: its receive
+/// window fills, its frames still all reach the bus (the server keeps reading its commands),
+/// frames for it are dropped and counted, the connection stays, and once it reads again
+/// frames flow again.
+#[test]
+fn a_client_that_does_not_read_can_still_send() {
+    use std::sync::atomic::{AtomicBool, Ordering};
+    use std::sync::Arc;
+
+    const SENDS: u32 = 50_000;
+    let served = Served::start();
+    let mut client = RawClient::open_raw(served.addr()); // stops reading here
+    client
+        .stream
+        .set_write_timeout(Some(Duration::from_secs(30)))
+        .unwrap();
+    // One endpoint floods the bus and receives what the client sends (a sender does not
+    // receive its own frames, so only the client's frames arrive here).
+    let (flooder, mut watcher) = served
+        .hub
+        .attach(EndpointOptions::new("flood").queue_capacity(SENDS as usize + 1))
+        .split();
+    let flooding = Arc::new(AtomicBool::new(true));
+    let flood = {
+        let flooding = Arc::clone(&flooding);
+        let flooder = flooder.clone();
+        std::thread::spawn(move || {
+            let mut i = 0u32;
+            while flooding.load(Ordering::Relaxed) {
+                for _ in 0..256 {
+                    let frame = WireFrame::standard(0x7FF, &i.to_le_bytes()).unwrap();
+                    flooder.send(frame).unwrap();
+                    i = i.wrapping_add(1);
+                }
+                // Leave the 2 cores some room for the server.
+                std::thread::sleep(Duration::from_millis(1));
+            }
+        })
+    };
+    let socketcand_counters = |served: &Served| {
+        served
+            .hub
+            .counters()
+            .endpoints
+            .into_iter()
+            .find(|e| e.name.starts_with("socketcand"))
+            .unwrap()
+    };
+    // Wait until the client's window is full: the server passes no more frames on (its
+    // count stays put over 20 polls) while the bus still floods it (its queue drops).
+    let server = served.server.as_ref().unwrap();
+    let deadline = Instant::now() + Duration::from_secs(60);
+    let (mut passed_on, mut dropped, mut still) = (u64::MAX, 0, 0);
+    while still < 20 {
+        assert!(
+            Instant::now() < deadline,
+            "the client's window never filled"
+        );
+        std::thread::sleep(Duration::from_millis(10));
+        let now = (
+            server.stats().frames_to_clients,
+            socketcand_counters(&served).dropped,
+        );
+        still = if now.0 == passed_on && now.1 > dropped {
+            still + 1
+        } else {
+            0
+        };
+        (passed_on, dropped) = now;
+    }
+    let expected: Vec<WireFrame> = (0..SENDS)
+        .map(|i| WireFrame::standard(0x123, &i.to_be_bytes()).unwrap())
+        .collect();
+    for chunk in (0..SENDS).collect::<Vec<_>>().chunks(100) {
+        let text: String = chunk
+            .iter()
+            .map(|i| {
+                let [a, b, c, d] = i.to_be_bytes();
+                format!("< send 123 4 {a:02X} {b:02X} {c:02X} {d:02X} >")
+            })
+            .collect();
+        client.send(&text);
+    }
+    let deadline = Instant::now() + Duration::from_secs(60);
+    let mut got = Vec::with_capacity(SENDS as usize);
+    while got.len() < SENDS as usize {
+        match watcher.try_recv() {
+            Some(d) => got.push(d.frame),
+            None if Instant::now() > deadline || server.stats().active == 0 => panic!(
+                "{} of {SENDS} frames reached the bus; {:?}",
+                got.len(),
+                server.stats()
+            ),
+            None => std::thread::sleep(Duration::from_millis(2)),
+        }
+    }
+    assert!(got == expected, "the client's frames arrived changed");
+    let counters = socketcand_counters(&served);
+    assert_eq!(counters.sent, u64::from(SENDS));
+    assert!(counters.dropped > 0, "{counters:?}");
+    let stats = server.stats();
+    assert_eq!(stats.active, 1, "{stats:?}");
+    assert_eq!(stats.frames_from_clients, u64::from(SENDS));
+
+    // It reads again: what was queued for it, then frames sent from now on.
+    flooding.store(false, Ordering::Relaxed);
+    flood.join().unwrap();
+    let marker = WireFrame::standard(0x555, &[0x55]).unwrap();
+    let deadline = Instant::now() + Duration::from_secs(60);
+    let mut frames_read = 0u64;
+    'resumed: loop {
+        assert!(
+            Instant::now() < deadline,
+            "no new frame after reading {frames_read}"
+        );
+        // Sent until one finds room in the client's queue.
+        flooder.send(marker).unwrap();
+        while let Some(element) = client.element(Duration::from_millis(20)) {
+            let element = without_stamp(&element);
+            if element == "< frame 555 55 >" {
+                break 'resumed;
+            }
+            assert!(element.starts_with("< frame 7FF "), "{element}");
+            frames_read += 1;
+        }
+    }
+    assert!(frames_read > 0);
+}
+
+/// Replies are never dropped: a client that sends commands with replies and does not read
+/// them is held back (the server stops reading it past its output limit), and gets every
+/// reply, in order, once it reads.
+#[test]
+fn replies_to_a_client_that_does_not_read_wait_for_it() {
+    // 2 MB of bad commands, each answered with 30 bytes: 10 MB of replies, more than the
+    // sockets' buffers (4 MB send buffer at most here) and the server's output limit hold.
+    const BAD: usize = 350_000;
+    let served = Served::start();
+    let mut client = RawClient::open_raw(served.addr());
+    let mut writer = client.stream.try_clone().unwrap();
+    writer
+        .set_write_timeout(Some(Duration::from_secs(60)))
+        .unwrap();
+    // Written from another thread: once the server holds back, this write waits for us.
+    let sending = std::thread::spawn(move || {
+        writer.write_all("< xx >".repeat(BAD).as_bytes()).unwrap();
+        writer.write_all(b"< echo >< send 123 1 AA >").unwrap();
+    });
+    let mut watcher = served.hub.attach(EndpointOptions::new("watcher"));
+    for i in 0..BAD {
+        assert_eq!(
+            client.element(Duration::from_secs(30)).as_deref(),
+            Some("< error unknown command 'xx' >"),
+            "reply {i}"
+        );
+    }
+    assert_eq!(client.expect("echo"), "< echo >");
+    sending.join().unwrap();
+    assert_eq!(
+        receive(&mut watcher, 1),
+        [WireFrame::standard(0x123, &[0xAA]).unwrap()]
+    );
+    let stats = served.server.as_ref().unwrap().stats();
+    assert_eq!((stats.active, stats.errors), (1, BAD as u64));
+}

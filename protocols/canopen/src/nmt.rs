@@ -1,7 +1,7 @@
 //! NMT slave state machine (CiA 301 §7.3.2) and the services each state allows.
 
 /// NMT states, with the value a heartbeat or guarding reply carries (CiA 301 §7.2.8.3.2).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
 pub enum NmtState {
     /// Initialisation; an unconfigured LSS slave (node id 0xFF) stays here.
     Initialising,

@@ -366,3 +366,49 @@ fn two_nodes_on_one_bus() {
         .iter()
         .all(|n| n.nmt_state() == mcemu_canopen::NmtState::Operational));
 }
+
+/// `Node::accepts` lets a bus of many nodes skip the frames a node does not take: every frame
+/// it refuses must be one `on_frame` ignores (no reply, no state change, counted as ignored),
+/// in every NMT state and with consumers, SYNC and PDOs configured.
+#[test]
+fn a_frame_a_node_does_not_accept_is_one_it_ignores() {
+    let mut bus = bus();
+    let c = SdoClient::new(ID);
+    // Heartbeat consumer of node 5, so 0x705 is taken.
+    c.download(&mut bus, 0x1016, 1, &((5u32 << 16) | 1000).to_le_bytes())
+        .unwrap();
+    let states = [
+        NmtCommand::EnterPreOperational,
+        NmtCommand::Start,
+        NmtCommand::Stop,
+    ];
+    for command in states {
+        nmt(&mut bus, command, ID);
+        let node = bus.node_mut(0).unwrap();
+        for id in 0..0x800u16 {
+            for frame in [
+                f(id, &[]),
+                f(id, &[0x40, 0, 0x10, 0, 0, 0, 0, 0]),
+                CanFrame::remote(id, 8).unwrap(),
+            ] {
+                if node.accepts(&frame) {
+                    continue;
+                }
+                let (state, before) = (node.nmt_state(), node.counters());
+                let out = node.on_frame(&frame, bus_now());
+                let after = node.counters();
+                assert!(out.is_empty(), "{frame:?} in {state:?} answered {out:?}");
+                assert_eq!(node.nmt_state(), state, "{frame:?}");
+                assert_eq!(after.ignored, before.ignored + 1, "{frame:?} in {state:?}");
+                let mut expected = before;
+                expected.frames_in += 1;
+                expected.ignored += 1;
+                assert_eq!(after, expected, "{frame:?} in {state:?}");
+            }
+        }
+    }
+}
+
+fn bus_now() -> Duration {
+    ms(1)
+}

@@ -4,14 +4,16 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
+mod common;
+
 use std::sync::Arc;
 
-use axes::runtime::{ClockMode, EngineHandle, Runtime, RuntimeGuard, RuntimeOptions};
-use axes::{AxisFlags, Engine, EngineConfig, ParamId};
-use mcemu_modbus::map::compile::{compile, Binding};
-use mcemu_modbus::map::schema::MapFile;
-use mcemu_modbus::map::service::{MapModel, UnitService};
-use mcemu_modbus::map::source::MachineShape;
+use axes::{AxisFlags, ParamId};
+use common::map_unit::{
+    abcd_to_f64, cdab_to_f32, compile_map, f64_to_cdab, register_bytes, shipped_map, start_engine,
+    MapUnit,
+};
+use mcemu_modbus::map::{Binding, MachineShape, MapModel, UnitService};
 use mcemu_modbus::model::{DataModel, Peer, RequestContext};
 use mcemu_modbus::pdu::{Exception, Request, Response};
 
@@ -104,49 +106,24 @@ values = { standstill = 2, disabled = 0 }
 default = 9
 "#;
 
-struct Rig {
-    handle: EngineHandle,
-    model: MapModel,
-    _guard: RuntimeGuard,
-}
-
-fn rig() -> Rig {
-    let config: EngineConfig = toml::from_str(MACHINE).unwrap();
-    let engine = Engine::new(&config).unwrap();
-    let machine = MachineShape {
+/// The machine's shape: 2 axes, 4 digital inputs and outputs.
+fn machine() -> MachineShape {
+    MachineShape {
         axes: 2,
         digital_inputs: 4,
         digital_outputs: 4,
         ..MachineShape::default()
-    };
-    let (handle, guard) =
-        Runtime::start(engine, RuntimeOptions::with_clock(ClockMode::Virtual)).unwrap();
-    let file: MapFile = toml::from_str(MAP).unwrap();
-    let unit = compile(&file, &machine, &Binding { axes: vec![0, 1] }).unwrap();
-    let service = Arc::new(UnitService::new(unit, handle.clone()));
-    Rig {
-        handle,
-        model: MapModel::new(vec![(Some(1), service)]),
-        _guard: guard,
     }
 }
 
-fn context() -> RequestContext {
-    RequestContext {
-        unit: 1,
-        broadcast: false,
-        peer: Peer::Serial("test".into()),
-    }
+/// `MAP` over both axes of `MACHINE`, as unit 1.
+fn rig() -> MapUnit {
+    let map = compile_map(MAP, &machine(), &Binding { axes: vec![0, 1] });
+    MapUnit::new(start_engine(MACHINE), map, Some(1))
 }
 
-impl Rig {
-    async fn run(&self, request: Request<'_>) -> Result<Response, (Exception, String)> {
-        self.model
-            .execute(&context(), &request)
-            .await
-            .map_err(|e| (e.exception, e.reason))
-    }
-
+/// Holding-register reads and writes through typed requests.
+impl MapUnit {
     async fn read(&self, address: u16, quantity: u16) -> Vec<u16> {
         match self
             .run(Request::ReadHoldingRegisters { address, quantity })
@@ -158,24 +135,13 @@ impl Rig {
     }
 
     async fn write(&self, address: u16, words: &[u16]) -> Result<Response, (Exception, String)> {
-        let bytes: Vec<u8> = words.iter().flat_map(|w| w.to_be_bytes()).collect();
         self.run(Request::WriteMultipleRegisters {
             address,
             quantity: words.len() as u16,
-            values: &bytes,
+            values: &register_bytes(words),
         })
         .await
     }
-}
-
-fn f64_cdab(v: f64) -> [u16; 4] {
-    let b = v.to_be_bytes();
-    let w = |i: usize| u16::from_be_bytes([b[2 * i], b[2 * i + 1]]);
-    [w(3), w(2), w(1), w(0)]
-}
-
-fn f32_cdab(words: &[u16]) -> f32 {
-    f32::from_bits(u32::from(words[1]) << 16 | u32::from(words[0]))
 }
 
 #[tokio::test]
@@ -191,7 +157,7 @@ async fn an_hmi_enables_sets_a_target_starts_and_reads_the_position() {
         .contains(AxisFlags::ENABLED));
     assert_eq!(r.read(27, 1).await, [1]);
     // Target and start in one request: stored in address order, so the move sees the target.
-    let mut words = f64_cdab(12.5).to_vec();
+    let mut words = f64_to_cdab(12.5).to_vec();
     words.push(1);
     r.write(22, &words).await.unwrap();
     r.handle.advance(1).unwrap();
@@ -201,11 +167,11 @@ async fn an_hmi_enables_sets_a_target_starts_and_reads_the_position() {
         .await
         .unwrap();
     r.handle.advance(100).unwrap();
-    assert_eq!(f32_cdab(&r.read(20, 2).await), 12.5);
+    assert_eq!(cdab_to_f32(&r.read(20, 2).await), 12.5);
     assert_eq!(r.handle.snapshot().axes[1].act_pos, 12.5);
     assert_eq!(r.read(32, 1).await, [2], "standstill through the lookup");
     // Writing start = 1 again is no rising edge: no new move (target changed meanwhile).
-    r.write(22, &f64_cdab(30.0)).await.unwrap();
+    r.write(22, &f64_to_cdab(30.0)).await.unwrap();
     r.write(26, &[1]).await.unwrap();
     assert_eq!(r.handle.snapshot().axes[1].fifo_len, 0);
     r.write(26, &[0]).await.unwrap();
@@ -221,7 +187,7 @@ async fn parameters_outputs_and_memory_read_back() {
         .await
         .unwrap();
     assert_eq!(r.handle.snapshot().params[0].get(ParamId::Speed), 7.5);
-    assert_eq!(f32_cdab(&r.read(8, 2).await), 7.5);
+    assert_eq!(cdab_to_f32(&r.read(8, 2).await), 7.5);
     r.run(Request::WriteSingleCoil {
         address: 0,
         value: true,
@@ -328,35 +294,9 @@ async fn each_kind_of_bad_request_gets_its_exception() {
 /// machine has, and no more.
 #[tokio::test]
 async fn the_generic_map_runs_a_command_code() {
-    let config: EngineConfig = toml::from_str(MACHINE).unwrap();
-    let (handle, guard) = Runtime::start(
-        Engine::new(&config).unwrap(),
-        RuntimeOptions::with_clock(ClockMode::Virtual),
-    )
-    .unwrap();
-    let machine = MachineShape {
-        axes: 2,
-        digital_inputs: 4,
-        digital_outputs: 4,
-        ..MachineShape::default()
-    };
-    let text = mcemu_modbus::map::shipped("generic").unwrap();
-    let unit = mcemu_modbus::map::load(
-        text,
-        "generic.toml",
-        &machine,
-        &Binding { axes: vec![0, 1] },
-    )
-    .unwrap();
-    let model = MapModel::new(vec![(
-        None,
-        Arc::new(UnitService::new(unit, handle.clone())),
-    )]);
-    let r = Rig {
-        handle: handle.clone(),
-        model,
-        _guard: guard,
-    };
+    let map = shipped_map("generic", &machine(), &Binding { axes: vec![0, 1] });
+    let r = MapUnit::new(start_engine(MACHINE), map, None);
+    let handle = r.handle.clone();
     r.run(Request::WriteSingleCoil {
         address: 16,
         value: true,
@@ -388,8 +328,7 @@ async fn the_generic_map_runs_a_command_code() {
         Response::Registers { words, .. } => words,
         other => panic!("{other:?}"),
     };
-    let bytes: Vec<u8> = pos.iter().flat_map(|w| w.to_be_bytes()).collect();
-    assert_eq!(f64::from_be_bytes(bytes.try_into().unwrap()), 7.25);
+    assert_eq!(abcd_to_f64(&pos), 7.25);
     // Machine I/O: coil 1000 + 2 is DO 2.
     r.run(Request::WriteSingleCoil {
         address: 1002,
@@ -415,21 +354,9 @@ async fn the_generic_map_runs_a_command_code() {
 /// An RTU broadcast reaches every unit of the line.
 #[tokio::test]
 async fn a_broadcast_writes_every_unit() {
-    let config: EngineConfig = toml::from_str(MACHINE).unwrap();
-    let (handle, _guard) = Runtime::start(
-        Engine::new(&config).unwrap(),
-        RuntimeOptions::with_clock(ClockMode::Virtual),
-    )
-    .unwrap();
-    let machine = MachineShape {
-        axes: 2,
-        digital_inputs: 4,
-        digital_outputs: 4,
-        ..MachineShape::default()
-    };
-    let file: MapFile = toml::from_str(MAP).unwrap();
+    let (handle, _guard) = start_engine(MACHINE);
     let service = |axis| {
-        let unit = compile(&file, &machine, &Binding { axes: vec![axis] }).unwrap();
+        let unit = compile_map(MAP, &machine(), &Binding { axes: vec![axis] });
         Arc::new(UnitService::new(unit, handle.clone()))
     };
     let model = MapModel::new(vec![(Some(1), service(0)), (Some(2), service(1))]);

@@ -3,13 +3,14 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-use std::sync::Arc;
+mod common;
 
-use axes::runtime::{ClockMode, EngineHandle, Runtime, RuntimeGuard, RuntimeOptions};
-use axes::{AxisFlags, Engine, EngineConfig, ParamId};
-use mcemu_modbus::map::{load, shipped, Binding, MachineShape, MapModel, UnitService};
-use mcemu_modbus::model::{DataModel, Peer, RequestContext};
-use mcemu_modbus::pdu::{decode_request, Exception, Response};
+use axes::{AxisFlags, ParamId};
+use common::map_unit::{
+    abcd_to_f64, cdab_to_f64, f64_to_cdab, register_bytes, shipped_map, start_engine, MapUnit,
+};
+use mcemu_modbus::map::{Binding, MachineShape};
+use mcemu_modbus::pdu::{Exception, Response};
 
 /// The CPU 226H fixture's E10 on Modbus (fixtures/cpu226h.toml, axis 4), alone.
 const E10: &str = r#"
@@ -31,57 +32,17 @@ model = "lag"
 time_constant = 0.005
 "#;
 
-struct Unit {
-    handle: EngineHandle,
-    model: MapModel,
-    _guard: RuntimeGuard,
-}
-
-fn unit(machine_toml: &str, map: &str, axes: usize) -> Unit {
-    let config: EngineConfig = toml::from_str(machine_toml).unwrap();
+/// The shipped map `map` over the first `axes` axes of `machine_toml`, as unit 2.
+fn unit(machine_toml: &str, map: &str, axes: usize) -> MapUnit {
     let shape = MachineShape {
         axes,
         ..MachineShape::default()
     };
-    let (handle, guard) = Runtime::start(
-        Engine::new(&config).unwrap(),
-        RuntimeOptions::with_clock(ClockMode::Virtual),
-    )
-    .unwrap();
-    let compiled = load(
-        shipped(map).unwrap(),
-        map,
-        &shape,
-        &Binding {
-            axes: (0..axes).collect(),
-        },
-    )
-    .unwrap();
-    let service = Arc::new(UnitService::new(compiled, handle.clone()));
-    Unit {
-        handle,
-        model: MapModel::new(vec![(Some(2), service)]),
-        _guard: guard,
-    }
-}
-
-impl Unit {
-    /// Run a request PDU as the unit would, decode refusals included.
-    async fn pdu(&self, pdu: &[u8]) -> Response {
-        let request = match decode_request(pdu) {
-            Ok(r) => r,
-            Err(refusal) => return refusal.into(),
-        };
-        let context = RequestContext {
-            unit: 2,
-            broadcast: false,
-            peer: Peer::Serial("test".into()),
-        };
-        match self.model.execute(&context, &request).await {
-            Ok(r) => r,
-            Err(e) => Response::exception(request.function(), e.exception),
-        }
-    }
+    let binding = Binding {
+        axes: (0..axes).collect(),
+    };
+    let map = shipped_map(map, &shape, &binding);
+    MapUnit::new(start_engine(machine_toml), map, Some(2))
 }
 
 #[tokio::test]
@@ -220,23 +181,13 @@ position = 50
 position = -50
 "#;
 
-fn cdab_f64(words: &[u16]) -> f64 {
-    let mut b = [0u8; 8];
-    for (i, w) in words.iter().rev().enumerate() {
-        b[2 * i..2 * i + 2].copy_from_slice(&w.to_be_bytes());
-    }
-    f64::from_be_bytes(b)
+/// An f64 as the bytes of four registers, low word first.
+fn f64_cdab_bytes(v: f64) -> Vec<u8> {
+    register_bytes(&f64_to_cdab(v))
 }
 
-fn f64_cdab(v: f64) -> Vec<u8> {
-    let b = v.to_be_bytes();
-    (0..4)
-        .rev()
-        .flat_map(|i| [b[2 * i], b[2 * i + 1]])
-        .collect()
-}
-
-impl Unit {
+/// Holding-register reads and writes through request PDUs.
+impl MapUnit {
     async fn registers(&self, address: u16, quantity: u16) -> Vec<u16> {
         let [ah, al] = address.to_be_bytes();
         let [qh, ql] = quantity.to_be_bytes();
@@ -268,7 +219,7 @@ async fn the_himc_map_enables_moves_and_reports_errors_as_the_controller_does() 
     );
     assert_eq!(himc.registers(100, 2).await, [0, 0]);
     // Target 12.5 mm, command 1 (move absolute), in one request.
-    let mut data = f64_cdab(12.5);
+    let mut data = f64_cdab_bytes(12.5);
     data.extend_from_slice(&[0, 0, 0, 0, 0, 0, 0, 0, 0, 1]);
     himc.write(40, &data).await;
     himc.handle
@@ -278,16 +229,16 @@ async fn the_himc_map_enables_moves_and_reports_errors_as_the_controller_does() 
         )
         .unwrap();
     himc.handle.advance(50).unwrap();
-    assert_eq!(cdab_f64(&himc.registers(4, 4).await), 12.5);
+    assert_eq!(cdab_to_f64(&himc.registers(4, 4).await), 12.5);
     assert_eq!(
         himc.registers(0, 1).await[0] & 0b101,
         0b101,
         "enabled, in position"
     );
     // Max velocity reads the parameter, low word first.
-    assert_eq!(cdab_f64(&himc.registers(16, 4).await), 100.0);
+    assert_eq!(cdab_to_f64(&himc.registers(16, 4).await), 100.0);
     // Drive into the + limit: fault bit 3, error stop, 0x8300_07EE at 58 and at 8210.
-    let mut data = f64_cdab(80.0);
+    let mut data = f64_cdab_bytes(80.0);
     data.extend_from_slice(&[0, 0, 0, 0, 0, 0, 0, 0, 0, 1]);
     himc.pdu(&[0x06, 0x00, 0x30, 0x00, 0x00]).await; // command 0 first, so 1 is written anew
     himc.write(40, &data).await;
@@ -310,22 +261,17 @@ async fn the_himc_map_enables_moves_and_reports_errors_as_the_controller_does() 
     assert_eq!(r, Response::exception(3, Exception::IllegalDataAddress));
 }
 
-fn f64_abcd(words: &[u16]) -> f64 {
-    let b: Vec<u8> = words.iter().flat_map(|w| w.to_be_bytes()).collect();
-    f64::from_be_bytes(b.try_into().unwrap())
-}
-
 #[tokio::test]
 async fn the_hmc_map_reads_and_writes_parameters_as_the_hmc_allows_and_runs_instructions() {
     let hmc = unit(STEPPERS, "hollysys-mc", 2);
     // Speed (offset 42 in the block, f64 high word first) reads the parameter; axis 1's block
     // starts at 200, and its AxisID reads 1.
-    assert_eq!(f64_abcd(&hmc.registers(200 + 42, 4).await), 100.0);
+    assert_eq!(abcd_to_f64(&hmc.registers(200 + 42, 4).await), 100.0);
     assert_eq!(hmc.registers(200, 1).await, [1]);
     // The HMC rule: a negative Speed is made positive and latches AxisStatus bit 2.
     let r = hmc.write(42, &(-40.0f64).to_be_bytes()).await;
     assert!(matches!(r, Response::WriteMultiple { .. }), "{r:?}");
-    assert_eq!(f64_abcd(&hmc.registers(42, 4).await), 40.0);
+    assert_eq!(abcd_to_f64(&hmc.registers(42, 4).await), 40.0);
     let status = hmc.registers(8, 2).await;
     assert_eq!(status, [0, 4], "AxisStatus bit 2");
     // MPos is read-only: 02.
@@ -347,7 +293,7 @@ async fn the_hmc_map_reads_and_writes_parameters_as_the_hmc_allows_and_runs_inst
             60_000,
         )
         .unwrap();
-    assert_eq!(f64_abcd(&hmc.registers(17, 4).await), 3.5, "DPos");
+    assert_eq!(abcd_to_f64(&hmc.registers(17, 4).await), 3.5, "DPos");
     // HMC_Reverse (20) jogs at −Speed.
     hmc.pdu(&[0x06, 0x00, 198, 0x00, 20]).await;
     hmc.handle.advance(1000).unwrap();

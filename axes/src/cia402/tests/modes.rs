@@ -97,6 +97,35 @@ fn pp_set_point_handshake_and_target_reached() {
 }
 
 #[test]
+fn an_edge_written_between_two_steps_is_not_lost() {
+    let mut rig = pp();
+    rig.tick();
+    // Bit 4 written low then high before the next step (two SDOs or RPDOs within a tick).
+    rig.set(obj::TARGET_POSITION, 0, Value::I32(1000));
+    rig.set(obj::CONTROLWORD, 0, Value::U16(0x0F));
+    rig.set(obj::CONTROLWORD, 0, Value::U16(0x1F));
+    rig.tick();
+    assert_eq!(
+        rig.sent(moves).len(),
+        1,
+        "the rising edge of bit 4 took the set-point"
+    );
+    assert_ne!(rig.sw() & B12, 0);
+    // Held high, then 1 → 0 → 1 between steps: a second edge, a second set-point.
+    rig.tick();
+    assert!(rig.sent(moves).is_empty());
+    rig.set(obj::TARGET_POSITION, 0, Value::I32(2000));
+    rig.set(obj::CONTROLWORD, 0, Value::U16(0x0F));
+    rig.set(obj::CONTROLWORD, 0, Value::U16(0x1F));
+    rig.tick();
+    assert_eq!(
+        rig.sent(moves).len(),
+        1,
+        "the second edge took the second set-point"
+    );
+}
+
+#[test]
 fn pp_position_window_time_delays_target_reached() {
     let mut rig = pp();
     rig.set(obj::POSITION_WINDOW_TIME, 0, Value::U16(5));

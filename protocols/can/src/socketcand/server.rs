@@ -3,9 +3,11 @@
 //! emulated bus: `can.Bus(interface="socketcand", host=…, port=…, channel="vcan0")`.
 //!
 //! Bounded: at most `max_connections` clients (the next gets `< error … >` and is closed),
-//! [`super::codec::MAX_ELEMENT`] bytes per element, the hub's receive queue per client (a
-//! client that does not read loses frames, counted on the hub), and a write that cannot
-//! finish within `write_timeout` closes that connection.
+//! [`super::codec::MAX_ELEMENT`] bytes per element, and per client the hub's receive queue
+//! plus [`FRAME_BACKLOG`] bytes of frame messages the socket has not taken yet. A client that
+//! does not read loses frames (counted on the hub, per endpoint and in `rx_dropped`), as a
+//! slow CAN controller does; its commands are still read and its frames still sent, and it
+//! stays connected however long it does not read.
 
 use std::collections::BTreeMap;
 use std::io;
@@ -15,7 +17,6 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use tokio::io::{AsyncReadExt, AsyncWriteExt};
-use tokio::net::tcp::OwnedWriteHalf;
 use tokio::net::{TcpListener, TcpStream};
 use tokio::sync::{watch, Semaphore};
 use tokio::task::JoinSet;
@@ -29,6 +30,20 @@ use crate::socketcand::session::{Action, Session};
 /// socketcand's default port.
 pub const DEFAULT_PORT: u16 = 29536;
 
+/// Bytes of frame messages held for a client beyond what its socket has taken. Past this the
+/// server takes no more frames from the client's endpoint, whose queue then drops new frames
+/// (counted on the hub) until the client reads.
+pub const FRAME_BACKLOG: usize = 16 * 1024;
+
+/// Bytes of unwritten output past which the server stops reading a client's commands. Replies
+/// are never dropped (the client's protocol depends on them), so only a client that sends
+/// commands with replies and never reads them (`< echo >`s, bad commands) is held back;
+/// frames alone stay below [`FRAME_BACKLOG`] plus one batch.
+pub const OUTPUT_LIMIT: usize = 64 * 1024;
+
+/// Frames taken from the endpoint per wake-up, written together.
+const FRAME_BATCH: usize = 64;
+
 /// How the server listens.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct SocketcandConfig {
@@ -40,8 +55,6 @@ pub struct SocketcandConfig {
     /// on a busy bus (SYNC at 1 kHz) that would be most connections. Frames are held (in the
     /// client's bounded queue), not dropped.
     pub rawmode_settle: Duration,
-    /// A write to a client that takes longer closes the connection.
-    pub write_timeout: Duration,
 }
 
 impl Default for SocketcandConfig {
@@ -50,7 +63,6 @@ impl Default for SocketcandConfig {
             bind: SocketAddr::from((Ipv4Addr::LOCALHOST, DEFAULT_PORT)),
             max_connections: 16,
             rawmode_settle: Duration::from_millis(20),
-            write_timeout: Duration::from_secs(10),
         }
     }
 }
@@ -277,8 +289,9 @@ async fn serve(
     let stats = &shared.stats;
     let _ = stream.set_nodelay(true);
     let (mut reader, mut writer) = stream.into_split();
-    let mut out = String::from(HI);
-    write(&mut writer, &mut out, shared.config.write_timeout).await?;
+    // The greeting goes out alone, before any reply: the socket's buffer is empty, so this
+    // does not wait on the client.
+    writer.write_all(HI.as_bytes()).await?;
     let mut session = Session::new();
     let mut decoder = Decoder::new();
     let mut feed = Feed {
@@ -287,10 +300,23 @@ async fn serve(
     };
     let mut actions = Vec::new();
     let mut buf = vec![0u8; 4096];
+    // What the socket has not taken yet: written as the client's window allows, while its
+    // commands go on being read (a client that never reads can still send).
+    let mut pending: Vec<u8> = Vec::new();
+    let mut out = String::new();
     loop {
+        let backlog = pending.len();
         tokio::select! {
             _ = stop.changed() => return Ok(()),
-            read = reader.read(&mut buf) => {
+            written = writer.write(&pending), if backlog > 0 => {
+                match written? {
+                    0 => return Err(io::ErrorKind::WriteZero.into()),
+                    n => {
+                        pending.drain(..n.min(backlog));
+                    }
+                }
+            }
+            read = reader.read(&mut buf), if backlog < OUTPUT_LIMIT => {
                 let n = read?;
                 if n == 0 {
                     return Ok(());
@@ -332,9 +358,11 @@ async fn serve(
                         }
                     }
                 }
-                write(&mut writer, &mut out, shared.config.write_timeout).await?;
+                pending.extend_from_slice(out.as_bytes());
+                out.clear();
             }
-            delivery = feed.next() => {
+            // Past the backlog frames stay in the endpoint's bounded queue, which drops.
+            delivery = feed.next(), if backlog < FRAME_BACKLOG => {
                 let Some(first) = delivery else { return Ok(()) };
                 let Some(hub) = feed.endpoint.as_ref().map(|e| e.hub().clone()) else {
                     continue;
@@ -347,32 +375,15 @@ async fn serve(
                         Stats::add(&stats.frames_to_clients, 1);
                     }
                     batched += 1;
-                    next = if batched < 64 {
+                    next = if batched < FRAME_BATCH {
                         feed.endpoint.as_mut().and_then(Endpoint::try_recv)
                     } else {
                         None
                     };
                 }
-                write(&mut writer, &mut out, shared.config.write_timeout).await?;
+                pending.extend_from_slice(out.as_bytes());
+                out.clear();
             }
         }
     }
-}
-
-/// Write and clear `out`; an empty `out` writes nothing.
-async fn write(writer: &mut OwnedWriteHalf, out: &mut String, limit: Duration) -> io::Result<()> {
-    if out.is_empty() {
-        return Ok(());
-    }
-    match tokio::time::timeout(limit, writer.write_all(out.as_bytes())).await {
-        Ok(result) => result?,
-        Err(_) => {
-            return Err(io::Error::new(
-                io::ErrorKind::TimedOut,
-                format!("the client did not read for {limit:?}"),
-            ))
-        }
-    }
-    out.clear();
-    Ok(())
 }

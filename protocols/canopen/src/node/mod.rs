@@ -33,7 +33,7 @@ use crate::sync::SyncConsumer;
 const EVENT_CAPACITY: usize = 4096;
 
 /// Counters of what the node received and did, for metrics.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
 pub struct NodeCounters {
     pub frames_in: u64,
     pub frames_out: u64,
@@ -236,6 +236,41 @@ impl<D: Device> Node<D> {
         self.emcy
             .flush(self.device.od(), now, self.nmt.allows(Service::Emcy), out);
         self.counters.frames_out += (out.len() - before) as u64;
+    }
+
+    /// Whether [`route`](Self::route) could take `frame` (a cheap check with no effect): a
+    /// bus of many nodes hands each frame only to the nodes it concerns, and counts it
+    /// [`ignored`](Self::note_ignored) on the rest.
+    pub fn accepts(&self, frame: &CanFrame) -> bool {
+        let id = frame.id();
+        if (id == 0 || id == LSS_RX_ID) && !frame.is_rtr() {
+            return true;
+        }
+        if self.nmt == NmtState::Initialising {
+            return false;
+        }
+        let own = u16::from(self.node_id);
+        if frame.is_rtr() {
+            return id == 0x700 + own
+                || self
+                    .tpdos
+                    .iter()
+                    .any(|t| t.active() && t.comm.can_id() == id);
+        }
+        id == 0x600 + own
+            || self.sync.can_id == Some(id)
+            || ((0x701..=0x77F).contains(&id) && self.consumers.monitors((id - 0x700) as u8))
+            || self
+                .rpdos
+                .iter()
+                .any(|r| r.active() && r.comm.can_id() == id)
+    }
+
+    /// A frame this node was not handed because it does not [`accept`](Self::accepts) it:
+    /// counted as [`on_frame`](Self::on_frame) would have counted it.
+    pub fn note_ignored(&mut self) {
+        self.counters.frames_in += 1;
+        self.counters.ignored += 1;
     }
 
     /// Dispatch by COB-ID (CiA 301 §7.3.3 pre-defined connection set); `false` if nothing

@@ -68,7 +68,7 @@ impl State {
 }
 
 /// Counters of the server, for metrics.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
 pub struct SdoCounters {
     pub requests: u64,
     pub uploads: u64,

@@ -1,5 +1,8 @@
-//! Shared test rigs: servers on real sockets and ptys, raw-byte clients.
+//! Shared test rigs: servers on real sockets and ptys, raw-byte clients; register maps over
+//! an engine ([`map_unit`]).
 #![allow(dead_code, clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+pub mod map_unit;
 
 use std::fs::OpenOptions;
 use std::future::Future;
