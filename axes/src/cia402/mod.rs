@@ -285,6 +285,10 @@ impl CspSegment {
     }
 }
 
+/// Controlwords kept between two steps; older ones are dropped (a master writing more than this
+/// within one servo period is flooding, not commanding).
+pub const MAX_WRITTEN_CONTROLWORDS: usize = 8;
+
 /// A CiA 402 drive bound to one engine axis.
 #[derive(Clone, Debug)]
 pub struct Cia402Drive {
@@ -300,6 +304,10 @@ pub struct Cia402Drive {
     /// edge among them is an edge, as on a drive whose RPDO handler runs on reception, even if
     /// the step sees only the last value.
     written_rises: u16,
+    /// The controlwords a master wrote since the last step, oldest first (at most
+    /// [`MAX_WRITTEN_CONTROLWORDS`]): `0x06`, `0x07`, `0x0F` written back to back walk the state
+    /// machine through each command, not only the last.
+    written_cws: Vec<u16>,
     transitions: Vec<u8>,
     // ---- power ----
     /// Step at which the drive asked the axis for power; `None` while it wants none.
@@ -361,6 +369,7 @@ impl Cia402Drive {
             steps: 0,
             previous_cw: 0,
             written_rises: 0,
+            written_cws: Vec::new(),
             transitions: vec![0],
             powered_since: None,
             power_confirmed: false,
@@ -462,6 +471,10 @@ impl Cia402Drive {
             let before = self.int(obj::CONTROLWORD, 0) as u16;
             let after = value.as_i64().unwrap_or(0) as u16;
             self.written_rises |= after & !before;
+            if self.written_cws.len() == MAX_WRITTEN_CONTROLWORDS {
+                self.written_cws.remove(0);
+            }
+            self.written_cws.push(after);
         }
         self.od.write(index, subindex, value)
     }
@@ -564,6 +577,19 @@ impl Cia402Drive {
             self.power_confirmed = true;
         }
         self.update_inputs(axis);
+        // Commands written before the last one since the previous step, each in turn (a drive
+        // that runs its state machine on reception would have).
+        let mut written = std::mem::take(&mut self.written_cws);
+        if written.last() == Some(&cw) {
+            written.pop();
+        }
+        let mut previous = self.previous_cw;
+        for &earlier in &written {
+            self.run_state_machine(earlier, earlier & !previous, axis, out);
+            previous = earlier;
+        }
+        written.clear();
+        self.written_cws = written; // keeps its allocation
         self.run_state_machine(cw, rises, axis, out);
         self.switch_mode(axis, out);
         match self.state {

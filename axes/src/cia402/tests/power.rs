@@ -524,3 +524,20 @@ fn controlword_for_walks_a_drive_to_any_state() {
         0x0117
     );
 }
+
+#[test]
+fn controlwords_written_back_to_back_walk_the_state_machine() {
+    let mut rig = Rig::new();
+    rig.tick();
+    assert_eq!(rig.state(), State::SwitchOnDisabled);
+    // Shutdown, switch on, enable operation: three SDOs answered within one servo period.
+    for cw in [0x06u16, 0x07, 0x0F] {
+        rig.set(obj::CONTROLWORD, 0, Value::U16(cw));
+    }
+    rig.tick();
+    assert!(
+        rig.until(10, |r| r.state() == State::OperationEnabled),
+        "state {:?}",
+        rig.state()
+    );
+}
