@@ -412,3 +412,39 @@ fn a_frame_a_node_does_not_accept_is_one_it_ignores() {
 fn bus_now() -> Duration {
     ms(1)
 }
+
+#[test]
+fn sparsely_numbered_pdos_all_run() {
+    // The dictionary has RPDO 1 and RPDO 3 (0x1400, 0x1402) but no 0x1401, as a user EDS may.
+    let mut od = sample_dictionary();
+    let three = mcemu_canopen::communication_objects(
+        &NodeConfig {
+            node_id: ID,
+            rpdos: 3,
+            ..NodeConfig::default()
+        },
+        ID,
+    );
+    for def in three
+        .into_iter()
+        .filter(|d| d.index == 0x1402 || d.index == 0x1602)
+    {
+        od.insert(def).unwrap();
+    }
+    let config = NodeConfig {
+        node_id: ID,
+        rpdos: 1,
+        ..NodeConfig::default()
+    };
+    let mut bus = Bus::new();
+    bus.add(Node::new(config, od).unwrap());
+    bus.start();
+    configure(&mut bus, 0x1402, 0x1602, 0x402, 255, &[0x2006_0020]);
+    nmt(&mut bus, NmtCommand::Start, ID);
+    bus.send(f(0x402, &7i32.to_le_bytes()));
+    assert_eq!(
+        get(&bus, 0x2006),
+        Value::I32(7),
+        "RPDO 3 wrote its mapped object"
+    );
+}

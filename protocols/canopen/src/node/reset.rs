@@ -111,17 +111,11 @@ impl<D: Device> Node<D> {
         self.consumers.load(od);
         self.guarding.load(od);
         self.sync.load(od);
-        let count = |base: u16| {
-            (0..idx::PDO_RANGE)
-                .take_while(|&n| od.contains_object(base + n))
-                .count() as u16
-        };
-        self.rpdos = (0..count(idx::RPDO_COMM))
-            .map(|n| Rpdo::load(od, n))
-            .collect();
-        self.tpdos = (0..count(idx::TPDO_COMM))
-            .map(|n| Tpdo::load(od, n))
-            .collect();
+        // Every PDO the dictionary has: a user EDS may number them sparsely (0x1400, 0x1402).
+        let numbers =
+            |base: u16| (0..idx::PDO_RANGE).filter(move |&n| od.contains_object(base + n));
+        self.rpdos = numbers(idx::RPDO_COMM).map(|n| Rpdo::load(od, n)).collect();
+        self.tpdos = numbers(idx::TPDO_COMM).map(|n| Tpdo::load(od, n)).collect();
     }
 
     /// Reload what a write to `index` changed.
