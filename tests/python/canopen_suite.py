@@ -1496,10 +1496,32 @@ class Context:
         return node
 
 
+def r_readme(cx):
+    """The README's example on node 1, SDO only: three controlwords written back to back (0x06,
+    0x07, 0x0F; each SDO is answered as it arrives, often within one servo tick) reach operation
+    enabled, then a profile position move to 10 mm by a 0x1F/0x0F pair of writes."""
+    node = cx.node(1)
+    node.nmt.state = "OPERATIONAL"
+    node.sdo[0x6040].raw = 0x06; node.sdo[0x6040].raw = 0x07; node.sdo[0x6040].raw = 0x0F
+    wait_until("operation enabled (0x6041)", 2 * SLOW,
+               lambda: node.sdo[0x6041].raw & 0x6F == 0x27)
+    node.sdo[0x6060].raw = 1
+    node.sdo[0x6081].raw = 200_000
+    node.sdo[0x607A].raw = 100_000
+    node.sdo[0x6040].raw = 0x1F; node.sdo[0x6040].raw = 0x0F
+    wait_until("target 100000 reached (0x6041 bit 10, 0x6064)", 10 * SLOW,
+               lambda: node.sdo[0x6041].raw & 0x400 and node.sdo[0x6064].raw == 100_000,
+               interval=0.02)
+    axis = wait_rest(cx, 0, 5 * SLOW)
+    eq(round(axis["act_pos"] * INC_PER_MM), 100_000, "engine act_pos x 10000 after the move")
+    node.sdo[0x6040].raw = 0
+    node.nmt.state = "PRE-OPERATIONAL"
+
+
 PHASES = [
     ("V", "virtual", [v_bootup, v_sdo_objects, v_sdo_segmented, v_sdo_block_domain, v_pdo_config,
                       v_store_reset, v_nmt, v_heartbeat_exact, v_emcy, v_bad_input, v_can_utils]),
-    ("R", "realtime", [r_stored_survive, r_heartbeat, r_ds402, r_homing, r_csp]),
+    ("R", "realtime", [r_stored_survive, r_heartbeat, r_readme, r_ds402, r_homing, r_csp]),
 ]
 SOCKETCAN_ONLY = {"v_can_utils"}
 

@@ -42,6 +42,7 @@ const CASES: &[&str] = &[
     "start_R",
     "r_stored_survive",
     "r_heartbeat",
+    "r_readme",
     "r_ds402",
     "r_homing",
     "r_csp",
