@@ -379,3 +379,38 @@ async fn a_broadcast_writes_every_unit() {
     let s = handle.snapshot();
     assert!(s.axes.iter().all(|a| a.flags.contains(AxisFlags::ENABLED)));
 }
+
+/// `read_in` answers from the snapshot it is given (a caller inside the servo tick has that
+/// tick's engine), `read` from the latest published one; memory is the unit's either way.
+#[tokio::test]
+async fn read_in_takes_the_engine_values_from_the_given_snapshot() {
+    use mcemu_modbus::map::schema::Table;
+    use mcemu_modbus::tables::TableAccess;
+
+    let r = rig();
+    let service = r.model.unit(1).unwrap();
+    r.write(1000, &[7]).await.unwrap();
+    let published = r.handle.snapshot();
+    let mut other = (*published).clone();
+    other.axes[0].act_pos = 12.5;
+    let words = service
+        .read_in(&other, Table::HoldingRegisters, 0, 2)
+        .unwrap();
+    assert_eq!(
+        cdab_to_f32(&words),
+        12.5,
+        "position from the given snapshot"
+    );
+    let words = TableAccess::read(&**service, Table::HoldingRegisters, 0, 2).unwrap();
+    assert_eq!(
+        cdab_to_f32(&words),
+        0.0,
+        "position from the published snapshot"
+    );
+    assert_eq!(
+        service
+            .read_in(&other, Table::HoldingRegisters, 1000, 1)
+            .unwrap(),
+        [7]
+    );
+}

@@ -213,7 +213,19 @@ impl UnitService {
     }
 
     fn read_table(&self, table: Table, start: u16, count: u16) -> Result<Vec<u16>, ExecError> {
-        let snapshot = self.handle.snapshot();
+        self.read_in(&self.handle.snapshot(), table, start, count)
+    }
+
+    /// A read with the engine's values taken from `snapshot` rather than the latest published
+    /// one: for a caller inside the servo tick, which has the engine of that tick (a CANopen node
+    /// over this map sampling its TPDO data) and would otherwise see the tick before.
+    pub fn read_in(
+        &self,
+        snapshot: &Snapshot,
+        table: Table,
+        start: u16,
+        count: u16,
+    ) -> Result<Vec<u16>, ExecError> {
         let mut words = Vec::with_capacity(usize::from(count));
         let mut at = start;
         let push_range = |words: &mut Vec<u16>, from: u16, all: &[u16], item_start: u16| {
@@ -234,14 +246,14 @@ impl UnitService {
                     ),
                 ))
             }
-            Err(_) => return Ok(self.read_with_gaps(table, start, count, &snapshot)),
+            Err(_) => return Ok(self.read_with_gaps(table, start, count, snapshot)),
         };
         let mut scratch = Vec::new();
         for item in items {
             match item {
                 Item::Point(_, p) => {
                     scratch.clear();
-                    self.words_of(p, &snapshot, &mut scratch);
+                    self.words_of(p, snapshot, &mut scratch);
                     push_range(&mut words, at, &scratch, p.address);
                     at = at.saturating_add(p.width - (at - p.address));
                 }
