@@ -16,6 +16,16 @@ JSON result per operation on stdout:
         (the first frame with that identifier received from now on)
     {"op": "send", "cob_id": 0x202, "data": "hex"}          -> {"ok": true}
     {"op": "sleep", "seconds": 0.2}                          -> {"ok": true}
+    {"op": "clear"} / {"op": "clear", "cob_id": 0x702}      -> {"ok": true}
+        (forget the frames received so far, of every identifier or of one)
+    {"op": "wait_count", "cob_id": 0x702, "count": 1, "timeout": 5}
+                                                             -> {"ok": ["hex", …]} | {"timeout": [...]}
+        (every frame with that identifier since the last clear, once there are `count`)
+    {"op": "advance", "body": {"ticks": 1000}, "repeat": 1}  -> {"ok": last reply}
+        (POST /time/advance to the control API of --control, `repeat` times in a row)
+
+Frames from mcemu reach this process in the order mcemu sent them (one hub, one socketcand
+connection): an SDO answer received means every frame the node sent before it was recorded.
 
 Exit status 0 unless something could not run; the Rust test judges the results.
 """
@@ -25,6 +35,7 @@ import json
 import sys
 import threading
 import time
+import urllib.request
 
 import canopen
 
@@ -36,6 +47,7 @@ def main():
     p.add_argument("--channel", default="vcan0")
     p.add_argument("--node", type=int, required=True)
     p.add_argument("--eds", required=True)
+    p.add_argument("--control", help="the control API, http://HOST:PORT/api/v1 (for advance)")
     args = p.parse_args()
     ops = json.load(sys.stdin)
 
@@ -116,6 +128,35 @@ def main():
             elif kind == "sleep":
                 time.sleep(op["seconds"])
                 results.append({"ok": True})
+            elif kind == "clear":
+                with cond:
+                    if "cob_id" in op:
+                        received.pop(op["cob_id"], None)
+                    else:
+                        received.clear()
+                results.append({"ok": True})
+            elif kind == "wait_count":
+                cob_id = op["cob_id"]
+                subscribe(cob_id)
+                deadline = time.monotonic() + op.get("timeout", 5.0)
+                with cond:
+                    while len(received.get(cob_id, [])) < op["count"]:
+                        left = deadline - time.monotonic()
+                        if left <= 0:
+                            break
+                        cond.wait(left)
+                    got = list(received.get(cob_id, []))
+                    results.append({"ok": got} if len(got) >= op["count"] else {"timeout": got})
+            elif kind == "advance":
+                body = json.dumps(op["body"]).encode()
+                reply = None
+                for _ in range(op.get("repeat", 1)):
+                    request = urllib.request.Request(
+                        args.control + "/time/advance", data=body, method="POST",
+                        headers={"content-type": "application/json"})
+                    with urllib.request.urlopen(request, timeout=60) as r:
+                        reply = json.loads(r.read())
+                results.append({"ok": reply})
             else:
                 results.append({"error": f"unknown op {kind}"})
         except canopen.SdoAbortedError as e:

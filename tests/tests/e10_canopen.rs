@@ -21,6 +21,11 @@ fn session(m: &Mcemu, ops: &Value) -> Vec<Value> {
 }
 
 fn session_at(port: &str, ops: &Value) -> Vec<Value> {
+    session_with(port, None, ops)
+}
+
+/// A session that may also advance the virtual clock (`advance` ops) through `control`.
+fn session_with(port: &str, control: Option<&str>, ops: &Value) -> Vec<Value> {
     let mut command = Command::new(python());
     command
         .arg(python_script("canopen_e10.py"))
@@ -28,6 +33,9 @@ fn session_at(port: &str, ops: &Value) -> Vec<Value> {
         .args(["--channel", "vcan0", "--node", &NODE.to_string()])
         .arg("--eds")
         .arg(workspace_root().join("fixtures/canopen/ct-e10.eds"));
+    if let Some(control) = control {
+        command.args(["--control", control]);
+    }
     let what = format!("{command:?}");
     let out = run_with_timeout(command, ops.to_string().as_bytes(), Duration::from_secs(60));
     let stdout = String::from_utf8_lossy(&out.stdout);
@@ -214,4 +222,253 @@ fn python_canopen_enables_reads_and_positions_the_e10_at_node_2() {
     assert_eq!(node["nmt"], "Operational", "{canopen}");
     assert_eq!(node["refresh_errors"], 0, "{canopen}");
     assert_eq!(node["rpdo_write_errors"], 0, "{canopen}");
+}
+
+fn hex_list(result: &Value) -> Vec<String> {
+    result["ok"]
+        .as_array()
+        .unwrap_or_else(|| panic!("not a frame list: {result}"))
+        .iter()
+        .map(|f| f.as_str().unwrap().to_string())
+        .collect()
+}
+
+fn unhex(hex: &str) -> Vec<u8> {
+    bytes(&json!({ "ok": hex }))
+}
+
+/// What the E10 sends while the virtual clock runs 1 s in `steps` (an advance of ticks each):
+/// its heartbeats (0x702), TPDO1 (R202 R204 R216) and TPDO2 (R221), heard from the start of a
+/// positioning to 20 000 counts. Returns them with the final position (`act_pos`).
+fn one_second_of_positioning(steps: &Value) -> (Vec<String>, Vec<String>, Vec<String>, f64) {
+    let m = Mcemu::start(
+        Some(&workspace_root().join("fixtures/cpu226h.toml")),
+        &["--clock", "virtual"],
+    );
+    let r = session_with(
+        &m.port("socketcand"),
+        Some(&m.api),
+        &json!([
+            {"op": "sdo_write", "index": 0x1017, "data": "6400"},    // heartbeat 100 ms
+            {"op": "sdo_write", "index": 0x211A, "data": "0100"},    // P282 bit 0: enable
+            {"op": "sdo_write", "index": 0x2122, "data": "204e0000"}, // P290 = 20 000
+            {"op": "nmt", "state": "OPERATIONAL"},
+            {"op": "sdo_read", "index": 0x1000},   // every frame of the set-up is in
+            {"op": "clear"},
+            {"op": "sdo_write", "index": 0x211A, "data": "0300"},    // bit 1 rising: position
+            steps,
+            {"op": "sdo_read", "index": 0x20D8},   // every frame of the advance is in
+            {"op": "frames", "cob_id": 0x702},
+            {"op": "frames", "cob_id": 0x182},
+            {"op": "frames", "cob_id": 0x282},
+        ]),
+    );
+    for (i, result) in r.iter().enumerate().take(9) {
+        assert!(result.get("ok").is_some(), "op {i}: {result}");
+    }
+    let state = m.axis(AXIS);
+    assert_eq!(state["state"], "standstill", "{state}");
+    assert_eq!(
+        i32_at(&bytes(&r[8]), 0) as f64,
+        state["act_pos"].as_f64().unwrap().round(),
+        "R216 over SDO"
+    );
+    let canopen = m.frontend("canopen");
+    assert_eq!(canopen["mapped_nodes"][0]["ticks_skipped"], 0, "{canopen}");
+    (
+        hex_list(&r[9]),
+        hex_list(&r[10]),
+        hex_list(&r[11]),
+        state["act_pos"].as_f64().unwrap(),
+    )
+}
+
+/// On the virtual clock the E10's timers fire at the ticks they fall on, with that tick's values,
+/// however the time is advanced: one advance of 1 000 ticks sends exactly the frames that 1 000
+/// advances of one tick send — heartbeats every 100 ms, TPDO1 whenever R216 changes and its
+/// 10 ms inhibit time has passed, then every 100 ms by its event timer — in the same order with
+/// the same data. (Before, the node ran once per advance: one heartbeat and one TPDO for the
+/// whole second.)
+#[test]
+fn e10_timers_in_one_long_advance_fire_at_their_ticks() {
+    let (heartbeats, tpdo1, tpdo2, act) =
+        one_second_of_positioning(&json!({"op": "advance", "body": {"ticks": 1000}}));
+    // 0x1017 and the start sent one each at tick 0, before the clear; then ticks 100 … 1000.
+    assert_eq!(
+        heartbeats,
+        vec!["05"; 10],
+        "heartbeats in one advance of 1 s"
+    );
+    let positions: Vec<i32> = tpdo1.iter().map(|f| i32_at(&unhex(f), 4)).collect();
+    // The move takes about 0.2 s: TPDO1 every 10 ms (the inhibit time) while R216 changes.
+    let moving = positions.windows(2).filter(|w| w[0] != w[1]).count();
+    assert!(moving >= 10, "TPDO1 while moving: {positions:?}");
+    assert!(
+        positions.windows(2).all(|w| w[0] <= w[1]),
+        "R216 only grows: {positions:?}"
+    );
+    assert_eq!(
+        *positions.last().unwrap() as f64,
+        act.round(),
+        "{positions:?}"
+    );
+    // The last ones are the event timer's, 100 ms apart, with the same data.
+    let last = tpdo1.last().unwrap();
+    assert!(
+        tpdo1.iter().rev().take(4).all(|f| f == last),
+        "TPDO1 at rest: {tpdo1:?}"
+    );
+    assert!(tpdo2.len() >= 10, "TPDO2: {tpdo2:?}");
+
+    let (heartbeats_1, tpdo1_1, tpdo2_1, act_1) =
+        one_second_of_positioning(&json!({"op": "advance", "body": {"ticks": 1}, "repeat": 1000}));
+    assert_eq!(
+        heartbeats_1, heartbeats,
+        "heartbeats: 1 000 advances of one tick"
+    );
+    assert_eq!(tpdo1_1, tpdo1, "TPDO1: 1 000 advances of one tick");
+    assert_eq!(tpdo2_1, tpdo2, "TPDO2: 1 000 advances of one tick");
+    assert_eq!(act_1, act);
+}
+
+/// The axis's ramp times, in seconds (the parameters P113/P114 set).
+fn ramp_times(m: &Mcemu) -> (f64, f64) {
+    let get = |name: &str| {
+        let r = m.post_ok(
+            "/commands",
+            &json!({"type": "get_parameter", "axis": AXIS, "name": name}),
+        );
+        r["value"].as_f64().unwrap_or_else(|| panic!("{name}: {r}"))
+    };
+    (get("accel_time"), get("decel_time"))
+}
+
+fn e10_with_state(dir: &mcemu_tests::TempDir) -> Mcemu {
+    Mcemu::start(
+        Some(&workspace_root().join("fixtures/cpu226h.toml")),
+        &[
+            "--clock",
+            "virtual",
+            "--state-dir",
+            dir.path().to_str().unwrap(),
+        ],
+    )
+}
+
+/// 0x1010 "save" keeps the E10's P parameters over a power cycle, as a drive's parameter save
+/// does, and they reach the drive at power-on (P113 sets the axis's ramps); the control word
+/// P282 is process data and is not kept (the drive powers up disabled). NMT reset node returns
+/// to the saved values; 0x1011 "load" (restore defaults) and a power cycle give the machine's
+/// own values back (P113 = the fixture's 100 ms / 100 ms, P97 and P290 = 0).
+#[test]
+fn e10_p_parameters_survive_a_restart_after_a_store_and_not_after_a_restore() {
+    let dir = mcemu_tests::TempDir::new("e10-store");
+    let image = dir.path().join("canopen/node-2.img");
+
+    // ---- run 1: set, store, change without storing ---------------------------------------
+    let m = e10_with_state(&dir);
+    assert_eq!(ramp_times(&m), (0.1, 0.1), "the fixture's ramps");
+    let r = session(
+        &m,
+        &json!([
+            {"op": "sdo_write", "index": 0x2061, "data": "d204"},      // P97 = 1234 rpm
+            {"op": "sdo_write", "index": 0x2071, "data": "9600fa00"},  // P113 = 150 | 250 ms
+            {"op": "sdo_write", "index": 0x2122, "data": "f7fcffff"},  // P290 = −777
+            {"op": "sdo_write", "index": 0x211A, "data": "0100"},      // P282: enable
+            {"op": "sdo_write", "index": 0x1017, "data": "c800"},      // heartbeat 200 ms
+            {"op": "sdo_write", "index": 0x1010, "sub": 1, "data": "73617665"},
+            {"op": "sdo_write", "index": 0x2061, "data": "0500"},      // P97 = 5, not stored
+        ]),
+    );
+    for (i, result) in r.iter().enumerate() {
+        assert_eq!(result["ok"], true, "op {i}: {result}");
+    }
+    assert!(image.is_file(), "{} after the save", image.display());
+    assert_eq!(ramp_times(&m), (0.15, 0.25), "P113 written over SDO");
+    assert!(has(&m.axis(AXIS), "enabled"));
+    let exit = m.terminate();
+    assert!(exit.status.success(), "{exit:?}");
+
+    // ---- run 2: the stored values are the power-on values ------------------------------
+    let m = e10_with_state(&dir);
+    assert_eq!(
+        ramp_times(&m),
+        (0.15, 0.25),
+        "the stored P113 reached the axis"
+    );
+    assert!(!has(&m.axis(AXIS), "enabled"), "P282 is not stored");
+    let r = session_with(
+        &m.port("socketcand"),
+        Some(&m.api),
+        &json!([
+            {"op": "sdo_read", "index": 0x2061},
+            {"op": "sdo_read", "index": 0x2071},
+            {"op": "sdo_read", "index": 0x2122},
+            {"op": "sdo_read", "index": 0x211A},
+            {"op": "sdo_read", "index": 0x1017},
+            // Changed, then NMT reset node: back to the stored values.
+            {"op": "sdo_write", "index": 0x2061, "data": "0900"},
+            {"op": "sdo_write", "index": 0x2071, "data": "c800c800"},
+            {"op": "clear", "cob_id": 0x702},
+            {"op": "nmt", "state": "RESET"},
+            {"op": "wait_count", "cob_id": 0x702, "count": 1, "timeout": 10},
+            {"op": "sdo_read", "index": 0x2061},
+            {"op": "sdo_read", "index": 0x2071},
+            // Restore defaults: effective at the next reset or power-on, not before.
+            {"op": "sdo_write", "index": 0x1011, "sub": 1, "data": "6c6f6164"},
+            {"op": "sdo_read", "index": 0x2061},
+        ]),
+    );
+    assert_eq!(bytes(&r[0]), 1234i16.to_le_bytes(), "P97 after the restart");
+    assert_eq!(bytes(&r[1]), [150, 0, 250, 0], "P113 after the restart");
+    assert_eq!(i32_at(&bytes(&r[2]), 0), -777, "P290 after the restart");
+    assert_eq!(u16_of(&r[3]), 0, "P282 after the restart");
+    assert_eq!(u16_of(&r[4]), 200, "0x1017 after the restart");
+    assert_eq!(
+        r[9]["ok"],
+        json!(["00"]),
+        "boot-up after reset node: {}",
+        r[9]
+    );
+    assert_eq!(bytes(&r[10]), 1234i16.to_le_bytes(), "P97 after reset node");
+    assert_eq!(bytes(&r[11]), [150, 0, 250, 0], "P113 after reset node");
+    assert_eq!(ramp_times(&m), (0.15, 0.25), "the axis after reset node");
+    assert_eq!(r[12]["ok"], true, "{}", r[12]);
+    assert_eq!(
+        bytes(&r[13]),
+        1234i16.to_le_bytes(),
+        "P97 right after 0x1011"
+    );
+    let canopen = m.frontend("canopen");
+    assert_eq!(
+        canopen["mapped_nodes"][0]["parameter_errors"], 0,
+        "{canopen}"
+    );
+    let exit = m.terminate();
+    assert!(exit.status.success(), "{exit:?}");
+
+    // ---- run 3: defaults -------------------------------------------------------------------
+    let m = e10_with_state(&dir);
+    assert_eq!(
+        ramp_times(&m),
+        (0.1, 0.1),
+        "the fixture's ramps after the restore"
+    );
+    let r = session(
+        &m,
+        &json!([
+            {"op": "sdo_read", "index": 0x2061},
+            {"op": "sdo_read", "index": 0x2071},
+            {"op": "sdo_read", "index": 0x2122},
+            {"op": "sdo_read", "index": 0x1017},
+        ]),
+    );
+    assert_eq!(bytes(&r[0]), [0, 0], "P97 after restore + restart");
+    assert_eq!(
+        bytes(&r[1]),
+        [100, 0, 100, 0],
+        "P113 after restore + restart"
+    );
+    assert_eq!(i32_at(&bytes(&r[2]), 0), 0, "P290 after restore + restart");
+    assert_eq!(u16_of(&r[3]), 0, "0x1017 after restore + restart");
 }

@@ -5,12 +5,16 @@
 //! Object 0x2000 + n is holding register n of the map for the node's axis. A master's write is
 //! the map's table write (which issues the engine commands: P282 bit 0 → enable …); the
 //! objects are refreshed from the map's reads before each call into the node, so SDO uploads
-//! and TPDOs show live values (R204, R216 …).
+//! and TPDOs show live values (R204, R216 …). The objects the EDS marks `rw` are the drive's
+//! stored parameters (P95 … P102, P113, P290): 0x1010 stores them with the communication
+//! parameters, and their power-on values (stored, else the map's at start) are written into the
+//! map at power-on and at NMT reset node, as a drive loads its saved parameters when it boots.
 
 use std::ops::RangeInclusive;
 use std::sync::Arc;
 
 use axes::od::{DataType, ObjectDictionary, OdError, Value};
+use axes::Snapshot;
 use mcemu_canopen::Device;
 use mcemu_modbus::map::value::{decode, encode, PointType, WordOrder};
 use mcemu_modbus::map::{UnitMap, UnitService};
@@ -77,6 +81,9 @@ pub struct Backed {
     /// Its registers issue engine commands when written (`on_write`): within one RPDO such
     /// objects are written after the set-points (P282 after P290).
     pub commands: bool,
+    /// A stored parameter: an entry 0x1010 stores (`rw` in the EDS; process data — `rww`, as
+    /// P281/P282 — and monitors are not), whose power-on value goes into the map.
+    pub stored: bool,
 }
 
 /// The backed objects of `od` over `map`: every entry in [`BACKED`] must be an 8/16/32-bit
@@ -143,6 +150,7 @@ pub fn backed_objects(od: &ObjectDictionary, map: &UnitMap) -> Result<Vec<Backed
             data_type,
             words,
             commands,
+            stored: mcemu_canopen::store::storable(entry),
         });
     }
     Ok(out)
@@ -248,7 +256,17 @@ pub fn od_error(index: u16, subindex: u8, e: &WriteError) -> OdError {
 
 /// Word access to the holding registers behind the objects.
 pub trait Registers {
+    /// The registers with the engine's values of the latest published snapshot.
     fn read(&self, address: u16, count: u16) -> Result<Vec<u16>, ExecError>;
+    /// The registers with the engine's values of `snapshot` (inside the servo tick: that tick's).
+    fn read_in(
+        &self,
+        _snapshot: &Snapshot,
+        address: u16,
+        count: u16,
+    ) -> Result<Vec<u16>, ExecError> {
+        self.read(address, count)
+    }
     fn write(&self, address: u16, words: &[u16]) -> Result<(), WriteError>;
 }
 
@@ -258,6 +276,16 @@ pub struct ServiceRegisters(pub Arc<UnitService>);
 impl Registers for ServiceRegisters {
     fn read(&self, address: u16, count: u16) -> Result<Vec<u16>, ExecError> {
         TableAccess::read(&*self.0, Table::HoldingRegisters, address, count)
+    }
+
+    fn read_in(
+        &self,
+        snapshot: &Snapshot,
+        address: u16,
+        count: u16,
+    ) -> Result<Vec<u16>, ExecError> {
+        self.0
+            .read_in(snapshot, Table::HoldingRegisters, address, count)
     }
 
     /// `Device::write` is synchronous (the node answers an SDO in the same call) while the
@@ -311,6 +339,8 @@ pub struct MapDevice<R: Registers> {
     /// RPDO values the map refused (an RPDO has no answer; the object returns to the map's
     /// value at the next refresh).
     pub rpdo_write_errors: u64,
+    /// Power-on values of stored parameters the map refused (the map keeps its value).
+    pub parameter_errors: u64,
 }
 
 impl<R: Registers> MapDevice<R> {
@@ -324,6 +354,7 @@ impl<R: Registers> MapDevice<R> {
             pending: Vec::new(),
             refresh_errors: 0,
             rpdo_write_errors: 0,
+            parameter_errors: 0,
         }
     }
 
@@ -372,10 +403,21 @@ impl<R: Registers> MapDevice<R> {
     /// Every backed object from its registers, with device access (read-only monitors
     /// included), so uploads and TPDOs see the map's current values.
     pub fn refresh(&mut self) {
+        self.refresh_with(None);
+    }
+
+    /// [`refresh`](Self::refresh) with the engine's values of `snapshot` (the servo tick's).
+    pub fn refresh_in(&mut self, snapshot: &Snapshot) {
+        self.refresh_with(Some(snapshot));
+    }
+
+    fn refresh_with(&mut self, snapshot: Option<&Snapshot>) {
         for b in &self.backed {
-            let value = self
-                .registers
-                .read(b.register, b.words.count())
+            let words = match snapshot {
+                Some(s) => self.registers.read_in(s, b.register, b.words.count()),
+                None => self.registers.read(b.register, b.words.count()),
+            };
+            let value = words
                 .ok()
                 .and_then(|w| b.words.decode(&w))
                 .and_then(|raw| from_bits(b.data_type, raw));
@@ -388,6 +430,86 @@ impl<R: Registers> MapDevice<R> {
                 None => self.refresh_errors += 1,
             }
         }
+    }
+}
+
+impl<R: Registers> MapDevice<R> {
+    /// The stored parameters' power-on values, which NMT reset node and 0x1011 (restore
+    /// defaults) return to: the map's current values — the machine's configuration (P113 = the
+    /// axis's accel_time …), not the EDS's placeholders — except for the objects of
+    /// `configured`, whose DCF `ParameterValue` is the power-on value. Each stored parameter is
+    /// set to its power-on value. Call after [`refresh`](Self::refresh), before any stored image
+    /// is applied. A map value outside the EDS's limits keeps the EDS default.
+    pub fn adopt_power_on_defaults(&mut self, configured: &[u16]) {
+        let stored: Vec<u16> = self
+            .backed
+            .iter()
+            .filter(|b| b.stored)
+            .map(|b| b.index)
+            .collect();
+        let entries: Vec<(axes::od::EntryDef, Value)> = self
+            .od
+            .entries()
+            .map(|e| {
+                let mut def = e.def.clone();
+                if def.subindex != 0 || !stored.contains(&def.index) {
+                    return (def, e.value.clone());
+                }
+                if !configured.contains(&def.index) && def.default != e.value {
+                    let candidate = axes::od::EntryDef {
+                        default: e.value.clone(),
+                        ..def.clone()
+                    };
+                    if ObjectDictionary::from_defs([candidate.clone()]).is_ok() {
+                        def = candidate;
+                    }
+                }
+                let value = def.default.clone();
+                (def, value)
+            })
+            .collect();
+        match ObjectDictionary::from_defs(entries.iter().map(|(d, _)| d.clone())) {
+            Ok(mut od) => {
+                for (d, v) in entries {
+                    let _ = od.set(d.index, d.subindex, v);
+                }
+                self.od = od;
+            }
+            Err(e) => {
+                tracing::warn!(error = %e, "the map's power-on values stay out of the defaults")
+            }
+        }
+    }
+
+    /// Write the stored parameters' dictionary values (their power-on values, after a start or
+    /// an NMT reset node) into the map where it holds something else, through the map's writes
+    /// and their commands (P113 sets the axis's ramp times). Returns how many the map refused;
+    /// a refused one keeps the map's value (the next refresh shows it).
+    pub fn load_parameters(&mut self) -> u64 {
+        let mut refused = 0;
+        for b in self.backed.iter().filter(|b| b.stored) {
+            let Some(raw) = self.od.get(b.index, 0).and_then(raw_bits) else {
+                continue;
+            };
+            let held = self
+                .registers
+                .read(b.register, b.words.count())
+                .ok()
+                .and_then(|w| b.words.decode(&w));
+            if held == Some(raw) {
+                continue;
+            }
+            if let Err(e) = self.registers.write(b.register, &b.words.encode(raw)) {
+                tracing::warn!(
+                    index = b.index,
+                    reason = %e.reason(),
+                    "a stored parameter's power-on value was refused by the map"
+                );
+                refused += 1;
+            }
+        }
+        self.parameter_errors += refused;
+        refused
     }
 }
 
@@ -686,6 +808,113 @@ on_write = [{ when = "=1", command = "move_velocity", args = { velocity = 10 } }
         let e = d.write(0x2071, 0, Value::U32(5)).unwrap_err();
         assert_eq!(e.sdo_abort_code(), 0x0800_0000, "{e}");
         assert!(matches!(e, OdError::DeviceFailure { .. }), "{e:?}");
+    }
+
+    #[test]
+    fn the_e10_settings_are_its_stored_parameters_and_commands_are_not() {
+        let backed = backed_objects(&e10_od(), &e10_map()).unwrap();
+        let stored: Vec<u16> = backed
+            .iter()
+            .filter(|b| b.stored)
+            .map(|b| b.index)
+            .collect();
+        // P95–P102 internal speeds, P113 ramps, P290 given position.
+        assert_eq!(
+            stored,
+            [0x205F, 0x2060, 0x2061, 0x2062, 0x2063, 0x2064, 0x2065, 0x2066, 0x2071, 0x2122]
+        );
+    }
+
+    /// Power-on: the map's values at start become the defaults; a stored image's values (applied
+    /// to the dictionary by the node) go into the map, only where the map holds something else;
+    /// a value the map refuses is counted and the map keeps its own.
+    #[test]
+    fn power_on_values_go_into_the_map() {
+        #[derive(Default)]
+        struct Log {
+            words: RefCell<BTreeMap<u16, u16>>,
+            writes: RefCell<Vec<(u16, Vec<u16>)>>,
+        }
+        impl Registers for Log {
+            fn read(&self, address: u16, count: u16) -> Result<Vec<u16>, ExecError> {
+                let w = self.words.borrow();
+                Ok((address..address + count)
+                    .map(|a| w.get(&a).copied().unwrap_or(0))
+                    .collect())
+            }
+            fn write(&self, address: u16, words: &[u16]) -> Result<(), WriteError> {
+                if address == 97 {
+                    return Err(ExecError::new(Exception::IllegalDataValue, "no").into());
+                }
+                self.writes.borrow_mut().push((address, words.to_vec()));
+                for (i, v) in words.iter().enumerate() {
+                    self.words.borrow_mut().insert(address + i as u16, *v);
+                }
+                Ok(())
+            }
+        }
+        let od = e10_od();
+        let backed = backed_objects(&od, &e10_map()).unwrap();
+        let log = Log::default();
+        // The machine's ramps: 100 ms / 100 ms; R204 = 1 (a monitor: not a parameter).
+        log.words
+            .borrow_mut()
+            .extend([(113, 100), (114, 100), (204, 1)]);
+        let mut d = MapDevice::new(od, log, backed);
+        d.refresh();
+        d.adopt_power_on_defaults(&[]);
+        let default = |d: &MapDevice<Log>, i| d.od().entry(i, 0).unwrap().def.default.clone();
+        assert_eq!(default(&d, 0x2071), Value::U32(100 | 100 << 16));
+        assert_eq!(
+            default(&d, 0x20CC),
+            Value::U16(0),
+            "monitors keep the EDS default"
+        );
+        assert_eq!(d.load_parameters(), 0);
+        assert!(d.registers.writes.borrow().is_empty(), "nothing differs");
+        // What a stored image puts in the dictionary (device access).
+        d.od_mut()
+            .set(0x2071, 0, Value::U32(100 | 200 << 16))
+            .unwrap();
+        d.od_mut().set(0x2122, 0, Value::I32(-5)).unwrap();
+        d.od_mut().set(0x2061, 0, Value::I16(30)).unwrap();
+        d.od_mut().set(0x211A, 0, Value::U16(1)).unwrap();
+        assert_eq!(d.load_parameters(), 1, "P97 refused");
+        assert_eq!(
+            *d.registers.writes.borrow(),
+            [(113, vec![100, 200]), (290, vec![0xFFFF, 0xFFFB])],
+            "P113 and P290 written; P282 (process data) not"
+        );
+        assert_eq!(d.parameter_errors, 1);
+        assert_eq!(
+            d.load_parameters(),
+            1,
+            "again: only the refused one differs"
+        );
+        assert_eq!(d.registers.writes.borrow().len(), 2);
+    }
+
+    /// A DCF's `ParameterValue` for a stored parameter is its power-on value: written into the
+    /// map at power-on instead of taking the map's.
+    #[test]
+    fn a_dcf_value_is_the_power_on_value() {
+        let text = include_str!("../../../fixtures/canopen/ct-e10.eds").replace(
+            "ParameterName=P95 1st internal speed\nObjectType=0x7\nDataType=0x0003\nAccessType=rw\nDefaultValue=0\n",
+            "ParameterName=P95 1st internal speed\nObjectType=0x7\nDataType=0x0003\nAccessType=rw\nDefaultValue=0\nParameterValue=-1500\n",
+        );
+        let od = Eds::parse("e10.dcf", &text).unwrap().dictionary(2).unwrap();
+        let backed = backed_objects(&od, &e10_map()).unwrap();
+        let mut d = MapDevice::new(od, Fake::default(), backed);
+        d.refresh();
+        assert_eq!(
+            d.od().get(0x205F, 0),
+            Some(&Value::I16(0)),
+            "the map's value"
+        );
+        d.adopt_power_on_defaults(&[0x205F]);
+        assert_eq!(d.od().get(0x205F, 0), Some(&Value::I16(-1500)));
+        assert_eq!(d.load_parameters(), 0);
+        assert_eq!(d.registers.words.borrow()[&95], (-1500i16) as u16);
     }
 
     #[test]

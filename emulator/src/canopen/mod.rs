@@ -43,6 +43,9 @@ pub struct MappedNodeSpec {
     pub od: ObjectDictionary,
     /// Its objects in 0x2000–0x23FF and their registers.
     pub backed: Vec<Backed>,
+    /// Backed objects a DCF configures (`ParameterValue`): their power-on value is the file's,
+    /// not the map's.
+    pub configured: Vec<u16>,
     pub map: UnitMap,
     /// The stored parameter image from an earlier run, if any.
     pub stored_image: Option<Vec<u8>>,
@@ -283,6 +286,14 @@ fn mapped_spec(
             format!("{reason} ({eds_name} served over map {map})"),
         )
     })?;
+    let configured = backed
+        .iter()
+        .filter(|b| {
+            eds.sub_object(b.index, 0)
+                .is_some_and(|o| o.parameter_value.is_some())
+        })
+        .map(|b| b.index)
+        .collect();
     let mut node = NodeConfig {
         node_id: n.node_id,
         device_name: config
@@ -300,6 +311,7 @@ fn mapped_spec(
         axis,
         od,
         backed,
+        configured,
         map: unit_map,
         stored_image: None,
     })

@@ -1,5 +1,6 @@
 //! `mcemu run`'s CANopen front-end: the bus (a `mcemu_can::Hub`), the drives' nodes on it as a
-//! fieldbus inside the servo tick, the map-backed nodes (CT E10) as tasks of their own, the SocketCAN bridge and the socketcand server, the
+//! fieldbus inside the servo tick, the map-backed nodes (CT E10) as tasks of their own for frames
+//! with their timers in the servo tick, the SocketCAN bridge and the socketcand server, the
 //! candump log, and stored parameter images (0x1010) in the machine's state directory.
 
 use std::sync::mpsc::{self, Receiver, Sender};
@@ -17,7 +18,7 @@ use axes::status::Snapshot;
 use mcemu_canopen::{CanFrame, Node, NodeEvent};
 use mcemu_modbus::map::UnitService;
 use serde_json::{json, Map, Value};
-use tokio::sync::{watch, Notify};
+use tokio::sync::watch;
 use tokio::task::JoinSet;
 
 use super::buslog::BusLog;
@@ -96,6 +97,8 @@ impl Frontend for CanopenFrontend {
                 v.insert("axis".into(), json!(n.axis));
                 v.insert("refresh_errors".into(), json!(n.refresh_errors));
                 v.insert("rpdo_write_errors".into(), json!(n.rpdo_write_errors));
+                v.insert("parameter_errors".into(), json!(n.parameter_errors));
+                v.insert("ticks_skipped".into(), json!(n.ticks_skipped));
                 Value::Object(v)
             })
             .collect();
@@ -333,22 +336,9 @@ pub async fn start(
 
     let mapped = Arc::new(Mutex::new(Vec::new()));
     if !mapped_specs.is_empty() {
-        // Virtual clock: time moves only when a test advances it; each tick wakes the map-backed
-        // nodes (coalesced), which then run their timers at the new engine time.
-        let wake = if cx.handle.clock() == ClockMode::Virtual {
-            let wake = Arc::new(Notify::new());
-            let w = Arc::clone(&wake);
-            cx.handle
-                .add_observer_async(move |_| {
-                    w.notify_one();
-                    true
-                })
-                .await
-                .map_err(|e| RunError::Io(std::io::Error::other(e.to_string())))?;
-            Some(wake)
-        } else {
-            None
-        };
+        // Frames go to each node's task; the nodes' timers run inside the servo tick.
+        let mut ticks = MappedTicks::new(Arc::clone(&mapped));
+        let mut powered = Vec::new();
         for spec in mapped_specs {
             let task = MappedNodeTask::new(
                 spec,
@@ -357,8 +347,19 @@ pub async fn start(
                 cx.state_dir.cloned(),
                 Arc::clone(&mapped),
             )?;
-            let (wake, shutdown) = (wake.clone(), cx.shutdown.clone());
-            tasks.spawn(task.run(wake, shutdown));
+            ticks.add(&task);
+            let (done, on) = tokio::sync::oneshot::channel();
+            powered.push(on);
+            tasks.spawn(task.run(cx.shutdown.clone(), done));
+        }
+        cx.handle
+            .submit_fieldbus(Box::new(ticks))
+            .map_err(|e| RunError::Io(std::io::Error::other(e.to_string())))?
+            .await
+            .map_err(|e| RunError::Io(std::io::Error::other(e.to_string())))?;
+        // Announced once their stored parameters are in the map (a client's first read sees them).
+        for on in powered {
+            let _ = on.await;
         }
     }
 
@@ -412,6 +413,15 @@ pub async fn start(
     Ok(Some(frontend))
 }
 
+// ---- map-backed nodes (the CT E10) ----------------------------------------------------------
+
+use std::sync::{MutexGuard, PoisonError, TryLockError};
+
+use axes::runtime::Fieldbus;
+use axes::Engine;
+use mcemu_can::{FrameReceiver, FrameSender};
+use mcemu_canopen::NmtState;
+
 /// What a map-backed node has done, for `GET /state`.
 #[derive(Clone, Debug)]
 struct MappedStatus {
@@ -421,29 +431,144 @@ struct MappedStatus {
     counters: mcemu_canopen::NodeCounters,
     refresh_errors: u64,
     rpdo_write_errors: u64,
+    parameter_errors: u64,
+    ticks_skipped: u64,
 }
 
-/// Paced clocks: how often (engine time) a map-backed node runs its tick when no deadline comes
-/// sooner, so event-driven TPDOs notice changed values (half the CT E10's 10 ms inhibit time).
-const MAPPED_POLL: Duration = Duration::from_millis(5);
-
-/// Frames a map-backed node takes per wake-up before it lets its timers run.
+/// Frames a map-backed node's task takes per wake-up before it lets the servo tick in.
 const MAPPED_FRAMES_PER_WAKE: usize = 256;
 
-/// A map-backed node (the CT E10) on the bus, served by a task of its own: its writes go
-/// through the register map, which awaits engine commands — something the servo thread, where
-/// the CiA 402 nodes run, must never do (decisions.md, "CT E10 on CANopen").
-struct MappedNodeTask {
+/// A map-backed node (the CT E10), shared by the task that takes its frames and the servo tick
+/// that runs its timers.
+struct MappedNode {
     node: Node<MapDevice<ServiceRegisters>>,
     axis: usize,
-    endpoint: Endpoint,
+    sender: FrameSender,
+    /// Bus time (the fieldbus `now`: engine time on the virtual clock) of the latest servo
+    /// tick, which the task's frames are handled at too.
+    now: Duration,
+    /// Servo ticks that found the node busy with a frame (their timers ran at the next one).
+    ticks_skipped: u64,
+    out: Vec<CanFrame>,
+}
+
+impl MappedNode {
+    /// Send what the node produced and publish its status (skipped when the control API holds
+    /// the status; the next call publishes).
+    fn flush(&mut self, status: &Mutex<Vec<MappedStatus>>, slot: usize) {
+        for frame in self.out.drain(..) {
+            let wire = if frame.is_rtr() {
+                mcemu_can::CanId::standard(frame.id())
+                    .and_then(|id| WireFrame::remote(id, frame.len() as u8))
+            } else {
+                WireFrame::standard(frame.id(), frame.data())
+            };
+            if let Ok(wire) = wire {
+                // A full queue is counted by the hub (tx_overflow).
+                let _ = self.sender.send(wire);
+            }
+        }
+        if let Ok(mut s) = status.try_lock() {
+            if let Some(slot) = s.get_mut(slot) {
+                let device = self.node.device();
+                *slot = MappedStatus {
+                    node_id: self.node.node_id(),
+                    axis: self.axis,
+                    nmt: self.node.nmt_state(),
+                    counters: self.node.counters(),
+                    refresh_errors: device.refresh_errors,
+                    rpdo_write_errors: device.rpdo_write_errors,
+                    parameter_errors: device.parameter_errors,
+                    ticks_skipped: self.ticks_skipped,
+                };
+            }
+        }
+    }
+}
+
+fn lock_node(node: &Mutex<MappedNode>) -> MutexGuard<'_, MappedNode> {
+    // A panic while handling a frame leaves at worst a half-written dictionary: keep serving.
+    node.lock().unwrap_or_else(PoisonError::into_inner)
+}
+
+/// The map-backed nodes' timers, run inside the servo tick like the CiA 402 nodes': heartbeats,
+/// TPDO event timers, inhibit times and changed TPDO data at the tick they fall on, with that
+/// tick's values, however long an advance of the virtual clock is (decisions.md, "CT E10 on
+/// CANopen"). Only reads: the map's writes await the engine and stay in the task.
+struct MappedTicks {
+    /// Each node, its status slot, and the ticks that found it busy.
+    nodes: Vec<(Arc<Mutex<MappedNode>>, usize, u64)>,
+    status: Arc<Mutex<Vec<MappedStatus>>>,
+    /// The engine of this tick, for the map's reads (the published snapshot is the tick before).
+    sample: Snapshot,
+}
+
+impl MappedTicks {
+    fn new(status: Arc<Mutex<Vec<MappedStatus>>>) -> MappedTicks {
+        MappedTicks {
+            nodes: Vec::new(),
+            status,
+            sample: Snapshot::default(),
+        }
+    }
+
+    fn add(&mut self, task: &MappedNodeTask) {
+        self.nodes.push((Arc::clone(&task.shared), task.slot, 0));
+    }
+}
+
+impl Fieldbus for MappedTicks {
+    fn before_step(&mut self, _engine: &mut Engine, _now: Duration) {}
+
+    fn after_step(&mut self, engine: &mut Engine, now: Duration) {
+        let mut sampled = false;
+        for (shared, slot, skipped) in &mut self.nodes {
+            // Never wait: the task holds the node while a write awaits the engine, which may be
+            // this very thread. Its timers then run at the next tick (on the virtual clock, a
+            // frame that arrives during an advance; its timing was a race anyway).
+            let mut n = match shared.try_lock() {
+                Ok(n) => n,
+                Err(TryLockError::Poisoned(p)) => p.into_inner(),
+                Err(TryLockError::WouldBlock) => {
+                    *skipped += 1;
+                    continue;
+                }
+            };
+            n.ticks_skipped = *skipped;
+            n.now = n.now.max(now);
+            let now = n.now;
+            if n.node.nmt_state() == NmtState::Operational {
+                // Event-driven TPDOs compare their data every tick: this tick's values.
+                if !sampled {
+                    engine.snapshot_into(&mut self.sample);
+                    sampled = true;
+                }
+                n.node.device_mut().refresh_in(&self.sample);
+            } else if n.node.next_deadline().is_none_or(|d| d > now) {
+                continue;
+            }
+            let MappedNode { node, out, .. } = &mut *n;
+            node.on_tick_into(now, out);
+            // Stores, restores and resets come from frames, which the task handles; what a tick
+            // raises (a lost master's state change) needs nothing more here.
+            while node.poll_event().is_some() {}
+            n.flush(&self.status, *slot);
+        }
+    }
+}
+
+/// A map-backed node's frames, served by a task of its own: its writes go through the register
+/// map, which awaits engine commands — something the servo thread, where the CiA 402 nodes run,
+/// must never do (decisions.md, "CT E10 on CANopen").
+struct MappedNodeTask {
+    shared: Arc<Mutex<MappedNode>>,
+    receiver: FrameReceiver,
     handle: EngineHandle,
     state_dir: Option<StateDir>,
     status: Arc<Mutex<Vec<MappedStatus>>>,
     slot: usize,
     /// The snapshot the objects were last refreshed from.
     refreshed: Option<Arc<Snapshot>>,
-    out: Vec<CanFrame>,
 }
 
 impl MappedNodeTask {
@@ -456,7 +581,11 @@ impl MappedNodeTask {
     ) -> Result<MappedNodeTask, RunError> {
         let node_id = spec.config.node_id;
         let service = Arc::new(UnitService::new(spec.map, handle.clone()));
-        let device = MapDevice::new(spec.od, ServiceRegisters(service), spec.backed);
+        let mut device = MapDevice::new(spec.od, ServiceRegisters(service), spec.backed);
+        // The map's values now (or a DCF's), before any stored image, are the parameters'
+        // defaults and power-on values.
+        device.refresh();
+        device.adopt_power_on_defaults(&spec.configured);
         let mut node = Node::new(spec.config, device)
             .map_err(|e| RunError::Io(std::io::Error::other(format!("node {node_id}: {e}"))))?;
         node.set_stored_image(spec.stored_image);
@@ -469,31 +598,34 @@ impl MappedNodeTask {
                 counters: node.counters(),
                 refresh_errors: 0,
                 rpdo_write_errors: 0,
+                parameter_errors: 0,
+                ticks_skipped: 0,
             });
             s.len() - 1
         };
+        let (sender, receiver) = hub
+            .attach(EndpointOptions::new(format!("e10 node {node_id}")))
+            .split();
         Ok(MappedNodeTask {
-            node,
-            axis: spec.axis,
-            endpoint: hub.attach(EndpointOptions::new(format!("e10 node {node_id}"))),
+            shared: Arc::new(Mutex::new(MappedNode {
+                node,
+                axis: spec.axis,
+                sender,
+                now: Duration::ZERO,
+                ticks_skipped: 0,
+                out: Vec::new(),
+            })),
+            receiver,
             handle,
             state_dir,
             status,
             slot,
             refreshed: None,
-            out: Vec::new(),
         })
     }
 
-    /// Engine time, tick × period in integer nanoseconds (as the CiA 402 nodes have it).
-    fn now(&self) -> Duration {
-        let s = self.handle.snapshot();
-        let period_ns = (s.period * 1e9).round() as u64;
-        Duration::from_nanos(s.tick.saturating_mul(period_ns))
-    }
-
     /// The objects from the map, when the engine published something new since the last time.
-    fn refresh(&mut self) {
+    fn refresh(&mut self, n: &mut MappedNode) {
         let snapshot = self.handle.snapshot();
         if self
             .refreshed
@@ -502,122 +634,107 @@ impl MappedNodeTask {
         {
             return;
         }
-        self.node.device_mut().refresh();
+        n.node.device_mut().refresh();
         self.refreshed = Some(snapshot);
     }
 
-    fn on_frame(&mut self, frame: &WireFrame) {
-        match from_wire(frame) {
-            Incoming::Frame(f) => {
-                self.refresh();
-                let now = self.now();
-                let rpdo = self.node.device().is_rpdo(f.id());
-                if rpdo {
-                    self.node.device_mut().begin_rpdo();
+    /// Power on (CiA 301 §7.3.2.2.1): the stored image over the defaults, the stored parameters'
+    /// values into the map — the drive loads its saved parameters — then the boot-up message.
+    fn power_on(&mut self) {
+        let shared = Arc::clone(&self.shared);
+        let mut n = lock_node(&shared);
+        let now = n.now;
+        let frames = n.node.start(now);
+        n.node.device_mut().load_parameters();
+        n.out.extend(frames);
+        self.refreshed = None;
+        n.flush(&self.status, self.slot);
+    }
+
+    /// A batch of frames, in arrival order, then the node's timers at the same time (a frame
+    /// may have changed TPDO data: on the virtual clock, where time stands still, an event-driven
+    /// TPDO goes out at once).
+    fn on_frames(&mut self, frames: &[WireFrame]) {
+        let shared = Arc::clone(&self.shared);
+        let mut n = lock_node(&shared);
+        let now = n.now;
+        for frame in frames {
+            match from_wire(frame) {
+                Incoming::Frame(f) => {
+                    self.refresh(&mut n);
+                    let rpdo = n.node.device().is_rpdo(f.id());
+                    if rpdo {
+                        n.node.device_mut().begin_rpdo();
+                    }
+                    let MappedNode { node, out, .. } = &mut *n;
+                    node.on_frame_into(&f, now, out);
+                    if rpdo {
+                        n.node.device_mut().finish_rpdo();
+                    }
+                    // A write may have issued commands: the next call reads the map again.
+                    self.refreshed = None;
+                    self.handle_events(&mut n, now);
                 }
-                self.node.on_frame_into(&f, now, &mut self.out);
-                if rpdo {
-                    self.node.device_mut().finish_rpdo();
-                }
-                // A write may have issued commands: the next call reads the map again.
-                self.refreshed = None;
-                self.handle_events(now);
+                Incoming::Error => n.node.note_error_frame(),
+                Incoming::Other => {}
             }
-            Incoming::Error => self.node.note_error_frame(),
-            Incoming::Other => {}
         }
+        self.refresh(&mut n);
+        let MappedNode { node, out, .. } = &mut *n;
+        node.on_tick_into(now, out);
+        self.handle_events(&mut n, now);
+        n.flush(&self.status, self.slot);
     }
 
-    fn on_tick(&mut self) {
-        self.refresh();
-        let now = self.now();
-        self.node.on_tick_into(now, &mut self.out);
-        self.handle_events(now);
-    }
-
-    /// Stores go to the state directory (a small atomic write, done here); a lost master has
-    /// no reaction beyond the node's own (0x1029): the E10 model has no 0x6007.
-    fn handle_events(&mut self, now: Duration) {
-        while let Some(event) = self.node.poll_event() {
+    /// Stores go to the state directory (a small atomic write, done here); NMT reset node loads
+    /// the stored parameters' power-on values into the map; a lost master has no reaction
+    /// beyond the node's own (0x1029): the E10 model has no 0x6007.
+    fn handle_events(&mut self, n: &mut MappedNode, now: Duration) {
+        while let Some(event) = n.node.poll_event() {
             match event {
                 NodeEvent::StoreRequested { image, .. }
                 | NodeEvent::RestoreRequested { image, .. } => {
-                    let id = self.node.node_id();
+                    let id = n.node.node_id();
                     let saved = match &self.state_dir {
                         Some(d) => d.write(&image_file(id), &image).map_err(|e| {
                             tracing::error!(node_id = id, error = %e, "cannot store the parameter image");
                         }),
                         None => Err(()),
                     };
-                    let frames = self.node.finish_persist(saved.is_ok(), now);
-                    self.out.extend(frames);
+                    let frames = n.node.finish_persist(saved.is_ok(), now);
+                    n.out.extend(frames);
+                }
+                NodeEvent::ResetNode => {
+                    n.node.device_mut().load_parameters();
+                    self.refreshed = None;
                 }
                 _ => {}
             }
         }
     }
 
-    fn flush(&mut self) {
-        for frame in self.out.drain(..) {
-            send_to(&self.endpoint, &frame);
-        }
-        if let Ok(mut s) = self.status.try_lock() {
-            if let Some(slot) = s.get_mut(self.slot) {
-                *slot = MappedStatus {
-                    node_id: self.node.node_id(),
-                    axis: self.axis,
-                    nmt: self.node.nmt_state(),
-                    counters: self.node.counters(),
-                    refresh_errors: self.node.device().refresh_errors,
-                    rpdo_write_errors: self.node.device().rpdo_write_errors,
-                };
-            }
-        }
-    }
-
-    /// How long (wall time) to sleep before the next tick on a paced clock.
-    fn wall_wait(&self) -> Duration {
-        let now = self.now();
-        let next = now + MAPPED_POLL;
-        let target = self.node.next_deadline().map_or(next, |d| d.min(next));
-        let engine = target.saturating_sub(now);
-        let snapshot = self.handle.snapshot();
-        let ratio = self
-            .handle
-            .clock()
-            .wall_period(snapshot.period)
-            .map_or(1.0, |w| w / snapshot.period);
-        engine.mul_f64(ratio).max(Duration::from_micros(100))
-    }
-
-    async fn run(mut self, wake: Option<Arc<Notify>>, mut shutdown: watch::Receiver<bool>) {
-        self.refresh();
-        let frames = self.node.start(self.now());
-        self.out.extend(frames);
-        self.flush();
+    async fn run(
+        mut self,
+        mut shutdown: watch::Receiver<bool>,
+        powered: tokio::sync::oneshot::Sender<()>,
+    ) {
+        self.power_on();
+        let _ = powered.send(());
+        let mut batch = Vec::with_capacity(MAPPED_FRAMES_PER_WAKE);
         loop {
-            let wait = self.wall_wait();
-            let timer = async {
-                match &wake {
-                    Some(w) => w.notified().await,
-                    None => tokio::time::sleep(wait).await,
-                }
-            };
             tokio::select! {
-                d = self.endpoint.recv() => {
+                d = self.receiver.recv() => {
                     let Some(d) = d else { break };
-                    self.on_frame(&d.frame);
-                    for _ in 1..MAPPED_FRAMES_PER_WAKE {
-                        let Some(d) = self.endpoint.try_recv() else { break };
-                        self.on_frame(&d.frame);
+                    batch.clear();
+                    batch.push(d.frame);
+                    while batch.len() < MAPPED_FRAMES_PER_WAKE {
+                        let Some(d) = self.receiver.try_recv() else { break };
+                        batch.push(d.frame);
                     }
-                    // Timers that fell due meanwhile (an SDO timeout, a TPDO).
-                    self.on_tick();
+                    self.on_frames(&batch);
                 }
-                _ = timer => self.on_tick(),
                 _ = shutdown.wait_for(|s| *s) => break,
             }
-            self.flush();
         }
     }
 }

@@ -192,15 +192,16 @@ fn mappable_objects_by_direction() {
 #[test]
 fn the_e10_is_the_cpu226h_example() {
     let eds = e10();
-    // Object index = 0x2000 + parameter number (decisions.md, "EDS/DCF files").
+    // Object index = 0x2000 + parameter number (decisions.md, "EDS/DCF files"). Settings are
+    // `rw` (stored parameters), the command and control word `rww` (process data).
     let params: [(u16, &str, DataType, Access); 11] = [
         (282, "P282", DataType::Unsigned16, Access::Rww),
         (281, "P281", DataType::Unsigned16, Access::Rww),
-        (290, "P290", DataType::Integer32, Access::Rww),
-        (97, "P97", DataType::Integer16, Access::Rww),
-        (113, "P113", DataType::Unsigned32, Access::Rww),
-        (101, "P101", DataType::Integer16, Access::Rww),
-        (102, "P102", DataType::Integer16, Access::Rww),
+        (290, "P290", DataType::Integer32, Access::Rw),
+        (97, "P97", DataType::Integer16, Access::Rw),
+        (113, "P113", DataType::Unsigned32, Access::Rw),
+        (101, "P101", DataType::Integer16, Access::Rw),
+        (102, "P102", DataType::Integer16, Access::Rw),
         (202, "R202", DataType::Unsigned16, Access::Ro),
         (204, "R204", DataType::Unsigned16, Access::Ro),
         (216, "R216", DataType::Integer32, Access::Ro),
@@ -294,8 +295,8 @@ fn the_e10_enable_and_ready_bits_travel_in_the_first_pdos() {
 fn e10_dcf() -> String {
     let text = std::fs::read_to_string(fixture("ct-e10.eds")).unwrap();
     let text = text.replace(
-        "[205F]\nParameterName=P95 1st internal speed\nObjectType=0x7\nDataType=0x0003\nAccessType=rww\nDefaultValue=0\n",
-        "[205F]\nParameterName=P95 1st internal speed\nObjectType=0x7\nDataType=0x0003\nAccessType=rww\nDefaultValue=0\nParameterValue=-1500\n",
+        "[205F]\nParameterName=P95 1st internal speed\nObjectType=0x7\nDataType=0x0003\nAccessType=rw\nDefaultValue=0\n",
+        "[205F]\nParameterName=P95 1st internal speed\nObjectType=0x7\nDataType=0x0003\nAccessType=rw\nDefaultValue=0\nParameterValue=-1500\n",
     );
     let text = text.replace(
         "[1017]\nParameterName=Producer heartbeat time\nObjectType=0x7\nDataType=0x0006\nAccessType=rw\nDefaultValue=0\n",
