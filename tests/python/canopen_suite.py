@@ -12,6 +12,10 @@ processes itself (the bus of a vcan0 has to be served from inside the VM):
 - R: realtime clock, a new process on V's state directory: what 0x1010 stored survives the
   restart; heartbeat timing, BaseNode402 (state machine, PP, PV, homing, quick stop, fault), CSP
   with a periodic SYNC. The master needs time to pass, so assertions are ranges.
+- E: the CT E10 of fixtures/cpu226h.toml (node 2, a map-backed node: ct-e10.eds over the
+  ct-e10-servo register map), virtual clock, its own state directory: enable and positioning as
+  the CPU 226H's §10.2 example does it (SDO, RPDO1, TPDO1), its timers over one long advance,
+  its P parameters stored by 0x1010 and back after NMT reset node, defaults after 0x1011.
 
 The machine is fixtures/cia402-can.toml with one test addition (written to --workdir): axis z's
 encoder has its index at 0.25 mm past each mm (index_offset = 2500), so that homing onto the
@@ -49,6 +53,12 @@ from canopen.profiles.p402 import BaseNode402
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 EDS = os.path.join(ROOT, "fixtures/canopen/cia402-drive.eds")
 FIXTURE = os.path.join(ROOT, "fixtures/cia402-can.toml")
+E10_EDS = os.path.join(ROOT, "fixtures/canopen/ct-e10.eds")
+E10_FIXTURE = os.path.join(ROOT, "fixtures/cpu226h.toml")
+E10_NODE = 2
+E10_AXIS = 5  # e10_can
+# The CPU 226H's other front-ends stay out of the way: no pty (RTU), an ephemeral port.
+E10_SETS = ["frontends.modbus_rtu.enabled=false", "frontends.modbus_rtu_over_tcp.bind=127.0.0.1:0"]
 DOMAIN_INDEX = 0x2F00
 INC_PER_MM = 10000
 # The nodes' names and serials in the fixture, by node id.
@@ -101,11 +111,13 @@ def wait_until(what, timeout, probe, interval=0.005):
 class Mcemu:
     """A running `mcemu run` (SIGTERM on stop), its listeners and its control API."""
 
-    def __init__(self, binary, config, clock, state_dir, interface, log_dir, label):
+    def __init__(self, binary, config, clock, state_dir, interface, log_dir, label, sets=()):
         os.makedirs(state_dir, exist_ok=True)
         args = [binary, "run", "--config", config, "--clock", clock, "--state-dir", state_dir,
                 "--set", "frontends.control.bind=127.0.0.1:0",
                 "--set", "frontends.socketcand.bind=127.0.0.1:0"]
+        for s in sets:
+            args += ["--set", s]
         # Over socketcand, mcemu's own candump log of its bus: the frames in the order the nodes
         # took them (on SocketCAN candump sees that order itself).
         self.bus_log = os.path.join(log_dir, f"bus-{label}.log")
@@ -1011,8 +1023,9 @@ def r_stored_survive(cx):
     eq(struct.unpack("<H", node.sdo.upload(0x1017, 0))[0], 250, "0x1017 before the reset")
     rec = Recorder(cx.net, [0x703])
     node.nmt.state = "RESET"
-    rec.wait_count(0x703, 1, 5 * SLOW)
-    eq(rec.of(0x703)[0][2], b"\x00", "boot-up after reset node")
+    # The stored 250 ms heartbeat runs on the realtime clock: one may come before the boot-up.
+    wait_until("boot-up (00) after reset node", 5 * SLOW,
+               lambda: b"\x00" in [f[2] for f in rec.of(0x703)])
     eq(struct.unpack("<H", node.sdo.upload(0x1017, 0))[0], 0, "0x1017 after restore + reset")
     eq(struct.unpack("<I", node.sdo.upload(0x6067, 0))[0], 100, "0x6067 after restore + reset")
     rec.close()
@@ -1471,6 +1484,105 @@ def r_csp(cx):
     return notes
 
 
+# ---- E: the CT E10 (map-backed node), virtual clock ----------------------------------------
+
+def e10_u16(node, index):
+    return struct.unpack("<H", node.sdo.upload(index, 0))[0]
+
+
+def e10_ramps(cx):
+    def get(name):
+        reply = cx.mcemu.post("/commands",
+                              {"type": "get_parameter", "axis": E10_AXIS, "name": name})
+        return reply["value"]
+    return get("accel_time"), get("decel_time")
+
+
+def e_enable_position(cx):
+    """The CPU 226H's §10.2 example: P282 bit 0 enables (R204 bit 0 = ready, over SDO and in
+    TPDO1 on entering Operational); RPDO1 = P282 P281 P290 with bit 1 rising positions the axis
+    to P290; R216 (SDO and TPDO1) is the position reached."""
+    node = cx.e10()
+    rec = Recorder(cx.net, [0x180 + E10_NODE])
+    eq(e10_u16(node, 0x20CC) & 1, 0, "R204 bit 0 before the enable")
+    node.sdo.download(0x211A, 0, struct.pack("<H", 1))
+    eq(e10_u16(node, 0x20CC) & 1, 1, "R204 bit 0 after P282 = 1")
+    check("enabled" in cx.mcemu.state()["axes"][E10_AXIS]["flags"], "e10_can enabled")
+    node.nmt.state = "OPERATIONAL"
+    rec.wait_count(0x180 + E10_NODE, 1, 5 * SLOW)
+    eq(rec.of()[0][2][2] & 1, 1, "R204 bit 0 in TPDO1")
+    # RPDO1: P282 = 3 (enable, start), P281 = 0, P290 = 20 000 counts, one frame.
+    cx.net.send_message(0x200 + E10_NODE, struct.pack("<HHi", 3, 0, 20000))
+    wait_until("e10_can moving", 5 * SLOW,
+               lambda: cx.mcemu.state()["axes"][E10_AXIS]["state"] == "discrete_motion")
+    until = cx.mcemu.advance(seconds=5.0, until={"axis": E10_AXIS, "state": "standstill"})
+    check(until["met"], f"standstill: {until}")
+    cx.mcemu.advance(seconds=0.2)  # the drive's own 5 ms loop settles
+    act = round(cx.mcemu.state()["axes"][E10_AXIS]["act_pos"])
+    check(abs(act - 20000) <= 1, f"act_pos {act}")
+    eq(struct.unpack("<i", node.sdo.upload(0x20D8, 0))[0], act, "R216 over SDO")
+    settle()
+    eq(struct.unpack("<i", rec.of()[-1][2][4:8])[0], act, "R216 in the last TPDO1")
+    rec.close()
+    return {"tpdo1": len(rec.of())}
+
+
+def e_timers_one_advance(cx):
+    """The E10's timers run at their ticks inside one advance of 1 000 ticks: exactly 10
+    heartbeats (0x1017 = 100 ms) and, at rest, exactly 10 TPDO1 and 10 TPDO2 by their 100 ms
+    event timers. The SDO answer after the advance comes after every frame of it."""
+    node = cx.e10()
+    ids = [0x700 + E10_NODE, 0x180 + E10_NODE, 0x280 + E10_NODE]
+    rec = Recorder(cx.net, ids)
+    node.sdo.download(0x1017, 0, struct.pack("<H", 100))
+    node.sdo.upload(0x1000, 0)
+    rec.clear()
+    cx.mcemu.advance(ticks=1000)
+    node.sdo.upload(0x1000, 0)
+    heartbeats = [f[2] for f in rec.of(0x700 + E10_NODE)]
+    eq(heartbeats, [b"\x05"] * 10, "heartbeats in one advance of 1 000 ticks")
+    eq(len(rec.of(0x180 + E10_NODE)), 10, "TPDO1 (event timer) in one advance of 1 000 ticks")
+    eq(len(rec.of(0x280 + E10_NODE)), 10, "TPDO2 (event timer) in one advance of 1 000 ticks")
+    node.sdo.download(0x1017, 0, b"\0\0")
+    node.nmt.state = "PRE-OPERATIONAL"
+    rec.close()
+
+
+def e_store_reset(cx):
+    """0x1010 "save" stores the E10's P parameters (P97, P113 …) in the state directory; NMT
+    reset node brings back the stored values, into the drive too (P113 = the axis's ramps);
+    0x1011 "load" then reset node: the machine's own values (P97 = 0, P113 = 100 ms/100 ms)."""
+    node = cx.e10()
+    rec = Recorder(cx.net, [0x700 + E10_NODE])
+
+    def reset():
+        rec.clear()
+        node.nmt.state = "RESET"
+        rec.wait_count(0x700 + E10_NODE, 1, 5 * SLOW)
+        eq(rec.of()[0][2], b"\x00", "boot-up after reset node")
+
+    eq(e10_ramps(cx), (0.1, 0.1), "the fixture's ramps")
+    node.sdo.download(0x2061, 0, struct.pack("<h", 1234))
+    node.sdo.download(0x2071, 0, struct.pack("<HH", 150, 250))
+    image = os.path.join(cx.state_dir, "canopen", f"node-{E10_NODE}.img")
+    check(not os.path.exists(image), f"{image} exists before any save")
+    node.sdo.download(0x1010, 1, b"save")
+    check(os.path.getsize(image) > 0, f"{image} is empty after the save")
+    node.sdo.download(0x2061, 0, struct.pack("<h", 9))
+    node.sdo.download(0x2071, 0, struct.pack("<HH", 300, 300))
+    eq(e10_ramps(cx), (0.3, 0.3), "ramps from P113 (unsaved)")
+    reset()
+    eq(struct.unpack("<h", node.sdo.upload(0x2061, 0))[0], 1234, "P97 after reset node")
+    eq(struct.unpack("<HH", node.sdo.upload(0x2071, 0)), (150, 250), "P113 after reset node")
+    eq(e10_ramps(cx), (0.15, 0.25), "the axis's ramps after reset node")
+    node.sdo.download(0x1011, 1, b"load")
+    reset()
+    eq(struct.unpack("<h", node.sdo.upload(0x2061, 0))[0], 0, "P97 after restore + reset")
+    eq(struct.unpack("<HH", node.sdo.upload(0x2071, 0)), (100, 100), "P113 after restore")
+    eq(e10_ramps(cx), (0.1, 0.1), "the axis's ramps after restore + reset")
+    rec.close()
+
+
 # ---- runner ----------------------------------------------------------------------------------
 
 class Context:
@@ -1488,6 +1600,13 @@ class Context:
         if self.net.nodes.get(node_id) is not self.nodes[node_id]:
             self.net.add_node(self.nodes[node_id])
         return self.nodes[node_id]
+
+    def e10(self):
+        if "e10" not in self.nodes:
+            self.nodes["e10"] = remote(self.net, E10_NODE, E10_EDS)
+        if self.net.nodes.get(E10_NODE) is not self.nodes["e10"]:
+            self.net.add_node(self.nodes["e10"])
+        return self.nodes["e10"]
 
     def node402(self, node_id):
         node = node402(self.net, node_id)
@@ -1518,10 +1637,14 @@ def r_readme(cx):
     node.nmt.state = "PRE-OPERATIONAL"
 
 
+# (label, clock, machine, state directory, cases): R restarts on V's state directory.
 PHASES = [
-    ("V", "virtual", [v_bootup, v_sdo_objects, v_sdo_segmented, v_sdo_block_domain, v_pdo_config,
-                      v_store_reset, v_nmt, v_heartbeat_exact, v_emcy, v_bad_input, v_can_utils]),
-    ("R", "realtime", [r_stored_survive, r_heartbeat, r_readme, r_ds402, r_homing, r_csp]),
+    ("V", "virtual", "cia402", "state-v",
+     [v_bootup, v_sdo_objects, v_sdo_segmented, v_sdo_block_domain, v_pdo_config, v_store_reset,
+      v_nmt, v_heartbeat_exact, v_emcy, v_bad_input, v_can_utils]),
+    ("R", "realtime", "cia402", "state-v",
+     [r_stored_survive, r_heartbeat, r_readme, r_ds402, r_homing, r_csp]),
+    ("E", "virtual", "e10", "state-e", [e_enable_position, e_timers_one_advance, e_store_reset]),
 ]
 SOCKETCAN_ONLY = {"v_can_utils"}
 
@@ -1564,18 +1687,19 @@ def main():
     except Exception as e:  # noqa: BLE001 - reported as a failed case
         record("setup", False, 0.0, f"{e}")
         config = None
-    state_v = os.path.join(args.workdir, "state-v")
-    for label, clock, cases in PHASES if config else []:
+    machines = {"cia402": (config, ()), "e10": (E10_FIXTURE, E10_SETS)}
+    for label, clock, machine, state, cases in PHASES if config else []:
         cases = [c for c in cases if only is None or c.__name__ in only]
         if args.interface != "socketcan":
             cases = [c for c in cases if c.__name__ not in SOCKETCAN_ONLY]
         if not cases:
             continue
-        # R restarts on V's state directory: what V stored is there.
-        state_dir = state_v
+        state_dir = os.path.join(args.workdir, state)
+        machine_config, sets = machines[machine]
         t = time.monotonic()
         try:
-            mcemu = Mcemu(mcemu_bin, config, clock, state_dir, args.interface, args.workdir, label)
+            mcemu = Mcemu(mcemu_bin, machine_config, clock, state_dir, args.interface,
+                          args.workdir, label, sets)
         except Exception as e:  # noqa: BLE001
             for c in cases:
                 record(c.__name__, False, 0.0, f"mcemu ({label}) did not start: {e}")

@@ -7,7 +7,8 @@
 //!
 //! - over socketcand on the host (`--interface socketcand`), every case but the can-utils one;
 //! - over a real SocketCAN `vcan0` (`--interface socketcan`) through `tests/vcan/run`, which on
-//!   these machines boots a qemu VM: one boot runs the whole suite, the can-utils case and then
+//!   these machines boots a qemu VM: one boot runs the whole suite (the CT E10 of `cpu226h.toml`
+//!   included, phase E), the can-utils case and then
 //!   mcemu-can's `#[ignore]`d SocketCAN tests (`protocols/can/tests/socketcan.rs`), so that they
 //!   count in CI too. A VM that fails to boot, or times out, fails the test; nothing skips.
 //!
@@ -46,6 +47,10 @@ const CASES: &[&str] = &[
     "r_ds402",
     "r_homing",
     "r_csp",
+    "start_E",
+    "e_enable_position",
+    "e_timers_one_advance",
+    "e_store_reset",
 ];
 /// Cases that need SocketCAN (can-utils), after `v_bad_input`.
 const SOCKETCAN_CASES: &[&str] = &["v_can_utils"];
