@@ -16,6 +16,8 @@ JSON result per operation on stdout:
         (the first frame with that identifier received from now on)
     {"op": "send", "cob_id": 0x202, "data": "hex"}          -> {"ok": true}
     {"op": "sleep", "seconds": 0.2}                          -> {"ok": true}
+    {"op": "stamps", "cob_id": 0x702}                        -> {"ok": [seconds, …]}
+        (the bus timestamps of those frames, as socketcand gives them: mcemu's bus time)
     {"op": "clear"} / {"op": "clear", "cob_id": 0x702}      -> {"ok": true}
         (forget the frames received so far, of every identifier or of one)
     {"op": "wait_count", "cob_id": 0x702, "count": 1, "timeout": 5}
@@ -53,12 +55,14 @@ def main():
 
     network = canopen.Network()
     received = {}
+    stamps = {}
     lock = threading.Lock()
     cond = threading.Condition(lock)
 
     def record(cob_id, data, timestamp):
         with cond:
             received.setdefault(cob_id, []).append(bytes(data).hex())
+            stamps.setdefault(cob_id, []).append(timestamp)
             cond.notify_all()
 
     network.connect(
@@ -106,6 +110,10 @@ def main():
                 subscribe(op["cob_id"])
                 with cond:
                     results.append({"ok": list(received.get(op["cob_id"], []))})
+            elif kind == "stamps":
+                subscribe(op["cob_id"])
+                with cond:
+                    results.append({"ok": list(stamps.get(op["cob_id"], []))})
             elif kind == "wait_frame":
                 cob_id = op["cob_id"]
                 subscribe(cob_id)
@@ -132,8 +140,10 @@ def main():
                 with cond:
                     if "cob_id" in op:
                         received.pop(op["cob_id"], None)
+                        stamps.pop(op["cob_id"], None)
                     else:
                         received.clear()
+                        stamps.clear()
                 results.append({"ok": True})
             elif kind == "wait_count":
                 cob_id = op["cob_id"]

@@ -237,10 +237,32 @@ fn unhex(hex: &str) -> Vec<u8> {
     bytes(&json!({ "ok": hex }))
 }
 
+/// What the E10 sent in one second of a run.
+#[derive(Debug, PartialEq)]
+struct Heard {
+    heartbeats: Vec<String>,
+    tpdo1: Vec<String>,
+    tpdo2: Vec<String>,
+    /// Bus time of each heartbeat and TPDO1, µs after the first heartbeat (socketcand stamps:
+    /// on the virtual clock the bus keeps engine time).
+    heartbeat_at: Vec<i64>,
+    tpdo1_at: Vec<i64>,
+    act_pos: f64,
+}
+
+fn micros_after(first: f64, stamps: &Value) -> Vec<i64> {
+    stamps["ok"]
+        .as_array()
+        .unwrap_or_else(|| panic!("no stamps: {stamps}"))
+        .iter()
+        .map(|t| ((t.as_f64().unwrap() - first) * 1e6).round() as i64)
+        .collect()
+}
+
 /// What the E10 sends while the virtual clock runs 1 s in `steps` (an advance of ticks each):
 /// its heartbeats (0x702), TPDO1 (R202 R204 R216) and TPDO2 (R221), heard from the start of a
-/// positioning to 20 000 counts. Returns them with the final position (`act_pos`).
-fn one_second_of_positioning(steps: &Value) -> (Vec<String>, Vec<String>, Vec<String>, f64) {
+/// positioning to 20 000 counts, with when they were sent, and the final position.
+fn one_second_of_positioning(steps: &Value) -> Heard {
     let m = Mcemu::start(
         Some(&workspace_root().join("fixtures/cpu226h.toml")),
         &["--clock", "virtual"],
@@ -261,6 +283,8 @@ fn one_second_of_positioning(steps: &Value) -> (Vec<String>, Vec<String>, Vec<St
             {"op": "frames", "cob_id": 0x702},
             {"op": "frames", "cob_id": 0x182},
             {"op": "frames", "cob_id": 0x282},
+            {"op": "stamps", "cob_id": 0x702},
+            {"op": "stamps", "cob_id": 0x182},
         ]),
     );
     for (i, result) in r.iter().enumerate().take(9) {
@@ -275,12 +299,17 @@ fn one_second_of_positioning(steps: &Value) -> (Vec<String>, Vec<String>, Vec<St
     );
     let canopen = m.frontend("canopen");
     assert_eq!(canopen["mapped_nodes"][0]["ticks_skipped"], 0, "{canopen}");
-    (
-        hex_list(&r[9]),
-        hex_list(&r[10]),
-        hex_list(&r[11]),
-        state["act_pos"].as_f64().unwrap(),
-    )
+    let first = r[12]["ok"][0]
+        .as_f64()
+        .unwrap_or_else(|| panic!("no heartbeat stamps: {}", r[12]));
+    Heard {
+        heartbeats: hex_list(&r[9]),
+        tpdo1: hex_list(&r[10]),
+        tpdo2: hex_list(&r[11]),
+        heartbeat_at: micros_after(first, &r[12]),
+        tpdo1_at: micros_after(first, &r[13]),
+        act_pos: state["act_pos"].as_f64().unwrap(),
+    }
 }
 
 /// On the virtual clock the E10's timers fire at the ticks they fall on, with that tick's values,
@@ -291,15 +320,20 @@ fn one_second_of_positioning(steps: &Value) -> (Vec<String>, Vec<String>, Vec<St
 /// whole second.)
 #[test]
 fn e10_timers_in_one_long_advance_fire_at_their_ticks() {
-    let (heartbeats, tpdo1, tpdo2, act) =
-        one_second_of_positioning(&json!({"op": "advance", "body": {"ticks": 1000}}));
-    // 0x1017 and the start sent one each at tick 0, before the clear; then ticks 100 … 1000.
+    let one = one_second_of_positioning(&json!({"op": "advance", "body": {"ticks": 1000}}));
+    // 0x1017 and the start sent one each at tick 0, before the clear; then ticks 100 … 1000,
+    // stamped with their bus time.
     assert_eq!(
-        heartbeats,
+        one.heartbeats,
         vec!["05"; 10],
         "heartbeats in one advance of 1 s"
     );
-    let positions: Vec<i32> = tpdo1.iter().map(|f| i32_at(&unhex(f), 4)).collect();
+    assert_eq!(
+        one.heartbeat_at,
+        (0..10).map(|k| k * 100_000).collect::<Vec<i64>>(),
+        "heartbeat times (µs after the first)"
+    );
+    let positions: Vec<i32> = one.tpdo1.iter().map(|f| i32_at(&unhex(f), 4)).collect();
     // The move takes about 0.2 s: TPDO1 every 10 ms (the inhibit time) while R216 changes.
     let moving = positions.windows(2).filter(|w| w[0] != w[1]).count();
     assert!(moving >= 10, "TPDO1 while moving: {positions:?}");
@@ -309,26 +343,33 @@ fn e10_timers_in_one_long_advance_fire_at_their_ticks() {
     );
     assert_eq!(
         *positions.last().unwrap() as f64,
-        act.round(),
+        one.act_pos.round(),
         "{positions:?}"
     );
-    // The last ones are the event timer's, 100 ms apart, with the same data.
-    let last = tpdo1.last().unwrap();
+    // Sent on whole ticks; while moving 10 ms apart (the inhibit time), at rest 100 ms apart
+    // (the event timer) with the same data.
     assert!(
-        tpdo1.iter().rev().take(4).all(|f| f == last),
-        "TPDO1 at rest: {tpdo1:?}"
+        one.tpdo1_at.iter().all(|t| t % 1000 == 0),
+        "{:?}",
+        one.tpdo1_at
     );
-    assert!(tpdo2.len() >= 10, "TPDO2: {tpdo2:?}");
+    let gaps: Vec<i64> = one.tpdo1_at.windows(2).map(|w| w[1] - w[0]).collect();
+    assert_eq!(gaps[..moving], vec![10_000; moving], "{gaps:?}");
+    assert_eq!(gaps[gaps.len() - 3..], [100_000; 3], "{gaps:?}");
+    let last = one.tpdo1.last().unwrap();
+    assert!(
+        one.tpdo1.iter().rev().take(4).all(|f| f == last),
+        "TPDO1 at rest: {:?}",
+        one.tpdo1
+    );
+    assert!(one.tpdo2.len() >= 10, "TPDO2: {:?}", one.tpdo2);
 
-    let (heartbeats_1, tpdo1_1, tpdo2_1, act_1) =
+    let ticks =
         one_second_of_positioning(&json!({"op": "advance", "body": {"ticks": 1}, "repeat": 1000}));
     assert_eq!(
-        heartbeats_1, heartbeats,
-        "heartbeats: 1 000 advances of one tick"
+        ticks, one,
+        "1 000 advances of one tick against one of 1 000"
     );
-    assert_eq!(tpdo1_1, tpdo1, "TPDO1: 1 000 advances of one tick");
-    assert_eq!(tpdo2_1, tpdo2, "TPDO2: 1 000 advances of one tick");
-    assert_eq!(act_1, act);
 }
 
 /// The axis's ramp times, in seconds (the parameters P113/P114 set).
