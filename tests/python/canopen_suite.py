@@ -1499,12 +1499,17 @@ def e10_ramps(cx):
 
 
 def e_enable_position(cx):
-    """The CPU 226H's §10.2 example: P282 bit 0 enables (R204 bit 0 = ready, over SDO and in
-    TPDO1 on entering Operational); RPDO1 = P282 P281 P290 with bit 1 rising positions the axis
-    to P290; R216 (SDO and TPDO1) is the position reached."""
+    """Boot-up at the first frame (time stands still). The CPU 226H's §10.2 example: P282 bit 0
+    enables (R204 bit 0 = ready, over SDO and in TPDO1 on entering Operational); RPDO1 = P282
+    P281 P290 with bit 1 rising positions the axis to P290; R216 (SDO and TPDO1) is the position
+    reached."""
     node = cx.e10()
+    boot = Recorder(cx.net, [0x700 + E10_NODE])
     rec = Recorder(cx.net, [0x180 + E10_NODE])
     eq(e10_u16(node, 0x20CC) & 1, 0, "R204 bit 0 before the enable")
+    # Virtual time stood still since the start: the boot-up went out at the first frame.
+    eq([f[2] for f in boot.of()], [b"\x00"], "boot-up at the first service")
+    boot.close()
     node.sdo.download(0x211A, 0, struct.pack("<H", 1))
     eq(e10_u16(node, 0x20CC) & 1, 1, "R204 bit 0 after P282 = 1")
     check("enabled" in cx.mcemu.state()["axes"][E10_AXIS]["flags"], "e10_can enabled")

@@ -107,8 +107,12 @@ fn python_canopen_enables_reads_and_positions_the_e10_at_node_2() {
             {"op": "nmt", "state": "OPERATIONAL"},
             {"op": "sleep", "seconds": 0.3},
             {"op": "frames", "cob_id": 0x182},
+            {"op": "frames", "cob_id": 0x702},
         ]),
     );
+    // Time stood still since the start: the boot-up went out at the first frame, this
+    // session's first SDO request.
+    assert_eq!(r[12]["ok"], json!(["00"]), "boot-up: {}", r[12]);
     assert_eq!(
         u16_of(&r[0]) & 1,
         0,

@@ -456,6 +456,11 @@ impl MappedNode {
     /// Send what the node produced and publish its status (skipped when the control API holds
     /// the status; the next call publishes).
     fn flush(&mut self, status: &Mutex<Vec<MappedStatus>>, slot: usize) {
+        self.send();
+        self.publish(status, slot);
+    }
+
+    fn send(&mut self) {
         for frame in self.out.drain(..) {
             let wire = if frame.is_rtr() {
                 mcemu_can::CanId::standard(frame.id())
@@ -468,6 +473,9 @@ impl MappedNode {
                 let _ = self.sender.send(wire);
             }
         }
+    }
+
+    fn publish(&self, status: &Mutex<Vec<MappedStatus>>, slot: usize) {
         if let Ok(mut s) = status.try_lock() {
             if let Some(slot) = s.get_mut(slot) {
                 let device = self.node.device();
@@ -545,6 +553,10 @@ impl Fieldbus for MappedTicks {
                 }
                 n.node.device_mut().refresh_in(&self.sample);
             } else if n.node.next_deadline().is_none_or(|d| d > now) {
+                // Nothing due; the boot-up message may still be waiting for its first service.
+                if !n.out.is_empty() {
+                    n.flush(&self.status, *slot);
+                }
                 continue;
             }
             let MappedNode { node, out, .. } = &mut *n;
@@ -639,7 +651,10 @@ impl MappedNodeTask {
     }
 
     /// Power on (CiA 301 §7.3.2.2.1): the stored image over the defaults, the stored parameters'
-    /// values into the map — the drive loads its saved parameters — then the boot-up message.
+    /// values into the map — the drive loads its saved parameters — then the boot-up message,
+    /// which goes out at the node's first service (the next servo tick, or the first frame), as
+    /// the CiA 402 nodes' does: on the virtual clock the first advance or the first frame of a
+    /// master (decisions.md, "Power-on on the virtual clock").
     fn power_on(&mut self) {
         let shared = Arc::clone(&self.shared);
         let mut n = lock_node(&shared);
@@ -648,7 +663,7 @@ impl MappedNodeTask {
         n.node.device_mut().load_parameters();
         n.out.extend(frames);
         self.refreshed = None;
-        n.flush(&self.status, self.slot);
+        n.publish(&self.status, self.slot);
     }
 
     /// A batch of frames, in arrival order, then the node's timers at the same time (a frame
