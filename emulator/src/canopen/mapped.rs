@@ -588,11 +588,13 @@ mod tests {
             .unwrap()
     }
 
-    /// Registers in memory; a write to `refuse` fails with that exception.
+    /// Registers in memory; a write to `refuse` fails with that exception; the others are
+    /// logged in `writes`.
     #[derive(Default)]
     struct Fake {
         words: RefCell<BTreeMap<u16, u16>>,
         refuse: Option<(u16, Exception)>,
+        writes: RefCell<Vec<(u16, Vec<u16>)>>,
     }
 
     impl Registers for Fake {
@@ -607,6 +609,7 @@ mod tests {
             if let Some((a, e)) = self.refuse.filter(|(a, _)| *a == address) {
                 return Err(ExecError::new(e, format!("register {a} refused")).into());
             }
+            self.writes.borrow_mut().push((address, words.to_vec()));
             let mut w = self.words.borrow_mut();
             for (i, v) in words.iter().enumerate() {
                 w.insert(address + i as u16, *v);
@@ -830,32 +833,12 @@ on_write = [{ when = "=1", command = "move_velocity", args = { velocity = 10 } }
     /// a value the map refuses is counted and the map keeps its own.
     #[test]
     fn power_on_values_go_into_the_map() {
-        #[derive(Default)]
-        struct Log {
-            words: RefCell<BTreeMap<u16, u16>>,
-            writes: RefCell<Vec<(u16, Vec<u16>)>>,
-        }
-        impl Registers for Log {
-            fn read(&self, address: u16, count: u16) -> Result<Vec<u16>, ExecError> {
-                let w = self.words.borrow();
-                Ok((address..address + count)
-                    .map(|a| w.get(&a).copied().unwrap_or(0))
-                    .collect())
-            }
-            fn write(&self, address: u16, words: &[u16]) -> Result<(), WriteError> {
-                if address == 97 {
-                    return Err(ExecError::new(Exception::IllegalDataValue, "no").into());
-                }
-                self.writes.borrow_mut().push((address, words.to_vec()));
-                for (i, v) in words.iter().enumerate() {
-                    self.words.borrow_mut().insert(address + i as u16, *v);
-                }
-                Ok(())
-            }
-        }
         let od = e10_od();
         let backed = backed_objects(&od, &e10_map()).unwrap();
-        let log = Log::default();
+        let log = Fake {
+            refuse: Some((97, Exception::IllegalDataValue)),
+            ..Fake::default()
+        };
         // The machine's ramps: 100 ms / 100 ms; R204 = 1 (a monitor: not a parameter).
         log.words
             .borrow_mut()
@@ -863,7 +846,7 @@ on_write = [{ when = "=1", command = "move_velocity", args = { velocity = 10 } }
         let mut d = MapDevice::new(od, log, backed);
         d.refresh();
         d.adopt_power_on_defaults(&[]);
-        let default = |d: &MapDevice<Log>, i| d.od().entry(i, 0).unwrap().def.default.clone();
+        let default = |d: &MapDevice<Fake>, i| d.od().entry(i, 0).unwrap().def.default.clone();
         assert_eq!(default(&d, 0x2071), Value::U32(100 | 100 << 16));
         assert_eq!(
             default(&d, 0x20CC),

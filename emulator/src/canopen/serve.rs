@@ -164,14 +164,19 @@ fn from_wire(f: &WireFrame) -> Incoming {
     frame.map_or(Incoming::Other, Incoming::Frame)
 }
 
-fn send_to(endpoint: &Endpoint, frame: &CanFrame) {
+/// A node's frame as the hub carries it (`None`: not a frame a CAN bus can carry).
+fn to_wire(frame: &CanFrame) -> Option<WireFrame> {
     let wire = if frame.is_rtr() {
         mcemu_can::CanId::standard(frame.id())
             .and_then(|id| WireFrame::remote(id, frame.len() as u8))
     } else {
         WireFrame::standard(frame.id(), frame.data())
     };
-    if let Ok(wire) = wire {
+    wire.ok()
+}
+
+fn send_to(endpoint: &Endpoint, frame: &CanFrame) {
+    if let Some(wire) = to_wire(frame) {
         // A full queue is counted by the hub (tx_overflow).
         let _ = endpoint.send(wire);
     }
@@ -462,13 +467,7 @@ impl MappedNode {
 
     fn send(&mut self) {
         for frame in self.out.drain(..) {
-            let wire = if frame.is_rtr() {
-                mcemu_can::CanId::standard(frame.id())
-                    .and_then(|id| WireFrame::remote(id, frame.len() as u8))
-            } else {
-                WireFrame::standard(frame.id(), frame.data())
-            };
-            if let Ok(wire) = wire {
+            if let Some(wire) = to_wire(&frame) {
                 // A full queue is counted by the hub (tx_overflow).
                 let _ = self.sender.send(wire);
             }
