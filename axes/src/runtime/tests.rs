@@ -1132,18 +1132,35 @@ fn wait_for_calls(log: &Mutex<Vec<(&'static str, u64)>>, len: usize) {
     }
 }
 
-#[test]
-fn a_poke_on_a_paced_clock_serves_input_between_ticks() {
-    let fake = FakeClock::new(&[]);
+type CallLog = Arc<Mutex<Vec<(&'static str, u64)>>>;
+
+/// A realtime runtime on a fake clock with a [`LoggingBus`] installed by its first tick (whose
+/// wake-up is `lateness[0]` late), waiting at the gate: the handle, guard, clock, call log and
+/// the calls' bus times.
+fn paced_logging_bus(
+    lateness: &[Duration],
+) -> (
+    EngineHandle,
+    RuntimeGuard,
+    FakeClock,
+    CallLog,
+    Arc<Mutex<Vec<Duration>>>,
+) {
+    let fake = FakeClock::new(lateness);
     let options = RuntimeOptions::with_clock(ClockMode::Realtime);
-    let (handle, _guard) =
-        Runtime::start_with_clock(drive_engine(), options, fake.clone()).unwrap();
+    let (handle, guard) = Runtime::start_with_clock(drive_engine(), options, fake.clone()).unwrap();
     let (bus, log, _) = logging_bus(None);
     let times = Arc::clone(&bus.times);
     let installed = handle.submit_fieldbus(Box::new(bus)).unwrap();
-    fake.allow(1); // tick 1 installs the fieldbus (before its step)
+    fake.allow(1); // the first tick installs the fieldbus (before its step)
     installed.wait().unwrap();
     fake.wait_at_gate();
+    (handle, guard, fake, log, times)
+}
+
+#[test]
+fn a_poke_on_a_paced_clock_serves_input_between_ticks() {
+    let (handle, _guard, _fake, log, times) = paced_logging_bus(&[]);
     assert_eq!(*log.lock().unwrap(), vec![("before", 0), ("after", 1)]);
     // No deadline passes (the gate holds the clock); the poke is served anyway, at tick 1.
     handle.poke();
@@ -1156,16 +1173,7 @@ fn a_poke_on_a_paced_clock_serves_input_between_ticks() {
 #[test]
 fn a_catch_up_burst_does_not_run_bus_time_ahead_of_the_clock() {
     // The first wake-up is 4 ms late: ticks 1–5 run back to back at clock time 5 ms.
-    let fake = FakeClock::new(&[4 * MS]);
-    let options = RuntimeOptions::with_clock(ClockMode::Realtime);
-    let (handle, _guard) =
-        Runtime::start_with_clock(drive_engine(), options, fake.clone()).unwrap();
-    let (bus, log, _) = logging_bus(None);
-    let times = Arc::clone(&bus.times);
-    let installed = handle.submit_fieldbus(Box::new(bus)).unwrap();
-    fake.allow(1);
-    installed.wait().unwrap();
-    fake.wait_at_gate();
+    let (handle, _guard, _fake, log, times) = paced_logging_bus(&[4 * MS]);
     assert_eq!(handle.snapshot().tick, 5);
     let log = log.lock().unwrap();
     assert_eq!(log.len(), 10, "{log:?}");
