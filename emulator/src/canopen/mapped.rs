@@ -486,8 +486,27 @@ impl<R: Registers> MapDevice<R> {
     /// and their commands (P113 sets the axis's ramp times). Returns how many the map refused;
     /// a refused one keeps the map's value (the next refresh shows it).
     pub fn load_parameters(&mut self) -> u64 {
+        self.load_where(|_, b| b.stored)
+    }
+
+    /// NMT reset node: the stored parameters' power-on values as [`load_parameters`], and the
+    /// process outputs' too (P281 command 0, P282 control word 0), as a drive that reboots comes
+    /// up disabled and idle rather than running as it was. Monitors (R registers) are the
+    /// drive's to say, never written.
+    ///
+    /// [`load_parameters`]: Self::load_parameters
+    pub fn load_reset_values(&mut self) -> u64 {
+        self.load_where(|od, b| {
+            let output = od
+                .entry(b.index, 0)
+                .is_ok_and(|e| e.def.access == axes::od::Access::Rww);
+            b.stored || output
+        })
+    }
+
+    fn load_where(&mut self, wanted: impl Fn(&ObjectDictionary, &Backed) -> bool) -> u64 {
         let mut refused = 0;
-        for b in self.backed.iter().filter(|b| b.stored) {
+        for b in self.backed.iter().filter(|b| wanted(&self.od, b)) {
             let Some(raw) = self.od.get(b.index, 0).and_then(raw_bits) else {
                 continue;
             };
@@ -875,6 +894,41 @@ on_write = [{ when = "=1", command = "move_velocity", args = { velocity = 10 } }
             "again: only the refused one differs"
         );
         assert_eq!(d.registers.writes.borrow().len(), 2);
+    }
+
+    /// NMT reset node: the process outputs' power-on values go into the map too (the drive
+    /// comes back disabled and idle); monitors are never written.
+    #[test]
+    fn reset_node_disables_the_drive_through_the_map() {
+        let od = e10_od();
+        let backed = backed_objects(&od, &e10_map()).unwrap();
+        let fake = Fake::default();
+        // Running: P281 = 3 (a command), P282 = 1 (enabled); R204 = 1 (ready, a monitor).
+        fake.words
+            .borrow_mut()
+            .extend([(281, 3), (282, 1), (204, 1)]);
+        let mut d = MapDevice::new(od, fake, backed);
+        d.refresh();
+        d.adopt_power_on_defaults(&[]);
+        // What reset node leaves in the dictionary: the power-on values (0 for both outputs).
+        for index in [0x2119u16, 0x211A] {
+            let value = d.od().entry(index, 0).unwrap().def.default.clone();
+            d.od_mut().set(index, 0, value).unwrap();
+        }
+        assert_eq!(d.load_parameters(), 0);
+        assert!(
+            d.registers.writes.borrow().is_empty(),
+            "parameters alone: no output"
+        );
+        assert_eq!(d.load_reset_values(), 0);
+        let mut written = d.registers.writes.borrow().clone();
+        written.sort();
+        assert_eq!(written, [(281, vec![0]), (282, vec![0])]);
+        assert_eq!(
+            d.registers.words.borrow()[&204],
+            1,
+            "the monitor is untouched"
+        );
     }
 
     /// A DCF's `ParameterValue` for a stored parameter is its power-on value: written into the

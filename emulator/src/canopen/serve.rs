@@ -719,7 +719,7 @@ impl MappedNodeTask {
                     n.out.extend(frames);
                 }
                 NodeEvent::ResetNode => {
-                    n.node.device_mut().load_parameters();
+                    n.node.device_mut().load_reset_values();
                     self.refreshed = None;
                 }
                 _ => {}
