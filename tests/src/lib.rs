@@ -47,6 +47,26 @@ pub fn workspace_root() -> PathBuf {
         .to_path_buf()
 }
 
+/// A fresh, empty directory `root/name-PID`. Tests pass `env!("CARGO_TARGET_TMPDIR")` as `root`:
+/// it is inside the directories the vcan harness mounts read-write in its VM.
+pub fn fresh_dir(root: &str, name: &str) -> PathBuf {
+    let dir = Path::new(root).join(format!("{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Everything a failed assertion about a finished process should show: what it was, its exit
+/// status, stdout and stderr.
+pub fn output_report(what: &str, out: &Output) -> String {
+    format!(
+        "{what}: {}\n--- stdout\n{}\n--- stderr\n{}",
+        out.status,
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    )
+}
+
 /// A script of the external-client harness, `tests/python/NAME`.
 pub fn python_script(name: &str) -> PathBuf {
     let path = workspace_root().join("tests/python").join(name);

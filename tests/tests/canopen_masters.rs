@@ -18,12 +18,13 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::Path;
+use std::process::Command;
 use std::time::Duration;
 
 use mcemu_tests::{
-    cargo_test_executable, mcemu_bin, python, python_script, run_with_timeout, workspace_root,
+    cargo_test_executable, fresh_dir, mcemu_bin, output_report, python, python_script,
+    run_with_timeout, workspace_root,
 };
 use serde_json::Value;
 
@@ -59,25 +60,6 @@ const SOCKETCAN_CASES: &[&str] = &["v_can_utils"];
 const HOST_TIMEOUT: Duration = Duration::from_secs(240);
 /// Bound of the VM run given to the harness (boot included), and the outer bound here.
 const VM_TIMEOUT_SECS: u64 = 480;
-
-/// A fresh directory of this test under the cargo target directory's tmp/ (inside the
-/// directories the vcan harness mounts read-write in its VM).
-fn fresh_dir(name: &str) -> PathBuf {
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
-        .join(format!("canopen-masters-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn report(what: &str, out: &Output) -> String {
-    format!(
-        "{what}: {}\n--- stdout\n{}\n--- stderr\n{}",
-        out.status,
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    )
-}
 
 /// What the suite wrote to `results`, checked: exactly `expected` cases, in order, all passed.
 /// Returns the results (with the cases' notes: measured figures) for the caller's output.
@@ -133,7 +115,7 @@ fn notes(json: &Value) -> String {
 
 #[test]
 fn python_canopen_masters_over_socketcand() {
-    let dir = fresh_dir("socketcand");
+    let dir = fresh_dir(env!("CARGO_TARGET_TMPDIR"), "canopen-masters-socketcand");
     let results = dir.join("suite.json");
     let mut command = Command::new(python());
     command
@@ -145,7 +127,7 @@ fn python_canopen_masters_over_socketcand() {
         .arg("--out")
         .arg(&results);
     let out = run_with_timeout(command, b"", HOST_TIMEOUT);
-    let context = report("canopen_suite.py --interface socketcand", &out);
+    let context = output_report("canopen_suite.py --interface socketcand", &out);
     let json = check_suite(&results, CASES, &context);
     assert!(out.status.success(), "{context}");
     println!("{}", notes(&json));
@@ -167,7 +149,7 @@ exit 0
 
 #[test]
 fn python_canopen_masters_can_utils_and_socketcan_tests_on_a_real_vcan0() {
-    let dir = fresh_dir("vcan");
+    let dir = fresh_dir(env!("CARGO_TARGET_TMPDIR"), "canopen-masters-vcan");
     let socketcan_tests = cargo_test_executable("mcemu-can", "socketcan");
     // The tests the VM must run: those the binary lists as ignored.
     let listed = Command::new(&socketcan_tests)
@@ -196,7 +178,7 @@ fn python_canopen_masters_can_utils_and_socketcan_tests_on_a_real_vcan0() {
         .arg(mcemu_bin())
         .arg(&socketcan_tests);
     let out = run_with_timeout(command, b"", Duration::from_secs(VM_TIMEOUT_SECS + 60));
-    let context = report("tests/vcan/run -- canopen suite + socketcan tests", &out);
+    let context = output_report("tests/vcan/run -- canopen suite + socketcan tests", &out);
     assert_eq!(
         out.status.code(),
         Some(0),

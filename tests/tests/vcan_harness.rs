@@ -11,11 +11,10 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-use std::path::PathBuf;
-use std::process::{Command, Output};
+use std::process::Command;
 use std::time::Duration;
 
-use mcemu_tests::{run_with_timeout, workspace_root};
+use mcemu_tests::{fresh_dir, output_report, run_with_timeout, workspace_root};
 
 /// Bound of one harness run seen from here: a VM boot takes about 4 s on an idle 2-core
 /// machine, the self-test about 5 s more; other tests running beside it slow both down.
@@ -25,25 +24,6 @@ fn harness() -> Command {
     Command::new(workspace_root().join("tests/vcan/run"))
 }
 
-/// A fresh directory of this test under the cargo target directory's tmp/.
-fn fresh_dir(name: &str) -> PathBuf {
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
-        .join(format!("vcan-harness-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-/// Everything a failed assertion should show.
-fn report(what: &str, out: &Output) -> String {
-    format!(
-        "{what}: {}\n--- stdout\n{}\n--- stderr\n{}",
-        out.status,
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    )
-}
-
 /// The rest of the stdout line that starts with `prefix`.
 fn line_after<'a>(stdout: &'a str, prefix: &str) -> Option<&'a str> {
     stdout.lines().find_map(|l| l.strip_prefix(prefix))
@@ -51,7 +31,7 @@ fn line_after<'a>(stdout: &'a str, prefix: &str) -> Option<&'a str> {
 
 #[test]
 fn selftest_exchanges_frames_on_a_real_vcan0() {
-    let dir = fresh_dir("selftest");
+    let dir = fresh_dir(env!("CARGO_TARGET_TMPDIR"), "vcan-harness-selftest");
     let selftest = workspace_root().join("tests/vcan/selftest");
     let mut command = harness();
     // Exit 42 after a passing self-test: the status must come back as it is.
@@ -62,7 +42,7 @@ fn selftest_exchanges_frames_on_a_real_vcan0() {
         .arg(&selftest)
         .arg(&dir);
     let out = run_with_timeout(command, b"", HARNESS_TIMEOUT);
-    let report = report("tests/vcan/run -- tests/vcan/selftest", &out);
+    let report = output_report("tests/vcan/run -- tests/vcan/selftest", &out);
     let stdout = String::from_utf8_lossy(&out.stdout);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(42), "{report}");
@@ -119,7 +99,7 @@ fn a_vm_that_runs_out_of_time_fails_with_124() {
     let mut command = harness();
     command.args(["--mode", "vm", "--timeout", "2", "--", "sleep", "60"]);
     let out = run_with_timeout(command, b"", HARNESS_TIMEOUT);
-    let report = report("tests/vcan/run --mode vm --timeout 2 -- sleep 60", &out);
+    let report = output_report("tests/vcan/run --mode vm --timeout 2 -- sleep 60", &out);
     assert_eq!(out.status.code(), Some(124), "{report}");
     assert!(
         String::from_utf8_lossy(&out.stderr).contains("vcan: timed out"),
@@ -138,7 +118,7 @@ fn a_vm_that_stops_before_the_command_fails_with_125() {
         )
         .args(["--mode", "vm", "--timeout", "120", "--", "true"]);
     let out = run_with_timeout(command, b"", HARNESS_TIMEOUT);
-    let report = report("tests/vcan/run --mode vm -- true (no init)", &out);
+    let report = output_report("tests/vcan/run --mode vm -- true (no init)", &out);
     assert_eq!(out.status.code(), Some(125), "{report}");
     assert!(
         String::from_utf8_lossy(&out.stderr)

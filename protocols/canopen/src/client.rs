@@ -91,6 +91,16 @@ impl SdoClient {
         if r[0] & 0xE0 != 0x40 {
             return Err(ClientError::Protocol(frame(self.tx(), r)));
         }
+        self.finish_upload(bus, r)
+    }
+
+    /// The rest of a normal upload whose initiate response is `r`: its expedited data, or the
+    /// segments that follow (toggle checked).
+    fn finish_upload<D: Device>(
+        &self,
+        bus: &mut Bus<D>,
+        r: [u8; 8],
+    ) -> Result<Vec<u8>, ClientError> {
         if r[0] & 0x02 != 0 {
             let n = if r[0] & 0x01 != 0 {
                 4 - usize::from((r[0] >> 2) & 3)
@@ -270,25 +280,7 @@ impl SdoClient {
         let r = self.request(bus, mux(0xA4, index, sub, [self.block_size, pst, 0, 0]))?;
         if r[0] & 0xE0 == 0x40 {
             // The server switched to a normal upload.
-            if r[0] & 0x02 != 0 {
-                let n = if r[0] & 0x01 != 0 {
-                    4 - usize::from((r[0] >> 2) & 3)
-                } else {
-                    4
-                };
-                return Ok(r.get(4..4 + n).unwrap_or_default().to_vec());
-            }
-            let mut data = Vec::new();
-            let mut toggle = 0u8;
-            loop {
-                let s = self.request(bus, [0x60 | toggle, 0, 0, 0, 0, 0, 0, 0])?;
-                let n = 7 - usize::from((s[0] >> 1) & 7);
-                data.extend_from_slice(s.get(1..1 + n).unwrap_or_default());
-                if s[0] & 1 != 0 {
-                    return Ok(data);
-                }
-                toggle ^= 0x10;
-            }
+            return self.finish_upload(bus, r);
         }
         if r[0] & 0xE3 != 0xC2 {
             return Err(ClientError::Protocol(frame(self.tx(), r)));
