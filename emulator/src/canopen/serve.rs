@@ -74,34 +74,39 @@ impl Frontend for CanopenFrontend {
 
     fn state(&self) -> Value {
         let c = self.hub.counters();
+        // Rendered under the lock: the servo thread's try_lock skips one publication at worst.
         let nodes: Vec<Value> = self
             .nodes
             .lock()
-            .map(|n| n.clone())
-            .unwrap_or_default()
-            .iter()
-            .map(|n| {
-                let mut v = node_json(n.node_id, n.nmt, &n.counters);
-                v.insert("drive".into(), json!(n.slave));
-                Value::Object(v)
+            .map(|nodes| {
+                nodes
+                    .iter()
+                    .map(|n| {
+                        let mut v = node_json(n.node_id, n.nmt, &n.counters);
+                        v.insert("drive".into(), json!(n.slave));
+                        Value::Object(v)
+                    })
+                    .collect()
             })
-            .collect();
+            .unwrap_or_default();
         let mapped: Vec<Value> = self
             .mapped
             .lock()
-            .map(|n| n.clone())
-            .unwrap_or_default()
-            .iter()
-            .map(|n| {
-                let mut v = node_json(n.node_id, n.nmt, &n.counters);
-                v.insert("axis".into(), json!(n.axis));
-                v.insert("refresh_errors".into(), json!(n.refresh_errors));
-                v.insert("rpdo_write_errors".into(), json!(n.rpdo_write_errors));
-                v.insert("parameter_errors".into(), json!(n.parameter_errors));
-                v.insert("ticks_skipped".into(), json!(n.ticks_skipped));
-                Value::Object(v)
+            .map(|nodes| {
+                nodes
+                    .iter()
+                    .map(|n| {
+                        let mut v = node_json(n.node_id, n.nmt, &n.counters);
+                        v.insert("axis".into(), json!(n.axis));
+                        v.insert("refresh_errors".into(), json!(n.refresh_errors));
+                        v.insert("rpdo_write_errors".into(), json!(n.rpdo_write_errors));
+                        v.insert("parameter_errors".into(), json!(n.parameter_errors));
+                        v.insert("ticks_skipped".into(), json!(n.ticks_skipped));
+                        Value::Object(v)
+                    })
+                    .collect()
             })
-            .collect();
+            .unwrap_or_default();
         let link = self
             .socketcan
             .lock()
