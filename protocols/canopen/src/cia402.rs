@@ -267,19 +267,17 @@ impl<P: FramePort> CanopenFieldbus<P> {
         }
     }
 
+    /// Every tick: refills the shared list in place (no allocation once it has its size), and
+    /// skips the tick when a reader holds it.
     fn publish_status(&self) {
-        let status: Vec<NodeStatus> = self
-            .nodes
-            .iter()
-            .map(|n| NodeStatus {
+        if let Ok(mut s) = self.status.try_lock() {
+            s.clear();
+            s.extend(self.nodes.iter().map(|n| NodeStatus {
                 node_id: n.node.node_id(),
                 slave: n.slave,
                 nmt: n.node.nmt_state(),
                 counters: n.node.counters(),
-            })
-            .collect();
-        if let Ok(mut s) = self.status.try_lock() {
-            *s = status;
+            }));
         }
     }
 }
