@@ -24,6 +24,7 @@ use std::time::{Duration, Instant};
 
 mod mcemu;
 mod modbus;
+mod socketcand;
 
 pub use mcemu::{
     cargo_test_executable, mcemu_bin, wait_for, Mcemu, McemuExit, TempDir, STOP_TIMEOUT,
@@ -32,6 +33,7 @@ pub use modbus::{
     crc16, hex, mbap_frame, mbpoll, mbpoll_values, rtu_frame, to_hex, ByteLink, MbapClient,
     MbapReply, RawSerial, REPLY_TIMEOUT,
 };
+pub use socketcand::{frame_of, Socketcand};
 
 /// How long [`run_python_client`] lets one client run before killing it.
 pub const CLIENT_TIMEOUT: Duration = Duration::from_secs(60);

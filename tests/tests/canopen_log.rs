@@ -5,92 +5,10 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-use std::io::{Read, Write};
-use std::net::TcpStream;
 use std::path::Path;
-use std::time::{Duration, Instant};
 
-use mcemu_tests::{workspace_root, Mcemu, TempDir};
+use mcemu_tests::{workspace_root, Mcemu, Socketcand, TempDir};
 use serde_json::{json, Value};
-
-/// A socketcand client in raw mode on bus `vcan0`.
-struct Socketcand {
-    stream: TcpStream,
-    pending: Vec<u8>,
-}
-
-impl Socketcand {
-    fn open(address: &str) -> Socketcand {
-        let stream = TcpStream::connect(address).unwrap();
-        stream
-            .set_read_timeout(Some(Duration::from_millis(100)))
-            .unwrap();
-        let mut c = Socketcand {
-            stream,
-            pending: Vec::new(),
-        };
-        assert_eq!(c.element(), "< hi >");
-        c.send("< open vcan0 >");
-        assert_eq!(c.element(), "< ok >");
-        c.send("< rawmode >");
-        assert_eq!(c.element(), "< ok >");
-        c
-    }
-
-    fn send(&mut self, text: &str) {
-        self.stream.write_all(text.as_bytes()).unwrap();
-    }
-
-    /// The next element; panics when none comes within 10 s.
-    fn element(&mut self) -> String {
-        let deadline = Instant::now() + Duration::from_secs(10);
-        loop {
-            if let Some(end) = self.pending.iter().position(|&b| b == b'>') {
-                let element: Vec<u8> = self.pending.drain(..=end).collect();
-                return String::from_utf8(element).unwrap().trim().to_string();
-            }
-            assert!(Instant::now() < deadline, "no element from socketcand");
-            let mut buf = [0u8; 1024];
-            match self.stream.read(&mut buf) {
-                Ok(0) => panic!("socketcand closed the connection"),
-                Ok(n) => self.pending.extend_from_slice(&buf[..n]),
-                Err(e) if matches!(e.kind(), std::io::ErrorKind::WouldBlock) => {}
-                Err(e) if matches!(e.kind(), std::io::ErrorKind::TimedOut) => {}
-                Err(e) => panic!("socketcand: {e}"),
-            }
-        }
-    }
-
-    /// Send an expedited SDO upload request of (index, sub) to `node` and wait for the node's
-    /// answer; both frames as candump's `ID#DATA`.
-    fn sdo_upload(&mut self, node: u16, index: u16, sub: u8) -> (String, String) {
-        let [lo, hi] = index.to_le_bytes();
-        let request = [0x40, lo, hi, sub, 0, 0, 0, 0];
-        let bytes: Vec<String> = request.iter().map(|b| format!("{b:02X}")).collect();
-        self.send(&format!(
-            "< send {:03X} 8 {} >",
-            0x600 + node,
-            bytes.join(" ")
-        ));
-        let answer_id = format!("{:03X}", 0x580 + node);
-        loop {
-            let element = self.element();
-            let fields: Vec<&str> = element.split_whitespace().collect();
-            // < frame ID SECS.USECS DATA >
-            if fields.get(1) == Some(&"frame") && fields.get(2) == Some(&answer_id.as_str()) {
-                let data = fields.get(4).unwrap().to_string();
-                return (
-                    format!("{:03X}#{}", 0x600 + node, hex(&request)),
-                    format!("{answer_id}#{data}"),
-                );
-            }
-        }
-    }
-}
-
-fn hex(bytes: &[u8]) -> String {
-    bytes.iter().map(|b| format!("{b:02X}")).collect()
-}
 
 /// One `candump -L` line, `(SECS.USECS) vcan0 ID#DATA`, as its `ID#DATA`; `None` when the line
 /// has another form.

@@ -8,7 +8,7 @@
 use std::process::Command;
 use std::time::Duration;
 
-use mcemu_tests::Mcemu;
+use mcemu_tests::{frame_of, Mcemu, Socketcand};
 use mcemu_tests::{python, python_script, run_with_timeout, workspace_root};
 use serde_json::{json, Value};
 
@@ -374,6 +374,49 @@ fn e10_timers_in_one_long_advance_fire_at_their_ticks() {
         ticks, one,
         "1 000 advances of one tick against one of 1 000"
     );
+}
+
+/// What the E10 sends goes out in the order of its causes, however the frames reach it: an NMT
+/// start and an SDO request written in one TCP write (one batch for the node) give the start's
+/// TPDOs before the SDO answer, as two separate writes do. (Before, the node ran its timers once
+/// after a batch: the answer came first, and a master that took the answer as "everything
+/// before is in" lost the TPDOs — the cause of a flaky `e10_timers_…` run.)
+#[test]
+fn an_nmt_start_and_an_sdo_request_in_one_write_answer_in_order() {
+    let m = Mcemu::start(
+        Some(&workspace_root().join("fixtures/cpu226h.toml")),
+        &["--clock", "virtual"],
+    );
+    let mut bus = Socketcand::open(m.address("socketcand"));
+    for round in 0..5 {
+        // Pre-operational (no PDOs) past the TPDOs' inhibit time, then start and read 0x1000
+        // in one write.
+        bus.send(&format!("< send 000 2 80 {NODE:02X} >"));
+        bus.sdo_upload(u16::from(NODE), 0x1000, 0);
+        m.advance(&json!({"seconds": 0.05}));
+        bus.send(&format!(
+            "< send 000 2 01 {NODE:02X} >< send {:03X} 8 40 00 10 00 00 00 00 00 >",
+            0x600 + u16::from(NODE)
+        ));
+        let answer = format!("{:03X}", 0x580 + u16::from(NODE));
+        let mut before = Vec::new();
+        loop {
+            let Some((id, data)) = frame_of(&bus.element()) else {
+                continue;
+            };
+            if id == answer {
+                assert!(data.starts_with("43001000"), "round {round}: {data}");
+                break;
+            }
+            before.push(id);
+        }
+        for tpdo in ["182", "282"] {
+            assert!(
+                before.iter().any(|id| id == tpdo),
+                "round {round}: TPDO {tpdo} of the start before the SDO answer: {before:?}"
+            );
+        }
+    }
 }
 
 /// The axis's ramp times, in seconds (the parameters P113/P114 set).

@@ -670,9 +670,11 @@ impl MappedNodeTask {
         n.publish(&self.status, self.slot);
     }
 
-    /// A batch of frames, in arrival order, then the node's timers at the same time (a frame
-    /// may have changed TPDO data: on the virtual clock, where time stands still, an event-driven
-    /// TPDO goes out at once).
+    /// A batch of frames, in arrival order, each followed by the node's timers at the same time
+    /// (a frame may have changed TPDO data or started the node: on the virtual clock, where time
+    /// stands still, an event-driven TPDO goes out at once). Ticking after each frame keeps what
+    /// goes out in the order of its causes however the frames were batched: an NMT start's
+    /// TPDOs precede the answer to an SDO request that followed the start.
     fn on_frames(&mut self, frames: &[WireFrame]) {
         let shared = Arc::clone(&self.shared);
         let mut n = lock_node(&shared);
@@ -693,15 +695,15 @@ impl MappedNodeTask {
                     // A write may have issued commands: the next call reads the map again.
                     self.refreshed = None;
                     self.handle_events(&mut n, now);
+                    self.refresh(&mut n);
+                    let MappedNode { node, out, .. } = &mut *n;
+                    node.on_tick_into(now, out);
+                    self.handle_events(&mut n, now);
                 }
                 Incoming::Error => n.node.note_error_frame(),
                 Incoming::Other => {}
             }
         }
-        self.refresh(&mut n);
-        let MappedNode { node, out, .. } = &mut *n;
-        node.on_tick_into(now, out);
-        self.handle_events(&mut n, now);
         n.flush(&self.status, self.slot);
     }
 
