@@ -105,7 +105,8 @@ fn python_canopen_enables_reads_and_positions_the_e10_at_node_2() {
             {"op": "sdo_write", "index": 0x20CC, "data": "0100"},
             {"op": "sdo_write", "index": 0x211A, "data": "010000"},
             {"op": "nmt", "state": "OPERATIONAL"},
-            {"op": "sleep", "seconds": 0.3},
+            // Answered after every frame the start sent (decisions.md, "CT E10 on CANopen").
+            {"op": "sdo_read", "index": 0x1000},
             {"op": "frames", "cob_id": 0x182},
             {"op": "frames", "cob_id": 0x702},
         ]),
@@ -165,7 +166,8 @@ fn python_canopen_enables_reads_and_positions_the_e10_at_node_2() {
         &m,
         &json!([
             {"op": "send", "cob_id": 0x202, "data": "03000000204e0000"},
-            {"op": "sleep", "seconds": 0.3},
+            // Answered after the RPDO's writes: the node takes its frames in order.
+            {"op": "sdo_read", "index": 0x1000},
         ]),
     );
     assert_eq!(r[0]["ok"], true);
@@ -184,23 +186,22 @@ fn python_canopen_enables_reads_and_positions_the_e10_at_node_2() {
     assert!((act - 20000.0).abs() <= 1.0, "{state}");
 
     // ---- live values: TPDO1 by its event timer as time advances, SDO uploads ------------
-    let handle = {
-        let ops = json!([
-            {"op": "wait_frame", "cob_id": 0x182, "timeout": 20},
+    // Time stands still until advanced: the event timer (100 ms) fires in the advance.
+    let r = session_with(
+        &m.port("socketcand"),
+        Some(&m.api),
+        &json!([
+            {"op": "advance", "body": {"seconds": 0.2}},
             {"op": "sdo_read", "index": 0x20D8},
             {"op": "sdo_read", "index": 0x20CC},
             // Disabled, the drive refuses a run command (P281 = 1): the map's 04.
             {"op": "sdo_write", "index": 0x211A, "data": "0000"},
             {"op": "sdo_write", "index": 0x2119, "data": "0100"},
-        ]);
-        let port = m.port("socketcand");
-        std::thread::spawn(move || session_at(&port, &ops))
-    };
-    // Time stands still until advanced: the event timer (100 ms) fires in the advance.
-    std::thread::sleep(Duration::from_secs(2));
-    m.advance(&json!({"seconds": 0.2}));
-    let r = handle.join().unwrap();
-    let tpdo1 = bytes(&r[0]);
+            {"op": "frames", "cob_id": 0x182},
+        ]),
+    );
+    let frames = r[5]["ok"].as_array().unwrap();
+    let tpdo1 = unhex(frames.first().unwrap().as_str().unwrap());
     let state = m.axis(AXIS);
     assert!(!has(&state, "enabled"), "P282 = 0 disables: {state}");
     let act = state["act_pos"].as_f64().unwrap().round() as i32;
