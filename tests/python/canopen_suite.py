@@ -279,8 +279,18 @@ class Recorder:
 
 
 def settle():
-    """Time for frames already sent to reach this process (socketcand or vcan0)."""
+    """Time for frames that must NOT come to show up if they were sent anyway (socketcand or
+    vcan0): only before asserting an absence. A frame that must come is waited for (wait_count)
+    or fenced by barrier()."""
     time.sleep(0.4 if IN_VM else 0.15)
+
+
+def barrier(cx, node_ids):
+    """Once each of these nodes has answered an SDO upload sent now, every frame it sent before
+    (for a frame of this process that came before the request) is in: a node takes frames in bus
+    order and its frames leave in the order it made them. A stopped node answers no SDO."""
+    for node_id in node_ids:
+        cx.node(node_id).sdo.upload(0x1000, 0)
 
 
 def u32(data):
@@ -726,10 +736,10 @@ def v_nmt(cx):
         settle()
         eq([f[2] for f in rec.of(0x704)], [bytes([expected_byte])], f"heartbeat after {what}")
 
-    def sync_tpdo_senders():
+    def sync_tpdo_senders(stopped=()):
         rec.clear()
         cx.net.sync.transmit()
-        settle()
+        barrier(cx, [i for i in range(1, 5) if i not in stopped])
         return sorted({f[1] - 0x380 for f in rec.of() if 0x381 <= f[1] <= 0x384})
 
     eq(sync_tpdo_senders(), [], "TPDO3 senders on SYNC in pre-operational")
@@ -737,7 +747,7 @@ def v_nmt(cx):
     eq(node.nmt.state, "OPERATIONAL", "python-canopen's view of node 4")
     eq(sync_tpdo_senders(), [4], "TPDO3 senders on SYNC with node 4 operational")
     command("STOPPED", 0x04, "stop")
-    eq(sync_tpdo_senders(), [], "TPDO3 senders on SYNC with node 4 stopped")
+    eq(sync_tpdo_senders(stopped=[4]), [], "TPDO3 senders on SYNC with node 4 stopped")
     rec.clear()
     cx.net.send_message(0x604, bytes([0x40, 0x00, 0x10, 0x00, 0, 0, 0, 0]))
     settle()
@@ -759,10 +769,8 @@ def v_nmt(cx):
     # All nodes at once (node id 0).
     boot = Recorder(cx.net, range(0x701, 0x705))
     cx.net.nmt.state = "OPERATIONAL"
-    settle()
     eq(sync_tpdo_senders(), [1, 2, 3, 4], "TPDO3 senders with every node started")
     cx.net.nmt.state = "PRE-OPERATIONAL"
-    settle()
     eq(sync_tpdo_senders(), [], "TPDO3 senders with every node pre-operational")
     boot.clear()
     cx.net.nmt.state = "RESET COMMUNICATION"
@@ -1336,6 +1344,14 @@ class BusLog:
         if self.cx.interface == "socketcand":
             self.bus.send = self.send
             return
+        # candump has read every frame before this one once it logged it.
+        subprocess.run(["cansend", "vcan0", "7FF#01"], check=True)
+
+        def marked():
+            with open(self.path) as f:
+                return " 7FF#01" in f.read()
+
+        wait_until("candump read the bus", 10 * SLOW, marked, interval=0.05)
         self.dump.terminate()
         self.dump.wait()
         self.log.close()
@@ -1407,11 +1423,31 @@ def r_csp(cx):
     finally:
         cx.net.sync.stop()
         rpdo.stop()
-    # The node serves what is still queued; the logs are flushed.
-    time.sleep(0.3 * SLOW)
-    after = cx.mcemu.node_counters(4)
+    # Node 4 has taken every frame before its answer; candump has logged what it read.
+    barrier(cx, [4])
     bus.stop()
+    on_bus = bus.counts
+    if cx.interface == "socketcand":
+        # The emulator's own log holds the frames before this marker once it holds the marker.
+        cx.net.send_message(0x7FF, b"\x01")
+
+        def logged():
+            with open(cx.mcemu.bus_log) as f:
+                return " 7FF#01" in f.read()
+
+        wait_until("the emulator's bus log", 10 * SLOW, logged, interval=0.05)
     cx.net.bus.set_filters(None)
+
+    # The node's counters are published after each servo tick.
+    def counted():
+        c = cx.mcemu.node_counters(4)
+        return c if (c["sync"] - before["sync"], c["rpdos"] - before["rpdos"]) == (
+            on_bus[0x080], on_bus[0x404]) else None
+
+    try:
+        after = wait_until("node 4's counters", 2 * SLOW, counted)
+    except Failure:
+        after = cx.mcemu.node_counters(4)  # the checks below say what differs
     syncs = after["sync"] - before["sync"]
     rpdos = after["rpdos"] - before["rpdos"]
     frames_out = after["frames_out"] - before["frames_out"]
@@ -1450,7 +1486,6 @@ def r_csp(cx):
                 # How long before on the bus the master first asked for this position.
                 lags.append(stamp - next((t for t, p in seen if p >= pos - tol), stamp))
     lags.sort()
-    on_bus = bus.counts
     notes = {"window_s": round(window, 3), "setpoint_updates": updates,
              "syncs_on_bus": on_bus[0x080], "syncs_taken": syncs, "rpdos_on_bus": on_bus[0x404],
              "rpdos_taken": rpdos, "frames_out": frames_out, "tpdo3_seen": len(samples),
