@@ -1041,10 +1041,13 @@ def r_stored_survive(cx):
 
 def r_heartbeat(cx):
     """0x1017 = 100 ms on the realtime clock: the heartbeats of 1.5 s of wall time, counted and
-    their intervals measured, within ranges; 0 stops them. The producer runs on engine time,
-    which is wall time on a machine that keeps up (asserted on the host); under qemu's TCG a
-    debug build's 1 ms tick can take longer than 1 ms and engine time falls behind, so there the
-    count is held against the engine's own clock."""
+    their intervals measured, within ranges; 0 stops them. The producer runs on bus time, which
+    is wall time on a paced clock even while the servo thread catches up after a stall
+    (decisions.md, "Bus time"): on the host the count is held to the wall clock. Under qemu's
+    TCG on a loaded machine the servo thread stalls for longer than a period (hundreds of ms,
+    and engine time then runs ahead in its catch-up burst): the producer sends one heartbeat for
+    the missed stretch, as it must, so there it is held to never more than the wall clock allows
+    and to having kept going."""
     node = cx.node(1)
     rec = Recorder(cx.net, [0x701])
     node.sdo.download(0x1017, 0, struct.pack("<H", 100))
@@ -1062,19 +1065,21 @@ def r_heartbeat(cx):
     notes = {"heartbeats": n, "wall_s": round(wall, 3), "engine_s": round(engine, 3),
              "engine_ticks_dropped": s1["runtime"]["dropped_ticks"],
              "overruns": s1["runtime"]["overruns"]}
-    # Engine time: the GETs bracket the window, each frame travels after it is produced.
-    check(abs(n - engine / 0.1) <= (3 if IN_VM else 2),
-          f"{n} heartbeats in {engine:.3f} s of engine time ({notes})")
-    if not IN_VM:
+    # Counted as received: a frame produced just before the window may arrive in it (the
+    # receiving thread reads in bursts), hence the slack.
+    if IN_VM:
+        check(wall / 0.1 / 2 - 1 <= n <= wall / 0.1 + 3,
+              f"{n} heartbeats in {wall:.3f} s of wall time ({notes})")
+    else:
         check(abs(n - wall / 0.1) <= 2, f"{n} heartbeats in {wall:.3f} s of wall time ({notes})")
     gaps = [b[0] - a[0] for a, b in zip(frames, frames[1:])]
     notes.update(min_gap_s=round(min(gaps), 4), max_gap_s=round(max(gaps), 4))
     # Receive-time gaps are only recorded: on a shared machine the receiving Python thread (not
-    # the producer, which runs on engine time) stalls for hundreds of ms and then reads a burst;
+    # the producer, which runs on bus time) stalls for hundreds of ms and then reads a burst;
     # the counts above are what the producer is held to.
     eq({f[2] for f in frames}, {b"\x7f"}, "heartbeat state bytes")
+    # Every heartbeat sent before the answer to this download has been received with it.
     node.sdo.download(0x1017, 0, b"\0\0")
-    time.sleep(0.1 * SLOW)
     rec.clear()
     time.sleep(0.5)
     eq(len(rec.of(0x701)), 0, "heartbeats in 0.5 s after 0x1017 = 0")
