@@ -13,7 +13,8 @@ import logging
 import sys
 
 import canopen
-from canopen.objectdictionary import DOMAIN, ODVariable
+
+from canopen_bench_sdo import connect, dictionary
 
 
 def main():
@@ -27,25 +28,10 @@ def main():
     args = p.parse_args()
     logging.basicConfig(level=logging.CRITICAL)
 
-    network = canopen.Network()
-    if args.interface == "socketcand":
-        # Same TCP tuning as the client, so neither side waits on Nagle's algorithm.
-        network.connect(
-            interface="socketcand",
-            host=args.host,
-            port=args.port,
-            channel=args.channel,
-            tcp_tune=True,
-        )
-    else:
-        network.connect(interface=args.interface, channel=args.channel)
+    # Same TCP tuning as the client, so neither side waits on Nagle's algorithm.
+    network = connect(args, tcp_tune=True)
     try:
-        od = canopen.ObjectDictionary()
-        var = ODVariable("benchmark domain", args.index, 0)
-        var.data_type = DOMAIN
-        var.access_type = "rw"
-        od.add_object(var)
-        network.add_node(canopen.LocalNode(args.node, od))
+        network.add_node(canopen.LocalNode(args.node, dictionary(args.index)))
         print("ready", flush=True)
         sys.stdin.read()
     finally:

@@ -35,7 +35,7 @@ import canopen
 from canopen.objectdictionary import DOMAIN, ODVariable
 
 
-def connect(args):
+def connect(args, tcp_tune):
     network = canopen.Network()
     if args.interface == "socketcand":
         network.connect(
@@ -43,7 +43,7 @@ def connect(args):
             host=args.host,
             port=args.port,
             channel=args.channel,
-            tcp_tune=args.tcp_tune == "on",
+            tcp_tune=tcp_tune,
         )
     else:
         network.connect(interface=args.interface, channel=args.channel)
@@ -122,7 +122,7 @@ def main():
     # python-canopen an error for every abort: the JSON says what failed.
     logging.basicConfig(level=logging.CRITICAL)
 
-    network = connect(args)
+    network = connect(args, args.tcp_tune == "on")
     try:
         node = canopen.RemoteNode(args.node, dictionary(args.index))
         network.add_node(node)
