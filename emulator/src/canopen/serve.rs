@@ -74,39 +74,20 @@ impl Frontend for CanopenFrontend {
 
     fn state(&self) -> Value {
         let c = self.hub.counters();
-        // Rendered under the lock: the servo thread's try_lock skips one publication at worst.
-        let nodes: Vec<Value> = self
-            .nodes
-            .lock()
-            .map(|nodes| {
-                nodes
-                    .iter()
-                    .map(|n| {
-                        let mut v = node_json(n.node_id, n.nmt, &n.counters);
-                        v.insert("drive".into(), json!(n.slave));
-                        Value::Object(v)
-                    })
-                    .collect()
-            })
-            .unwrap_or_default();
-        let mapped: Vec<Value> = self
-            .mapped
-            .lock()
-            .map(|nodes| {
-                nodes
-                    .iter()
-                    .map(|n| {
-                        let mut v = node_json(n.node_id, n.nmt, &n.counters);
-                        v.insert("axis".into(), json!(n.axis));
-                        v.insert("refresh_errors".into(), json!(n.refresh_errors));
-                        v.insert("rpdo_write_errors".into(), json!(n.rpdo_write_errors));
-                        v.insert("parameter_errors".into(), json!(n.parameter_errors));
-                        v.insert("ticks_skipped".into(), json!(n.ticks_skipped));
-                        Value::Object(v)
-                    })
-                    .collect()
-            })
-            .unwrap_or_default();
+        let nodes = render_under_lock(&self.nodes, |n| {
+            let mut v = node_json(n.node_id, n.nmt, &n.counters);
+            v.insert("drive".into(), json!(n.slave));
+            v
+        });
+        let mapped = render_under_lock(&self.mapped, |n| {
+            let mut v = node_json(n.node_id, n.nmt, &n.counters);
+            v.insert("axis".into(), json!(n.axis));
+            v.insert("refresh_errors".into(), json!(n.refresh_errors));
+            v.insert("rpdo_write_errors".into(), json!(n.rpdo_write_errors));
+            v.insert("parameter_errors".into(), json!(n.parameter_errors));
+            v.insert("ticks_skipped".into(), json!(n.ticks_skipped));
+            v
+        });
         let link = self
             .socketcan
             .lock()
@@ -128,6 +109,17 @@ impl Frontend for CanopenFrontend {
             "log_dropped": c.log_dropped,
         })
     }
+}
+
+/// A published status list as JSON, rendered under its lock rather than cloned first: the
+/// servo thread's `try_lock` skips one publication at worst.
+fn render_under_lock<T>(
+    list: &Mutex<Vec<T>>,
+    render: impl Fn(&T) -> Map<String, Value>,
+) -> Vec<Value> {
+    list.lock()
+        .map(|list| list.iter().map(|n| Value::Object(render(n))).collect())
+        .unwrap_or_default()
 }
 
 /// What `/state` shows of any node: id, NMT state and counters.
