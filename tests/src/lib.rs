@@ -33,7 +33,7 @@ pub use modbus::{
     crc16, hex, mbap_frame, mbpoll, mbpoll_values, rtu_frame, to_hex, ByteLink, MbapClient,
     MbapReply, RawSerial, REPLY_TIMEOUT,
 };
-pub use socketcand::{frame_of, Socketcand};
+pub use socketcand::{RawFrame, Socketcand};
 
 /// How long [`run_python_client`] lets one client run before killing it.
 pub const CLIENT_TIMEOUT: Duration = Duration::from_secs(60);

@@ -72,7 +72,7 @@ fn the_bus_log_starts_and_stops_through_the_control_api() {
         json!({"path": config_log.display().to_string()}),
         "{canopen}"
     );
-    let mut bus = Socketcand::open(m.address("socketcand"));
+    let mut bus = Socketcand::open(m.address("socketcand"), "vcan0");
 
     // The config's log runs: a second one is refused.
     let (status, body) = m.post("/canopen/log/start", &json!({"path": api_log}));

@@ -8,8 +8,8 @@
 use std::process::Command;
 use std::time::Duration;
 
-use mcemu_tests::{frame_of, Mcemu, Socketcand};
 use mcemu_tests::{python, python_script, run_with_timeout, workspace_root};
+use mcemu_tests::{Mcemu, RawFrame, Socketcand};
 use serde_json::{json, Value};
 
 const AXIS: usize = 5; // e10_can
@@ -388,7 +388,7 @@ fn an_nmt_start_and_an_sdo_request_in_one_write_answer_in_order() {
         Some(&workspace_root().join("fixtures/cpu226h.toml")),
         &["--clock", "virtual"],
     );
-    let mut bus = Socketcand::open(m.address("socketcand"));
+    let mut bus = Socketcand::open(m.address("socketcand"), "vcan0");
     for round in 0..5 {
         // Pre-operational (no PDOs) past the TPDOs' inhibit time, then start and read 0x1000
         // in one write.
@@ -399,22 +399,25 @@ fn an_nmt_start_and_an_sdo_request_in_one_write_answer_in_order() {
             "< send 000 2 01 {NODE:02X} >< send {:03X} 8 40 00 10 00 00 00 00 00 >",
             0x600 + u16::from(NODE)
         ));
-        let answer = format!("{:03X}", 0x580 + u16::from(NODE));
+        let answer = 0x580 + u16::from(NODE);
         let mut before = Vec::new();
         loop {
-            let Some((id, data)) = frame_of(&bus.element()) else {
+            let Some(frame) = RawFrame::parse(&bus.next_element()) else {
                 continue;
             };
-            if id == answer {
-                assert!(data.starts_with("43001000"), "round {round}: {data}");
+            if frame.id == answer {
+                assert!(
+                    frame.data.starts_with(&[0x43, 0x00, 0x10, 0x00]),
+                    "round {round}: {frame:?}"
+                );
                 break;
             }
-            before.push(id);
+            before.push(frame.id);
         }
-        for tpdo in ["182", "282"] {
+        for tpdo in [0x182, 0x282] {
             assert!(
-                before.iter().any(|id| id == tpdo),
-                "round {round}: TPDO {tpdo} of the start before the SDO answer: {before:?}"
+                before.contains(&tpdo),
+                "round {round}: TPDO {tpdo:03X} of the start before the SDO answer: {before:03X?}"
             );
         }
     }

@@ -7,11 +7,12 @@
 
 #![allow(dead_code)] // each bench uses its own part
 
-use std::io::{BufRead, BufReader, Read, Write};
-use std::net::TcpStream;
+use std::io::{BufRead, BufReader, Read};
 use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
+
+use mcemu_tests::{RawFrame, Socketcand};
 
 pub const ROLE_VAR: &str = "MCEMU_BENCH_ROLE";
 /// How the vcan side's results come back to the host: one `ROW {json}` line each.
@@ -225,84 +226,18 @@ mod raw {
     }
 }
 
-/// A socketcand client in raw mode (what python-can's `socketcand` interface speaks), with
-/// TCP_NODELAY.
+/// A socketcand client in raw mode (what python-can's `socketcand` interface speaks): the
+/// tests' [`Socketcand`], with sends queued so that a batch goes out in one write.
 pub struct SocketcandLink {
-    stream: TcpStream,
-    buffer: Vec<u8>,
-    start: usize,
+    link: Socketcand,
     out: String,
-    timeout: Option<Duration>,
 }
 
 impl SocketcandLink {
     pub fn open(addr: &str, bus: &str) -> SocketcandLink {
-        let stream = TcpStream::connect(addr).unwrap_or_else(|e| panic!("socketcand {addr}: {e}"));
-        stream.set_nodelay(true).unwrap();
-        let mut link = SocketcandLink {
-            stream,
-            buffer: Vec::with_capacity(1 << 16),
-            start: 0,
+        SocketcandLink {
+            link: Socketcand::open(addr, bus),
             out: String::new(),
-            timeout: None,
-        };
-        let timeout = Duration::from_secs(10);
-        let expect = |link: &mut SocketcandLink, what: &str| {
-            let element = link
-                .element(timeout)
-                .unwrap_or_else(|| panic!("socketcand {addr}: no `{what}` within {timeout:?}"));
-            assert_eq!(element, what, "socketcand {addr}: unexpected reply");
-        };
-        expect(&mut link, "< hi >");
-        link.write(&format!("< open {bus} >"));
-        expect(&mut link, "< ok >");
-        link.write("< rawmode >");
-        expect(&mut link, "< ok >");
-        link
-    }
-
-    fn write(&mut self, text: &str) {
-        self.stream
-            .write_all(text.as_bytes())
-            .unwrap_or_else(|e| panic!("socketcand write: {e}"));
-    }
-
-    /// The next `< … >` element, waiting at most `timeout`.
-    fn element(&mut self, timeout: Duration) -> Option<String> {
-        let deadline = Instant::now() + timeout;
-        loop {
-            let pending = &self.buffer[self.start..];
-            if let Some(open) = pending.iter().position(|&b| b == b'<') {
-                if let Some(close) = pending[open..].iter().position(|&b| b == b'>') {
-                    let element = &pending[open..open + close + 1];
-                    let text = String::from_utf8_lossy(element).into_owned();
-                    self.start += open + close + 1;
-                    return Some(text);
-                }
-            }
-            if self.start > 0 {
-                self.buffer.drain(..self.start);
-                self.start = 0;
-            }
-            if Instant::now() >= deadline {
-                return None;
-            }
-            if self.timeout.is_none() {
-                self.stream.set_read_timeout(Some(POLL)).ok()?;
-                self.timeout = Some(POLL);
-            }
-            let mut chunk = [0u8; 16384];
-            match self.stream.read(&mut chunk) {
-                Ok(0) => panic!("socketcand: the server closed the connection"),
-                Ok(n) => self.buffer.extend_from_slice(&chunk[..n]),
-                Err(e)
-                    if matches!(
-                        e.kind(),
-                        std::io::ErrorKind::WouldBlock | std::io::ErrorKind::TimedOut
-                    ) => {}
-                Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
-                Err(e) => panic!("socketcand read: {e}"),
-            }
         }
     }
 
@@ -316,44 +251,14 @@ impl SocketcandLink {
     }
 
     fn flush(&mut self) {
-        let out = std::mem::take(&mut self.out);
-        self.write(&out);
-        self.out = out;
+        self.link.send(&self.out);
         self.out.clear();
     }
 }
 
-/// `< frame ID SECS.USECS HEX >` → a frame (None for other elements and 29-bit ids).
-fn parse_frame(element: &str) -> Option<Frame> {
-    let inner = element.strip_prefix("< frame ")?.strip_suffix('>')?;
-    let mut parts = inner.split_ascii_whitespace();
-    let id = parts.next()?;
-    if id.len() != 3 {
-        return None;
-    }
-    let id = u16::from_str_radix(id, 16).ok()?;
-    let (secs, usecs) = parts.next()?.split_once('.')?;
-    let at_ns = secs.parse::<u64>().ok()? * 1_000_000_000 + usecs.parse::<u64>().ok()? * 1000;
-    let hex = parts.next().unwrap_or("");
-    let mut data = [0u8; 8];
-    let len = hex.len() / 2;
-    if len > 8 || hex.len() % 2 != 0 {
-        return None;
-    }
-    for (i, d) in data.iter_mut().enumerate().take(len) {
-        *d = u8::from_str_radix(&hex[2 * i..2 * i + 2], 16).ok()?;
-    }
-    Some(Frame {
-        id,
-        len: len as u8,
-        data,
-        at_ns,
-    })
-}
-
 impl Link for SocketcandLink {
     fn discard_input(&mut self) {
-        let mut reader = self.stream.try_clone().unwrap();
+        let mut reader = self.link.stream().try_clone().unwrap();
         reader.set_read_timeout(None).unwrap();
         std::thread::spawn(move || {
             let mut sink = [0u8; 65536];
@@ -377,8 +282,10 @@ impl Link for SocketcandLink {
         let deadline = Instant::now() + timeout;
         loop {
             let left = deadline.saturating_duration_since(Instant::now());
-            let element = self.element(left)?;
-            if let Some(frame) = parse_frame(&element) {
+            let element = self.link.element(left)?;
+            if let Some(raw) = RawFrame::parse(&element) {
+                let mut frame = Frame::new(raw.id, &raw.data);
+                frame.at_ns = raw.at_ns;
                 return Some(frame);
             }
         }
