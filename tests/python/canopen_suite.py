@@ -1293,6 +1293,17 @@ def r_homing(cx):
     return {"homing_s": round(took, 3), "home_counts": home_counts}
 
 
+# 0x7FF: an id no CANopen service of these nodes uses; a frame with it marks a point in a log.
+MARKER_ID = 0x7FF
+
+
+def logs_marker(path, byte):
+    """Whether the candump -L file at `path` holds the marker frame 7FF#`byte`: a log in bus
+    order then holds every frame before it too."""
+    with open(path) as f:
+        return f" {MARKER_ID:03X}#{byte:02X}" in f.read()
+
+
 def read_candump(path, ids):
     """(timestamp, id, data) of the frames with `ids` in a `candump -L` file, in its order."""
     frames = []
@@ -1338,10 +1349,8 @@ class BusLog:
                                      stdout=self.log, stderr=subprocess.STDOUT)
 
         def ready():
-            # 0x7FF: an id no CANopen service of these nodes uses.
-            subprocess.run(["cansend", "vcan0", "7FF#00"], check=True)
-            with open(self.path) as f:
-                return " 7FF#00" in f.read()
+            subprocess.run(["cansend", "vcan0", f"{MARKER_ID:03X}#00"], check=True)
+            return logs_marker(self.path, 0)
 
         wait_until("candump logging", 10 * SLOW, ready, interval=0.2)
 
@@ -1349,14 +1358,9 @@ class BusLog:
         if self.cx.interface == "socketcand":
             self.bus.send = self.send
             return
-        # candump has read every frame before this one once it logged it.
-        subprocess.run(["cansend", "vcan0", "7FF#01"], check=True)
-
-        def marked():
-            with open(self.path) as f:
-                return " 7FF#01" in f.read()
-
-        wait_until("candump read the bus", 10 * SLOW, marked, interval=0.05)
+        subprocess.run(["cansend", "vcan0", f"{MARKER_ID:03X}#01"], check=True)
+        wait_until("candump read the bus", 10 * SLOW, lambda: logs_marker(self.path, 1),
+                   interval=0.05)
         self.dump.terminate()
         self.dump.wait()
         self.log.close()
@@ -1433,14 +1437,9 @@ def r_csp(cx):
     bus.stop()
     on_bus = bus.counts
     if cx.interface == "socketcand":
-        # The emulator's own log holds the frames before this marker once it holds the marker.
-        cx.net.send_message(0x7FF, b"\x01")
-
-        def logged():
-            with open(cx.mcemu.bus_log) as f:
-                return " 7FF#01" in f.read()
-
-        wait_until("the emulator's bus log", 10 * SLOW, logged, interval=0.05)
+        cx.net.send_message(MARKER_ID, b"\x01")
+        wait_until("the emulator's bus log", 10 * SLOW,
+                   lambda: logs_marker(cx.mcemu.bus_log, 1), interval=0.05)
     cx.net.bus.set_filters(None)
 
     # The node's counters are published after each servo tick.
