@@ -343,6 +343,11 @@ impl Config {
         }
     }
 
+    /// The axes' names in index order (`None`: unnamed), as axis references see them.
+    pub fn axis_names(&self) -> Vec<Option<&str>> {
+        self.axes.iter().map(|a| a.name.as_deref()).collect()
+    }
+
     /// The units of every Modbus section present, enabled or not (so a fixture's maps are
     /// checked before anyone enables them): (section, units).
     pub fn modbus_units(

@@ -5,7 +5,7 @@
 
 use std::fs::OpenOptions;
 use std::io;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::{Arc, Mutex, MutexGuard};
 
 use mcemu_can::log::DEFAULT_LOG_QUEUE;
@@ -130,12 +130,4 @@ impl CanLog for BusLog {
             None => Err(ApiError::NotLogging),
         }
     }
-}
-
-/// `base` for a config file: its directory.
-pub fn config_dir(config_file: &str) -> PathBuf {
-    Path::new(config_file)
-        .parent()
-        .unwrap_or(Path::new(""))
-        .to_path_buf()
 }

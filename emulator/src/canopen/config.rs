@@ -3,7 +3,7 @@
 
 use std::net::SocketAddr;
 
-use mcemu_modbus::config::AxisRef;
+use mcemu_frontend::AxisRef;
 use serde::{Deserialize, Serialize};
 
 /// `[frontends.canopen]`: the machine's CAN bus with its CiA 402 drives as CANopen nodes.

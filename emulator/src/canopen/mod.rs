@@ -8,14 +8,12 @@ pub mod config;
 pub mod mapped;
 pub mod serve;
 
-use std::path::Path;
-
 use axes::cia402::DriveMaster;
 use axes::od::ObjectDictionary;
 use mcemu_canopen::cia402::DriveNodeSpec;
 use mcemu_canopen::eds::Eds;
 use mcemu_canopen::NodeConfig;
-use mcemu_modbus::config::AxisRef;
+use mcemu_frontend::{Artefacts, AxisRef, Located};
 use mcemu_modbus::map::{Binding, UnitMap};
 
 use crate::config::{Config, ConfigError};
@@ -244,23 +242,9 @@ fn mapped_spec(
         key,
         reason,
     };
-    let axis = match axis {
-        AxisRef::Index(a) if *a < config.axes.len() => *a,
-        AxisRef::Index(a) => {
-            return Err(error(
-                key("axis"),
-                format!(
-                    "axis {a} does not exist (the machine has {})",
-                    config.axes.len()
-                ),
-            ))
-        }
-        AxisRef::Name(name) => config
-            .axes
-            .iter()
-            .position(|a| a.name.as_deref() == Some(name.as_str()))
-            .ok_or_else(|| error(key("axis"), format!("no axis is named `{name}`")))?,
-    };
+    let axis = axis
+        .resolve(&config.axis_names())
+        .map_err(|e| error(key("axis"), e.to_string()))?;
     let unit_map = crate::modbus::compile_map(
         config,
         file,
@@ -319,22 +303,24 @@ fn mapped_spec(
 
 const DEFAULT_DRIVE_EDS: &str = "cia402-drive";
 
-/// A shipped EDS by name, or a file relative to the config file's directory.
+/// The EDS files a config can name: shipped in the binary, or `.eds`/`.dcf` files.
+pub const EDS_FILES: Artefacts = Artefacts {
+    kind: "EDS",
+    file_noun: "a file",
+    file_endings: &[".eds", ".dcf"],
+    shipped: &SHIPPED_EDS,
+};
+
+/// A shipped EDS by name, or a file relative to the config file's directory (read by
+/// [`Eds::load`]: its size limit, its Latin-1 fallback, its errors).
 fn load_eds(name: &str, config_file: &str) -> Result<Eds, String> {
-    if !(name.ends_with(".eds") || name.ends_with(".dcf")) {
-        let text = SHIPPED_EDS
-            .iter()
-            .find(|(n, _)| *n == name)
-            .map(|(_, t)| *t)
-            .ok_or_else(|| {
-                let names: Vec<&str> = SHIPPED_EDS.iter().map(|(n, _)| *n).collect();
-                format!(
-                    "`{name}` is not a shipped EDS ({}); a file's path ends in .eds or .dcf",
-                    names.join(", ")
-                )
-            })?;
-        return Eds::parse(&format!("{name}.eds (shipped)"), text).map_err(|e| e.to_string());
+    match EDS_FILES
+        .locate(name, config_file)
+        .map_err(|e| e.to_string())?
+    {
+        Located::Shipped { name, text } => {
+            Eds::parse(&format!("{name}.eds (shipped)"), text).map_err(|e| e.to_string())
+        }
+        Located::File(path) => Eds::load(path).map_err(|e| e.to_string()),
     }
-    let base = Path::new(config_file).parent().unwrap_or(Path::new(""));
-    Eds::load(base.join(name)).map_err(|e| e.to_string())
 }

@@ -284,7 +284,7 @@ pub async fn start(
         let h = hub.clone();
         tasks.spawn(async move { h.drive_realtime().await });
     }
-    let log = BusLog::new(hub.clone(), super::buslog::config_dir(cx.file));
+    let log = BusLog::new(hub.clone(), mcemu_frontend::artefact::config_dir(cx.file));
     if !c.log.is_empty() {
         log.start_from_config(&c.log).map_err(|e| ConfigError {
             file: cx.file.to_string(),

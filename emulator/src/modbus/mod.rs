@@ -2,9 +2,8 @@
 //! name or path, axes by index or name) and compiled against the machine, for `mcemu validate`
 //! and `mcemu run` alike.
 
-use std::path::{Path, PathBuf};
-
-use mcemu_modbus::config::{AxisRef, UnitConfig};
+use mcemu_frontend::{axis_ref, Artefacts, AxisRef, Located};
+use mcemu_modbus::config::UnitConfig;
 use mcemu_modbus::map::{self, Binding, MachineShape, UnitMap};
 use mcemu_modbus::state::{Framing, FrontendState};
 
@@ -83,27 +82,9 @@ pub fn units(
         key,
         reason,
     };
-    let resolve_axes = |refs: &[AxisRef], key: &str| -> Result<Vec<usize>, ConfigError> {
-        if refs.is_empty() {
-            return Ok((0..config.axes.len()).collect());
-        }
-        refs.iter()
-            .map(|r| match r {
-                AxisRef::Index(i) if *i < config.axes.len() => Ok(*i),
-                AxisRef::Index(i) => Err(error(
-                    key.to_string(),
-                    format!(
-                        "axis {i} does not exist (the machine has {})",
-                        config.axes.len()
-                    ),
-                )),
-                AxisRef::Name(n) => config
-                    .axes
-                    .iter()
-                    .position(|a| a.name.as_deref() == Some(n.as_str()))
-                    .ok_or_else(|| error(key.to_string(), format!("no axis is named `{n}`"))),
-            })
-            .collect()
+    let names = config.axis_names();
+    let resolve_axes = |refs: &[AxisRef], key: &str| {
+        axis_ref::resolve_all(refs, &names).map_err(|e| error(key.to_string(), e.to_string()))
     };
     let implicit = [UnitConfig {
         id: default_id.unwrap_or(0),
@@ -150,6 +131,14 @@ pub fn units(
     Ok(out)
 }
 
+/// The register maps a config can name: shipped in `mcemu_modbus`, or `.toml` files.
+pub const MAPS: Artefacts = Artefacts {
+    kind: "map",
+    file_noun: "a map file",
+    file_endings: &[".toml"],
+    shipped: map::SHIPPED,
+};
+
 /// Compile map `map_name` (shipped name or path) for `binding` on this machine; `key` is the
 /// config key that names the map, for errors.
 pub fn compile_map(
@@ -159,37 +148,18 @@ pub fn compile_map(
     binding: &Binding,
     key: &str,
 ) -> Result<UnitMap, ConfigError> {
-    let (text, map_file) = map_text(map_name, file).map_err(|reason| ConfigError {
+    let map = MAPS.load(map_name, file).map_err(|e| ConfigError {
         file: file.to_string(),
         key: key.to_string(),
-        reason,
+        reason: e.to_string(),
     })?;
-    map::load(&text, &map_file, &machine_shape(config), binding).map_err(|e| ConfigError {
+    let map_file = match &map.from {
+        Located::Shipped { name, .. } => format!("{name} (shipped map)"),
+        Located::File(path) => path.display().to_string(),
+    };
+    map::load(&map.text, &map_file, &machine_shape(config), binding).map_err(|e| ConfigError {
         file: e.file,
         key: e.key,
         reason: format!("{} (used by {file}: {key})", e.reason),
     })
-}
-
-/// A shipped map by name, or a `.toml` path relative to the config file's directory.
-fn map_text(name: &str, config_file: &str) -> Result<(String, String), String> {
-    if !name.ends_with(".toml") {
-        return map::shipped(name)
-            .map(|t| (t.to_string(), format!("{name} (shipped map)")))
-            .ok_or_else(|| {
-                let names: Vec<&str> = map::SHIPPED.iter().map(|(n, _)| *n).collect();
-                format!(
-                    "`{name}` is not a shipped map ({}); a map file's path ends in .toml",
-                    names.join(", ")
-                )
-            });
-    }
-    let base = Path::new(config_file)
-        .parent()
-        .map(Path::to_path_buf)
-        .unwrap_or_default();
-    let path: PathBuf = base.join(name);
-    std::fs::read_to_string(&path)
-        .map(|t| (t, path.display().to_string()))
-        .map_err(|e| format!("cannot read map `{}`: {e}", path.display()))
 }

@@ -54,14 +54,8 @@ impl Default for TcpConfig {
     }
 }
 
-/// An axis by its index in the machine or its `name`.
-#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-#[serde(untagged)]
-pub enum AxisRef {
-    Index(usize),
-    Name(String),
-}
+/// Axis references are the front-end kit's, shared with every front-end that names axes.
+pub use mcemu_frontend::AxisRef;
 
 /// `[[frontends.modbus_*.units]]`: one unit (slave address) of a front-end.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
