@@ -4,6 +4,7 @@
 pub mod canopen;
 pub mod config;
 pub mod control;
+pub mod frontend;
 pub mod listener;
 pub mod modbus;
 pub mod reference;

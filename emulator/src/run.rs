@@ -2,7 +2,6 @@
 //! until SIGINT or SIGTERM. Each listener prints `listening: <protocol> <address>` once bound.
 
 use std::io::Write;
-use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use axes::command::{Command, StopMode};
@@ -12,21 +11,10 @@ use tokio::net::TcpListener;
 use tokio::sync::watch;
 
 use crate::config::Config;
-use crate::control::{self, ControlState, Frontend};
+use crate::control::{self, ControlState};
+use crate::frontend::{self, FrontendContext};
 use crate::listener::BoundedListener;
-use crate::modbus::serve as modbus;
 use crate::state_dir::StateDir;
-
-/// What a protocol front-end needs of `mcemu run` to start.
-pub struct FrontendContext<'a> {
-    pub config: &'a Config,
-    /// The config file: errors name it, relative paths start from it.
-    pub file: &'a str,
-    pub handle: &'a EngineHandle,
-    pub state_dir: Option<&'a StateDir>,
-    /// Turns `true` when the machine stops.
-    pub shutdown: &'a watch::Receiver<bool>,
-}
 
 /// Why a machine could not run.
 #[derive(Debug, thiserror::Error)]
@@ -37,12 +25,38 @@ pub enum RunError {
     Runtime(#[from] axes::runtime::RuntimeError),
     #[error("cannot start the front-end runtime: {0}")]
     Io(#[from] std::io::Error),
-    #[error("cannot listen on {address} for {protocol}: {error}")]
-    Bind {
-        protocol: &'static str,
-        address: String,
-        error: std::io::Error,
+    /// The control API's listener.
+    #[error("{0}")]
+    Bind(#[from] BindError),
+    /// A protocol front-end did not start: its config section and the cause, as its module
+    /// typed it (`BindError`, `ConfigError`, `SocketcandError` …).
+    #[error("{frontend}: {source}")]
+    Frontend {
+        frontend: &'static str,
+        source: Box<dyn std::error::Error + Send + Sync>,
     },
+}
+
+impl RunError {
+    /// Front-end `frontend` (its config section) did not start because of `cause`.
+    pub fn frontend(
+        frontend: &'static str,
+        cause: impl Into<Box<dyn std::error::Error + Send + Sync>>,
+    ) -> RunError {
+        RunError::Frontend {
+            frontend,
+            source: cause.into(),
+        }
+    }
+}
+
+/// A TCP listener that could not be bound.
+#[derive(Debug, thiserror::Error)]
+#[error("cannot listen on {address} for {protocol}: {source}")]
+pub struct BindError {
+    pub protocol: &'static str,
+    pub address: std::net::SocketAddr,
+    pub source: std::io::Error,
 }
 
 /// Run `config` until a signal arrives. `file` names the config in errors and is where relative
@@ -93,15 +107,7 @@ async fn serve(
         state_dir,
         shutdown: &shutdown,
     };
-    let modbus = modbus::start(&cx, &mut servers).await?;
-    let mut frontends: Vec<Arc<dyn Frontend>> = modbus
-        .iter()
-        .map(|m| Arc::clone(m) as Arc<dyn Frontend>)
-        .collect();
-    let canopen = crate::canopen::serve::start(&cx, &mut servers).await?;
-    if let Some(c) = &canopen {
-        frontends.push(Arc::clone(c) as Arc<dyn Frontend>);
-    }
+    let frontends = frontend::start_all(&cx, &mut servers).await?;
     let control = &config.frontends.control;
     let mut control_task = None;
     if control.enabled {
@@ -109,12 +115,10 @@ async fn serve(
             bind("control", control.bind).await?,
             control.max_connections,
         );
-        let can_log = canopen
-            .as_ref()
-            .map(|c| Arc::new(c.bus_log()) as Arc<dyn control::CanLog>);
+        let can_log = frontends.iter().find_map(|f| f.can_log());
         let app = control::router(
             ControlState::new(handle.clone(), config)
-                .with_frontends(frontends)
+                .with_frontends(frontends.clone())
                 .with_can_log(can_log),
         );
         control_task = Some(tokio::spawn(async move {
@@ -129,9 +133,12 @@ async fn serve(
     }
     // Front-ends stop accepting and close their connections; a second is plenty.
     let _ = shutdown_tx.send(true);
-    if let Some(c) = &canopen {
-        let _ = tokio::time::timeout(Duration::from_secs(1), c.stop()).await;
-    }
+    let _ = tokio::time::timeout(Duration::from_secs(1), async {
+        for frontend in &frontends {
+            frontend.shutdown().await;
+        }
+    })
+    .await;
     let drained = tokio::time::timeout(Duration::from_secs(1), async {
         while servers.join_next().await.is_some() {}
     })
@@ -139,8 +146,8 @@ async fn serve(
     if drained.is_err() {
         servers.abort_all();
     }
-    for frontend in &modbus {
-        frontend.save_if_changed();
+    for frontend in &frontends {
+        frontend.save();
     }
     Ok(())
 }
@@ -149,13 +156,13 @@ async fn serve(
 pub(crate) async fn bind(
     protocol: &'static str,
     address: std::net::SocketAddr,
-) -> Result<TcpListener, RunError> {
+) -> Result<TcpListener, BindError> {
     let listener = TcpListener::bind(address)
         .await
-        .map_err(|error| RunError::Bind {
+        .map_err(|source| BindError {
             protocol,
-            address: address.to_string(),
-            error,
+            address,
+            source,
         })?;
     let local = listener.local_addr().unwrap_or(address);
     announce(protocol, local);

@@ -11,9 +11,11 @@ use mcemu_can::socketcan::{SocketCanBridge, SocketCanConfig};
 use mcemu_can::socketcand::{SocketcandConfig, SocketcandServer};
 use mcemu_can::{BitTiming, Endpoint, EndpointOptions, Hub, HubConfig, WireFrame};
 use mcemu_canopen::cia402::{CanopenFieldbus, FramePort, NodeStatus, Persister};
+use std::future::Future;
+use std::pin::Pin;
 use std::time::Duration;
 
-use axes::runtime::EngineHandle;
+use axes::runtime::{CallError, EngineHandle};
 use axes::status::Snapshot;
 use mcemu_canopen::{CanFrame, Node, NodeEvent};
 use mcemu_modbus::map::UnitService;
@@ -26,8 +28,9 @@ use super::mapped::{MapDevice, ServiceRegisters};
 use crate::state_dir::StateDir;
 
 use crate::config::ConfigError;
-use crate::control::{ApiError, Frontend};
-use crate::run::{announce, FrontendContext, RunError};
+use crate::control::{ApiError, CanLog};
+use crate::frontend::{Frontend, FrontendContext, StartFuture};
+use crate::run::{announce, RunError};
 
 /// The running CAN bus, for the control API.
 pub struct CanopenFrontend {
@@ -39,24 +42,18 @@ pub struct CanopenFrontend {
     log: BusLog,
 }
 
-impl CanopenFrontend {
-    /// The bus's candump log, for the control API.
-    pub fn bus_log(&self) -> BusLog {
-        self.log.clone()
-    }
-
-    /// Close the transports (at shutdown).
-    pub async fn stop(&self) {
-        let bridge = self.socketcan.lock().ok().and_then(|mut b| b.take());
-        if let Some(b) = bridge {
-            b.stop().await;
-        }
-        let server = self.socketcand.lock().ok().and_then(|mut s| s.take());
-        if let Some(s) = server {
-            s.shutdown().await;
-        }
-        let _ = self.hub.stop_log();
-    }
+/// Why the CAN bus could not start (besides its config and its transports' own errors).
+#[derive(Debug, thiserror::Error)]
+pub enum CanopenStartError {
+    #[error("cannot start the parameter image writer: {0}")]
+    StoreThread(#[source] std::io::Error),
+    #[error("cannot install the nodes in the servo loop: {0}")]
+    Fieldbus(#[from] CallError),
+    #[error("node {node_id}: {source}")]
+    Node {
+        node_id: u8,
+        source: mcemu_canopen::NodeError,
+    },
 }
 
 impl Frontend for CanopenFrontend {
@@ -108,6 +105,25 @@ impl Frontend for CanopenFrontend {
             "log": self.log.status(),
             "log_dropped": c.log_dropped,
         })
+    }
+
+    /// Close the transports.
+    fn shutdown(&self) -> Pin<Box<dyn Future<Output = ()> + '_>> {
+        Box::pin(async {
+            let bridge = self.socketcan.lock().ok().and_then(|mut b| b.take());
+            if let Some(b) = bridge {
+                b.stop().await;
+            }
+            let server = self.socketcand.lock().ok().and_then(|mut s| s.take());
+            if let Some(s) = server {
+                s.shutdown().await;
+            }
+            let _ = self.hub.stop_log();
+        })
+    }
+
+    fn can_log(&self) -> Option<Arc<dyn CanLog>> {
+        Some(Arc::new(self.log.clone()))
     }
 }
 
@@ -250,13 +266,24 @@ fn image_file(node_id: u8) -> String {
 
 /// Start the bus if `[frontends.canopen]` is enabled: nodes installed as a fieldbus, then the
 /// transports, each announced.
-pub async fn start(
+pub fn start<'a>(cx: &'a FrontendContext<'a>, tasks: &'a mut JoinSet<()>) -> StartFuture<'a> {
+    Box::pin(async move {
+        let started = start_bus(cx, tasks).await?;
+        Ok(started
+            .into_iter()
+            .map(|c| c as Arc<dyn Frontend>)
+            .collect())
+    })
+}
+
+async fn start_bus(
     cx: &FrontendContext<'_>,
     tasks: &mut JoinSet<()>,
 ) -> Result<Option<Arc<CanopenFrontend>>, RunError> {
     let Some(c) = cx.config.frontends.canopen.as_ref().filter(|c| c.enabled) else {
         return Ok(None);
     };
+    let fail = |e| RunError::frontend("canopen", e);
     let socketcand = cx
         .config
         .frontends
@@ -266,7 +293,7 @@ pub async fn start(
     let super::NodeSpecs {
         drives: mut specs,
         mapped: mut mapped_specs,
-    } = super::node_specs(cx.config, cx.file)?;
+    } = super::node_specs(cx.config, cx.file).map_err(fail)?;
     let bus_name = if c.interface.is_empty() {
         "vcan0".to_string()
     } else {
@@ -286,11 +313,13 @@ pub async fn start(
     }
     let log = BusLog::new(hub.clone(), mcemu_frontend::artefact::config_dir(cx.file));
     if !c.log.is_empty() {
-        log.start_from_config(&c.log).map_err(|e| ConfigError {
-            file: cx.file.to_string(),
-            key: "frontends.canopen.log".into(),
-            reason: format!("cannot write it: {e}"),
-        })?;
+        log.start_from_config(&c.log)
+            .map_err(|e| ConfigError {
+                file: cx.file.to_string(),
+                key: "frontends.canopen.log".into(),
+                reason: format!("cannot write it: {e}"),
+            })
+            .map_err(fail)?;
     }
 
     // Stored images from earlier runs; saves go to a writer task.
@@ -324,17 +353,13 @@ pub async fn start(
                 poker.poke();
             }
         })
-        .map_err(RunError::Io)?;
+        .map_err(|e| RunError::frontend("canopen", CanopenStartError::StoreThread(e)))?;
 
     let port = HubPort::attach(&hub, cx.handle);
     let fieldbus = CanopenFieldbus::new(port, specs)
         .with_persister(Box::new(ImagePersister { to_writer, done }));
     let nodes = fieldbus.status();
-    cx.handle
-        .submit_fieldbus(Box::new(fieldbus))
-        .map_err(|e| RunError::Io(std::io::Error::other(e.to_string())))?
-        .await
-        .map_err(|e| RunError::Io(std::io::Error::other(e.to_string())))?;
+    install(cx.handle, Box::new(fieldbus)).await?;
 
     let mapped = Arc::new(Mutex::new(Vec::new()));
     if !mapped_specs.is_empty() {
@@ -348,71 +373,73 @@ pub async fn start(
                 cx.handle.clone(),
                 cx.state_dir.cloned(),
                 Arc::clone(&mapped),
-            )?;
+            )
+            .map_err(|e| RunError::frontend("canopen", e))?;
             ticks.add(&task);
             let (done, on) = tokio::sync::oneshot::channel();
             powered.push(on);
             tasks.spawn(task.run(cx.shutdown.clone(), done));
         }
-        cx.handle
-            .submit_fieldbus(Box::new(ticks))
-            .map_err(|e| RunError::Io(std::io::Error::other(e.to_string())))?
-            .await
-            .map_err(|e| RunError::Io(std::io::Error::other(e.to_string())))?;
+        install(cx.handle, Box::new(ticks)).await?;
         // Announced once their stored parameters are in the map (a client's first read sees them).
         for on in powered {
             let _ = on.await;
         }
     }
 
-    let frontend = Arc::new(CanopenFrontend {
-        hub: hub.clone(),
-        nodes,
-        mapped,
-        socketcan: Mutex::new(None),
-        socketcand: Mutex::new(None),
-        log,
-    });
+    let mut bridge = None;
     if !c.interface.is_empty() {
         let config = SocketCanConfig {
             interface: c.interface.clone(),
             ..SocketCanConfig::default()
         };
         match SocketCanBridge::start(&hub, config).await {
-            Ok(bridge) => {
+            Ok(started) => {
                 announce("canopen", &c.interface);
-                *frontend.socketcan.lock().map_err(|_| poisoned())? = Some(bridge);
+                bridge = Some(started);
             }
             Err(e) if c.interface_optional && socketcand.is_some() => {
                 eprintln!("mcemu: {e}; the CAN bus is served over socketcand only");
             }
             Err(e) => {
-                return Err(ConfigError {
+                return Err(fail(ConfigError {
                     file: cx.file.to_string(),
                     key: "frontends.canopen.interface".into(),
                     reason: e.to_string(),
-                }
-                .into())
+                }))
             }
         }
     }
+    let mut server = None;
     if let Some(s) = socketcand {
         let config = SocketcandConfig {
             bind: s.bind,
             max_connections: s.max_connections.max(1),
             ..SocketcandConfig::default()
         };
-        let server = SocketcandServer::start(config, vec![hub.clone()])
+        let started = SocketcandServer::start(config, vec![hub.clone()])
             .await
-            .map_err(|e| RunError::Bind {
-                protocol: "socketcand",
-                address: s.bind.to_string(),
-                error: std::io::Error::other(e.to_string()),
-            })?;
-        announce("socketcand", server.local_addr());
-        *frontend.socketcand.lock().map_err(|_| poisoned())? = Some(server);
+            .map_err(|e| RunError::frontend("socketcand", e))?;
+        announce("socketcand", started.local_addr());
+        server = Some(started);
     }
-    Ok(Some(frontend))
+    Ok(Some(Arc::new(CanopenFrontend {
+        hub,
+        nodes,
+        mapped,
+        socketcan: Mutex::new(bridge),
+        socketcand: Mutex::new(server),
+        log,
+    })))
+}
+
+/// Install `fieldbus` in the servo loop and wait until it runs.
+async fn install(handle: &EngineHandle, fieldbus: Box<dyn Fieldbus>) -> Result<(), RunError> {
+    let installed = match handle.submit_fieldbus(fieldbus) {
+        Ok(pending) => pending.await,
+        Err(e) => Err(e.into()),
+    };
+    installed.map_err(|e| RunError::frontend("canopen", CanopenStartError::Fieldbus(e)))
 }
 
 // ---- map-backed nodes (the CT E10) ----------------------------------------------------------
@@ -586,7 +613,7 @@ impl MappedNodeTask {
         handle: EngineHandle,
         state_dir: Option<StateDir>,
         status: Arc<Mutex<Vec<MappedStatus>>>,
-    ) -> Result<MappedNodeTask, RunError> {
+    ) -> Result<MappedNodeTask, CanopenStartError> {
         let node_id = spec.config.node_id;
         let service = Arc::new(UnitService::new(spec.map, handle.clone()));
         let mut device = MapDevice::new(spec.od, ServiceRegisters(service), spec.backed);
@@ -595,10 +622,10 @@ impl MappedNodeTask {
         device.refresh();
         device.adopt_power_on_defaults(&spec.configured);
         let mut node = Node::new(spec.config, device)
-            .map_err(|e| RunError::Io(std::io::Error::other(format!("node {node_id}: {e}"))))?;
+            .map_err(|source| CanopenStartError::Node { node_id, source })?;
         node.set_stored_image(spec.stored_image);
         let slot = {
-            let mut s = status.lock().map_err(|_| poisoned())?;
+            let mut s = status.lock().unwrap_or_else(PoisonError::into_inner);
             s.push(MappedStatus {
                 node_id,
                 axis: spec.axis,
@@ -750,8 +777,4 @@ impl MappedNodeTask {
             }
         }
     }
-}
-
-fn poisoned() -> RunError {
-    RunError::Io(std::io::Error::other("a lock was poisoned"))
 }

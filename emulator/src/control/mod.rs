@@ -31,7 +31,7 @@ use axum::middleware::{self, Next};
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
 use axum::{Json, Router};
-use serde_json::{Map, Value};
+use serde_json::Value;
 use tokio::sync::Semaphore;
 
 pub use commands::{AxisFault, CommandBody, FaultRequest, InputRequest, MAX_COMMANDS_PER_REQUEST};
@@ -41,18 +41,7 @@ pub use recorder::{TraceRecorder, TraceStart, TraceState, TraceStatus, MAX_TRACE
 pub use time::MAX_ADVANCE_TICKS;
 
 use crate::config::{ClockSetting, Config};
-
-/// A running protocol front-end as the control API sees it: its own faults (frame delay/drop,
-/// Modbus exceptions …) through `POST /faults` with `{"frontend": NAME, …}`, and its counters
-/// in `GET /state`.
-pub trait Frontend: Send + Sync {
-    /// The name requests use: the front-end's config section (`modbus_tcp`, `canopen` …).
-    fn name(&self) -> &str;
-    /// Inject or clear a fault; `fault` is the request body without `frontend`.
-    fn inject(&self, fault: Map<String, Value>) -> Result<Value, ApiError>;
-    /// Counters, active faults and last error, for `GET /state`'s `frontends`.
-    fn state(&self) -> Value;
-}
+use crate::frontend::Frontend;
 
 /// The CAN bus's `candump -L` log, started and stopped at run time (`/canopen/log/*`).
 pub trait CanLog: Send + Sync {

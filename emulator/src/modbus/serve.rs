@@ -17,8 +17,9 @@ use tokio::sync::watch;
 use tokio::task::JoinSet;
 
 use crate::config::ConfigError;
-use crate::control::{ApiError, Frontend};
-use crate::run::{announce, bind, FrontendContext, RunError};
+use crate::control::ApiError;
+use crate::frontend::{Frontend, FrontendContext, StartFuture};
+use crate::run::{announce, bind, RunError};
 use crate::state_dir::StateDir;
 
 /// How often a front-end with persisted areas checks for writes to save.
@@ -143,16 +144,34 @@ impl Frontend for ModbusFrontend {
     fn state(&self) -> Value {
         serde_json::to_value(self.state.snapshot()).unwrap_or(Value::Null)
     }
+
+    fn save(&self) {
+        self.save_if_changed();
+    }
 }
 
 /// Bind, open and announce every enabled Modbus section and spawn its transport (and its saver)
 /// on `tasks`.
-pub async fn start(
+pub fn start<'a>(cx: &'a FrontendContext<'a>, tasks: &'a mut JoinSet<()>) -> StartFuture<'a> {
+    Box::pin(async move {
+        let started = start_sections(cx, tasks).await?;
+        Ok(started
+            .into_iter()
+            .map(|m| m as Arc<dyn Frontend>)
+            .collect())
+    })
+}
+
+async fn start_sections(
     cx: &FrontendContext<'_>,
     tasks: &mut JoinSet<()>,
 ) -> Result<Vec<Arc<ModbusFrontend>>, RunError> {
     let f = &cx.config.frontends;
-    let mut units = cx.config.modbus_units(cx.file)?;
+    // Compiled by `Config::check` already; a failure here names the key all the same.
+    let mut units = cx
+        .config
+        .modbus_units(cx.file)
+        .map_err(|e| RunError::frontend("modbus", e))?;
     let mut take = |section: &str| {
         units
             .iter()
@@ -162,32 +181,30 @@ pub async fn start(
     };
     let mut started = Vec::new();
     if let Some(c) = f.modbus_tcp.as_ref().filter(|c| c.enabled) {
-        let frontend = frontend(
-            cx,
-            "modbus_tcp",
-            Framing::Tcp,
-            &c.faults,
-            take("modbus_tcp"),
-        )?;
-        let listener = bind("modbus-tcp", c.bind).await?;
+        let section = "modbus_tcp";
+        let fail = |e| RunError::frontend(section, e);
+        let frontend =
+            frontend(cx, section, Framing::Tcp, &c.faults, take(section)).map_err(fail)?;
+        let listener = bind("modbus-tcp", c.bind)
+            .await
+            .map_err(|e| RunError::frontend(section, e))?;
         let (model, state, config) = (frontend.model(), Arc::clone(&frontend.state), c.clone());
         let stop = stopped(cx.shutdown);
         tasks.spawn(async move { serve_tcp(listener, model, &config, state, stop).await });
         started.push(frontend);
     }
     if let Some(c) = f.modbus_rtu.as_ref().filter(|c| c.enabled) {
-        let frontend = frontend(
-            cx,
-            "modbus_rtu",
-            Framing::Rtu,
-            &c.faults,
-            take("modbus_rtu"),
-        )?;
-        let line = RtuLine::open(c).map_err(|e| ConfigError {
-            file: cx.file.to_string(),
-            key: "frontends.modbus_rtu.device".into(),
-            reason: e.to_string(),
-        })?;
+        let section = "modbus_rtu";
+        let fail = |e| RunError::frontend(section, e);
+        let frontend =
+            frontend(cx, section, Framing::Rtu, &c.faults, take(section)).map_err(fail)?;
+        let line = RtuLine::open(c)
+            .map_err(|e| ConfigError {
+                file: cx.file.to_string(),
+                key: "frontends.modbus_rtu.device".into(),
+                reason: e.to_string(),
+            })
+            .map_err(fail)?;
         announce("modbus-rtu", line.path());
         let (model, state) = (frontend.model(), Arc::clone(&frontend.state));
         let stop = stopped(cx.shutdown);
@@ -200,8 +217,12 @@ pub async fn start(
     }
     if let Some(c) = f.modbus_rtu_over_tcp.as_ref().filter(|c| c.enabled) {
         let section = "modbus_rtu_over_tcp";
-        let frontend = frontend(cx, section, Framing::RtuOverTcp, &c.faults, take(section))?;
-        let listener = bind("modbus-rtu-over-tcp", c.bind).await?;
+        let fail = |e| RunError::frontend(section, e);
+        let frontend =
+            frontend(cx, section, Framing::RtuOverTcp, &c.faults, take(section)).map_err(fail)?;
+        let listener = bind("modbus-rtu-over-tcp", c.bind)
+            .await
+            .map_err(|e| RunError::frontend(section, e))?;
         let (model, state, config) = (frontend.model(), Arc::clone(&frontend.state), c.clone());
         let stop = stopped(cx.shutdown);
         tasks.spawn(async move { serve_rtu_over_tcp(listener, model, &config, state, stop).await });
@@ -237,7 +258,7 @@ fn frontend(
     framing: Framing,
     faults: &[FaultSpec],
     units: Vec<crate::modbus::Unit>,
-) -> Result<Arc<ModbusFrontend>, RunError> {
+) -> Result<Arc<ModbusFrontend>, ConfigError> {
     // Checked by `Config::check` already; a failure here names the key all the same.
     let state = FrontendState::new(section, framing, faults).map_err(|e| ConfigError {
         file: cx.file.to_string(),

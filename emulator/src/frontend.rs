@@ -1,0 +1,195 @@
+//! The protocol front-ends' lifecycle in `mcemu run`. Each front-end module exports one start
+//! function over a [`FrontendContext`] ([`Start`]), listed in [`FRONTENDS`]; what it starts it
+//! returns as handles implementing [`Frontend`], which `mcemu run` hands to the control API and
+//! later shuts down and saves. Adding a front-end is its module, an entry in [`FRONTENDS`] and
+//! its config section.
+//!
+//! Order (`crate::run`): every listed front-end starts, in list order; the control API starts
+//! last, over their handles; at a signal the context's `shutdown` turns `true`, each handle's
+//! [`Frontend::shutdown`] runs (a second for all), the tasks they spawned drain (a second), and
+//! each handle's [`Frontend::save`] runs.
+
+use std::future::Future;
+use std::pin::Pin;
+use std::sync::Arc;
+
+use axes::runtime::EngineHandle;
+use serde_json::{Map, Value};
+use tokio::sync::watch;
+use tokio::task::JoinSet;
+
+use crate::config::Config;
+use crate::control::{ApiError, CanLog};
+use crate::run::RunError;
+use crate::state_dir::StateDir;
+
+/// What a protocol front-end needs of `mcemu run` to start.
+pub struct FrontendContext<'a> {
+    pub config: &'a Config,
+    /// The config file: errors name it, relative paths start from it.
+    pub file: &'a str,
+    pub handle: &'a EngineHandle,
+    pub state_dir: Option<&'a StateDir>,
+    /// Turns `true` when the machine stops.
+    pub shutdown: &'a watch::Receiver<bool>,
+}
+
+/// A running protocol front-end: what the control API shows and injects (its counters in
+/// `GET /state`, its own faults — frame delay/drop, Modbus exceptions … — through
+/// `POST /faults` with `{"frontend": NAME, …}`), and what `mcemu run` stops and saves.
+pub trait Frontend: Send + Sync {
+    /// The name requests use: the front-end's config section (`modbus_tcp`, `canopen` …).
+    fn name(&self) -> &str;
+    /// Inject or clear a fault; `fault` is the request body without `frontend`.
+    fn inject(&self, fault: Map<String, Value>) -> Result<Value, ApiError>;
+    /// Counters, active faults and last error, for `GET /state`'s `frontends`.
+    fn state(&self) -> Value;
+    /// Stop serving what does not stop by itself when the context's `shutdown` turns `true`
+    /// (transports with a stop of their own). Nothing, by default.
+    fn shutdown(&self) -> Pin<Box<dyn Future<Output = ()> + '_>> {
+        Box::pin(async {})
+    }
+    /// Save what it persists, after it stopped serving. Nothing, by default.
+    fn save(&self) {}
+    /// The CAN bus's `candump -L` log, for `/canopen/log/*`, if this front-end has a CAN bus.
+    fn can_log(&self) -> Option<Arc<dyn CanLog>> {
+        None
+    }
+}
+
+/// What a start function gives: a handle per started front-end (none when its sections are
+/// disabled), or the [`RunError`] naming the one that failed.
+pub type StartFuture<'a> =
+    Pin<Box<dyn Future<Output = Result<Vec<Arc<dyn Frontend>>, RunError>> + 'a>>;
+
+/// A front-end module's start function: bind or open and announce (`listening: …`) each of its
+/// enabled sections, spawn what serves them on `tasks` (they end when `cx.shutdown` turns
+/// `true`), and return their handles.
+pub type Start = for<'a> fn(&'a FrontendContext<'a>, &'a mut JoinSet<()>) -> StartFuture<'a>;
+
+/// Every protocol front-end, in start order.
+pub const FRONTENDS: [Start; 2] = [crate::modbus::serve::start, crate::canopen::serve::start];
+
+/// Start every front-end of [`FRONTENDS`]; the first failure stops the start.
+pub async fn start_all(
+    cx: &FrontendContext<'_>,
+    tasks: &mut JoinSet<()>,
+) -> Result<Vec<Arc<dyn Frontend>>, RunError> {
+    let mut started = Vec::new();
+    for start in FRONTENDS {
+        started.extend(start(cx, tasks).await?);
+    }
+    Ok(started)
+}
+
+#[cfg(test)]
+mod tests {
+    use std::error::Error;
+    use std::io;
+
+    use axes::runtime::{ClockMode, Runtime, RuntimeOptions};
+    use axes::Engine;
+
+    use super::*;
+
+    /// Start the front-ends of `config` on a virtual machine; the error it gives.
+    async fn start_error(config: &str) -> RunError {
+        let config = Config::parse(config, "m.toml").unwrap();
+        let engine = Engine::new(&config.engine_config()).unwrap();
+        let (handle, guard) =
+            Runtime::start(engine, RuntimeOptions::with_clock(ClockMode::Virtual)).unwrap();
+        let (_stop, shutdown) = watch::channel(false);
+        let cx = FrontendContext {
+            config: &config,
+            file: "m.toml",
+            handle: &handle,
+            state_dir: None,
+            shutdown: &shutdown,
+        };
+        let mut tasks = JoinSet::new();
+        let Err(e) = start_all(&cx, &mut tasks).await else {
+            panic!("{config:?} started");
+        };
+        tasks.abort_all();
+        let _ = guard.stop();
+        e
+    }
+
+    /// The `io::Error` at the end of `e`'s source chain.
+    fn io_cause(e: &RunError) -> Option<&io::Error> {
+        let mut cause = e.source();
+        while let Some(c) = cause {
+            if let Some(io) = c.downcast_ref::<io::Error>() {
+                return Some(io);
+            }
+            cause = c.source();
+        }
+        None
+    }
+
+    #[tokio::test]
+    async fn a_port_in_use_names_the_front_end_and_keeps_the_io_error() {
+        let taken = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+        let address = taken.local_addr().unwrap();
+        let e = start_error(&format!(
+            "[[axes]]\n[frontends.modbus_rtu_over_tcp]\nbind = \"{address}\"\n"
+        ))
+        .await;
+        assert!(
+            matches!(
+                &e,
+                RunError::Frontend {
+                    frontend: "modbus_rtu_over_tcp",
+                    ..
+                }
+            ),
+            "{e:?}"
+        );
+        let bind = e
+            .source()
+            .and_then(|c| c.downcast_ref::<crate::run::BindError>());
+        assert_eq!(bind.map(|b| b.address), Some(address), "{e:?}");
+        assert_eq!(
+            io_cause(&e).map(io::Error::kind),
+            Some(io::ErrorKind::AddrInUse)
+        );
+        assert!(
+            e.to_string().starts_with(&format!(
+                "modbus_rtu_over_tcp: cannot listen on {address} for modbus-rtu-over-tcp: "
+            )),
+            "{e}"
+        );
+    }
+
+    #[tokio::test]
+    async fn socketcand_on_a_port_in_use_keeps_its_typed_error() {
+        let taken = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+        let address = taken.local_addr().unwrap();
+        let e = start_error(&format!(
+            "[[axes]]\n[frontends.canopen]\ninterface = \"\"\n\
+             [frontends.socketcand]\nbind = \"{address}\"\n"
+        ))
+        .await;
+        assert!(
+            matches!(
+                &e,
+                RunError::Frontend {
+                    frontend: "socketcand",
+                    ..
+                }
+            ),
+            "{e:?}"
+        );
+        let cause = e
+            .source()
+            .and_then(|c| c.downcast_ref::<mcemu_can::socketcand::SocketcandError>());
+        assert!(
+            matches!(cause, Some(mcemu_can::socketcand::SocketcandError::Bind { addr, .. }) if *addr == address),
+            "{e:?}"
+        );
+        assert_eq!(
+            io_cause(&e).map(io::Error::kind),
+            Some(io::ErrorKind::AddrInUse)
+        );
+    }
+}
