@@ -67,6 +67,16 @@ pub type StartFuture<'a> =
 /// `true`), and return their handles.
 pub type Start = for<'a> fn(&'a FrontendContext<'a>, &'a mut JoinSet<()>) -> StartFuture<'a>;
 
+/// A start function's handles, from its front-end's own type.
+pub fn handles<F: Frontend + 'static>(
+    started: impl IntoIterator<Item = Arc<F>>,
+) -> Vec<Arc<dyn Frontend>> {
+    started
+        .into_iter()
+        .map(|f| f as Arc<dyn Frontend>)
+        .collect()
+}
+
 /// Every protocol front-end, in start order.
 pub const FRONTENDS: [Start; 2] = [crate::modbus::serve::start, crate::canopen::serve::start];
 

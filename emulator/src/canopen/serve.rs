@@ -29,7 +29,7 @@ use crate::state_dir::StateDir;
 
 use crate::config::ConfigError;
 use crate::control::{ApiError, CanLog};
-use crate::frontend::{Frontend, FrontendContext, StartFuture};
+use crate::frontend::{handles, Frontend, FrontendContext, StartFuture};
 use crate::run::{announce, RunError};
 
 /// The running CAN bus, for the control API.
@@ -267,13 +267,7 @@ fn image_file(node_id: u8) -> String {
 /// Start the bus if `[frontends.canopen]` is enabled: nodes installed as a fieldbus, then the
 /// transports, each announced.
 pub fn start<'a>(cx: &'a FrontendContext<'a>, tasks: &'a mut JoinSet<()>) -> StartFuture<'a> {
-    Box::pin(async move {
-        let started = start_bus(cx, tasks).await?;
-        Ok(started
-            .into_iter()
-            .map(|c| c as Arc<dyn Frontend>)
-            .collect())
-    })
+    Box::pin(async move { Ok(handles(start_bus(cx, tasks).await?)) })
 }
 
 async fn start_bus(

@@ -18,7 +18,7 @@ use tokio::task::JoinSet;
 
 use crate::config::ConfigError;
 use crate::control::ApiError;
-use crate::frontend::{Frontend, FrontendContext, StartFuture};
+use crate::frontend::{handles, Frontend, FrontendContext, StartFuture};
 use crate::run::{announce, bind, RunError};
 use crate::state_dir::StateDir;
 
@@ -153,13 +153,7 @@ impl Frontend for ModbusFrontend {
 /// Bind, open and announce every enabled Modbus section and spawn its transport (and its saver)
 /// on `tasks`.
 pub fn start<'a>(cx: &'a FrontendContext<'a>, tasks: &'a mut JoinSet<()>) -> StartFuture<'a> {
-    Box::pin(async move {
-        let started = start_sections(cx, tasks).await?;
-        Ok(started
-            .into_iter()
-            .map(|m| m as Arc<dyn Frontend>)
-            .collect())
-    })
+    Box::pin(async move { Ok(handles(start_sections(cx, tasks).await?)) })
 }
 
 async fn start_sections(
@@ -182,9 +176,8 @@ async fn start_sections(
     let mut started = Vec::new();
     if let Some(c) = f.modbus_tcp.as_ref().filter(|c| c.enabled) {
         let section = "modbus_tcp";
-        let fail = |e| RunError::frontend(section, e);
-        let frontend =
-            frontend(cx, section, Framing::Tcp, &c.faults, take(section)).map_err(fail)?;
+        let frontend = frontend(cx, section, Framing::Tcp, &c.faults, take(section))
+            .map_err(|e| RunError::frontend(section, e))?;
         let listener = bind("modbus-tcp", c.bind)
             .await
             .map_err(|e| RunError::frontend(section, e))?;
@@ -217,9 +210,8 @@ async fn start_sections(
     }
     if let Some(c) = f.modbus_rtu_over_tcp.as_ref().filter(|c| c.enabled) {
         let section = "modbus_rtu_over_tcp";
-        let fail = |e| RunError::frontend(section, e);
-        let frontend =
-            frontend(cx, section, Framing::RtuOverTcp, &c.faults, take(section)).map_err(fail)?;
+        let frontend = frontend(cx, section, Framing::RtuOverTcp, &c.faults, take(section))
+            .map_err(|e| RunError::frontend(section, e))?;
         let listener = bind("modbus-rtu-over-tcp", c.bind)
             .await
             .map_err(|e| RunError::frontend(section, e))?;
