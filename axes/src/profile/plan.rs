@@ -28,7 +28,7 @@ use super::ramp::{change, Change, Lim, Phase};
 /// Ramp 1 (≤ 6 phases when split at v = 0) + cruise + ramp 2 (≤ 6).
 pub(crate) const MAX_PHASES: usize = 13;
 
-const MAX_ITER: usize = 100;
+pub(super) const MAX_ITER: usize = 100;
 
 /// A planned sequence of phases, from the start state.
 #[derive(Clone, Copy, Debug)]
@@ -48,7 +48,7 @@ impl Plan {
         }
     }
 
-    fn clear(&mut self) {
+    pub(super) fn clear(&mut self) {
         self.len = 0;
         self.end_v = 0.0;
     }
@@ -58,7 +58,7 @@ impl Plan {
     }
 
     /// Appends a phase; empty phases are dropped. The capacity covers every plan shape.
-    fn push(&mut self, ph: Phase) {
+    pub(super) fn push(&mut self, ph: Phase) {
         if ph.t > 0.0 {
             if let Some(slot) = self.phases.get_mut(self.len) {
                 *slot = ph;
@@ -68,7 +68,7 @@ impl Plan {
     }
 
     /// Appends a velocity change that ends at `v1`.
-    fn push_change(&mut self, c: &Change, v1: f64) {
+    pub(super) fn push_change(&mut self, c: &Change, v1: f64) {
         for ph in c.phases() {
             self.push(*ph);
         }
@@ -531,7 +531,7 @@ fn symmetric(w: f64, vp: f64, (a, inv_a): (f64, f64), u: f64, lim: &Lim) -> (f64
 }
 
 /// Brent's method on [a, b] with f(a), f(b) of opposite signs (or one zero).
-fn brent(mut f: impl FnMut(f64) -> f64, a: f64, b: f64, fa: f64, fb: f64) -> f64 {
+pub(super) fn brent(mut f: impl FnMut(f64) -> f64, a: f64, b: f64, fa: f64, fb: f64) -> f64 {
     let (mut a, mut b, mut fa, mut fb) = (a, b, fa, fb);
     if fa == 0.0 {
         return a;

@@ -1,0 +1,331 @@
+//! Properties of the fixed-duration planner ([`Profile::plan_for_duration`]): the duration is
+//! the one asked for (within [`DURATION_TOL`] relative), the target and end velocity are reached
+//! exactly, the limits hold (the same checks, tolerances and dense sampling as the time-optimal
+//! planner's, `tests::check_profile`), the time-optimal duration gives the time-optimal profile,
+//! a longer duration never raises the peak velocity, and moves from rest are never blocked.
+
+use super::tests::{check_profile, config, log_uniform, Problem, TOL};
+use super::*;
+use proptest::prelude::*;
+
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Case {
+    pub start: MotionState,
+    pub target: f64,
+    pub end_velocity: f64,
+    pub limits: Limits,
+    /// Requested duration / time-optimal duration.
+    pub stretch: f64,
+}
+
+impl Case {
+    fn optimal(&self) -> Profile {
+        Profile::plan(self.start, self.goal(), &self.limits, &Options::default())
+            .unwrap_or_else(|e| panic!("{e} for {self:?}"))
+    }
+
+    fn goal(&self) -> Goal {
+        Goal::Position {
+            target: self.target,
+            end_velocity: self.end_velocity,
+        }
+    }
+
+    fn plan(&self, duration: f64) -> Result<Profile, DurationError> {
+        Profile::plan_for_duration(
+            self.start,
+            self.target,
+            self.end_velocity,
+            &self.limits,
+            duration,
+        )
+    }
+
+    fn problem(&self) -> Problem {
+        Problem {
+            start: self.start,
+            goal: self.goal(),
+            limits: self.limits,
+            options: Options::default(),
+        }
+    }
+}
+
+/// Stretch factors: exactly 1, just above 1, moderate, and very long.
+fn stretches() -> impl Strategy<Value = f64> {
+    prop_oneof![
+        1 => Just(1.0),
+        2 => log_uniform(1e-9, 1e-2).prop_map(|x| 1.0 + x),
+        4 => log_uniform(1.0, 10.0),
+        1 => log_uniform(10.0, 1e6),
+    ]
+}
+
+/// Random cases: limits 1e-2 … 1e4 each, equal or unequal acceleration and deceleration,
+/// trapezoids (`jerk_limited` false) or S-curves; starts at rest, inside and outside the
+/// limits (`from_rest` keeps v0 = a0 = 0); distances from 1e-6 to 1e4 move lengths, or 0;
+/// end velocities 0 or up to 1.2 × the limit.
+pub(super) fn cases(jerk_limited: bool, from_rest: bool) -> impl Strategy<Value = Case> {
+    (
+        (
+            log_uniform(1e-2, 1e4),
+            log_uniform(1e-2, 1e4),
+            log_uniform(1e-2, 1e4),
+            prop_oneof![Just(1.0), log_uniform(0.1, 10.0)],
+        ),
+        (-1.0..1.0f64, -1.0..1.0f64, 0..3u8, 0..3u8),
+        (-1.0..1.0f64, -6.0..4.0f64, 0..6u8, 0.0..1.2f64),
+        (-1e3..1e3f64, stretches()),
+    )
+        .prop_map(
+            move |(
+                (vel, acc, jerk, dec_ratio),
+                (fv, fa, kv, ka),
+                (fd, exp, kind, fe),
+                (fp, stretch),
+            )| {
+                let limits = Limits {
+                    velocity: vel,
+                    acceleration: acc,
+                    deceleration: acc * dec_ratio,
+                    jerk: if jerk_limited { jerk } else { f64::INFINITY },
+                };
+                let length = vel * vel / acc;
+                let factor = |k: u8| {
+                    if from_rest {
+                        0.0
+                    } else {
+                        [0.0, 1.0, 3.0][usize::from(k)]
+                    }
+                };
+                let start = MotionState {
+                    p: fp * length,
+                    v: fv * vel * factor(kv),
+                    a: fa * acc * factor(ka),
+                };
+                let distance = fd.signum() * length * 10f64.powf(exp);
+                let (target, end_velocity) = match kind {
+                    0 => (start.p, 0.0),
+                    1..=3 => (start.p + distance, 0.0),
+                    _ => (start.p + distance, fe * vel),
+                };
+                Case {
+                    start,
+                    target,
+                    end_velocity,
+                    limits,
+                    stretch,
+                }
+            },
+        )
+}
+
+/// The largest |v| over the profile, sampled densely, at every segment start and on arrival.
+fn peak_speed(p: &Profile) -> f64 {
+    let d = p.duration();
+    (0..=2000)
+        .map(|i| d * f64::from(i) / 2000.0)
+        .chain(p.segment_times())
+        .map(|t| p.sample(t).v.abs())
+        .fold(p.arrival_velocity().abs(), f64::max)
+}
+
+/// Checks a planned profile of requested duration `duration`.
+fn check(c: &Case, duration: f64, p: &Profile) -> Result<(), TestCaseError> {
+    prop_assert!(
+        (p.duration() - duration).abs() <= DURATION_TOL * duration,
+        "duration {} instead of {duration} for {c:?}",
+        p.duration()
+    );
+    check_profile(&c.problem(), p)
+}
+
+/// Plans `c` at its stretch; Ok(None) when the duration is blocked.
+fn plan_stretched(c: &Case) -> Result<Option<(f64, Profile)>, TestCaseError> {
+    let duration = c.optimal().duration() * c.stretch;
+    match c.plan(duration) {
+        Ok(p) => {
+            check(c, duration, &p)?;
+            Ok(Some((duration, p)))
+        }
+        Err(DurationError::Blocked { .. }) => Ok(None),
+        Err(e) => Err(TestCaseError::fail(format!("{e} for {c:?}"))),
+    }
+}
+
+proptest! {
+    #![proptest_config(config(4000))]
+
+    /// Any start state: a profile of exactly the duration that meets every invariant, or a
+    /// blocked duration; never another error.
+    #[test]
+    fn trapezoid_takes_the_duration_asked_for(c in cases(false, false)) {
+        plan_stretched(&c)?;
+    }
+
+    /// From rest, every duration ≥ the optimum is possible, and a longer one never moves
+    /// faster.
+    #[test]
+    fn trapezoid_from_rest_is_never_blocked_and_slows_down(
+        c in cases(false, true),
+        more in log_uniform(1.0 + 1e-6, 100.0),
+    ) {
+        let (duration, p) = plan_stretched(&c)?
+            .ok_or_else(|| TestCaseError::fail(format!("blocked: {c:?}")))?;
+        let longer = c.plan(duration * more).map_err(|e| TestCaseError::fail(format!("{e}")))?;
+        check(&c, duration * more, &longer)?;
+        prop_assert!(peak_speed(&longer) <= peak_speed(&p) * (1.0 + TOL),
+            "{} after {} for {c:?}", peak_speed(&longer), peak_speed(&p));
+    }
+
+    /// The time-optimal duration gives the time-optimal profile.
+    #[test]
+    fn optimal_duration_gives_the_optimal_profile(
+        c in prop_oneof![cases(false, false), cases(true, false)],
+    ) {
+        let optimal = c.optimal();
+        prop_assert_eq!(c.plan(optimal.duration()), Ok(optimal));
+    }
+}
+
+/// Rest to rest, trapezoid: the peak is the smaller root of k·vp² − T·vp + d = 0,
+/// k = 1/2a + 1/2d (ramps vp/a and vp/d, cruise (d − k·vp²)/vp).
+#[test]
+fn trapezoid_rest_to_rest_cruises_at_the_closed_form_velocity() {
+    let limits = Limits {
+        velocity: 10.0,
+        acceleration: 4.0,
+        deceleration: 2.0,
+        jerk: f64::INFINITY,
+    };
+    // Optimal: 10 at 4 (2.5 s, 12.5) and 2 (5 s, 25), 62.5 at 10: 13.75 s.
+    let start = MotionState {
+        p: 5.0,
+        v: 0.0,
+        a: 0.0,
+    };
+    let optimal = Profile::plan(
+        start,
+        Goal::Position {
+            target: 105.0,
+            end_velocity: 0.0,
+        },
+        &limits,
+        &Options::default(),
+    )
+    .unwrap();
+    assert!((optimal.duration() - 13.75).abs() < 1e-12);
+    let k = 1.0 / 8.0 + 1.0 / 4.0;
+    for duration in [14.0, 20.0, 100.0, 1e6] {
+        let p = Profile::plan_for_duration(start, 105.0, 0.0, &limits, duration).unwrap();
+        let vp = 2.0 * 100.0 / (duration + (duration * duration - 4.0 * k * 100.0).sqrt());
+        assert!(
+            (p.sample(vp / 4.0).v - vp).abs() <= 1e-12 * vp,
+            "{duration}"
+        );
+        assert!((p.duration() - duration).abs() <= 1e-12 * duration);
+        assert_eq!(p.sample(duration).p, 105.0);
+        assert_eq!(p.final_state().v, 0.0);
+    }
+}
+
+#[test]
+fn zero_distance_from_rest_stays_put_for_the_duration() {
+    for jerk in [f64::INFINITY] {
+        let limits = Limits {
+            velocity: 1.0,
+            acceleration: 2.0,
+            deceleration: 3.0,
+            jerk,
+        };
+        let start = MotionState {
+            p: -2.5,
+            v: 0.0,
+            a: 0.0,
+        };
+        assert_eq!(
+            Profile::plan_for_duration(start, -2.5, 0.0, &limits, 0.0),
+            Ok(Profile::hold(-2.5))
+        );
+        let p = Profile::plan_for_duration(start, -2.5, 0.0, &limits, 4.0).unwrap();
+        assert_eq!(p.duration(), 4.0);
+        for i in 0..=100 {
+            let s = p.sample(0.05 * f64::from(i));
+            assert_eq!((s.p, s.v, s.a, s.j), (-2.5, 0.0, 0.0, 0.0));
+        }
+    }
+}
+
+#[test]
+fn too_short_and_invalid_durations_are_refused() {
+    let limits = Limits {
+        velocity: 1.0,
+        acceleration: 1.0,
+        deceleration: 1.0,
+        jerk: f64::INFINITY,
+    };
+    let start = MotionState::default();
+    // Optimal: 1 s up, 1 s cruise, 1 s down.
+    let plan = |duration| Profile::plan_for_duration(start, 2.0, 0.0, &limits, duration);
+    assert_eq!(
+        plan(2.9),
+        Err(DurationError::TooShort {
+            duration: 2.9,
+            minimum: 3.0
+        })
+    );
+    for bad in [f64::NAN, -1.0, f64::INFINITY] {
+        assert!(matches!(
+            plan(bad),
+            Err(DurationError::InvalidDuration { .. })
+        ));
+    }
+    let bad_limits = Limits {
+        velocity: 0.0,
+        ..limits
+    };
+    assert!(matches!(
+        Profile::plan_for_duration(start, 2.0, 0.0, &bad_limits, 5.0),
+        Err(DurationError::Plan(PlanError::InvalidLimit { .. }))
+    ));
+}
+
+/// Moving at full speed towards a target it is to pass at full speed: slower arrivals dip to
+/// a lower speed vc and back, covering 1 − vc² + vc·tc in 2(1 − vc) + tc (units 1). The
+/// longest of them, with no cruise, lasts 2(1 − √0.2) ≈ 1.106 s; a reversal (vc < 0) first
+/// fits at 2(1 + √0.2) ≈ 2.894 s. Between, the durations are blocked.
+#[test]
+fn durations_between_the_longest_dip_and_the_shortest_reversal_are_blocked() {
+    let limits = Limits {
+        velocity: 1.0,
+        acceleration: 1.0,
+        deceleration: 1.0,
+        jerk: f64::INFINITY,
+    };
+    let start = MotionState {
+        p: 0.0,
+        v: 1.0,
+        a: 0.0,
+    };
+    let plan = |duration| Profile::plan_for_duration(start, 0.8, 1.0, &limits, duration);
+    assert_eq!(plan(0.8).unwrap().duration(), 0.8);
+    // vc² + (T − 2)·vc + 0.2 = 0 with tc = T − 2(1 − vc) ≥ 0.
+    let p = plan(1.0).unwrap();
+    let vc = (1.0 + 0.2f64.sqrt()) / 2.0;
+    assert!((p.sample(0.5).v - vc).abs() < 1e-12, "{:?}", p.sample(0.5));
+    assert!((p.duration() - 1.0).abs() < 1e-15);
+    for blocked in [1.2, 2.0, 2.8] {
+        assert_eq!(
+            plan(blocked),
+            Err(DurationError::Blocked {
+                duration: blocked,
+                minimum: 0.8
+            })
+        );
+    }
+    let p = plan(3.0).unwrap();
+    let vc = (-1.0 + 0.2f64.sqrt()) / 2.0;
+    assert!((p.sample(1.5).v - vc).abs() < 1e-12, "{:?}", p.sample(1.5));
+    assert_eq!(p.sample(3.0).p, 0.8);
+    assert!((p.arrival_velocity() - 1.0).abs() < 1e-12);
+}
