@@ -18,8 +18,22 @@
 //! of its velocity change: `2√(Δ/j)` as a triangle, `Δ/a + a/j` with a plateau, `Δ/a` for a
 //! trapezoid), so `tc ≥ 0` holds on at most two sub-intervals, at its ends; and there
 //! `g' = tc + Σ (τ − Δτ')/2 ≥ 0` (τ(Δ) a ramp's duration), so `g` is monotone and has at most one
-//! root per sub-interval. Durations of this family fill `[T_opt, ∞)` except for the intervals
-//! Ruckig calls blocked (see [`DurationError::Blocked`]).
+//! root per sub-interval. Where several sub-intervals have one, the fastest cruise in the
+//! direction of the target wins (the continuation of the time-optimal profile), a cruise the
+//! other way (a reversal) only when there is none.
+//!
+//! Which durations this covers (see [`DurationError::Blocked`] for the others):
+//! - trapezoids: every duration Ruckig can synchronize to, and the same blocked intervals
+//!   (tested against rsruckig). They occur when the start velocity points at a target too
+//!   close to stop, wait and start again (e.g. arriving at speed): between the longest dip
+//!   of the speed and the shortest reversal;
+//! - S-curves from rest to rest: every duration ≥ the optimum (tested);
+//! - other S-curves: a subset of Ruckig's durations. Between `v_stop` and `e` the two full
+//!   ramps can take longer than the single ramp between them (`T1 + T2` has a hump), and
+//!   durations there need profiles without a cruise, whose acceleration does not return to 0
+//!   in between (Ruckig's UDUD shapes); so does a start whose acceleration already brakes
+//!   towards `e` when the time-optimal profile is of the release kind (see `plan`). Those
+//!   durations are refused as blocked; a longer one usually works again (a slower cruise).
 //!
 //! Work, once at planning time (never per tick): one time-optimal plan (for `T_opt` and the
 //! direction of the end velocity), then per interval (≤ 4):
@@ -28,7 +42,7 @@
 //!   Brent searches for its crossings with `T` and up to two for the root of `g` (≤ 100 steps
 //!   each), each step evaluating two ramps in closed form: at most about 2000 ramp pairs.
 
-use super::plan::Plan;
+use super::plan::{brent, Plan, MAX_ITER};
 use super::ramp::{change, Change, Lim, Phase};
 use super::{Goal, Limits, MotionState, Options, PlanError, Profile, Scale};
 
@@ -45,11 +59,11 @@ pub enum DurationError {
     InvalidDuration { duration: f64 },
     #[error("duration {duration} s is shorter than the time-optimal {minimum} s")]
     TooShort { duration: f64, minimum: f64 },
-    /// No profile of this family takes exactly this long (Ruckig's blocked intervals): the
-    /// axis moves so that reaching the target later needs a profile other than a slower
-    /// cruise. Typically a start velocity towards the target with a target too close to stop,
-    /// wait and start again; a longer duration may be possible again (with a reversal), a
-    /// shorter one down to `minimum` usually is.
+    /// No profile with a slower cruise takes exactly this long: Ruckig's blocked intervals
+    /// (a start velocity towards a target too close to stop, wait and start again: a longer
+    /// duration works again with a reversal), and for S-curves also durations only profiles
+    /// without a cruise reach (see the module doc). The caller picks another duration (a
+    /// synchronized group: the next one every axis can take).
     #[error(
         "no profile takes exactly {duration} s (time-optimal {minimum} s): a blocked duration"
     )]
@@ -161,6 +175,17 @@ impl Family {
         }
     }
 
+    /// `T1 + T2 − T`: feasible (a cruise of `tc ≥ 0`) where ≤ 0.
+    fn overtime(&self, vc: f64) -> f64 {
+        self.ramps(vc).time - self.tf
+    }
+
+    /// `g(vc)`: the distance the profile through `vc` covers in `T`, less `d`.
+    fn excess(&self, vc: f64) -> f64 {
+        let r = self.ramps(vc);
+        r.distance + vc * (self.tf - r.time) - self.d
+    }
+
     /// The cruise velocity, or None if no profile of the family takes `tf`.
     fn solve(&self) -> Option<f64> {
         let lim = &self.lim;
@@ -240,9 +265,29 @@ impl Family {
         [quadratic_root_in(a, b, c, l, h, g(l), g(h)), None]
     }
 
-    /// S-curve on `[p, q]`: numerically, see the module doc.
-    fn roots_numeric(&self, _p: f64, _q: f64) -> [Option<f64>; 2] {
-        [None, None]
+    /// S-curve on `[p, q]`: `T1 + T2 − T` is concave there, so it is ≤ 0 on `[p, q]` or on
+    /// up to two end parts, split off at its maximum (golden section) by Brent; on each part
+    /// `g` is monotone and Brent finds its root if the ends bracket one.
+    fn roots_numeric(&self, p: f64, q: f64) -> [Option<f64>; 2] {
+        let h = |x: f64| self.overtime(x);
+        let (hp, hq) = (h(p), h(q));
+        let (m, hm) = concave_max(h, p, q, hp, hq);
+        let parts = if hm <= 0.0 {
+            [Some((p, q)), None]
+        } else {
+            [
+                (hp <= 0.0).then(|| (p, brent(h, p, m, hp, hm))),
+                (hq <= 0.0).then(|| (brent(h, m, q, hm, hq), q)),
+            ]
+        };
+        parts.map(|part| {
+            let (l, r) = part?;
+            let (gl, gr) = (self.excess(l), self.excess(r));
+            if gl > 0.0 || gr < 0.0 {
+                return None;
+            }
+            Some(brent(|x| self.excess(x), l, r, gl, gr))
+        })
     }
 
     /// The phases through cruise velocity `vc`; the cruise takes what the ramps leave of `tf`.
@@ -258,6 +303,41 @@ impl Family {
         });
         out.push_change(&r.second, self.e);
     }
+}
+
+/// The maximum of a concave `f` on `[a, b]` (with `f(a)`, `f(b)` given) and where it is:
+/// golden-section search, at most `MAX_ITER` steps.
+fn concave_max(f: impl Fn(f64) -> f64, a: f64, b: f64, fa: f64, fb: f64) -> (f64, f64) {
+    const G: f64 = 0.618_033_988_749_894_8;
+    let mut best = if fa >= fb { (a, fa) } else { (b, fb) };
+    let (mut a, mut b) = (a, b);
+    let mut x1 = b - G * (b - a);
+    let mut x2 = a + G * (b - a);
+    let (mut f1, mut f2) = (f(x1), f(x2));
+    for _ in 0..MAX_ITER {
+        if b - a <= 4.0 * f64::EPSILON * a.abs().max(b.abs()) {
+            break;
+        }
+        if f1 < f2 {
+            a = x1;
+            x1 = x2;
+            f1 = f2;
+            x2 = a + G * (b - a);
+            f2 = f(x2);
+        } else {
+            b = x2;
+            x2 = x1;
+            f2 = f1;
+            x1 = b - G * (b - a);
+            f1 = f(x1);
+        }
+    }
+    for (x, fx) in [(x1, f1), (x2, f2)] {
+        if fx > best.1 {
+            best = (x, fx);
+        }
+    }
+    best
 }
 
 /// The signed acceleration of a trapezoid ramp, None for an empty one.

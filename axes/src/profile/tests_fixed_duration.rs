@@ -5,6 +5,7 @@
 //! a longer duration never raises the peak velocity, and moves from rest are never blocked.
 
 use super::tests::{check_profile, config, log_uniform, Problem, TOL};
+use super::tests_ruckig::{feasible, ruckig_duration, Case as RuckigCase};
 use super::*;
 use proptest::prelude::*;
 
@@ -64,8 +65,12 @@ fn stretches() -> impl Strategy<Value = f64> {
 /// Random cases: limits 1e-2 … 1e4 each, equal or unequal acceleration and deceleration,
 /// trapezoids (`jerk_limited` false) or S-curves; starts at rest, inside and outside the
 /// limits (`from_rest` keeps v0 = a0 = 0); distances from 1e-6 to 1e4 move lengths, or 0;
-/// end velocities 0 or up to 1.2 × the limit.
-pub(super) fn cases(jerk_limited: bool, from_rest: bool) -> impl Strategy<Value = Case> {
+/// end velocities 0 or up to 1.2 × the limit (`to_rest` keeps 0).
+pub(super) fn cases(
+    jerk_limited: bool,
+    from_rest: bool,
+    to_rest: bool,
+) -> impl Strategy<Value = Case> {
     (
         (
             log_uniform(1e-2, 1e4),
@@ -107,6 +112,7 @@ pub(super) fn cases(jerk_limited: bool, from_rest: bool) -> impl Strategy<Value 
                 let (target, end_velocity) = match kind {
                     0 => (start.p, 0.0),
                     1..=3 => (start.p + distance, 0.0),
+                    _ if to_rest => (start.p + distance, 0.0),
                     _ => (start.p + distance, fe * vel),
                 };
                 Case {
@@ -153,35 +159,63 @@ fn plan_stretched(c: &Case) -> Result<Option<(f64, Profile)>, TestCaseError> {
     }
 }
 
+/// From rest: planned at its stretch and at `more` times that, never blocked, and the longer
+/// profile is never faster.
+fn from_rest_and_longer(c: &Case, more: f64) -> Result<(), TestCaseError> {
+    let (duration, p) =
+        plan_stretched(c)?.ok_or_else(|| TestCaseError::fail(format!("blocked: {c:?}")))?;
+    let longer = c
+        .plan(duration * more)
+        .map_err(|e| TestCaseError::fail(format!("{e} for {c:?}")))?;
+    check(c, duration * more, &longer)?;
+    prop_assert!(
+        peak_speed(&longer) <= peak_speed(&p) * (1.0 + TOL),
+        "{} after {} for {c:?}",
+        peak_speed(&longer),
+        peak_speed(&p)
+    );
+    Ok(())
+}
+
 proptest! {
     #![proptest_config(config(4000))]
 
     /// Any start state: a profile of exactly the duration that meets every invariant, or a
     /// blocked duration; never another error.
     #[test]
-    fn trapezoid_takes_the_duration_asked_for(c in cases(false, false)) {
+    fn trapezoid_takes_the_duration_asked_for(c in cases(false, false, false)) {
         plan_stretched(&c)?;
+    }
+
+    #[test]
+    fn s_curve_takes_the_duration_asked_for(c in cases(true, false, false)) {
+        plan_stretched(&c)?;
+    }
+
+    /// Rest to rest (with an end velocity, the ramps' durations have a hump between 0 and
+    /// the end velocity, and durations there can be blocked: see `fixed_duration`).
+    #[test]
+    fn s_curve_rest_to_rest_is_never_blocked_and_slows_down(
+        c in cases(true, true, true),
+        more in log_uniform(1.0 + 1e-6, 100.0),
+    ) {
+        from_rest_and_longer(&c, more)?;
     }
 
     /// From rest, every duration ≥ the optimum is possible, and a longer one never moves
     /// faster.
     #[test]
     fn trapezoid_from_rest_is_never_blocked_and_slows_down(
-        c in cases(false, true),
+        c in cases(false, true, false),
         more in log_uniform(1.0 + 1e-6, 100.0),
     ) {
-        let (duration, p) = plan_stretched(&c)?
-            .ok_or_else(|| TestCaseError::fail(format!("blocked: {c:?}")))?;
-        let longer = c.plan(duration * more).map_err(|e| TestCaseError::fail(format!("{e}")))?;
-        check(&c, duration * more, &longer)?;
-        prop_assert!(peak_speed(&longer) <= peak_speed(&p) * (1.0 + TOL),
-            "{} after {} for {c:?}", peak_speed(&longer), peak_speed(&p));
+        from_rest_and_longer(&c, more)?;
     }
 
     /// The time-optimal duration gives the time-optimal profile.
     #[test]
     fn optimal_duration_gives_the_optimal_profile(
-        c in prop_oneof![cases(false, false), cases(true, false)],
+        c in prop_oneof![cases(false, false, false), cases(true, false, false)],
     ) {
         let optimal = c.optimal();
         prop_assert_eq!(c.plan(optimal.duration()), Ok(optimal));
@@ -231,7 +265,7 @@ fn trapezoid_rest_to_rest_cruises_at_the_closed_form_velocity() {
 
 #[test]
 fn zero_distance_from_rest_stays_put_for_the_duration() {
-    for jerk in [f64::INFINITY] {
+    for jerk in [f64::INFINITY, 7.0] {
         let limits = Limits {
             velocity: 1.0,
             acceleration: 2.0,
@@ -328,4 +362,94 @@ fn durations_between_the_longest_dip_and_the_shortest_reversal_are_blocked() {
     assert!((p.sample(1.5).v - vc).abs() < 1e-12, "{:?}", p.sample(1.5));
     assert_eq!(p.sample(3.0).p, 0.8);
     assert!((p.arrival_velocity() - 1.0).abs() < 1e-12);
+}
+
+// ---- Against Ruckig's step 2 (rsruckig with `minimum_duration`) ----
+
+/// (ours, Ruckig's): whether each plans exactly `stretch` × the optimal duration; Ruckig
+/// answers with a longer duration when that one is blocked. Cases inside Ruckig's input
+/// conditions (`tests_ruckig::feasible`).
+fn both_plan(c: &RuckigCase, stretch: f64) -> Result<(bool, bool), TestCaseError> {
+    let case = Case {
+        start: c.start,
+        target: c.target,
+        end_velocity: c.end_velocity,
+        limits: c.limits,
+        stretch,
+    };
+    let optimal = case.optimal();
+    let duration = optimal.duration() * stretch;
+    let ours = match case.plan(duration) {
+        Ok(p) => {
+            check(&case, duration, &p)?;
+            true
+        }
+        Err(DurationError::Blocked { .. }) => false,
+        Err(e) => return Err(TestCaseError::fail(format!("{e} for {case:?}"))),
+    };
+    let ve = c.end_velocity.copysign(optimal.arrival_velocity());
+    let theirs = ruckig_duration(c.start, c.target, ve, &c.limits, Some(duration))
+        .ok_or_else(|| TestCaseError::fail(format!("ruckig refused {case:?}")))?;
+    Ok((ours, (theirs - duration).abs() <= 1e-8 * duration))
+}
+
+fn ruckig_stretches() -> impl Strategy<Value = f64> {
+    prop_oneof![
+        log_uniform(1e-6, 1e-2).prop_map(|x| 1.0 + x),
+        log_uniform(1.0, 10.0),
+        log_uniform(10.0, 1e3),
+    ]
+}
+
+proptest! {
+    #![proptest_config(config(500))]
+
+    /// Trapezoids: the same durations are possible and the same are blocked.
+    #[test]
+    fn trapezoid_durations_are_blocked_exactly_where_ruckig_blocks_them(
+        c in prop_oneof![feasible(false, false), feasible(false, true)],
+        stretch in ruckig_stretches(),
+    ) {
+        let (ours, theirs) = both_plan(&c, stretch)?;
+        prop_assert_eq!(ours, theirs, "mcemu planned {}, ruckig {} for {:?} × {}", ours, theirs, c, stretch);
+    }
+
+    /// S-curves: a duration planned here is one Ruckig can synchronize to (this family is a
+    /// subset of Ruckig's profiles, so not the other way round), and rest to rest both plan
+    /// every duration.
+    #[test]
+    fn s_curve_durations_are_a_subset_of_ruckigs(
+        c in prop_oneof![feasible(true, false), feasible(true, true)],
+        stretch in ruckig_stretches(),
+    ) {
+        let (ours, theirs) = both_plan(&c, stretch)?;
+        prop_assert!(!ours || theirs, "mcemu planned a duration ruckig blocks: {:?} × {}", c, stretch);
+        if c.start == MotionState::default() && c.end_velocity == 0.0 {
+            prop_assert!(ours && theirs, "rest to rest: mcemu {}, ruckig {}", ours, theirs);
+        }
+    }
+}
+
+/// How often each blocks, over many random cases: `cargo test --release -p axes
+/// fixed_duration_coverage -- --ignored --nocapture`.
+#[test]
+#[ignore = "slow: statistics for the record, run in release"]
+fn fixed_duration_coverage() {
+    use proptest::strategy::ValueTree;
+    use proptest::test_runner::TestRunner;
+    let mut runner = TestRunner::deterministic();
+    for (jerk_limited, end) in [(true, false), (true, true), (false, false), (false, true)] {
+        let strategy = (feasible(jerk_limited, end), ruckig_stretches());
+        let mut counts = [[0u32; 2]; 2];
+        for _ in 0..100_000 {
+            let (c, stretch) = strategy.new_tree(&mut runner).unwrap().current();
+            let (ours, theirs) = both_plan(&c, stretch).unwrap();
+            counts[usize::from(ours)][usize::from(theirs)] += 1;
+        }
+        println!(
+            "jerk limited {jerk_limited}, end velocity {end}: both plan {}, only ruckig {}, \
+             only mcemu {}, both blocked {}",
+            counts[1][1], counts[0][1], counts[1][0], counts[0][0]
+        );
+    }
 }
