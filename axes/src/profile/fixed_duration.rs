@@ -22,21 +22,29 @@
 //! direction of the target wins (the continuation of the time-optimal profile), a cruise the
 //! other way (a reversal) only when there is none.
 //!
-//! Which durations this covers (see [`DurationError::Blocked`] for the others):
+//! Where the cruise has no solution and `v_stop ≠ e`, a second shape: bring `a0` to 0 (reaching
+//! `v_stop`), cruise there, ramp to `e` at full limits, cruise at `e`. For a given `T` it covers,
+//! linearly in the split of the two cruises, every distance between "cruise first" and "cruise
+//! last", which is exactly where `T1 + T2` has a hump between `v_stop` and `e` (two full ramps
+//! take longer than the one ramp between them, so a cruise in between does not fit).
+//!
+//! Which durations these cover (see [`DurationError::Blocked`] for the others):
 //! - trapezoids: every duration Ruckig can synchronize to, and the same blocked intervals
 //!   (tested against rsruckig). They occur when the start velocity points at a target too
 //!   close to stop, wait and start again (e.g. arriving at speed): between the longest dip
 //!   of the speed and the shortest reversal;
-//! - S-curves from rest to rest: every duration ≥ the optimum (tested);
-//! - other S-curves: a subset of Ruckig's durations. Between `v_stop` and `e` the two full
-//!   ramps can take longer than the single ramp between them (`T1 + T2` has a hump), and
-//!   durations there need profiles without a cruise, whose acceleration does not return to 0
-//!   in between (Ruckig's UDUD shapes); so does a start whose acceleration already brakes
-//!   towards `e` when the time-optimal profile is of the release kind (see `plan`). Those
-//!   durations are refused as blocked; a longer one usually works again (a slower cruise).
+//! - S-curves from rest (with or without an end velocity): every duration ≥ the optimum
+//!   (tested);
+//! - other S-curves: a subset of Ruckig's durations (tested; `fixed_duration_coverage` counts
+//!   how often they differ). Ruckig also has profiles without a cruise whose acceleration does
+//!   not return to 0 in between (its UDUD shapes), which some durations need, e.g. just above
+//!   the optimum when that is of the release kind (a start acceleration that already brakes
+//!   towards `e`, see `plan`). Such durations are refused as blocked; a longer one usually
+//!   works.
 //!
 //! Work, once at planning time (never per tick): one time-optimal plan (for `T_opt` and the
-//! direction of the end velocity), then per interval (≤ 4):
+//! direction of the end velocity), the second shape in closed form, and per interval of `vc`
+//! (≤ 4):
 //! - trapezoid: closed form (`T1 + T2` is linear and `g` quadratic in `vc` on an interval);
 //! - S-curve: a golden-section search for the maximum of `T1 + T2` (≤ 100 steps), up to two
 //!   Brent searches for its crossings with `T` and up to two for the root of `g` (≤ 100 steps
@@ -59,10 +67,10 @@ pub enum DurationError {
     InvalidDuration { duration: f64 },
     #[error("duration {duration} s is shorter than the time-optimal {minimum} s")]
     TooShort { duration: f64, minimum: f64 },
-    /// No profile with a slower cruise takes exactly this long: Ruckig's blocked intervals
-    /// (a start velocity towards a target too close to stop, wait and start again: a longer
-    /// duration works again with a reversal), and for S-curves also durations only profiles
-    /// without a cruise reach (see the module doc). The caller picks another duration (a
+    /// No profile of the two shapes takes exactly this long: Ruckig's blocked intervals (a
+    /// start velocity towards a target too close to stop, wait and start again: a longer
+    /// duration works again with a reversal), and for S-curves also some durations only
+    /// profiles without a cruise reach (see the module doc). The caller picks another duration (a
     /// synchronized group: the next one every axis can take).
     #[error(
         "no profile takes exactly {duration} s (time-optimal {minimum} s): a blocked duration"
@@ -124,11 +132,12 @@ impl Profile {
             tf: duration / scale.t,
             lim: scale.lim,
         };
-        let vc = family
+        let shape = family
             .solve()
+            .or_else(|| family.two_cruises())
             .ok_or(DurationError::Blocked { duration, minimum })?;
         let mut plan = Plan::new();
-        family.build(vc, &mut plan);
+        family.build(shape, &mut plan);
         Ok(Profile::assemble(
             start.p,
             goal,
@@ -149,6 +158,16 @@ struct Family {
     d: f64,
     tf: f64,
     lim: Lim,
+}
+
+/// A solution: which shape, with its free values.
+#[derive(Clone, Copy, Debug)]
+enum Shape {
+    /// Ramp to `vc`, cruise, ramp to `e`.
+    Cruise(f64),
+    /// Bring `a0` to 0 (reaching `v_stop`), cruise there for `before`, ramp to `e`, cruise at
+    /// `e` for `after`.
+    TwoCruises { before: f64, after: f64 },
 }
 
 /// The two ramps through cruise velocity `vc`, with their total duration and distance.
@@ -187,7 +206,7 @@ impl Family {
     }
 
     /// The cruise velocity, or None if no profile of the family takes `tf`.
-    fn solve(&self) -> Option<f64> {
+    fn solve(&self) -> Option<Shape> {
         let lim = &self.lim;
         // Breakpoints: where ramp 1 or ramp 2 changes direction, and v = 0 (limits switch).
         let v_stop = lim.v_stop(self.v0, self.a0);
@@ -224,7 +243,32 @@ impl Family {
                 }
             }
         }
-        best
+        best.map(Shape::Cruise)
+    }
+
+    /// The velocity change `v_stop → e` at full limits between a cruise at `v_stop` and one at
+    /// `e`: for a given `T` it covers every distance between cruising first and cruising last,
+    /// which is where the S-curve's `T1 + T2` has its hump (see the module doc). With `R` the
+    /// time and `Q` the distance the two cruises share: `before + after = R`,
+    /// `v_stop·before + e·after = Q`.
+    fn two_cruises(&self) -> Option<Shape> {
+        let lim = &self.lim;
+        let v_stop = lim.v_stop(self.v0, self.a0);
+        if v_stop == self.e || v_stop.abs() > lim.vmax {
+            return None;
+        }
+        let removal = change(self.v0, self.a0, v_stop, lim);
+        let ramp = change(v_stop, 0.0, self.e, lim);
+        let r = self.tf - duration_of(&removal) - duration_of(&ramp);
+        let q = self.d - removal.distance() - ramp.distance();
+        let after = (q - v_stop * r) / (self.e - v_stop);
+        let before = r - after;
+        // Rounding: a share a hair below 0 is 0.
+        let slack = 1e-12 * self.tf;
+        (after >= -slack && before >= -slack).then_some(Shape::TwoCruises {
+            before: before.max(0.0),
+            after: after.max(0.0),
+        })
     }
 
     /// Trapezoid on `[p, q]`: the ramps' rates are constant there, so with `r1` the rate of
@@ -290,18 +334,30 @@ impl Family {
         })
     }
 
-    /// The phases through cruise velocity `vc`; the cruise takes what the ramps leave of `tf`.
-    fn build(&self, vc: f64, out: &mut Plan) {
-        let r = self.ramps(vc);
+    /// The phases of `shape`; a cruise takes what the ramps leave of `tf`.
+    fn build(&self, shape: Shape, out: &mut Plan) {
         out.clear();
-        out.push_change(&r.first, vc);
-        out.push(Phase {
-            v: vc,
+        let cruise = |v: f64, t: f64| Phase {
+            v,
             a: 0.0,
             j: 0.0,
-            t: (self.tf - r.time).max(0.0),
-        });
-        out.push_change(&r.second, self.e);
+            t: t.max(0.0),
+        };
+        match shape {
+            Shape::Cruise(vc) => {
+                let r = self.ramps(vc);
+                out.push_change(&r.first, vc);
+                out.push(cruise(vc, self.tf - r.time));
+                out.push_change(&r.second, self.e);
+            }
+            Shape::TwoCruises { before, after } => {
+                let v_stop = self.lim.v_stop(self.v0, self.a0);
+                out.push_change(&change(self.v0, self.a0, v_stop, &self.lim), v_stop);
+                out.push(cruise(v_stop, before));
+                out.push_change(&change(v_stop, 0.0, self.e, &self.lim), self.e);
+                out.push(cruise(self.e, after));
+            }
+        }
     }
 }
 
