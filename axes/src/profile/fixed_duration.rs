@@ -50,7 +50,7 @@
 //!   Brent searches for its crossings with `T` and up to two for the root of `g` (≤ 100 steps
 //!   each), each step evaluating two ramps in closed form: at most about 2000 ramp pairs.
 
-use super::plan::{brent, Plan, MAX_ITER};
+use super::plan::{brent, golden_max, Plan};
 use super::ramp::{change, Change, Lim, Phase};
 use super::{Goal, Limits, MotionState, Options, PlanError, Profile, Scale};
 
@@ -361,39 +361,13 @@ impl Family {
     }
 }
 
-/// The maximum of a concave `f` on `[a, b]` (with `f(a)`, `f(b)` given) and where it is:
-/// golden-section search, at most `MAX_ITER` steps.
+/// The maximum of a concave `f` on `[a, b]` (with `f(a)`, `f(b)` given) and where it is.
 fn concave_max(f: impl Fn(f64) -> f64, a: f64, b: f64, fa: f64, fb: f64) -> (f64, f64) {
-    const G: f64 = 0.618_033_988_749_894_8;
-    let mut best = if fa >= fb { (a, fa) } else { (b, fb) };
-    let (mut a, mut b) = (a, b);
-    let mut x1 = b - G * (b - a);
-    let mut x2 = a + G * (b - a);
-    let (mut f1, mut f2) = (f(x1), f(x2));
-    for _ in 0..MAX_ITER {
-        if b - a <= 4.0 * f64::EPSILON * a.abs().max(b.abs()) {
-            break;
-        }
-        if f1 < f2 {
-            a = x1;
-            x1 = x2;
-            f1 = f2;
-            x2 = a + G * (b - a);
-            f2 = f(x2);
-        } else {
-            b = x2;
-            x2 = x1;
-            f2 = f1;
-            x1 = b - G * (b - a);
-            f1 = f(x1);
-        }
-    }
-    for (x, fx) in [(x1, f1), (x2, f2)] {
-        if fx > best.1 {
-            best = (x, fx);
-        }
-    }
-    best
+    let width = 4.0 * f64::EPSILON * a.abs().max(b.abs());
+    let inner = golden_max(f, a, b, width, |_| false);
+    [(a, fa), (b, fb)]
+        .into_iter()
+        .fold(inner, |best, end| if end.1 > best.1 { end } else { best })
 }
 
 /// The signed acceleration of a trapezoid ramp, None for an empty one.

@@ -451,39 +451,15 @@ impl Branch {
     /// [a0, 0] (it starts at the direct-ramp distance ≤ d and is unimodal): golden-section
     /// search for a point at or above d, then the root before it. False if there is none.
     fn release_above(&self, d: f64, out: &mut Plan) -> bool {
-        const G: f64 = 0.618_033_988_749_894_8;
         let f = |a1: f64| self.release_eval(a1).2;
-        let (mut a, mut b) = (self.a0, 0.0);
-        let mut x1 = b - G * (b - a);
-        let mut x2 = a + G * (b - a);
-        let (mut f1, mut f2) = (f(x1), f(x2));
-        for _ in 0..MAX_ITER {
-            if f1 >= d {
-                self.release(d, self.a0, x1, f1, out);
-                return true;
-            }
-            if f2 >= d {
-                self.release(d, self.a0, x2, f2, out);
-                return true;
-            }
-            if b - a <= 4.0 * f64::EPSILON * self.a0.abs() {
-                break;
-            }
-            if f1 < f2 {
-                a = x1;
-                x1 = x2;
-                f1 = f2;
-                x2 = a + G * (b - a);
-                f2 = f(x2);
-            } else {
-                b = x2;
-                x2 = x1;
-                f2 = f1;
-                x1 = b - G * (b - a);
-                f1 = f(x1);
-            }
+        let width = 4.0 * f64::EPSILON * self.a0.abs();
+        let (a1, f1) = golden_max(f, self.a0, 0.0, width, |f1| f1 >= d);
+        if f1 >= d {
+            self.release(d, self.a0, a1, f1, out);
+            true
+        } else {
+            false
         }
-        false
     }
 }
 
@@ -527,6 +503,52 @@ fn symmetric(w: f64, vp: f64, (a, inv_a): (f64, f64), u: f64, lim: &Lim) -> (f64
     } else {
         let t = delta * inv_a + a * ij;
         (0.5 * sum * t, u * (t + sum * s * inv_a))
+    }
+}
+
+/// Golden-section search for the maximum of a unimodal `f` on `[a, b]`, until the bracket is
+/// `width` wide or after `MAX_ITER` steps: the first probe `x` whose `f(x)` is `enough`, or else
+/// the higher of the last two probes, with its value.
+pub(super) fn golden_max(
+    f: impl Fn(f64) -> f64,
+    a: f64,
+    b: f64,
+    width: f64,
+    enough: impl Fn(f64) -> bool,
+) -> (f64, f64) {
+    const G: f64 = 0.618_033_988_749_894_8;
+    let (mut a, mut b) = (a, b);
+    let mut x1 = b - G * (b - a);
+    let mut x2 = a + G * (b - a);
+    let (mut f1, mut f2) = (f(x1), f(x2));
+    for _ in 0..MAX_ITER {
+        if enough(f1) {
+            return (x1, f1);
+        }
+        if enough(f2) {
+            return (x2, f2);
+        }
+        if b - a <= width {
+            break;
+        }
+        if f1 < f2 {
+            a = x1;
+            x1 = x2;
+            f1 = f2;
+            x2 = a + G * (b - a);
+            f2 = f(x2);
+        } else {
+            b = x2;
+            x2 = x1;
+            f2 = f1;
+            x1 = b - G * (b - a);
+            f1 = f(x1);
+        }
+    }
+    if f1 >= f2 {
+        (x1, f1)
+    } else {
+        (x2, f2)
     }
 }
 
