@@ -35,12 +35,15 @@
 //!   of the speed and the shortest reversal;
 //! - S-curves from rest (with or without an end velocity): every duration ≥ the optimum
 //!   (tested);
-//! - other S-curves: a subset of Ruckig's durations (tested; `fixed_duration_coverage` counts
-//!   how often they differ). Ruckig also has profiles without a cruise whose acceleration does
-//!   not return to 0 in between (its UDUD shapes), which some durations need, e.g. just above
+//! - other S-curves: a subset of Ruckig's durations. Ruckig also has profiles without a cruise
+//!   whose acceleration does not return to 0 in between, which some durations need: just above
 //!   the optimum when that is of the release kind (a start acceleration that already brakes
-//!   towards `e`, see `plan`). Such durations are refused as blocked; a longer one usually
-//!   works.
+//!   towards `e`, see `plan`). Such durations are refused as blocked; a slightly longer one
+//!   works. Over 100 000 random cases per kind inside Ruckig's input conditions, stretched by
+//!   1 + 1e-6 … 1000 (`fixed_duration_coverage`), Ruckig plans 0.03 % (to rest) and 0.15 % (with
+//!   an end velocity) of the durations this refuses, nearly all within 0.7 % above the
+//!   optimum and all seen with a braking start acceleration; never the other way round.
+//!   Trapezoids agree on every case.
 //!
 //! Work, once at planning time (never per tick): one time-optimal plan (for `T_opt` and the
 //! direction of the end velocity), the second shape in closed form, and per interval of `vc`
