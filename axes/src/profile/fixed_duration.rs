@@ -87,8 +87,9 @@ impl Profile {
     /// seconds within `limits`.
     ///
     /// The result is sampled like any other profile. Its duration is `duration` within
-    /// [`DURATION_TOL`] (relative); it ends exactly on the target. `duration` within
-    /// `DURATION_TOL` of the time-optimal duration returns the time-optimal profile itself.
+    /// [`DURATION_TOL`] (relative; in practice a few ulps: the sum of its phases), and from
+    /// `duration()` on it samples to exactly the target. `duration` within `DURATION_TOL` of
+    /// the time-optimal duration returns the time-optimal profile itself.
     /// A zero-distance move from rest stays put for `duration`.
     ///
     /// No start-velocity jump and no jump to zero at the target: the options are the defaults

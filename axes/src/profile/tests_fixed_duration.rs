@@ -442,3 +442,26 @@ fn fixed_duration_coverage() {
         );
     }
 }
+
+/// S-curve from rest to speed 1 (limits 1): the ramp takes 2 s and covers 1. For 1.2 in 2.4 s
+/// a cruise at vc between 0 and 1 does not fit (two ramps through vc take 2√vc + 2√(1 − vc),
+/// over 2.4 for vc in 0.051 … 0.949, and outside that they cover too little or too much), so
+/// the profile waits 0.2 s, ramps, and cruises at 1 for 0.2 s.
+#[test]
+fn s_curve_between_start_and_end_velocity_cruises_at_both() {
+    let limits = Limits {
+        velocity: 1.0,
+        acceleration: 1.0,
+        deceleration: 1.0,
+        jerk: 1.0,
+    };
+    let start = MotionState::default();
+    let p = Profile::plan_for_duration(start, 1.2, 1.0, &limits, 2.4).unwrap();
+    assert!((p.duration() - 2.4).abs() < 1e-15);
+    assert_eq!(p.sample(0.19), Sample::default());
+    let ramp_end = p.sample(2.2);
+    assert!((ramp_end.v - 1.0).abs() < 1e-12 && (ramp_end.p - 1.0).abs() < 1e-12);
+    assert!((p.sample(2.3).p - 1.1).abs() < 1e-12);
+    assert_eq!(p.sample(p.duration()).p, 1.2);
+    assert!((p.arrival_velocity() - 1.0).abs() < 1e-15);
+}
