@@ -73,8 +73,8 @@ pub enum DurationError {
     /// No profile of the two shapes takes exactly this long: Ruckig's blocked intervals (a
     /// start velocity towards a target too close to stop, wait and start again: a longer
     /// duration works again with a reversal), and for S-curves also some durations only
-    /// profiles without a cruise reach (see the module doc). The caller picks another duration (a
-    /// synchronized group: the next one every axis can take).
+    /// profiles without a cruise reach (see the module doc). The caller picks another
+    /// duration (a synchronized group: the next one every axis can take).
     #[error(
         "no profile takes exactly {duration} s (time-optimal {minimum} s): a blocked duration"
     )]

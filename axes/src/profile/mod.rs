@@ -5,7 +5,8 @@
 //! acceleration); with a finite jerk it is the jerk-limited S-curve (up to 7 phases, plus the
 //! phases needed to bring an out-of-limit start back inside). Planning is closed-form or a
 //! bounded root search: no allocation, no iteration per tick. Sampling is a polynomial
-//! evaluation.
+//! evaluation. [`Profile::plan_for_duration`] plans the same move stretched to a given duration
+//! ≥ the time-optimal one (Ruckig's step 2, for synchronized moves; see `fixed_duration`).
 //!
 //! Vendor rules (HMC trapezoid/triangle and JerkMode, NMC smoothCoef, CPU 226H linear ramps)
 //! are expressed as choices of `Limits`/`Options` plus [`MovingAverage`] (see [`rules`]).
