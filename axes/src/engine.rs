@@ -4,7 +4,13 @@
 
 use crate::axis::{Action, Axis, Context, Ledger, MotionRequest, Overrides};
 use crate::cia402::{controlword_for, obj, Cia402Drive, DriveMaster, PowerTarget, State};
-use crate::command::{AxisIndex, Command, CommandKind, EngineError, Reply};
+use crate::command::{
+    AxisCommand, AxisIndex, Cancel, Command, CommandKind, CouplingCommand, Disable, Enable,
+    EngineError, ForceAnalogInput, ForceDigitalInput, ForceInput, GetCommandState, GetParameter,
+    GroupCommand, Halt, Home, InjectFollowingError, IoCommand, MachineCommand, ModifyTarget,
+    MoveAbsolute, MoveRelative, MoveVelocity, ReadObject, Reply, Reset, SetParameter, SetPosition,
+    SlaveCommand, Stop, StreamSetpoint, WriteAnalogOutput, WriteDigitalOutput, WriteObject,
+};
 use crate::config::{ConfigError, EngineConfig, InputBinding};
 use crate::homing::HomingSpec;
 use crate::od::Value;
@@ -181,23 +187,49 @@ impl Engine {
         &self.io.image
     }
 
-    /// Apply one command at the current tick.
+    /// Apply one command at the current tick. Each family goes to its own function: the axis
+    /// family to the axis (through its drive first, for power commands on an engine-mastered
+    /// drive), I/O to the I/O image, slave commands to a drive's dictionary, machine commands
+    /// to the whole machine. Group and coupling commands will go to their planner stages
+    /// (issues 11 and 12).
     pub fn apply(&mut self, command: Command) -> Result<Reply, EngineError> {
+        match command {
+            Command::Axis(c) => self.apply_axis_command(c),
+            Command::Group(c) => self.apply_group_command(c),
+            Command::Coupling(c) => self.apply_coupling_command(c),
+            Command::Io(c) => self.apply_io_command(c),
+            Command::Slave(c) => self.apply_slave_command(c),
+            Command::Machine(c) => self.apply_machine_command(c),
+        }
+    }
+
+    /// A command for one axis, from a front-end.
+    fn apply_axis_command(&mut self, command: AxisCommand) -> Result<Reply, EngineError> {
         if let Some(reply) = self.route_power(&command) {
             return reply;
         }
-        self.apply_to_axes(command)
+        self.apply_to_axis(command)
+    }
+
+    /// Issue 11's group commands arrive here; there are none yet.
+    fn apply_group_command(&mut self, command: GroupCommand) -> Result<Reply, EngineError> {
+        match command {}
+    }
+
+    /// Issue 12's coupling commands arrive here; there are none yet.
+    fn apply_coupling_command(&mut self, command: CouplingCommand) -> Result<Reply, EngineError> {
+        match command {}
     }
 
     /// Power commands on an axis whose drive the engine masters go through the drive's state
     /// machine: the engine writes the controlword sequence over the next ticks and the drive
     /// powers the axis when it reaches Operation enabled (HIMC Enable/Disable/Reset, digest 004
     /// §3.2). The reply says the request was taken; the state follows in the status.
-    fn route_power(&mut self, command: &Command) -> Option<Result<Reply, EngineError>> {
+    fn route_power(&mut self, command: &AxisCommand) -> Option<Result<Reply, EngineError>> {
         let (axis, target) = match command {
-            Command::Enable { axis } => (*axis, PowerTarget::OperationEnabled),
-            Command::Disable { axis } => (*axis, PowerTarget::SwitchOnDisabled),
-            Command::Reset { axis } => (*axis, PowerTarget::SwitchOnDisabled),
+            AxisCommand::Enable(Enable { axis }) => (*axis, PowerTarget::OperationEnabled),
+            AxisCommand::Disable(Disable { axis }) => (*axis, PowerTarget::SwitchOnDisabled),
+            AxisCommand::Reset(Reset { axis }) => (*axis, PowerTarget::SwitchOnDisabled),
             _ => return None,
         };
         let slave = self.axis_slave.get(axis as usize).copied().flatten()?;
@@ -205,25 +237,26 @@ impl Engine {
         if s.master != DriveMaster::Engine {
             return None;
         }
-        if let Command::Reset { .. } = command {
+        if let AxisCommand::Reset(_) = command {
             // A fault reset walks Fault → Switch on disabled; the axis's own latches are
             // cleared directly.
             if s.drive.state() == State::Fault {
                 s.power = Some(target);
             }
-            return Some(self.apply_to_axes(command.clone()));
+            return Some(self.apply_to_axis(command.clone()));
         }
         s.power = Some(target);
         Some(Ok(Reply::Done))
     }
 
-    fn apply_to_axes(&mut self, command: Command) -> Result<Reply, EngineError> {
+    /// A command for one axis, applied to the axis itself (no drive routing): the front-ends'
+    /// commands after [`Engine::route_power`], and the commands a drive emits.
+    fn apply_to_axis(&mut self, command: AxisCommand) -> Result<Reply, EngineError> {
         let Engine {
             axes,
             io,
             ledger,
             tick,
-            slaves,
             ..
         } = self;
         let mut ctx = Context {
@@ -231,32 +264,27 @@ impl Engine {
             di: &io.image.di,
             ledger,
         };
-        fn slave_of(slaves: &mut [Slave], slave: u16) -> Result<&mut Slave, EngineError> {
-            let count = slaves.len() as u16;
-            slaves
-                .get_mut(slave as usize)
-                .ok_or(EngineError::InvalidSlave { slave, count })
-        }
-        fn axis_mut(axes: &mut [Axis], axis: AxisIndex) -> Result<&mut Axis, EngineError> {
-            let count = axes.len() as u32;
-            axes.get_mut(axis as usize).ok_or(EngineError::InvalidAxis {
-                axis: axis as u32,
+        let count = axes.len() as u32;
+        let index = command.axis();
+        let axis = axes
+            .get_mut(index as usize)
+            .ok_or(EngineError::InvalidAxis {
+                axis: index as u32,
                 count,
-            })
-        }
+            })?;
         match command {
-            Command::Enable { axis } => axis_mut(axes, axis)?.enable(&mut ctx),
-            Command::Disable { axis } => axis_mut(axes, axis)?.disable(&mut ctx),
-            Command::Reset { axis } => axis_mut(axes, axis)?.reset(&mut ctx),
-            Command::MoveAbsolute {
-                axis,
+            AxisCommand::Enable(_) => axis.enable(&mut ctx),
+            AxisCommand::Disable(_) => axis.disable(&mut ctx),
+            AxisCommand::Reset(_) => axis.reset(&mut ctx),
+            AxisCommand::MoveAbsolute(MoveAbsolute {
+                axis: _,
                 position,
                 velocity,
                 acceleration,
                 deceleration,
                 jerk,
                 buffer_mode,
-            } => axis_mut(axes, axis)?.submit(
+            }) => axis.submit(
                 &mut ctx,
                 MotionRequest {
                     kind: CommandKind::MoveAbsolute,
@@ -270,15 +298,15 @@ impl Engine {
                     buffer_mode,
                 },
             ),
-            Command::MoveRelative {
-                axis,
+            AxisCommand::MoveRelative(MoveRelative {
+                axis: _,
                 distance,
                 velocity,
                 acceleration,
                 deceleration,
                 jerk,
                 buffer_mode,
-            } => axis_mut(axes, axis)?.submit(
+            }) => axis.submit(
                 &mut ctx,
                 MotionRequest {
                     kind: CommandKind::MoveRelative,
@@ -292,14 +320,14 @@ impl Engine {
                     buffer_mode,
                 },
             ),
-            Command::MoveVelocity {
-                axis,
+            AxisCommand::MoveVelocity(MoveVelocity {
+                axis: _,
                 velocity,
                 acceleration,
                 deceleration,
                 jerk,
                 buffer_mode,
-            } => axis_mut(axes, axis)?.submit(
+            }) => axis.submit(
                 &mut ctx,
                 MotionRequest {
                     kind: CommandKind::MoveVelocity,
@@ -313,128 +341,130 @@ impl Engine {
                     buffer_mode,
                 },
             ),
-            Command::Stop {
-                axis,
+            AxisCommand::Stop(Stop {
+                axis: _,
                 mode,
                 deceleration,
-            } => axis_mut(axes, axis)?.stop(&mut ctx, mode, deceleration),
-            Command::Halt { axis, deceleration } => {
-                axis_mut(axes, axis)?.halt(&mut ctx, deceleration)
-            }
-            Command::Resume { axis } => axis_mut(axes, axis)?.resume(&mut ctx),
-            Command::Home {
-                axis,
-                method,
-                switch_velocity,
-                zero_velocity,
-                acceleration,
-                offset,
-                timeout,
-                quirks,
-                buffer_mode,
-            } => {
-                let a = axis_mut(axes, axis)?;
-                for (name, v) in [
-                    ("switch_velocity", switch_velocity),
-                    ("zero_velocity", zero_velocity),
-                    ("offset", offset),
-                ] {
-                    if let Some(v) = v {
-                        crate::command::bounded(name, v)?;
-                    }
-                }
-                let p = a.params();
-                let spec = HomingSpec {
-                    method: method.unwrap_or(p.get(ParamId::HomeMethod) as i16),
-                    switch_velocity: switch_velocity.unwrap_or(p.get(ParamId::HomeSwitchVelocity)),
-                    zero_velocity: zero_velocity.unwrap_or(p.get(ParamId::HomeZeroVelocity)),
-                    acceleration: acceleration.unwrap_or(p.get(ParamId::HomeAcceleration)),
-                    offset: offset.unwrap_or(p.get(ParamId::HomeOffset)),
-                    timeout: timeout.unwrap_or(p.get(ParamId::HomeTimeout)),
-                    quirks,
-                };
-                a.submit(
+            }) => axis.stop(&mut ctx, mode, deceleration),
+            AxisCommand::Halt(Halt {
+                axis: _,
+                deceleration,
+            }) => axis.halt(&mut ctx, deceleration),
+            AxisCommand::Resume(_) => axis.resume(&mut ctx),
+            AxisCommand::Home(home) => {
+                let spec = homing_spec(axis, &home)?;
+                axis.submit(
                     &mut ctx,
                     MotionRequest {
                         kind: CommandKind::Home,
                         action: Action::Home(spec),
                         overrides: Overrides::default(),
-                        buffer_mode,
+                        buffer_mode: home.buffer_mode,
                     },
                 )
             }
-            Command::SetPosition {
-                axis,
+            AxisCommand::SetPosition(SetPosition {
+                axis: _,
                 position,
                 frame,
-            } => axis_mut(axes, axis)?.set_position(position, frame),
-            Command::SetParameter {
-                axis,
+            }) => axis.set_position(position, frame),
+            AxisCommand::SetParameter(SetParameter {
+                axis: _,
                 name,
                 value,
                 lenient,
-            } => axis_mut(axes, axis)?.set_parameter(name, value, lenient),
-            Command::GetParameter { axis, name } => Ok(Reply::Value {
-                value: axis_mut(axes, axis)?.get_parameter(name),
+            }) => axis.set_parameter(name, value, lenient),
+            AxisCommand::GetParameter(GetParameter { axis: _, name }) => Ok(Reply::Value {
+                value: axis.get_parameter(name),
             }),
-            Command::ModifyTarget {
-                axis,
+            AxisCommand::ModifyTarget(ModifyTarget {
+                axis: _,
                 position,
                 relative,
-            } => axis_mut(axes, axis)?.modify_target(&mut ctx, position, relative),
-            Command::Cancel { axis, scope } => axis_mut(axes, axis)?.cancel(&mut ctx, scope),
-            Command::CommandState { id } => {
-                let state = axes
-                    .iter()
-                    .find_map(|a| a.queued_state(id))
-                    .or_else(|| ctx.ledger.lookup(id))
-                    .ok_or(EngineError::UnknownCommand { id })?;
-                Ok(Reply::CommandState { id, state })
+            }) => axis.modify_target(&mut ctx, position, relative),
+            AxisCommand::Cancel(Cancel { axis: _, scope }) => axis.cancel(&mut ctx, scope),
+            AxisCommand::ForceInput(ForceInput {
+                axis: _,
+                input,
+                value,
+            }) => axis.force_input(input, value),
+            AxisCommand::InjectFollowingError(InjectFollowingError { axis: _, amount }) => {
+                axis.inject_following_error(amount)
             }
-            Command::ForceInput { axis, input, value } => {
-                axis_mut(axes, axis)?.force_input(input, value)
+            AxisCommand::Setpoint(StreamSetpoint { axis: _, setpoint }) => {
+                axis.setpoint(&mut ctx, setpoint)
             }
-            Command::InjectFollowingError { axis, amount } => {
-                axis_mut(axes, axis)?.inject_following_error(amount)
+        }
+    }
+
+    /// A command on the I/O image; it shows in the next snapshot.
+    fn apply_io_command(&mut self, command: IoCommand) -> Result<Reply, EngineError> {
+        let io = &mut self.io;
+        match command {
+            IoCommand::ForceDigitalInput(ForceDigitalInput { channel, value }) => {
+                io.force_digital_input(channel, value)
             }
-            Command::Setpoint { axis, setpoint } => {
-                axis_mut(axes, axis)?.setpoint(&mut ctx, setpoint)
+            IoCommand::ForceAnalogInput(ForceAnalogInput { channel, value }) => {
+                io.force_analog_input(channel, value)
             }
-            Command::ForceDigitalInput { channel, value } => {
-                io.force_digital_input(channel, value).map(|()| Reply::Done)
+            IoCommand::WriteDigitalOutput(WriteDigitalOutput { channel, value }) => {
+                io.write_digital_output(channel, value)
             }
-            Command::ForceAnalogInput { channel, value } => {
-                io.force_analog_input(channel, value).map(|()| Reply::Done)
+            IoCommand::WriteAnalogOutput(WriteAnalogOutput { channel, value }) => {
+                io.write_analog_output(channel, value)
             }
-            Command::WriteDigitalOutput { channel, value } => io
-                .write_digital_output(channel, value)
-                .map(|()| Reply::Done),
-            Command::WriteAnalogOutput { channel, value } => {
-                io.write_analog_output(channel, value).map(|()| Reply::Done)
-            }
-            Command::ReadObject {
+        }
+        .map(|()| Reply::Done)
+    }
+
+    /// A read or write of a drive's object dictionary, as a fieldbus master's SDO would.
+    fn apply_slave_command(&mut self, command: SlaveCommand) -> Result<Reply, EngineError> {
+        match command {
+            SlaveCommand::ReadObject(ReadObject {
                 slave,
                 index,
                 subindex,
-            } => {
-                let s = slave_of(slaves, slave)?;
-                let value = s
-                    .drive
+            }) => {
+                let value = self
+                    .slave_drive(slave)?
                     .read(index, subindex)
                     .map_err(|error| EngineError::Object { slave, error })?;
                 Ok(Reply::Object { value })
             }
-            Command::WriteObject {
+            SlaveCommand::WriteObject(WriteObject {
                 slave,
                 index,
                 subindex,
                 value,
-            } => {
-                let s = slave_of(slaves, slave)?;
-                s.drive
+            }) => {
+                self.slave_drive(slave)?
                     .write(index, subindex, value)
                     .map_err(|error| EngineError::Object { slave, error })?;
                 Ok(Reply::Done)
+            }
+        }
+    }
+
+    fn slave_drive(&mut self, slave: u16) -> Result<&mut Cia402Drive, EngineError> {
+        let count = self.slaves.len() as u16;
+        self.slaves
+            .get_mut(slave as usize)
+            .map(|s| &mut s.drive)
+            .ok_or(EngineError::InvalidSlave { slave, count })
+    }
+
+    /// Machine-wide commands: a command's state is looked up in every axis's queue, then in the
+    /// ledger of finished commands.
+    fn apply_machine_command(&mut self, command: MachineCommand) -> Result<Reply, EngineError> {
+        match command {
+            MachineCommand::CommandState(GetCommandState { id }) => {
+                let state = self
+                    .axes
+                    .iter()
+                    .find_map(|a| a.queued_state(id))
+                    .or_else(|| self.ledger.lookup(id))
+                    .ok_or(EngineError::UnknownCommand { id })?;
+                Ok(Reply::CommandState { id, state })
             }
         }
     }
@@ -483,7 +513,12 @@ impl Engine {
                 slave.power = None;
             }
             for command in commands.drain(..) {
-                let result = self.apply_to_axes(command.clone());
+                // A drive's commands reach its axis directly: routing them back through the
+                // drive's power state machine would loop.
+                let result = match command.clone() {
+                    Command::Axis(c) => self.apply_to_axis(c),
+                    other => self.apply(other),
+                };
                 if let Some(slave) = self.slaves.get_mut(i) {
                     slave.drive.on_reply(&command, &result);
                 }
@@ -571,6 +606,36 @@ impl Engine {
         self.snapshot_into(&mut s);
         s
     }
+}
+
+/// The homing run a `home` command asks for: absent values come from the axis's `home_*`
+/// parameters.
+fn homing_spec(axis: &Axis, home: &Home) -> Result<HomingSpec, EngineError> {
+    for (name, v) in [
+        ("switch_velocity", home.switch_velocity),
+        ("zero_velocity", home.zero_velocity),
+        ("offset", home.offset),
+    ] {
+        if let Some(v) = v {
+            crate::command::bounded(name, v)?;
+        }
+    }
+    let p = axis.params();
+    Ok(HomingSpec {
+        method: home.method.unwrap_or(p.get(ParamId::HomeMethod) as i16),
+        switch_velocity: home
+            .switch_velocity
+            .unwrap_or(p.get(ParamId::HomeSwitchVelocity)),
+        zero_velocity: home
+            .zero_velocity
+            .unwrap_or(p.get(ParamId::HomeZeroVelocity)),
+        acceleration: home
+            .acceleration
+            .unwrap_or(p.get(ParamId::HomeAcceleration)),
+        offset: home.offset.unwrap_or(p.get(ParamId::HomeOffset)),
+        timeout: home.timeout.unwrap_or(p.get(ParamId::HomeTimeout)),
+        quirks: home.quirks,
+    })
 }
 
 fn reached(target: PowerTarget, state: State) -> bool {

@@ -6,7 +6,11 @@
 //! show them to users, and the control API reads the field name out of them.
 
 use axes::command::{
-    AxisInput, BufferMode, CancelScope, Command, PositionFrame, Setpoint, StopMode,
+    AxisInput, BufferMode, Cancel, CancelScope, Command, Disable, Enable, ForceAnalogInput,
+    ForceDigitalInput, ForceInput, GetCommandState, GetParameter, Halt, Home, InjectFollowingError,
+    ModifyTarget, MoveAbsolute, MoveRelative, MoveVelocity, PositionFrame, ReadObject, Reset,
+    Resume, SetParameter, SetPosition, Setpoint, Stop, StopMode, StreamSetpoint, WriteAnalogOutput,
+    WriteDigitalOutput, WriteObject,
 };
 use axes::homing::{AfterHome, HomingQuirks, Latch};
 use axes::od::Value;
@@ -25,14 +29,20 @@ fn full() -> Vec<(Command, &'static str)> {
         trial: true,
     };
     vec![
-        (Command::Enable { axis: 1 }, r#"{"type":"enable","axis":1}"#),
         (
-            Command::Disable { axis: 2 },
+            Command::from(Enable { axis: 1 }),
+            r#"{"type":"enable","axis":1}"#,
+        ),
+        (
+            Command::from(Disable { axis: 2 }),
             r#"{"type":"disable","axis":2}"#,
         ),
-        (Command::Reset { axis: 3 }, r#"{"type":"reset","axis":3}"#),
         (
-            Command::MoveAbsolute {
+            Command::from(Reset { axis: 3 }),
+            r#"{"type":"reset","axis":3}"#,
+        ),
+        (
+            Command::from(MoveAbsolute {
                 axis: 0,
                 position: 100.5,
                 velocity: Some(10.0),
@@ -40,11 +50,11 @@ fn full() -> Vec<(Command, &'static str)> {
                 deceleration: Some(30.0),
                 jerk: Some(0.0),
                 buffer_mode: BufferMode::Buffered,
-            },
+            }),
             r#"{"type":"move_absolute","axis":0,"position":100.5,"velocity":10.0,"acceleration":20.0,"deceleration":30.0,"jerk":0.0,"buffer_mode":"buffered"}"#,
         ),
         (
-            Command::MoveRelative {
+            Command::from(MoveRelative {
                 axis: 1,
                 distance: -7.25,
                 velocity: Some(1.0),
@@ -52,38 +62,41 @@ fn full() -> Vec<(Command, &'static str)> {
                 deceleration: Some(3.0),
                 jerk: Some(400.0),
                 buffer_mode: BufferMode::Buffered,
-            },
+            }),
             r#"{"type":"move_relative","axis":1,"distance":-7.25,"velocity":1.0,"acceleration":2.0,"deceleration":3.0,"jerk":400.0,"buffer_mode":"buffered"}"#,
         ),
         (
-            Command::MoveVelocity {
+            Command::from(MoveVelocity {
                 axis: 2,
                 velocity: -3.5,
                 acceleration: Some(2.0),
                 deceleration: Some(3.0),
                 jerk: Some(4.0),
                 buffer_mode: BufferMode::Buffered,
-            },
+            }),
             r#"{"type":"move_velocity","axis":2,"velocity":-3.5,"acceleration":2.0,"deceleration":3.0,"jerk":4.0,"buffer_mode":"buffered"}"#,
         ),
         (
-            Command::Stop {
+            Command::from(Stop {
                 axis: 0,
                 mode: StopMode::Emergency,
                 deceleration: Some(99.0),
-            },
+            }),
             r#"{"type":"stop","axis":0,"mode":"emergency","deceleration":99.0}"#,
         ),
         (
-            Command::Halt {
+            Command::from(Halt {
                 axis: 0,
                 deceleration: Some(5.0),
-            },
+            }),
             r#"{"type":"halt","axis":0,"deceleration":5.0}"#,
         ),
-        (Command::Resume { axis: 0 }, r#"{"type":"resume","axis":0}"#),
         (
-            Command::Home {
+            Command::from(Resume { axis: 0 }),
+            r#"{"type":"resume","axis":0}"#,
+        ),
+        (
+            Command::from(Home {
                 axis: 1,
                 method: Some(17),
                 switch_velocity: Some(10.0),
@@ -93,117 +106,117 @@ fn full() -> Vec<(Command, &'static str)> {
                 timeout: Some(30.0),
                 quirks,
                 buffer_mode: BufferMode::Buffered,
-            },
+            }),
             r#"{"type":"home","axis":1,"method":17,"switch_velocity":10.0,"zero_velocity":1.0,"acceleration":100.0,"offset":-0.5,"timeout":30.0,"quirks":{"after_home":"return_to_home","switch_latch":"polled","index_latch":"exact","switch_scan_ticks":4,"max_search_distance":500.0,"initial_backoff":2.5,"rescan":1.5,"trial":true},"buffer_mode":"buffered"}"#,
         ),
         (
-            Command::SetPosition {
+            Command::from(SetPosition {
                 axis: 0,
                 position: 12.0,
                 frame: PositionFrame::Actual,
-            },
+            }),
             r#"{"type":"set_position","axis":0,"position":12.0,"frame":"actual"}"#,
         ),
         (
-            Command::SetParameter {
+            Command::from(SetParameter {
                 axis: 0,
                 name: ParamId::Speed,
                 value: 42.0,
                 lenient: true,
-            },
+            }),
             r#"{"type":"set_parameter","axis":0,"name":"speed","value":42.0,"lenient":true}"#,
         ),
         (
-            Command::GetParameter {
+            Command::from(GetParameter {
                 axis: 1,
                 name: ParamId::Accel,
-            },
+            }),
             r#"{"type":"get_parameter","axis":1,"name":"accel"}"#,
         ),
         (
-            Command::ModifyTarget {
+            Command::from(ModifyTarget {
                 axis: 0,
                 position: 3.0,
                 relative: true,
-            },
+            }),
             r#"{"type":"modify_target","axis":0,"position":3.0,"relative":true}"#,
         ),
         (
-            Command::Cancel {
+            Command::from(Cancel {
                 axis: 0,
                 scope: CancelScope::All,
-            },
+            }),
             r#"{"type":"cancel","axis":0,"scope":"all"}"#,
         ),
         (
-            Command::CommandState { id: 7 },
+            Command::from(GetCommandState { id: 7 }),
             r#"{"type":"command_state","id":7}"#,
         ),
         (
-            Command::ForceInput {
+            Command::from(ForceInput {
                 axis: 0,
                 input: AxisInput::LimitPos,
                 value: Some(true),
-            },
+            }),
             r#"{"type":"force_input","axis":0,"input":"limit_pos","value":true}"#,
         ),
         (
-            Command::ForceDigitalInput {
+            Command::from(ForceDigitalInput {
                 channel: 3,
                 value: Some(false),
-            },
+            }),
             r#"{"type":"force_digital_input","channel":3,"value":false}"#,
         ),
         (
-            Command::ForceAnalogInput {
+            Command::from(ForceAnalogInput {
                 channel: 1,
                 value: Some(2.5),
-            },
+            }),
             r#"{"type":"force_analog_input","channel":1,"value":2.5}"#,
         ),
         (
-            Command::WriteDigitalOutput {
+            Command::from(WriteDigitalOutput {
                 channel: 4,
                 value: true,
-            },
+            }),
             r#"{"type":"write_digital_output","channel":4,"value":true}"#,
         ),
         (
-            Command::WriteAnalogOutput {
+            Command::from(WriteAnalogOutput {
                 channel: 0,
                 value: -1.25,
-            },
+            }),
             r#"{"type":"write_analog_output","channel":0,"value":-1.25}"#,
         ),
         (
-            Command::InjectFollowingError {
+            Command::from(InjectFollowingError {
                 axis: 0,
                 amount: Some(0.75),
-            },
+            }),
             r#"{"type":"inject_following_error","axis":0,"amount":0.75}"#,
         ),
         (
-            Command::Setpoint {
+            Command::from(StreamSetpoint {
                 axis: 0,
                 setpoint: Some(Setpoint::Velocity { velocity: 5.0 }),
-            },
+            }),
             r#"{"type":"setpoint","axis":0,"setpoint":{"mode":"velocity","velocity":5.0}}"#,
         ),
         (
-            Command::ReadObject {
+            Command::from(ReadObject {
                 slave: 1,
                 index: 0x6041,
                 subindex: 0,
-            },
+            }),
             r#"{"type":"read_object","slave":1,"index":24641,"subindex":0}"#,
         ),
         (
-            Command::WriteObject {
+            Command::from(WriteObject {
                 slave: 0,
                 index: 0x6060,
                 subindex: 0,
                 value: Value::I8(8),
-            },
+            }),
             r#"{"type":"write_object","slave":0,"index":24672,"subindex":0,"value":{"i8":8}}"#,
         ),
     ]
@@ -214,7 +227,7 @@ fn minimal() -> Vec<(&'static str, Command, &'static str)> {
     vec![
         (
             r#"{"type":"move_absolute","axis":0,"position":1.0}"#,
-            Command::MoveAbsolute {
+            Command::from(MoveAbsolute {
                 axis: 0,
                 position: 1.0,
                 velocity: None,
@@ -222,12 +235,12 @@ fn minimal() -> Vec<(&'static str, Command, &'static str)> {
                 deceleration: None,
                 jerk: None,
                 buffer_mode: BufferMode::Aborting,
-            },
+            }),
             r#"{"type":"move_absolute","axis":0,"position":1.0,"velocity":null,"acceleration":null,"deceleration":null,"jerk":null,"buffer_mode":"aborting"}"#,
         ),
         (
             r#"{"type":"move_relative","axis":0,"distance":1.0}"#,
-            Command::MoveRelative {
+            Command::from(MoveRelative {
                 axis: 0,
                 distance: 1.0,
                 velocity: None,
@@ -235,41 +248,41 @@ fn minimal() -> Vec<(&'static str, Command, &'static str)> {
                 deceleration: None,
                 jerk: None,
                 buffer_mode: BufferMode::Aborting,
-            },
+            }),
             r#"{"type":"move_relative","axis":0,"distance":1.0,"velocity":null,"acceleration":null,"deceleration":null,"jerk":null,"buffer_mode":"aborting"}"#,
         ),
         (
             r#"{"type":"move_velocity","axis":0,"velocity":1.0}"#,
-            Command::MoveVelocity {
+            Command::from(MoveVelocity {
                 axis: 0,
                 velocity: 1.0,
                 acceleration: None,
                 deceleration: None,
                 jerk: None,
                 buffer_mode: BufferMode::Aborting,
-            },
+            }),
             r#"{"type":"move_velocity","axis":0,"velocity":1.0,"acceleration":null,"deceleration":null,"jerk":null,"buffer_mode":"aborting"}"#,
         ),
         (
             r#"{"type":"stop","axis":0}"#,
-            Command::Stop {
+            Command::from(Stop {
                 axis: 0,
                 mode: StopMode::Smooth,
                 deceleration: None,
-            },
+            }),
             r#"{"type":"stop","axis":0,"mode":"smooth","deceleration":null}"#,
         ),
         (
             r#"{"type":"halt","axis":0}"#,
-            Command::Halt {
+            Command::from(Halt {
                 axis: 0,
                 deceleration: None,
-            },
+            }),
             r#"{"type":"halt","axis":0,"deceleration":null}"#,
         ),
         (
             r#"{"type":"home","axis":0}"#,
-            Command::Home {
+            Command::from(Home {
                 axis: 0,
                 method: None,
                 switch_velocity: None,
@@ -279,84 +292,84 @@ fn minimal() -> Vec<(&'static str, Command, &'static str)> {
                 timeout: None,
                 quirks: HomingQuirks::default(),
                 buffer_mode: BufferMode::Aborting,
-            },
+            }),
             r#"{"type":"home","axis":0,"method":null,"switch_velocity":null,"zero_velocity":null,"acceleration":null,"offset":null,"timeout":null,"quirks":{"after_home":"decelerate","switch_latch":"exact","index_latch":"exact","switch_scan_ticks":0,"max_search_distance":0.0,"initial_backoff":0.0,"rescan":null,"trial":false},"buffer_mode":"aborting"}"#,
         ),
         (
             r#"{"type":"set_position","axis":0,"position":2.0}"#,
-            Command::SetPosition {
+            Command::from(SetPosition {
                 axis: 0,
                 position: 2.0,
                 frame: PositionFrame::Both,
-            },
+            }),
             r#"{"type":"set_position","axis":0,"position":2.0,"frame":"both"}"#,
         ),
         (
             r#"{"type":"set_parameter","axis":0,"name":"decel","value":3.0}"#,
-            Command::SetParameter {
+            Command::from(SetParameter {
                 axis: 0,
                 name: ParamId::Decel,
                 value: 3.0,
                 lenient: false,
-            },
+            }),
             r#"{"type":"set_parameter","axis":0,"name":"decel","value":3.0,"lenient":false}"#,
         ),
         (
             r#"{"type":"modify_target","axis":0,"position":4.0}"#,
-            Command::ModifyTarget {
+            Command::from(ModifyTarget {
                 axis: 0,
                 position: 4.0,
                 relative: false,
-            },
+            }),
             r#"{"type":"modify_target","axis":0,"position":4.0,"relative":false}"#,
         ),
         (
             r#"{"type":"cancel","axis":0}"#,
-            Command::Cancel {
+            Command::from(Cancel {
                 axis: 0,
                 scope: CancelScope::Current,
-            },
+            }),
             r#"{"type":"cancel","axis":0,"scope":"current"}"#,
         ),
         (
             r#"{"type":"force_input","axis":0,"input":"drive_alarm"}"#,
-            Command::ForceInput {
+            Command::from(ForceInput {
                 axis: 0,
                 input: AxisInput::DriveAlarm,
                 value: None,
-            },
+            }),
             r#"{"type":"force_input","axis":0,"input":"drive_alarm","value":null}"#,
         ),
         (
             r#"{"type":"force_digital_input","channel":0}"#,
-            Command::ForceDigitalInput {
+            Command::from(ForceDigitalInput {
                 channel: 0,
                 value: None,
-            },
+            }),
             r#"{"type":"force_digital_input","channel":0,"value":null}"#,
         ),
         (
             r#"{"type":"force_analog_input","channel":0}"#,
-            Command::ForceAnalogInput {
+            Command::from(ForceAnalogInput {
                 channel: 0,
                 value: None,
-            },
+            }),
             r#"{"type":"force_analog_input","channel":0,"value":null}"#,
         ),
         (
             r#"{"type":"inject_following_error","axis":0}"#,
-            Command::InjectFollowingError {
+            Command::from(InjectFollowingError {
                 axis: 0,
                 amount: None,
-            },
+            }),
             r#"{"type":"inject_following_error","axis":0,"amount":null}"#,
         ),
         (
             r#"{"type":"setpoint","axis":0}"#,
-            Command::Setpoint {
+            Command::from(StreamSetpoint {
                 axis: 0,
                 setpoint: None,
-            },
+            }),
             r#"{"type":"setpoint","axis":0,"setpoint":null}"#,
         ),
     ]
@@ -413,10 +426,10 @@ fn absent_optional_fields_take_their_defaults_and_serialize_explicitly() {
 #[test]
 fn the_tag_may_come_anywhere_and_a_sequence_reads_tag_first() {
     let json: Command = serde_json::from_str(r#"{"axis":2,"type":"enable"}"#).unwrap();
-    assert_eq!(json, Command::Enable { axis: 2 });
+    assert_eq!(json, Command::from(Enable { axis: 2 }));
     // serde also takes an internally tagged enum as a sequence, tag first.
     let seq: Command = serde_json::from_str(r#"["enable",2]"#).unwrap();
-    assert_eq!(seq, Command::Enable { axis: 2 });
+    assert_eq!(seq, Command::from(Enable { axis: 2 }));
 }
 
 #[test]
