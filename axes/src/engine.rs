@@ -469,10 +469,30 @@ impl Engine {
         }
     }
 
-    /// Advance one servo period.
+    /// Advance one servo period, in stages (the order of operations inside a tick is fixed:
+    /// traces compare bit for bit):
+    ///
+    /// 1. [`Engine::read_inputs`]: the I/O image's inputs from last tick's sensors;
+    /// 2. machine-level planners (groups, couplings, streams): none yet; issues 11 and 12 add
+    ///    the stage that feeds axes their setpoints here, before the axes step;
+    /// 3. [`Engine::step_axes`]: every axis, in index order;
+    /// 4. [`Engine::step_drives`]: the CiA 402 drives see their axes and answer with commands;
+    /// 5. outputs and status: no per-tick work. Outputs change only by command, and status is
+    ///    assembled when it is read ([`Engine::snapshot_into`], [`Engine::axis_status`]).
+    ///
+    /// Commands ([`Engine::apply`]) arrive between steps and act on the state the last step
+    /// left.
     pub fn step(&mut self) {
         self.tick += 1;
-        self.update_inputs();
+        self.read_inputs();
+        self.step_axes();
+        self.step_drives();
+    }
+
+    /// Stage 3, the axes. Reads the digital inputs (stage 1) and each axis's own state and
+    /// source; writes each axis's command, output, plant, encoder, switches, supervision and
+    /// command progress for this tick, and the ledger of finished commands.
+    fn step_axes(&mut self) {
         let mut ctx = Context {
             tick: self.tick,
             di: &self.io.image.di,
@@ -481,11 +501,12 @@ impl Engine {
         for axis in &mut self.axes {
             axis.step(&mut ctx);
         }
-        self.step_drives();
     }
 
-    /// Each drive sees its axis after the tick and emits the commands that take effect from the
-    /// next one; refusals go back to the drive (ARCHITECTURE §3.8).
+    /// Stage 4, drives and fieldbus. Each drive reads its axis's status after stage 3 and the
+    /// controlword the engine writes for an engine-mastered power request; it writes its
+    /// statusword and the commands that take effect from the next tick (applied to the axis
+    /// here, refusals going back to the drive: ARCHITECTURE §3.8).
     fn step_drives(&mut self) {
         let now = self.time();
         let mut commands = std::mem::take(&mut self.drive_commands);
@@ -548,9 +569,11 @@ impl Engine {
         self.slaves.len()
     }
 
-    /// Digital inputs wired to axis signals follow them (last tick's levels), unless forced.
-    /// Forced and unwired channels change only by command, so nothing else runs per tick.
-    fn update_inputs(&mut self) {
+    /// Stage 1, inputs. Reads each wired axis sensor's electrical level as the last tick left
+    /// it, and the forced channels; writes the digital inputs wired to axis signals (unless
+    /// forced) and bumps the I/O version when one changes. Forced and unwired channels change
+    /// only by command, so nothing else runs per tick.
+    fn read_inputs(&mut self) {
         let io = &mut self.io;
         for b in &io.bindings {
             let ch = b.channel as usize;
