@@ -19,6 +19,9 @@ use crate::rng::Rng;
 use crate::status::{AxisStatus, DriveStatus, IoImage, Snapshot};
 use std::sync::Arc;
 
+mod planner;
+pub use planner::{Feed, Feeds, MachinePlanner};
+
 /// The machine's digital and analog I/O.
 #[derive(Clone, Debug)]
 struct Io {
@@ -103,6 +106,10 @@ pub struct Engine {
     axis_slave: Vec<Option<usize>>,
     /// Commands the drives emitted this tick (reused; no allocation per tick).
     drive_commands: Vec<Command>,
+    /// Stage 2's planners, in the order they were added.
+    planners: Vec<Box<dyn MachinePlanner>>,
+    /// The setpoints of the planner being run (reused; no allocation per tick).
+    feeds: Feeds,
 }
 
 impl Engine {
@@ -152,6 +159,8 @@ impl Engine {
             slaves,
             axis_slave,
             drive_commands: Vec::new(),
+            planners: Vec::new(),
+            feeds: Feeds::default(),
         })
     }
 
@@ -473,8 +482,8 @@ impl Engine {
     /// traces compare bit for bit):
     ///
     /// 1. [`Engine::read_inputs`]: the I/O image's inputs from last tick's sensors;
-    /// 2. machine-level planners (groups, couplings, streams): none yet; issues 11 and 12 add
-    ///    the stage that feeds axes their setpoints here, before the axes step;
+    /// 2. [`Engine::run_planners`]: machine-level planners (groups, couplings, streams) feed
+    ///    their axes this tick's setpoints (none are built in yet: issues 11 and 12 add them);
     /// 3. [`Engine::step_axes`]: every axis, in index order;
     /// 4. [`Engine::step_drives`]: the CiA 402 drives see their axes and answer with commands;
     /// 5. outputs and status: no per-tick work. Outputs change only by command, and status is
@@ -485,8 +494,53 @@ impl Engine {
     pub fn step(&mut self) {
         self.tick += 1;
         self.read_inputs();
+        self.run_planners();
         self.step_axes();
         self.step_drives();
+    }
+
+    /// Add a machine-level planner to stage 2 (see [`MachinePlanner`]). Planners run in the
+    /// order they were added; the one added last has the last word on an axis two of them feed.
+    pub fn add_planner(&mut self, planner: Box<dyn MachinePlanner>) {
+        self.planners.push(planner);
+    }
+
+    /// Stage 2, machine-level planners. Each planner reads the axes as the previous tick left
+    /// them (so a coupling's slave lags its master by one tick) and writes setpoints; each
+    /// setpoint becomes its axis's command source for this tick, or goes back to the planner
+    /// as a refusal. Writes nothing else.
+    fn run_planners(&mut self) {
+        let Engine {
+            axes,
+            io,
+            ledger,
+            tick,
+            planners,
+            feeds,
+            ..
+        } = self;
+        let mut ctx = Context {
+            tick: *tick,
+            di: &io.image.di,
+            ledger,
+        };
+        let count = axes.len() as u32;
+        for planner in planners.iter_mut() {
+            feeds.clear();
+            planner.plan(*tick, axes, feeds);
+            for &(index, feed) in feeds.entries() {
+                let result = match axes.get_mut(index as usize) {
+                    Some(axis) => axis.feed(&mut ctx, feed),
+                    None => Err(EngineError::InvalidAxis {
+                        axis: index as u32,
+                        count,
+                    }),
+                };
+                if let Err(e) = result {
+                    planner.refused(index, &e);
+                }
+            }
+        }
     }
 
     /// Stage 3, the axes. Reads the digital inputs (stage 1) and each axis's own state and
