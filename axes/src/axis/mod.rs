@@ -62,6 +62,9 @@ enum Source {
     },
     /// Cyclic setpoints from a master (CiA 402 CSP/CSV/CST, HMC_SetDposVal).
     External(Setpoint),
+    /// This tick's commanded state from a machine-level planner (engine stage 2: a group, a
+    /// coupling). Taken as is for one tick; a tick without a new feed stands at its position.
+    Fed(MotionState),
 }
 
 /// Why the axis decelerates to rest without a command owning the motion.
@@ -102,7 +105,7 @@ enum Activity {
     /// The FIFO head runs.
     Running(Run),
     Ramping(Ramp),
-    /// External setpoints.
+    /// External setpoints (a `setpoint` command stream or a machine-level planner's feed).
     Streaming,
 }
 
@@ -458,6 +461,15 @@ impl Axis {
                     }
                 }
                 self.raw.a = (self.raw.v - before.v) / dt;
+            }
+            Source::Fed(state) => {
+                self.raw_jerk = (state.a - self.raw.a) / dt;
+                self.raw = *state;
+                *state = MotionState {
+                    p: state.p,
+                    v: 0.0,
+                    a: 0.0,
+                };
             }
         }
     }

@@ -348,7 +348,7 @@ impl Axis {
             Source::Profile {
                 profile, origin, ..
             } => tick.saturating_sub(*origin) as f64 * self.period >= profile.duration(),
-            Source::External(_) => false,
+            Source::External(_) | Source::Fed(_) => false,
         }
     }
 

@@ -11,7 +11,7 @@
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 
-use axes::command::{EngineError, ErrorKind};
+use axes::command::{EngineError, ErrorKind, SetParameter, WriteAnalogOutput, WriteDigitalOutput};
 use axes::runtime::{CallError, EngineHandle, SubmitError};
 use axes::{Command, Snapshot};
 use serde_json::Value;
@@ -396,32 +396,32 @@ impl UnitService {
             Some(Target::Param { axis, id }) => {
                 self.call(
                     p,
-                    Command::SetParameter {
+                    Command::from(SetParameter {
                         axis: *axis as axes::AxisIndex,
                         name: *id,
                         value: v,
                         lenient: self.map.lenient_parameters,
-                    },
+                    }),
                 )
                 .await?;
             }
             Some(Target::DigitalOutput(n)) => {
                 self.call(
                     p,
-                    Command::WriteDigitalOutput {
+                    Command::from(WriteDigitalOutput {
                         channel: *n as u16,
                         value: v != 0.0,
-                    },
+                    }),
                 )
                 .await?;
             }
             Some(Target::AnalogOutput(n)) => {
                 self.call(
                     p,
-                    Command::WriteAnalogOutput {
+                    Command::from(WriteAnalogOutput {
                         channel: *n as u16,
                         value: v,
-                    },
+                    }),
                 )
                 .await?;
             }
