@@ -2,6 +2,7 @@
 //! HMPL units (mm or deg, ms).
 
 use axes::command::{EngineError, ErrorKind};
+use axes::param::{ParamId, Unit};
 use axes::{AxisFlags, AxisState, AxisStatus};
 
 /// An axis status function of HMPL chapter 5.4, `int Is…(int axis_id)` (digest 004 §2.4 "5.4
@@ -249,6 +250,106 @@ pub fn code_for_kind(kind: ErrorKind) -> Option<&'static AxisError> {
     AxisError::by_name(name)
 }
 
+/// An axis controller variable (HCV) of Table 17.1.1.2, read and written with
+/// `GetConfigVar`/`SetConfigVar` as id 0x83NNAAAA (digest 004 §1.11).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct AxisVariable {
+    /// AAAA, the variable address.
+    pub address: u16,
+    /// The manual's name.
+    pub name: &'static str,
+    /// The engine parameter it is, where the engine has one.
+    pub param: Option<ParamId>,
+}
+
+macro_rules! axis_variables {
+    ($(($address:literal, $name:literal, $param:expr),)*) => {
+        /// The axis variables, Table 17.1.1.2 (digest 004 §1.11), in the manual's order.
+        pub const AXIS_VARIABLES: &[AxisVariable] = &[
+            $(AxisVariable { address: $address, name: $name, param: $param },)*
+        ];
+    };
+}
+
+// `acc_lim`/`dec_lim` have no engine parameter: the engine's `max_accel` caps acceleration and
+// deceleration together. `home_status` is the HIMC's own homing status word, not the engine's
+// homing phase.
+axis_variables! {
+    (0x0015, "HCV_ID_motion_type", None),
+    (0x0033, "HCV_ID_pos_tr", Some(ParamId::InPositionWindow)),
+    (0x0034, "HCV_ID_pos_tr_t", Some(ParamId::InPositionTime)),
+    (0x0065, "HCV_ID_sw_RL", Some(ParamId::FsLimit)),
+    (0x0066, "HCV_ID_sw_LL", Some(ParamId::RsLimit)),
+    (0x0067, "HCV_ID_vel_lim", Some(ParamId::MaxVelocity)),
+    (0x0068, "HCV_ID_acc_lim", None),
+    (0x0069, "HCV_ID_dec_lim", None),
+    (0x0079, "HCV_ID_max_pos_err", Some(ParamId::FeLimit)),
+    (0x007a, "HCV_ID_max_comp_lim", None),
+    (0x00a0, "HCV_ID_home_status", None),
+    (0x00a1, "HCV_ID_home_method", Some(ParamId::HomeMethod)),
+    (0x00a2, "HCV_ID_home_fast_vel", Some(ParamId::HomeSwitchVelocity)),
+    (0x00a3, "HCV_ID_home_slow_vel", Some(ParamId::HomeZeroVelocity)),
+    (0x00a4, "HCV_ID_home_timeout", Some(ParamId::HomeTimeout)),
+    (0x00a5, "HCV_ID_home_acc", Some(ParamId::HomeAcceleration)),
+    (0x00a6, "HCV_ID_home_offset", Some(ParamId::HomeOffset)),
+    (0x00d3, "HCV_ID_max_vel", Some(ParamId::Speed)),
+    (0x00d4, "HCV_ID_max_acc", Some(ParamId::Accel)),
+    (0x00d5, "HCV_ID_max_dec", Some(ParamId::Decel)),
+    (0x00d7, "HCV_ID_sm_factor", Some(ParamId::SmoothTime)),
+    (0x00db, "HCV_ID_vel_scale", Some(ParamId::VelScale)),
+    (0x00dd, "HCV_ID_p2p_del", None),
+    (0x00de, "HCV_ID_p2p_pos1", None),
+    (0x00df, "HCV_ID_p2p_pos2", None),
+    (0x00e0, "HCV_ID_p2p_repeat", None),
+    (0x00e1, "HCV_ID_rlt_dist", None),
+    (0x00e2, "HCV_ID_en_motionManager", None),
+    (0x00e3, "HCV_ID_acc_time", Some(ParamId::AccelTime)),
+    (0x00e4, "HCV_ID_dec_time", Some(ParamId::DecelTime)),
+    (0x00e9, "HCV_ID_map_io_type", None),
+    (0x0117, "HCV_ID_rollover_turns", None),
+    (0x0119, "HCV_ID_rollover_val", Some(ParamId::Rollover)),
+    (0x0193, "HCV_ID_gant_pair", None),
+    (0x01f7, "HCV_ID_en_delay", None),
+    (0x01ff, "HCV_ID_fb_ratio_pos", None),
+    (0x0200, "HCV_ID_fb_ratio_cnt", None),
+    (0x0209, "HCV_ID_fb_curr_ratio_curr", None),
+    (0x020a, "HCV_ID_fb_curr_ratio_cnt", None),
+    (0x0213, "HCV_ID_rotor_inertia", None),
+    (0x0214, "HCV_ID_force_constant", None),
+    (0x0263, "HCV_ID_last_err", None),
+    (0x03c2, "HCV_ID_gear_ratio", None),
+}
+
+impl AxisVariable {
+    /// The variable at address AAAA.
+    pub fn by_address(address: u16) -> Option<&'static AxisVariable> {
+        AXIS_VARIABLES.iter().find(|v| v.address == address)
+    }
+
+    /// The variable called `name` (`HCV_ID_max_vel`).
+    pub fn by_name(name: &str) -> Option<&'static AxisVariable> {
+        AXIS_VARIABLES.iter().find(|v| v.name == name)
+    }
+}
+
+/// An HMPL value of parameter `id` in engine units: times (the engine's seconds) are ms in
+/// HMPL; lengths, velocities and accelerations are the axis's mm or deg already (digest 004
+/// §1.2).
+pub fn value_to_engine(id: ParamId, hmpl: f64) -> f64 {
+    match id.def().unit {
+        Unit::Seconds => ms_to_seconds(hmpl),
+        _ => hmpl,
+    }
+}
+
+/// The engine's value of parameter `id` in HMPL units (the inverse of [`value_to_engine`]).
+pub fn value_from_engine(id: ParamId, engine: f64) -> f64 {
+    match id.def().unit {
+        Unit::Seconds => seconds_to_ms(engine),
+        _ => engine,
+    }
+}
+
 /// HMPL units against the engine's (digest 004 §1.2): lengths in mm or deg are the engine's
 /// user units as the axes are configured; times, including the smoothing time, are in ms where
 /// the engine counts seconds.
@@ -364,5 +465,36 @@ mod tests {
         assert_eq!(ms_to_seconds(250.0), 0.25);
         assert_eq!(seconds_to_ms(0.25), 250.0);
         assert!(SMOOTHING_MS.contains(&500.0) && !SMOOTHING_MS.contains(&501.0));
+    }
+
+    #[test]
+    fn axis_variables_are_table_17_1_1_2() {
+        assert_eq!(AXIS_VARIABLES.len(), 43);
+        let v = AxisVariable::by_address(0x00d3);
+        assert_eq!(
+            v.map(|v| (v.name, v.param)),
+            Some(("HCV_ID_max_vel", Some(ParamId::Speed)))
+        );
+        assert_eq!(
+            AxisVariable::by_name("HCV_ID_en_delay").map(|v| v.address),
+            Some(0x01f7)
+        );
+        // The id of axis 1's variable uses the same layout as the error codes (digest 004 §1.11).
+        assert_eq!(compose(AXIS_CLASS, 1, 0x01f7), 0x8301_01f7);
+        // Where the engine already knows the HCV name as an alias, both tables agree.
+        for v in AXIS_VARIABLES {
+            let short = v.name.trim_start_matches("HCV_ID_");
+            if let (Some(alias), Some(param)) = (ParamId::from_name(short), v.param) {
+                assert_eq!(alias, param, "{}", v.name);
+            }
+        }
+    }
+
+    #[test]
+    fn hmpl_times_are_ms_and_lengths_pass_through() {
+        assert_eq!(value_to_engine(ParamId::SmoothTime, 20.0), 0.02);
+        assert_eq!(value_from_engine(ParamId::InPositionTime, 0.005), 5.0);
+        assert_eq!(value_to_engine(ParamId::Speed, 250.0), 250.0);
+        assert_eq!(value_from_engine(ParamId::FsLimit, 99.5), 99.5);
     }
 }
