@@ -3,8 +3,8 @@
 //!
 //! The two status words are also the values of the engine's own `AxisStatus`/`LimitState`
 //! parameters, and the engine switches the drive off on `AxisStatus & AxisErrMask` (digest 000
-//! §6.4); so their bit layout is computed in `axes` and this module is the vendor-facing name
-//! for it (docs/decisions.md, "Dialects").
+//! §6.4); so their bit layout is computed in `axes::param` and this module is the vendor-facing
+//! name for it (docs/decisions.md, "Dialects (issue 10, item 3)").
 
 use axes::command::EngineError;
 use axes::AxisStatus;
@@ -31,12 +31,12 @@ pub const LIMIT_BOTH: u32 = 32;
 /// `AxisStatus` (digest 000 §2.2 table 2). Bit 4 (bus communication error) and the gantry bits
 /// 5/6 are never set: the emulated axes have no RTEX/EtherCAT bus and no gantry.
 pub fn axis_status(s: &AxisStatus) -> u32 {
-    axes::axis::status_word(s.flags)
+    axes::param::axis_status_word(s.flags)
 }
 
 /// `LimitState` (digest 000 §2.2, finite travel).
 pub fn limit_state(s: &AxisStatus) -> u32 {
-    axes::axis::limit_state(s.flags)
+    axes::param::limit_state_word(s.flags)
 }
 
 /// What every motion function returns on a parameter error, nothing being posted (digest 000
