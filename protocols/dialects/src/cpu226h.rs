@@ -1,11 +1,11 @@
 //! Co-Trust CPU 226H and its CT E10 servo (digest 003): the motion instructions' STATUS byte,
-//! the E10's refusals as SDO aborts when it is reached over CANopen, and the units (pulses, Hz,
-//! ms).
+//! the E10's refusals as SDO aborts when it is reached over CANopen, and the ramp of its units
+//! (pulses, Hz, ms).
 
 use axes::od::OdError;
 use axes::AxisStatus;
 
-use crate::modbus;
+use crate::{modbus, PulseScale};
 
 /// STATUS bit 0: parameter-configuration error (digest 003 §2.0 "Standard STATUS byte").
 pub const STATUS_PARAMETER_ERROR: u8 = 0x01;
@@ -86,34 +86,18 @@ pub fn od_error_for_exception(exception: u8, index: u16, subindex: u8, reason: &
     }
 }
 
-/// The instructions' units against the engine's (digest 003 §2.0): positions in pulses (1 pulse
-/// = 1 coordinate unit), speeds in Hz (pulses/s), times in ms.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Units {
-    /// Pulses per engine user unit (the axis's `units × Ks`).
-    pub pulses_per_unit: f64,
-}
-
-impl Units {
-    pub fn position_to_engine(self, pulses: f64) -> f64 {
-        pulses / self.pulses_per_unit
-    }
-    pub fn position_from_engine(self, units: f64) -> f64 {
-        units * self.pulses_per_unit
-    }
-    /// Hz (pulses/s) → user units/s.
-    pub fn speed_to_engine(self, hz: f64) -> f64 {
-        hz / self.pulses_per_unit
-    }
-    pub fn speed_from_engine(self, units_per_s: f64) -> f64 {
-        units_per_s * self.pulses_per_unit
-    }
-    /// The acceleration of a ramp from `min_speed` to `max_speed` (Hz) in `ta_ms` ms, in user
-    /// units/s² (digest 003 §2.0 tip 3: accel = (MAX_SPEED − MIN_SPEED) / TA); `None` for
-    /// TA = 0, where the instruction takes `MC_SET_MAX_ACCELE`'s value instead.
-    pub fn ramp_acceleration(self, min_speed: f64, max_speed: f64, ta_ms: f64) -> Option<f64> {
-        (ta_ms > 0.0).then(|| self.speed_to_engine(max_speed - min_speed) / (ta_ms / 1e3))
-    }
+/// The acceleration, in user units/s², of a ramp from `min_speed` to `max_speed` (Hz) in
+/// `ta_ms` ms (digest 003 §2.0 tip 3: accel = (MAX_SPEED − MIN_SPEED) / TA); `None` for TA = 0,
+/// where the instruction takes `MC_SET_MAX_ACCELE`'s value instead. Positions (pulses) and
+/// speeds (Hz = pulses/s) convert with the [`PulseScale`] itself (digest 003 §2.0: 1 pulse = 1
+/// coordinate unit).
+pub fn ramp_acceleration(
+    scale: PulseScale,
+    min_speed: f64,
+    max_speed: f64,
+    ta_ms: f64,
+) -> Option<f64> {
+    (ta_ms > 0.0).then(|| scale.to_engine(max_speed - min_speed) / (ta_ms / 1e3))
 }
 
 /// Below 5 Hz the CPU emits no pulses (digest 003 §2.0).
@@ -124,14 +108,8 @@ pub const MAX_PULSE_HZ: f64 = 200_000.0;
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::test_status::with;
     use axes::AxisFlags;
-
-    fn with(flags: AxisFlags) -> AxisStatus {
-        AxisStatus {
-            flags,
-            ..AxisStatus::default()
-        }
-    }
 
     #[test]
     fn status_bits_follow_the_standard_status_byte() {
@@ -191,16 +169,15 @@ mod tests {
     }
 
     #[test]
-    fn units_are_pulses_hz_and_ms() {
-        let u = Units {
+    fn a_ramp_is_speed_difference_over_ta() {
+        let scale = PulseScale {
             pulses_per_unit: 100.0,
         };
-        assert_eq!(u.position_to_engine(250.0), 2.5);
-        assert_eq!(u.position_from_engine(2.5), 250.0);
-        assert_eq!(u.speed_to_engine(10_000.0), 100.0);
-        assert_eq!(u.speed_from_engine(100.0), 10_000.0);
         // (10 500 − 500) Hz in 100 ms = 100 000 Hz/s = 1000 units/s².
-        assert_eq!(u.ramp_acceleration(500.0, 10_500.0, 100.0), Some(1000.0));
-        assert_eq!(u.ramp_acceleration(500.0, 10_500.0, 0.0), None);
+        assert_eq!(
+            ramp_acceleration(scale, 500.0, 10_500.0, 100.0),
+            Some(1000.0)
+        );
+        assert_eq!(ramp_acceleration(scale, 500.0, 10_500.0, 0.0), None);
     }
 }

@@ -367,14 +367,7 @@ pub const SMOOTHING_MS: std::ops::RangeInclusive<f64> = 0.0..=500.0;
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn with(state: AxisState, flags: AxisFlags) -> AxisStatus {
-        AxisStatus {
-            state,
-            flags,
-            ..AxisStatus::default()
-        }
-    }
+    use crate::test_status::status;
 
     #[test]
     fn each_predicate_reads_its_flag_or_state() {
@@ -392,16 +385,18 @@ mod tests {
             (Predicate::IsPosErr, AxisFlags::FE_FAULT),
             (Predicate::IsAcc, AxisFlags::ACCELERATING),
         ] {
-            assert!(p.holds(&with(AxisState::Standstill, flag), none), "{p:?}");
+            assert!(p.holds(&status(AxisState::Standstill, flag), none), "{p:?}");
             let others = AxisFlags::all().difference(flag);
             assert!(
-                !p.holds(&with(AxisState::Standstill, others), none),
+                !p.holds(&status(AxisState::Standstill, others), none),
                 "{p:?}"
             );
         }
-        assert!(Predicate::IsErrorStop.holds(&with(AxisState::ErrorStop, AxisFlags::empty()), none));
-        assert!(!Predicate::IsErrorStop.holds(&with(AxisState::Stopping, AxisFlags::all()), none));
-        let sync = with(AxisState::SynchronizedMotion, AxisFlags::empty());
+        assert!(
+            Predicate::IsErrorStop.holds(&status(AxisState::ErrorStop, AxisFlags::empty()), none)
+        );
+        assert!(!Predicate::IsErrorStop.holds(&status(AxisState::Stopping, AxisFlags::all()), none));
+        let sync = status(AxisState::SynchronizedMotion, AxisFlags::empty());
         assert!(Predicate::IsSync.holds(&sync, none));
         let gantry = AxisExtra {
             gantry: true,

@@ -55,14 +55,8 @@ pub fn code_for(_e: &EngineError) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::test_status::with;
     use axes::AxisFlags;
-
-    fn with(flags: AxisFlags) -> AxisStatus {
-        AxisStatus {
-            flags,
-            ..AxisStatus::default()
-        }
-    }
 
     #[test]
     fn axis_status_bits_follow_table_2() {

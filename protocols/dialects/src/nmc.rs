@@ -4,6 +4,8 @@
 use axes::command::{EngineError, ErrorKind};
 use axes::{AxisFlags, AxisState, AxisStatus};
 
+use crate::PulseScale;
+
 // Axis status word bits, `NMC_MtGetSts` (digest 001 §3.1, verbatim macro names).
 pub const BIT_AXIS_BUSY: u16 = 0x0001;
 pub const BIT_AXIS_POSREC: u16 = 0x0002;
@@ -115,48 +117,31 @@ pub fn code_for_kind(kind: ErrorKind) -> i16 {
     }
 }
 
-/// The library's units against the engine's user units and seconds (digest 001 §1.3:
-/// positions in pulse, velocities in pulse/ms, accelerations in pulse/ms²).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Units {
-    /// Pulses per engine user unit (the axis's `units × Ks`).
-    pub pulses_per_unit: f64,
+/// NMC velocities (pulse/ms, digest 001 §1.3) in user units/s; positions are pulses, converted
+/// by the [`PulseScale`] itself.
+pub fn velocity_to_engine(scale: PulseScale, pulse_per_ms: f64) -> f64 {
+    scale.to_engine(pulse_per_ms * 1e3)
 }
 
-impl Units {
-    pub fn position_to_engine(self, pulses: f64) -> f64 {
-        pulses / self.pulses_per_unit
-    }
-    pub fn position_from_engine(self, units: f64) -> f64 {
-        units * self.pulses_per_unit
-    }
-    /// pulse/ms → user units/s.
-    pub fn velocity_to_engine(self, pulse_per_ms: f64) -> f64 {
-        pulse_per_ms * 1e3 / self.pulses_per_unit
-    }
-    pub fn velocity_from_engine(self, units_per_s: f64) -> f64 {
-        units_per_s * self.pulses_per_unit / 1e3
-    }
-    /// pulse/ms² → user units/s².
-    pub fn acceleration_to_engine(self, pulse_per_ms2: f64) -> f64 {
-        pulse_per_ms2 * 1e6 / self.pulses_per_unit
-    }
-    pub fn acceleration_from_engine(self, units_per_s2: f64) -> f64 {
-        units_per_s2 * self.pulses_per_unit / 1e6
-    }
+/// User units/s in pulse/ms.
+pub fn velocity_from_engine(scale: PulseScale, units_per_s: f64) -> f64 {
+    scale.from_engine(units_per_s) / 1e3
+}
+
+/// NMC accelerations (pulse/ms², digest 001 §1.3) in user units/s².
+pub fn acceleration_to_engine(scale: PulseScale, pulse_per_ms2: f64) -> f64 {
+    scale.to_engine(pulse_per_ms2 * 1e6)
+}
+
+/// User units/s² in pulse/ms².
+pub fn acceleration_from_engine(scale: PulseScale, units_per_s2: f64) -> f64 {
+    scale.from_engine(units_per_s2) / 1e6
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn with(state: AxisState, flags: AxisFlags) -> AxisStatus {
-        AxisStatus {
-            state,
-            flags,
-            ..AxisStatus::default()
-        }
-    }
+    use crate::test_status::status;
 
     #[test]
     fn each_flag_sets_its_bit_of_section_3_1() {
@@ -176,13 +161,13 @@ mod tests {
             (AxisFlags::ENCODER_LOSS, 0x2000),
             (AxisFlags::CAPTURE_TRIGGERED, 0x4000),
         ] {
-            let s = with(standstill, flag);
+            let s = status(standstill, flag);
             assert_eq!(axis_status(&s, AxisExtra::default()), bit, "{flag}");
         }
         // Flags the word has no bit for.
         let quiet = AxisFlags::HOMED | AxisFlags::HOME_SWITCH | AxisFlags::FE_WARNING;
         assert_eq!(
-            axis_status(&with(standstill, quiet), AxisExtra::default()),
+            axis_status(&status(standstill, quiet), AxisExtra::default()),
             0
         );
     }
@@ -190,7 +175,7 @@ mod tests {
     #[test]
     fn busy_while_moving_or_in_a_motion_state() {
         let none = AxisExtra::default();
-        let moving = with(AxisState::Standstill, AxisFlags::MOVING);
+        let moving = status(AxisState::Standstill, AxisFlags::MOVING);
         assert_eq!(axis_status(&moving, none), BIT_AXIS_BUSY);
         for state in [
             AxisState::Homing,
@@ -199,7 +184,7 @@ mod tests {
             AxisState::SynchronizedMotion,
             AxisState::Stopping,
         ] {
-            let s = with(state, AxisFlags::empty());
+            let s = status(state, AxisFlags::empty());
             assert_eq!(axis_status(&s, none), BIT_AXIS_BUSY, "{state}");
         }
         for state in [
@@ -207,14 +192,14 @@ mod tests {
             AxisState::Standstill,
             AxisState::ErrorStop,
         ] {
-            let s = with(state, AxisFlags::empty());
+            let s = status(state, AxisFlags::empty());
             assert_eq!(axis_status(&s, none), 0, "{state}");
         }
     }
 
     #[test]
     fn the_stepper_bit_comes_from_the_axis_configuration() {
-        let s = with(AxisState::Standstill, AxisFlags::ENABLED);
+        let s = status(AxisState::Standstill, AxisFlags::ENABLED);
         let stepper = AxisExtra { stepper: true };
         assert_eq!(axis_status(&s, stepper), BIT_AXIS_SVON | BIT_AXIS_STEP);
     }
@@ -222,10 +207,10 @@ mod tests {
     #[test]
     fn test_vectors_of_section_6() {
         // TV19: E-stop during jog sets 0x1000, busy clears once stopped.
-        let s = with(AxisState::ErrorStop, AxisFlags::ENABLED | AxisFlags::ESTOP);
+        let s = status(AxisState::ErrorStop, AxisFlags::ENABLED | AxisFlags::ESTOP);
         assert_eq!(axis_status(&s, AxisExtra::default()) & 0x1001, 0x1000);
         // TV21: the positive hardware limit is 0x40.
-        let s = with(AxisState::Standstill, AxisFlags::HW_LIMIT_POS);
+        let s = status(AxisState::Standstill, AxisFlags::HW_LIMIT_POS);
         assert_eq!(axis_status(&s, AxisExtra::default()), 0x40);
     }
 
@@ -263,16 +248,14 @@ mod tests {
 
     #[test]
     fn units_are_pulse_pulse_per_ms_and_pulse_per_ms2() {
-        let u = Units {
+        let scale = PulseScale {
             pulses_per_unit: 1000.0,
         };
-        assert_eq!(u.position_to_engine(2500.0), 2.5);
-        assert_eq!(u.position_from_engine(2.5), 2500.0);
         // 10 pulse/ms = 10 000 pulse/s = 10 units/s.
-        assert_eq!(u.velocity_to_engine(10.0), 10.0);
-        assert_eq!(u.velocity_from_engine(10.0), 10.0);
+        assert_eq!(velocity_to_engine(scale, 10.0), 10.0);
+        assert_eq!(velocity_from_engine(scale, 10.0), 10.0);
         // 0.1 pulse/ms² = 100 000 pulse/s² = 100 units/s².
-        assert!((u.acceleration_to_engine(0.1) - 100.0).abs() < 1e-9);
-        assert!((u.acceleration_from_engine(100.0) - 0.1).abs() < 1e-12);
+        assert!((acceleration_to_engine(scale, 0.1) - 100.0).abs() < 1e-9);
+        assert!((acceleration_from_engine(scale, 100.0) - 0.1).abs() < 1e-12);
     }
 }
