@@ -1010,47 +1010,6 @@ pub(crate) fn apply_rollover(params: &mut ParamSet, rollover: f64) {
     }
 }
 
-/// The HMC-layout axis status word (`axis_status`, HMC §3.3 table 2).
-pub fn status_word(flags: AxisFlags) -> u32 {
-    let mut w = 0;
-    if flags.contains(AxisFlags::FE_FAULT) {
-        w |= 1;
-    }
-    if flags.contains(AxisFlags::FE_WARNING) {
-        w |= 2;
-    }
-    if flags.contains(AxisFlags::PARAMETER_ERROR) {
-        w |= 4;
-    }
-    if flags.intersects(
-        AxisFlags::HW_LIMIT_POS
-            | AxisFlags::HW_LIMIT_NEG
-            | AxisFlags::SW_LIMIT_POS
-            | AxisFlags::SW_LIMIT_NEG,
-    ) {
-        w |= 8;
-    }
-    w
-}
-
-/// The HMC-layout limit state (`limit_state`, HMC §3.3).
-pub fn limit_state(flags: AxisFlags) -> u32 {
-    let mut w = 0;
-    for (flag, bit) in [
-        (AxisFlags::HW_LIMIT_POS, 1),
-        (AxisFlags::HW_LIMIT_NEG, 2),
-        (AxisFlags::SW_LIMIT_POS, 4),
-        (AxisFlags::SW_LIMIT_NEG, 8),
-        (AxisFlags::SW_LIMIT_CONFIG, 16),
-        (AxisFlags::BOTH_LIMITS, 32),
-    ] {
-        if flags.contains(flag) {
-            w |= bit;
-        }
-    }
-    w
-}
-
 impl std::fmt::Debug for Axis {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Axis")
