@@ -9,7 +9,7 @@
 
 use std::hint::black_box;
 
-use axes::command::Command;
+use axes::command::{Command, Enable};
 use axes::Engine;
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 
@@ -21,7 +21,7 @@ fn machine(n: usize, moving: bool) -> Engine {
     } else {
         let mut e = common::engine(n);
         for axis in 0..n as u16 {
-            e.apply(Command::Enable { axis }).expect("enable");
+            e.apply(Command::from(Enable { axis })).expect("enable");
         }
         e
     };

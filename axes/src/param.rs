@@ -10,7 +10,7 @@
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use crate::command::EngineError;
-use crate::status::AxisStatus;
+use crate::status::{AxisFlags, AxisStatus};
 
 /// How to read a parameter's `f64`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -571,8 +571,8 @@ pub fn parameter_value(id: ParamId, status: &AxisStatus, params: &ParamSet) -> f
     match id {
         ParamId::CurrentCommand => s.current_command.map_or(0, |c| c.kind.code()) as f64,
         ParamId::NextCommand => s.next_command.map_or(0, |c| c.kind.code()) as f64,
-        ParamId::AxisStatusWord => crate::axis::status_word(s.flags) as f64,
-        ParamId::LimitState => crate::axis::limit_state(s.flags) as f64,
+        ParamId::AxisStatusWord => axis_status_word(s.flags) as f64,
+        ParamId::LimitState => limit_state_word(s.flags) as f64,
         ParamId::ActualPosition => s.act_pos,
         ParamId::CommandedPosition => s.cmd_pos,
         ParamId::FollowingError => s.following_error,
@@ -587,6 +587,50 @@ pub fn parameter_value(id: ParamId, status: &AxisStatus, params: &ParamSet) -> f
         ParamId::DacOut => s.dac_out.round(),
         _ => params.get(id),
     }
+}
+
+/// The value of the `AxisStatus` parameter: the HMC-layout axis status word (HMC §3.3 table 2,
+/// digest 000 §2.2), which `AxisErrMask` masks (supervision). Front-ends name it
+/// `mcemu_dialects::hmc::axis_status`.
+pub fn axis_status_word(flags: AxisFlags) -> u32 {
+    let mut w = 0;
+    if flags.contains(AxisFlags::FE_FAULT) {
+        w |= 1;
+    }
+    if flags.contains(AxisFlags::FE_WARNING) {
+        w |= 2;
+    }
+    if flags.contains(AxisFlags::PARAMETER_ERROR) {
+        w |= 4;
+    }
+    if flags.intersects(
+        AxisFlags::HW_LIMIT_POS
+            | AxisFlags::HW_LIMIT_NEG
+            | AxisFlags::SW_LIMIT_POS
+            | AxisFlags::SW_LIMIT_NEG,
+    ) {
+        w |= 8;
+    }
+    w
+}
+
+/// The value of the `LimitState` parameter: the HMC-layout limit state (HMC §3.3, digest 000
+/// §2.2).
+pub fn limit_state_word(flags: AxisFlags) -> u32 {
+    let mut w = 0;
+    for (flag, bit) in [
+        (AxisFlags::HW_LIMIT_POS, 1),
+        (AxisFlags::HW_LIMIT_NEG, 2),
+        (AxisFlags::SW_LIMIT_POS, 4),
+        (AxisFlags::SW_LIMIT_NEG, 8),
+        (AxisFlags::SW_LIMIT_CONFIG, 16),
+        (AxisFlags::BOTH_LIMITS, 32),
+    ] {
+        if flags.contains(flag) {
+            w |= bit;
+        }
+    }
+    w
 }
 
 #[cfg(test)]

@@ -7,8 +7,10 @@
 mod common;
 
 use axes::command::{
-    BufferMode, CancelScope, Command, CommandKind, CommandState, EngineError, ErrorKind,
-    PositionFrame, Reply, StopMode,
+    BufferMode, Cancel, CancelScope, Command, CommandKind, CommandState, Disable, Enable,
+    EngineError, ErrorKind, ForceAnalogInput, ForceDigitalInput, ForceInput, GetCommandState, Halt,
+    ModifyTarget, MoveAbsolute, PositionFrame, Reply, Reset, Resume, SetParameter, SetPosition,
+    Stop, StopMode, WriteAnalogOutput, WriteDigitalOutput,
 };
 use axes::{AxisFlags, AxisState, ParamId};
 use common::*;
@@ -22,10 +24,10 @@ fn enable_disable_and_motion_needs_power() {
         matches!(err, EngineError::AxisDisabled { axis: 0 }),
         "{err}"
     );
-    ok(&mut e, Command::Enable { axis: 0 });
+    ok(&mut e, Command::from(Enable { axis: 0 }));
     assert_eq!(status(&e).state, AxisState::Standstill);
     assert!(status(&e).flags.contains(AxisFlags::ENABLED));
-    ok(&mut e, Command::Disable { axis: 0 });
+    ok(&mut e, Command::from(Disable { axis: 0 }));
     assert_eq!(status(&e).state, AxisState::Disabled);
 }
 
@@ -33,11 +35,11 @@ fn enable_disable_and_motion_needs_power() {
 fn bad_input_is_a_typed_error_and_the_engine_keeps_running() {
     let mut e = enabled(stepper_mm());
     let bad = [
-        Command::Enable { axis: 7 },
+        Command::from(Enable { axis: 7 }),
         move_abs(f64::NAN),
         move_abs(f64::INFINITY),
         jog(f64::NEG_INFINITY),
-        Command::MoveAbsolute {
+        Command::from(MoveAbsolute {
             axis: 0,
             position: 1.0,
             velocity: Some(0.0),
@@ -45,8 +47,8 @@ fn bad_input_is_a_typed_error_and_the_engine_keeps_running() {
             deceleration: None,
             jerk: None,
             buffer_mode: BufferMode::Aborting,
-        },
-        Command::MoveAbsolute {
+        }),
+        Command::from(MoveAbsolute {
             axis: 0,
             position: 1.0,
             velocity: None,
@@ -54,8 +56,8 @@ fn bad_input_is_a_typed_error_and_the_engine_keeps_running() {
             deceleration: None,
             jerk: None,
             buffer_mode: BufferMode::Aborting,
-        },
-        Command::MoveAbsolute {
+        }),
+        Command::from(MoveAbsolute {
             axis: 0,
             position: 1.0,
             velocity: None,
@@ -63,34 +65,34 @@ fn bad_input_is_a_typed_error_and_the_engine_keeps_running() {
             deceleration: Some(f64::NAN),
             jerk: None,
             buffer_mode: BufferMode::Aborting,
-        },
-        Command::SetParameter {
+        }),
+        Command::from(SetParameter {
             axis: 0,
             name: ParamId::Accel,
             value: 0.0,
             lenient: false,
-        },
-        Command::SetParameter {
+        }),
+        Command::from(SetParameter {
             axis: 0,
             name: ParamId::ActualPosition,
             value: 1.0,
             lenient: false,
-        },
-        Command::Stop {
+        }),
+        Command::from(Stop {
             axis: 0,
             mode: StopMode::Smooth,
             deceleration: Some(-1.0),
-        },
-        Command::SetPosition {
+        }),
+        Command::from(SetPosition {
             axis: 0,
             position: f64::NAN,
             frame: PositionFrame::Both,
-        },
-        Command::CommandState { id: 999 },
-        Command::WriteDigitalOutput {
+        }),
+        Command::from(GetCommandState { id: 999 }),
+        Command::from(WriteDigitalOutput {
             channel: 9999,
             value: true,
-        },
+        }),
     ];
     for c in bad {
         let err = refused(&mut e, c);
@@ -98,7 +100,7 @@ fn bad_input_is_a_typed_error_and_the_engine_keeps_running() {
         assert!(!err.to_string().is_empty());
     }
     assert!(matches!(
-        refused(&mut e, Command::Enable { axis: 7 }),
+        refused(&mut e, Command::from(Enable { axis: 7 })),
         EngineError::InvalidAxis { axis: 7, count: 1 }
     ));
     // Still alive and correct after all that.
@@ -194,11 +196,11 @@ fn jog_both_ways_then_smooth_stop() {
     assert!((status(&e).cmd_vel + 20.0).abs() < 1e-9);
     ok(
         &mut e,
-        Command::Stop {
+        Command::from(Stop {
             axis: 0,
             mode: StopMode::Smooth,
             deceleration: Some(200.0),
-        },
+        }),
     );
     assert_eq!(status(&e).state, AxisState::Stopping);
     // Motion is refused until the stop is done (PLCopen MC_Stop).
@@ -220,11 +222,11 @@ fn emergency_stop_latches_and_needs_a_reset_abrupt_does_not() {
     run(&mut e, 0.5);
     ok(
         &mut e,
-        Command::Stop {
+        Command::from(Stop {
             axis: 0,
             mode: StopMode::Abrupt,
             deceleration: None,
-        },
+        }),
     );
     run(&mut e, 0.1);
     assert_eq!(status(&e).state, AxisState::Standstill);
@@ -232,11 +234,11 @@ fn emergency_stop_latches_and_needs_a_reset_abrupt_does_not() {
     run(&mut e, 0.5);
     ok(
         &mut e,
-        Command::Stop {
+        Command::from(Stop {
             axis: 0,
             mode: StopMode::Emergency,
             deceleration: None,
-        },
+        }),
     );
     run(&mut e, 0.1);
     let s = status(&e);
@@ -247,7 +249,7 @@ fn emergency_stop_latches_and_needs_a_reset_abrupt_does_not() {
         refused(&mut e, jog(1.0)),
         EngineError::AxisInError { .. }
     ));
-    ok(&mut e, Command::Reset { axis: 0 });
+    ok(&mut e, Command::from(Reset { axis: 0 }));
     assert_eq!(status(&e).state, AxisState::Standstill);
     ok(&mut e, jog(1.0));
 }
@@ -260,11 +262,11 @@ fn immediate_stop_jumps_to_zero() {
     let before = status(&e).cmd_pos;
     ok(
         &mut e,
-        Command::Stop {
+        Command::from(Stop {
             axis: 0,
             mode: StopMode::Immediate,
             deceleration: None,
-        },
+        }),
     );
     run(&mut e, 0.01);
     assert_eq!(status(&e).cmd_pos, before);
@@ -278,10 +280,10 @@ fn halt_pauses_and_resume_finishes_the_same_move() {
     run(&mut e, 0.3);
     ok(
         &mut e,
-        Command::Halt {
+        Command::from(Halt {
             axis: 0,
             deceleration: None,
-        },
+        }),
     );
     run(&mut e, 0.5);
     let s = status(&e);
@@ -289,7 +291,7 @@ fn halt_pauses_and_resume_finishes_the_same_move() {
     assert!(s.flags.contains(AxisFlags::HALTED));
     assert!(s.cmd_pos < 80.0);
     assert_eq!(state_of(&mut e, id), CommandState::Running);
-    ok(&mut e, Command::Resume { axis: 0 });
+    ok(&mut e, Command::from(Resume { axis: 0 }));
     assert!(run_until(&mut e, 5.0, |s| s.state == AxisState::Standstill).is_some());
     assert_eq!(status(&e).cmd_pos, 80.0);
     assert_eq!(state_of(&mut e, id), CommandState::Done);
@@ -304,11 +306,11 @@ fn modify_target_during_motion() {
     assert_eq!(
         id_of(ok(
             &mut e,
-            Command::ModifyTarget {
+            Command::from(ModifyTarget {
                 axis: 0,
                 position: 150.0,
                 relative: false
-            }
+            })
         )),
         id
     );
@@ -319,11 +321,11 @@ fn modify_target_during_motion() {
     let here = status(&e).cmd_pos;
     ok(
         &mut e,
-        Command::ModifyTarget {
+        Command::from(ModifyTarget {
             axis: 0,
             position: here - 50.0,
             relative: false,
-        },
+        }),
     );
     let trace = record(&mut e, 5.0);
     assert!(trace.iter().any(|s| s.cmd_vel < 0.0), "reversed");
@@ -331,11 +333,11 @@ fn modify_target_during_motion() {
     // With an empty FIFO it posts a move (HMC); on a jog it is refused.
     let posted = id_of(ok(
         &mut e,
-        Command::ModifyTarget {
+        Command::from(ModifyTarget {
             axis: 0,
             position: 5.0,
             relative: true,
-        },
+        }),
     ));
     assert!(run_until(&mut e, 5.0, |s| s.state == AxisState::Standstill).is_some());
     assert_eq!(status(&e).cmd_pos, here - 45.0);
@@ -344,11 +346,11 @@ fn modify_target_during_motion() {
     assert!(matches!(
         refused(
             &mut e,
-            Command::ModifyTarget {
+            Command::from(ModifyTarget {
                 axis: 0,
                 position: 1.0,
                 relative: false
-            }
+            })
         ),
         EngineError::Unsupported { .. }
     ));
@@ -362,19 +364,19 @@ fn cancel_next_current_all() {
     let c = id_of(ok(&mut e, move_rel_buffered(10.0)));
     ok(
         &mut e,
-        Command::Cancel {
+        Command::from(Cancel {
             axis: 0,
             scope: CancelScope::Next,
-        },
+        }),
     );
     assert_eq!(state_of(&mut e, b), CommandState::Aborted);
     run(&mut e, 0.05);
     ok(
         &mut e,
-        Command::Cancel {
+        Command::from(Cancel {
             axis: 0,
             scope: CancelScope::Current,
-        },
+        }),
     );
     assert_eq!(state_of(&mut e, a), CommandState::Aborted);
     assert!(run_until(&mut e, 5.0, |s| s.state == AxisState::Standstill
@@ -390,10 +392,10 @@ fn cancel_next_current_all() {
     let f = id_of(ok(&mut e, move_rel_buffered(10.0)));
     ok(
         &mut e,
-        Command::Cancel {
+        Command::from(Cancel {
             axis: 0,
             scope: CancelScope::All,
-        },
+        }),
     );
     assert_eq!(state_of(&mut e, d), CommandState::Aborted);
     assert_eq!(state_of(&mut e, f), CommandState::Aborted);
@@ -405,12 +407,12 @@ fn parameters_validate_and_the_hmc_lenient_rule() {
     let mut e = enabled(stepper_mm());
     match refused(
         &mut e,
-        Command::SetParameter {
+        Command::from(SetParameter {
             axis: 0,
             name: ParamId::Speed,
             value: -5.0,
             lenient: false,
-        },
+        }),
     ) {
         EngineError::InvalidParameter {
             name,
@@ -425,24 +427,24 @@ fn parameters_validate_and_the_hmc_lenient_rule() {
     }
     ok(
         &mut e,
-        Command::SetParameter {
+        Command::from(SetParameter {
             axis: 0,
             name: ParamId::Speed,
             value: -500.0,
             lenient: true,
-        },
+        }),
     );
     assert_eq!(param(&mut e, ParamId::Speed), 500.0);
     assert!(status(&e).latched.contains(AxisFlags::PARAMETER_ERROR));
     assert_eq!(param(&mut e, ParamId::AxisStatusWord) as u32 & 4, 4);
     ok(
         &mut e,
-        Command::SetParameter {
+        Command::from(SetParameter {
             axis: 0,
             name: ParamId::Accel,
             value: 0.0,
             lenient: true,
-        },
+        }),
     );
     assert_eq!(param(&mut e, ParamId::Accel), 200_000.0);
     // Idle-only parameters refuse while commands are queued.
@@ -450,24 +452,24 @@ fn parameters_validate_and_the_hmc_lenient_rule() {
     assert!(matches!(
         refused(
             &mut e,
-            Command::SetParameter {
+            Command::from(SetParameter {
                 axis: 0,
                 name: ParamId::Units,
                 value: 5.0,
                 lenient: false
-            }
+            })
         ),
         EngineError::InvalidState { .. }
     ));
     assert!(matches!(
         refused(
             &mut e,
-            Command::SetParameter {
+            Command::from(SetParameter {
                 axis: 0,
                 name: ParamId::Remain,
                 value: 5.0,
                 lenient: false
-            }
+            })
         ),
         EngineError::ReadOnlyParameter { name: "remain" }
     ));
@@ -499,11 +501,11 @@ fn set_position_frames() {
     let pulses = status(&e).pulses;
     ok(
         &mut e,
-        Command::SetPosition {
+        Command::from(SetPosition {
             axis: 0,
             position: 100.0,
             frame: PositionFrame::Both,
-        },
+        }),
     );
     let s = status(&e);
     assert_eq!((s.cmd_pos, s.act_pos), (100.0, 100.0));
@@ -515,11 +517,11 @@ fn set_position_frames() {
     );
     ok(
         &mut e,
-        Command::SetPosition {
+        Command::from(SetPosition {
             axis: 0,
             position: 0.0,
             frame: PositionFrame::Actual,
-        },
+        }),
     );
     run(&mut e, 0.001);
     let s = status(&e);
@@ -528,11 +530,11 @@ fn set_position_frames() {
     assert_eq!(s.following_error, 100.0);
     ok(
         &mut e,
-        Command::SetPosition {
+        Command::from(SetPosition {
             axis: 0,
             position: 0.0,
             frame: PositionFrame::Commanded,
-        },
+        }),
     );
     run(&mut e, 0.001);
     assert_eq!(status(&e).following_error, 0.0);
@@ -542,13 +544,13 @@ fn set_position_frames() {
 fn command_state_of_unknown_and_finished_ids() {
     let mut e = enabled(stepper_mm());
     assert!(matches!(
-        refused(&mut e, Command::CommandState { id: 0 }),
+        refused(&mut e, Command::from(GetCommandState { id: 0 })),
         EngineError::UnknownCommand { id: 0 }
     ));
     let id = id_of(ok(&mut e, move_abs(1.0)));
     run(&mut e, 1.0);
     assert_eq!(
-        ok(&mut e, Command::CommandState { id }),
+        ok(&mut e, Command::from(GetCommandState { id })),
         Reply::CommandState {
             id,
             state: CommandState::Done
@@ -576,19 +578,19 @@ fn velocity_override_and_hold() {
     set(&mut e, ParamId::HoldSpeed, 5.0);
     ok(
         &mut e,
-        Command::ForceDigitalInput {
+        Command::from(ForceDigitalInput {
             channel: 3,
             value: Some(true),
-        },
+        }),
     );
     run(&mut e, 1.0);
     assert!((status(&e).cmd_vel - 5.0).abs() < 1e-9);
     ok(
         &mut e,
-        Command::ForceDigitalInput {
+        Command::from(ForceDigitalInput {
             channel: 3,
             value: None,
-        },
+        }),
     );
     run(&mut e, 1.0);
     assert!((status(&e).cmd_vel - 40.0).abs() < 1e-9);
@@ -640,39 +642,39 @@ fn io_writes_and_forces_show_in_every_snapshot() {
     type Check = fn(&axes::status::IoImage) -> bool;
     let changes: Vec<(Command, Check)> = vec![
         (
-            Command::WriteDigitalOutput {
+            Command::from(WriteDigitalOutput {
                 channel: 3,
                 value: true,
-            },
+            }),
             |io| io.do_[3],
         ),
         (
-            Command::WriteAnalogOutput {
+            Command::from(WriteAnalogOutput {
                 channel: 1,
                 value: 2.5,
-            },
+            }),
             |io| io.ao[1] == 2.5,
         ),
         (
-            Command::ForceDigitalInput {
+            Command::from(ForceDigitalInput {
                 channel: 4,
                 value: Some(true),
-            },
+            }),
             |io| io.di[4],
         ),
         (
-            Command::ForceAnalogInput {
+            Command::from(ForceAnalogInput {
                 channel: 2,
                 value: Some(-1.0),
-            },
+            }),
             |io| io.ai[2] == -1.0,
         ),
         (
-            Command::ForceInput {
+            Command::from(ForceInput {
                 axis: 0,
                 input: axes::command::AxisInput::LimitPos,
                 value: Some(true),
-            },
+            }),
             |io| io.di[9],
         ),
     ];

@@ -8,7 +8,10 @@
 mod common;
 
 use axes::cia402::{cw, obj, sw, DriveConfig, DriveMaster, State};
-use axes::command::{Command, EngineError, Reply};
+use axes::command::{
+    Command, Disable, Enable, EngineError, InjectFollowingError, ReadObject, Reply, Reset,
+    WriteObject,
+};
 use axes::od::{OdError, Value};
 use axes::{AxisFlags, AxisState, Engine, EngineConfig};
 use common::*;
@@ -30,23 +33,23 @@ fn machine(master: DriveMaster) -> Engine {
 fn write(e: &mut Engine, index: u16, subindex: u8, value: Value) {
     ok(
         e,
-        Command::WriteObject {
+        Command::from(WriteObject {
             slave: 0,
             index,
             subindex,
             value,
-        },
+        }),
     );
 }
 
 fn read(e: &mut Engine, index: u16, subindex: u8) -> Value {
     match ok(
         e,
-        Command::ReadObject {
+        Command::from(ReadObject {
             slave: 0,
             index,
             subindex,
-        },
+        }),
     ) {
         Reply::Object { value } => value,
         other => panic!("{other:?}"),
@@ -110,12 +113,12 @@ fn an_external_master_enables_the_drive_and_moves_in_profile_position() {
     // Masters cannot write what the drive computes.
     match refused(
         &mut e,
-        Command::WriteObject {
+        Command::from(WriteObject {
             slave: 0,
             index: obj::STATUSWORD,
             subindex: 0,
             value: Value::U16(0),
-        },
+        }),
     ) {
         EngineError::Object {
             slave: 0,
@@ -126,11 +129,11 @@ fn an_external_master_enables_the_drive_and_moves_in_profile_position() {
     assert!(matches!(
         refused(
             &mut e,
-            Command::ReadObject {
+            Command::from(ReadObject {
                 slave: 3,
                 index: 0x6041,
                 subindex: 0
-            }
+            })
         ),
         EngineError::InvalidSlave { slave: 3, count: 1 }
     ));
@@ -167,7 +170,7 @@ fn cyclic_synchronous_position_follows_the_master_every_tick() {
 #[test]
 fn the_engine_masters_power_through_the_drive_state_machine() {
     let mut e = machine(DriveMaster::Engine);
-    ok(&mut e, Command::Enable { axis: 0 });
+    ok(&mut e, Command::from(Enable { axis: 0 }));
     assert!(run_until(&mut e, 0.1, |s| s.flags.contains(AxisFlags::ENABLED)).is_some());
     assert_eq!(state(&mut e), State::OperationEnabled);
     // Motion comes from the engine's own planner; the drive reports it.
@@ -178,10 +181,10 @@ fn the_engine_masters_power_through_the_drive_state_machine() {
     // A following-error fault: the drive goes to Fault with 0x8611; reset walks both back.
     ok(
         &mut e,
-        Command::InjectFollowingError {
+        Command::from(InjectFollowingError {
             axis: 0,
             amount: Some(3.0),
-        },
+        }),
     );
     run(&mut e, 0.05);
     assert_eq!(state(&mut e), State::Fault);
@@ -189,19 +192,19 @@ fn the_engine_masters_power_through_the_drive_state_machine() {
     assert_eq!(status(&e).state, AxisState::ErrorStop);
     ok(
         &mut e,
-        Command::InjectFollowingError {
+        Command::from(InjectFollowingError {
             axis: 0,
             amount: None,
-        },
+        }),
     );
     run(&mut e, 0.002);
-    ok(&mut e, Command::Reset { axis: 0 });
+    ok(&mut e, Command::from(Reset { axis: 0 }));
     assert!(run_until(&mut e, 0.1, |_| true).is_some());
     run(&mut e, 0.01);
     assert_eq!(state(&mut e), State::SwitchOnDisabled);
-    ok(&mut e, Command::Enable { axis: 0 });
+    ok(&mut e, Command::from(Enable { axis: 0 }));
     assert!(run_until(&mut e, 0.1, |s| s.flags.contains(AxisFlags::ENABLED)).is_some());
-    ok(&mut e, Command::Disable { axis: 0 });
+    ok(&mut e, Command::from(Disable { axis: 0 }));
     assert!(run_until(&mut e, 0.1, |s| !s.flags.contains(AxisFlags::ENABLED)).is_some());
     run(&mut e, 0.005);
     assert_eq!(state(&mut e), State::SwitchOnDisabled);

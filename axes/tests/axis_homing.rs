@@ -6,7 +6,7 @@
 
 mod common;
 
-use axes::command::{Command, CommandState, EngineError, ErrorKind};
+use axes::command::{Command, CommandState, EngineError, ErrorKind, Home, Stop};
 use axes::config::HomeSwitchConfig;
 use axes::homing::vendor::{hmc, HmcInstruction};
 use axes::homing::{HomingError, HomingQuirks, HomingSpec};
@@ -14,7 +14,7 @@ use axes::{AxisFlags, AxisState, Engine};
 use common::*;
 
 fn home(spec: &HomingSpec) -> Command {
-    Command::Home {
+    Command::from(Home {
         axis: 0,
         method: Some(spec.method),
         switch_velocity: Some(spec.switch_velocity),
@@ -24,7 +24,7 @@ fn home(spec: &HomingSpec) -> Command {
         timeout: Some(spec.timeout),
         quirks: spec.quirks,
         buffer_mode: Default::default(),
-    }
+    })
 }
 
 fn cia(method: i16, offset: f64) -> HomingSpec {
@@ -190,11 +190,11 @@ fn homing_and_stops_end_only_when_the_smoothed_command_has_settled() {
     run(&mut e, 1.0);
     ok(
         &mut e,
-        Command::Stop {
+        Command::from(Stop {
             axis: 0,
             mode: axes::command::StopMode::Smooth,
             deceleration: None,
-        },
+        }),
     );
     while status(&e).state == AxisState::Stopping {
         e.step();

@@ -7,7 +7,8 @@
 mod common;
 
 use axes::command::{
-    AxisInput, Command, CommandState, Direction, EngineError, ErrorKind, Setpoint,
+    AxisInput, Command, CommandState, Direction, Enable, EngineError, ErrorKind, ForceDigitalInput,
+    InjectFollowingError, Reset, SetParameter, Setpoint, StreamSetpoint,
 };
 use axes::config::{AxisConfig, AxisSignal, EngineConfig, InputBinding, PlantModel};
 use axes::{AxisFlags, AxisState, Engine, ParamId};
@@ -45,7 +46,7 @@ fn hard_limit_stops_the_axis_latches_and_allows_motion_out() {
     );
     // limit_latch = 1 (NMC): the flag stays until a reset once the input is clear.
     assert!(s.latched.contains(AxisFlags::HW_LIMIT_POS));
-    ok(&mut e, Command::Reset { axis: 0 });
+    ok(&mut e, Command::from(Reset { axis: 0 }));
     assert!(!status(&e).flags.contains(AxisFlags::HW_LIMIT_POS));
 }
 
@@ -147,10 +148,10 @@ fn following_error_warns_then_faults_and_reset_needs_the_cause_gone() {
     let mut e = enabled(stepper_mm());
     ok(
         &mut e,
-        Command::InjectFollowingError {
+        Command::from(InjectFollowingError {
             axis: 0,
             amount: Some(2.0),
-        },
+        }),
     );
     run(&mut e, 0.001);
     let s = status(&e);
@@ -163,22 +164,22 @@ fn following_error_warns_then_faults_and_reset_needs_the_cause_gone() {
     assert_eq!(s.state, AxisState::ErrorStop);
     assert!(!s.flags.contains(AxisFlags::ENABLED));
     assert!(matches!(
-        refused(&mut e, Command::Enable { axis: 0 }),
+        refused(&mut e, Command::from(Enable { axis: 0 })),
         EngineError::AxisInError { .. }
     ));
     // Disabled: the command tracks the actual position, so the error is gone and reset works;
     // but while the injected offset persists on an enabled axis it would come back.
     ok(
         &mut e,
-        Command::InjectFollowingError {
+        Command::from(InjectFollowingError {
             axis: 0,
             amount: None,
-        },
+        }),
     );
     run(&mut e, 0.001);
-    ok(&mut e, Command::Reset { axis: 0 });
+    ok(&mut e, Command::from(Reset { axis: 0 }));
     assert_eq!(status(&e).state, AxisState::Disabled);
-    ok(&mut e, Command::Enable { axis: 0 });
+    ok(&mut e, Command::from(Enable { axis: 0 }));
     // The warning clears itself after 1000 good ticks.
     run(&mut e, 0.999);
     assert!(!status(&e).flags.contains(AxisFlags::FE_WARNING));
@@ -193,10 +194,10 @@ fn fe_fault_with_flag_only_reaction_keeps_moving() {
     ok(&mut e, jog(10.0));
     ok(
         &mut e,
-        Command::InjectFollowingError {
+        Command::from(InjectFollowingError {
             axis: 0,
             amount: Some(5.0),
-        },
+        }),
     );
     run(&mut e, 0.1);
     let s = status(&e);
@@ -205,27 +206,27 @@ fn fe_fault_with_flag_only_reaction_keeps_moving() {
     // With the stop reaction the axis stops and sits in ErrorStop, still powered.
     ok(
         &mut e,
-        Command::InjectFollowingError {
+        Command::from(InjectFollowingError {
             axis: 0,
             amount: None,
-        },
+        }),
     );
     run(&mut e, 0.001);
-    ok(&mut e, Command::Reset { axis: 0 });
+    ok(&mut e, Command::from(Reset { axis: 0 }));
     set(&mut e, ParamId::FeAction, 2.0);
     ok(
         &mut e,
-        Command::InjectFollowingError {
+        Command::from(InjectFollowingError {
             axis: 0,
             amount: Some(5.0),
-        },
+        }),
     );
     run(&mut e, 0.1);
     let s = status(&e);
     assert_eq!(s.state, AxisState::ErrorStop);
     assert!(s.flags.contains(AxisFlags::ENABLED));
     assert_eq!(s.cmd_vel, 0.0);
-    match refused(&mut e, Command::Reset { axis: 0 }) {
+    match refused(&mut e, Command::from(Reset { axis: 0 })) {
         EngineError::CauseStillPresent { faults, .. } => {
             assert!(faults.contains(AxisFlags::FE_FAULT))
         }
@@ -244,13 +245,13 @@ fn drive_alarm_removes_power_until_cleared() {
     assert_eq!(s.state, AxisState::ErrorStop);
     assert!(s.latched.contains(AxisFlags::DRIVE_ALARM));
     assert!(matches!(
-        refused(&mut e, Command::Reset { axis: 0 }),
+        refused(&mut e, Command::from(Reset { axis: 0 })),
         EngineError::CauseStillPresent { .. }
     ));
     force(&mut e, AxisInput::DriveAlarm, Some(false));
     run(&mut e, 0.001);
-    ok(&mut e, Command::Reset { axis: 0 });
-    ok(&mut e, Command::Enable { axis: 0 });
+    ok(&mut e, Command::from(Reset { axis: 0 }));
+    ok(&mut e, Command::from(Enable { axis: 0 }));
     // Disabled alarm input (NMC default): no reaction.
     set(&mut e, ParamId::DriveAlarmEnable, 0.0);
     force(&mut e, AxisInput::DriveAlarm, Some(true));
@@ -306,7 +307,7 @@ fn di_bindings_and_di_routed_limits() {
         signal: AxisSignal::Home,
     });
     let mut e = Engine::new(&cfg).unwrap();
-    ok(&mut e, Command::Enable { axis: 0 });
+    ok(&mut e, Command::from(Enable { axis: 0 }));
     ok(&mut e, move_abs(110.0));
     run(&mut e, 3.0);
     assert!(e.io().di[5], "DI 5 follows the home switch");
@@ -314,10 +315,10 @@ fn di_bindings_and_di_routed_limits() {
     set(&mut e, ParamId::FhLimitIn, 7.0);
     ok(
         &mut e,
-        Command::ForceDigitalInput {
+        Command::from(ForceDigitalInput {
             channel: 7,
             value: Some(true),
-        },
+        }),
     );
     run(&mut e, 0.002);
     assert!(status(&e).flags.contains(AxisFlags::HW_LIMIT_POS));
@@ -364,10 +365,10 @@ fn cmd_stop_mode_1_waits_for_the_following_error() {
     let arrive = run_until(&mut e, 5.0, |s| s.cmd_pos == 10.0).unwrap();
     ok(
         &mut e,
-        Command::InjectFollowingError {
+        Command::from(InjectFollowingError {
             axis: 0,
             amount: Some(0.5),
-        },
+        }),
     );
     let done = run_until(&mut e, 5.0, |s| s.current_command.is_none()).unwrap();
     assert_eq!(state_of(&mut e, id), CommandState::Done);
@@ -388,12 +389,12 @@ fn plant_type_mismatch_is_refused() {
     assert!(matches!(
         refused(
             &mut e,
-            Command::SetParameter {
+            Command::from(SetParameter {
                 axis: 0,
                 name: ParamId::AxisType,
                 value: 20.0,
                 lenient: false
-            }
+            })
         ),
         EngineError::InvalidParameter { .. }
     ));
@@ -415,7 +416,7 @@ fn virtual_axes_have_mpos_equal_dpos_and_encoder_axes_refuse_motion() {
     enc.params.insert(ParamId::AxisType, 30.0);
     let mut e = engine_with(vec![enc]);
     assert!(matches!(
-        refused(&mut e, Command::Enable { axis: 0 }),
+        refused(&mut e, Command::from(Enable { axis: 0 })),
         EngineError::Unsupported { .. }
     ));
 }
@@ -426,12 +427,12 @@ fn external_setpoints_drive_the_axis() {
     for k in 1..=100 {
         ok(
             &mut e,
-            Command::Setpoint {
+            Command::from(StreamSetpoint {
                 axis: 0,
                 setpoint: Some(Setpoint::Position {
                     position: k as f64 * 0.01,
                 }),
-            },
+            }),
         );
         e.step();
         assert_eq!(status(&e).state, AxisState::SynchronizedMotion);
@@ -439,19 +440,19 @@ fn external_setpoints_drive_the_axis() {
     assert!((status(&e).cmd_pos - 1.0).abs() < 1e-12);
     ok(
         &mut e,
-        Command::Setpoint {
+        Command::from(StreamSetpoint {
             axis: 0,
             setpoint: Some(Setpoint::Velocity { velocity: 5.0 }),
-        },
+        }),
     );
     run(&mut e, 1.0);
     assert!((status(&e).cmd_pos - 6.0).abs() < 1e-9);
     ok(
         &mut e,
-        Command::Setpoint {
+        Command::from(StreamSetpoint {
             axis: 0,
             setpoint: None,
-        },
+        }),
     );
     assert!(run_until(&mut e, 1.0, |s| s.state == AxisState::Standstill).is_some());
 }
@@ -514,16 +515,16 @@ fn rollover_makes_the_axis_cyclic_at_run_time() {
     let mut e = one_axis();
     set(&mut e, ParamId::Rollover, 360.0);
     assert_eq!(param(&mut e, ParamId::RepMode), 1.0);
-    ok(&mut e, Command::Enable { axis: 0 });
+    ok(&mut e, Command::from(Enable { axis: 0 }));
     assert!(matches!(
         refused(
             &mut e,
-            Command::SetParameter {
+            Command::from(SetParameter {
                 axis: 0,
                 name: ParamId::Rollover,
                 value: 90.0,
                 lenient: false
-            }
+            })
         ),
         EngineError::InvalidState { .. }
     ));
@@ -552,7 +553,7 @@ fn hmc_style_wiring_a_switch_to_a_di_and_the_limit_to_that_di() {
         signal: AxisSignal::LimitPos,
     });
     let mut e = Engine::new(&cfg).unwrap();
-    ok(&mut e, Command::Enable { axis: 0 });
+    ok(&mut e, Command::from(Enable { axis: 0 }));
     ok(&mut e, jog(100.0));
     assert!(run_until(&mut e, 10.0, |s| s.flags.contains(AxisFlags::HW_LIMIT_POS)).is_some());
     assert!(e.io().di[5]);

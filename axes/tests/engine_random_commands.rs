@@ -9,7 +9,11 @@ mod common;
 
 use axes::cia402::DriveConfig;
 use axes::command::{
-    AxisInput, BufferMode, CancelScope, Command, PositionFrame, Setpoint, StopMode,
+    AxisInput, BufferMode, Cancel, CancelScope, Command, Disable, Enable, ForceAnalogInput,
+    ForceDigitalInput, ForceInput, GetCommandState, GetParameter, Halt, Home, InjectFollowingError,
+    ModifyTarget, MoveAbsolute, MoveRelative, MoveVelocity, PositionFrame, ReadObject, Reset,
+    Resume, SetParameter, SetPosition, Setpoint, Stop, StopMode, StreamSetpoint, WriteAnalogOutput,
+    WriteDigitalOutput, WriteObject,
 };
 use axes::homing::HomingQuirks;
 use axes::od::Value;
@@ -82,7 +86,7 @@ fn command() -> BoxedStrategy<Command> {
         )
             .prop_map(
                 |(axis, position, velocity, acceleration, deceleration, jerk, buffer_mode)| {
-                    Command::MoveAbsolute {
+                    Command::from(MoveAbsolute {
                         axis,
                         position,
                         velocity,
@@ -90,7 +94,7 @@ fn command() -> BoxedStrategy<Command> {
                         deceleration,
                         jerk,
                         buffer_mode,
-                    }
+                    })
                 },
             )
             .boxed(),
@@ -105,7 +109,7 @@ fn command() -> BoxedStrategy<Command> {
         )
             .prop_map(
                 |(axis, distance, velocity, acceleration, deceleration, jerk, buffer_mode)| {
-                    Command::MoveRelative {
+                    Command::from(MoveRelative {
                         axis,
                         distance,
                         velocity,
@@ -113,7 +117,7 @@ fn command() -> BoxedStrategy<Command> {
                         deceleration,
                         jerk,
                         buffer_mode,
-                    }
+                    })
                 },
             )
             .boxed(),
@@ -127,14 +131,14 @@ fn command() -> BoxedStrategy<Command> {
         )
             .prop_map(
                 |(axis, velocity, acceleration, deceleration, jerk, buffer_mode)| {
-                    Command::MoveVelocity {
+                    Command::from(MoveVelocity {
                         axis,
                         velocity,
                         acceleration,
                         deceleration,
                         jerk,
                         buffer_mode,
-                    }
+                    })
                 },
             )
             .boxed(),
@@ -149,7 +153,7 @@ fn command() -> BoxedStrategy<Command> {
         )
             .prop_map(
                 |(axis, method, switch_velocity, zero_velocity, acceleration, offset, timeout)| {
-                    Command::Home {
+                    Command::from(Home {
                         axis,
                         method,
                         switch_velocity,
@@ -159,97 +163,117 @@ fn command() -> BoxedStrategy<Command> {
                         timeout,
                         quirks: HomingQuirks::default(),
                         buffer_mode: BufferMode::Aborting,
-                    }
+                    })
                 },
             )
             .boxed(),
     ];
     let control: Vec<BoxedStrategy<Command>> = vec![
-        axis().prop_map(|axis| Command::Enable { axis }).boxed(),
-        axis().prop_map(|axis| Command::Disable { axis }).boxed(),
-        axis().prop_map(|axis| Command::Reset { axis }).boxed(),
+        axis()
+            .prop_map(|axis| Command::from(Enable { axis }))
+            .boxed(),
+        axis()
+            .prop_map(|axis| Command::from(Disable { axis }))
+            .boxed(),
+        axis()
+            .prop_map(|axis| Command::from(Reset { axis }))
+            .boxed(),
         (axis(), 0..4u8, opt_number())
-            .prop_map(|(axis, m, deceleration)| Command::Stop {
-                axis,
-                mode: [
-                    StopMode::Smooth,
-                    StopMode::Abrupt,
-                    StopMode::Emergency,
-                    StopMode::Immediate,
-                ][m as usize],
-                deceleration,
+            .prop_map(|(axis, m, deceleration)| {
+                Command::from(Stop {
+                    axis,
+                    mode: [
+                        StopMode::Smooth,
+                        StopMode::Abrupt,
+                        StopMode::Emergency,
+                        StopMode::Immediate,
+                    ][m as usize],
+                    deceleration,
+                })
             })
             .boxed(),
         (axis(), opt_number())
-            .prop_map(|(axis, deceleration)| Command::Halt { axis, deceleration })
+            .prop_map(|(axis, deceleration)| Command::from(Halt { axis, deceleration }))
             .boxed(),
-        axis().prop_map(|axis| Command::Resume { axis }).boxed(),
+        axis()
+            .prop_map(|axis| Command::from(Resume { axis }))
+            .boxed(),
         (axis(), number(), 0..3u8)
-            .prop_map(|(axis, position, f)| Command::SetPosition {
-                axis,
-                position,
-                frame: [
-                    PositionFrame::Both,
-                    PositionFrame::Commanded,
-                    PositionFrame::Actual,
-                ][f as usize],
+            .prop_map(|(axis, position, f)| {
+                Command::from(SetPosition {
+                    axis,
+                    position,
+                    frame: [
+                        PositionFrame::Both,
+                        PositionFrame::Commanded,
+                        PositionFrame::Actual,
+                    ][f as usize],
+                })
             })
             .boxed(),
         (axis(), param(), number(), any::<bool>())
-            .prop_map(|(axis, name, value, lenient)| Command::SetParameter {
-                axis,
-                name,
-                value,
-                lenient,
+            .prop_map(|(axis, name, value, lenient)| {
+                Command::from(SetParameter {
+                    axis,
+                    name,
+                    value,
+                    lenient,
+                })
             })
             .boxed(),
         (axis(), param())
-            .prop_map(|(axis, name)| Command::GetParameter { axis, name })
+            .prop_map(|(axis, name)| Command::from(GetParameter { axis, name }))
             .boxed(),
         (axis(), number(), any::<bool>())
-            .prop_map(|(axis, position, relative)| Command::ModifyTarget {
-                axis,
-                position,
-                relative,
+            .prop_map(|(axis, position, relative)| {
+                Command::from(ModifyTarget {
+                    axis,
+                    position,
+                    relative,
+                })
             })
             .boxed(),
         (axis(), 0..3u8)
-            .prop_map(|(axis, s)| Command::Cancel {
-                axis,
-                scope: [CancelScope::Next, CancelScope::Current, CancelScope::All][s as usize],
+            .prop_map(|(axis, s)| {
+                Command::from(Cancel {
+                    axis,
+                    scope: [CancelScope::Next, CancelScope::Current, CancelScope::All][s as usize],
+                })
             })
             .boxed(),
         any::<u32>()
-            .prop_map(|id| Command::CommandState { id })
+            .prop_map(|id| Command::from(GetCommandState { id }))
             .boxed(),
     ];
     let io: Vec<BoxedStrategy<Command>> = vec![
         (axis(), input(), prop::option::of(any::<bool>()))
-            .prop_map(|(axis, input, value)| Command::ForceInput { axis, input, value })
+            .prop_map(|(axis, input, value)| Command::from(ForceInput { axis, input, value }))
             .boxed(),
         (0..80u16, prop::option::of(any::<bool>()))
-            .prop_map(|(channel, value)| Command::ForceDigitalInput { channel, value })
+            .prop_map(|(channel, value)| Command::from(ForceDigitalInput { channel, value }))
             .boxed(),
         (0..12u16, opt_number())
-            .prop_map(|(channel, value)| Command::ForceAnalogInput { channel, value })
+            .prop_map(|(channel, value)| Command::from(ForceAnalogInput { channel, value }))
             .boxed(),
         (0..80u16, any::<bool>())
-            .prop_map(|(channel, value)| Command::WriteDigitalOutput { channel, value })
+            .prop_map(|(channel, value)| Command::from(WriteDigitalOutput { channel, value }))
             .boxed(),
         (0..12u16, number())
-            .prop_map(|(channel, value)| Command::WriteAnalogOutput { channel, value })
+            .prop_map(|(channel, value)| Command::from(WriteAnalogOutput { channel, value }))
             .boxed(),
         (axis(), opt_number())
-            .prop_map(|(axis, amount)| Command::InjectFollowingError { axis, amount })
+            .prop_map(|(axis, amount)| Command::from(InjectFollowingError { axis, amount }))
             .boxed(),
         (axis(), prop::option::of((0..3u8, number())))
-            .prop_map(|(axis, sp)| Command::Setpoint {
-                axis,
-                setpoint: sp.map(|(k, x)| match k {
-                    0 => Setpoint::Position { position: x },
-                    1 => Setpoint::Velocity { velocity: x },
-                    _ => Setpoint::Torque { torque: x },
-                }),
+            .prop_map(|(axis, sp)| {
+                Command::from(StreamSetpoint {
+                    axis,
+                    setpoint: sp.map(|(k, x)| match k {
+                        0 => Setpoint::Position { position: x },
+                        1 => Setpoint::Velocity { velocity: x },
+                        _ => Setpoint::Torque { torque: x },
+                    }),
+                })
             })
             .boxed(),
         (
@@ -264,10 +288,12 @@ fn command() -> BoxedStrategy<Command> {
             ],
             0..3u8,
         )
-            .prop_map(|(slave, index, subindex)| Command::ReadObject {
-                slave,
-                index,
-                subindex,
+            .prop_map(|(slave, index, subindex)| {
+                Command::from(ReadObject {
+                    slave,
+                    index,
+                    subindex,
+                })
             })
             .boxed(),
         (
@@ -283,11 +309,13 @@ fn command() -> BoxedStrategy<Command> {
             0..3u8,
             value(),
         )
-            .prop_map(|(slave, index, subindex, value)| Command::WriteObject {
-                slave,
-                index,
-                subindex,
-                value,
+            .prop_map(|(slave, index, subindex, value)| {
+                Command::from(WriteObject {
+                    slave,
+                    index,
+                    subindex,
+                    value,
+                })
             })
             .boxed(),
     ];

@@ -16,7 +16,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::{Duration, Instant};
 
-use axes::command::BufferMode;
+use axes::command::{BufferMode, Enable, MoveRelative};
 use axes::{AxisStatus, Engine};
 use mcemu::config::Config;
 use mcemu::scenario::Scenario;
@@ -71,8 +71,8 @@ fn commands() -> Vec<axes::Command> {
     (0..AXES as u16)
         .flat_map(|axis| {
             [
-                axes::Command::Enable { axis },
-                axes::Command::MoveRelative {
+                axes::Command::from(Enable { axis }),
+                axes::Command::from(MoveRelative {
                     axis,
                     distance: 1e8,
                     velocity: None,
@@ -80,7 +80,7 @@ fn commands() -> Vec<axes::Command> {
                     deceleration: None,
                     jerk: None,
                     buffer_mode: BufferMode::Aborting,
-                },
+                }),
             ]
         })
         .collect()

@@ -4,7 +4,7 @@
 use std::io::Write;
 use std::time::{Duration, Instant};
 
-use axes::command::{Command, StopMode};
+use axes::command::{Command, Stop, StopMode};
 use axes::runtime::{EngineHandle, Runtime, RuntimeOptions};
 use axes::{AxisState, Engine};
 use tokio::net::TcpListener;
@@ -212,11 +212,11 @@ fn signals() -> impl std::future::Future<Output = ()> {
 /// wait).
 fn stop_axes(handle: &EngineHandle, axes: usize) {
     for axis in 0..axes as u16 {
-        let _ = handle.call(Command::Stop {
+        let _ = handle.call(Command::from(Stop {
             axis,
             mode: StopMode::Abrupt,
             deceleration: None,
-        });
+        }));
     }
     if handle.clock() == axes::runtime::ClockMode::Virtual {
         return;

@@ -2,7 +2,7 @@
 // Shared by several benches; each uses a part.
 #![allow(dead_code)]
 
-use axes::command::BufferMode;
+use axes::command::{BufferMode, Enable, MoveRelative};
 use axes::config::{AxisConfig, EngineConfig, HomeSwitchConfig, PlantModel, SwitchConfig};
 use axes::{Command, Engine, ParamId};
 
@@ -69,8 +69,8 @@ pub fn motion_commands(n: usize) -> Vec<Command> {
     (0..n as u16)
         .flat_map(|axis| {
             [
-                Command::Enable { axis },
-                Command::MoveRelative {
+                Command::from(Enable { axis }),
+                Command::from(MoveRelative {
                     axis,
                     distance: 1e8,
                     velocity: None,
@@ -78,7 +78,7 @@ pub fn motion_commands(n: usize) -> Vec<Command> {
                     deceleration: None,
                     jerk: None,
                     buffer_mode: BufferMode::Aborting,
-                },
+                }),
             ]
         })
         .collect()

@@ -9,6 +9,7 @@ use crate::command::{
     bounded, finite, positive, AxisInput, BufferMode, CancelScope, CommandKind, CommandState,
     Direction, EngineError, ErrorKind, PositionFrame, Reply, Setpoint, StopMode,
 };
+use crate::engine::Feed;
 use crate::homing::{Homing, HomingHardware, HomingSpec};
 use crate::hw::AxisClass;
 use crate::param::{Access, ParamId};
@@ -147,6 +148,7 @@ impl Axis {
         ctx: &mut Context,
         request: MotionRequest,
     ) -> Result<Reply, EngineError> {
+        self.check_not_fed()?;
         self.check_can_move()?;
         Self::check_overrides(&request.overrides)?;
         match &request.action {
@@ -799,6 +801,7 @@ impl Axis {
         match &mut self.source {
             Source::Profile { shift, .. } => *shift += delta,
             Source::External(Setpoint::Position { position }) => *position += delta,
+            Source::Fed(state) => state.p += delta,
             _ => {}
         }
         if let Activity::Running(run) = &mut self.activity {
@@ -983,14 +986,11 @@ impl Axis {
         ctx: &mut Context,
         setpoint: Option<Setpoint>,
     ) -> Result<Reply, EngineError> {
+        if let Err(e) = self.check_not_fed() {
+            return self.refuse(e);
+        }
         let Some(sp) = setpoint else {
-            if matches!(self.activity, Activity::Streaming) {
-                self.activity = Activity::Idle;
-                self.plan_stop(ctx.tick, self.param(ParamId::Decel));
-                if !matches!(self.source, Source::Hold) {
-                    self.activity = Activity::Ramping(Ramp::Cancel);
-                }
-            }
+            self.end_stream(ctx);
             return Ok(Reply::Done);
         };
         let value = match sp {
@@ -1001,18 +1001,64 @@ impl Axis {
         if let Err(e) = bounded("setpoint", value) {
             return self.refuse(e);
         }
+        let toward = match sp {
+            Setpoint::Position { position } => position - self.raw.p,
+            Setpoint::Velocity { velocity } => velocity,
+            Setpoint::Torque { torque } => torque,
+        };
+        self.start_stream(ctx, toward, Source::External(sp))?;
+        Ok(Reply::Done)
+    }
+
+    /// Take this tick's setpoint from a machine-level planner (engine stage 2), or let go of
+    /// the planner. Same rules as a `setpoint` stream: a fed axis is in SynchronizedMotion, its
+    /// FIFO waits, and a setpoint into an active limit is refused.
+    pub(crate) fn feed(&mut self, ctx: &mut Context, feed: Feed) -> Result<(), EngineError> {
+        let state = match feed {
+            Feed::Follow(state) => state,
+            Feed::Release => {
+                if matches!(self.source, Source::Fed(_)) {
+                    self.end_stream(ctx);
+                }
+                return Ok(());
+            }
+        };
+        for (name, value) in [
+            ("position", state.p),
+            ("velocity", state.v),
+            ("acceleration", state.a),
+        ] {
+            if let Err(e) = bounded(name, value) {
+                return self.refuse(e);
+            }
+        }
+        self.start_stream(ctx, state.p - self.raw.p, Source::Fed(state))
+    }
+
+    /// Refuse single-axis commands that would take the command source from a machine-level
+    /// planner (PLCopen: an axis in a group takes no single-axis motion).
+    fn check_not_fed(&self) -> Result<(), EngineError> {
+        if matches!(self.source, Source::Fed(_)) && matches!(self.activity, Activity::Streaming) {
+            Err(self.invalid_state("take single-axis motion while a machine planner feeds it"))
+        } else {
+            Ok(())
+        }
+    }
+
+    /// Make `source` the axis's command source if the axis may move `toward` (the sign is the
+    /// direction); the first setpoint of a stream aborts everything else.
+    fn start_stream(
+        &mut self,
+        ctx: &mut Context,
+        toward: f64,
+        source: Source,
+    ) -> Result<(), EngineError> {
         if let Err(e) = self.check_can_move() {
             return self.refuse(e);
         }
-        let direction = match sp {
-            Setpoint::Position { position } => (position - self.raw.p, 0.0),
-            Setpoint::Velocity { velocity } => (velocity, 0.0),
-            Setpoint::Torque { torque } => (torque, 0.0),
-        }
-        .0;
-        let direction = if direction > 0.0 {
+        let direction = if toward > 0.0 {
             Some(Direction::Positive)
-        } else if direction < 0.0 {
+        } else if toward < 0.0 {
             Some(Direction::Negative)
         } else {
             None
@@ -1024,8 +1070,19 @@ impl Axis {
             self.abort_all(ctx, CommandState::Aborted);
             self.activity = Activity::Streaming;
         }
-        self.source = Source::External(sp);
-        Ok(Reply::Done)
+        self.source = source;
+        Ok(())
+    }
+
+    /// End a stream: decelerate to rest with `decel`.
+    fn end_stream(&mut self, ctx: &mut Context) {
+        if matches!(self.activity, Activity::Streaming) {
+            self.activity = Activity::Idle;
+            self.plan_stop(ctx.tick, self.param(ParamId::Decel));
+            if !matches!(self.source, Source::Hold) {
+                self.activity = Activity::Ramping(Ramp::Cancel);
+            }
+        }
     }
 
     /// Start a homing run: validate it against the axis's inputs, then take its first step in

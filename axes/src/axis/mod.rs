@@ -62,6 +62,9 @@ enum Source {
     },
     /// Cyclic setpoints from a master (CiA 402 CSP/CSV/CST, HMC_SetDposVal).
     External(Setpoint),
+    /// This tick's commanded state from a machine-level planner (engine stage 2: a group, a
+    /// coupling). Taken as is for one tick; a tick without a new feed stands at its position.
+    Fed(MotionState),
 }
 
 /// Why the axis decelerates to rest without a command owning the motion.
@@ -102,7 +105,7 @@ enum Activity {
     /// The FIFO head runs.
     Running(Run),
     Ramping(Ramp),
-    /// External setpoints.
+    /// External setpoints (a `setpoint` command stream or a machine-level planner's feed).
     Streaming,
 }
 
@@ -458,6 +461,15 @@ impl Axis {
                     }
                 }
                 self.raw.a = (self.raw.v - before.v) / dt;
+            }
+            Source::Fed(state) => {
+                self.raw_jerk = (state.a - self.raw.a) / dt;
+                self.raw = *state;
+                *state = MotionState {
+                    p: state.p,
+                    v: 0.0,
+                    a: 0.0,
+                };
             }
         }
     }
@@ -996,47 +1008,6 @@ pub(crate) fn apply_rollover(params: &mut ParamSet, rollover: f64) {
     } else {
         params.set_unchecked(ParamId::RepMode, 0.0);
     }
-}
-
-/// The HMC-layout axis status word (`axis_status`, HMC §3.3 table 2).
-pub fn status_word(flags: AxisFlags) -> u32 {
-    let mut w = 0;
-    if flags.contains(AxisFlags::FE_FAULT) {
-        w |= 1;
-    }
-    if flags.contains(AxisFlags::FE_WARNING) {
-        w |= 2;
-    }
-    if flags.contains(AxisFlags::PARAMETER_ERROR) {
-        w |= 4;
-    }
-    if flags.intersects(
-        AxisFlags::HW_LIMIT_POS
-            | AxisFlags::HW_LIMIT_NEG
-            | AxisFlags::SW_LIMIT_POS
-            | AxisFlags::SW_LIMIT_NEG,
-    ) {
-        w |= 8;
-    }
-    w
-}
-
-/// The HMC-layout limit state (`limit_state`, HMC §3.3).
-pub fn limit_state(flags: AxisFlags) -> u32 {
-    let mut w = 0;
-    for (flag, bit) in [
-        (AxisFlags::HW_LIMIT_POS, 1),
-        (AxisFlags::HW_LIMIT_NEG, 2),
-        (AxisFlags::SW_LIMIT_POS, 4),
-        (AxisFlags::SW_LIMIT_NEG, 8),
-        (AxisFlags::SW_LIMIT_CONFIG, 16),
-        (AxisFlags::BOTH_LIMITS, 32),
-    ] {
-        if flags.contains(flag) {
-            w |= bit;
-        }
-    }
-    w
 }
 
 impl std::fmt::Debug for Axis {

@@ -1,13 +1,11 @@
 //! Per-tick supervision (limits, following error, drive alarm, encoder loss, the HMC error
 //! mask) and command progress (completion, stop ramps, the next command).
 
-use super::{
-    setup::Route, status_word, unbinding_velocity, Activity, Axis, Context, Goal1, Ramp, Source,
-};
+use super::{setup::Route, unbinding_velocity, Activity, Axis, Context, Goal1, Ramp, Source};
 use crate::command::{CommandState, Direction, ErrorKind, StopMode};
 use crate::homing::{HomingInputs, MotionRequest};
 use crate::hw::switch::Edge;
-use crate::param::ParamId;
+use crate::param::{axis_status_word, ParamId};
 use crate::profile::{Goal, Limits, Options, Profile};
 use crate::status::AxisFlags;
 
@@ -140,7 +138,7 @@ impl Axis {
         }
         // HMC §3.3.4: AxisStatus & AxisErrMask ≠ 0 switches the drive off.
         if self.enabled {
-            let word = status_word(*live | self.latched);
+            let word = axis_status_word(*live | self.latched);
             let mask = self.setup.axis_err_mask;
             let hit = word & mask;
             if hit != 0 {
@@ -348,7 +346,7 @@ impl Axis {
             Source::Profile {
                 profile, origin, ..
             } => tick.saturating_sub(*origin) as f64 * self.period >= profile.duration(),
-            Source::External(_) => false,
+            Source::External(_) | Source::Fed(_) => false,
         }
     }
 

@@ -28,8 +28,9 @@ mod tests;
 use serde::{Deserialize, Serialize};
 
 use crate::command::{
-    AxisIndex, BufferMode, Command, CommandKind, EngineError, PositionFrame, Reply, Setpoint,
-    StopMode,
+    AxisCommand, AxisIndex, BufferMode, Command, CommandKind, Disable, Enable, EngineError, Halt,
+    Home, MoveAbsolute, MoveRelative, MoveVelocity, PositionFrame, Reply, Reset, Resume,
+    SetPosition, Setpoint, Stop, StopMode, StreamSetpoint,
 };
 use crate::homing::HomingQuirks;
 use crate::od::{DefinitionError, ObjectDictionary, OdError, Value};
@@ -618,22 +619,23 @@ impl Cia402Drive {
     pub fn on_reply(&mut self, command: &Command, result: &Result<Reply, EngineError>) {
         let error = match result {
             Ok(_) => {
-                if let Command::Setpoint {
-                    setpoint: Some(_), ..
-                } = command
+                if let Command::Axis(AxisCommand::Setpoint(StreamSetpoint {
+                    setpoint: Some(_),
+                    ..
+                })) = command
                 {
                     self.stream_accepted = true;
                 }
                 if matches!(
                     command,
-                    Command::MoveAbsolute { .. }
-                        | Command::MoveRelative { .. }
-                        | Command::MoveVelocity { .. }
-                        | Command::Home { .. }
-                        | Command::Setpoint {
+                    Command::Axis(AxisCommand::MoveAbsolute(MoveAbsolute { .. }))
+                        | Command::Axis(AxisCommand::MoveRelative(MoveRelative { .. }))
+                        | Command::Axis(AxisCommand::MoveVelocity(MoveVelocity { .. }))
+                        | Command::Axis(AxisCommand::Home(Home { .. }))
+                        | Command::Axis(AxisCommand::Setpoint(StreamSetpoint {
                             setpoint: Some(_),
                             ..
-                        }
+                        }))
                 ) {
                     self.warning = false;
                     self.limit_refused = false;
@@ -645,21 +647,22 @@ impl Cia402Drive {
         self.last_refusal = Some(error.clone());
         let limit = matches!(error, EngineError::LimitActive { .. });
         match command {
-            Command::Enable { .. } => {
+            Command::Axis(AxisCommand::Enable(Enable { .. })) => {
                 if !matches!(self.state, State::FaultReactionActive | State::Fault) {
                     self.pending_fault = Some(error_code::ENABLE_REFUSED);
                 }
             }
             // Transition 15 needs the axis's errors cleared.
-            Command::Reset { .. } => self.reset_requested_at = None,
-            Command::Home { .. } | Command::SetPosition { .. } => {
+            Command::Axis(AxisCommand::Reset(Reset { .. })) => self.reset_requested_at = None,
+            Command::Axis(AxisCommand::Home(Home { .. }))
+            | Command::Axis(AxisCommand::SetPosition(SetPosition { .. })) => {
                 if matches!(self.homing, Homing::InProgress { .. }) {
                     self.homing = Homing::Error;
                 }
             }
-            Command::Setpoint {
+            Command::Axis(AxisCommand::Setpoint(StreamSetpoint {
                 setpoint: Some(_), ..
-            } => {
+            })) => {
                 self.stream_accepted = false;
                 self.limit_refused |= limit;
                 self.warning |= !limit;
@@ -896,9 +899,9 @@ impl Cia402Drive {
     /// axis shows no fault any more.
     fn fault_reset(&mut self, rises: u16, axis: &AxisStatus, out: &mut Vec<Command>) {
         if rises & cw::FAULT_RESET != 0 {
-            out.push(Command::Reset {
+            out.push(Command::from(Reset {
                 axis: self.config.axis,
-            });
+            }));
             self.reset_requested_at = Some(self.steps);
             return;
         }
@@ -933,17 +936,17 @@ impl Cia402Drive {
     }
 
     fn power_on(&mut self, out: &mut Vec<Command>) {
-        out.push(Command::Enable {
+        out.push(Command::from(Enable {
             axis: self.config.axis,
-        });
+        }));
         self.powered_since = Some(self.steps);
         self.power_confirmed = false;
     }
 
     fn power_off(&mut self, out: &mut Vec<Command>) {
-        out.push(Command::Disable {
+        out.push(Command::from(Disable {
             axis: self.config.axis,
-        });
+        }));
         self.powered_since = None;
         self.power_confirmed = false;
     }
@@ -991,10 +994,10 @@ impl Cia402Drive {
     /// End the mode's activity when leaving Operation enabled or the mode.
     fn wind_down(&mut self, out: &mut Vec<Command>) {
         if self.streaming {
-            out.push(Command::Setpoint {
+            out.push(Command::from(StreamSetpoint {
                 axis: self.config.axis,
                 setpoint: None,
-            });
+            }));
             self.streaming = false;
         }
         if matches!(self.homing, Homing::InProgress { direct: false, .. }) {
@@ -1040,15 +1043,15 @@ impl Cia402Drive {
     fn halt_profile(&mut self, halt: bool, axis: &AxisStatus, out: &mut Vec<Command>) {
         let busy = axis.flags.contains(AxisFlags::MOVING) || axis.fifo_len > 0;
         if halt && !self.engine_halted && busy {
-            out.push(Command::Halt {
+            out.push(Command::from(Halt {
                 axis: self.config.axis,
                 deceleration: Some(self.to_units(self.halt_deceleration())),
-            });
+            }));
             self.engine_halted = true;
         } else if !halt && self.engine_halted {
-            out.push(Command::Resume {
+            out.push(Command::from(Resume {
                 axis: self.config.axis,
-            });
+            }));
             self.engine_halted = false;
         }
     }
@@ -1090,7 +1093,7 @@ impl Cia402Drive {
             // that target; an aborting one would start from the current position, so a changed-
             // immediately relative set-point goes out as the absolute target it means.
             let command = if relative && !immediate {
-                Command::MoveRelative {
+                Command::from(MoveRelative {
                     axis: axis_index,
                     distance: self.to_units(target - self.pp_reference),
                     velocity,
@@ -1098,9 +1101,9 @@ impl Cia402Drive {
                     deceleration,
                     jerk,
                     buffer_mode: BufferMode::Buffered,
-                }
+                })
             } else {
-                Command::MoveAbsolute {
+                Command::from(MoveAbsolute {
                     axis: axis_index,
                     position: self.to_units(target),
                     velocity,
@@ -1112,7 +1115,7 @@ impl Cia402Drive {
                     } else {
                         BufferMode::Buffered
                     },
-                }
+                })
             };
             out.push(command);
             self.pp_reference = target;
@@ -1138,14 +1141,14 @@ impl Cia402Drive {
             self.int(obj::MOTION_PROFILE_TYPE, 0),
         );
         if self.last_velocity_command != Some(key) {
-            out.push(Command::MoveVelocity {
+            out.push(Command::from(MoveVelocity {
                 axis: self.config.axis,
                 velocity: self.to_units(velocity),
                 acceleration: Some(self.to_units(key.1)),
                 deceleration: Some(self.to_units(key.2)),
                 jerk: self.jerk(),
                 buffer_mode: BufferMode::Aborting,
-            });
+            }));
             self.last_velocity_command = Some(key);
         }
     }
@@ -1176,13 +1179,13 @@ impl Cia402Drive {
             if !matches!(method, 35 | 37) {
                 return;
             }
-            out.push(Command::SetPosition {
+            out.push(Command::from(SetPosition {
                 axis,
                 position: self.to_units(self.homing_offset),
                 frame: PositionFrame::Both,
-            });
+            }));
         } else {
-            out.push(Command::Home {
+            out.push(Command::from(Home {
                 axis,
                 method: i16::try_from(method).ok(),
                 switch_velocity: Some(self.to_units(self.int(obj::HOMING_SPEEDS, 1))),
@@ -1192,7 +1195,7 @@ impl Cia402Drive {
                 timeout: None,
                 quirks: HomingQuirks::default(),
                 buffer_mode: BufferMode::Aborting,
-            });
+            }));
         }
         self.homing = Homing::InProgress {
             since: self.steps,
@@ -1219,9 +1222,9 @@ impl Cia402Drive {
             // A failed homing is a homing error (bit 13), not a drive fault: clear the axis's
             // latch so that the master can move it again.
             if !axis.flags.intersects(axis_fault_flags()) {
-                out.push(Command::Reset {
+                out.push(Command::from(Reset {
                     axis: self.config.axis,
-                });
+                }));
             }
             return;
         }
@@ -1281,10 +1284,10 @@ impl Cia402Drive {
         let axis = self.config.axis;
         if halt {
             if self.streaming {
-                out.push(Command::Setpoint {
+                out.push(Command::from(StreamSetpoint {
                     axis,
                     setpoint: None,
-                });
+                }));
                 self.streaming = false;
             }
             if rises & cw::HALT != 0 {
@@ -1326,10 +1329,10 @@ impl Cia402Drive {
         if !self.streaming {
             self.stream_accepted = true;
         }
-        out.push(Command::Setpoint {
+        out.push(Command::from(StreamSetpoint {
             axis,
             setpoint: Some(setpoint),
-        });
+        }));
         self.streaming = true;
     }
 
@@ -1615,11 +1618,11 @@ impl Cia402Drive {
 
     /// A Stop with a deceleration in increments/s².
     fn stop(&self, mode: StopMode, deceleration: Option<i64>) -> Command {
-        Command::Stop {
+        Command::from(Stop {
             axis: self.config.axis,
             mode,
             deceleration: deceleration.map(|d| self.to_units(d)),
-        }
+        })
     }
 }
 

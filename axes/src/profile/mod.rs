@@ -5,7 +5,8 @@
 //! acceleration); with a finite jerk it is the jerk-limited S-curve (up to 7 phases, plus the
 //! phases needed to bring an out-of-limit start back inside). Planning is closed-form or a
 //! bounded root search: no allocation, no iteration per tick. Sampling is a polynomial
-//! evaluation.
+//! evaluation. [`Profile::plan_for_duration`] plans the same move stretched to a given duration
+//! ≥ the time-optimal one (Ruckig's step 2, for synchronized moves; see `fixed_duration`).
 //!
 //! Vendor rules (HMC trapezoid/triangle and JerkMode, NMC smoothCoef, CPU 226H linear ramps)
 //! are expressed as choices of `Limits`/`Options` plus [`MovingAverage`] (see [`rules`]).
@@ -18,6 +19,7 @@
 //! - a position goal's end velocity points in the direction of the final approach, which is
 //!   the side of the target the axis would stop on if it braked now.
 
+mod fixed_duration;
 mod plan;
 mod ramp;
 pub mod rules;
@@ -25,8 +27,11 @@ mod smoothing;
 #[cfg(test)]
 mod tests;
 #[cfg(test)]
+mod tests_fixed_duration;
+#[cfg(test)]
 mod tests_ruckig;
 
+pub use fixed_duration::{DurationError, DURATION_TOL};
 pub use smoothing::{MovingAverage, SmoothingError, MAX_WINDOW_TICKS};
 
 use plan::{Plan, MAX_PHASES};
@@ -145,6 +150,38 @@ pub struct Profile {
     goal: Goal,
 }
 
+/// The planner's units: velocity and acceleration limits 1 (Ruckig issue #27: pulse-sized
+/// limits such as jerk 1e10, acceleration 1e6 must not reach the solver). Physical value =
+/// normalised value × the scale of its kind.
+#[derive(Clone, Copy, Debug)]
+struct Scale {
+    v: f64,
+    a: f64,
+    t: f64,
+    p: f64,
+    j: f64,
+    /// The limits in these units.
+    lim: Lim,
+}
+
+impl Scale {
+    fn new(limits: &Limits) -> Result<Scale, PlanError> {
+        let v = limits.velocity;
+        let a = limits.acceleration;
+        let t = v / a;
+        let p = v * t;
+        let j = a / t;
+        let lim = Lim::new(1.0, 1.0, limits.deceleration / a, limits.jerk / j);
+        let usable = |x: f64| x.is_finite() && x > 0.0;
+        let jerk_usable = lim.jerk > 0.0; // may be +∞
+        if usable(t) && usable(p) && usable(j) && usable(lim.dec) && jerk_usable {
+            Ok(Scale { v, a, t, p, j, lim })
+        } else {
+            Err(PlanError::Unrepresentable)
+        }
+    }
+}
+
 impl Profile {
     /// Plan from `start` to `goal`.
     pub fn plan(
@@ -154,46 +191,24 @@ impl Profile {
         options: &Options,
     ) -> Result<Profile, PlanError> {
         validate(start, goal, limits, options)?;
-
-        // Normalise so that the velocity and acceleration limits are 1 (Ruckig issue #27:
-        // pulse-sized limits such as jerk 1e10, acceleration 1e6 must not reach the solver).
-        let v_scale = limits.velocity;
-        let a_scale = limits.acceleration;
-        let t_scale = v_scale / a_scale;
-        let p_scale = v_scale * t_scale;
-        let j_scale = a_scale / t_scale;
-        let lim = Lim::new(
-            1.0,
-            1.0,
-            limits.deceleration / a_scale,
-            limits.jerk / j_scale,
-        );
-        let usable = |x: f64| x.is_finite() && x > 0.0;
-        let jerk_usable = lim.jerk > 0.0; // may be +∞
-        if !(usable(t_scale)
-            && usable(p_scale)
-            && usable(j_scale)
-            && usable(lim.dec)
-            && jerk_usable)
-        {
-            return Err(PlanError::Unrepresentable);
-        }
-        let mut v0 = start.v / v_scale;
+        let scale = Scale::new(limits)?;
+        let lim = scale.lim;
+        let mut v0 = start.v / scale.v;
         // A trapezoid's acceleration jumps, so the start acceleration does not matter.
         let mut a0 = if limits.jerk.is_finite() {
-            start.a / a_scale
+            start.a / scale.a
         } else {
             0.0
         };
-        let start_velocity = (options.start_velocity / v_scale).min(1.0);
+        let start_velocity = (options.start_velocity / scale.v).min(1.0);
 
         let mut plan = Plan::new();
-        let (end_p, end_v) = match goal {
+        let end_p = match goal {
             Goal::Position {
                 target,
                 end_velocity,
             } => {
-                let d = (target - start.p) / p_scale;
+                let d = (target - start.p) / scale.p;
                 if start_velocity > 0.0 && d != 0.0 && v0.abs() < start_velocity {
                     // NMC startVel / CPU 226H MIN_SPEED: the motion starts at this speed.
                     v0 = start_velocity.copysign(d);
@@ -205,22 +220,39 @@ impl Profile {
                         ..Profile::hold(target)
                     });
                 }
-                let e = (end_velocity / v_scale).min(1.0);
+                let e = (end_velocity / scale.v).min(1.0);
                 let jump = options.overshoot == Overshoot::JumpToZeroAtTarget;
                 plan::position(v0, a0, d, e, &lim, jump, &mut plan);
-                (Some(target), 0.0)
+                Some(target)
             }
             Goal::Velocity { target } => {
-                let vt = (target / v_scale).clamp(-1.0, 1.0);
+                let vt = (target / scale.v).clamp(-1.0, 1.0);
                 if start_velocity > 0.0 && vt != 0.0 && v0.abs() < start_velocity {
                     v0 = start_velocity.min(vt.abs()).copysign(vt);
                     a0 = 0.0;
                 }
                 plan::velocity(v0, a0, vt, &lim, &mut plan);
-                (None, target.clamp(-v_scale, v_scale))
+                None
             }
         };
+        Profile::assemble(start.p, goal, &plan, &scale, limits, end_p)
+    }
 
+    /// The profile of `plan` (normalised by `scale`) from position `p0`. `end_p` is a position
+    /// goal's target; a velocity goal's profile continues from where its ramp ends.
+    fn assemble(
+        p0: f64,
+        goal: Goal,
+        plan: &Plan,
+        scale: &Scale,
+        limits: &Limits,
+        end_p: Option<f64>,
+    ) -> Result<Profile, PlanError> {
+        let lim = &scale.lim;
+        let end_v = match goal {
+            Goal::Position { .. } => 0.0,
+            Goal::Velocity { target } => target.clamp(-scale.v, scale.v),
+        };
         let mut starts = [f64::INFINITY; MAX_SEGMENTS];
         let mut states = [State::default(); MAX_SEGMENTS];
         let (mut t, mut p) = (0.0, 0.0);
@@ -234,29 +266,28 @@ impl Profile {
             }
         };
         for ((start_t, state), ph) in starts.iter_mut().zip(&mut states).zip(plan.phases()) {
-            *start_t = t * t_scale;
+            *start_t = t * scale.t;
             *state = State {
-                p: start.p + p * p_scale,
-                v: ph.v * v_scale,
-                a: exact(ph.a, lim.dec, limits.deceleration, a_scale),
-                j: exact(ph.j, lim.jerk, limits.jerk, j_scale),
+                p: p0 + p * scale.p,
+                v: ph.v * scale.v,
+                a: exact(ph.a, lim.dec, limits.deceleration, scale.a),
+                j: exact(ph.j, lim.jerk, limits.jerk, scale.j),
             };
             p += ph.advance().0;
             t += ph.t;
             len += 1;
         }
-        // A velocity goal continues from where its ramp ends.
-        let end_p = end_p.unwrap_or(start.p + p * p_scale);
+        let end_p = end_p.unwrap_or(p0 + p * scale.p);
         let arrival_v = if matches!(goal, Goal::Velocity { .. }) {
             end_v
         } else {
-            plan.end_velocity() * v_scale
+            plan.end_velocity() * scale.v
         };
         let profile = Profile {
             starts,
             states,
             len,
-            duration: t * t_scale,
+            duration: t * scale.t,
             end_p,
             end_v,
             arrival_v,

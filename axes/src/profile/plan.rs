@@ -28,7 +28,7 @@ use super::ramp::{change, Change, Lim, Phase};
 /// Ramp 1 (≤ 6 phases when split at v = 0) + cruise + ramp 2 (≤ 6).
 pub(crate) const MAX_PHASES: usize = 13;
 
-const MAX_ITER: usize = 100;
+pub(super) const MAX_ITER: usize = 100;
 
 /// A planned sequence of phases, from the start state.
 #[derive(Clone, Copy, Debug)]
@@ -48,7 +48,7 @@ impl Plan {
         }
     }
 
-    fn clear(&mut self) {
+    pub(super) fn clear(&mut self) {
         self.len = 0;
         self.end_v = 0.0;
     }
@@ -58,7 +58,7 @@ impl Plan {
     }
 
     /// Appends a phase; empty phases are dropped. The capacity covers every plan shape.
-    fn push(&mut self, ph: Phase) {
+    pub(super) fn push(&mut self, ph: Phase) {
         if ph.t > 0.0 {
             if let Some(slot) = self.phases.get_mut(self.len) {
                 *slot = ph;
@@ -68,7 +68,7 @@ impl Plan {
     }
 
     /// Appends a velocity change that ends at `v1`.
-    fn push_change(&mut self, c: &Change, v1: f64) {
+    pub(super) fn push_change(&mut self, c: &Change, v1: f64) {
         for ph in c.phases() {
             self.push(*ph);
         }
@@ -451,39 +451,15 @@ impl Branch {
     /// [a0, 0] (it starts at the direct-ramp distance ≤ d and is unimodal): golden-section
     /// search for a point at or above d, then the root before it. False if there is none.
     fn release_above(&self, d: f64, out: &mut Plan) -> bool {
-        const G: f64 = 0.618_033_988_749_894_8;
         let f = |a1: f64| self.release_eval(a1).2;
-        let (mut a, mut b) = (self.a0, 0.0);
-        let mut x1 = b - G * (b - a);
-        let mut x2 = a + G * (b - a);
-        let (mut f1, mut f2) = (f(x1), f(x2));
-        for _ in 0..MAX_ITER {
-            if f1 >= d {
-                self.release(d, self.a0, x1, f1, out);
-                return true;
-            }
-            if f2 >= d {
-                self.release(d, self.a0, x2, f2, out);
-                return true;
-            }
-            if b - a <= 4.0 * f64::EPSILON * self.a0.abs() {
-                break;
-            }
-            if f1 < f2 {
-                a = x1;
-                x1 = x2;
-                f1 = f2;
-                x2 = a + G * (b - a);
-                f2 = f(x2);
-            } else {
-                b = x2;
-                x2 = x1;
-                f2 = f1;
-                x1 = b - G * (b - a);
-                f1 = f(x1);
-            }
+        let width = 4.0 * f64::EPSILON * self.a0.abs();
+        let (a1, f1) = golden_max(f, self.a0, 0.0, width, |f1| f1 >= d);
+        if f1 >= d {
+            self.release(d, self.a0, a1, f1, out);
+            true
+        } else {
+            false
         }
-        false
     }
 }
 
@@ -530,8 +506,54 @@ fn symmetric(w: f64, vp: f64, (a, inv_a): (f64, f64), u: f64, lim: &Lim) -> (f64
     }
 }
 
+/// Golden-section search for the maximum of a unimodal `f` on `[a, b]`, until the bracket is
+/// `width` wide or after `MAX_ITER` steps: the first probe `x` whose `f(x)` is `enough`, or else
+/// the higher of the last two probes, with its value.
+pub(super) fn golden_max(
+    f: impl Fn(f64) -> f64,
+    a: f64,
+    b: f64,
+    width: f64,
+    enough: impl Fn(f64) -> bool,
+) -> (f64, f64) {
+    const G: f64 = 0.618_033_988_749_894_8;
+    let (mut a, mut b) = (a, b);
+    let mut x1 = b - G * (b - a);
+    let mut x2 = a + G * (b - a);
+    let (mut f1, mut f2) = (f(x1), f(x2));
+    for _ in 0..MAX_ITER {
+        if enough(f1) {
+            return (x1, f1);
+        }
+        if enough(f2) {
+            return (x2, f2);
+        }
+        if b - a <= width {
+            break;
+        }
+        if f1 < f2 {
+            a = x1;
+            x1 = x2;
+            f1 = f2;
+            x2 = a + G * (b - a);
+            f2 = f(x2);
+        } else {
+            b = x2;
+            x2 = x1;
+            f2 = f1;
+            x1 = b - G * (b - a);
+            f1 = f(x1);
+        }
+    }
+    if f1 >= f2 {
+        (x1, f1)
+    } else {
+        (x2, f2)
+    }
+}
+
 /// Brent's method on [a, b] with f(a), f(b) of opposite signs (or one zero).
-fn brent(mut f: impl FnMut(f64) -> f64, a: f64, b: f64, fa: f64, fb: f64) -> f64 {
+pub(super) fn brent(mut f: impl FnMut(f64) -> f64, a: f64, b: f64, fa: f64, fb: f64) -> f64 {
     let (mut a, mut b, mut fa, mut fb) = (a, b, fa, fb);
     if fa == 0.0 {
         return a;

@@ -19,10 +19,10 @@ use super::*;
 use proptest::prelude::*;
 use proptest::test_runner::Config;
 
-const TOL: f64 = 1e-9;
+pub(super) const TOL: f64 = 1e-9;
 
 /// `cases`, or `PROPTEST_CASES` from the environment for a longer run.
-fn config(cases: u32) -> Config {
+pub(super) fn config(cases: u32) -> Config {
     Config {
         cases: std::env::var("PROPTEST_CASES")
             .ok()
@@ -34,11 +34,11 @@ fn config(cases: u32) -> Config {
 }
 
 #[derive(Clone, Copy, Debug)]
-struct Problem {
-    start: MotionState,
-    goal: Goal,
-    limits: Limits,
-    options: Options,
+pub(super) struct Problem {
+    pub start: MotionState,
+    pub goal: Goal,
+    pub limits: Limits,
+    pub options: Options,
 }
 
 impl Problem {
@@ -47,7 +47,7 @@ impl Problem {
     }
 }
 
-fn log_uniform(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
+pub(super) fn log_uniform(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
     (lo.log10()..hi.log10()).prop_map(|x| 10f64.powf(x))
 }
 
@@ -160,7 +160,7 @@ fn jumped_start(pb: &Problem) -> MotionState {
     s
 }
 
-fn check_profile(pb: &Problem, p: &Profile) -> Result<(), TestCaseError> {
+pub(super) fn check_profile(pb: &Problem, p: &Profile) -> Result<(), TestCaseError> {
     let lim = &pb.limits;
     let s0 = jumped_start(pb);
     let finite_jerk = lim.jerk.is_finite();

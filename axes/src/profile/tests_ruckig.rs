@@ -17,8 +17,16 @@ use rsruckig::prelude::{InputParameter, Ruckig, ThrowErrorHandler, Trajectory};
 
 const REL_TOL: f64 = 1e-9;
 
-/// Ruckig's duration, or None if it refuses the input.
-fn ruckig_duration(start: MotionState, target: f64, target_v: f64, limits: &Limits) -> Option<f64> {
+/// Ruckig's duration, or None if it refuses the input. With `minimum`, Ruckig's step 2: the
+/// shortest duration ≥ `minimum` it can synchronize to (longer than `minimum` only when that
+/// is blocked).
+pub(super) fn ruckig_duration(
+    start: MotionState,
+    target: f64,
+    target_v: f64,
+    limits: &Limits,
+    minimum: Option<f64>,
+) -> Option<f64> {
     let mut otg = Ruckig::<1, ThrowErrorHandler>::new(None, 0.001);
     let mut input = InputParameter::new(None);
     input.current_position[0] = start.p;
@@ -29,6 +37,7 @@ fn ruckig_duration(start: MotionState, target: f64, target_v: f64, limits: &Limi
     input.max_velocity[0] = limits.velocity;
     input.max_acceleration[0] = limits.acceleration;
     input.max_jerk[0] = limits.jerk;
+    input.minimum_duration = minimum;
     let mut traj = Trajectory::new(None);
     otg.calculate(&input, &mut traj).ok()?;
     Some(traj.get_duration())
@@ -39,15 +48,15 @@ fn log_uniform(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
 }
 
 #[derive(Clone, Copy, Debug)]
-struct Case {
-    start: MotionState,
-    target: f64,
-    end_velocity: f64,
-    limits: Limits,
+pub(super) struct Case {
+    pub start: MotionState,
+    pub target: f64,
+    pub end_velocity: f64,
+    pub limits: Limits,
 }
 
 /// A problem inside Ruckig's conditions; `end` adds an end velocity.
-fn feasible(jerk_limited: bool, end: bool) -> impl Strategy<Value = Case> {
+pub(super) fn feasible(jerk_limited: bool, end: bool) -> impl Strategy<Value = Case> {
     (
         (
             log_uniform(0.1, 10.0),
@@ -104,7 +113,7 @@ fn durations(c: &Case) -> Option<(f64, f64)> {
     )
     .ok()?;
     let ve = c.end_velocity.copysign(profile.arrival_velocity());
-    let theirs = ruckig_duration(c.start, c.target, ve, &c.limits)?;
+    let theirs = ruckig_duration(c.start, c.target, ve, &c.limits, None)?;
     Some((profile.duration(), theirs))
 }
 

@@ -13,6 +13,7 @@ use std::thread;
 use std::time::{Duration, Instant};
 
 use super::*;
+use crate::command::{Enable, MoveVelocity, Stop};
 use crate::config::{AxisConfig, EngineConfig};
 use crate::status::AxisFlags;
 
@@ -31,7 +32,7 @@ fn virtual_runtime(axes: usize) -> (EngineHandle, RuntimeGuard) {
 }
 
 fn enable(axis: u16) -> Command {
-    Command::Enable { axis }
+    Command::from(Enable { axis })
 }
 
 /// Polls `f` until it is true; a generous timeout only turns a hang into a failure.
@@ -268,22 +269,22 @@ fn scripted_run() -> (Vec<String>, Snapshot) {
     let mut record = |s: &Snapshot| seen.push(serde_json::to_string(s).unwrap());
     for axis in 0..3 {
         let _ = handle.call(enable(axis));
-        let _ = handle.call(Command::MoveVelocity {
+        let _ = handle.call(Command::from(MoveVelocity {
             axis,
             velocity: 10.0 * f64::from(axis + 1),
             acceleration: None,
             deceleration: None,
             jerk: None,
             buffer_mode: Default::default(),
-        });
+        }));
     }
     handle.advance(100).unwrap();
     record(&handle.snapshot());
-    let _ = handle.call(Command::Stop {
+    let _ = handle.call(Command::from(Stop {
         axis: 1,
         mode: Default::default(),
         deceleration: None,
-    });
+    }));
     let until = handle.advance_until(|s| s.tick >= 250, 1000).unwrap();
     assert_eq!(
         until,
@@ -689,14 +690,14 @@ fn observer_sees_the_engine_after_the_step() {
     let (handle, _guard) = virtual_runtime(1);
     handle.call(enable(0)).unwrap();
     handle
-        .call(Command::MoveVelocity {
+        .call(Command::from(MoveVelocity {
             axis: 0,
             velocity: 10.0,
             acceleration: None,
             deceleration: None,
             jerk: None,
             buffer_mode: Default::default(),
-        })
+        }))
         .unwrap();
     let positions = Arc::new(Mutex::new(Vec::new()));
     let sink = Arc::clone(&positions);

@@ -2,7 +2,10 @@
 // Test support: failing loudly is the point.
 #![allow(dead_code, clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-use axes::command::{AxisInput, Command, CommandState, Reply};
+use axes::command::{
+    AxisInput, Command, CommandState, Enable, ForceInput, GetCommandState, GetParameter,
+    MoveAbsolute, MoveRelative, MoveVelocity, Reply, SetParameter,
+};
 use axes::config::{AxisConfig, HomeSwitchConfig, SwitchConfig};
 use axes::{Engine, EngineConfig, EngineError, ParamId, Snapshot};
 
@@ -55,7 +58,7 @@ pub fn one_axis() -> Engine {
 
 pub fn enabled(axis: AxisConfig) -> Engine {
     let mut e = engine_with(vec![axis]);
-    ok(&mut e, Command::Enable { axis: 0 });
+    ok(&mut e, Command::from(Enable { axis: 0 }));
     e
 }
 
@@ -81,14 +84,14 @@ pub fn id_of(r: Reply) -> u32 {
 }
 
 pub fn state_of(e: &mut Engine, id: u32) -> CommandState {
-    match ok(e, Command::CommandState { id }) {
+    match ok(e, Command::from(GetCommandState { id })) {
         Reply::CommandState { state, .. } => state,
         other => panic!("{other:?}"),
     }
 }
 
 pub fn param(e: &mut Engine, name: ParamId) -> f64 {
-    match ok(e, Command::GetParameter { axis: 0, name }) {
+    match ok(e, Command::from(GetParameter { axis: 0, name })) {
         Reply::Value { value } => value,
         other => panic!("{other:?}"),
     }
@@ -97,28 +100,28 @@ pub fn param(e: &mut Engine, name: ParamId) -> f64 {
 pub fn set(e: &mut Engine, name: ParamId, value: f64) {
     ok(
         e,
-        Command::SetParameter {
+        Command::from(SetParameter {
             axis: 0,
             name,
             value,
             lenient: false,
-        },
+        }),
     );
 }
 
 pub fn force(e: &mut Engine, input: AxisInput, value: Option<bool>) {
     ok(
         e,
-        Command::ForceInput {
+        Command::from(ForceInput {
             axis: 0,
             input,
             value,
-        },
+        }),
     );
 }
 
 pub fn move_abs(position: f64) -> Command {
-    Command::MoveAbsolute {
+    Command::from(MoveAbsolute {
         axis: 0,
         position,
         velocity: None,
@@ -126,11 +129,11 @@ pub fn move_abs(position: f64) -> Command {
         deceleration: None,
         jerk: None,
         buffer_mode: Default::default(),
-    }
+    })
 }
 
 pub fn move_rel_buffered(distance: f64) -> Command {
-    Command::MoveRelative {
+    Command::from(MoveRelative {
         axis: 0,
         distance,
         velocity: None,
@@ -138,18 +141,18 @@ pub fn move_rel_buffered(distance: f64) -> Command {
         deceleration: None,
         jerk: None,
         buffer_mode: axes::command::BufferMode::Buffered,
-    }
+    })
 }
 
 pub fn jog(velocity: f64) -> Command {
-    Command::MoveVelocity {
+    Command::from(MoveVelocity {
         axis: 0,
         velocity,
         acceleration: None,
         deceleration: None,
         jerk: None,
         buffer_mode: Default::default(),
-    }
+    })
 }
 
 /// Step `seconds` of engine time.

@@ -19,7 +19,6 @@ use mcemu_canopen::Device;
 use mcemu_modbus::map::value::{decode, encode, PointType, WordOrder};
 use mcemu_modbus::map::{UnitMap, UnitService};
 use mcemu_modbus::model::ExecError;
-use mcemu_modbus::pdu::Exception;
 use mcemu_modbus::tables::{Table, TableAccess};
 
 /// The manufacturer objects backed by holding registers: 0x2000 + n for register n.
@@ -222,12 +221,10 @@ impl From<ExecError> for WriteError {
 }
 
 /// A failed register write as the SDO abort a master gets (decisions.md, "CT E10 on CANopen"):
-/// exception 02 (no such register, or not one that takes writes) → object does not exist
-/// 0x06020000; 03 (the value is refused: a parameter's range, a command argument) → invalid
-/// value 0x06090030; any other exception (04: the engine refused in its present state, 06: its
-/// queue is full) → 0x08000022, cannot be stored because of the present device state. A map
-/// that could not run at all → 0x08000000, general error (CiA 301 Table 22: no more specific
-/// code fits an internal failure).
+/// a refusal by its Modbus exception, the E10's table in
+/// [`mcemu_dialects::cpu226h::od_error_for_exception`] (02 → 0x06020000, 03 → 0x06090030,
+/// others → 0x08000022). A map that could not run at all → 0x08000000, general error (CiA 301
+/// Table 22: no more specific code fits an internal failure).
 pub fn od_error(index: u16, subindex: u8, e: &WriteError) -> OdError {
     let e = match e {
         WriteError::Refused(e) => e,
@@ -239,19 +236,7 @@ pub fn od_error(index: u16, subindex: u8, e: &WriteError) -> OdError {
             }
         }
     };
-    match e.exception {
-        Exception::IllegalDataAddress => OdError::NoObject { index },
-        Exception::IllegalDataValue => OdError::InvalidValue {
-            index,
-            subindex,
-            detail: e.reason.clone(),
-        },
-        _ => OdError::DeviceState {
-            index,
-            subindex,
-            detail: e.reason.clone(),
-        },
-    }
+    mcemu_dialects::cpu226h::od_error_for_exception(e.exception.code(), index, subindex, &e.reason)
 }
 
 /// Word access to the holding registers behind the objects.
@@ -581,6 +566,7 @@ mod tests {
 
     use mcemu_canopen::eds::Eds;
     use mcemu_modbus::map::{self, Binding, MachineShape};
+    use mcemu_modbus::pdu::Exception;
 
     use super::*;
 

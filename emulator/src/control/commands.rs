@@ -1,7 +1,10 @@
 //! `POST /commands`, `/inputs` and `/faults`: everything that changes the engine goes through
 //! `axes::Command`, queued to the servo thread.
 
-use axes::command::{AxisIndex, AxisInput, Command, Reply};
+use axes::command::{
+    AxisIndex, AxisInput, Command, ForceAnalogInput, ForceDigitalInput, ForceInput,
+    InjectFollowingError, Reply,
+};
 use axum::extract::State;
 use axum::response::{IntoResponse, Response};
 use axum::Json;
@@ -111,19 +114,19 @@ impl InputRequest {
                      \"value\" (absent or null releases the input)";
         let value = self.value.filter(|v| !v.is_null());
         match (self.axis, self.input, self.di, self.ai) {
-            (Some(axis), Some(input), None, None) => Ok(Command::ForceInput {
+            (Some(axis), Some(input), None, None) => Ok(Command::from(ForceInput {
                 axis,
                 input,
                 value: value.map(|v| boolean("value", v)).transpose()?,
-            }),
-            (None, None, Some(channel), None) => Ok(Command::ForceDigitalInput {
+            })),
+            (None, None, Some(channel), None) => Ok(Command::from(ForceDigitalInput {
                 channel,
                 value: value.map(|v| boolean("value", v)).transpose()?,
-            }),
-            (None, None, None, Some(channel)) => Ok(Command::ForceAnalogInput {
+            })),
+            (None, None, None, Some(channel)) => Ok(Command::from(ForceAnalogInput {
                 channel,
                 value: value.map(|v| number("value", v)).transpose()?,
-            }),
+            })),
             (Some(_), None, None, None) => Err(ApiError::InvalidRequest(format!(
                 "`input` is missing: limit_pos, limit_neg, home, index, drive_alarm or \
                  encoder_loss; {shape}"
@@ -204,11 +207,13 @@ fn yes() -> bool {
 
 impl AxisFault {
     pub fn command(self) -> Result<Command, ApiError> {
-        let force = |axis, input, active: bool| Command::ForceInput {
-            axis,
-            input,
-            // Clearing releases the input to the simulation, which has no alarm of its own.
-            value: active.then_some(true),
+        let force = |axis, input, active: bool| {
+            Command::from(ForceInput {
+                axis,
+                input,
+                // Clearing releases the input to the simulation, which has no alarm of its own.
+                value: active.then_some(true),
+            })
         };
         match self {
             AxisFault::DriveAlarm { axis, active } => {
@@ -222,16 +227,16 @@ impl AxisFault {
                 amount,
                 active,
             } => match (active, amount) {
-                (true, Some(amount)) => Ok(Command::InjectFollowingError {
+                (true, Some(amount)) => Ok(Command::from(InjectFollowingError {
                     axis,
                     amount: Some(amount),
-                }),
+                })),
                 (true, None) => Err(ApiError::InvalidRequest(
                     "following_error needs `amount` (user units) to inject, or \"active\": \
                      false to clear"
                         .into(),
                 )),
-                (false, _) => Ok(Command::InjectFollowingError { axis, amount: None }),
+                (false, _) => Ok(Command::from(InjectFollowingError { axis, amount: None })),
             },
         }
     }
@@ -317,6 +322,10 @@ fn running_names(state: &ControlState) -> String {
 mod tests {
     #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
+    use axes::command::{
+        Enable, ForceAnalogInput, ForceDigitalInput, ForceInput, InjectFollowingError, Reset,
+    };
+
     use super::*;
 
     fn input(json: &str) -> Result<Command, ApiError> {
@@ -333,7 +342,7 @@ mod tests {
     #[test]
     fn command_bodies_are_one_command_or_an_array() {
         let one = CommandBody::parse(br#" {"type":"enable","axis":1}"#).unwrap();
-        assert_eq!(one, CommandBody::One(Command::Enable { axis: 1 }));
+        assert_eq!(one, CommandBody::One(Command::from(Enable { axis: 1 })));
         let many = CommandBody::parse(
             b"\n[{\"type\":\"enable\",\"axis\":1},{\"type\":\"reset\",\"axis\":0}]",
         )
@@ -341,8 +350,8 @@ mod tests {
         assert_eq!(
             many,
             CommandBody::Many(vec![
-                Command::Enable { axis: 1 },
-                Command::Reset { axis: 0 }
+                Command::from(Enable { axis: 1 }),
+                Command::from(Reset { axis: 0 })
             ])
         );
         assert_eq!(
@@ -363,40 +372,40 @@ mod tests {
     fn inputs_map_to_force_commands() {
         assert_eq!(
             input(r#"{"axis":0,"input":"limit_pos","value":true}"#).unwrap(),
-            Command::ForceInput {
+            Command::from(ForceInput {
                 axis: 0,
                 input: AxisInput::LimitPos,
                 value: Some(true)
-            }
+            })
         );
         assert_eq!(
             input(r#"{"axis":2,"input":"home"}"#).unwrap(),
-            Command::ForceInput {
+            Command::from(ForceInput {
                 axis: 2,
                 input: AxisInput::Home,
                 value: None
-            }
+            })
         );
         assert_eq!(
             input(r#"{"di":5,"value":false}"#).unwrap(),
-            Command::ForceDigitalInput {
+            Command::from(ForceDigitalInput {
                 channel: 5,
                 value: Some(false)
-            }
+            })
         );
         assert_eq!(
             input(r#"{"ai":2,"value":3.3}"#).unwrap(),
-            Command::ForceAnalogInput {
+            Command::from(ForceAnalogInput {
                 channel: 2,
                 value: Some(3.3)
-            }
+            })
         );
         assert_eq!(
             input(r#"{"ai":2,"value":null}"#).unwrap(),
-            Command::ForceAnalogInput {
+            Command::from(ForceAnalogInput {
                 channel: 2,
                 value: None
-            }
+            })
         );
         for bad in [
             r#"{"di":5,"value":1}"#,
@@ -419,33 +428,33 @@ mod tests {
     fn faults_map_to_commands_and_front_ends_are_routed_by_name() {
         assert_eq!(
             fault(r#"{"axis":1,"fault":"drive_alarm"}"#).unwrap(),
-            Command::ForceInput {
+            Command::from(ForceInput {
                 axis: 1,
                 input: AxisInput::DriveAlarm,
                 value: Some(true)
-            }
+            })
         );
         assert_eq!(
             fault(r#"{"axis":1,"fault":"encoder_loss","active":false}"#).unwrap(),
-            Command::ForceInput {
+            Command::from(ForceInput {
                 axis: 1,
                 input: AxisInput::EncoderLoss,
                 value: None
-            }
+            })
         );
         assert_eq!(
             fault(r#"{"axis":0,"fault":"following_error","amount":2.5}"#).unwrap(),
-            Command::InjectFollowingError {
+            Command::from(InjectFollowingError {
                 axis: 0,
                 amount: Some(2.5)
-            }
+            })
         );
         assert_eq!(
             fault(r#"{"axis":0,"fault":"following_error","active":false}"#).unwrap(),
-            Command::InjectFollowingError {
+            Command::from(InjectFollowingError {
                 axis: 0,
                 amount: None
-            }
+            })
         );
         assert!(fault(r#"{"axis":0,"fault":"following_error"}"#).is_err());
         let e = fault(r#"{"axis":0,"fault":"meltdown"}"#).unwrap_err();

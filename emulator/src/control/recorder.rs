@@ -347,7 +347,7 @@ mod tests {
     #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
     use super::*;
-    use axes::command::Command;
+    use axes::command::{Command, Enable};
     use axes::config::{AxisConfig, EngineConfig};
     use axes::runtime::{ClockMode, Runtime, RuntimeGuard, RuntimeOptions};
 
@@ -387,7 +387,7 @@ mod tests {
             max_rows: None,
         };
         block_on(recorder.start(&handle, request)).unwrap();
-        handle.call(Command::Enable { axis: 2 }).unwrap();
+        handle.call(Command::from(Enable { axis: 2 })).unwrap();
         handle.advance(10).unwrap();
         let status = block_on(recorder.stop(&handle)).unwrap();
         handle.advance(10).unwrap();

@@ -36,7 +36,10 @@ use std::fmt;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 
-use axes::command::{AxisInput, Command, CommandId, CommandState, ErrorKind, Reply};
+use axes::command::{
+    AxisCommand, AxisInput, Command, CommandId, CommandState, ErrorKind, ForceDigitalInput,
+    ForceInput, GetCommandState, Home, MoveAbsolute, MoveRelative, MoveVelocity, Reply,
+};
 use axes::{AxisStatus, Engine, EngineError};
 
 use crate::config::{Config, ConfigError};
@@ -446,20 +449,20 @@ fn force_command(f: ForceSpec, machine: &Machine) -> Result<Command, (&'static s
     match (f.axis, f.input, f.di) {
         (Some(axis), Some(input), None) => {
             machine.axis(axis).map_err(|why| ("axis", why))?;
-            Ok(Command::ForceInput {
+            Ok(Command::from(ForceInput {
                 axis,
                 input,
                 value: f.value,
-            })
+            }))
         }
         (None, None, Some(channel)) => {
             machine
                 .channel(channel, machine.digital_inputs, "digital inputs")
                 .map_err(|why| ("di", why))?;
-            Ok(Command::ForceDigitalInput {
+            Ok(Command::from(ForceDigitalInput {
                 channel,
                 value: f.value,
-            })
+            }))
         }
         (_, _, Some(_)) => Err((
             "di",
@@ -531,10 +534,10 @@ fn check_command_refs(steps: &[Step]) -> Result<(), (String, String)> {
             }
             if !matches!(
                 command,
-                Command::MoveAbsolute { .. }
-                    | Command::MoveRelative { .. }
-                    | Command::MoveVelocity { .. }
-                    | Command::Home { .. }
+                Command::Axis(AxisCommand::MoveAbsolute(MoveAbsolute { .. }))
+                    | Command::Axis(AxisCommand::MoveRelative(MoveRelative { .. }))
+                    | Command::Axis(AxisCommand::MoveVelocity(MoveVelocity { .. }))
+                    | Command::Axis(AxisCommand::Home(Home { .. }))
             ) {
                 return Err((
                     key,
@@ -642,7 +645,7 @@ impl Run<'_> {
     fn command_state(&self, k: usize, engine: &mut Engine) -> Result<CommandState, String> {
         match self.ids.get(k).copied().unwrap_or(Issued::NotYet) {
             // A read: `command_state` changes nothing in the engine.
-            Issued::Id(id) => match engine.apply(Command::CommandState { id }) {
+            Issued::Id(id) => match engine.apply(Command::from(GetCommandState { id })) {
                 Ok(Reply::CommandState { state, .. }) => Ok(state),
                 Ok(other) => Err(format!("the engine answered {other:?}")),
                 Err(e) => Err(format!("the engine answered: {e}")),

@@ -2,7 +2,7 @@
 
 use std::time::Duration;
 
-use crate::hub::EndpointId;
+use crate::endpoint::EndpointId;
 
 /// A snapshot of a bus's counters.
 #[derive(Clone, Debug, Default, PartialEq)]

@@ -21,6 +21,7 @@ use tokio::sync::Notify;
 
 use crate::clock::{Clock, Timestamp};
 use crate::counters::{BusCounters, EndpointCounters};
+pub use crate::endpoint::EndpointId;
 use crate::frame::WireFrame;
 use crate::log::{CandumpLog, LogSummary};
 use crate::model::{BusModel, Transmitted, TxQueueFull};
@@ -85,16 +86,6 @@ impl HubConfig {
             epoch: Some(epoch),
             ..self
         }
-    }
-}
-
-/// An endpoint's identity on its hub.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct EndpointId(u64);
-
-impl std::fmt::Display for EndpointId {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "#{}", self.0)
     }
 }
 

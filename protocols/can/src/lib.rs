@@ -13,6 +13,7 @@
 
 pub mod clock;
 pub mod counters;
+pub mod endpoint;
 pub mod frame;
 pub mod hub;
 pub mod log;

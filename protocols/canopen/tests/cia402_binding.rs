@@ -8,7 +8,7 @@ use std::collections::VecDeque;
 use std::sync::{Arc, Mutex};
 
 use axes::cia402::DriveConfig;
-use axes::command::{AxisInput, Command};
+use axes::command::{AxisInput, Command, ForceInput, GetCommandState};
 use axes::config::{AxisConfig, EngineConfig};
 use axes::runtime::{ClockMode, EngineHandle, Runtime, RuntimeGuard, RuntimeOptions};
 use axes::Engine;
@@ -87,7 +87,7 @@ impl Rig {
             .push_back(CanFrame::new(id, data).unwrap());
         self.handle.poke();
         // A command queued after the poke: when it is answered, the poke was served.
-        let _ = self.handle.call(Command::CommandState { id: 0 });
+        let _ = self.handle.call(Command::from(GetCommandState { id: 0 }));
         self.sent()
     }
 
@@ -216,11 +216,11 @@ fn a_tpdo_mapped_by_the_master_goes_out_on_sync_and_a_drive_fault_is_an_emcy() {
     assert_eq!(sw, rig.handle.snapshot().drives[0].statusword);
     // A drive alarm: the drive faults with 0xFF00 and the node says so on 0x80 + id.
     rig.handle
-        .call(Command::ForceInput {
+        .call(Command::from(ForceInput {
             axis: 0,
             input: AxisInput::DriveAlarm,
             value: Some(true),
-        })
+        }))
         .unwrap();
     rig.advance(3);
     let frames = rig.sent();

@@ -8,7 +8,10 @@ mod power;
 use std::collections::VecDeque;
 
 use super::*;
-use crate::command::{CommandId, Direction};
+use crate::command::{
+    AxisCommand, CommandId, Direction, Disable, Enable, Halt, Home, MoveAbsolute, MoveRelative,
+    MoveVelocity, Reset, Resume, SetPosition, Stop, StreamSetpoint,
+};
 use crate::status::CommandRef;
 
 /// Increments per mm in the tests: bus values are 1000 × axis values.
@@ -62,7 +65,7 @@ impl FakeAxis {
         let axis = 0;
         let f = &mut self.status.flags;
         match *command {
-            Command::Enable { .. } => {
+            Command::Axis(AxisCommand::Enable(Enable { .. })) => {
                 if f.intersects(FAULTS) {
                     return Err(EngineError::AxisInError {
                         axis,
@@ -72,7 +75,7 @@ impl FakeAxis {
                 f.insert(AxisFlags::ENABLED);
                 self.status.state = AxisState::Standstill;
             }
-            Command::Disable { .. } => {
+            Command::Axis(AxisCommand::Disable(Disable { .. })) => {
                 f.remove(AxisFlags::ENABLED | AxisFlags::MOVING);
                 self.queue.clear();
                 self.velocity = None;
@@ -85,7 +88,7 @@ impl FakeAxis {
                     AxisState::Disabled
                 };
             }
-            Command::Reset { .. } => {
+            Command::Axis(AxisCommand::Reset(Reset { .. })) => {
                 if self.alarm_forced {
                     return Err(EngineError::CauseStillPresent {
                         axis,
@@ -99,24 +102,24 @@ impl FakeAxis {
                     AxisState::Disabled
                 };
             }
-            Command::MoveAbsolute {
+            Command::Axis(AxisCommand::MoveAbsolute(MoveAbsolute {
                 position,
                 velocity,
                 buffer_mode,
                 ..
-            } => {
+            })) => {
                 return self.post(position, velocity, buffer_mode);
             }
-            Command::MoveRelative {
+            Command::Axis(AxisCommand::MoveRelative(MoveRelative {
                 distance,
                 velocity,
                 buffer_mode,
                 ..
-            } => {
+            })) => {
                 let target = self.last_target() + distance;
                 return self.post(target, velocity, buffer_mode);
             }
-            Command::MoveVelocity { velocity, .. } => {
+            Command::Axis(AxisCommand::MoveVelocity(MoveVelocity { velocity, .. })) => {
                 if !self.enabled() {
                     return Err(EngineError::AxisDisabled { axis });
                 }
@@ -125,15 +128,15 @@ impl FakeAxis {
                 let id = self.id();
                 return Ok(Reply::Accepted { id });
             }
-            Command::Stop { .. } => {
+            Command::Axis(AxisCommand::Stop(Stop { .. })) => {
                 self.queue.clear();
                 self.velocity = None;
                 self.homing = None;
                 self.halted = false;
             }
-            Command::Halt { .. } => self.halted = true,
-            Command::Resume { .. } => self.halted = false,
-            Command::Home { method, offset, .. } => {
+            Command::Axis(AxisCommand::Halt(Halt { .. })) => self.halted = true,
+            Command::Axis(AxisCommand::Resume(Resume { .. })) => self.halted = false,
+            Command::Axis(AxisCommand::Home(Home { method, offset, .. })) => {
                 if !self.enabled() {
                     return Err(EngineError::AxisDisabled { axis });
                 }
@@ -154,11 +157,11 @@ impl FakeAxis {
                 });
                 return Ok(Reply::Accepted { id });
             }
-            Command::SetPosition { position, .. } => {
+            Command::Axis(AxisCommand::SetPosition(SetPosition { position, .. })) => {
                 self.status.cmd_pos = position;
                 self.status.act_pos = position;
             }
-            Command::Setpoint { setpoint, .. } => {
+            Command::Axis(AxisCommand::Setpoint(StreamSetpoint { setpoint, .. })) => {
                 if setpoint.is_some() && !self.enabled() {
                     return Err(EngineError::AxisDisabled { axis });
                 }
@@ -408,15 +411,15 @@ impl Rig {
 }
 
 fn is_enable(c: &Command) -> bool {
-    matches!(c, Command::Enable { .. })
+    matches!(c, Command::Axis(AxisCommand::Enable(Enable { .. })))
 }
 
 fn is_disable(c: &Command) -> bool {
-    matches!(c, Command::Disable { .. })
+    matches!(c, Command::Axis(AxisCommand::Disable(Disable { .. })))
 }
 
 fn is_stop(c: &Command) -> bool {
-    matches!(c, Command::Stop { .. })
+    matches!(c, Command::Axis(AxisCommand::Stop(Stop { .. })))
 }
 
 fn approx(a: f64, b: f64) -> bool {

@@ -1,6 +1,10 @@
 //! Modes of operation: PP, PV, HM, CSP, CSV, CST, mode display, touch probes, inputs.
 
 use super::*;
+use crate::command::{
+    AxisCommand, Disable, Halt, Home, MoveAbsolute, MoveRelative, MoveVelocity, Reset, Resume,
+    SetPosition, Stop, StreamSetpoint,
+};
 
 const TR: u16 = sw::TARGET_REACHED;
 const B12: u16 = sw::OMS_12;
@@ -10,7 +14,9 @@ const LIMIT: u16 = sw::INTERNAL_LIMIT_ACTIVE;
 fn moves(c: &Command) -> bool {
     matches!(
         c,
-        Command::MoveAbsolute { .. } | Command::MoveRelative { .. } | Command::MoveVelocity { .. }
+        Command::Axis(AxisCommand::MoveAbsolute(MoveAbsolute { .. }))
+            | Command::Axis(AxisCommand::MoveRelative(MoveRelative { .. }))
+            | Command::Axis(AxisCommand::MoveVelocity(MoveVelocity { .. }))
     )
 }
 
@@ -72,7 +78,7 @@ fn pp_set_point_handshake_and_target_reached() {
     set_point(&mut rig, 1000, 0x1F);
     assert_eq!(
         rig.sent(moves),
-        [Command::MoveAbsolute {
+        [Command::from(MoveAbsolute {
             axis: 0,
             position: 1.0,
             velocity: Some(100.0),
@@ -80,7 +86,7 @@ fn pp_set_point_handshake_and_target_reached() {
             deceleration: Some(100.0),
             jerk: Some(0.0),
             buffer_mode: BufferMode::Buffered,
-        }]
+        })]
     );
     assert_eq!(rig.sw() & (TR | B12), B12, "acknowledged, not reached");
     // Holding bit 4 is no new set-point.
@@ -146,10 +152,10 @@ fn pp_buffered_set_points_fill_a_two_deep_buffer() {
     assert_eq!(rig.sent(moves).len(), 1);
     assert!(matches!(
         rig.sent(moves)[..],
-        [Command::MoveAbsolute {
+        [Command::Axis(AxisCommand::MoveAbsolute(MoveAbsolute {
             buffer_mode: BufferMode::Buffered,
             ..
-        }]
+        }))]
     ));
     // Buffer full (running + next): the acknowledge stays after bit 4 drops, and a further
     // set-point is not taken.
@@ -174,7 +180,7 @@ fn pp_change_set_immediately_aborts_the_running_move() {
     set_point(&mut rig, 500, 0x3F);
     assert!(matches!(
         rig.sent(moves)[..],
-        [Command::MoveAbsolute { position, buffer_mode: BufferMode::Aborting, .. }] if approx(position, 0.5)
+        [Command::Axis(AxisCommand::MoveAbsolute(MoveAbsolute { position, buffer_mode: BufferMode::Aborting, .. }))] if approx(position, 0.5)
     ));
     assert_ne!(rig.sw() & B12, 0);
     rig.cw(0x2F);
@@ -190,7 +196,7 @@ fn pp_relative_set_points_add_to_the_preceding_target() {
     set_point(&mut rig, 300, 0x5F);
     assert!(matches!(
         rig.sent(moves)[..],
-        [Command::MoveRelative { distance, buffer_mode: BufferMode::Buffered, .. }] if approx(distance, 0.3)
+        [Command::Axis(AxisCommand::MoveRelative(MoveRelative { distance, buffer_mode: BufferMode::Buffered, .. }))] if approx(distance, 0.3)
     ));
     rig.cw(0x4F);
     set_point(&mut rig, 300, 0x5F);
@@ -201,7 +207,7 @@ fn pp_relative_set_points_add_to_the_preceding_target() {
     set_point(&mut rig, 100, 0x7F);
     assert!(matches!(
         rig.sent(moves)[..],
-        [Command::MoveAbsolute { position, buffer_mode: BufferMode::Aborting, .. }] if approx(position, 0.7)
+        [Command::Axis(AxisCommand::MoveAbsolute(MoveAbsolute { position, buffer_mode: BufferMode::Aborting, .. }))] if approx(position, 0.7)
     ));
     rig.cw(0x6F);
     assert!(rig.until(30, |r| r.sw() & TR != 0));
@@ -216,7 +222,7 @@ fn pp_targets_are_limited_by_software_limits_and_velocity_limits() {
     set_point(&mut rig, 5000, 0x1F);
     assert!(matches!(
         rig.sent(moves)[..],
-        [Command::MoveAbsolute { position, .. }] if approx(position, 1.5)
+        [Command::Axis(AxisCommand::MoveAbsolute(MoveAbsolute { position, .. }))] if approx(position, 1.5)
     ));
     assert_ne!(rig.sw() & LIMIT, 0);
     rig.cw(0x0F);
@@ -227,7 +233,7 @@ fn pp_targets_are_limited_by_software_limits_and_velocity_limits() {
     set_point(&mut rig, 0, 0x1F);
     assert!(matches!(
         rig.sent(moves)[..],
-        [Command::MoveAbsolute { velocity: Some(v), .. }] if approx(v, 50.0)
+        [Command::Axis(AxisCommand::MoveAbsolute(MoveAbsolute { velocity: Some(v), .. }))] if approx(v, 50.0)
     ));
     assert_ne!(rig.sw() & LIMIT, 0);
     rig.cw(0x0F);
@@ -255,7 +261,7 @@ fn pp_refused_by_a_limit_sets_internal_limit_active() {
     assert_eq!(rig.sw() & LIMIT, 0);
     // Other refusals are warnings (bit 7).
     rig.drive.on_reply(
-        &Command::MoveAbsolute {
+        &Command::from(MoveAbsolute {
             axis: 0,
             position: 1.0,
             velocity: None,
@@ -263,7 +269,7 @@ fn pp_refused_by_a_limit_sets_internal_limit_active() {
             deceleration: None,
             jerk: None,
             buffer_mode: BufferMode::Buffered,
-        },
+        }),
         &Err(EngineError::QueueFull { axis: 0, depth: 64 }),
     );
     rig.tick();
@@ -279,11 +285,11 @@ fn pp_halt_pauses_and_resumes() {
     rig.ticks(3);
     rig.cw(0x10F);
     assert_eq!(
-        rig.sent(|c| matches!(c, Command::Halt { .. })),
-        [Command::Halt {
+        rig.sent(|c| matches!(c, Command::Axis(AxisCommand::Halt(Halt { .. })))),
+        [Command::Axis(AxisCommand::Halt(Halt {
             axis: 0,
             deceleration: Some(100.0)
-        }]
+        }))]
     );
     rig.tick();
     // Halted and at rest: target reached means "velocity 0" while halt is set.
@@ -294,7 +300,11 @@ fn pp_halt_pauses_and_resumes() {
     assert!(rig.sent(moves).is_empty());
     assert_eq!(rig.int(obj::POSITION_ACTUAL), held);
     rig.cw(0x0F);
-    assert_eq!(rig.sent(|c| matches!(c, Command::Resume { .. })).len(), 1);
+    assert_eq!(
+        rig.sent(|c| matches!(c, Command::Axis(AxisCommand::Resume(Resume { .. }))))
+            .len(),
+        1
+    );
     rig.tick();
     assert_eq!(rig.sw() & TR, 0);
     assert!(rig.until(100, |r| r.sw() & TR != 0));
@@ -311,11 +321,11 @@ fn pp_halt_pauses_and_resumes() {
     set_point(&mut rig, 0, 0x1F);
     rig.cw(0x10F);
     assert_eq!(
-        rig.sent(|c| matches!(c, Command::Halt { .. })),
-        [Command::Halt {
+        rig.sent(|c| matches!(c, Command::Axis(AxisCommand::Halt(Halt { .. })))),
+        [Command::Axis(AxisCommand::Halt(Halt {
             axis: 0,
             deceleration: Some(1000.0)
-        }]
+        }))]
     );
 }
 
@@ -327,14 +337,14 @@ fn pv_commands_target_velocity_and_reports_speed_bits() {
     rig.operation_enabled();
     assert_eq!(
         rig.sent(moves),
-        [Command::MoveVelocity {
+        [Command::from(MoveVelocity {
             axis: 0,
             velocity: 5.0,
             acceleration: Some(100.0),
             deceleration: Some(100.0),
             jerk: Some(0.0),
             buffer_mode: BufferMode::Aborting,
-        }]
+        })]
     );
     rig.tick();
     assert!(
@@ -348,7 +358,10 @@ fn pv_commands_target_velocity_and_reports_speed_bits() {
     rig.tick();
     assert!(matches!(
         rig.sent(moves)[..],
-        [Command::MoveVelocity { jerk: None, .. }]
+        [Command::Axis(AxisCommand::MoveVelocity(MoveVelocity {
+            jerk: None,
+            ..
+        }))]
     ));
     // Zero: speed = 0 (bit 12).
     rig.set(obj::TARGET_VELOCITY, 0, Value::I32(0));
@@ -360,7 +373,7 @@ fn pv_commands_target_velocity_and_reports_speed_bits() {
     rig.tick();
     assert!(matches!(
         rig.sent(moves)[..],
-        [Command::MoveVelocity { velocity, .. }] if approx(velocity, -3.0)
+        [Command::Axis(AxisCommand::MoveVelocity(MoveVelocity { velocity, .. }))] if approx(velocity, -3.0)
     ));
     assert_ne!(rig.sw() & LIMIT, 0);
     // Not reached while the actual velocity is off by more than 0x606D.
@@ -369,11 +382,19 @@ fn pv_commands_target_velocity_and_reports_speed_bits() {
     assert_eq!(rig.sw() & TR, 0);
     // Halt stops it; at rest target reached is set.
     rig.cw(0x10F);
-    assert_eq!(rig.sent(|c| matches!(c, Command::Halt { .. })).len(), 1);
+    assert_eq!(
+        rig.sent(|c| matches!(c, Command::Axis(AxisCommand::Halt(Halt { .. }))))
+            .len(),
+        1
+    );
     rig.tick();
     assert_ne!(rig.sw() & TR, 0);
     rig.cw(0x0F);
-    assert_eq!(rig.sent(|c| matches!(c, Command::Resume { .. })).len(), 1);
+    assert_eq!(
+        rig.sent(|c| matches!(c, Command::Axis(AxisCommand::Resume(Resume { .. }))))
+            .len(),
+        1
+    );
 }
 
 /// A rig in Operation enabled, mode HM, with homing parameters set.
@@ -400,8 +421,8 @@ fn hm_start_attained_and_method_37_semantics() {
     rig.axis.status.cmd_pos = 3.0;
     rig.cw(0x1F);
     assert_eq!(
-        rig.sent(|c| matches!(c, Command::Home { .. })),
-        [Command::Home {
+        rig.sent(|c| matches!(c, Command::Axis(AxisCommand::Home(Home { .. })))),
+        [Command::Axis(AxisCommand::Home(Home {
             axis: 0,
             method: Some(1),
             switch_velocity: Some(20.0),
@@ -411,7 +432,7 @@ fn hm_start_attained_and_method_37_semantics() {
             timeout: None,
             quirks: HomingQuirks::default(),
             buffer_mode: BufferMode::Aborting,
-        }]
+        }))]
     );
     assert_eq!(homing_bits(&rig), 0, "in progress: 0 0 0");
     // Homing parameters cannot change while homing runs.
@@ -444,8 +465,8 @@ fn hm_start_attained_and_method_37_semantics() {
     rig.set(obj::HOME_OFFSET, 0, Value::I32(-400));
     rig.cw(0x1F);
     assert!(matches!(
-        rig.sent(|c| matches!(c, Command::Home { .. }))[..],
-        [Command::Home { method: Some(37), offset: Some(o), .. }] if approx(o, -0.4)
+        rig.sent(|c| matches!(c, Command::Axis(AxisCommand::Home(Home { .. }))))[..],
+        [Command::Axis(AxisCommand::Home(Home { method: Some(37), offset: Some(o), .. }))] if approx(o, -0.4)
     ));
     rig.ticks(2);
     assert_eq!(homing_bits(&rig), B12 | TR);
@@ -467,11 +488,11 @@ fn hm_method_37_runs_without_operation_enabled() {
     assert_eq!(rig.state(), State::SwitchedOn);
     assert_eq!(
         rig.last,
-        [Command::SetPosition {
+        [Command::from(SetPosition {
             axis: 0,
             position: 1.234,
             frame: PositionFrame::Both
-        }]
+        })]
     );
     rig.tick();
     assert_eq!(homing_bits(&rig), B12 | TR);
@@ -498,7 +519,11 @@ fn hm_error_and_interruption() {
     assert!(rig.until(20, |r| r.sw() & B13 != 0));
     assert_eq!(homing_bits(&rig), B13 | TR, "error, velocity 0: 1 0 1");
     // The axis's latch is cleared so the master can move it again; no drive fault.
-    assert_eq!(rig.sent(|c| matches!(c, Command::Reset { .. })).len(), 1);
+    assert_eq!(
+        rig.sent(|c| matches!(c, Command::Axis(AxisCommand::Reset(Reset { .. }))))
+            .len(),
+        1
+    );
     rig.tick();
     assert!(!rig.axis.status.flags.contains(AxisFlags::HOMING_FAILED));
     assert_eq!(rig.state(), State::OperationEnabled);
@@ -512,11 +537,11 @@ fn hm_error_and_interruption() {
     rig.cw(0x0F);
     assert_eq!(
         rig.sent(is_stop),
-        [Command::Stop {
+        [Command::from(Stop {
             axis: 0,
             mode: StopMode::Smooth,
             deceleration: Some(300.0)
-        }]
+        })]
     );
     assert_eq!(homing_bits(&rig), TR, "interrupted: 0 0 1");
     // So does halt.
@@ -526,7 +551,7 @@ fn hm_error_and_interruption() {
     assert_eq!(homing_bits(&rig), TR);
     // A homing the axis refuses is a homing error.
     let mut rig = hm(17);
-    rig.axis.apply(&Command::Disable { axis: 0 }).unwrap();
+    rig.axis.apply(&Command::from(Disable { axis: 0 })).unwrap();
     rig.cw(0x1F);
     assert!(matches!(
         rig.drive.last_refusal(),
@@ -558,25 +583,32 @@ fn csp_csv_cst_stream_a_setpoint_every_tick() {
     rig.mode(OperationMode::CyclicPosition);
     rig.set(obj::TARGET_POSITION, 0, Value::I32(2500));
     rig.operation_enabled();
-    let setpoints = |r: &Rig| r.sent(|c| matches!(c, Command::Setpoint { .. }));
+    let setpoints = |r: &Rig| {
+        r.sent(|c| {
+            matches!(
+                c,
+                Command::Axis(AxisCommand::Setpoint(StreamSetpoint { .. }))
+            )
+        })
+    };
     assert_eq!(
         setpoints(&rig),
-        [Command::Setpoint {
+        [Command::from(StreamSetpoint {
             axis: 0,
             setpoint: Some(Setpoint::Position { position: 2.5 })
-        }]
+        })]
     );
     for target in [2600, 2700, 2700, 2650] {
         rig.set(obj::TARGET_POSITION, 0, Value::I32(target));
         rig.tick();
         assert_eq!(
             setpoints(&rig),
-            [Command::Setpoint {
+            [Command::from(StreamSetpoint {
                 axis: 0,
                 setpoint: Some(Setpoint::Position {
                     position: f64::from(target) / IPU
                 })
-            }]
+            })]
         );
         assert_ne!(rig.sw() & B12, 0, "drive follows the command value");
     }
@@ -589,10 +621,10 @@ fn csp_csv_cst_stream_a_setpoint_every_tick() {
     rig.tick();
     assert_eq!(
         rig.last,
-        [Command::Setpoint {
+        [Command::from(StreamSetpoint {
             axis: 0,
             setpoint: Some(Setpoint::Velocity { velocity: -3.0 })
-        }]
+        })]
     );
     rig.tick();
     assert_eq!(rig.int(obj::VELOCITY_ACTUAL), -3000);
@@ -603,29 +635,29 @@ fn csp_csv_cst_stream_a_setpoint_every_tick() {
     rig.tick();
     assert_eq!(
         setpoints(&rig),
-        [Command::Setpoint {
+        [Command::from(StreamSetpoint {
             axis: 0,
             setpoint: Some(Setpoint::Torque { torque: 0.25 })
-        }]
+        })]
     );
     assert_eq!(rig.int(obj::TORQUE_ACTUAL), 250);
     rig.set(obj::MAX_TORQUE, 0, Value::U16(200));
     rig.tick();
     assert_eq!(
         setpoints(&rig),
-        [Command::Setpoint {
+        [Command::from(StreamSetpoint {
             axis: 0,
             setpoint: Some(Setpoint::Torque { torque: 0.2 })
-        }]
+        })]
     );
     assert_ne!(rig.sw() & LIMIT, 0);
     // Leaving the cyclic modes ends the stream.
     rig.mode(OperationMode::ProfilePosition);
     rig.tick();
-    assert!(setpoints(&rig).contains(&Command::Setpoint {
+    assert!(setpoints(&rig).contains(&Command::from(StreamSetpoint {
         axis: 0,
         setpoint: None
-    }));
+    })));
     assert_eq!(rig.sw() & B12, 0);
     assert_eq!(rig.int(obj::TORQUE_ACTUAL), 0);
     rig.tick();
@@ -641,15 +673,15 @@ fn cyclic_halt_and_disable_end_the_stream() {
     assert_eq!(
         rig.last,
         [
-            Command::Setpoint {
+            Command::from(StreamSetpoint {
                 axis: 0,
                 setpoint: None
-            },
-            Command::Stop {
+            }),
+            Command::from(Stop {
                 axis: 0,
                 mode: StopMode::Smooth,
                 deceleration: Some(100.0)
-            },
+            }),
         ]
     );
     rig.tick();
@@ -663,11 +695,11 @@ fn cyclic_halt_and_disable_end_the_stream() {
     assert_eq!(
         rig.last,
         [
-            Command::Setpoint {
+            Command::from(StreamSetpoint {
                 axis: 0,
                 setpoint: None
-            },
-            Command::Disable { axis: 0 }
+            }),
+            Command::from(Disable { axis: 0 })
         ]
     );
     // A stream the axis refuses is not followed.
@@ -675,10 +707,10 @@ fn cyclic_halt_and_disable_end_the_stream() {
     rig.mode(OperationMode::CyclicVelocity);
     rig.operation_enabled();
     rig.drive.on_reply(
-        &Command::Setpoint {
+        &Command::from(StreamSetpoint {
             axis: 0,
             setpoint: Some(Setpoint::Velocity { velocity: 0.0 }),
-        },
+        }),
         &Err(EngineError::AxisDisabled { axis: 0 }),
     );
     rig.tick();
@@ -698,11 +730,11 @@ fn leaving_a_profile_mode_stops_its_motion() {
     rig.tick();
     assert_eq!(
         rig.sent(is_stop),
-        [Command::Stop {
+        [Command::from(Stop {
             axis: 0,
             mode: StopMode::Smooth,
             deceleration: Some(100.0)
-        }]
+        })]
     );
     rig.tick();
     assert_eq!(rig.sw() & sw::MOVING, 0);
@@ -818,10 +850,10 @@ fn csp_targets_are_interpolated_over_the_interpolation_period() {
         r.last
             .iter()
             .find_map(|c| match c {
-                Command::Setpoint {
+                Command::Axis(AxisCommand::Setpoint(StreamSetpoint {
                     setpoint: Some(Setpoint::Position { position }),
                     ..
-                } => Some(*position),
+                })) => Some(*position),
                 _ => None,
             })
             .expect("a CSP set-point")

@@ -2,6 +2,7 @@
 //! reactions, fault reset, and the master-side helper.
 
 use super::*;
+use crate::command::{AxisCommand, Disable, Reset, Stop};
 
 #[test]
 fn statusword_bits_for_every_state() {
@@ -57,7 +58,7 @@ fn transitions_0_and_1_happen_by_themselves() {
         ..AxisStatus::default()
     };
     drive.step(&powered, 0.0, &mut out);
-    assert_eq!(out, [Command::Disable { axis: 0 }]);
+    assert_eq!(out, [Command::from(Disable { axis: 0 })]);
 }
 
 /// One transition: from a state, a controlword → a state, the transitions made, and whether the
@@ -145,7 +146,11 @@ fn transitions_12_13_14_15_follow_events() {
     assert_eq!(rig.state(), State::Fault);
     assert_eq!(rig.drive.last_transitions(), [14]);
     rig.cw(cw::FAULT_RESET_COMMAND);
-    assert_eq!(rig.sent(|c| matches!(c, Command::Reset { .. })).len(), 1);
+    assert_eq!(
+        rig.sent(|c| matches!(c, Command::Axis(AxisCommand::Reset(Reset { .. }))))
+            .len(),
+        1
+    );
     rig.tick();
     assert_eq!(rig.state(), State::SwitchOnDisabled);
     assert_eq!(rig.drive.last_transitions(), [15]);
@@ -302,11 +307,11 @@ fn quick_stop_option_codes() {
         assert_eq!(rig.state(), State::QuickStopActive, "option {option}");
         assert_eq!(
             rig.sent(is_stop),
-            [Command::Stop {
+            [Command::from(Stop {
                 axis: 0,
                 mode,
                 deceleration
-            }],
+            })],
             "option {option}"
         );
         assert!(rig.sent(is_disable).is_empty(), "option {option}");
@@ -359,11 +364,11 @@ fn axis_faults_go_through_fault_reaction_with_their_error_codes() {
         // 0x605E default 2: quick stop ramp.
         assert_eq!(
             rig.sent(is_stop),
-            [Command::Stop {
+            [Command::from(Stop {
                 axis: 0,
                 mode: StopMode::Smooth,
                 deceleration: Some(1000.0)
-            }]
+            })]
         );
         rig.tick();
         assert_eq!(rig.state(), State::Fault, "{flag}");
@@ -409,11 +414,11 @@ fn fault_reaction_option_codes() {
         match mode {
             Some(mode) => assert_eq!(
                 rig.sent(is_stop),
-                [Command::Stop {
+                [Command::from(Stop {
                     axis: 0,
                     mode,
                     deceleration
-                }]
+                })]
             ),
             None => {
                 assert!(rig.sent(is_stop).is_empty());
@@ -442,7 +447,7 @@ fn refused_and_lost_power_are_faults() {
     let mut rig = Rig::new();
     rig.operation_enabled();
     rig.tick();
-    rig.axis.apply(&Command::Disable { axis: 0 }).unwrap();
+    rig.axis.apply(&Command::from(Disable { axis: 0 })).unwrap();
     rig.tick();
     assert_eq!(rig.state(), State::FaultReactionActive);
     assert_eq!(rig.drive.error_code(), error_code::POWER_LOST);

@@ -2,7 +2,7 @@
 //! to 127 segments, acknowledgement with the last good sequence number (the client repeats
 //! from there), CRC over the whole data.
 
-use super::server::Failure;
+use super::Failure;
 use super::{crc, mux, with_mux, word, Limit, ObjectAccess, SdoAbort};
 use crate::frame::CanFrame;
 

@@ -13,6 +13,9 @@ pub use abort::SdoAbort;
 pub use server::SdoCounters;
 pub(crate) use server::SdoServer;
 
+/// A failed step of a transfer: the multiplexer to report and the code.
+pub(crate) type Failure = (u16, u8, SdoAbort);
+
 /// How a download ended on the device side.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Completion {

@@ -4,7 +4,7 @@
 use std::time::Duration;
 
 use super::block::{BlockDownload, BlockUpload};
-use super::{mux, with_mux, word, Completion, Limit, ObjectAccess, SdoAbort};
+use super::{mux, with_mux, word, Completion, Failure, Limit, ObjectAccess, SdoAbort};
 use crate::frame::CanFrame;
 
 /// Command specifiers of client requests (bits 7–5 of byte 0).
@@ -87,9 +87,6 @@ struct Segment {
     size: Option<usize>,
     limit: Limit,
 }
-
-/// A failed step: the multiplexer to report and the code.
-pub(crate) type Failure = (u16, u8, SdoAbort);
 
 /// One SDO server channel (0x1200).
 #[derive(Debug, Default)]

@@ -8,8 +8,8 @@ use axes::Command;
 use serde_json::{Map, Value};
 
 use super::schema::{
-    ActionFile, ArgFile, ChannelKind, ChannelsFile, Gaps, InitValue, MapFile, PointFile, ReadFile,
-    Table,
+    ActionFile, ArgFile, ChannelKind, ChannelsFile, CodeFile, Gaps, InitValue, MapFile, PointFile,
+    ReadFile, Table,
 };
 use super::source::{
     parse_bits, parse_select, parse_source, parse_target, MachineShape, Scope, Source, Target,
@@ -496,7 +496,12 @@ fn point(
                 (false, Some(a)) => vec![a],
                 (false, None) => Vec::new(),
             };
-            let cases = first.iter().map(|c| (c.when.as_str(), c.value));
+            let mut cases = Vec::with_capacity(first.len());
+            for (i, c) in first.iter().enumerate() {
+                let value = code_value(&c.value)
+                    .map_err(|r| err(format!("{key}.read.first[{i}].value"), r))?;
+                cases.push((c.when.as_str(), value));
+            }
             Read::Source(parse_select(cases, axes).map_err(|r| err(format!("{key}.read"), r))?)
         }
         Some(ReadFile::Bits { bits }) => {
@@ -589,6 +594,16 @@ fn point(
         actions: Vec::new(),
         cell,
     })
+}
+
+/// A `first` case's value: the number, or the number a vendor's code name stands for.
+fn code_value(value: &CodeFile) -> Result<f64, String> {
+    match value {
+        CodeFile::Number(n) => Ok(*n),
+        CodeFile::Name(name) => mcemu_dialects::code_by_name(name)
+            .map(f64::from)
+            .ok_or_else(|| format!("`{name}` is not a code any dialect names")),
+    }
 }
 
 fn parse_number(text: &str) -> Option<f64> {
@@ -936,5 +951,66 @@ on_write = [{ when = "rising_bit0", command = "move_absolute", args = { position
         }
         let e = build(BLOCK, &[4]).unwrap_err();
         assert!(e.reason.contains("axis 4"), "{e:?}");
+    }
+
+    const CODES: &str = r#"
+[map]
+name = "codes"
+[[point]]
+table = "holding_registers"
+address = 0
+name = "err"
+type = "u32"
+read = { first = [
+  { when = "latched.drive_alarm", value = "eERR_AXIS_DRIVE_FAULT" },
+  { when = "fe_fault", value = 0x083e },
+] }
+"#;
+
+    #[test]
+    fn a_case_value_may_name_a_dialect_code() {
+        let unit = build(CODES, &[0]).unwrap();
+        let Read::Source(Source::Select { cases, .. }) = &unit.points[0].read else {
+            panic!(
+                "a `first` table is a select source: {:?}",
+                unit.points[0].read
+            );
+        };
+        let values: Vec<f64> = cases.iter().map(|(_, v)| *v).collect();
+        assert_eq!(values, [f64::from(0x03f2), f64::from(0x083e)]);
+
+        let e = build(&CODES.replace("_DRIVE_FAULT", "_DRIVE_FAUL"), &[0]).unwrap_err();
+        assert_eq!(e.key, "point[0].read.first[0].value", "{e:?}");
+        assert!(e.reason.contains("eERR_AXIS_DRIVE_FAUL"), "{e:?}");
+    }
+
+    /// The HIMC map names its codes; they are the numbers it had before it did.
+    #[test]
+    fn the_himc_map_names_the_codes_it_had_as_numbers() {
+        let text = crate::map::SHIPPED
+            .iter()
+            .find(|(name, _)| *name == "himc")
+            .map(|(_, text)| *text)
+            .unwrap();
+        let unit = build(text, &[0]).unwrap();
+        let codes = |name: &str| -> Vec<f64> {
+            let point = unit.points.iter().find(|p| p.name == name).unwrap();
+            let Read::Source(Source::Select { cases, .. }) = &point.read else {
+                panic!("{name} is a `first` table: {:?}", point.read);
+            };
+            cases.iter().map(|(_, v)| *v).collect()
+        };
+        let faults = [
+            0x03f2, 0x083e, 0x042e, 0x07ee, 0x07ee, 0x07f8, 0x07f8, 0x07da, 0x07da, 0x07e4, 0x07e4,
+        ];
+        let refusals = [0x001e, 0x0078, 0x0096, 0x0064, 0x012c, 0x012c, 0x000a];
+        let last_err: Vec<f64> = faults
+            .iter()
+            .chain(&refusals)
+            .map(|&v| f64::from(v))
+            .collect();
+        assert_eq!(codes("last_err@axis0"), last_err);
+        let latest: Vec<f64> = faults.iter().map(|&v| f64::from(v)).collect();
+        assert_eq!(codes("latest_error"), latest);
     }
 }

@@ -192,7 +192,8 @@ pub enum ReadFile {
         bits: BTreeMap<String, String>,
     },
     /// The value of the first case that holds, else 0: a vendor's error-code table.
-    /// `{ first = [{ when = "latched.drive_alarm", value = 0x03f2 }, …] }`. With
+    /// `{ first = [{ when = "latched.drive_alarm", value = 0x03f2 }, …] }`; a value may be a
+    /// code's name instead (`value = "eERR_AXIS_DRIVE_FAULT"`). With
     /// `all_axes = true` the cases are tried on each served axis in turn and the first axis
     /// with a nonzero value answers (a controller-wide "latest error").
     Select {
@@ -208,7 +209,16 @@ pub enum ReadFile {
 #[serde(deny_unknown_fields)]
 pub struct CaseFile {
     pub when: String,
-    pub value: f64,
+    pub value: CodeFile,
+}
+
+/// A code: a number, or a vendor's name for one (`"eERR_AXIS_DRIVE_FAULT"`), looked up in the
+/// dialects' tables ([`mcemu_dialects::code_by_name`]).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(untagged)]
+pub enum CodeFile {
+    Number(f64),
+    Name(String),
 }
 
 #[derive(Clone, Debug, Deserialize)]

@@ -11,7 +11,7 @@
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 
-use axes::command::{EngineError, ErrorKind};
+use axes::command::{EngineError, SetParameter, WriteAnalogOutput, WriteDigitalOutput};
 use axes::runtime::{CallError, EngineHandle, SubmitError};
 use axes::{Command, Snapshot};
 use serde_json::Value;
@@ -396,32 +396,32 @@ impl UnitService {
             Some(Target::Param { axis, id }) => {
                 self.call(
                     p,
-                    Command::SetParameter {
+                    Command::from(SetParameter {
                         axis: *axis as axes::AxisIndex,
                         name: *id,
                         value: v,
                         lenient: self.map.lenient_parameters,
-                    },
+                    }),
                 )
                 .await?;
             }
             Some(Target::DigitalOutput(n)) => {
                 self.call(
                     p,
-                    Command::WriteDigitalOutput {
+                    Command::from(WriteDigitalOutput {
                         channel: *n as u16,
                         value: v != 0.0,
-                    },
+                    }),
                 )
                 .await?;
             }
             Some(Target::AnalogOutput(n)) => {
                 self.call(
                     p,
-                    Command::WriteAnalogOutput {
+                    Command::from(WriteAnalogOutput {
                         channel: *n as u16,
                         value: v,
-                    },
+                    }),
                 )
                 .await?;
             }
@@ -494,12 +494,10 @@ impl UnitService {
 /// Command fields that may be absent (the axis parameter applies); see [`Command`].
 const OPTIONAL_LIMITS: [&str; 4] = ["velocity", "acceleration", "deceleration", "jerk"];
 
-/// The engine's value checks are the point's value checks (03); other refusals are 04.
+/// The exception of an engine refusal: the dialects' table (03 for a refused value, else 04).
 fn engine_refusal(p: &Point, e: &EngineError) -> ExecError {
-    let exception = match e.kind() {
-        ErrorKind::InvalidParameter | ErrorKind::InvalidArgument => Exception::IllegalDataValue,
-        _ => Exception::ServerDeviceFailure,
-    };
+    let exception = Exception::from_code(mcemu_dialects::modbus::exception_for(e))
+        .unwrap_or(Exception::ServerDeviceFailure);
     ExecError::new(exception, format!("`{}`: {e}", p.name))
 }
 

@@ -4,7 +4,13 @@
 
 use crate::axis::{Action, Axis, Context, Ledger, MotionRequest, Overrides};
 use crate::cia402::{controlword_for, obj, Cia402Drive, DriveMaster, PowerTarget, State};
-use crate::command::{AxisIndex, Command, CommandKind, EngineError, Reply};
+use crate::command::{
+    AxisCommand, AxisIndex, Cancel, Command, CommandKind, CouplingCommand, Disable, Enable,
+    EngineError, ForceAnalogInput, ForceDigitalInput, ForceInput, GetCommandState, GetParameter,
+    GroupCommand, Halt, Home, InjectFollowingError, IoCommand, MachineCommand, ModifyTarget,
+    MoveAbsolute, MoveRelative, MoveVelocity, ReadObject, Reply, Reset, SetParameter, SetPosition,
+    SlaveCommand, Stop, StreamSetpoint, WriteAnalogOutput, WriteDigitalOutput, WriteObject,
+};
 use crate::config::{ConfigError, EngineConfig, InputBinding};
 use crate::homing::HomingSpec;
 use crate::od::Value;
@@ -12,6 +18,9 @@ use crate::param::ParamId;
 use crate::rng::Rng;
 use crate::status::{AxisStatus, DriveStatus, IoImage, Snapshot};
 use std::sync::Arc;
+
+mod planner;
+pub use planner::{Feed, Feeds, MachinePlanner};
 
 /// The machine's digital and analog I/O.
 #[derive(Clone, Debug)]
@@ -97,6 +106,10 @@ pub struct Engine {
     axis_slave: Vec<Option<usize>>,
     /// Commands the drives emitted this tick (reused; no allocation per tick).
     drive_commands: Vec<Command>,
+    /// Stage 2's planners, in the order they were added.
+    planners: Vec<Box<dyn MachinePlanner>>,
+    /// The setpoints of the planner being run (reused; no allocation per tick).
+    feeds: Feeds,
 }
 
 impl Engine {
@@ -146,6 +159,8 @@ impl Engine {
             slaves,
             axis_slave,
             drive_commands: Vec::new(),
+            planners: Vec::new(),
+            feeds: Feeds::default(),
         })
     }
 
@@ -181,23 +196,49 @@ impl Engine {
         &self.io.image
     }
 
-    /// Apply one command at the current tick.
+    /// Apply one command at the current tick. Each family goes to its own function: the axis
+    /// family to the axis (through its drive first, for power commands on an engine-mastered
+    /// drive), I/O to the I/O image, slave commands to a drive's dictionary, machine commands
+    /// to the whole machine. Group and coupling commands will go to their planner stages
+    /// (issues 11 and 12).
     pub fn apply(&mut self, command: Command) -> Result<Reply, EngineError> {
+        match command {
+            Command::Axis(c) => self.apply_axis_command(c),
+            Command::Group(c) => self.apply_group_command(c),
+            Command::Coupling(c) => self.apply_coupling_command(c),
+            Command::Io(c) => self.apply_io_command(c),
+            Command::Slave(c) => self.apply_slave_command(c),
+            Command::Machine(c) => self.apply_machine_command(c),
+        }
+    }
+
+    /// A command for one axis, from a front-end.
+    fn apply_axis_command(&mut self, command: AxisCommand) -> Result<Reply, EngineError> {
         if let Some(reply) = self.route_power(&command) {
             return reply;
         }
-        self.apply_to_axes(command)
+        self.apply_to_axis(command)
+    }
+
+    /// Issue 11's group commands arrive here; there are none yet.
+    fn apply_group_command(&mut self, command: GroupCommand) -> Result<Reply, EngineError> {
+        match command {}
+    }
+
+    /// Issue 12's coupling commands arrive here; there are none yet.
+    fn apply_coupling_command(&mut self, command: CouplingCommand) -> Result<Reply, EngineError> {
+        match command {}
     }
 
     /// Power commands on an axis whose drive the engine masters go through the drive's state
     /// machine: the engine writes the controlword sequence over the next ticks and the drive
     /// powers the axis when it reaches Operation enabled (HIMC Enable/Disable/Reset, digest 004
     /// §3.2). The reply says the request was taken; the state follows in the status.
-    fn route_power(&mut self, command: &Command) -> Option<Result<Reply, EngineError>> {
+    fn route_power(&mut self, command: &AxisCommand) -> Option<Result<Reply, EngineError>> {
         let (axis, target) = match command {
-            Command::Enable { axis } => (*axis, PowerTarget::OperationEnabled),
-            Command::Disable { axis } => (*axis, PowerTarget::SwitchOnDisabled),
-            Command::Reset { axis } => (*axis, PowerTarget::SwitchOnDisabled),
+            AxisCommand::Enable(Enable { axis }) => (*axis, PowerTarget::OperationEnabled),
+            AxisCommand::Disable(Disable { axis }) => (*axis, PowerTarget::SwitchOnDisabled),
+            AxisCommand::Reset(Reset { axis }) => (*axis, PowerTarget::SwitchOnDisabled),
             _ => return None,
         };
         let slave = self.axis_slave.get(axis as usize).copied().flatten()?;
@@ -205,25 +246,26 @@ impl Engine {
         if s.master != DriveMaster::Engine {
             return None;
         }
-        if let Command::Reset { .. } = command {
+        if let AxisCommand::Reset(_) = command {
             // A fault reset walks Fault → Switch on disabled; the axis's own latches are
             // cleared directly.
             if s.drive.state() == State::Fault {
                 s.power = Some(target);
             }
-            return Some(self.apply_to_axes(command.clone()));
+            return Some(self.apply_to_axis(command.clone()));
         }
         s.power = Some(target);
         Some(Ok(Reply::Done))
     }
 
-    fn apply_to_axes(&mut self, command: Command) -> Result<Reply, EngineError> {
+    /// A command for one axis, applied to the axis itself (no drive routing): the front-ends'
+    /// commands after [`Engine::route_power`], and the commands a drive emits.
+    fn apply_to_axis(&mut self, command: AxisCommand) -> Result<Reply, EngineError> {
         let Engine {
             axes,
             io,
             ledger,
             tick,
-            slaves,
             ..
         } = self;
         let mut ctx = Context {
@@ -231,32 +273,27 @@ impl Engine {
             di: &io.image.di,
             ledger,
         };
-        fn slave_of(slaves: &mut [Slave], slave: u16) -> Result<&mut Slave, EngineError> {
-            let count = slaves.len() as u16;
-            slaves
-                .get_mut(slave as usize)
-                .ok_or(EngineError::InvalidSlave { slave, count })
-        }
-        fn axis_mut(axes: &mut [Axis], axis: AxisIndex) -> Result<&mut Axis, EngineError> {
-            let count = axes.len() as u32;
-            axes.get_mut(axis as usize).ok_or(EngineError::InvalidAxis {
-                axis: axis as u32,
+        let count = axes.len() as u32;
+        let index = command.axis();
+        let axis = axes
+            .get_mut(index as usize)
+            .ok_or(EngineError::InvalidAxis {
+                axis: index as u32,
                 count,
-            })
-        }
+            })?;
         match command {
-            Command::Enable { axis } => axis_mut(axes, axis)?.enable(&mut ctx),
-            Command::Disable { axis } => axis_mut(axes, axis)?.disable(&mut ctx),
-            Command::Reset { axis } => axis_mut(axes, axis)?.reset(&mut ctx),
-            Command::MoveAbsolute {
-                axis,
+            AxisCommand::Enable(_) => axis.enable(&mut ctx),
+            AxisCommand::Disable(_) => axis.disable(&mut ctx),
+            AxisCommand::Reset(_) => axis.reset(&mut ctx),
+            AxisCommand::MoveAbsolute(MoveAbsolute {
+                axis: _,
                 position,
                 velocity,
                 acceleration,
                 deceleration,
                 jerk,
                 buffer_mode,
-            } => axis_mut(axes, axis)?.submit(
+            }) => axis.submit(
                 &mut ctx,
                 MotionRequest {
                     kind: CommandKind::MoveAbsolute,
@@ -270,15 +307,15 @@ impl Engine {
                     buffer_mode,
                 },
             ),
-            Command::MoveRelative {
-                axis,
+            AxisCommand::MoveRelative(MoveRelative {
+                axis: _,
                 distance,
                 velocity,
                 acceleration,
                 deceleration,
                 jerk,
                 buffer_mode,
-            } => axis_mut(axes, axis)?.submit(
+            }) => axis.submit(
                 &mut ctx,
                 MotionRequest {
                     kind: CommandKind::MoveRelative,
@@ -292,14 +329,14 @@ impl Engine {
                     buffer_mode,
                 },
             ),
-            Command::MoveVelocity {
-                axis,
+            AxisCommand::MoveVelocity(MoveVelocity {
+                axis: _,
                 velocity,
                 acceleration,
                 deceleration,
                 jerk,
                 buffer_mode,
-            } => axis_mut(axes, axis)?.submit(
+            }) => axis.submit(
                 &mut ctx,
                 MotionRequest {
                     kind: CommandKind::MoveVelocity,
@@ -313,125 +350,103 @@ impl Engine {
                     buffer_mode,
                 },
             ),
-            Command::Stop {
-                axis,
+            AxisCommand::Stop(Stop {
+                axis: _,
                 mode,
                 deceleration,
-            } => axis_mut(axes, axis)?.stop(&mut ctx, mode, deceleration),
-            Command::Halt { axis, deceleration } => {
-                axis_mut(axes, axis)?.halt(&mut ctx, deceleration)
-            }
-            Command::Resume { axis } => axis_mut(axes, axis)?.resume(&mut ctx),
-            Command::Home {
-                axis,
-                method,
-                switch_velocity,
-                zero_velocity,
-                acceleration,
-                offset,
-                timeout,
-                quirks,
-                buffer_mode,
-            } => {
-                let a = axis_mut(axes, axis)?;
-                for (name, v) in [
-                    ("switch_velocity", switch_velocity),
-                    ("zero_velocity", zero_velocity),
-                    ("offset", offset),
-                ] {
-                    if let Some(v) = v {
-                        crate::command::bounded(name, v)?;
-                    }
-                }
-                let p = a.params();
-                let spec = HomingSpec {
-                    method: method.unwrap_or(p.get(ParamId::HomeMethod) as i16),
-                    switch_velocity: switch_velocity.unwrap_or(p.get(ParamId::HomeSwitchVelocity)),
-                    zero_velocity: zero_velocity.unwrap_or(p.get(ParamId::HomeZeroVelocity)),
-                    acceleration: acceleration.unwrap_or(p.get(ParamId::HomeAcceleration)),
-                    offset: offset.unwrap_or(p.get(ParamId::HomeOffset)),
-                    timeout: timeout.unwrap_or(p.get(ParamId::HomeTimeout)),
-                    quirks,
-                };
-                a.submit(
+            }) => axis.stop(&mut ctx, mode, deceleration),
+            AxisCommand::Halt(Halt {
+                axis: _,
+                deceleration,
+            }) => axis.halt(&mut ctx, deceleration),
+            AxisCommand::Resume(_) => axis.resume(&mut ctx),
+            AxisCommand::Home(home) => {
+                let spec = homing_spec(axis, &home)?;
+                axis.submit(
                     &mut ctx,
                     MotionRequest {
                         kind: CommandKind::Home,
                         action: Action::Home(spec),
                         overrides: Overrides::default(),
-                        buffer_mode,
+                        buffer_mode: home.buffer_mode,
                     },
                 )
             }
-            Command::SetPosition {
-                axis,
+            AxisCommand::SetPosition(SetPosition {
+                axis: _,
                 position,
                 frame,
-            } => axis_mut(axes, axis)?.set_position(position, frame),
-            Command::SetParameter {
-                axis,
+            }) => axis.set_position(position, frame),
+            AxisCommand::SetParameter(SetParameter {
+                axis: _,
                 name,
                 value,
                 lenient,
-            } => axis_mut(axes, axis)?.set_parameter(name, value, lenient),
-            Command::GetParameter { axis, name } => Ok(Reply::Value {
-                value: axis_mut(axes, axis)?.get_parameter(name),
+            }) => axis.set_parameter(name, value, lenient),
+            AxisCommand::GetParameter(GetParameter { axis: _, name }) => Ok(Reply::Value {
+                value: axis.get_parameter(name),
             }),
-            Command::ModifyTarget {
-                axis,
+            AxisCommand::ModifyTarget(ModifyTarget {
+                axis: _,
                 position,
                 relative,
-            } => axis_mut(axes, axis)?.modify_target(&mut ctx, position, relative),
-            Command::Cancel { axis, scope } => axis_mut(axes, axis)?.cancel(&mut ctx, scope),
-            Command::CommandState { id } => {
-                let state = axes
-                    .iter()
-                    .find_map(|a| a.queued_state(id))
-                    .or_else(|| ctx.ledger.lookup(id))
-                    .ok_or(EngineError::UnknownCommand { id })?;
-                Ok(Reply::CommandState { id, state })
+            }) => axis.modify_target(&mut ctx, position, relative),
+            AxisCommand::Cancel(Cancel { axis: _, scope }) => axis.cancel(&mut ctx, scope),
+            AxisCommand::ForceInput(ForceInput {
+                axis: _,
+                input,
+                value,
+            }) => axis.force_input(input, value),
+            AxisCommand::InjectFollowingError(InjectFollowingError { axis: _, amount }) => {
+                axis.inject_following_error(amount)
             }
-            Command::ForceInput { axis, input, value } => {
-                axis_mut(axes, axis)?.force_input(input, value)
+            AxisCommand::Setpoint(StreamSetpoint { axis: _, setpoint }) => {
+                axis.setpoint(&mut ctx, setpoint)
             }
-            Command::InjectFollowingError { axis, amount } => {
-                axis_mut(axes, axis)?.inject_following_error(amount)
+        }
+    }
+
+    /// A command on the I/O image; it shows in the next snapshot.
+    fn apply_io_command(&mut self, command: IoCommand) -> Result<Reply, EngineError> {
+        let io = &mut self.io;
+        match command {
+            IoCommand::ForceDigitalInput(ForceDigitalInput { channel, value }) => {
+                io.force_digital_input(channel, value)
             }
-            Command::Setpoint { axis, setpoint } => {
-                axis_mut(axes, axis)?.setpoint(&mut ctx, setpoint)
+            IoCommand::ForceAnalogInput(ForceAnalogInput { channel, value }) => {
+                io.force_analog_input(channel, value)
             }
-            Command::ForceDigitalInput { channel, value } => {
-                io.force_digital_input(channel, value).map(|()| Reply::Done)
+            IoCommand::WriteDigitalOutput(WriteDigitalOutput { channel, value }) => {
+                io.write_digital_output(channel, value)
             }
-            Command::ForceAnalogInput { channel, value } => {
-                io.force_analog_input(channel, value).map(|()| Reply::Done)
+            IoCommand::WriteAnalogOutput(WriteAnalogOutput { channel, value }) => {
+                io.write_analog_output(channel, value)
             }
-            Command::WriteDigitalOutput { channel, value } => io
-                .write_digital_output(channel, value)
-                .map(|()| Reply::Done),
-            Command::WriteAnalogOutput { channel, value } => {
-                io.write_analog_output(channel, value).map(|()| Reply::Done)
-            }
-            Command::ReadObject {
+        }
+        .map(|()| Reply::Done)
+    }
+
+    /// A read or write of a drive's object dictionary, as a fieldbus master's SDO would.
+    fn apply_slave_command(&mut self, command: SlaveCommand) -> Result<Reply, EngineError> {
+        match command {
+            SlaveCommand::ReadObject(ReadObject {
                 slave,
                 index,
                 subindex,
-            } => {
-                let s = slave_of(slaves, slave)?;
-                let value = s
-                    .drive
+            }) => {
+                let value = self
+                    .slave_drive(slave)?
                     .read(index, subindex)
                     .map_err(|error| EngineError::Object { slave, error })?;
                 Ok(Reply::Object { value })
             }
-            Command::WriteObject {
+            SlaveCommand::WriteObject(WriteObject {
                 slave,
                 index,
                 subindex,
                 value,
-            } => {
-                let s = slave_of(slaves, slave)?;
-                s.drive
+            }) => {
+                self.slave_drive(slave)?
                     .write(index, subindex, value)
                     .map_err(|error| EngineError::Object { slave, error })?;
                 Ok(Reply::Done)
@@ -439,10 +454,99 @@ impl Engine {
         }
     }
 
-    /// Advance one servo period.
+    fn slave_drive(&mut self, slave: u16) -> Result<&mut Cia402Drive, EngineError> {
+        let count = self.slaves.len() as u16;
+        self.slaves
+            .get_mut(slave as usize)
+            .map(|s| &mut s.drive)
+            .ok_or(EngineError::InvalidSlave { slave, count })
+    }
+
+    /// Machine-wide commands: a command's state is looked up in every axis's queue, then in the
+    /// ledger of finished commands.
+    fn apply_machine_command(&mut self, command: MachineCommand) -> Result<Reply, EngineError> {
+        match command {
+            MachineCommand::CommandState(GetCommandState { id }) => {
+                let state = self
+                    .axes
+                    .iter()
+                    .find_map(|a| a.queued_state(id))
+                    .or_else(|| self.ledger.lookup(id))
+                    .ok_or(EngineError::UnknownCommand { id })?;
+                Ok(Reply::CommandState { id, state })
+            }
+        }
+    }
+
+    /// Advance one servo period, in stages (the order of operations inside a tick is fixed:
+    /// traces compare bit for bit):
+    ///
+    /// 1. [`Engine::read_inputs`]: the I/O image's inputs from last tick's sensors;
+    /// 2. [`Engine::run_planners`]: machine-level planners (groups, couplings, streams) feed
+    ///    their axes this tick's setpoints (none are built in yet: issues 11 and 12 add them);
+    /// 3. [`Engine::step_axes`]: every axis, in index order;
+    /// 4. [`Engine::step_drives`]: the CiA 402 drives see their axes and answer with commands;
+    /// 5. outputs and status: no per-tick work. Outputs change only by command, and status is
+    ///    assembled when it is read ([`Engine::snapshot_into`], [`Engine::axis_status`]).
+    ///
+    /// Commands ([`Engine::apply`]) arrive between steps and act on the state the last step
+    /// left.
     pub fn step(&mut self) {
         self.tick += 1;
-        self.update_inputs();
+        self.read_inputs();
+        self.run_planners();
+        self.step_axes();
+        self.step_drives();
+    }
+
+    /// Add a machine-level planner to stage 2 (see [`MachinePlanner`]). Planners run in the
+    /// order they were added; the one added last has the last word on an axis two of them feed.
+    pub fn add_planner(&mut self, planner: Box<dyn MachinePlanner>) {
+        self.planners.push(planner);
+    }
+
+    /// Stage 2, machine-level planners. Each planner reads the axes as the previous tick left
+    /// them (so a coupling's slave lags its master by one tick) and writes setpoints; each
+    /// setpoint becomes its axis's command source for this tick, or goes back to the planner
+    /// as a refusal. Writes nothing else.
+    fn run_planners(&mut self) {
+        let Engine {
+            axes,
+            io,
+            ledger,
+            tick,
+            planners,
+            feeds,
+            ..
+        } = self;
+        let mut ctx = Context {
+            tick: *tick,
+            di: &io.image.di,
+            ledger,
+        };
+        let count = axes.len() as u32;
+        for planner in planners.iter_mut() {
+            feeds.clear();
+            planner.plan(*tick, axes, feeds);
+            for &(index, feed) in feeds.entries() {
+                let result = match axes.get_mut(index as usize) {
+                    Some(axis) => axis.feed(&mut ctx, feed),
+                    None => Err(EngineError::InvalidAxis {
+                        axis: index as u32,
+                        count,
+                    }),
+                };
+                if let Err(e) = result {
+                    planner.refused(index, &e);
+                }
+            }
+        }
+    }
+
+    /// Stage 3, the axes. Reads the digital inputs (stage 1) and each axis's own state and
+    /// source; writes each axis's command, output, plant, encoder, switches, supervision and
+    /// command progress for this tick, and the ledger of finished commands.
+    fn step_axes(&mut self) {
         let mut ctx = Context {
             tick: self.tick,
             di: &self.io.image.di,
@@ -451,11 +555,12 @@ impl Engine {
         for axis in &mut self.axes {
             axis.step(&mut ctx);
         }
-        self.step_drives();
     }
 
-    /// Each drive sees its axis after the tick and emits the commands that take effect from the
-    /// next one; refusals go back to the drive (ARCHITECTURE §3.8).
+    /// Stage 4, drives and fieldbus. Each drive reads its axis's status after stage 3 and the
+    /// controlword the engine writes for an engine-mastered power request; it writes its
+    /// statusword and the commands that take effect from the next tick (applied to the axis
+    /// here, refusals going back to the drive: ARCHITECTURE §3.8).
     fn step_drives(&mut self) {
         let now = self.time();
         let mut commands = std::mem::take(&mut self.drive_commands);
@@ -483,7 +588,12 @@ impl Engine {
                 slave.power = None;
             }
             for command in commands.drain(..) {
-                let result = self.apply_to_axes(command.clone());
+                // A drive's commands reach its axis directly: routing them back through the
+                // drive's power state machine would loop.
+                let result = match command.clone() {
+                    Command::Axis(c) => self.apply_to_axis(c),
+                    other => self.apply(other),
+                };
                 if let Some(slave) = self.slaves.get_mut(i) {
                     slave.drive.on_reply(&command, &result);
                 }
@@ -513,9 +623,11 @@ impl Engine {
         self.slaves.len()
     }
 
-    /// Digital inputs wired to axis signals follow them (last tick's levels), unless forced.
-    /// Forced and unwired channels change only by command, so nothing else runs per tick.
-    fn update_inputs(&mut self) {
+    /// Stage 1, inputs. Reads each wired axis sensor's electrical level as the last tick left
+    /// it, and the forced channels; writes the digital inputs wired to axis signals (unless
+    /// forced) and bumps the I/O version when one changes. Forced and unwired channels change
+    /// only by command, so nothing else runs per tick.
+    fn read_inputs(&mut self) {
         let io = &mut self.io;
         for b in &io.bindings {
             let ch = b.channel as usize;
@@ -571,6 +683,36 @@ impl Engine {
         self.snapshot_into(&mut s);
         s
     }
+}
+
+/// The homing run a `home` command asks for: absent values come from the axis's `home_*`
+/// parameters.
+fn homing_spec(axis: &Axis, home: &Home) -> Result<HomingSpec, EngineError> {
+    for (name, v) in [
+        ("switch_velocity", home.switch_velocity),
+        ("zero_velocity", home.zero_velocity),
+        ("offset", home.offset),
+    ] {
+        if let Some(v) = v {
+            crate::command::bounded(name, v)?;
+        }
+    }
+    let p = axis.params();
+    Ok(HomingSpec {
+        method: home.method.unwrap_or(p.get(ParamId::HomeMethod) as i16),
+        switch_velocity: home
+            .switch_velocity
+            .unwrap_or(p.get(ParamId::HomeSwitchVelocity)),
+        zero_velocity: home
+            .zero_velocity
+            .unwrap_or(p.get(ParamId::HomeZeroVelocity)),
+        acceleration: home
+            .acceleration
+            .unwrap_or(p.get(ParamId::HomeAcceleration)),
+        offset: home.offset.unwrap_or(p.get(ParamId::HomeOffset)),
+        timeout: home.timeout.unwrap_or(p.get(ParamId::HomeTimeout)),
+        quirks: home.quirks,
+    })
 }
 
 fn reached(target: PowerTarget, state: State) -> bool {

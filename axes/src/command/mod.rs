@@ -6,9 +6,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::homing::{HomingError, HomingQuirks};
+use crate::homing::HomingError;
 use crate::od::{OdError, Value};
-use crate::param::ParamId;
 use crate::status::{AxisFlags, AxisState};
 
 /// Index of an axis in the machine, from 0.
@@ -87,236 +86,103 @@ pub enum AxisInput {
     EncoderLoss,
 }
 
-/// A command into the engine. Serialized with `type` as the tag, e.g.
-/// `{ "type": "move_absolute", "axis": 0, "position": 100.0 }`.
+mod axis;
+mod io;
+mod machine;
+mod slave;
+mod wire;
+
+pub use axis::{
+    AxisCommand, Cancel, Disable, Enable, ForceInput, GetParameter, Halt, Home,
+    InjectFollowingError, ModifyTarget, MoveAbsolute, MoveRelative, MoveVelocity, Reset, Resume,
+    SetParameter, SetPosition, Stop, StreamSetpoint,
+};
+pub use io::{
+    ForceAnalogInput, ForceDigitalInput, IoCommand, WriteAnalogOutput, WriteDigitalOutput,
+};
+pub use machine::{GetCommandState, MachineCommand};
+pub use slave::{ReadObject, SlaveCommand, WriteObject};
+
+/// A command into the engine, by family: what it addresses decides which stage of the engine
+/// takes it ([`crate::Engine::apply`] dispatches on the family).
+///
+/// On the wire (JSON, TOML) a command is one flat object with `type` as the tag, e.g.
+/// `{ "type": "move_absolute", "axis": 0, "position": 100.0 }`: the families are a Rust-side
+/// grouping only, and the JSON is the same as before they existed (`tests/command_json.rs` pins
+/// it). Each command's fields are written once, in its struct (e.g. [`MoveAbsolute`]); the
+/// family enums and the flat wire form wrap those structs.
 ///
 /// Kinematic limits given in a command (`velocity`, `acceleration`, `deceleration`, `jerk`) apply
 /// to that command only; where they are absent the axis parameters (`speed`, `accel`, `decel`,
 /// `jerk`, `jerk_mode`) apply. `jerk = 0` asks for a trapezoid.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+#[serde(from = "wire::Command", into = "wire::Command")]
 pub enum Command {
-    /// Power the drive (PLCopen MC_Power on).
-    Enable {
-        axis: AxisIndex,
-    },
-    /// Remove drive power; the motor coasts to the plant's rest, the FIFO is cleared.
-    Disable {
-        axis: AxisIndex,
-    },
-    /// Clear latched errors whose cause is gone; leave ErrorStop when none remain.
-    Reset {
-        axis: AxisIndex,
-    },
-    MoveAbsolute {
-        axis: AxisIndex,
-        position: f64,
-        #[serde(default)]
-        velocity: Option<f64>,
-        #[serde(default)]
-        acceleration: Option<f64>,
-        #[serde(default)]
-        deceleration: Option<f64>,
-        #[serde(default)]
-        jerk: Option<f64>,
-        #[serde(default)]
-        buffer_mode: BufferMode,
-    },
-    MoveRelative {
-        axis: AxisIndex,
-        distance: f64,
-        #[serde(default)]
-        velocity: Option<f64>,
-        #[serde(default)]
-        acceleration: Option<f64>,
-        #[serde(default)]
-        deceleration: Option<f64>,
-        #[serde(default)]
-        jerk: Option<f64>,
-        #[serde(default)]
-        buffer_mode: BufferMode,
-    },
-    /// Run at a signed velocity until stopped (jog; HMC_Forward/Reverse, NMC JOG, HIMC MoveVel).
-    MoveVelocity {
-        axis: AxisIndex,
-        velocity: f64,
-        #[serde(default)]
-        acceleration: Option<f64>,
-        #[serde(default)]
-        deceleration: Option<f64>,
-        #[serde(default)]
-        jerk: Option<f64>,
-        #[serde(default)]
-        buffer_mode: BufferMode,
-    },
-    /// Stop and clear the FIFO.
-    Stop {
-        axis: AxisIndex,
-        #[serde(default)]
-        mode: StopMode,
-        #[serde(default)]
-        deceleration: Option<f64>,
-    },
-    /// Pause: decelerate to zero velocity and keep the plan (HIMC Halt).
-    Halt {
-        axis: AxisIndex,
-        #[serde(default)]
-        deceleration: Option<f64>,
-    },
-    /// Continue a halted plan (HIMC Resume).
-    Resume {
-        axis: AxisIndex,
-    },
-    /// Home with a CiA 402 method (1–14, 17–30, 33–35, 37). Absent values come from the
-    /// `home_*` parameters; vendor modes map onto methods and quirks in `homing::vendor`.
-    Home {
-        axis: AxisIndex,
-        #[serde(default)]
-        method: Option<i16>,
-        #[serde(default)]
-        switch_velocity: Option<f64>,
-        #[serde(default)]
-        zero_velocity: Option<f64>,
-        #[serde(default)]
-        acceleration: Option<f64>,
-        #[serde(default)]
-        offset: Option<f64>,
-        /// Seconds; 0 means no timeout.
-        #[serde(default)]
-        timeout: Option<f64>,
-        /// Vendor behaviour layered on the CiA 402 method (see `homing::vendor`).
-        #[serde(default)]
-        quirks: HomingQuirks,
-        #[serde(default)]
-        buffer_mode: BufferMode,
-    },
-    /// Redefine the current position without moving.
-    SetPosition {
-        axis: AxisIndex,
-        position: f64,
-        #[serde(default)]
-        frame: PositionFrame,
-    },
-    SetParameter {
-        axis: AxisIndex,
-        name: ParamId,
-        value: f64,
-        /// HMC rule (HMC §3.5.1): a negative value is made positive and a zero one restored to
-        /// the default, both latching `PARAMETER_ERROR`, instead of being refused.
-        #[serde(default)]
-        lenient: bool,
-    },
-    GetParameter {
-        axis: AxisIndex,
-        name: ParamId,
-    },
-    /// Change the target of the running position move (HMC_MoveModify / MoveModifyEx). With an
-    /// empty FIFO it posts a new move instead.
-    ModifyTarget {
-        axis: AxisIndex,
-        position: f64,
-        #[serde(default)]
-        relative: bool,
-    },
-    /// Remove queued or running commands (HMC_Cancel).
-    Cancel {
-        axis: AxisIndex,
-        #[serde(default)]
-        scope: CancelScope,
-    },
-    /// State of a command by id.
-    CommandState {
-        id: CommandId,
-    },
-    /// Force an axis input to a level, or release it to the simulation (`value` absent).
-    ForceInput {
-        axis: AxisIndex,
-        input: AxisInput,
-        #[serde(default)]
-        value: Option<bool>,
-    },
-    /// Force a digital input channel, or release it (`value` absent).
-    ForceDigitalInput {
-        channel: u16,
-        #[serde(default)]
-        value: Option<bool>,
-    },
-    /// Set an analog input channel, or release it (`value` absent).
-    ForceAnalogInput {
-        channel: u16,
-        #[serde(default)]
-        value: Option<f64>,
-    },
-    WriteDigitalOutput {
-        channel: u16,
-        value: bool,
-    },
-    WriteAnalogOutput {
-        channel: u16,
-        value: f64,
-    },
-    /// Add `amount` user units between commanded and actual position, or remove it (`None`).
-    InjectFollowingError {
-        axis: AxisIndex,
-        #[serde(default)]
-        amount: Option<f64>,
-    },
-    /// Drive the axis from an external setpoint stream (CiA 402 CSP/CSV/CST, HMC_SetDposSwitch):
-    /// the FIFO pauses while a stream is active; `setpoint` absent ends the stream. The axis is
-    /// in SynchronizedMotion while streaming.
-    Setpoint {
-        axis: AxisIndex,
-        #[serde(default)]
-        setpoint: Option<Setpoint>,
-    },
-    /// Read an object of a slave's object dictionary.
-    ReadObject {
-        slave: u16,
-        index: u16,
-        subindex: u8,
-    },
-    /// Write an object of a slave's object dictionary.
-    WriteObject {
-        slave: u16,
-        index: u16,
-        subindex: u8,
-        value: Value,
-    },
+    /// One axis: power, single-axis motion, homing, parameters, its simulated inputs, its
+    /// setpoint stream.
+    Axis(AxisCommand),
+    /// Coordinated groups of axes (issue 11: `group_create`, `move_linear_absolute` …).
+    Group(GroupCommand),
+    /// Axis couplings: gear and cam (issue 12: `gear_in` …).
+    Coupling(CouplingCommand),
+    /// The machine's digital and analog I/O image.
+    Io(IoCommand),
+    /// The object dictionaries of the CiA 402 drives on the engine's fieldbus.
+    Slave(SlaveCommand),
+    /// Machine-wide: queries across all axes (command states).
+    Machine(MachineCommand),
 }
+
+/// Commands on a group of axes moving on one path. None yet: issue 11 adds them here (each a
+/// struct, a variant here and one in the wire form), and [`crate::Engine::apply`] already routes
+/// this family to its own function, which will hand them to the group planner stage.
+#[derive(Clone, Debug, PartialEq)]
+pub enum GroupCommand {}
+
+/// Commands that couple a slave axis to a master (gear, cam). None yet: issue 12 adds them here,
+/// routed like [`GroupCommand`] to the coupling planner stage.
+#[derive(Clone, Debug, PartialEq)]
+pub enum CouplingCommand {}
 
 impl Command {
     /// The axis the command addresses, if it addresses one.
     pub fn axis(&self) -> Option<AxisIndex> {
-        use Command::*;
         match self {
-            Enable { axis }
-            | Disable { axis }
-            | Reset { axis }
-            | MoveAbsolute { axis, .. }
-            | MoveRelative { axis, .. }
-            | MoveVelocity { axis, .. }
-            | Stop { axis, .. }
-            | Halt { axis, .. }
-            | Resume { axis }
-            | Home { axis, .. }
-            | SetPosition { axis, .. }
-            | SetParameter { axis, .. }
-            | GetParameter { axis, .. }
-            | ModifyTarget { axis, .. }
-            | Cancel { axis, .. }
-            | ForceInput { axis, .. }
-            | InjectFollowingError { axis, .. }
-            | Setpoint { axis, .. } => Some(*axis),
-            CommandState { .. }
-            | ForceDigitalInput { .. }
-            | ForceAnalogInput { .. }
-            | WriteDigitalOutput { .. }
-            | WriteAnalogOutput { .. }
-            | ReadObject { .. }
-            | WriteObject { .. } => None,
+            Command::Axis(c) => Some(c.axis()),
+            Command::Group(c) => match *c {},
+            Command::Coupling(c) => match *c {},
+            Command::Io(_) | Command::Slave(_) | Command::Machine(_) => None,
         }
     }
 }
+
+/// `impl From<$member> for $family` and `for Command`, so that a command struct converts into
+/// the command it is (`Command::from(Enable { axis: 0 })`).
+macro_rules! command_from {
+    ($family:ident, $variant:ident, [$($member:ident => $member_variant:ident),* $(,)?]) => {
+        impl From<$family> for $crate::command::Command {
+            fn from(c: $family) -> $crate::command::Command {
+                $crate::command::Command::$variant(c)
+            }
+        }
+        $(
+            impl From<$member> for $family {
+                fn from(c: $member) -> $family {
+                    $family::$member_variant(c)
+                }
+            }
+            impl From<$member> for $crate::command::Command {
+                fn from(c: $member) -> $crate::command::Command {
+                    $crate::command::Command::$variant($family::$member_variant(c))
+                }
+            }
+        )*
+    };
+}
+pub(crate) use command_from;
+
+command_from!(GroupCommand, Group, []);
+command_from!(CouplingCommand, Coupling, []);
 
 /// One cycle's setpoint from an external master.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]

@@ -1,0 +1,117 @@
+//! The flat wire form of [`super::Command`]: one internally tagged enum in the order the
+//! variants had before the families existed. The order matters: serde lists the variants in that order in its
+//! "unknown variant" message, which the control API and the scenario loader show to users.
+
+use serde::{Deserialize, Serialize};
+
+use super::{
+    AxisCommand, Cancel, Disable, Enable, ForceAnalogInput, ForceDigitalInput, ForceInput,
+    GetCommandState, GetParameter, Halt, Home, InjectFollowingError, IoCommand, MachineCommand,
+    ModifyTarget, MoveAbsolute, MoveRelative, MoveVelocity, ReadObject, Reset, Resume,
+    SetParameter, SetPosition, SlaveCommand, Stop, StreamSetpoint, WriteAnalogOutput,
+    WriteDigitalOutput, WriteObject,
+};
+
+/// Named `Command` like the type it stands for: serde writes this name in "expected internally
+/// tagged enum Command" (a `rename` does not change that message).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case")]
+// `CommandState` is the JSON tag `command_state`.
+#[allow(clippy::enum_variant_names)]
+pub(super) enum Command {
+    Enable(Enable),
+    Disable(Disable),
+    Reset(Reset),
+    MoveAbsolute(MoveAbsolute),
+    MoveRelative(MoveRelative),
+    MoveVelocity(MoveVelocity),
+    Stop(Stop),
+    Halt(Halt),
+    Resume(Resume),
+    Home(Home),
+    SetPosition(SetPosition),
+    SetParameter(SetParameter),
+    GetParameter(GetParameter),
+    ModifyTarget(ModifyTarget),
+    Cancel(Cancel),
+    CommandState(GetCommandState),
+    ForceInput(ForceInput),
+    ForceDigitalInput(ForceDigitalInput),
+    ForceAnalogInput(ForceAnalogInput),
+    WriteDigitalOutput(WriteDigitalOutput),
+    WriteAnalogOutput(WriteAnalogOutput),
+    InjectFollowingError(InjectFollowingError),
+    Setpoint(StreamSetpoint),
+    ReadObject(ReadObject),
+    WriteObject(WriteObject),
+}
+
+impl From<Command> for super::Command {
+    fn from(c: Command) -> super::Command {
+        match c {
+            Command::Enable(c) => super::Command::Axis(AxisCommand::Enable(c)),
+            Command::Disable(c) => super::Command::Axis(AxisCommand::Disable(c)),
+            Command::Reset(c) => super::Command::Axis(AxisCommand::Reset(c)),
+            Command::MoveAbsolute(c) => super::Command::Axis(AxisCommand::MoveAbsolute(c)),
+            Command::MoveRelative(c) => super::Command::Axis(AxisCommand::MoveRelative(c)),
+            Command::MoveVelocity(c) => super::Command::Axis(AxisCommand::MoveVelocity(c)),
+            Command::Stop(c) => super::Command::Axis(AxisCommand::Stop(c)),
+            Command::Halt(c) => super::Command::Axis(AxisCommand::Halt(c)),
+            Command::Resume(c) => super::Command::Axis(AxisCommand::Resume(c)),
+            Command::Home(c) => super::Command::Axis(AxisCommand::Home(c)),
+            Command::SetPosition(c) => super::Command::Axis(AxisCommand::SetPosition(c)),
+            Command::SetParameter(c) => super::Command::Axis(AxisCommand::SetParameter(c)),
+            Command::GetParameter(c) => super::Command::Axis(AxisCommand::GetParameter(c)),
+            Command::ModifyTarget(c) => super::Command::Axis(AxisCommand::ModifyTarget(c)),
+            Command::Cancel(c) => super::Command::Axis(AxisCommand::Cancel(c)),
+            Command::CommandState(c) => super::Command::Machine(MachineCommand::CommandState(c)),
+            Command::ForceInput(c) => super::Command::Axis(AxisCommand::ForceInput(c)),
+            Command::ForceDigitalInput(c) => super::Command::Io(IoCommand::ForceDigitalInput(c)),
+            Command::ForceAnalogInput(c) => super::Command::Io(IoCommand::ForceAnalogInput(c)),
+            Command::WriteDigitalOutput(c) => super::Command::Io(IoCommand::WriteDigitalOutput(c)),
+            Command::WriteAnalogOutput(c) => super::Command::Io(IoCommand::WriteAnalogOutput(c)),
+            Command::InjectFollowingError(c) => {
+                super::Command::Axis(AxisCommand::InjectFollowingError(c))
+            }
+            Command::Setpoint(c) => super::Command::Axis(AxisCommand::Setpoint(c)),
+            Command::ReadObject(c) => super::Command::Slave(SlaveCommand::ReadObject(c)),
+            Command::WriteObject(c) => super::Command::Slave(SlaveCommand::WriteObject(c)),
+        }
+    }
+}
+
+impl From<super::Command> for Command {
+    fn from(c: super::Command) -> Command {
+        match c {
+            super::Command::Axis(AxisCommand::Enable(c)) => Command::Enable(c),
+            super::Command::Axis(AxisCommand::Disable(c)) => Command::Disable(c),
+            super::Command::Axis(AxisCommand::Reset(c)) => Command::Reset(c),
+            super::Command::Axis(AxisCommand::MoveAbsolute(c)) => Command::MoveAbsolute(c),
+            super::Command::Axis(AxisCommand::MoveRelative(c)) => Command::MoveRelative(c),
+            super::Command::Axis(AxisCommand::MoveVelocity(c)) => Command::MoveVelocity(c),
+            super::Command::Axis(AxisCommand::Stop(c)) => Command::Stop(c),
+            super::Command::Axis(AxisCommand::Halt(c)) => Command::Halt(c),
+            super::Command::Axis(AxisCommand::Resume(c)) => Command::Resume(c),
+            super::Command::Axis(AxisCommand::Home(c)) => Command::Home(c),
+            super::Command::Axis(AxisCommand::SetPosition(c)) => Command::SetPosition(c),
+            super::Command::Axis(AxisCommand::SetParameter(c)) => Command::SetParameter(c),
+            super::Command::Axis(AxisCommand::GetParameter(c)) => Command::GetParameter(c),
+            super::Command::Axis(AxisCommand::ModifyTarget(c)) => Command::ModifyTarget(c),
+            super::Command::Axis(AxisCommand::Cancel(c)) => Command::Cancel(c),
+            super::Command::Machine(MachineCommand::CommandState(c)) => Command::CommandState(c),
+            super::Command::Axis(AxisCommand::ForceInput(c)) => Command::ForceInput(c),
+            super::Command::Io(IoCommand::ForceDigitalInput(c)) => Command::ForceDigitalInput(c),
+            super::Command::Io(IoCommand::ForceAnalogInput(c)) => Command::ForceAnalogInput(c),
+            super::Command::Io(IoCommand::WriteDigitalOutput(c)) => Command::WriteDigitalOutput(c),
+            super::Command::Io(IoCommand::WriteAnalogOutput(c)) => Command::WriteAnalogOutput(c),
+            super::Command::Axis(AxisCommand::InjectFollowingError(c)) => {
+                Command::InjectFollowingError(c)
+            }
+            super::Command::Axis(AxisCommand::Setpoint(c)) => Command::Setpoint(c),
+            super::Command::Slave(SlaveCommand::ReadObject(c)) => Command::ReadObject(c),
+            super::Command::Slave(SlaveCommand::WriteObject(c)) => Command::WriteObject(c),
+            super::Command::Group(c) => match c {},
+            super::Command::Coupling(c) => match c {},
+        }
+    }
+}

@@ -1,0 +1,441 @@
+//! The JSON of every command, pinned: scenarios and the control API take commands in this form,
+//! so it must not change when the Rust shape of `Command` does (issue 10). Each variant is
+//! serialized with representative values and compared with a literal; the literal, and a form
+//! with only the required fields, deserialize back. The error messages serde gives for a wrong
+//! `type`, a missing or an unknown field are pinned too: the control API and the scenario loader
+//! show them to users, and the control API reads the field name out of them.
+
+use axes::command::{
+    AxisInput, BufferMode, Cancel, CancelScope, Command, Disable, Enable, ForceAnalogInput,
+    ForceDigitalInput, ForceInput, GetCommandState, GetParameter, Halt, Home, InjectFollowingError,
+    ModifyTarget, MoveAbsolute, MoveRelative, MoveVelocity, PositionFrame, ReadObject, Reset,
+    Resume, SetParameter, SetPosition, Setpoint, Stop, StopMode, StreamSetpoint, WriteAnalogOutput,
+    WriteDigitalOutput, WriteObject,
+};
+use axes::homing::{AfterHome, HomingQuirks, Latch};
+use axes::od::Value;
+use axes::ParamId;
+
+/// Every variant with all fields set to non-default values, and its JSON.
+fn full() -> Vec<(Command, &'static str)> {
+    let quirks = HomingQuirks {
+        after_home: AfterHome::ReturnToHome,
+        switch_latch: Latch::Polled,
+        index_latch: Latch::Exact,
+        switch_scan_ticks: 4,
+        max_search_distance: 500.0,
+        initial_backoff: 2.5,
+        rescan: Some(1.5),
+        trial: true,
+    };
+    vec![
+        (
+            Command::from(Enable { axis: 1 }),
+            r#"{"type":"enable","axis":1}"#,
+        ),
+        (
+            Command::from(Disable { axis: 2 }),
+            r#"{"type":"disable","axis":2}"#,
+        ),
+        (
+            Command::from(Reset { axis: 3 }),
+            r#"{"type":"reset","axis":3}"#,
+        ),
+        (
+            Command::from(MoveAbsolute {
+                axis: 0,
+                position: 100.5,
+                velocity: Some(10.0),
+                acceleration: Some(20.0),
+                deceleration: Some(30.0),
+                jerk: Some(0.0),
+                buffer_mode: BufferMode::Buffered,
+            }),
+            r#"{"type":"move_absolute","axis":0,"position":100.5,"velocity":10.0,"acceleration":20.0,"deceleration":30.0,"jerk":0.0,"buffer_mode":"buffered"}"#,
+        ),
+        (
+            Command::from(MoveRelative {
+                axis: 1,
+                distance: -7.25,
+                velocity: Some(1.0),
+                acceleration: Some(2.0),
+                deceleration: Some(3.0),
+                jerk: Some(400.0),
+                buffer_mode: BufferMode::Buffered,
+            }),
+            r#"{"type":"move_relative","axis":1,"distance":-7.25,"velocity":1.0,"acceleration":2.0,"deceleration":3.0,"jerk":400.0,"buffer_mode":"buffered"}"#,
+        ),
+        (
+            Command::from(MoveVelocity {
+                axis: 2,
+                velocity: -3.5,
+                acceleration: Some(2.0),
+                deceleration: Some(3.0),
+                jerk: Some(4.0),
+                buffer_mode: BufferMode::Buffered,
+            }),
+            r#"{"type":"move_velocity","axis":2,"velocity":-3.5,"acceleration":2.0,"deceleration":3.0,"jerk":4.0,"buffer_mode":"buffered"}"#,
+        ),
+        (
+            Command::from(Stop {
+                axis: 0,
+                mode: StopMode::Emergency,
+                deceleration: Some(99.0),
+            }),
+            r#"{"type":"stop","axis":0,"mode":"emergency","deceleration":99.0}"#,
+        ),
+        (
+            Command::from(Halt {
+                axis: 0,
+                deceleration: Some(5.0),
+            }),
+            r#"{"type":"halt","axis":0,"deceleration":5.0}"#,
+        ),
+        (
+            Command::from(Resume { axis: 0 }),
+            r#"{"type":"resume","axis":0}"#,
+        ),
+        (
+            Command::from(Home {
+                axis: 1,
+                method: Some(17),
+                switch_velocity: Some(10.0),
+                zero_velocity: Some(1.0),
+                acceleration: Some(100.0),
+                offset: Some(-0.5),
+                timeout: Some(30.0),
+                quirks,
+                buffer_mode: BufferMode::Buffered,
+            }),
+            r#"{"type":"home","axis":1,"method":17,"switch_velocity":10.0,"zero_velocity":1.0,"acceleration":100.0,"offset":-0.5,"timeout":30.0,"quirks":{"after_home":"return_to_home","switch_latch":"polled","index_latch":"exact","switch_scan_ticks":4,"max_search_distance":500.0,"initial_backoff":2.5,"rescan":1.5,"trial":true},"buffer_mode":"buffered"}"#,
+        ),
+        (
+            Command::from(SetPosition {
+                axis: 0,
+                position: 12.0,
+                frame: PositionFrame::Actual,
+            }),
+            r#"{"type":"set_position","axis":0,"position":12.0,"frame":"actual"}"#,
+        ),
+        (
+            Command::from(SetParameter {
+                axis: 0,
+                name: ParamId::Speed,
+                value: 42.0,
+                lenient: true,
+            }),
+            r#"{"type":"set_parameter","axis":0,"name":"speed","value":42.0,"lenient":true}"#,
+        ),
+        (
+            Command::from(GetParameter {
+                axis: 1,
+                name: ParamId::Accel,
+            }),
+            r#"{"type":"get_parameter","axis":1,"name":"accel"}"#,
+        ),
+        (
+            Command::from(ModifyTarget {
+                axis: 0,
+                position: 3.0,
+                relative: true,
+            }),
+            r#"{"type":"modify_target","axis":0,"position":3.0,"relative":true}"#,
+        ),
+        (
+            Command::from(Cancel {
+                axis: 0,
+                scope: CancelScope::All,
+            }),
+            r#"{"type":"cancel","axis":0,"scope":"all"}"#,
+        ),
+        (
+            Command::from(GetCommandState { id: 7 }),
+            r#"{"type":"command_state","id":7}"#,
+        ),
+        (
+            Command::from(ForceInput {
+                axis: 0,
+                input: AxisInput::LimitPos,
+                value: Some(true),
+            }),
+            r#"{"type":"force_input","axis":0,"input":"limit_pos","value":true}"#,
+        ),
+        (
+            Command::from(ForceDigitalInput {
+                channel: 3,
+                value: Some(false),
+            }),
+            r#"{"type":"force_digital_input","channel":3,"value":false}"#,
+        ),
+        (
+            Command::from(ForceAnalogInput {
+                channel: 1,
+                value: Some(2.5),
+            }),
+            r#"{"type":"force_analog_input","channel":1,"value":2.5}"#,
+        ),
+        (
+            Command::from(WriteDigitalOutput {
+                channel: 4,
+                value: true,
+            }),
+            r#"{"type":"write_digital_output","channel":4,"value":true}"#,
+        ),
+        (
+            Command::from(WriteAnalogOutput {
+                channel: 0,
+                value: -1.25,
+            }),
+            r#"{"type":"write_analog_output","channel":0,"value":-1.25}"#,
+        ),
+        (
+            Command::from(InjectFollowingError {
+                axis: 0,
+                amount: Some(0.75),
+            }),
+            r#"{"type":"inject_following_error","axis":0,"amount":0.75}"#,
+        ),
+        (
+            Command::from(StreamSetpoint {
+                axis: 0,
+                setpoint: Some(Setpoint::Velocity { velocity: 5.0 }),
+            }),
+            r#"{"type":"setpoint","axis":0,"setpoint":{"mode":"velocity","velocity":5.0}}"#,
+        ),
+        (
+            Command::from(ReadObject {
+                slave: 1,
+                index: 0x6041,
+                subindex: 0,
+            }),
+            r#"{"type":"read_object","slave":1,"index":24641,"subindex":0}"#,
+        ),
+        (
+            Command::from(WriteObject {
+                slave: 0,
+                index: 0x6060,
+                subindex: 0,
+                value: Value::I8(8),
+            }),
+            r#"{"type":"write_object","slave":0,"index":24672,"subindex":0,"value":{"i8":8}}"#,
+        ),
+    ]
+}
+
+/// Every variant from its required fields only, and the command that reads as.
+fn minimal() -> Vec<(&'static str, Command, &'static str)> {
+    vec![
+        (
+            r#"{"type":"move_absolute","axis":0,"position":1.0}"#,
+            Command::from(MoveAbsolute {
+                axis: 0,
+                position: 1.0,
+                velocity: None,
+                acceleration: None,
+                deceleration: None,
+                jerk: None,
+                buffer_mode: BufferMode::Aborting,
+            }),
+            r#"{"type":"move_absolute","axis":0,"position":1.0,"velocity":null,"acceleration":null,"deceleration":null,"jerk":null,"buffer_mode":"aborting"}"#,
+        ),
+        (
+            r#"{"type":"move_relative","axis":0,"distance":1.0}"#,
+            Command::from(MoveRelative {
+                axis: 0,
+                distance: 1.0,
+                velocity: None,
+                acceleration: None,
+                deceleration: None,
+                jerk: None,
+                buffer_mode: BufferMode::Aborting,
+            }),
+            r#"{"type":"move_relative","axis":0,"distance":1.0,"velocity":null,"acceleration":null,"deceleration":null,"jerk":null,"buffer_mode":"aborting"}"#,
+        ),
+        (
+            r#"{"type":"move_velocity","axis":0,"velocity":1.0}"#,
+            Command::from(MoveVelocity {
+                axis: 0,
+                velocity: 1.0,
+                acceleration: None,
+                deceleration: None,
+                jerk: None,
+                buffer_mode: BufferMode::Aborting,
+            }),
+            r#"{"type":"move_velocity","axis":0,"velocity":1.0,"acceleration":null,"deceleration":null,"jerk":null,"buffer_mode":"aborting"}"#,
+        ),
+        (
+            r#"{"type":"stop","axis":0}"#,
+            Command::from(Stop {
+                axis: 0,
+                mode: StopMode::Smooth,
+                deceleration: None,
+            }),
+            r#"{"type":"stop","axis":0,"mode":"smooth","deceleration":null}"#,
+        ),
+        (
+            r#"{"type":"halt","axis":0}"#,
+            Command::from(Halt {
+                axis: 0,
+                deceleration: None,
+            }),
+            r#"{"type":"halt","axis":0,"deceleration":null}"#,
+        ),
+        (
+            r#"{"type":"home","axis":0}"#,
+            Command::from(Home {
+                axis: 0,
+                method: None,
+                switch_velocity: None,
+                zero_velocity: None,
+                acceleration: None,
+                offset: None,
+                timeout: None,
+                quirks: HomingQuirks::default(),
+                buffer_mode: BufferMode::Aborting,
+            }),
+            r#"{"type":"home","axis":0,"method":null,"switch_velocity":null,"zero_velocity":null,"acceleration":null,"offset":null,"timeout":null,"quirks":{"after_home":"decelerate","switch_latch":"exact","index_latch":"exact","switch_scan_ticks":0,"max_search_distance":0.0,"initial_backoff":0.0,"rescan":null,"trial":false},"buffer_mode":"aborting"}"#,
+        ),
+        (
+            r#"{"type":"set_position","axis":0,"position":2.0}"#,
+            Command::from(SetPosition {
+                axis: 0,
+                position: 2.0,
+                frame: PositionFrame::Both,
+            }),
+            r#"{"type":"set_position","axis":0,"position":2.0,"frame":"both"}"#,
+        ),
+        (
+            r#"{"type":"set_parameter","axis":0,"name":"decel","value":3.0}"#,
+            Command::from(SetParameter {
+                axis: 0,
+                name: ParamId::Decel,
+                value: 3.0,
+                lenient: false,
+            }),
+            r#"{"type":"set_parameter","axis":0,"name":"decel","value":3.0,"lenient":false}"#,
+        ),
+        (
+            r#"{"type":"modify_target","axis":0,"position":4.0}"#,
+            Command::from(ModifyTarget {
+                axis: 0,
+                position: 4.0,
+                relative: false,
+            }),
+            r#"{"type":"modify_target","axis":0,"position":4.0,"relative":false}"#,
+        ),
+        (
+            r#"{"type":"cancel","axis":0}"#,
+            Command::from(Cancel {
+                axis: 0,
+                scope: CancelScope::Current,
+            }),
+            r#"{"type":"cancel","axis":0,"scope":"current"}"#,
+        ),
+        (
+            r#"{"type":"force_input","axis":0,"input":"drive_alarm"}"#,
+            Command::from(ForceInput {
+                axis: 0,
+                input: AxisInput::DriveAlarm,
+                value: None,
+            }),
+            r#"{"type":"force_input","axis":0,"input":"drive_alarm","value":null}"#,
+        ),
+        (
+            r#"{"type":"force_digital_input","channel":0}"#,
+            Command::from(ForceDigitalInput {
+                channel: 0,
+                value: None,
+            }),
+            r#"{"type":"force_digital_input","channel":0,"value":null}"#,
+        ),
+        (
+            r#"{"type":"force_analog_input","channel":0}"#,
+            Command::from(ForceAnalogInput {
+                channel: 0,
+                value: None,
+            }),
+            r#"{"type":"force_analog_input","channel":0,"value":null}"#,
+        ),
+        (
+            r#"{"type":"inject_following_error","axis":0}"#,
+            Command::from(InjectFollowingError {
+                axis: 0,
+                amount: None,
+            }),
+            r#"{"type":"inject_following_error","axis":0,"amount":null}"#,
+        ),
+        (
+            r#"{"type":"setpoint","axis":0}"#,
+            Command::from(StreamSetpoint {
+                axis: 0,
+                setpoint: None,
+            }),
+            r#"{"type":"setpoint","axis":0,"setpoint":null}"#,
+        ),
+    ]
+}
+
+/// Inputs whose error serde reports, and the text it reports today.
+const ERRORS: &[(&str, &str)] = &[
+    (r#"{"type":"teleport","axis":0}"#, "unknown variant `teleport`, expected one of `enable`, `disable`, `reset`, `move_absolute`, `move_relative`, `move_velocity`, `stop`, `halt`, `resume`, `home`, `set_position`, `set_parameter`, `get_parameter`, `modify_target`, `cancel`, `command_state`, `force_input`, `force_digital_input`, `force_analog_input`, `write_digital_output`, `write_analog_output`, `inject_following_error`, `setpoint`, `read_object`, `write_object` at line 1 column 18"),
+    (r#"{"axis":0}"#, "missing field `type` at line 1 column 10"),
+    (r#"{"type":"move_absolute","axis":0}"#, "missing field `position`"),
+    (r#"{"type":"move_absolute","axis":0,"positon":10}"#, "unknown field `positon`, expected one of `axis`, `position`, `velocity`, `acceleration`, `deceleration`, `jerk`, `buffer_mode`"),
+    (r#"{"type":"enable","axis":"zero"}"#, "invalid type: string \"zero\", expected u16"),
+    (r#"{"type":"enable","axis":-1}"#, "invalid value: integer `-1`, expected u16"),
+    (r#"{"type":"stop","axis":0,"mode":"gently"}"#, "unknown variant `gently`, expected one of `smooth`, `abrupt`, `emergency`, `immediate`"),
+    (r#"{"type":"command_state","id":1,"axis":0}"#, "unknown field `axis`, expected `id`"),
+    (r#"{"type":"write_object","slave":0,"index":1,"subindex":0,"value":{"q1":1}}"#, "unknown variant `q1`, expected one of `bool`, `i8`, `i16`, `i32`, `i64`, `u8`, `u16`, `u32`, `u64`, `f32`, `f64`, `string`, `bytes`"),
+    (r#"{"type":"setpoint","axis":0,"setpoint":{"mode":"jerk"}}"#, "unknown variant `jerk`, expected one of `position`, `velocity`, `torque`"),
+    (r#"{"type":"enable"}"#, "missing field `axis`"),
+    (r#""enable""#, "invalid type: string \"enable\", expected internally tagged enum Command at line 1 column 8"),
+    (r#"[1]"#, "invalid type: integer `1`, expected variant identifier at line 1 column 2"),
+];
+
+#[test]
+fn every_variant_serializes_to_its_pinned_json_and_back() {
+    let cases = full();
+    assert_eq!(cases.len(), 25, "one case per variant");
+    for (command, json) in cases {
+        assert_eq!(serde_json::to_string(&command).unwrap(), json);
+        assert_eq!(
+            serde_json::from_str::<Command>(json).unwrap(),
+            command,
+            "{json}"
+        );
+    }
+}
+
+#[test]
+fn absent_optional_fields_take_their_defaults_and_serialize_explicitly() {
+    for (input, command, json) in minimal() {
+        assert_eq!(
+            serde_json::from_str::<Command>(input).unwrap(),
+            command,
+            "{input}"
+        );
+        assert_eq!(serde_json::to_string(&command).unwrap(), json);
+        assert_eq!(
+            serde_json::from_str::<Command>(json).unwrap(),
+            command,
+            "{json}"
+        );
+    }
+}
+
+#[test]
+fn the_tag_may_come_anywhere_and_a_sequence_reads_tag_first() {
+    let json: Command = serde_json::from_str(r#"{"axis":2,"type":"enable"}"#).unwrap();
+    assert_eq!(json, Command::from(Enable { axis: 2 }));
+    // serde also takes an internally tagged enum as a sequence, tag first.
+    let seq: Command = serde_json::from_str(r#"["enable",2]"#).unwrap();
+    assert_eq!(seq, Command::from(Enable { axis: 2 }));
+}
+
+#[test]
+fn serde_errors_keep_their_wording() {
+    for (json, message) in ERRORS {
+        let e = serde_json::from_str::<Command>(json).unwrap_err();
+        assert_eq!(e.to_string(), *message, "{json}");
+    }
+}

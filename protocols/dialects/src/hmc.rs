@@ -1,0 +1,116 @@
+//! Hollysys HMC (digest 000): the AxisStatus and LimitState words, the motion functions'
+//! return codes.
+//!
+//! The two status words are also the values of the engine's own `AxisStatus`/`LimitState`
+//! parameters, and the engine switches the drive off on `AxisStatus & AxisErrMask` (digest 000
+//! §6.4); so their bit layout is computed in `axes::param` and this module is the vendor-facing
+//! name for it (docs/decisions.md, "Dialects (issue 10, item 3)").
+
+use axes::command::EngineError;
+use axes::AxisStatus;
+
+/// AxisStatus bit 0: following error over FELimit 10 consecutive times, latched (digest 000 §2.2
+/// table 2).
+pub const AXIS_STATUS_FE_FAULT: u32 = 1;
+/// AxisStatus bit 1: following error over FELimit once, auto-clearing.
+pub const AXIS_STATUS_FE_WARNING: u32 = 2;
+/// AxisStatus bit 2: axis parameter setting error, latched.
+pub const AXIS_STATUS_PARAMETER_ERROR: u32 = 4;
+/// AxisStatus bit 3: a forward or reverse limit (soft or hard) reached.
+pub const AXIS_STATUS_LIMIT: u32 = 8;
+
+/// LimitState bits (digest 000 §2.2): forward/reverse hard limit, forward/reverse soft limit,
+/// soft-limit parameter error, both limits at once.
+pub const LIMIT_FORWARD_HARD: u32 = 1;
+pub const LIMIT_REVERSE_HARD: u32 = 2;
+pub const LIMIT_FORWARD_SOFT: u32 = 4;
+pub const LIMIT_REVERSE_SOFT: u32 = 8;
+pub const LIMIT_SOFT_CONFIG: u32 = 16;
+pub const LIMIT_BOTH: u32 = 32;
+
+/// `AxisStatus` (digest 000 §2.2 table 2). Bit 4 (bus communication error) and the gantry bits
+/// 5/6 are never set: the emulated axes have no RTEX/EtherCAT bus and no gantry.
+pub fn axis_status(s: &AxisStatus) -> u32 {
+    axes::param::axis_status_word(s.flags)
+}
+
+/// `LimitState` (digest 000 §2.2, finite travel).
+pub fn limit_state(s: &AxisStatus) -> u32 {
+    axes::param::limit_state_word(s.flags)
+}
+
+/// What every motion function returns on a parameter error, nothing being posted (digest 000
+/// §6.3, §6.9).
+pub const PARAMETER_ERROR: u32 = 0xFFFF_FFFF;
+/// `HMC_WaitAxisIdle` with an axis number out of range (digest 000 §6.9, §8 item 46).
+pub const WAIT_AXIS_IDLE_BAD_AXIS: u8 = 0x17;
+
+/// The code a buffered motion function returns for a refused command: the manual lists one
+/// code for every refusal, 0xFFFFFFFF (digest 000 §6.9 "function parameter error (all motion
+/// functions)"); an accepted command returns its command id instead.
+pub fn code_for(_e: &EngineError) -> u32 {
+    PARAMETER_ERROR
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_status::with;
+    use axes::AxisFlags;
+
+    #[test]
+    fn axis_status_bits_follow_table_2() {
+        assert_eq!(axis_status(&with(AxisFlags::empty())), 0);
+        assert_eq!(
+            axis_status(&with(AxisFlags::FE_FAULT)),
+            AXIS_STATUS_FE_FAULT
+        );
+        assert_eq!(
+            axis_status(&with(AxisFlags::FE_WARNING)),
+            AXIS_STATUS_FE_WARNING
+        );
+        assert_eq!(
+            axis_status(&with(AxisFlags::PARAMETER_ERROR)),
+            AXIS_STATUS_PARAMETER_ERROR
+        );
+        for limit in [
+            AxisFlags::HW_LIMIT_POS,
+            AxisFlags::HW_LIMIT_NEG,
+            AxisFlags::SW_LIMIT_POS,
+            AxisFlags::SW_LIMIT_NEG,
+        ] {
+            assert_eq!(axis_status(&with(limit)), AXIS_STATUS_LIMIT, "{limit}");
+        }
+        // Flags the word does not show.
+        assert_eq!(
+            axis_status(&with(
+                AxisFlags::ENABLED | AxisFlags::MOVING | AxisFlags::HOMED
+            )),
+            0
+        );
+    }
+
+    #[test]
+    fn limit_state_bits_follow_the_digest() {
+        for (flag, bit) in [
+            (AxisFlags::HW_LIMIT_POS, LIMIT_FORWARD_HARD),
+            (AxisFlags::HW_LIMIT_NEG, LIMIT_REVERSE_HARD),
+            (AxisFlags::SW_LIMIT_POS, LIMIT_FORWARD_SOFT),
+            (AxisFlags::SW_LIMIT_NEG, LIMIT_REVERSE_SOFT),
+            (AxisFlags::SW_LIMIT_CONFIG, LIMIT_SOFT_CONFIG),
+            (AxisFlags::BOTH_LIMITS, LIMIT_BOTH),
+        ] {
+            assert_eq!(limit_state(&with(flag)), bit, "{flag}");
+        }
+        assert_eq!(
+            limit_state(&with(AxisFlags::HW_LIMIT_POS | AxisFlags::SW_LIMIT_NEG)),
+            LIMIT_FORWARD_HARD | LIMIT_REVERSE_SOFT
+        );
+    }
+
+    #[test]
+    fn every_refusal_is_the_parameter_error_code() {
+        let e = EngineError::Unsupported { what: "x".into() };
+        assert_eq!(code_for(&e), 0xFFFF_FFFF);
+    }
+}

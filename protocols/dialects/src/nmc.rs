@@ -1,0 +1,261 @@
+//! Gaochuan NMC (digest 001): the `BIT_AXIS_*` axis status word, the return codes, and the
+//! library's units (pulse, pulse/ms, pulse/ms²).
+
+use axes::command::{EngineError, ErrorKind};
+use axes::{AxisFlags, AxisState, AxisStatus};
+
+use crate::PulseScale;
+
+// Axis status word bits, `NMC_MtGetSts` (digest 001 §3.1, verbatim macro names).
+pub const BIT_AXIS_BUSY: u16 = 0x0001;
+pub const BIT_AXIS_POSREC: u16 = 0x0002;
+pub const BIT_AXIS_MVERR: u16 = 0x0004;
+pub const BIT_AXIS_SVON: u16 = 0x0008;
+pub const BIT_AXIS_CRD: u16 = 0x0010;
+pub const BIT_AXIS_STEP: u16 = 0x0020;
+pub const BIT_AXIS_LMTP: u16 = 0x0040;
+pub const BIT_AXIS_LMTN: u16 = 0x0080;
+pub const BIT_AXIS_SOFTPOSLMT: u16 = 0x0100;
+pub const BIT_AXIS_SOFTNEGLMT: u16 = 0x0200;
+pub const BIT_AXIS_ALM: u16 = 0x0400;
+pub const BIT_AXIS_POSERR: u16 = 0x0800;
+pub const BIT_AXIS_ESTP: u16 = 0x1000;
+pub const BIT_AXIS_HWERR: u16 = 0x2000;
+pub const BIT_AXIS_CAPTSET: u16 = 0x4000;
+
+/// What the NMC status word shows that [`AxisStatus`] does not carry.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct AxisExtra {
+    /// The axis drives a stepper (`BIT_AXIS_STEP`, digest 001 §3.1: 1 stepper, 0 servo): a
+    /// property of the configured axis, not of its motion.
+    pub stepper: bool,
+}
+
+/// The axis status word of `NMC_MtGetSts` (digest 001 §3.1; bit 15 undefined, always 0). The C
+/// API returns it as a `short`: the same 16 bits.
+///
+/// - BUSY: the profile generator is active, i.e. the commanded position moves or the axis is in
+///   a motion state (PTP, JOG, PT, gear, follow, homing; digest 001 §4 "Busy").
+/// - POSREC: in position (band and settle time, digest 001 §4).
+/// - MVERR: the last motion ended in an error or could not start, latched until
+///   `NMC_MtClrError` (the engine's `motion_error`).
+/// - CRD: the axis belongs to a coordinate system (the engine's `in_group`).
+/// - HWERR: the feedback is lost (the digest leaves the source open, §8 item 11; an encoder
+///   break is the one hardware fault the engine models).
+/// - ALM, POSERR, ESTP, CAPTSET, the limits: the engine flags of the same meaning.
+pub fn axis_status(s: &AxisStatus, extra: AxisExtra) -> u16 {
+    let f = s.flags;
+    let busy = f.contains(AxisFlags::MOVING)
+        || matches!(
+            s.state,
+            AxisState::Homing
+                | AxisState::DiscreteMotion
+                | AxisState::ContinuousMotion
+                | AxisState::SynchronizedMotion
+                | AxisState::Stopping
+        );
+    let mut w = 0;
+    for (on, bit) in [
+        (busy, BIT_AXIS_BUSY),
+        (f.contains(AxisFlags::IN_POSITION), BIT_AXIS_POSREC),
+        (f.contains(AxisFlags::MOTION_ERROR), BIT_AXIS_MVERR),
+        (f.contains(AxisFlags::ENABLED), BIT_AXIS_SVON),
+        (f.contains(AxisFlags::IN_GROUP), BIT_AXIS_CRD),
+        (extra.stepper, BIT_AXIS_STEP),
+        (f.contains(AxisFlags::HW_LIMIT_POS), BIT_AXIS_LMTP),
+        (f.contains(AxisFlags::HW_LIMIT_NEG), BIT_AXIS_LMTN),
+        (f.contains(AxisFlags::SW_LIMIT_POS), BIT_AXIS_SOFTPOSLMT),
+        (f.contains(AxisFlags::SW_LIMIT_NEG), BIT_AXIS_SOFTNEGLMT),
+        (f.contains(AxisFlags::DRIVE_ALARM), BIT_AXIS_ALM),
+        (f.contains(AxisFlags::FE_FAULT), BIT_AXIS_POSERR),
+        (f.contains(AxisFlags::ESTOP), BIT_AXIS_ESTP),
+        (f.contains(AxisFlags::ENCODER_LOSS), BIT_AXIS_HWERR),
+        (f.contains(AxisFlags::CAPTURE_TRIGGERED), BIT_AXIS_CAPTSET),
+    ] {
+        if on {
+            w |= bit;
+        }
+    }
+    w
+}
+
+/// `RTN_CMD_SUCCESS` (digest 001 §1.2).
+pub const RTN_CMD_SUCCESS: i16 = 0;
+/// A lost connection (digest 001 §8 item 1: the one other code the manual names).
+pub const RTN_COMM_ERROR: i16 = -1;
+
+/// The return code of a refused call. `mtn_lib20_err.h` is not in the manual (digest 001 §8 item
+/// 1), so the codes are mcemu's: one positive code per engine error kind, stable across
+/// releases (docs/decisions.md, "Dialects"). A program checks `rc != 0`, as the manual's
+/// examples do.
+pub fn code_for(e: &EngineError) -> i16 {
+    code_for_kind(e.kind())
+}
+
+/// [`code_for`] by error kind (what a status record keeps of the last refusal).
+pub fn code_for_kind(kind: ErrorKind) -> i16 {
+    match kind {
+        ErrorKind::InvalidAxis => 1,
+        ErrorKind::UnknownParameter => 2,
+        ErrorKind::InvalidParameter => 3,
+        ErrorKind::ReadOnlyParameter => 4,
+        ErrorKind::InvalidArgument => 5,
+        ErrorKind::AxisDisabled => 6,
+        ErrorKind::AxisInError => 7,
+        ErrorKind::LimitActive => 8,
+        ErrorKind::QueueFull => 9,
+        ErrorKind::Unsupported => 10,
+        ErrorKind::InvalidState => 11,
+        ErrorKind::CauseStillPresent => 12,
+        ErrorKind::UnknownCommand => 13,
+        ErrorKind::Homing => 14,
+        ErrorKind::Object => 15,
+        ErrorKind::InvalidSlave => 16,
+        ErrorKind::InvalidChannel => 17,
+        ErrorKind::LimitReached => 18,
+        ErrorKind::Fault => 19,
+    }
+}
+
+/// NMC velocities (pulse/ms, digest 001 §1.3) in user units/s; positions are pulses, converted
+/// by the [`PulseScale`] itself.
+pub fn velocity_to_engine(scale: PulseScale, pulse_per_ms: f64) -> f64 {
+    scale.to_engine(pulse_per_ms * 1e3)
+}
+
+/// User units/s in pulse/ms.
+pub fn velocity_from_engine(scale: PulseScale, units_per_s: f64) -> f64 {
+    scale.from_engine(units_per_s) / 1e3
+}
+
+/// NMC accelerations (pulse/ms², digest 001 §1.3) in user units/s².
+pub fn acceleration_to_engine(scale: PulseScale, pulse_per_ms2: f64) -> f64 {
+    scale.to_engine(pulse_per_ms2 * 1e6)
+}
+
+/// User units/s² in pulse/ms².
+pub fn acceleration_from_engine(scale: PulseScale, units_per_s2: f64) -> f64 {
+    scale.from_engine(units_per_s2) / 1e6
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_status::status;
+
+    #[test]
+    fn each_flag_sets_its_bit_of_section_3_1() {
+        let standstill = AxisState::Standstill;
+        for (flag, bit) in [
+            (AxisFlags::IN_POSITION, 0x0002),
+            (AxisFlags::MOTION_ERROR, 0x0004),
+            (AxisFlags::ENABLED, 0x0008),
+            (AxisFlags::IN_GROUP, 0x0010),
+            (AxisFlags::HW_LIMIT_POS, 0x0040),
+            (AxisFlags::HW_LIMIT_NEG, 0x0080),
+            (AxisFlags::SW_LIMIT_POS, 0x0100),
+            (AxisFlags::SW_LIMIT_NEG, 0x0200),
+            (AxisFlags::DRIVE_ALARM, 0x0400),
+            (AxisFlags::FE_FAULT, 0x0800),
+            (AxisFlags::ESTOP, 0x1000),
+            (AxisFlags::ENCODER_LOSS, 0x2000),
+            (AxisFlags::CAPTURE_TRIGGERED, 0x4000),
+        ] {
+            let s = status(standstill, flag);
+            assert_eq!(axis_status(&s, AxisExtra::default()), bit, "{flag}");
+        }
+        // Flags the word has no bit for.
+        let quiet = AxisFlags::HOMED | AxisFlags::HOME_SWITCH | AxisFlags::FE_WARNING;
+        assert_eq!(
+            axis_status(&status(standstill, quiet), AxisExtra::default()),
+            0
+        );
+    }
+
+    #[test]
+    fn busy_while_moving_or_in_a_motion_state() {
+        let none = AxisExtra::default();
+        let moving = status(AxisState::Standstill, AxisFlags::MOVING);
+        assert_eq!(axis_status(&moving, none), BIT_AXIS_BUSY);
+        for state in [
+            AxisState::Homing,
+            AxisState::DiscreteMotion,
+            AxisState::ContinuousMotion,
+            AxisState::SynchronizedMotion,
+            AxisState::Stopping,
+        ] {
+            let s = status(state, AxisFlags::empty());
+            assert_eq!(axis_status(&s, none), BIT_AXIS_BUSY, "{state}");
+        }
+        for state in [
+            AxisState::Disabled,
+            AxisState::Standstill,
+            AxisState::ErrorStop,
+        ] {
+            let s = status(state, AxisFlags::empty());
+            assert_eq!(axis_status(&s, none), 0, "{state}");
+        }
+    }
+
+    #[test]
+    fn the_stepper_bit_comes_from_the_axis_configuration() {
+        let s = status(AxisState::Standstill, AxisFlags::ENABLED);
+        let stepper = AxisExtra { stepper: true };
+        assert_eq!(axis_status(&s, stepper), BIT_AXIS_SVON | BIT_AXIS_STEP);
+    }
+
+    #[test]
+    fn test_vectors_of_section_6() {
+        // TV19: E-stop during jog sets 0x1000, busy clears once stopped.
+        let s = status(AxisState::ErrorStop, AxisFlags::ENABLED | AxisFlags::ESTOP);
+        assert_eq!(axis_status(&s, AxisExtra::default()) & 0x1001, 0x1000);
+        // TV21: the positive hardware limit is 0x40.
+        let s = status(AxisState::Standstill, AxisFlags::HW_LIMIT_POS);
+        assert_eq!(axis_status(&s, AxisExtra::default()), 0x40);
+    }
+
+    #[test]
+    fn return_codes_are_distinct_and_nonzero() {
+        let kinds = [
+            ErrorKind::InvalidAxis,
+            ErrorKind::UnknownParameter,
+            ErrorKind::InvalidParameter,
+            ErrorKind::ReadOnlyParameter,
+            ErrorKind::InvalidArgument,
+            ErrorKind::AxisDisabled,
+            ErrorKind::AxisInError,
+            ErrorKind::LimitActive,
+            ErrorKind::QueueFull,
+            ErrorKind::Unsupported,
+            ErrorKind::InvalidState,
+            ErrorKind::CauseStillPresent,
+            ErrorKind::UnknownCommand,
+            ErrorKind::Homing,
+            ErrorKind::Object,
+            ErrorKind::InvalidSlave,
+            ErrorKind::InvalidChannel,
+            ErrorKind::LimitReached,
+            ErrorKind::Fault,
+        ];
+        let mut codes: Vec<i16> = kinds.iter().map(|k| code_for_kind(*k)).collect();
+        assert!(codes.iter().all(|c| *c > 0));
+        codes.sort_unstable();
+        codes.dedup();
+        assert_eq!(codes.len(), kinds.len());
+        let e = EngineError::QueueFull { axis: 0, depth: 64 };
+        assert_eq!(code_for(&e), 9);
+    }
+
+    #[test]
+    fn units_are_pulse_pulse_per_ms_and_pulse_per_ms2() {
+        let scale = PulseScale {
+            pulses_per_unit: 1000.0,
+        };
+        // 10 pulse/ms = 10 000 pulse/s = 10 units/s.
+        assert_eq!(velocity_to_engine(scale, 10.0), 10.0);
+        assert_eq!(velocity_from_engine(scale, 10.0), 10.0);
+        // 0.1 pulse/ms² = 100 000 pulse/s² = 100 units/s².
+        assert!((acceleration_to_engine(scale, 0.1) - 100.0).abs() < 1e-9);
+        assert!((acceleration_from_engine(scale, 100.0) - 0.1).abs() < 1e-12);
+    }
+}
