@@ -4,12 +4,11 @@
 //! by silence. Connection bound and timeouts as for Modbus TCP.
 
 use std::future::Future;
-use std::net::SocketAddr;
 use std::sync::Arc;
 use std::time::Duration;
 
-use tokio::net::{TcpListener, TcpStream};
-use tokio::sync::watch;
+use mcemu_frontend::bound::Connection;
+use tokio::net::TcpListener;
 use tokio::time::Instant;
 
 use super::rtu::{answer, Verdict};
@@ -36,38 +35,31 @@ pub async fn serve_rtu_over_tcp<D: DataModel>(
     let limits = config.limits();
     let silence = Duration::from_millis(config.silence_ms.max(1));
     let server = Server::new(model, Arc::clone(&state));
-    accept_loop(
-        listener,
-        limits,
-        state,
-        shutdown,
-        move |stream, peer, stop| connection(server.clone(), stream, peer, limits, silence, stop),
-    )
+    accept_loop(listener, limits, state, shutdown, move |c| {
+        connection(server.clone(), c, limits, silence)
+    })
     .await;
 }
 
 async fn connection<D: DataModel>(
     server: Server<D>,
-    mut stream: TcpStream,
-    peer: SocketAddr,
+    mut c: Connection,
     limits: ConnectionLimits,
     silence: Duration,
-    mut stop: watch::Receiver<bool>,
 ) {
-    let why = run(&server, &mut stream, peer, limits, silence, &mut stop).await;
+    let why = run(&server, &mut c, limits, silence).await;
     tracing::debug!(?why, "connection ends");
 }
 
 async fn run<D: DataModel>(
     server: &Server<D>,
-    stream: &mut TcpStream,
-    peer: SocketAddr,
+    c: &mut Connection,
     limits: ConnectionLimits,
     silence: Duration,
-    stop: &mut watch::Receiver<bool>,
 ) -> Close {
     let counters = &server.state().counters;
-    let peer_id = Peer::Tcp(peer);
+    let peer_id = Peer::Tcp(c.peer);
+    let (stream, activity, stop) = (&mut c.stream, &c.activity, &mut c.stop);
     let mut buf: Vec<u8> = Vec::with_capacity(2 * MAX_ADU);
     let mut deadlines = Deadlines::new(limits);
     let mut last_rx = Instant::now();
@@ -93,6 +85,8 @@ async fn run<D: DataModel>(
                 by_silence = true;
                 break;
             }
+            // Not evicted while it is answered (a `delay` fault may hold it long).
+            let _request = activity.request();
             let Some(verdict) = unless_stopping(answer(server, frame, &peer_id), stop).await else {
                 return Close::Shutdown;
             };
@@ -125,12 +119,23 @@ async fn run<D: DataModel>(
         let next = deadlines.next();
         let silence_end = by_silence.then_some(last_rx + silence);
         let deadline = earliest(next.as_ref().map(|(t, _)| *t), silence_end);
-        match wait_for_bytes(stream, &mut buf, counters, &mut deadlines, deadline, stop).await {
+        match wait_for_bytes(
+            stream,
+            &mut buf,
+            counters,
+            activity,
+            &mut deadlines,
+            deadline,
+            stop,
+        )
+        .await
+        {
             Ok(Wait::Received) => last_rx = Instant::now(),
             Ok(Wait::Deadline) => {
                 if silence_end.is_some_and(|s| Instant::now() >= s) {
                     // Silence ends the frame (Serial Line §2.5.1.1): whatever arrived is one.
                     let frame = std::mem::take(&mut buf);
+                    let _request = activity.request();
                     let Some(verdict) =
                         unless_stopping(answer(server, &frame, &peer_id), stop).await
                     else {

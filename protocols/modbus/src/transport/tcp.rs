@@ -2,11 +2,10 @@
 //! per connection, pipelined requests answered in order.
 
 use std::future::Future;
-use std::net::SocketAddr;
 use std::sync::Arc;
 
-use tokio::net::{TcpListener, TcpStream};
-use tokio::sync::watch;
+use mcemu_frontend::bound::Connection;
+use tokio::net::TcpListener;
 
 use super::{
     accept_loop, expired, unless_stopping, wait_for_bytes, write_reply, Close, Deadlines, Wait,
@@ -28,36 +27,25 @@ pub async fn serve_tcp<D: DataModel>(
 ) {
     let limits = config.limits();
     let server = Server::new(model, Arc::clone(&state));
-    accept_loop(
-        listener,
-        limits,
-        state,
-        shutdown,
-        move |stream, peer, stop| connection(server.clone(), stream, peer, limits, stop),
-    )
+    accept_loop(listener, limits, state, shutdown, move |c| {
+        connection(server.clone(), c, limits)
+    })
     .await;
 }
 
-async fn connection<D: DataModel>(
-    server: Server<D>,
-    mut stream: TcpStream,
-    peer: SocketAddr,
-    limits: ConnectionLimits,
-    mut stop: watch::Receiver<bool>,
-) {
-    let why = run(&server, &mut stream, peer, limits, &mut stop).await;
+async fn connection<D: DataModel>(server: Server<D>, mut c: Connection, limits: ConnectionLimits) {
+    let why = run(&server, &mut c, limits).await;
     tracing::debug!(?why, "connection ends");
 }
 
 async fn run<D: DataModel>(
     server: &Server<D>,
-    stream: &mut TcpStream,
-    peer: SocketAddr,
+    c: &mut Connection,
     limits: ConnectionLimits,
-    stop: &mut watch::Receiver<bool>,
 ) -> Close {
     let counters = &server.state().counters;
-    let peer_id = Peer::Tcp(peer);
+    let peer_id = Peer::Tcp(c.peer);
+    let (stream, activity, stop) = (&mut c.stream, &c.activity, &mut c.stop);
     let mut buf: Vec<u8> = Vec::with_capacity(2 * tcp::MAX_ADU);
     let mut out = Vec::with_capacity(tcp::MAX_ADU);
     let mut deadlines = Deadlines::new(limits);
@@ -71,6 +59,8 @@ async fn run<D: DataModel>(
                     pdu,
                     consumed: n,
                 } => {
+                    // Not evicted while it is answered (a `delay` fault may hold it long).
+                    let _request = activity.request();
                     let Some(outcome) =
                         unless_stopping(server.handle(header.unit, pdu, &peer_id), stop).await
                     else {
@@ -112,7 +102,17 @@ async fn run<D: DataModel>(
         deadlines.framed(consumed, !buf.is_empty());
         let next = deadlines.next();
         let deadline = next.as_ref().map(|(t, _)| *t);
-        match wait_for_bytes(stream, &mut buf, counters, &mut deadlines, deadline, stop).await {
+        match wait_for_bytes(
+            stream,
+            &mut buf,
+            counters,
+            activity,
+            &mut deadlines,
+            deadline,
+            stop,
+        )
+        .await
+        {
             Ok(Wait::Received) => {}
             Ok(Wait::Deadline) => {
                 if let Some((_, which)) = next {
