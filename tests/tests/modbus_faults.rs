@@ -338,7 +338,7 @@ fn the_state_of_a_modbus_frontend_is_pinned() {
             // MBAP header 7 + PDU 5 in; 7 + 4 out.
             "bytes_in": 12,
             "bytes_out": 11,
-            "faults_applied": zeros(&["delay", "no_reply", "exception", "drop_bytes", "corrupt"]),
+            "faults_applied": zeros(&["delay", "no_reply", "exception", "drop_bytes", "corrupt", "close"]),
             "diagnostics": {
                 "bus_message_count": 1,
                 "bus_communication_error_count": 0,

@@ -118,6 +118,7 @@ pub struct FaultsApplied {
     pub exception: Counter,
     pub drop_bytes: Counter,
     pub corrupt: Counter,
+    pub close: Counter,
 }
 
 impl Default for Counters {
@@ -215,6 +216,7 @@ impl Counters {
                 exception: f.exception.get(),
                 drop_bytes: f.drop_bytes.get(),
                 corrupt: f.corrupt.get(),
+                close: f.close.get(),
             },
             diagnostics: DiagnosticsSnapshot {
                 bus_message_count: d.bus_message.get(),
@@ -284,6 +286,7 @@ pub struct FaultsAppliedSnapshot {
     pub exception: u64,
     pub drop_bytes: u64,
     pub corrupt: u64,
+    pub close: u64,
 }
 
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
@@ -299,17 +302,14 @@ pub struct DiagnosticsSnapshot {
 }
 
 /// The last request the engine refused (exception 04), for `GET /state`.
+pub type LastError = mcemu_frontend::refusal::Refusal<RefusedRequest>;
+
+/// What Modbus tells of a refused request, beside the kit's time, peer and reason.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
-pub struct LastError {
-    /// Wall-clock time, milliseconds since the Unix epoch.
-    pub time_unix_ms: u64,
-    /// `IP:port`, or the serial device path.
-    pub peer: String,
+pub struct RefusedRequest {
     pub unit: u8,
     pub function: u8,
     pub exception: u8,
-    /// The engine's reason.
-    pub reason: String,
 }
 
 #[cfg(test)]

@@ -499,7 +499,13 @@ async fn engine_refusals_are_recorded_as_the_last_error() {
     );
     let e = server.state.last_error().unwrap();
     assert_eq!(
-        (e.peer, e.unit, e.function, e.exception, e.reason.as_str()),
+        (
+            e.peer,
+            e.detail.unit,
+            e.detail.function,
+            e.detail.exception,
+            e.reason.as_str()
+        ),
         (local.to_string(), 7, 6, 4, "axis 0 is disabled")
     );
     assert!(e.time_unix_ms > 1_600_000_000_000);
@@ -623,6 +629,39 @@ async fn faults_delay_swallow_and_force_exceptions() {
         .inject(&object(json!({"fault": "corrupt"})))
         .unwrap_err();
     assert_eq!(e.field.as_deref(), Some("fault"));
+    server.shutdown().await;
+}
+
+#[tokio::test]
+async fn a_close_fault_closes_the_connection_instead_of_answering() {
+    let server = start_tcp(model_100_to_199(), TcpConfig::default()).await;
+    let state = &server.state;
+    let answer = state
+        .inject(&object(json!({"fault": "close", "count": 1})))
+        .unwrap();
+    assert_eq!(
+        answer,
+        json!({"active_faults": [{"fault": "close", "count": 1}]})
+    );
+    let mut s = connect(server.addr).await;
+    s.write_all(&mbap(1, 1, &[6, 0, 150, 0x11, 0x11]))
+        .await
+        .unwrap();
+    assert!(closed_by_peer(&mut s).await, "closed, not answered");
+    assert_eq!(
+        server.model.register(Table::HoldingRegisters, 150),
+        Some(0),
+        "not executed"
+    );
+    // Spent: the next connection is answered.
+    let mut again = connect(server.addr).await;
+    assert_eq!(
+        transact(&mut again, 2, 1, &[6, 0, 150, 0x11, 0x11]).await,
+        mbap(2, 1, &[6, 0, 150, 0x11, 0x11])
+    );
+    let c = state.snapshot().counters;
+    assert_eq!((c.faults_applied.close, c.no_response), (1, 1));
+    assert!(state.snapshot().active_faults.is_empty());
     server.shutdown().await;
 }
 

@@ -169,6 +169,12 @@ impl Deadlines {
     }
 }
 
+/// A `close` fault ends the connection instead of a reply (counted by the server).
+pub(crate) fn closed_by_fault() -> Close {
+    tracing::info!("closing connection: `close` fault");
+    Close::Ours
+}
+
 /// Count and log an expired deadline.
 pub(crate) fn expired(counters: &Counters, which: &Expired, limits: &ConnectionLimits) {
     match which {

@@ -13,8 +13,8 @@ use tokio::time::Instant;
 
 use super::rtu::{answer, Verdict};
 use super::{
-    accept_loop, earliest, expired, unless_stopping, wait_for_bytes, write_reply, Close, Deadlines,
-    Wait,
+    accept_loop, closed_by_fault, earliest, expired, unless_stopping, wait_for_bytes, write_reply,
+    Close, Deadlines, Wait,
 };
 use crate::config::{ConnectionLimits, RtuOverTcpConfig};
 use crate::frame::rtu::{self, Length, MAX_ADU};
@@ -100,6 +100,7 @@ async fn run<D: DataModel>(
                 Verdict::Silent => {
                     buf.drain(..n);
                 }
+                Verdict::Close => return closed_by_fault(),
                 Verdict::Dropped => {
                     // A bad CRC means the length prediction may be off too: resynchronise by
                     // dropping everything received so far.
@@ -141,12 +142,16 @@ async fn run<D: DataModel>(
                     else {
                         return Close::Shutdown;
                     };
-                    if let Verdict::Reply(reply) = verdict {
-                        if let Err(close) =
-                            write_reply(stream, &reply, counters, &limits, stop).await
-                        {
-                            return close;
+                    match verdict {
+                        Verdict::Reply(reply) => {
+                            if let Err(close) =
+                                write_reply(stream, &reply, counters, &limits, stop).await
+                            {
+                                return close;
+                            }
                         }
+                        Verdict::Close => return closed_by_fault(),
+                        Verdict::Silent | Verdict::Dropped => {}
                     }
                     deadlines.framed(true, false);
                     continue;

@@ -8,7 +8,8 @@ use mcemu_frontend::bound::Connection;
 use tokio::net::TcpListener;
 
 use super::{
-    accept_loop, expired, unless_stopping, wait_for_bytes, write_reply, Close, Deadlines, Wait,
+    accept_loop, closed_by_fault, expired, unless_stopping, wait_for_bytes, write_reply, Close,
+    Deadlines, Wait,
 };
 use crate::config::{ConnectionLimits, TcpConfig};
 use crate::frame::tcp::{self, Decoded};
@@ -66,14 +67,19 @@ async fn run<D: DataModel>(
                     else {
                         return Close::Shutdown;
                     };
-                    if let Outcome::Reply(reply) = outcome {
-                        out.clear();
-                        // The reply echoes the transaction and unit ids (§3.1.3).
-                        tcp::encode(header, &reply, &mut out);
-                        if let Err(close) = write_reply(stream, &out, counters, &limits, stop).await
-                        {
-                            return close;
+                    match outcome {
+                        Outcome::Reply(reply) => {
+                            out.clear();
+                            // The reply echoes the transaction and unit ids (§3.1.3).
+                            tcp::encode(header, &reply, &mut out);
+                            if let Err(close) =
+                                write_reply(stream, &out, counters, &limits, stop).await
+                            {
+                                return close;
+                            }
                         }
+                        Outcome::Close => return closed_by_fault(),
+                        Outcome::Silent => {}
                     }
                     buf.drain(..n);
                     consumed = true;
