@@ -355,3 +355,19 @@ fn the_state_of_a_modbus_frontend_is_pinned() {
     });
     assert_eq!(m.frontend("modbus_tcp"), expected);
 }
+
+/// `close` through the control API: the request's connection is closed unanswered, counted; a
+/// new connection is served.
+#[test]
+fn tcp_close_fault_closes_the_connection() {
+    let m = start();
+    let active = m.fault(&json!({"frontend": "modbus_tcp", "fault": "close", "count": 1}));
+    assert_eq!(active, json!([{"fault": "close", "count": 1}]));
+    let mut client = MbapClient::connect(m.address("modbus-tcp"));
+    client.send_raw(&mcemu_tests::mbap_frame(1, 1, &[3, 0x0B, 0xB8, 0, 1]));
+    assert!(client.closed_within(Duration::from_secs(5)));
+    assert_eq!(applied(&m, "modbus_tcp", "close"), 1);
+    assert_eq!(m.frontend("modbus_tcp")["active_faults"], json!([]));
+    let mut again = MbapClient::connect(m.address("modbus-tcp"));
+    assert_eq!(again.request(1, &[3, 0x0B, 0xB8, 0, 1])[..2], [3, 2]);
+}
