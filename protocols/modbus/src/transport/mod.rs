@@ -9,7 +9,7 @@ use std::future::Future;
 use std::io;
 use std::sync::Arc;
 
-use mcemu_frontend::bound::{self, Activity, Connection, ConnectionTable};
+use mcemu_frontend::bound::{self, Connection, ConnectionTable};
 use tokio::io::AsyncWriteExt;
 use tokio::net::{TcpListener, TcpStream};
 use tokio::sync::watch;
@@ -49,26 +49,24 @@ pub(crate) enum Wait {
 
 pub(crate) use mcemu_frontend::bound::{stopping, unless_stopping};
 
-/// Read what the peer sends next into `buf` (counted, stamped on `activity`, and the idle
-/// deadline restarted), unless
+/// Read what the peer sends next into `buf` (counted, stamped on the connection's activity, and
+/// the idle deadline restarted), unless
 /// `deadline` passes or the front-end stops first. A closed or failed socket, or shutdown, ends
 /// the connection.
 pub(crate) async fn wait_for_bytes(
-    stream: &mut TcpStream,
+    c: &mut Connection,
     buf: &mut Vec<u8>,
     counters: &Counters,
-    activity: &Activity,
     deadlines: &mut Deadlines,
     deadline: Option<Instant>,
-    stop: &mut watch::Receiver<bool>,
 ) -> Result<Wait, Close> {
     let mut chunk = [0u8; 4096];
     loop {
         tokio::select! {
-            r = tokio::io::AsyncReadExt::read(stream, &mut chunk) => match r {
+            r = tokio::io::AsyncReadExt::read(&mut c.stream, &mut chunk) => match r {
                 Ok(0) => return Err(Close::Peer),
                 Ok(n) => {
-                    activity.received();
+                    c.activity.received();
                     counters.bytes_in.add(n as u64);
                     buf.extend_from_slice(chunk.get(..n).unwrap_or_default());
                     deadlines.received();
@@ -81,7 +79,7 @@ pub(crate) async fn wait_for_bytes(
                 }
             },
             () = sleep_until(deadline) => return Ok(Wait::Deadline),
-            () = stopping(stop) => return Err(Close::Shutdown),
+            () = stopping(&mut c.stop) => return Err(Close::Shutdown),
         }
     }
 }

@@ -59,7 +59,6 @@ async fn run<D: DataModel>(
 ) -> Close {
     let counters = &server.state().counters;
     let peer_id = Peer::Tcp(c.peer);
-    let (stream, activity, stop) = (&mut c.stream, &c.activity, &mut c.stop);
     let mut buf: Vec<u8> = Vec::with_capacity(2 * MAX_ADU);
     let mut deadlines = Deadlines::new(limits);
     let mut last_rx = Instant::now();
@@ -86,13 +85,16 @@ async fn run<D: DataModel>(
                 break;
             }
             // Not evicted while it is answered (a `delay` fault may hold it long).
-            let _request = activity.request();
-            let Some(verdict) = unless_stopping(answer(server, frame, &peer_id), stop).await else {
+            let _request = c.activity.request();
+            let Some(verdict) = unless_stopping(answer(server, frame, &peer_id), &mut c.stop).await
+            else {
                 return Close::Shutdown;
             };
             match verdict {
                 Verdict::Reply(reply) => {
-                    if let Err(close) = write_reply(stream, &reply, counters, &limits, stop).await {
+                    if let Err(close) =
+                        write_reply(&mut c.stream, &reply, counters, &limits, &mut c.stop).await
+                    {
                         return close;
                     }
                     buf.drain(..n);
@@ -120,32 +122,23 @@ async fn run<D: DataModel>(
         let next = deadlines.next();
         let silence_end = by_silence.then_some(last_rx + silence);
         let deadline = earliest(next.as_ref().map(|(t, _)| *t), silence_end);
-        match wait_for_bytes(
-            stream,
-            &mut buf,
-            counters,
-            activity,
-            &mut deadlines,
-            deadline,
-            stop,
-        )
-        .await
-        {
+        match wait_for_bytes(c, &mut buf, counters, &mut deadlines, deadline).await {
             Ok(Wait::Received) => last_rx = Instant::now(),
             Ok(Wait::Deadline) => {
                 if silence_end.is_some_and(|s| Instant::now() >= s) {
                     // Silence ends the frame (Serial Line §2.5.1.1): whatever arrived is one.
                     let frame = std::mem::take(&mut buf);
-                    let _request = activity.request();
+                    let _request = c.activity.request();
                     let Some(verdict) =
-                        unless_stopping(answer(server, &frame, &peer_id), stop).await
+                        unless_stopping(answer(server, &frame, &peer_id), &mut c.stop).await
                     else {
                         return Close::Shutdown;
                     };
                     match verdict {
                         Verdict::Reply(reply) => {
                             if let Err(close) =
-                                write_reply(stream, &reply, counters, &limits, stop).await
+                                write_reply(&mut c.stream, &reply, counters, &limits, &mut c.stop)
+                                    .await
                             {
                                 return close;
                             }

@@ -46,7 +46,6 @@ async fn run<D: DataModel>(
 ) -> Close {
     let counters = &server.state().counters;
     let peer_id = Peer::Tcp(c.peer);
-    let (stream, activity, stop) = (&mut c.stream, &c.activity, &mut c.stop);
     let mut buf: Vec<u8> = Vec::with_capacity(2 * tcp::MAX_ADU);
     let mut out = Vec::with_capacity(tcp::MAX_ADU);
     let mut deadlines = Deadlines::new(limits);
@@ -61,9 +60,10 @@ async fn run<D: DataModel>(
                     consumed: n,
                 } => {
                     // Not evicted while it is answered (a `delay` fault may hold it long).
-                    let _request = activity.request();
+                    let _request = c.activity.request();
                     let Some(outcome) =
-                        unless_stopping(server.handle(header.unit, pdu, &peer_id), stop).await
+                        unless_stopping(server.handle(header.unit, pdu, &peer_id), &mut c.stop)
+                            .await
                     else {
                         return Close::Shutdown;
                     };
@@ -73,7 +73,8 @@ async fn run<D: DataModel>(
                             // The reply echoes the transaction and unit ids (§3.1.3).
                             tcp::encode(header, &reply, &mut out);
                             if let Err(close) =
-                                write_reply(stream, &out, counters, &limits, stop).await
+                                write_reply(&mut c.stream, &out, counters, &limits, &mut c.stop)
+                                    .await
                             {
                                 return close;
                             }
@@ -108,17 +109,7 @@ async fn run<D: DataModel>(
         deadlines.framed(consumed, !buf.is_empty());
         let next = deadlines.next();
         let deadline = next.as_ref().map(|(t, _)| *t);
-        match wait_for_bytes(
-            stream,
-            &mut buf,
-            counters,
-            activity,
-            &mut deadlines,
-            deadline,
-            stop,
-        )
-        .await
-        {
+        match wait_for_bytes(c, &mut buf, counters, &mut deadlines, deadline).await {
             Ok(Wait::Received) => {}
             Ok(Wait::Deadline) => {
                 if let Some((_, which)) = next {
