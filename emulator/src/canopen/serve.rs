@@ -400,6 +400,7 @@ pub async fn start(
         let config = SocketcandConfig {
             bind: s.bind,
             max_connections: s.max_connections.max(1),
+            at_limit: s.at_limit,
             ..SocketcandConfig::default()
         };
         let server = SocketcandServer::start(config, vec![hub.clone()])
