@@ -1,6 +1,8 @@
-//! TCP listeners with a bounded number of open connections (ARCHITECTURE §8): a connection
-//! holds a permit for its lifetime; at the bound, `accept` waits until one closes, so the
-//! kernel's backlog absorbs the excess instead of this process.
+//! The control API's TCP listener, bounded by the front-end kit's [`ConnectionTable`]
+//! (ARCHITECTURE §8): a connection holds a slot for its lifetime; at the bound, `accept` waits
+//! until one closes, so the kernel's backlog absorbs the excess instead of this process. (It
+//! does not evict: hyper owns the connections, and an idle keep-alive connection cannot be told
+//! from one whose long request is running; docs/decisions.md "Front-end kit: connections".)
 
 use std::io;
 use std::net::SocketAddr;
@@ -8,28 +10,34 @@ use std::pin::Pin;
 use std::sync::Arc;
 use std::task::{Context, Poll};
 
+use mcemu_frontend::bound::{AtLimit, Bound, ConnectionTable, Slot};
+use mcemu_frontend::counter::ConnectionCounters;
 use tokio::io::{AsyncRead, AsyncWrite, ReadBuf};
 use tokio::net::{TcpListener, TcpStream};
-use tokio::sync::{OwnedSemaphorePermit, Semaphore};
 
 pub struct BoundedListener {
     inner: TcpListener,
-    permits: Arc<Semaphore>,
+    table: Arc<ConnectionTable>,
 }
 
 impl BoundedListener {
     pub fn new(inner: TcpListener, max_connections: usize) -> BoundedListener {
+        let bound = Bound {
+            max_connections,
+            // Not consulted: `admit_waiting` waits at the bound.
+            at_limit: AtLimit::Refuse,
+        };
         BoundedListener {
             inner,
-            permits: Arc::new(Semaphore::new(max_connections.max(1))),
+            table: ConnectionTable::new(bound, Arc::new(ConnectionCounters::default())),
         }
     }
 }
 
-/// A connection and its permit: dropping it frees a place.
+/// A connection and its slot: dropping it frees a place.
 pub struct BoundedStream {
     stream: TcpStream,
-    _permit: OwnedSemaphorePermit,
+    _slot: Slot,
 }
 
 impl axum::serve::Listener for BoundedListener {
@@ -37,21 +45,16 @@ impl axum::serve::Listener for BoundedListener {
     type Addr = SocketAddr;
 
     async fn accept(&mut self) -> (Self::Io, Self::Addr) {
-        loop {
-            // The semaphore is never closed, so this only waits.
-            let Ok(permit) = Arc::clone(&self.permits).acquire_owned().await else {
-                continue;
-            };
-            // axum's own accept retries transient errors (EMFILE …) with a back-off.
-            let (stream, addr) = axum::serve::Listener::accept(&mut self.inner).await;
-            return (
-                BoundedStream {
-                    stream,
-                    _permit: permit,
-                },
-                addr,
-            );
-        }
+        let admitted = self.table.admit_waiting().await;
+        // axum's own accept retries transient errors (EMFILE …) with a back-off.
+        let (stream, addr) = axum::serve::Listener::accept(&mut self.inner).await;
+        (
+            BoundedStream {
+                stream,
+                _slot: admitted.slot,
+            },
+            addr,
+        )
     }
 
     fn local_addr(&self) -> io::Result<Self::Addr> {

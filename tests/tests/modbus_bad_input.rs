@@ -74,6 +74,7 @@ fn start() -> Mcemu {
     let mut args = vec!["--clock", "virtual"];
     for s in [
         "frontends.modbus_tcp.max_connections=6",
+        "frontends.modbus_tcp.at_limit=refuse",
         "frontends.modbus_tcp.frame_timeout_ms=1500",
         "frontends.modbus_tcp.idle_timeout_ms=2500",
         "frontends.modbus_rtu_over_tcp.frame_timeout_ms=1500",
@@ -266,4 +267,28 @@ fn garbage_on_the_rtu_line_and_on_rtu_over_tcp_is_dropped_counted_and_isolated()
     );
     assert_eq!(c["replies"], 3, "{c}");
     victim.finish("modbus_rtu");
+}
+
+/// The lock-out this used to be (issue 10): 200 idle connections, then a real client. At the
+/// bound (16 by default) each newcomer closes the connection idle longest, so the client is
+/// admitted and answered; under `refuse` it was reset.
+#[test]
+fn idle_connections_at_the_limit_do_not_lock_a_client_out() {
+    let m = Mcemu::start(None, &["--clock", "virtual"]);
+    let address = m.address("modbus-tcp").to_string();
+    let idle: Vec<TcpStream> = (0..200)
+        .map(|_| TcpStream::connect(&address).unwrap())
+        .collect();
+    let mut client = MbapClient::connect(&address);
+    assert_eq!(client.request(1, &[3, 0x0B, 0xB8, 0, 1])[..2], [3, 2]);
+    // 16 admitted, then each of the other 184 and the client evicted one.
+    wait_for("every eviction counted", Duration::from_secs(10), || {
+        let c = &counters(&m, "modbus_tcp")["connections"];
+        (c["evicted_idle"] == 185).then_some(())
+    });
+    let c = counters(&m, "modbus_tcp");
+    assert_eq!(c["connections"]["refused_at_limit"], 0, "{c}");
+    assert_eq!(c["connections"]["opened"], 201, "{c}");
+    assert_eq!(client.request(1, &[3, 0x0B, 0xB8, 0, 1])[..2], [3, 2]);
+    drop(idle);
 }

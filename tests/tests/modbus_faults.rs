@@ -299,3 +299,75 @@ fn an_engine_refusal_is_the_last_error_with_the_engines_reason() {
     assert_eq!(axis["state"], "disabled");
     assert_eq!(axis["last_error"], "axis_disabled");
 }
+
+/// A Modbus front-end's entry in `GET /state`, whole: its keys and shape are the control API's
+/// contract (one request served, a fault in force, no refusal yet).
+#[test]
+fn the_state_of_a_modbus_frontend_is_pinned() {
+    let m = start();
+    let mut client = MbapClient::connect(m.address("modbus-tcp"));
+    assert_eq!(client.request(1, &[3, 0x0B, 0xB8, 0, 1])[..2], [3, 2]);
+    m.fault(&json!({"frontend": "modbus_tcp", "fault": "delay", "ms": 5, "count": 2}));
+    let zeros = |keys: &[&str]| -> Value {
+        Value::Object(keys.iter().map(|k| (k.to_string(), json!(0))).collect())
+    };
+    let expected = json!({
+        "name": "modbus_tcp",
+        "framing": "tcp",
+        "listen_only": false,
+        "counters": {
+            "requests": 1,
+            "requests_by_function": {"3": 1},
+            "replies": 1,
+            "exceptions": 0,
+            "exceptions_by_code": {},
+            "no_response": 0,
+            "broadcasts": 0,
+            "other_unit_ignored": 0,
+            "crc_errors": 0,
+            "malformed_frames": zeros(&["too_short", "too_long", "not_modbus_protocol", "bad_length"]),
+            "connections": {
+                "open": 1,
+                "opened": 1,
+                "closed": 0,
+                "refused_at_limit": 0,
+                "evicted_idle": 0,
+                "idle_timeouts": 0,
+                "frame_timeouts": 0
+            },
+            // MBAP header 7 + PDU 5 in; 7 + 4 out.
+            "bytes_in": 12,
+            "bytes_out": 11,
+            "faults_applied": zeros(&["delay", "no_reply", "exception", "drop_bytes", "corrupt", "close"]),
+            "diagnostics": {
+                "bus_message_count": 1,
+                "bus_communication_error_count": 0,
+                "server_exception_error_count": 0,
+                "server_message_count": 1,
+                "server_no_response_count": 0,
+                "server_nak_count": 0,
+                "server_busy_count": 0,
+                "bus_character_overrun_count": 0
+            }
+        },
+        "active_faults": [{"fault": "delay", "ms": 5, "count": 2}],
+        "last_error": null
+    });
+    assert_eq!(m.frontend("modbus_tcp"), expected);
+}
+
+/// `close` through the control API: the request's connection is closed unanswered, counted; a
+/// new connection is served.
+#[test]
+fn tcp_close_fault_closes_the_connection() {
+    let m = start();
+    let active = m.fault(&json!({"frontend": "modbus_tcp", "fault": "close", "count": 1}));
+    assert_eq!(active, json!([{"fault": "close", "count": 1}]));
+    let mut client = MbapClient::connect(m.address("modbus-tcp"));
+    client.send_raw(&mcemu_tests::mbap_frame(1, 1, &[3, 0x0B, 0xB8, 0, 1]));
+    assert!(client.closed_within(Duration::from_secs(5)));
+    assert_eq!(applied(&m, "modbus_tcp", "close"), 1);
+    assert_eq!(m.frontend("modbus_tcp")["active_faults"], json!([]));
+    let mut again = MbapClient::connect(m.address("modbus-tcp"));
+    assert_eq!(again.request(1, &[3, 0x0B, 0xB8, 0, 1])[..2], [3, 2]);
+}

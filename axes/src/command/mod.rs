@@ -108,8 +108,8 @@ pub use slave::{ReadObject, SlaveCommand, WriteObject};
 ///
 /// On the wire (JSON, TOML) a command is one flat object with `type` as the tag, e.g.
 /// `{ "type": "move_absolute", "axis": 0, "position": 100.0 }`: the families are a Rust-side
-/// grouping only, and the JSON is the same as before they existed (`tests/command_json.rs` pins
-/// it). Each command's fields are written once, in its struct (e.g. [`MoveAbsolute`]); the
+/// grouping only, and the JSON is the same as before they existed (`axes/tests/command_json.rs`
+/// pins it). Each command's fields are written once, in its struct (e.g. [`MoveAbsolute`]); the
 /// family enums and the flat wire form wrap those structs.
 ///
 /// Kinematic limits given in a command (`velocity`, `acceleration`, `deceleration`, `jerk`) apply

@@ -259,7 +259,7 @@ impl Engine {
     }
 
     /// A command for one axis, applied to the axis itself (no drive routing): the front-ends'
-    /// commands after [`Engine::route_power`], and the commands a drive emits.
+    /// commands after `route_power`, and the commands a drive emits.
     fn apply_to_axis(&mut self, command: AxisCommand) -> Result<Reply, EngineError> {
         let Engine {
             axes,
@@ -481,11 +481,11 @@ impl Engine {
     /// Advance one servo period, in stages (the order of operations inside a tick is fixed:
     /// traces compare bit for bit):
     ///
-    /// 1. [`Engine::read_inputs`]: the I/O image's inputs from last tick's sensors;
-    /// 2. [`Engine::run_planners`]: machine-level planners (groups, couplings, streams) feed
+    /// 1. `read_inputs`: the I/O image's inputs from last tick's sensors;
+    /// 2. `run_planners`: machine-level planners (groups, couplings, streams) feed
     ///    their axes this tick's setpoints (none are built in yet: issues 11 and 12 add them);
-    /// 3. [`Engine::step_axes`]: every axis, in index order;
-    /// 4. [`Engine::step_drives`]: the CiA 402 drives see their axes and answer with commands;
+    /// 3. `step_axes`: every axis, in index order;
+    /// 4. `step_drives`: the CiA 402 drives see their axes and answer with commands;
     /// 5. outputs and status: no per-tick work. Outputs change only by command, and status is
     ///    assembled when it is read ([`Engine::snapshot_into`], [`Engine::axis_status`]).
     ///

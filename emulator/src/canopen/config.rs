@@ -3,6 +3,7 @@
 
 use std::net::SocketAddr;
 
+use mcemu_frontend::bound::AtLimit;
 use mcemu_frontend::AxisRef;
 use serde::{Deserialize, Serialize};
 
@@ -85,6 +86,8 @@ pub struct SocketcandFrontendConfig {
     pub bind: SocketAddr,
     /// Open connections at most.
     pub max_connections: usize,
+    /// What a new client meets while `max_connections` are open.
+    pub at_limit: AtLimit,
 }
 
 impl Default for SocketcandFrontendConfig {
@@ -93,6 +96,7 @@ impl Default for SocketcandFrontendConfig {
             enabled: true,
             bind: SocketAddr::from(([127, 0, 0, 1], 29536)),
             max_connections: 16,
+            at_limit: AtLimit::EvictIdle,
         }
     }
 }

@@ -409,6 +409,7 @@ async fn start_bus(
         let config = SocketcandConfig {
             bind: s.bind,
             max_connections: s.max_connections.max(1),
+            at_limit: s.at_limit,
             ..SocketcandConfig::default()
         };
         let started = SocketcandServer::start(config, vec![hub.clone()])

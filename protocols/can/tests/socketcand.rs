@@ -10,7 +10,7 @@ use std::net::{SocketAddr, TcpStream};
 use std::process::Command;
 use std::time::{Duration, Instant};
 
-use mcemu_can::socketcand::{SocketcandConfig, SocketcandServer};
+use mcemu_can::socketcand::{AtLimit, SocketcandConfig, SocketcandServer};
 use mcemu_can::{CanId, Endpoint, EndpointOptions, Hub, HubConfig, WireFrame};
 use mcemu_tests::{python, python_script, run_with_timeout, spawn_until_line};
 use serde_json::{json, Value};
@@ -238,6 +238,25 @@ impl RawClient {
             .unwrap_or_else(|| panic!("nothing received, expected {what}"))
     }
 
+    /// Whether the server closes the connection within 5 s (what it sent first is dropped).
+    fn closed(&mut self) -> bool {
+        let deadline = Instant::now() + Duration::from_secs(5);
+        let mut buf = [0u8; 1024];
+        while Instant::now() < deadline {
+            match self.stream.read(&mut buf) {
+                Ok(0) => return true,
+                Ok(_) => {}
+                Err(e)
+                    if matches!(
+                        e.kind(),
+                        std::io::ErrorKind::WouldBlock | std::io::ErrorKind::TimedOut
+                    ) => {}
+                Err(_) => return true,
+            }
+        }
+        false
+    }
+
     fn open_raw(addr: SocketAddr) -> RawClient {
         let mut client = RawClient::connect(addr);
         assert_eq!(client.expect("hi"), "< hi >");
@@ -350,6 +369,7 @@ fn bad_commands_get_errors_and_the_connection_survives() {
 fn connections_are_bounded() {
     let served = Served::new(SocketcandConfig {
         max_connections: 2,
+        at_limit: AtLimit::Refuse,
         ..SocketcandConfig::default()
     });
     let mut a = RawClient::connect(served.addr());
@@ -372,6 +392,31 @@ fn connections_are_bounded() {
         std::thread::sleep(Duration::from_millis(20));
     }
     assert!(served.server.as_ref().unwrap().stats().refused >= 1);
+}
+
+#[test]
+fn at_the_limit_the_client_idle_longest_makes_room() {
+    let served = Served::new(SocketcandConfig {
+        max_connections: 2,
+        ..SocketcandConfig::default()
+    });
+    let mut a = RawClient::connect(served.addr());
+    assert_eq!(a.expect("hi"), "< hi >");
+    let mut b = RawClient::connect(served.addr());
+    assert_eq!(b.expect("hi"), "< hi >");
+    // `b` speaks after `a` last did: `a` is idle longest.
+    b.send("< echo >");
+    assert_eq!(b.expect("echo"), "< echo >");
+    let mut c = RawClient::connect(served.addr());
+    assert_eq!(c.expect("hi"), "< hi >", "the newcomer is served");
+    assert!(a.closed(), "a was idle longest");
+    b.send("< echo >");
+    assert_eq!(b.expect("echo"), "< echo >");
+    let stats = served.server.as_ref().unwrap().stats();
+    assert_eq!(
+        (stats.evicted_idle, stats.refused, stats.accepted),
+        (1, 0, 3)
+    );
 }
 
 #[test]

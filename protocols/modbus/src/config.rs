@@ -4,6 +4,7 @@
 use std::net::SocketAddr;
 use std::time::Duration;
 
+use mcemu_frontend::bound::{AtLimit, Bound};
 use serde::{Deserialize, Serialize};
 
 use crate::faults::FaultSpec;
@@ -17,8 +18,10 @@ pub struct TcpConfig {
     pub enabled: bool,
     /// Address to listen on (502 is the registered port, but needs privileges).
     pub bind: SocketAddr,
-    /// Open connections at most; a connection beyond it is accepted and closed at once.
+    /// Open connections at most; what happens to one beyond it is `at_limit`'s.
     pub max_connections: usize,
+    /// What a new connection meets while `max_connections` are open.
+    pub at_limit: AtLimit,
     /// Close a connection that sends nothing for this long (ms; 0 = never).
     pub idle_timeout_ms: u64,
     /// Close a connection whose started frame is not complete this long after its first byte,
@@ -44,6 +47,7 @@ impl Default for TcpConfig {
             enabled: true,
             bind: SocketAddr::from(([127, 0, 0, 1], 1502)),
             max_connections: 16,
+            at_limit: AtLimit::EvictIdle,
             idle_timeout_ms: 60_000,
             frame_timeout_ms: 5_000,
             faults: Vec::new(),
@@ -81,8 +85,10 @@ pub struct RtuOverTcpConfig {
     pub enabled: bool,
     /// Address to listen on.
     pub bind: SocketAddr,
-    /// Open connections at most; a connection beyond it is accepted and closed at once.
+    /// Open connections at most; what happens to one beyond it is `at_limit`'s.
     pub max_connections: usize,
+    /// What a new connection meets while `max_connections` are open.
+    pub at_limit: AtLimit,
     /// Close a connection that sends nothing for this long (ms; 0 = never).
     pub idle_timeout_ms: u64,
     /// Close a connection whose started frame is not complete this long after its first byte,
@@ -111,6 +117,7 @@ impl Default for RtuOverTcpConfig {
             enabled: true,
             bind: SocketAddr::from(([127, 0, 0, 1], 1503)),
             max_connections: 16,
+            at_limit: AtLimit::EvictIdle,
             idle_timeout_ms: 60_000,
             frame_timeout_ms: 5_000,
             silence_ms: 20,
@@ -182,7 +189,7 @@ impl Default for RtuConfig {
 /// Connection rules shared by the TCP transports.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct ConnectionLimits {
-    pub max_connections: usize,
+    pub bound: Bound,
     pub idle_timeout: Option<Duration>,
     pub frame_timeout: Option<Duration>,
 }
@@ -194,7 +201,10 @@ fn millis(ms: u64) -> Option<Duration> {
 impl TcpConfig {
     pub(crate) fn limits(&self) -> ConnectionLimits {
         ConnectionLimits {
-            max_connections: self.max_connections.max(1),
+            bound: Bound {
+                max_connections: self.max_connections.max(1),
+                at_limit: self.at_limit,
+            },
             idle_timeout: millis(self.idle_timeout_ms),
             frame_timeout: millis(self.frame_timeout_ms),
         }
@@ -204,7 +214,10 @@ impl TcpConfig {
 impl RtuOverTcpConfig {
     pub(crate) fn limits(&self) -> ConnectionLimits {
         ConnectionLimits {
-            max_connections: self.max_connections.max(1),
+            bound: Bound {
+                max_connections: self.max_connections.max(1),
+                at_limit: self.at_limit,
+            },
             idle_timeout: millis(self.idle_timeout_ms),
             frame_timeout: millis(self.frame_timeout_ms),
         }

@@ -8,33 +8,13 @@
 //!   V1.02 §6.1.1), which a master may reset at any time, so they are kept apart.
 
 use std::collections::BTreeMap;
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::Arc;
 
 use serde::Serialize;
 
 use crate::pdu::Exception;
 
-/// One monotonically growing count.
-#[derive(Debug, Default)]
-pub struct Counter(AtomicU64);
-
-impl Counter {
-    pub fn inc(&self) {
-        self.add(1);
-    }
-
-    pub fn add(&self, n: u64) {
-        self.0.fetch_add(n, Ordering::Relaxed);
-    }
-
-    pub fn get(&self) -> u64 {
-        self.0.load(Ordering::Relaxed)
-    }
-
-    fn clear(&self) {
-        self.0.store(0, Ordering::Relaxed);
-    }
-}
+pub use mcemu_frontend::counter::{ConnectionCounters, Counter};
 
 /// The counters FC 8 reports (sub-functions 0x0B–0x12) and clears (0x01, 0x0A). Their
 /// meaning, from Modbus over Serial Line V1.02 §6.1.1, as this server applies it on every
@@ -75,7 +55,7 @@ impl Diagnostics {
             &self.server_busy,
             &self.bus_character_overrun,
         ] {
-            c.clear();
+            c.reset();
         }
     }
 
@@ -117,10 +97,8 @@ pub struct Counters {
     pub not_modbus: Counter,
     /// MBAP length fields that cannot be right (connection closed).
     pub bad_length: Counter,
-    pub connections_opened: Counter,
-    pub connections_closed: Counter,
-    /// Connections accepted and closed at once because `max_connections` were open.
-    pub connections_refused_at_limit: Counter,
+    /// Opened, closed, refused and evicted at the bound (shared with the accept loop).
+    pub connections: Arc<ConnectionCounters>,
     /// Connections closed after `idle_timeout_ms` without a byte.
     pub idle_timeouts: Counter,
     /// Connections closed because a started frame did not complete in `frame_timeout_ms`, or
@@ -140,6 +118,7 @@ pub struct FaultsApplied {
     pub exception: Counter,
     pub drop_bytes: Counter,
     pub corrupt: Counter,
+    pub close: Counter,
 }
 
 impl Default for Counters {
@@ -156,9 +135,7 @@ impl Default for Counters {
             too_long: Counter::default(),
             not_modbus: Counter::default(),
             bad_length: Counter::default(),
-            connections_opened: Counter::default(),
-            connections_closed: Counter::default(),
-            connections_refused_at_limit: Counter::default(),
+            connections: Arc::default(),
             idle_timeouts: Counter::default(),
             frame_timeouts: Counter::default(),
             bytes_in: Counter::default(),
@@ -223,13 +200,11 @@ impl Counters {
                 bad_length: self.bad_length.get(),
             },
             connections: ConnectionsSnapshot {
-                open: self
-                    .connections_opened
-                    .get()
-                    .saturating_sub(self.connections_closed.get()),
-                opened: self.connections_opened.get(),
-                closed: self.connections_closed.get(),
-                refused_at_limit: self.connections_refused_at_limit.get(),
+                open: self.connections.open(),
+                opened: self.connections.opened.get(),
+                closed: self.connections.closed.get(),
+                refused_at_limit: self.connections.refused_at_limit.get(),
+                evicted_idle: self.connections.evicted_idle.get(),
                 idle_timeouts: self.idle_timeouts.get(),
                 frame_timeouts: self.frame_timeouts.get(),
             },
@@ -241,6 +216,7 @@ impl Counters {
                 exception: f.exception.get(),
                 drop_bytes: f.drop_bytes.get(),
                 corrupt: f.corrupt.get(),
+                close: f.close.get(),
             },
             diagnostics: DiagnosticsSnapshot {
                 bus_message_count: d.bus_message.get(),
@@ -297,6 +273,8 @@ pub struct ConnectionsSnapshot {
     pub opened: u64,
     pub closed: u64,
     pub refused_at_limit: u64,
+    /// Closed to admit a new connection, idle longest (`at_limit = "evict_idle"`).
+    pub evicted_idle: u64,
     pub idle_timeouts: u64,
     pub frame_timeouts: u64,
 }
@@ -308,6 +286,7 @@ pub struct FaultsAppliedSnapshot {
     pub exception: u64,
     pub drop_bytes: u64,
     pub corrupt: u64,
+    pub close: u64,
 }
 
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
@@ -323,17 +302,14 @@ pub struct DiagnosticsSnapshot {
 }
 
 /// The last request the engine refused (exception 04), for `GET /state`.
+pub type LastError = mcemu_frontend::refusal::Refusal<RefusedRequest>;
+
+/// What Modbus tells of a refused request, beside the kit's time, peer and reason.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
-pub struct LastError {
-    /// Wall-clock time, milliseconds since the Unix epoch.
-    pub time_unix_ms: u64,
-    /// `IP:port`, or the serial device path.
-    pub peer: String,
+pub struct RefusedRequest {
     pub unit: u8,
     pub function: u8,
     pub exception: u8,
-    /// The engine's reason.
-    pub reason: String,
 }
 
 #[cfg(test)]

@@ -1,6 +1,8 @@
-//! Fault injection: deterministic changes to what the server answers, configured at start
-//! (`faults = [...]` in a transport's config) and changed at run time through the control API
-//! (`POST /faults` with `{"frontend": NAME, "fault": KIND, ...}`).
+//! Modbus fault injection over the kit's fault list ([`mcemu_frontend::fault`]): configured at
+//! start (`faults = [...]` in a transport's config) and changed at run time through the control
+//! API (`POST /faults` with `{"frontend": NAME, "fault": KIND, ...}`). What is Modbus here: the
+//! forced error's payload (an exception code, for a function and/or an address) and the faults
+//! of RTU framing.
 //!
 //! Every fault applies to the next `count` matching events, or until cleared when `count` is
 //! absent. Nothing is random. The server checks the fault list only while it is non-empty (one
@@ -13,21 +15,20 @@
 //! | `exception` | `code`, `function`, `address`, `count` | answer exception `code` instead of executing, for requests with that function code and/or whose address range covers `address` (neither: every request) |
 //! | `drop_bytes` | `bytes`, `count` | RTU framing only: the last `bytes` bytes of the reply are not sent |
 //! | `corrupt` | `byte`, `bit`, `count` | RTU framing only: one bit of the reply is flipped (default: bit 0 of the last PDU byte), so its CRC fails |
+//! | `close` | `count` | TCP and RTU over TCP: the connection is closed instead of answering; the request is not executed |
 //! | `clear` | `kind` | remove every fault, or those of one kind |
 
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Mutex, MutexGuard};
 use std::time::Duration;
 
+use mcemu_frontend::fault::{self, parse_request, Common, Fault, FaultList, Parsed};
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value};
+
+pub use mcemu_frontend::fault::{FaultError, MAX_DELAY_MS};
 
 use crate::counters::FaultsApplied;
 use crate::pdu::Exception;
 use crate::state::Framing;
-
-/// Longest `delay`: longer than any client's timeout, short enough to stay a delay.
-pub const MAX_DELAY_MS: u64 = 60_000;
 
 /// One fault. `count: None` means until cleared; in the active list it is what remains.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
@@ -64,50 +65,31 @@ pub enum FaultSpec {
         #[serde(skip_serializing_if = "Option::is_none")]
         count: Option<u32>,
     },
+    Close {
+        #[serde(skip_serializing_if = "Option::is_none")]
+        count: Option<u32>,
+    },
 }
 
-/// The kinds, for `{"fault": "clear", "kind": ...}`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum FaultKind {
-    Delay,
-    NoReply,
-    Exception,
-    DropBytes,
-    Corrupt,
-}
+/// Modbus's kinds and their fields, in the order error messages list them.
+const KINDS: [(&str, &[&str]); 6] = [
+    fault::DELAY,
+    fault::NO_REPLY,
+    ("exception", &["code", "function", "address", "count"]),
+    ("drop_bytes", &["bytes", "count"]),
+    fault::CORRUPT,
+    fault::CLOSE,
+];
 
-impl FaultKind {
-    const NAMES: [(&'static str, FaultKind); 5] = [
-        ("delay", FaultKind::Delay),
-        ("no_reply", FaultKind::NoReply),
-        ("exception", FaultKind::Exception),
-        ("drop_bytes", FaultKind::DropBytes),
-        ("corrupt", FaultKind::Corrupt),
-    ];
-
-    fn from_name(name: &str) -> Option<FaultKind> {
-        Self::NAMES
-            .iter()
-            .find(|(n, _)| *n == name)
-            .map(|(_, k)| *k)
-    }
-
-    pub fn name(self) -> &'static str {
-        Self::NAMES
-            .iter()
-            .find(|(_, k)| *k == self)
-            .map_or("", |(n, _)| n)
-    }
-}
-
-impl FaultSpec {
-    pub fn kind(&self) -> FaultKind {
+impl Fault for FaultSpec {
+    fn kind(&self) -> &'static str {
         match self {
-            FaultSpec::Delay { .. } => FaultKind::Delay,
-            FaultSpec::NoReply { .. } => FaultKind::NoReply,
-            FaultSpec::Exception { .. } => FaultKind::Exception,
-            FaultSpec::DropBytes { .. } => FaultKind::DropBytes,
-            FaultSpec::Corrupt { .. } => FaultKind::Corrupt,
+            FaultSpec::Delay { .. } => "delay",
+            FaultSpec::NoReply { .. } => "no_reply",
+            FaultSpec::Exception { .. } => "exception",
+            FaultSpec::DropBytes { .. } => "drop_bytes",
+            FaultSpec::Corrupt { .. } => "corrupt",
+            FaultSpec::Close { .. } => "close",
         }
     }
 
@@ -117,12 +99,22 @@ impl FaultSpec {
             | FaultSpec::NoReply { count }
             | FaultSpec::Exception { count, .. }
             | FaultSpec::DropBytes { count, .. }
-            | FaultSpec::Corrupt { count, .. } => count,
+            | FaultSpec::Corrupt { count, .. }
+            | FaultSpec::Close { count } => count,
         }
     }
 
-    /// Whether `other` takes this one's place when installed: same kind, and for exceptions
-    /// the same filter (exceptions for different functions or addresses coexist).
+    fn common(&self) -> Option<Common> {
+        match *self {
+            FaultSpec::Delay { ms, .. } => Some(Common::Delay(Duration::from_millis(ms))),
+            FaultSpec::NoReply { .. } => Some(Common::NoReply),
+            FaultSpec::Corrupt { byte, bit, .. } => Some(Common::Corrupt { byte, bit }),
+            FaultSpec::Close { .. } => Some(Common::Close),
+            FaultSpec::Exception { .. } | FaultSpec::DropBytes { .. } => None,
+        }
+    }
+
+    /// Exceptions for different functions or addresses coexist; otherwise one per kind.
     fn replaced_by(&self, other: &FaultSpec) -> bool {
         match (self, other) {
             (
@@ -142,181 +134,58 @@ impl FaultSpec {
     }
 }
 
-/// A fault request that cannot be taken, naming the field at fault.
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("{message}")]
-pub struct FaultError {
-    /// The offending key, when one is to blame.
-    pub field: Option<String>,
-    pub message: String,
-}
+/// A run-time request: install a fault or clear some (`None`: every fault).
+pub type FaultRequest = fault::FaultRequest<FaultSpec>;
 
-impl FaultError {
-    fn field(field: &str, message: impl Into<String>) -> FaultError {
-        FaultError {
-            field: Some(field.to_owned()),
-            message: message.into(),
-        }
-    }
-}
-
-/// A run-time request: install a fault or clear some.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum FaultRequest {
-    Set(FaultSpec),
-    /// `None`: every fault.
-    Clear(Option<FaultKind>),
-}
-
-impl FaultRequest {
-    /// Parse `{"fault": KIND, ...}` (the control API's body without `frontend`).
-    pub fn from_json(map: &Map<String, Value>) -> Result<FaultRequest, FaultError> {
-        let kind = match map.get("fault") {
-            Some(Value::String(s)) => s.as_str(),
-            Some(other) => {
-                return Err(FaultError::field(
-                    "fault",
-                    format!("`fault` must be a string naming the fault, not {other}"),
-                ))
-            }
-            None => {
-                return Err(FaultError::field(
-                    "fault",
-                    "missing field `fault`: one of delay, no_reply, exception, drop_bytes, \
-                     corrupt, clear",
-                ))
-            }
-        };
-        let allowed: &[&str] = match kind {
-            "delay" => &["ms", "count"],
-            "no_reply" => &["count"],
-            "exception" => &["code", "function", "address", "count"],
-            "drop_bytes" => &["bytes", "count"],
-            "corrupt" => &["byte", "bit", "count"],
-            "clear" => &["kind"],
-            other => {
-                return Err(FaultError::field(
-                    "fault",
-                    format!(
-                        "unknown fault `{other}`: expected one of delay, no_reply, exception, \
-                         drop_bytes, corrupt, clear"
-                    ),
-                ))
-            }
-        };
-        if let Some(key) = map
-            .keys()
-            .find(|k| *k != "fault" && !allowed.contains(&k.as_str()))
-        {
-            return Err(FaultError::field(
-                key,
-                format!(
-                    "unknown field `{key}` for fault `{kind}`; expected {}",
-                    allowed.join(", ")
-                ),
-            ));
-        }
-        let count = || -> Result<Option<u32>, FaultError> {
-            uint(map, "count", 1, u64::from(u32::MAX))
-                .map(|c| c.map(|c| u32::try_from(c).unwrap_or(u32::MAX)))
-        };
-        let spec = match kind {
-            "delay" => FaultSpec::Delay {
-                ms: required(map, "ms", 0, MAX_DELAY_MS)?,
-                count: count()?,
-            },
-            "no_reply" => FaultSpec::NoReply { count: count()? },
-            "exception" => {
-                let code = required(map, "code", 1, 255)?;
-                if Exception::from_code(code as u8).is_none() {
-                    return Err(FaultError::field(
-                        "code",
-                        format!(
-                            "`code` {code} is not an exception code: 1, 2, 3, 4, 5, 6, 10 or 11"
-                        ),
-                    ));
-                }
-                FaultSpec::Exception {
-                    code: code as u8,
-                    function: uint(map, "function", 1, 127)?.map(|f| f as u8),
-                    address: uint(map, "address", 0, 0xFFFF)?.map(|a| a as u16),
-                    count: count()?,
-                }
-            }
-            "drop_bytes" => FaultSpec::DropBytes {
-                bytes: required(map, "bytes", 1, 255)? as u8,
-                count: count()?,
-            },
-            "corrupt" => FaultSpec::Corrupt {
-                byte: uint(map, "byte", 0, 255)?.map(|b| b as u16),
-                bit: uint(map, "bit", 0, 7)?.unwrap_or(0) as u8,
-                count: count()?,
-            },
-            _ => {
-                // "clear"
-                return match map.get("kind") {
-                    None | Some(Value::Null) => Ok(FaultRequest::Clear(None)),
-                    Some(Value::String(k)) => match FaultKind::from_name(k) {
-                        Some(kind) => Ok(FaultRequest::Clear(Some(kind))),
-                        None => Err(FaultError::field(
-                            "kind",
-                            format!(
-                                "unknown fault kind `{k}`: expected one of delay, no_reply, \
-                                 exception, drop_bytes, corrupt"
-                            ),
-                        )),
-                    },
-                    Some(other) => Err(FaultError::field(
-                        "kind",
-                        format!("`kind` must be a fault name, not {other}"),
-                    )),
-                };
-            }
-        };
-        Ok(FaultRequest::Set(spec))
-    }
-}
-
-/// An optional unsigned integer field in `min..=max`; `null` counts as absent.
-fn uint(
-    map: &Map<String, Value>,
-    key: &str,
-    min: u64,
-    max: u64,
-) -> Result<Option<u64>, FaultError> {
-    match map.get(key) {
-        None | Some(Value::Null) => Ok(None),
-        Some(v) => match v.as_u64() {
-            Some(n) if (min..=max).contains(&n) => Ok(Some(n)),
-            _ => Err(FaultError::field(
-                key,
-                format!("`{key}` must be an integer from {min} to {max}, not {v}"),
-            )),
+/// Parse `{"fault": KIND, ...}` (the control API's body without `frontend`).
+pub fn parse(map: &Map<String, Value>) -> Result<FaultRequest, FaultError> {
+    let (kind, f) = match parse_request(map, &KINDS)? {
+        Parsed::Clear(kind) => return Ok(FaultRequest::Clear(kind)),
+        Parsed::Set { kind, fields } => (kind, fields),
+    };
+    let spec = match kind {
+        "delay" => FaultSpec::Delay {
+            ms: f.delay_ms()?,
+            count: f.count()?,
         },
-    }
-}
-
-fn required(map: &Map<String, Value>, key: &str, min: u64, max: u64) -> Result<u64, FaultError> {
-    uint(map, key, min, max)?.ok_or_else(|| {
-        FaultError::field(
-            key,
-            format!("missing field `{key}` (an integer from {min} to {max})"),
-        )
-    })
+        "no_reply" => FaultSpec::NoReply { count: f.count()? },
+        "exception" => {
+            let code = f.required("code", 1, 255)?;
+            if Exception::from_code(code as u8).is_none() {
+                return Err(FaultError::field(
+                    "code",
+                    format!("`code` {code} is not an exception code: 1, 2, 3, 4, 5, 6, 10 or 11"),
+                ));
+            }
+            FaultSpec::Exception {
+                code: code as u8,
+                function: f.uint("function", 1, 127)?.map(|f| f as u8),
+                address: f.uint("address", 0, 0xFFFF)?.map(|a| a as u16),
+                count: f.count()?,
+            }
+        }
+        "drop_bytes" => FaultSpec::DropBytes {
+            bytes: f.required("bytes", 1, 255)? as u8,
+            count: f.count()?,
+        },
+        "corrupt" => {
+            let (byte, bit) = f.corrupt_at()?;
+            FaultSpec::Corrupt {
+                byte,
+                bit,
+                count: f.count()?,
+            }
+        }
+        _ => FaultSpec::Close { count: f.count()? },
+    };
+    Ok(FaultRequest::Set(spec))
 }
 
 /// Config form: the same objects as the run-time requests (`clear` excluded), e.g.
 /// `faults = [{ fault = "delay", ms = 100 }]`.
 impl<'de> Deserialize<'de> for FaultSpec {
     fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        let map = Map::<String, Value>::deserialize(deserializer)?;
-        match FaultRequest::from_json(&map) {
-            Ok(FaultRequest::Set(spec)) => Ok(spec),
-            Ok(FaultRequest::Clear(_)) => Err(serde::de::Error::custom(
-                "`clear` is a run-time request, not a fault to configure",
-            )),
-            Err(e) => Err(serde::de::Error::custom(e.message)),
-        }
+        fault::deserialize_config(deserializer, parse)
     }
 }
 
@@ -330,14 +199,15 @@ impl schemars::JsonSchema for FaultSpec {
         schemars::json_schema!({
             "type": "object",
             "description": "A fault: `{fault = \"delay\", ms, count}`, `{fault = \"no_reply\", \
-                count}`, `{fault = \"exception\", code, function, address, count}`, and on RTU \
-                framing `{fault = \"drop_bytes\", bytes, count}`, `{fault = \"corrupt\", byte, \
-                bit, count}`; without `count` a fault lasts until cleared.",
+                count}`, `{fault = \"exception\", code, function, address, count}`, on TCP \
+                connections `{fault = \"close\", count}`, and on RTU framing \
+                `{fault = \"drop_bytes\", bytes, count}`, `{fault = \"corrupt\", byte, bit, \
+                count}`; without `count` a fault lasts until cleared.",
             "required": ["fault"],
             "properties": {
                 "fault": {
                     "type": "string",
-                    "enum": ["delay", "no_reply", "exception", "drop_bytes", "corrupt"]
+                    "enum": ["delay", "no_reply", "exception", "drop_bytes", "corrupt", "close"]
                 }
             }
         })
@@ -348,52 +218,46 @@ impl schemars::JsonSchema for FaultSpec {
 #[derive(Debug)]
 pub struct Faults {
     framing: Framing,
-    /// Whether `active` is non-empty: the request path's only cost when nothing is injected.
-    armed: AtomicBool,
-    active: Mutex<Vec<FaultSpec>>,
+    list: FaultList<FaultSpec>,
 }
 
 impl Faults {
     pub fn new(framing: Framing) -> Faults {
         Faults {
             framing,
-            armed: AtomicBool::new(false),
-            active: Mutex::new(Vec::new()),
+            list: FaultList::default(),
         }
-    }
-
-    fn lock(&self) -> MutexGuard<'_, Vec<FaultSpec>> {
-        // A panic elsewhere cannot leave the list half-updated (every change is one push,
-        // remove or assignment), so a poisoned lock is still good.
-        self.active.lock().unwrap_or_else(|e| e.into_inner())
     }
 
     /// Install a fault, replacing one of the same kind (and, for exceptions, the same filter).
     pub fn install(&self, spec: FaultSpec) -> Result<(), FaultError> {
-        if matches!(spec.kind(), FaultKind::DropBytes | FaultKind::Corrupt)
-            && !self.framing.is_rtu()
+        let kind = spec.kind();
+        if matches!(
+            spec,
+            FaultSpec::DropBytes { .. } | FaultSpec::Corrupt { .. }
+        ) && !self.framing.is_rtu()
         {
             return Err(FaultError::field(
                 "fault",
                 format!(
-                    "`{}` changes RTU frames; this front-end uses {} framing",
-                    spec.kind().name(),
+                    "`{kind}` changes RTU frames; this front-end uses {} framing",
                     self.framing.name()
                 ),
             ));
         }
-        let mut list = self.lock();
-        list.retain(|f| !f.replaced_by(&spec));
-        list.push(spec);
-        self.armed.store(true, Ordering::Release);
+        if matches!(spec, FaultSpec::Close { .. }) && self.framing == Framing::Rtu {
+            return Err(FaultError::field(
+                "fault",
+                "`close` closes a TCP connection; a serial line has none",
+            ));
+        }
+        self.list.install(spec);
         Ok(())
     }
 
     /// Remove every fault, or those of one kind.
-    pub fn clear(&self, kind: Option<FaultKind>) {
-        let mut list = self.lock();
-        list.retain(|f| kind.is_some_and(|k| f.kind() != k));
-        self.armed.store(!list.is_empty(), Ordering::Release);
+    pub fn clear(&self, kind: Option<&str>) {
+        self.list.clear(kind);
     }
 
     /// Apply a run-time request; the answer is the list of active faults.
@@ -406,43 +270,17 @@ impl Faults {
     }
 
     pub fn active(&self) -> Vec<FaultSpec> {
-        if !self.armed.load(Ordering::Acquire) {
-            return Vec::new();
-        }
-        self.lock().clone()
-    }
-
-    /// Use up one application of the first fault for which `pick` says what to do.
-    fn take<R>(&self, mut pick: impl FnMut(&FaultSpec) -> Option<R>) -> Option<R> {
-        if !self.armed.load(Ordering::Acquire) {
-            return None;
-        }
-        let mut list = self.lock();
-        let (i, r) = list
-            .iter()
-            .enumerate()
-            .find_map(|(i, f)| pick(f).map(|r| (i, r)))?;
-        let count = list.get_mut(i)?.count_mut();
-        match count {
-            Some(n) if *n > 1 => *n -= 1,
-            Some(_) => {
-                list.remove(i);
-            }
-            None => {}
-        }
-        self.armed.store(!list.is_empty(), Ordering::Release);
-        Some(r)
+        self.list.active()
     }
 
     /// A `no_reply` fault swallows this request.
     pub(crate) fn take_no_reply(&self, applied: &FaultsApplied) -> bool {
-        let hit = self
-            .take(|f| matches!(f, FaultSpec::NoReply { .. }).then_some(()))
-            .is_some();
-        if hit {
-            applied.no_reply.inc();
-        }
-        hit
+        self.list.take_no_reply(&applied.no_reply)
+    }
+
+    /// A `close` fault closes the connection instead of answering this request.
+    pub(crate) fn take_close(&self, applied: &FaultsApplied) -> bool {
+        self.list.take_close(&applied.close)
     }
 
     /// The exception an `exception` fault forces on a request with `function` whose address
@@ -453,7 +291,7 @@ impl Faults {
         covers: impl Fn(u16) -> bool,
         applied: &FaultsApplied,
     ) -> Option<Exception> {
-        let e = self.take(|f| match f {
+        let e = self.list.take(|f| match f {
             FaultSpec::Exception {
                 code,
                 function: f,
@@ -470,30 +308,17 @@ impl Faults {
 
     /// How long this reply waits.
     pub(crate) fn take_delay(&self, applied: &FaultsApplied) -> Option<Duration> {
-        let d = self.take(|f| match f {
-            FaultSpec::Delay { ms, .. } => Some(Duration::from_millis(*ms)),
-            _ => None,
-        })?;
-        applied.delay.inc();
-        Some(d)
+        self.list.take_delay(&applied.delay)
     }
 
     /// Damage an RTU reply frame (address … CRC) as `corrupt` and `drop_bytes` say.
     pub(crate) fn mangle_rtu_reply(&self, frame: &mut Vec<u8>, applied: &FaultsApplied) {
-        if let Some((byte, bit)) = self.take(|f| match f {
-            FaultSpec::Corrupt { byte, bit, .. } => Some((*byte, *bit)),
-            _ => None,
-        }) {
-            let last = frame.len().saturating_sub(1);
-            let at = byte
-                .map_or(frame.len().saturating_sub(3), usize::from)
-                .min(last);
-            if let Some(b) = frame.get_mut(at) {
-                *b ^= 1 << (bit & 7);
-            }
-            applied.corrupt.inc();
+        if let Some((byte, bit)) = self.list.take_corrupt(&applied.corrupt) {
+            // By default the last PDU byte: the CRC's two bytes follow it.
+            let last_pdu_byte = frame.len().saturating_sub(3);
+            fault::flip_bit(frame, byte, bit, last_pdu_byte);
         }
-        if let Some(n) = self.take(|f| match f {
+        if let Some(n) = self.list.take(|f| match f {
             FaultSpec::DropBytes { bytes, .. } => Some(*bytes),
             _ => None,
         }) {
@@ -510,9 +335,13 @@ mod tests {
     fn parse(json: &str) -> Result<FaultRequest, FaultError> {
         let v: Value = serde_json::from_str(json).unwrap_or(Value::Null);
         match v {
-            Value::Object(map) => FaultRequest::from_json(&map),
+            Value::Object(map) => super::parse(&map),
             _ => panic!("not an object: {json}"),
         }
+    }
+
+    fn parse_json(json: &str) -> Result<FaultRequest, FaultError> {
+        parse(json)
     }
 
     fn field(json: &str) -> Option<String> {
@@ -540,7 +369,7 @@ mod tests {
         assert_eq!(parse(r#"{"fault":"clear"}"#), Ok(FaultRequest::Clear(None)));
         assert_eq!(
             parse(r#"{"fault":"clear","kind":"no_reply"}"#),
-            Ok(FaultRequest::Clear(Some(FaultKind::NoReply)))
+            Ok(FaultRequest::Clear(Some("no_reply")))
         );
         assert_eq!(field(r#"{"fault":"delay"}"#).as_deref(), Some("ms"));
         assert_eq!(field(r#"{"fault":"delay","ms":-1}"#).as_deref(), Some("ms"));
@@ -631,7 +460,7 @@ mod tests {
             f.take_exception(3, |_| false, &applied),
             Some(Exception::ServerDeviceFailure)
         );
-        f.clear(Some(FaultKind::Exception));
+        f.clear(Some("exception"));
         assert_eq!(f.take_exception(3, |_| false, &applied), None);
     }
 
@@ -668,6 +497,34 @@ mod tests {
             count: None,
         });
         assert_eq!(e.err().and_then(|e| e.field).as_deref(), Some("fault"));
+    }
+
+    #[test]
+    fn close_needs_a_connection_and_is_used_up_like_the_others() {
+        let applied = FaultsApplied::default();
+        let serial = Faults::new(Framing::Rtu);
+        let e = serial.install(FaultSpec::Close { count: None });
+        assert_eq!(e.err().and_then(|e| e.field).as_deref(), Some("fault"));
+        let tcp = Faults::new(Framing::Tcp);
+        assert_eq!(
+            parse_json(r#"{"fault":"close","count":2}"#),
+            Ok(FaultRequest::Set(FaultSpec::Close { count: Some(2) }))
+        );
+        assert_eq!(
+            parse_json(r#"{"fault":"clear","kind":"close"}"#),
+            Ok(FaultRequest::Clear(Some("close")))
+        );
+        tcp.install(FaultSpec::Close { count: Some(2) })
+            .unwrap_or(());
+        assert!(tcp.take_close(&applied));
+        assert!(!tcp.take_no_reply(&applied), "close is not no_reply");
+        assert!(tcp.take_close(&applied));
+        assert!(!tcp.take_close(&applied), "count used up");
+        assert_eq!(applied.close.get(), 2);
+        let rtu_over_tcp = Faults::new(Framing::RtuOverTcp);
+        assert!(rtu_over_tcp
+            .install(FaultSpec::Close { count: None })
+            .is_ok());
     }
 
     #[test]

@@ -588,6 +588,20 @@ mod tests {
         );
     }
 
+    /// The codes the dialects give engine refusals (`mcemu_dialects::modbus`) are exceptions.
+    #[test]
+    fn the_dialects_exception_codes_are_these_exceptions() {
+        use mcemu_dialects::modbus as d;
+        for (code, exception) in [
+            (d::ILLEGAL_DATA_ADDRESS, Exception::IllegalDataAddress),
+            (d::ILLEGAL_DATA_VALUE, Exception::IllegalDataValue),
+            (d::SERVER_DEVICE_FAILURE, Exception::ServerDeviceFailure),
+            (d::SERVER_DEVICE_BUSY, Exception::ServerDeviceBusy),
+        ] {
+            assert_eq!(Exception::from_code(code), Some(exception));
+        }
+    }
+
     #[test]
     fn unknown_functions_are_exception_01() {
         assert_eq!(

@@ -21,6 +21,8 @@ pub enum Outcome {
     Reply(Vec<u8>),
     /// Nothing: a broadcast, another unit on an RTU line, listen-only mode, a `no_reply` fault.
     Silent,
+    /// Nothing, and the connection is to be closed: a `close` fault.
+    Close,
 }
 
 /// A model and the front-end state it is served with.
@@ -111,6 +113,10 @@ impl<D: DataModel> Server<D> {
         }
         if state.faults.take_no_reply(&c.faults_applied) {
             return self.no_response();
+        }
+        if state.faults.take_close(&c.faults_applied) {
+            let _ = self.no_response();
+            return Outcome::Close;
         }
         let response = match pdu::decode_request(pdu) {
             Err(refusal) => Response::from(refusal),

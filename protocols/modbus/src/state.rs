@@ -2,14 +2,13 @@
 //! faults, listen-only mode and the last engine refusal.
 
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Mutex;
-use std::time::{SystemTime, UNIX_EPOCH};
 
+use mcemu_frontend::refusal::LastRefusal;
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value};
 
-use crate::counters::{Counters, CountersSnapshot, LastError};
-use crate::faults::{FaultError, FaultRequest, FaultSpec, Faults};
+use crate::counters::{Counters, CountersSnapshot, LastError, RefusedRequest};
+use crate::faults::{self, FaultError, FaultSpec, Faults};
 use crate::model::Peer;
 use crate::pdu::Exception;
 
@@ -47,7 +46,7 @@ pub struct FrontendState {
     /// FC 8 sub-function 0x04 (Modbus Application Protocol V1.1b3 §6.8.1): nothing is
     /// executed or answered until sub-function 0x01.
     listen_only: AtomicBool,
-    last_error: Mutex<Option<LastError>>,
+    last_error: LastRefusal<RefusedRequest>,
 }
 
 impl FrontendState {
@@ -64,7 +63,7 @@ impl FrontendState {
             counters: Counters::default(),
             faults: Faults::new(framing),
             listen_only: AtomicBool::new(false),
-            last_error: Mutex::new(None),
+            last_error: LastRefusal::default(),
         };
         for f in faults {
             state.faults.install(f.clone())?;
@@ -89,10 +88,7 @@ impl FrontendState {
     }
 
     pub fn last_error(&self) -> Option<LastError> {
-        self.last_error
-            .lock()
-            .unwrap_or_else(|e| e.into_inner())
-            .clone()
+        self.last_error.get()
     }
 
     pub(crate) fn record_error(
@@ -103,22 +99,17 @@ impl FrontendState {
         exception: Exception,
         reason: &str,
     ) {
-        let time_unix_ms = SystemTime::now()
-            .duration_since(UNIX_EPOCH)
-            .map_or(0, |d| u64::try_from(d.as_millis()).unwrap_or(u64::MAX));
-        *self.last_error.lock().unwrap_or_else(|e| e.into_inner()) = Some(LastError {
-            time_unix_ms,
-            peer: peer.to_string(),
+        let request = RefusedRequest {
             unit,
             function,
             exception: exception.code(),
-            reason: reason.to_owned(),
-        });
+        };
+        self.last_error.record(peer.to_string(), request, reason);
     }
 
     /// A control-API fault request (`{"fault": ...}`); answers the active faults as JSON.
     pub fn inject(&self, request: &Map<String, Value>) -> Result<Value, FaultError> {
-        let active = self.faults.apply(FaultRequest::from_json(request)?)?;
+        let active = self.faults.apply(faults::parse(request)?)?;
         Ok(serde_json::json!({ "active_faults": active }))
     }
 

@@ -155,6 +155,29 @@ async fn rtu_faults_damage_replies_on_tcp_too() {
 }
 
 #[tokio::test]
+async fn a_close_fault_closes_the_connection_instead_of_answering() {
+    let server = start_rtu_over_tcp(model_100_to_199(), RtuOverTcpConfig::default()).await;
+    server
+        .state
+        .inject(&object(json!({"fault": "close", "count": 1})))
+        .unwrap();
+    let mut s = connect(server.addr).await;
+    s.write_all(&rtu_frame(1, &[6, 0, 150, 0x11, 0x11]))
+        .await
+        .unwrap();
+    assert!(closed_by_peer(&mut s).await, "closed, not answered");
+    assert_eq!(server.model.register(Table::HoldingRegisters, 150), Some(0));
+    let mut again = connect(server.addr).await;
+    let read = rtu_frame(1, &[3, 0, 100, 0, 1]);
+    assert_eq!(
+        transact(&mut again, &read, 7).await,
+        rtu_frame(1, &[3, 2, 0, 0])
+    );
+    assert_eq!(server.state.counters.snapshot().faults_applied.close, 1);
+    server.shutdown().await;
+}
+
+#[tokio::test]
 async fn a_stalled_frame_closes_only_its_connection() {
     let config = RtuOverTcpConfig {
         frame_timeout_ms: 150,

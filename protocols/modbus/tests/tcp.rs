@@ -9,6 +9,7 @@ use std::collections::BTreeMap;
 use std::time::Duration;
 
 use common::*;
+use mcemu_frontend::bound::AtLimit;
 use mcemu_modbus::config::TcpConfig;
 use mcemu_modbus::memory::{MemoryModel, Table};
 use mcemu_modbus::model::{DataModel, DeviceIdentity, ExecError, RequestContext};
@@ -290,6 +291,7 @@ async fn a_truncated_frame_times_out_and_an_idle_connection_too() {
 async fn connections_beyond_the_bound_are_closed_at_once() {
     let config = TcpConfig {
         max_connections: 2,
+        at_limit: AtLimit::Refuse,
         ..TcpConfig::default()
     };
     let server = start_tcp(model_100_to_199(), config).await;
@@ -328,6 +330,86 @@ async fn connections_beyond_the_bound_are_closed_at_once() {
     );
     let snapshot = server.state.counters.snapshot().connections;
     assert_eq!((snapshot.open, snapshot.opened), (2, 3));
+    server.shutdown().await;
+}
+
+#[tokio::test]
+async fn at_the_bound_the_connection_idle_longest_is_closed_for_a_new_one() {
+    let config = TcpConfig {
+        max_connections: 2,
+        ..TcpConfig::default()
+    };
+    let server = start_tcp(model_100_to_199(), config).await;
+    let mut a = connect(server.addr).await;
+    let mut b = connect(server.addr).await;
+    for (tid, s) in [(1, &mut a), (2, &mut b)] {
+        assert_eq!(
+            transact(s, tid, 1, &[3, 0, 100, 0, 1]).await,
+            mbap(tid, 1, &[3, 2, 0, 0])
+        );
+    }
+    // `a` asks again: `b` is now idle longest.
+    assert_eq!(
+        transact(&mut a, 3, 1, &[3, 0, 100, 0, 1]).await,
+        mbap(3, 1, &[3, 2, 0, 0])
+    );
+    let mut c = connect(server.addr).await;
+    assert_eq!(
+        transact(&mut c, 4, 1, &[3, 0, 100, 0, 1]).await,
+        mbap(4, 1, &[3, 2, 0, 0]),
+        "the newcomer is served"
+    );
+    assert!(closed_by_peer(&mut b).await, "b was idle longest");
+    assert_eq!(
+        transact(&mut a, 5, 1, &[3, 0, 100, 0, 1]).await,
+        mbap(5, 1, &[3, 2, 0, 0])
+    );
+    let snapshot = server.state.counters.snapshot().connections;
+    assert_eq!(
+        (
+            snapshot.evicted_idle,
+            snapshot.refused_at_limit,
+            snapshot.opened
+        ),
+        (1, 0, 3)
+    );
+    server.shutdown().await;
+}
+
+#[tokio::test]
+async fn a_delayed_reply_in_flight_is_not_evicted_before_an_idle_connection() {
+    let config = TcpConfig {
+        max_connections: 2,
+        ..TcpConfig::default()
+    };
+    let server = start_tcp(model_100_to_199(), config).await;
+    let mut waiting = connect(server.addr).await;
+    let mut idle = connect(server.addr).await;
+    server
+        .state
+        .inject(&object(json!({"fault": "delay", "ms": 1000, "count": 1})))
+        .unwrap();
+    waiting
+        .write_all(&mbap(2, 1, &[3, 0, 100, 0, 1]))
+        .await
+        .unwrap();
+    eventually("the delay is running", || {
+        server.state.counters.snapshot().faults_applied.delay == 1
+    })
+    .await;
+    assert_eq!(
+        transact(&mut idle, 1, 1, &[3, 0, 100, 0, 1]).await,
+        mbap(1, 1, &[3, 2, 0, 0])
+    );
+    // `waiting` has received nothing for longest, but were it chosen its reply would never
+    // come: `idle` goes.
+    let mut newcomer = connect(server.addr).await;
+    assert_eq!(
+        transact(&mut newcomer, 3, 1, &[3, 0, 100, 0, 1]).await,
+        mbap(3, 1, &[3, 2, 0, 0])
+    );
+    assert!(closed_by_peer(&mut idle).await);
+    assert_eq!(read_mbap(&mut waiting).await, mbap(2, 1, &[3, 2, 0, 0]));
     server.shutdown().await;
 }
 
@@ -417,7 +499,13 @@ async fn engine_refusals_are_recorded_as_the_last_error() {
     );
     let e = server.state.last_error().unwrap();
     assert_eq!(
-        (e.peer, e.unit, e.function, e.exception, e.reason.as_str()),
+        (
+            e.peer,
+            e.detail.unit,
+            e.detail.function,
+            e.detail.exception,
+            e.reason.as_str()
+        ),
         (local.to_string(), 7, 6, 4, "axis 0 is disabled")
     );
     assert!(e.time_unix_ms > 1_600_000_000_000);
@@ -541,6 +629,39 @@ async fn faults_delay_swallow_and_force_exceptions() {
         .inject(&object(json!({"fault": "corrupt"})))
         .unwrap_err();
     assert_eq!(e.field.as_deref(), Some("fault"));
+    server.shutdown().await;
+}
+
+#[tokio::test]
+async fn a_close_fault_closes_the_connection_instead_of_answering() {
+    let server = start_tcp(model_100_to_199(), TcpConfig::default()).await;
+    let state = &server.state;
+    let answer = state
+        .inject(&object(json!({"fault": "close", "count": 1})))
+        .unwrap();
+    assert_eq!(
+        answer,
+        json!({"active_faults": [{"fault": "close", "count": 1}]})
+    );
+    let mut s = connect(server.addr).await;
+    s.write_all(&mbap(1, 1, &[6, 0, 150, 0x11, 0x11]))
+        .await
+        .unwrap();
+    assert!(closed_by_peer(&mut s).await, "closed, not answered");
+    assert_eq!(
+        server.model.register(Table::HoldingRegisters, 150),
+        Some(0),
+        "not executed"
+    );
+    // Spent: the next connection is answered.
+    let mut again = connect(server.addr).await;
+    assert_eq!(
+        transact(&mut again, 2, 1, &[6, 0, 150, 0x11, 0x11]).await,
+        mbap(2, 1, &[6, 0, 150, 0x11, 0x11])
+    );
+    let c = state.snapshot().counters;
+    assert_eq!((c.faults_applied.close, c.no_response), (1, 1));
+    assert!(state.snapshot().active_faults.is_empty());
     server.shutdown().await;
 }
 

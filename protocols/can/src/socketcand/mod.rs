@@ -10,5 +10,6 @@ pub mod server;
 pub mod session;
 
 pub use codec::{Command, CommandError, Decoder};
+pub use mcemu_frontend::bound::AtLimit;
 pub use server::{SocketcandConfig, SocketcandError, SocketcandServer, SocketcandStats};
 pub use session::{Action, Mode, Session};

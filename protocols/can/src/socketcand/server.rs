@@ -2,7 +2,8 @@
 //! serves hubs by bus name, so hosts without SocketCAN (or tools that prefer TCP) reach the
 //! emulated bus: `can.Bus(interface="socketcand", host=…, port=…, channel="vcan0")`.
 //!
-//! Bounded: at most `max_connections` clients (the next gets `< error … >` and is closed),
+//! Bounded: at most `max_connections` clients (at the limit the client idle longest is closed,
+//! or with [`AtLimit::Refuse`] the next gets `< error … >` and is closed),
 //! [`super::codec::MAX_ELEMENT`] bytes per element, and per client the hub's receive queue
 //! plus [`FRAME_BACKLOG`] bytes of frame messages the socket has not taken yet. A client that
 //! does not read loses frames (counted on the hub, per endpoint and in `rx_dropped`), as a
@@ -12,16 +13,15 @@
 use std::collections::BTreeMap;
 use std::io;
 use std::net::{Ipv4Addr, SocketAddr};
-use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 use std::time::Duration;
 
+use mcemu_frontend::bound::{self, AtLimit, Bound, Connection, ConnectionTable};
+use mcemu_frontend::counter::{ConnectionCounters, Counter};
 use tokio::io::{AsyncReadExt, AsyncWriteExt};
 use tokio::net::{TcpListener, TcpStream};
-use tokio::sync::{watch, Semaphore};
-use tokio::task::JoinSet;
+use tokio::sync::watch;
 use tokio::time::Instant;
-use tracing::Instrument;
 
 use crate::hub::{Delivery, Endpoint, EndpointOptions, Hub};
 use crate::socketcand::codec::{encode_error_reply, Decoder, HI};
@@ -50,6 +50,8 @@ pub struct SocketcandConfig {
     /// 127.0.0.1:29536 by default (ARCHITECTURE §8: loopback unless configured).
     pub bind: SocketAddr,
     pub max_connections: usize,
+    /// What a new client meets while `max_connections` are open (`refuse`: `< error … >`).
+    pub at_limit: AtLimit,
     /// After `< rawmode >`'s `< ok >`, frames wait this long before they flow. python-can
     /// reads the `< ok >` with a single `recv` and fails if a frame arrived in the same read;
     /// on a busy bus (SYNC at 1 kHz) that would be most connections. Frames are held (in the
@@ -62,6 +64,7 @@ impl Default for SocketcandConfig {
         Self {
             bind: SocketAddr::from((Ipv4Addr::LOCALHOST, DEFAULT_PORT)),
             max_connections: 16,
+            at_limit: AtLimit::EvictIdle,
             rawmode_settle: Duration::from_millis(20),
         }
     }
@@ -73,6 +76,8 @@ pub struct SocketcandStats {
     pub accepted: u64,
     /// Connections refused because `max_connections` were open.
     pub refused: u64,
+    /// Connections closed to admit a new one, idle longest.
+    pub evicted_idle: u64,
     pub active: u64,
     /// Elements received (commands and errors).
     pub commands: u64,
@@ -86,30 +91,26 @@ pub struct SocketcandStats {
 
 #[derive(Default)]
 struct Stats {
-    accepted: AtomicU64,
-    refused: AtomicU64,
-    active: AtomicU64,
-    commands: AtomicU64,
-    errors: AtomicU64,
-    frames_from_clients: AtomicU64,
-    frames_to_clients: AtomicU64,
+    /// Accepted (opened), refused, evicted, active (open).
+    connections: Arc<ConnectionCounters>,
+    commands: Counter,
+    errors: Counter,
+    frames_from_clients: Counter,
+    frames_to_clients: Counter,
 }
 
 impl Stats {
-    fn add(counter: &AtomicU64, n: u64) {
-        counter.fetch_add(n, Ordering::Relaxed);
-    }
-
     fn snapshot(&self) -> SocketcandStats {
-        let get = |c: &AtomicU64| c.load(Ordering::Relaxed);
+        let c = &self.connections;
         SocketcandStats {
-            accepted: get(&self.accepted),
-            refused: get(&self.refused),
-            active: get(&self.active),
-            commands: get(&self.commands),
-            errors: get(&self.errors),
-            frames_from_clients: get(&self.frames_from_clients),
-            frames_to_clients: get(&self.frames_to_clients),
+            accepted: c.opened.get(),
+            refused: c.refused_at_limit.get(),
+            evicted_idle: c.evicted_idle.get(),
+            active: c.open(),
+            commands: self.commands.get(),
+            errors: self.errors.get(),
+            frames_from_clients: self.frames_from_clients.get(),
+            frames_to_clients: self.frames_to_clients.get(),
         }
     }
 }
@@ -199,45 +200,32 @@ impl SocketcandServer {
 }
 
 async fn accept_loop(listener: TcpListener, shared: Arc<Shared>, mut stop: watch::Receiver<bool>) {
-    let slots = Arc::new(Semaphore::new(shared.config.max_connections));
-    let mut connections = JoinSet::new();
-    loop {
-        while connections.try_join_next().is_some() {}
-        let accepted = tokio::select! {
-            _ = stop.changed() => break,
-            accepted = listener.accept() => accepted,
-        };
-        let (stream, peer) = match accepted {
-            Ok(conn) => conn,
-            Err(e) => {
-                // Out of file descriptors and the like: wait a little rather than spin.
-                tracing::warn!("socketcand: accept failed: {e}");
-                tokio::time::sleep(Duration::from_millis(50)).await;
-                continue;
-            }
-        };
-        let Ok(permit) = Arc::clone(&slots).try_acquire_owned() else {
-            Stats::add(&shared.stats.refused, 1);
-            connections.spawn(refuse(stream, shared.config.max_connections));
-            continue;
-        };
-        Stats::add(&shared.stats.accepted, 1);
+    let config = &shared.config;
+    let bound = Bound {
+        max_connections: config.max_connections,
+        at_limit: config.at_limit,
+    };
+    let table = ConnectionTable::new(bound, Arc::clone(&shared.stats.connections));
+    let max = table.bound().max_connections;
+    let on_connected = |c: Connection| {
         let shared = Arc::clone(&shared);
-        let stop = stop.clone();
-        let span = tracing::info_span!("socketcand", %peer);
-        connections.spawn(
-            async move {
-                Stats::add(&shared.stats.active, 1);
-                if let Err(e) = serve(stream, peer, &shared, stop).await {
-                    tracing::debug!("connection ended: {e}");
-                }
-                shared.stats.active.fetch_sub(1, Ordering::Relaxed);
-                drop(permit);
+        async move {
+            if let Err(e) = serve(c, &shared).await {
+                tracing::debug!("connection ended: {e}");
             }
-            .instrument(span),
-        );
-    }
-    connections.shutdown().await;
+        }
+    };
+    let shutdown = async move { bound::stopping(&mut stop).await };
+    let on_refused = |stream, _| refuse(stream, max);
+    bound::serve(
+        listener,
+        table,
+        "socketcand",
+        shutdown,
+        on_connected,
+        on_refused,
+    )
+    .await;
 }
 
 async fn refuse(mut stream: TcpStream, max: usize) {
@@ -280,14 +268,14 @@ fn quick_ack(reader: &tokio::net::tcp::OwnedReadHalf) {
     let _ = reader;
 }
 
-async fn serve(
-    stream: TcpStream,
-    peer: SocketAddr,
-    shared: &Shared,
-    mut stop: watch::Receiver<bool>,
-) -> io::Result<()> {
+async fn serve(c: Connection, shared: &Shared) -> io::Result<()> {
     let stats = &shared.stats;
-    let _ = stream.set_nodelay(true);
+    let Connection {
+        stream,
+        peer,
+        activity,
+        mut stop,
+    } = c;
     let (mut reader, mut writer) = stream.into_split();
     // The greeting goes out alone, before any reply: the socket's buffer is empty, so this
     // does not wait on the client.
@@ -321,15 +309,16 @@ async fn serve(
                 if n == 0 {
                     return Ok(());
                 }
+                activity.received();
                 quick_ack(&reader);
                 decoder.decode(buf.get(..n).unwrap_or_default(), |command| {
-                    Stats::add(&stats.commands, 1);
+                    stats.commands.inc();
                     session.on_command(command, &shared.served, &mut actions);
                 });
                 for action in actions.drain(..) {
                     match action {
                         Action::Reply(reply) => {
-                            Stats::add(&stats.errors, u64::from(reply.starts_with("< error")));
+                            stats.errors.add(u64::from(reply.starts_with("< error")));
                             out.push_str(&reply);
                         }
                         Action::Attach(bus) => {
@@ -341,9 +330,9 @@ async fn serve(
                         Action::Transmit(frame) => {
                             let sent = feed.endpoint.as_ref().map(|e| e.send(frame));
                             match sent {
-                                Some(Ok(())) => Stats::add(&stats.frames_from_clients, 1),
+                                Some(Ok(())) => stats.frames_from_clients.inc(),
                                 Some(Err(full)) => {
-                                    Stats::add(&stats.errors, 1);
+                                    stats.errors.inc();
                                     encode_error_reply(&mut out, &full.to_string());
                                 }
                                 None => {}
@@ -372,7 +361,7 @@ async fn serve(
                 let mut batched = 0;
                 while let Some(delivery) = next {
                     if session.on_frame(hub.stamp(delivery.at), &delivery.frame, &mut out) {
-                        Stats::add(&stats.frames_to_clients, 1);
+                        stats.frames_to_clients.inc();
                     }
                     batched += 1;
                     next = if batched < FRAME_BATCH {

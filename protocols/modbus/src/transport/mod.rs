@@ -7,28 +7,22 @@ pub mod tcp;
 
 use std::future::Future;
 use std::io;
-use std::net::SocketAddr;
 use std::sync::Arc;
-use std::time::Duration;
 
+use mcemu_frontend::bound::{self, Connection, ConnectionTable};
 use tokio::io::AsyncWriteExt;
 use tokio::net::{TcpListener, TcpStream};
-use tokio::sync::{watch, Semaphore};
-use tokio::task::JoinSet;
+use tokio::sync::watch;
 use tokio::time::Instant;
-use tracing::Instrument;
 
 use crate::config::ConnectionLimits;
 use crate::counters::Counters;
 use crate::state::FrontendState;
 
-/// Pause after a failed `accept` (out of file descriptors …) so the loop does not spin.
-const ACCEPT_BACKOFF: Duration = Duration::from_millis(100);
-
-/// Accept connections until `shutdown`, at most `limits.max_connections` open at once: one
-/// beyond is accepted and closed at once (counted), so its client learns at once instead of
-/// waiting in the backlog. Each connection runs `serve` in its own task with a tracing span;
-/// at shutdown the connections are told to stop and awaited.
+/// Accept connections until `shutdown`, within `limits.bound` (the kit's accept loop: at the
+/// bound the connection idle longest is closed, or the new one is closed at once, counted
+/// either way). Each connection runs `serve` in its own task with a tracing span; at shutdown
+/// the connections are told to stop and awaited.
 pub(crate) async fn accept_loop<F, Fut>(
     listener: TcpListener,
     limits: ConnectionLimits,
@@ -36,79 +30,13 @@ pub(crate) async fn accept_loop<F, Fut>(
     shutdown: impl Future<Output = ()>,
     serve: F,
 ) where
-    F: Fn(TcpStream, SocketAddr, watch::Receiver<bool>) -> Fut,
+    F: Fn(Connection) -> Fut,
     Fut: Future<Output = ()> + Send + 'static,
 {
-    let permits = Arc::new(Semaphore::new(limits.max_connections));
-    let (stop, stopped) = watch::channel(false);
-    let mut tasks = JoinSet::new();
-    let name = state.name().to_owned();
-    tokio::pin!(shutdown);
-    loop {
-        tokio::select! {
-            () = &mut shutdown => break,
-            // Reap finished connections so the set stays small.
-            Some(_) = tasks.join_next(), if !tasks.is_empty() => {}
-            accepted = listener.accept() => {
-                let (stream, peer) = match accepted {
-                    Ok(a) => a,
-                    Err(e) => {
-                        tracing::warn!(frontend = %name, error = %e, "accept failed");
-                        tokio::time::sleep(ACCEPT_BACKOFF).await;
-                        continue;
-                    }
-                };
-                let counters = &state.counters;
-                let Ok(permit) = Arc::clone(&permits).try_acquire_owned() else {
-                    counters.connections_refused_at_limit.inc();
-                    tracing::info!(
-                        frontend = %name, %peer, max = limits.max_connections,
-                        "connection refused: at the connection limit"
-                    );
-                    drop(stream);
-                    continue;
-                };
-                let _ = stream.set_nodelay(true);
-                counters.connections_opened.inc();
-                let span = tracing::info_span!("modbus_connection", frontend = %name, %peer);
-                let conn = serve(stream, peer, stopped.clone());
-                let state = Arc::clone(&state);
-                tasks.spawn(
-                    async move {
-                        tracing::debug!("connection opened");
-                        conn.await;
-                        state.counters.connections_closed.inc();
-                        drop(permit);
-                        tracing::debug!("connection closed");
-                    }
-                    .instrument(span),
-                );
-            }
-        }
-    }
-    let _ = stop.send(true);
-    while tasks.join_next().await.is_some() {}
-}
-
-/// Resolves when the accept loop says stop (or is gone).
-pub(crate) async fn stopping(stop: &mut watch::Receiver<bool>) {
-    while !*stop.borrow_and_update() {
-        if stop.changed().await.is_err() {
-            return;
-        }
-    }
-}
-
-/// Run `work` unless the accept loop says stop first (a `delay` fault or a slow model must not
-/// hold up shutdown).
-pub(crate) async fn unless_stopping<T>(
-    work: impl Future<Output = T>,
-    stop: &mut watch::Receiver<bool>,
-) -> Option<T> {
-    tokio::select! {
-        r = work => Some(r),
-        () = stopping(stop) => None,
-    }
+    let table = ConnectionTable::new(limits.bound, Arc::clone(&state.counters.connections));
+    // A refused client learns at once from the close, instead of waiting in the backlog.
+    let refuse = |stream: TcpStream, _| async move { drop(stream) };
+    bound::serve(listener, table, state.name(), shutdown, serve, refuse).await;
 }
 
 /// What ended a wait for bytes.
@@ -119,23 +47,26 @@ pub(crate) enum Wait {
     Deadline,
 }
 
-/// Read what the peer sends next into `buf` (counted, and the idle deadline restarted), unless
+pub(crate) use mcemu_frontend::bound::{stopping, unless_stopping};
+
+/// Read what the peer sends next into `buf` (counted, stamped on the connection's activity, and
+/// the idle deadline restarted), unless
 /// `deadline` passes or the front-end stops first. A closed or failed socket, or shutdown, ends
 /// the connection.
 pub(crate) async fn wait_for_bytes(
-    stream: &mut TcpStream,
+    c: &mut Connection,
     buf: &mut Vec<u8>,
     counters: &Counters,
     deadlines: &mut Deadlines,
     deadline: Option<Instant>,
-    stop: &mut watch::Receiver<bool>,
 ) -> Result<Wait, Close> {
     let mut chunk = [0u8; 4096];
     loop {
         tokio::select! {
-            r = tokio::io::AsyncReadExt::read(stream, &mut chunk) => match r {
+            r = tokio::io::AsyncReadExt::read(&mut c.stream, &mut chunk) => match r {
                 Ok(0) => return Err(Close::Peer),
                 Ok(n) => {
+                    c.activity.received();
                     counters.bytes_in.add(n as u64);
                     buf.extend_from_slice(chunk.get(..n).unwrap_or_default());
                     deadlines.received();
@@ -148,7 +79,7 @@ pub(crate) async fn wait_for_bytes(
                 }
             },
             () = sleep_until(deadline) => return Ok(Wait::Deadline),
-            () = stopping(stop) => return Err(Close::Shutdown),
+            () = stopping(&mut c.stop) => return Err(Close::Shutdown),
         }
     }
 }
@@ -234,6 +165,12 @@ impl Deadlines {
             (None, f) => f,
         }
     }
+}
+
+/// A `close` fault ends the connection instead of a reply (counted by the server).
+pub(crate) fn closed_by_fault() -> Close {
+    tracing::info!("closing connection: `close` fault");
+    Close::Ours
 }
 
 /// Count and log an expired deadline.

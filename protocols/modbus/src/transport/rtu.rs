@@ -42,6 +42,9 @@ pub(crate) enum Verdict {
     Silent,
     /// A bad frame (CRC, too short, too long): dropped and counted, never answered.
     Dropped,
+    /// No reply, and the connection closes (a `close` fault; never on a serial line, which
+    /// refuses it).
+    Close,
 }
 
 /// Check one RTU frame and answer it.
@@ -57,6 +60,7 @@ pub(crate) async fn answer<D: DataModel>(server: &Server<D>, frame: &[u8], peer:
                 Verdict::Reply(out)
             }
             Outcome::Silent => Verdict::Silent,
+            Outcome::Close => Verdict::Close,
         },
         Decoded::BadCrc => {
             c.crc_errors.inc();

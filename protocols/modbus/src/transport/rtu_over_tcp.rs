@@ -4,18 +4,17 @@
 //! by silence. Connection bound and timeouts as for Modbus TCP.
 
 use std::future::Future;
-use std::net::SocketAddr;
 use std::sync::Arc;
 use std::time::Duration;
 
-use tokio::net::{TcpListener, TcpStream};
-use tokio::sync::watch;
+use mcemu_frontend::bound::Connection;
+use tokio::net::TcpListener;
 use tokio::time::Instant;
 
 use super::rtu::{answer, Verdict};
 use super::{
-    accept_loop, earliest, expired, unless_stopping, wait_for_bytes, write_reply, Close, Deadlines,
-    Wait,
+    accept_loop, closed_by_fault, earliest, expired, unless_stopping, wait_for_bytes, write_reply,
+    Close, Deadlines, Wait,
 };
 use crate::config::{ConnectionLimits, RtuOverTcpConfig};
 use crate::frame::rtu::{self, Length, MAX_ADU};
@@ -36,38 +35,30 @@ pub async fn serve_rtu_over_tcp<D: DataModel>(
     let limits = config.limits();
     let silence = Duration::from_millis(config.silence_ms.max(1));
     let server = Server::new(model, Arc::clone(&state));
-    accept_loop(
-        listener,
-        limits,
-        state,
-        shutdown,
-        move |stream, peer, stop| connection(server.clone(), stream, peer, limits, silence, stop),
-    )
+    accept_loop(listener, limits, state, shutdown, move |c| {
+        connection(server.clone(), c, limits, silence)
+    })
     .await;
 }
 
 async fn connection<D: DataModel>(
     server: Server<D>,
-    mut stream: TcpStream,
-    peer: SocketAddr,
+    mut c: Connection,
     limits: ConnectionLimits,
     silence: Duration,
-    mut stop: watch::Receiver<bool>,
 ) {
-    let why = run(&server, &mut stream, peer, limits, silence, &mut stop).await;
+    let why = run(&server, &mut c, limits, silence).await;
     tracing::debug!(?why, "connection ends");
 }
 
 async fn run<D: DataModel>(
     server: &Server<D>,
-    stream: &mut TcpStream,
-    peer: SocketAddr,
+    c: &mut Connection,
     limits: ConnectionLimits,
     silence: Duration,
-    stop: &mut watch::Receiver<bool>,
 ) -> Close {
     let counters = &server.state().counters;
-    let peer_id = Peer::Tcp(peer);
+    let peer_id = Peer::Tcp(c.peer);
     let mut buf: Vec<u8> = Vec::with_capacity(2 * MAX_ADU);
     let mut deadlines = Deadlines::new(limits);
     let mut last_rx = Instant::now();
@@ -93,12 +84,17 @@ async fn run<D: DataModel>(
                 by_silence = true;
                 break;
             }
-            let Some(verdict) = unless_stopping(answer(server, frame, &peer_id), stop).await else {
+            // Not evicted while it is answered (a `delay` fault may hold it long).
+            let _request = c.activity.request();
+            let Some(verdict) = unless_stopping(answer(server, frame, &peer_id), &mut c.stop).await
+            else {
                 return Close::Shutdown;
             };
             match verdict {
                 Verdict::Reply(reply) => {
-                    if let Err(close) = write_reply(stream, &reply, counters, &limits, stop).await {
+                    if let Err(close) =
+                        write_reply(&mut c.stream, &reply, counters, &limits, &mut c.stop).await
+                    {
                         return close;
                     }
                     buf.drain(..n);
@@ -106,6 +102,7 @@ async fn run<D: DataModel>(
                 Verdict::Silent => {
                     buf.drain(..n);
                 }
+                Verdict::Close => return closed_by_fault(),
                 Verdict::Dropped => {
                     // A bad CRC means the length prediction may be off too: resynchronise by
                     // dropping everything received so far.
@@ -125,23 +122,29 @@ async fn run<D: DataModel>(
         let next = deadlines.next();
         let silence_end = by_silence.then_some(last_rx + silence);
         let deadline = earliest(next.as_ref().map(|(t, _)| *t), silence_end);
-        match wait_for_bytes(stream, &mut buf, counters, &mut deadlines, deadline, stop).await {
+        match wait_for_bytes(c, &mut buf, counters, &mut deadlines, deadline).await {
             Ok(Wait::Received) => last_rx = Instant::now(),
             Ok(Wait::Deadline) => {
                 if silence_end.is_some_and(|s| Instant::now() >= s) {
                     // Silence ends the frame (Serial Line §2.5.1.1): whatever arrived is one.
                     let frame = std::mem::take(&mut buf);
+                    let _request = c.activity.request();
                     let Some(verdict) =
-                        unless_stopping(answer(server, &frame, &peer_id), stop).await
+                        unless_stopping(answer(server, &frame, &peer_id), &mut c.stop).await
                     else {
                         return Close::Shutdown;
                     };
-                    if let Verdict::Reply(reply) = verdict {
-                        if let Err(close) =
-                            write_reply(stream, &reply, counters, &limits, stop).await
-                        {
-                            return close;
+                    match verdict {
+                        Verdict::Reply(reply) => {
+                            if let Err(close) =
+                                write_reply(&mut c.stream, &reply, counters, &limits, &mut c.stop)
+                                    .await
+                            {
+                                return close;
+                            }
                         }
+                        Verdict::Close => return closed_by_fault(),
+                        Verdict::Silent | Verdict::Dropped => {}
                     }
                     deadlines.framed(true, false);
                     continue;

@@ -2,14 +2,14 @@
 //! per connection, pipelined requests answered in order.
 
 use std::future::Future;
-use std::net::SocketAddr;
 use std::sync::Arc;
 
-use tokio::net::{TcpListener, TcpStream};
-use tokio::sync::watch;
+use mcemu_frontend::bound::Connection;
+use tokio::net::TcpListener;
 
 use super::{
-    accept_loop, expired, unless_stopping, wait_for_bytes, write_reply, Close, Deadlines, Wait,
+    accept_loop, closed_by_fault, expired, unless_stopping, wait_for_bytes, write_reply, Close,
+    Deadlines, Wait,
 };
 use crate::config::{ConnectionLimits, TcpConfig};
 use crate::frame::tcp::{self, Decoded};
@@ -28,36 +28,24 @@ pub async fn serve_tcp<D: DataModel>(
 ) {
     let limits = config.limits();
     let server = Server::new(model, Arc::clone(&state));
-    accept_loop(
-        listener,
-        limits,
-        state,
-        shutdown,
-        move |stream, peer, stop| connection(server.clone(), stream, peer, limits, stop),
-    )
+    accept_loop(listener, limits, state, shutdown, move |c| {
+        connection(server.clone(), c, limits)
+    })
     .await;
 }
 
-async fn connection<D: DataModel>(
-    server: Server<D>,
-    mut stream: TcpStream,
-    peer: SocketAddr,
-    limits: ConnectionLimits,
-    mut stop: watch::Receiver<bool>,
-) {
-    let why = run(&server, &mut stream, peer, limits, &mut stop).await;
+async fn connection<D: DataModel>(server: Server<D>, mut c: Connection, limits: ConnectionLimits) {
+    let why = run(&server, &mut c, limits).await;
     tracing::debug!(?why, "connection ends");
 }
 
 async fn run<D: DataModel>(
     server: &Server<D>,
-    stream: &mut TcpStream,
-    peer: SocketAddr,
+    c: &mut Connection,
     limits: ConnectionLimits,
-    stop: &mut watch::Receiver<bool>,
 ) -> Close {
     let counters = &server.state().counters;
-    let peer_id = Peer::Tcp(peer);
+    let peer_id = Peer::Tcp(c.peer);
     let mut buf: Vec<u8> = Vec::with_capacity(2 * tcp::MAX_ADU);
     let mut out = Vec::with_capacity(tcp::MAX_ADU);
     let mut deadlines = Deadlines::new(limits);
@@ -71,19 +59,28 @@ async fn run<D: DataModel>(
                     pdu,
                     consumed: n,
                 } => {
+                    // Not evicted while it is answered (a `delay` fault may hold it long).
+                    let _request = c.activity.request();
                     let Some(outcome) =
-                        unless_stopping(server.handle(header.unit, pdu, &peer_id), stop).await
+                        unless_stopping(server.handle(header.unit, pdu, &peer_id), &mut c.stop)
+                            .await
                     else {
                         return Close::Shutdown;
                     };
-                    if let Outcome::Reply(reply) = outcome {
-                        out.clear();
-                        // The reply echoes the transaction and unit ids (§3.1.3).
-                        tcp::encode(header, &reply, &mut out);
-                        if let Err(close) = write_reply(stream, &out, counters, &limits, stop).await
-                        {
-                            return close;
+                    match outcome {
+                        Outcome::Reply(reply) => {
+                            out.clear();
+                            // The reply echoes the transaction and unit ids (§3.1.3).
+                            tcp::encode(header, &reply, &mut out);
+                            if let Err(close) =
+                                write_reply(&mut c.stream, &out, counters, &limits, &mut c.stop)
+                                    .await
+                            {
+                                return close;
+                            }
                         }
+                        Outcome::Close => return closed_by_fault(),
+                        Outcome::Silent => {}
                     }
                     buf.drain(..n);
                     consumed = true;
@@ -112,7 +109,7 @@ async fn run<D: DataModel>(
         deadlines.framed(consumed, !buf.is_empty());
         let next = deadlines.next();
         let deadline = next.as_ref().map(|(t, _)| *t);
-        match wait_for_bytes(stream, &mut buf, counters, &mut deadlines, deadline, stop).await {
+        match wait_for_bytes(c, &mut buf, counters, &mut deadlines, deadline).await {
             Ok(Wait::Received) => {}
             Ok(Wait::Deadline) => {
                 if let Some((_, which)) = next {
