@@ -1,7 +1,7 @@
 //! The protocol front-ends' lifecycle in `mcemu run`. Each front-end module exports one start
-//! function over a [`FrontendContext`] ([`Start`]), listed in [`FRONTENDS`]; what it starts it
+//! function over a [`FrontendContext`] ([`Start`]), listed in `crate::run::FRONTENDS`; what it starts it
 //! returns as handles implementing [`Frontend`], which `mcemu run` hands to the control API and
-//! later shuts down and saves. Adding a front-end is its module, an entry in [`FRONTENDS`] and
+//! later shuts down and saves. Adding a front-end is its module, an entry in `FRONTENDS` and
 //! its config section.
 //!
 //! Order (`crate::run`): every listed front-end starts, in list order; the control API starts
@@ -10,6 +10,7 @@
 //! each handle's [`Frontend::save`] runs.
 
 use std::future::Future;
+use std::io::Write;
 use std::pin::Pin;
 use std::sync::Arc;
 
@@ -18,9 +19,10 @@ use serde_json::{Map, Value};
 use tokio::sync::watch;
 use tokio::task::JoinSet;
 
+use tokio::net::TcpListener;
+
 use crate::config::Config;
-use crate::control::{ApiError, CanLog};
-use crate::run::RunError;
+use crate::control::error::ApiError;
 use crate::state_dir::StateDir;
 
 /// What a protocol front-end needs of `mcemu run` to start.
@@ -57,10 +59,72 @@ pub trait Frontend: Send + Sync {
     }
 }
 
+/// The CAN bus's `candump -L` log, started and stopped at run time (`/canopen/log/*`).
+pub trait CanLog: Send + Sync {
+    /// Start logging to `path` (relative: from the config file's directory); what runs now.
+    fn start(&self, path: &str) -> Result<Value, ApiError>;
+    /// Stop the log that runs, whoever started it; what it wrote.
+    fn stop(&self) -> Result<Value, ApiError>;
+}
+
+/// A protocol front-end did not start: its config section and the cause, as its module typed
+/// it (`BindError`, `ConfigError`, `SocketcandError` …), reachable through `source()`.
+#[derive(Debug, thiserror::Error)]
+#[error("{frontend}: {source}")]
+pub struct FrontendError {
+    pub frontend: &'static str,
+    pub source: Box<dyn std::error::Error + Send + Sync>,
+}
+
+impl FrontendError {
+    /// Front-end `frontend` (its config section) did not start because of `cause`.
+    pub fn new(
+        frontend: &'static str,
+        cause: impl Into<Box<dyn std::error::Error + Send + Sync>>,
+    ) -> FrontendError {
+        FrontendError {
+            frontend,
+            source: cause.into(),
+        }
+    }
+}
+
+/// A TCP listener that could not be bound.
+#[derive(Debug, thiserror::Error)]
+#[error("cannot listen on {address} for {protocol}: {source}")]
+pub struct BindError {
+    pub protocol: &'static str,
+    pub address: std::net::SocketAddr,
+    pub source: std::io::Error,
+}
+
+/// Bind and announce a TCP listener.
+pub(crate) async fn bind(
+    protocol: &'static str,
+    address: std::net::SocketAddr,
+) -> Result<TcpListener, BindError> {
+    let listener = TcpListener::bind(address)
+        .await
+        .map_err(|source| BindError {
+            protocol,
+            address,
+            source,
+        })?;
+    let local = listener.local_addr().unwrap_or(address);
+    announce(protocol, local);
+    Ok(listener)
+}
+
+/// Print `listening: <protocol> <address>`: tests and supervisors read these lines as they come.
+pub(crate) fn announce(protocol: &str, address: impl std::fmt::Display) {
+    println!("listening: {protocol} {address}");
+    let _ = std::io::stdout().flush();
+}
+
 /// What a start function gives: a handle per started front-end (none when its sections are
-/// disabled), or the [`RunError`] naming the one that failed.
+/// disabled), or the [`FrontendError`] naming the one that failed.
 pub type StartFuture<'a> =
-    Pin<Box<dyn Future<Output = Result<Vec<Arc<dyn Frontend>>, RunError>> + 'a>>;
+    Pin<Box<dyn Future<Output = Result<Vec<Arc<dyn Frontend>>, FrontendError>> + 'a>>;
 
 /// A front-end module's start function: bind or open and announce (`listening: …`) each of its
 /// enabled sections, spawn what serves them on `tasks` (they end when `cx.shutdown` turns
@@ -77,21 +141,6 @@ pub fn handles<F: Frontend + 'static>(
         .collect()
 }
 
-/// Every protocol front-end, in start order.
-pub const FRONTENDS: [Start; 2] = [crate::modbus::serve::start, crate::canopen::serve::start];
-
-/// Start every front-end of [`FRONTENDS`]; the first failure stops the start.
-pub async fn start_all(
-    cx: &FrontendContext<'_>,
-    tasks: &mut JoinSet<()>,
-) -> Result<Vec<Arc<dyn Frontend>>, RunError> {
-    let mut started = Vec::new();
-    for start in FRONTENDS {
-        started.extend(start(cx, tasks).await?);
-    }
-    Ok(started)
-}
-
 #[cfg(test)]
 mod tests {
     use std::error::Error;
@@ -101,6 +150,7 @@ mod tests {
     use axes::Engine;
 
     use super::*;
+    use crate::run::RunError;
 
     /// Start the front-ends of `config` on a virtual machine; the error it gives.
     async fn start_error(config: &str) -> RunError {
@@ -117,12 +167,12 @@ mod tests {
             shutdown: &shutdown,
         };
         let mut tasks = JoinSet::new();
-        let Err(e) = start_all(&cx, &mut tasks).await else {
+        let Err(e) = crate::run::start_all(&cx, &mut tasks).await else {
             panic!("{config:?} started");
         };
         tasks.abort_all();
         let _ = guard.stop();
-        e
+        RunError::from(e)
     }
 
     /// The `io::Error` at the end of `e`'s source chain.
@@ -148,16 +198,14 @@ mod tests {
         assert!(
             matches!(
                 &e,
-                RunError::Frontend {
+                RunError::Frontend(FrontendError {
                     frontend: "modbus_rtu_over_tcp",
                     ..
-                }
+                })
             ),
             "{e:?}"
         );
-        let bind = e
-            .source()
-            .and_then(|c| c.downcast_ref::<crate::run::BindError>());
+        let bind = e.source().and_then(|c| c.downcast_ref::<BindError>());
         assert_eq!(bind.map(|b| b.address), Some(address), "{e:?}");
         assert_eq!(
             io_cause(&e).map(io::Error::kind),
@@ -183,10 +231,10 @@ mod tests {
         assert!(
             matches!(
                 &e,
-                RunError::Frontend {
+                RunError::Frontend(FrontendError {
                     frontend: "socketcand",
                     ..
-                }
+                })
             ),
             "{e:?}"
         );

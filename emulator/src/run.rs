@@ -1,18 +1,18 @@
 //! `mcemu run`: the engine on its servo runtime, every enabled front-end on a tokio runtime,
 //! until SIGINT or SIGTERM. Each listener prints `listening: <protocol> <address>` once bound.
 
-use std::io::Write;
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use axes::command::{Command, Stop, StopMode};
 use axes::runtime::{EngineHandle, Runtime, RuntimeOptions};
 use axes::{AxisState, Engine};
-use tokio::net::TcpListener;
 use tokio::sync::watch;
+use tokio::task::JoinSet;
 
 use crate::config::Config;
 use crate::control::{self, ControlState};
-use crate::frontend::{self, FrontendContext};
+use crate::frontend::{bind, BindError, Frontend, FrontendContext, FrontendError, Start};
 use crate::listener::BoundedListener;
 use crate::state_dir::StateDir;
 
@@ -30,33 +30,24 @@ pub enum RunError {
     Bind(#[from] BindError),
     /// A protocol front-end did not start: its config section and the cause, as its module
     /// typed it (`BindError`, `ConfigError`, `SocketcandError` …).
-    #[error("{frontend}: {source}")]
-    Frontend {
-        frontend: &'static str,
-        source: Box<dyn std::error::Error + Send + Sync>,
-    },
+    #[error(transparent)]
+    Frontend(#[from] FrontendError),
 }
 
-impl RunError {
-    /// Front-end `frontend` (its config section) did not start because of `cause`.
-    pub fn frontend(
-        frontend: &'static str,
-        cause: impl Into<Box<dyn std::error::Error + Send + Sync>>,
-    ) -> RunError {
-        RunError::Frontend {
-            frontend,
-            source: cause.into(),
-        }
+/// Every protocol front-end, in start order. Adding a front-end is its module (a [`Start`]
+/// function), an entry here and its config section.
+pub const FRONTENDS: [Start; 2] = [crate::modbus::serve::start, crate::canopen::serve::start];
+
+/// Start every front-end of [`FRONTENDS`]; the first failure stops the start.
+pub async fn start_all(
+    cx: &FrontendContext<'_>,
+    tasks: &mut JoinSet<()>,
+) -> Result<Vec<Arc<dyn Frontend>>, FrontendError> {
+    let mut started = Vec::new();
+    for start in FRONTENDS {
+        started.extend(start(cx, tasks).await?);
     }
-}
-
-/// A TCP listener that could not be bound.
-#[derive(Debug, thiserror::Error)]
-#[error("cannot listen on {address} for {protocol}: {source}")]
-pub struct BindError {
-    pub protocol: &'static str,
-    pub address: std::net::SocketAddr,
-    pub source: std::io::Error,
+    Ok(started)
 }
 
 /// Run `config` until a signal arrives. `file` names the config in errors and is where relative
@@ -107,7 +98,7 @@ async fn serve(
         state_dir,
         shutdown: &shutdown,
     };
-    let frontends = frontend::start_all(&cx, &mut servers).await?;
+    let frontends = start_all(&cx, &mut servers).await?;
     let control = &config.frontends.control;
     let mut control_task = None;
     if control.enabled {
@@ -150,29 +141,6 @@ async fn serve(
         frontend.save();
     }
     Ok(())
-}
-
-/// Bind and announce a TCP listener.
-pub(crate) async fn bind(
-    protocol: &'static str,
-    address: std::net::SocketAddr,
-) -> Result<TcpListener, BindError> {
-    let listener = TcpListener::bind(address)
-        .await
-        .map_err(|source| BindError {
-            protocol,
-            address,
-            source,
-        })?;
-    let local = listener.local_addr().unwrap_or(address);
-    announce(protocol, local);
-    Ok(listener)
-}
-
-/// Print `listening: <protocol> <address>`: tests and supervisors read these lines as they come.
-pub(crate) fn announce(protocol: &str, address: impl std::fmt::Display) {
-    println!("listening: {protocol} {address}");
-    let _ = std::io::stdout().flush();
 }
 
 /// Register SIGINT and SIGTERM handlers now, before any listener is announced (a supervisor or

@@ -12,7 +12,8 @@ use mcemu_can::log::DEFAULT_LOG_QUEUE;
 use mcemu_can::{CandumpLog, Hub};
 use serde_json::{json, Value};
 
-use crate::control::{ApiError, CanLog};
+use crate::control::error::ApiError;
+use crate::frontend::CanLog;
 
 /// The log of one bus.
 #[derive(Clone)]

@@ -28,9 +28,10 @@ use super::mapped::{MapDevice, ServiceRegisters};
 use crate::state_dir::StateDir;
 
 use crate::config::ConfigError;
-use crate::control::{ApiError, CanLog};
+use crate::control::error::ApiError;
+use crate::frontend::CanLog;
+use crate::frontend::{announce, FrontendError};
 use crate::frontend::{handles, Frontend, FrontendContext, StartFuture};
-use crate::run::{announce, RunError};
 
 /// The running CAN bus, for the control API.
 pub struct CanopenFrontend {
@@ -273,11 +274,11 @@ pub fn start<'a>(cx: &'a FrontendContext<'a>, tasks: &'a mut JoinSet<()>) -> Sta
 async fn start_bus(
     cx: &FrontendContext<'_>,
     tasks: &mut JoinSet<()>,
-) -> Result<Option<Arc<CanopenFrontend>>, RunError> {
+) -> Result<Option<Arc<CanopenFrontend>>, FrontendError> {
     let Some(c) = cx.config.frontends.canopen.as_ref().filter(|c| c.enabled) else {
         return Ok(None);
     };
-    let fail = |e| RunError::frontend("canopen", e);
+    let fail = |e| FrontendError::new("canopen", e);
     let socketcand = cx
         .config
         .frontends
@@ -347,7 +348,7 @@ async fn start_bus(
                 poker.poke();
             }
         })
-        .map_err(|e| RunError::frontend("canopen", CanopenStartError::StoreThread(e)))?;
+        .map_err(|e| FrontendError::new("canopen", CanopenStartError::StoreThread(e)))?;
 
     let port = HubPort::attach(&hub, cx.handle);
     let fieldbus = CanopenFieldbus::new(port, specs)
@@ -368,7 +369,7 @@ async fn start_bus(
                 cx.state_dir.cloned(),
                 Arc::clone(&mapped),
             )
-            .map_err(|e| RunError::frontend("canopen", e))?;
+            .map_err(|e| FrontendError::new("canopen", e))?;
             ticks.add(&task);
             let (done, on) = tokio::sync::oneshot::channel();
             powered.push(on);
@@ -414,7 +415,7 @@ async fn start_bus(
         };
         let started = SocketcandServer::start(config, vec![hub.clone()])
             .await
-            .map_err(|e| RunError::frontend("socketcand", e))?;
+            .map_err(|e| FrontendError::new("socketcand", e))?;
         announce("socketcand", started.local_addr());
         server = Some(started);
     }
@@ -429,12 +430,12 @@ async fn start_bus(
 }
 
 /// Install `fieldbus` in the servo loop and wait until it runs.
-async fn install(handle: &EngineHandle, fieldbus: Box<dyn Fieldbus>) -> Result<(), RunError> {
+async fn install(handle: &EngineHandle, fieldbus: Box<dyn Fieldbus>) -> Result<(), FrontendError> {
     let installed = match handle.submit_fieldbus(fieldbus) {
         Ok(pending) => pending.await,
         Err(e) => Err(e.into()),
     };
-    installed.map_err(|e| RunError::frontend("canopen", CanopenStartError::Fieldbus(e)))
+    installed.map_err(|e| FrontendError::new("canopen", CanopenStartError::Fieldbus(e)))
 }
 
 // ---- map-backed nodes (the CT E10) ----------------------------------------------------------

@@ -16,7 +16,7 @@
 //! errors, and every engine call goes through the runtime's queue.
 
 mod commands;
-mod error;
+pub(crate) mod error;
 mod names;
 mod recorder;
 mod state;
@@ -41,15 +41,7 @@ pub use recorder::{TraceRecorder, TraceStart, TraceState, TraceStatus, MAX_TRACE
 pub use time::MAX_ADVANCE_TICKS;
 
 use crate::config::{ClockSetting, Config};
-use crate::frontend::Frontend;
-
-/// The CAN bus's `candump -L` log, started and stopped at run time (`/canopen/log/*`).
-pub trait CanLog: Send + Sync {
-    /// Start logging to `path` (relative: from the config file's directory); what runs now.
-    fn start(&self, path: &str) -> Result<Value, ApiError>;
-    /// Stop the log that runs, whoever started it; what it wrote.
-    fn stop(&self) -> Result<Value, ApiError>;
-}
+use crate::frontend::{CanLog, Frontend};
 
 /// What the config says about the machine, for `/state`.
 #[derive(Debug, Default)]

@@ -18,8 +18,8 @@ use tokio::task::JoinSet;
 
 use crate::config::ConfigError;
 use crate::control::ApiError;
+use crate::frontend::{announce, bind, FrontendError};
 use crate::frontend::{handles, Frontend, FrontendContext, StartFuture};
-use crate::run::{announce, bind, RunError};
 use crate::state_dir::StateDir;
 
 /// How often a front-end with persisted areas checks for writes to save.
@@ -159,13 +159,13 @@ pub fn start<'a>(cx: &'a FrontendContext<'a>, tasks: &'a mut JoinSet<()>) -> Sta
 async fn start_sections(
     cx: &FrontendContext<'_>,
     tasks: &mut JoinSet<()>,
-) -> Result<Vec<Arc<ModbusFrontend>>, RunError> {
+) -> Result<Vec<Arc<ModbusFrontend>>, FrontendError> {
     let f = &cx.config.frontends;
     // Compiled by `Config::check` already; a failure here names the key all the same.
     let mut units = cx
         .config
         .modbus_units(cx.file)
-        .map_err(|e| RunError::frontend("modbus", e))?;
+        .map_err(|e| FrontendError::new("modbus", e))?;
     let mut take = |section: &str| {
         units
             .iter()
@@ -177,10 +177,10 @@ async fn start_sections(
     if let Some(c) = f.modbus_tcp.as_ref().filter(|c| c.enabled) {
         let section = "modbus_tcp";
         let frontend = frontend(cx, section, Framing::Tcp, &c.faults, take(section))
-            .map_err(|e| RunError::frontend(section, e))?;
+            .map_err(|e| FrontendError::new(section, e))?;
         let listener = bind("modbus-tcp", c.bind)
             .await
-            .map_err(|e| RunError::frontend(section, e))?;
+            .map_err(|e| FrontendError::new(section, e))?;
         let (model, state, config) = (frontend.model(), Arc::clone(&frontend.state), c.clone());
         let stop = stopped(cx.shutdown);
         tasks.spawn(async move { serve_tcp(listener, model, &config, state, stop).await });
@@ -188,7 +188,7 @@ async fn start_sections(
     }
     if let Some(c) = f.modbus_rtu.as_ref().filter(|c| c.enabled) {
         let section = "modbus_rtu";
-        let fail = |e| RunError::frontend(section, e);
+        let fail = |e| FrontendError::new(section, e);
         let frontend =
             frontend(cx, section, Framing::Rtu, &c.faults, take(section)).map_err(fail)?;
         let line = RtuLine::open(c)
@@ -211,10 +211,10 @@ async fn start_sections(
     if let Some(c) = f.modbus_rtu_over_tcp.as_ref().filter(|c| c.enabled) {
         let section = "modbus_rtu_over_tcp";
         let frontend = frontend(cx, section, Framing::RtuOverTcp, &c.faults, take(section))
-            .map_err(|e| RunError::frontend(section, e))?;
+            .map_err(|e| FrontendError::new(section, e))?;
         let listener = bind("modbus-rtu-over-tcp", c.bind)
             .await
-            .map_err(|e| RunError::frontend(section, e))?;
+            .map_err(|e| FrontendError::new(section, e))?;
         let (model, state, config) = (frontend.model(), Arc::clone(&frontend.state), c.clone());
         let stop = stopped(cx.shutdown);
         tasks.spawn(async move { serve_rtu_over_tcp(listener, model, &config, state, stop).await });
