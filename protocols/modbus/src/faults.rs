@@ -27,8 +27,8 @@ use serde_json::{Map, Value};
 pub use mcemu_frontend::fault::{FaultError, MAX_DELAY_MS};
 
 use crate::counters::FaultsApplied;
+use crate::framing::Framing;
 use crate::pdu::Exception;
-use crate::state::Framing;
 
 /// One fault. `count: None` means until cleared; in the active list it is what remains.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]

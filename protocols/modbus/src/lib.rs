@@ -20,6 +20,7 @@ pub mod config;
 pub mod counters;
 pub mod faults;
 pub mod frame;
+pub mod framing;
 pub mod map;
 pub mod memory;
 pub mod model;

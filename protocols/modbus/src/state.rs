@@ -4,37 +4,14 @@
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use mcemu_frontend::refusal::LastRefusal;
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 use serde_json::{Map, Value};
 
 use crate::counters::{Counters, CountersSnapshot, LastError, RefusedRequest};
 use crate::faults::{self, FaultError, FaultSpec, Faults};
+pub use crate::framing::Framing;
 use crate::model::Peer;
 use crate::pdu::Exception;
-
-/// How requests are framed, which decides unit-id semantics: on RTU framing unit 0 is a
-/// broadcast and unserved units are ignored; on TCP every unit id is answered.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Framing {
-    Tcp,
-    Rtu,
-    RtuOverTcp,
-}
-
-impl Framing {
-    pub fn is_rtu(self) -> bool {
-        matches!(self, Framing::Rtu | Framing::RtuOverTcp)
-    }
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Framing::Tcp => "tcp",
-            Framing::Rtu => "rtu",
-            Framing::RtuOverTcp => "rtu_over_tcp",
-        }
-    }
-}
 
 /// Shared state of one front-end (one listener or one serial line).
 #[derive(Debug)]
