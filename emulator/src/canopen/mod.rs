@@ -6,7 +6,9 @@
 pub mod buslog;
 pub mod config;
 pub mod mapped;
+mod mapped_node;
 pub mod serve;
+mod wire;
 
 use axes::cia402::DriveMaster;
 use axes::od::ObjectDictionary;
@@ -323,4 +325,24 @@ fn load_eds(name: &str, config_file: &str) -> Result<Eds, String> {
         }
         Located::File(path) => Eds::load(path).map_err(|e| e.to_string()),
     }
+}
+
+/// The file in the machine's state directory that holds node `node_id`'s stored parameters
+/// (0x1010).
+fn image_file(node_id: u8) -> String {
+    format!("canopen/node-{node_id}.img")
+}
+
+/// Why the CAN bus could not start (besides its config and its transports' own errors).
+#[derive(Debug, thiserror::Error)]
+pub enum CanopenStartError {
+    #[error("cannot start the parameter image writer: {0}")]
+    StoreThread(#[source] std::io::Error),
+    #[error("cannot install the nodes in the servo loop: {0}")]
+    Fieldbus(#[from] axes::runtime::CallError),
+    #[error("node {node_id}: {source}")]
+    Node {
+        node_id: u8,
+        source: mcemu_canopen::NodeError,
+    },
 }
