@@ -9,7 +9,7 @@
 
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-use crate::command::EngineError;
+use crate::error::EngineError;
 use crate::status::{AxisFlags, AxisStatus};
 
 /// How to read a parameter's `f64`.
