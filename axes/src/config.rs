@@ -9,7 +9,7 @@ use std::collections::BTreeMap;
 use serde::{Deserialize, Serialize};
 
 use crate::cia402::DriveConfig;
-use crate::param::{Access, ParamId};
+use crate::param::{ParamAccess, ParamId};
 
 /// Shortest and longest servo period (ARCHITECTURE §3.1).
 pub const MIN_PERIOD: f64 = 62.5e-6;
@@ -419,7 +419,7 @@ impl AxisConfig {
         }
         for (id, value) in &self.params {
             let def = id.def();
-            if def.access == Access::ReadOnly {
+            if def.access == ParamAccess::ReadOnly {
                 return Err(ConfigError::new(
                     format!("{key}.params.{}", def.name),
                     "is computed by the engine and cannot be configured",

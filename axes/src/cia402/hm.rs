@@ -13,13 +13,13 @@ impl Cia402Drive {
         halt: bool,
         out: &mut Vec<Command>,
     ) {
-        let running = matches!(self.homing, Homing::InProgress { .. });
+        let running = matches!(self.homing, HomingProgress::InProgress { .. });
         if running && (falls & cw::HOMING_START != 0 || (halt && rises & cw::HALT != 0)) {
             out.push(self.stop(
                 StopMode::Smooth,
                 Some(self.int(obj::HOMING_ACCELERATION, 0)),
             ));
-            self.homing = Homing::Interrupted;
+            self.homing = HomingProgress::Interrupted;
         } else if !running && rises & cw::HOMING_START != 0 && !halt {
             self.start_homing(true, out);
         }
@@ -54,7 +54,7 @@ impl Cia402Drive {
                 buffer_mode: BufferMode::Aborting,
             }));
         }
-        self.homing = Homing::InProgress {
+        self.homing = HomingProgress::InProgress {
             since: self.steps,
             direct,
         };
@@ -63,7 +63,7 @@ impl Cia402Drive {
     /// Learn how a homing ended from the axis: HOMING_FAILED → error; no longer homing and
     /// HOMED → attained; no longer homing otherwise → interrupted.
     pub(super) fn track_homing(&mut self, axis: &AxisStatus, out: &mut Vec<Command>) {
-        let Homing::InProgress { since, direct } = self.homing else {
+        let HomingProgress::InProgress { since, direct } = self.homing else {
             return;
         };
         if since >= self.steps {
@@ -75,7 +75,7 @@ impl Cia402Drive {
             return;
         }
         if axis.flags.contains(AxisFlags::HOMING_FAILED) {
-            self.homing = Homing::Error;
+            self.homing = HomingProgress::Error;
             // A failed homing is a homing error (bit 13), not a drive fault: clear the axis's
             // latch so that the master can move it again.
             if !axis.flags.intersects(axis_fault_flags()) {
@@ -95,12 +95,12 @@ impl Cia402Drive {
         if axis.flags.contains(AxisFlags::HOMED) {
             self.homing_attained();
         } else {
-            self.homing = Homing::Interrupted;
+            self.homing = HomingProgress::Interrupted;
         }
     }
 
     pub(super) fn homing_attained(&mut self) {
-        self.homing = Homing::Attained;
+        self.homing = HomingProgress::Attained;
         // HIMC §20 method 37: 0x6063 = 0x60FC = 0 where 0x6064 = 0x6062 = 0x607C.
         self.home_shift = self.homing_offset;
     }

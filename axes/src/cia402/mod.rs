@@ -170,7 +170,7 @@ const LIMIT_FLAGS: AxisFlags = AxisFlags::HW_LIMIT_POS
 
 /// Progress of the last homing (statusword bits 13/12/10 in HM, CiA 402 Table "homing").
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Homing {
+enum HomingProgress {
     NotStarted,
     /// Started at step `since`; `direct` when method 37 ran as a position redefinition
     /// outside Operation enabled.
@@ -345,7 +345,7 @@ pub struct Cia402Drive {
     /// Engine time of the current step, and the time since the one before, seconds.
     now: f64,
     dt: f64,
-    homing: Homing,
+    homing: HomingProgress,
     homing_offset: i64,
     /// 0x6063/0x60FC = 0x6064/0x6062 − shift; the home offset of the last homing.
     home_shift: i64,
@@ -395,7 +395,7 @@ impl Cia402Drive {
             csp_segment: None,
             now: 0.0,
             dt: 0.0,
-            homing: Homing::NotStarted,
+            homing: HomingProgress::NotStarted,
             homing_offset: 0,
             home_shift: 0,
             clamped: false,
@@ -506,7 +506,7 @@ impl Cia402Drive {
             index,
             obj::HOMING_METHOD | obj::HOMING_SPEEDS | obj::HOMING_ACCELERATION | obj::HOME_OFFSET
         );
-        if homing_parameter && matches!(self.homing, Homing::InProgress { .. }) {
+        if homing_parameter && matches!(self.homing, HomingProgress::InProgress { .. }) {
             return Err(OdError::DeviceState {
                 index,
                 subindex,
@@ -606,7 +606,7 @@ impl Cia402Drive {
             State::SwitchOnDisabled | State::ReadyToSwitchOn | State::SwitchedOn
                 if self.mode == OperationMode::Homing
                     && rises & cw::HOMING_START != 0
-                    && !matches!(self.homing, Homing::InProgress { .. }) =>
+                    && !matches!(self.homing, HomingProgress::InProgress { .. }) =>
             {
                 self.start_homing(false, out);
             }
@@ -663,8 +663,8 @@ impl Cia402Drive {
             Command::Axis(AxisCommand::Reset(Reset { .. })) => self.reset_requested_at = None,
             Command::Axis(AxisCommand::Home(Home { .. }))
             | Command::Axis(AxisCommand::SetPosition(SetPosition { .. })) => {
-                if matches!(self.homing, Homing::InProgress { .. }) {
-                    self.homing = Homing::Error;
+                if matches!(self.homing, HomingProgress::InProgress { .. }) {
+                    self.homing = HomingProgress::Error;
                 }
             }
             Command::Axis(AxisCommand::Setpoint(StreamSetpoint {

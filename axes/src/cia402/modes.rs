@@ -21,7 +21,7 @@ impl Cia402Drive {
         if self.state == State::OperationEnabled && !bumpless && old != OperationMode::NoMode {
             let busy = axis.flags.contains(AxisFlags::MOVING)
                 || axis.fifo_len > 0
-                || matches!(self.homing, Homing::InProgress { .. });
+                || matches!(self.homing, HomingProgress::InProgress { .. });
             let deceleration = self.slow_down_deceleration();
             self.wind_down(out);
             if busy {
@@ -51,8 +51,11 @@ impl Cia402Drive {
             }));
             self.streaming = false;
         }
-        if matches!(self.homing, Homing::InProgress { direct: false, .. }) {
-            self.homing = Homing::Interrupted;
+        if matches!(
+            self.homing,
+            HomingProgress::InProgress { direct: false, .. }
+        ) {
+            self.homing = HomingProgress::Interrupted;
         }
         self.engine_halted = false;
         self.set_point_ack = false;

@@ -110,10 +110,10 @@ impl Cia402Drive {
         if self.mode == OperationMode::Homing {
             // Homing status is kept across modes and states (python-canopen's `is_homed`).
             return match self.homing {
-                Homing::NotStarted | Homing::Interrupted => sw::TARGET_REACHED,
-                Homing::InProgress { .. } => 0,
-                Homing::Attained => sw::OMS_12 | bit(at_rest, sw::TARGET_REACHED),
-                Homing::Error => sw::OMS_13 | bit(at_rest, sw::TARGET_REACHED),
+                HomingProgress::NotStarted | HomingProgress::Interrupted => sw::TARGET_REACHED,
+                HomingProgress::InProgress { .. } => 0,
+                HomingProgress::Attained => sw::OMS_12 | bit(at_rest, sw::TARGET_REACHED),
+                HomingProgress::Error => sw::OMS_13 | bit(at_rest, sw::TARGET_REACHED),
             };
         }
         if self.state != State::OperationEnabled {

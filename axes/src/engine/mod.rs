@@ -2,7 +2,7 @@
 //! [`Engine::step`] (ARCHITECTURE §3). Same config + same commands at the same ticks ⇒
 //! bit-identical state: nothing here reads a clock, iterates a hash map or uses a thread.
 
-use crate::axis::{Action, Axis, Context, Ledger, MotionRequest, Overrides};
+use crate::axis::{Action, Axis, Context, Ledger, MotionSubmission, Overrides};
 use crate::cia402::{controlword_for, obj, Cia402Drive, DriveMaster, PowerTarget, State};
 use crate::command::{
     AxisCommand, AxisIndex, Cancel, Command, CommandKind, CouplingCommand, Disable, Enable,
@@ -295,7 +295,7 @@ impl Engine {
                 buffer_mode,
             }) => axis.submit(
                 &mut ctx,
-                MotionRequest {
+                MotionSubmission {
                     kind: CommandKind::MoveAbsolute,
                     action: Action::MoveAbsolute { position },
                     overrides: Overrides {
@@ -317,7 +317,7 @@ impl Engine {
                 buffer_mode,
             }) => axis.submit(
                 &mut ctx,
-                MotionRequest {
+                MotionSubmission {
                     kind: CommandKind::MoveRelative,
                     action: Action::MoveRelative { distance },
                     overrides: Overrides {
@@ -338,7 +338,7 @@ impl Engine {
                 buffer_mode,
             }) => axis.submit(
                 &mut ctx,
-                MotionRequest {
+                MotionSubmission {
                     kind: CommandKind::MoveVelocity,
                     action: Action::MoveVelocity { velocity },
                     overrides: Overrides {
@@ -364,7 +364,7 @@ impl Engine {
                 let spec = homing_spec(axis, &home)?;
                 axis.submit(
                     &mut ctx,
-                    MotionRequest {
+                    MotionSubmission {
                         kind: CommandKind::Home,
                         action: Action::Home(spec),
                         overrides: Overrides::default(),

@@ -9,7 +9,7 @@ mod streams;
 
 use super::{
     apply_rollover, counts_per_unit, pulses_per_unit, setup::Setup, smoothing_window, Action,
-    Activity, Axis, Context, Goal1, Overrides, Queued, Ramp, Run, Source,
+    Activity, Axis, Context, Overrides, Queued, Ramp, Run, RunGoal, Source,
 };
 use crate::command::{
     bounded, finite, positive, AxisInput, BufferMode, CancelScope, CommandKind, CommandState,
@@ -18,12 +18,12 @@ use crate::command::{
 use crate::engine::Feed;
 use crate::homing::{Homing, HomingHardware, HomingSpec};
 use crate::hw::AxisClass;
-use crate::param::{Access, ParamId};
+use crate::param::{ParamAccess, ParamId};
 use crate::profile::{Goal, MovingAverage, PlanError};
 use crate::status::AxisFlags;
 
 /// A motion request as it arrives, before it gets an id.
-pub(crate) struct MotionRequest {
+pub(crate) struct MotionSubmission {
     pub kind: CommandKind,
     pub action: Action,
     pub overrides: Overrides,

@@ -8,7 +8,7 @@ impl Axis {
     pub(crate) fn submit(
         &mut self,
         ctx: &mut Context,
-        request: MotionRequest,
+        request: MotionSubmission,
     ) -> Result<Reply, EngineError> {
         match self.try_submit(ctx, request) {
             Ok(r) => Ok(r),
@@ -25,7 +25,7 @@ impl Axis {
     pub(super) fn try_submit(
         &mut self,
         ctx: &mut Context,
-        request: MotionRequest,
+        request: MotionSubmission,
     ) -> Result<Reply, EngineError> {
         self.check_not_fed()?;
         self.check_can_move()?;
@@ -245,7 +245,7 @@ impl Axis {
                     self.direction = (target - from).signum();
                 }
                 (
-                    Goal1::Position { target },
+                    RunGoal::Position { target },
                     Goal::Position {
                         target,
                         end_velocity: 0.0,
@@ -258,7 +258,7 @@ impl Axis {
                 }
                 self.target_pos = from;
                 (
-                    Goal1::Velocity {
+                    RunGoal::Velocity {
                         velocity: *velocity,
                     },
                     Goal::Velocity { target: *velocity },
@@ -269,7 +269,7 @@ impl Axis {
                 self.activity = Activity::Running(Run {
                     id: q.id,
                     kind: q.kind,
-                    goal: Goal1::Homing,
+                    goal: RunGoal::Homing,
                     overrides: q.overrides,
                     arrived_at: None,
                     homing: Some(Box::new(homing)),
@@ -374,7 +374,7 @@ impl Axis {
             }
         }
         match &self.activity {
-            Activity::Running(run) if run.goal == Goal1::Homing => {
+            Activity::Running(run) if run.goal == RunGoal::Homing => {
                 let e = self.invalid_state("halt while homing");
                 return self.refuse(e);
             }
@@ -434,7 +434,7 @@ impl Axis {
                 };
                 self.submit(
                     ctx,
-                    MotionRequest {
+                    MotionSubmission {
                         kind,
                         action,
                         overrides: Overrides::default(),
@@ -442,7 +442,7 @@ impl Axis {
                     },
                 )
             }
-            Some((id, Goal1::Position { .. }, overrides)) => {
+            Some((id, RunGoal::Position { .. }, overrides)) => {
                 // MoveModifyEx mode 1: new target = current DPos + value.
                 let target = if relative {
                     self.raw.p + position
@@ -460,7 +460,7 @@ impl Axis {
                     return self.refuse(e);
                 }
                 if let Activity::Running(run) = &mut self.activity {
-                    run.goal = Goal1::Position { target };
+                    run.goal = RunGoal::Position { target };
                     run.arrived_at = None;
                 }
                 self.target_pos = target;
@@ -544,7 +544,7 @@ impl Axis {
             return self.refuse(e);
         }
         if let Activity::Running(run) = &self.activity {
-            if run.goal == Goal1::Homing {
+            if run.goal == RunGoal::Homing {
                 let e = self.invalid_state("set the position while homing");
                 return self.refuse(e);
             }
@@ -592,7 +592,7 @@ impl Axis {
             _ => {}
         }
         if let Activity::Running(run) = &mut self.activity {
-            if let Goal1::Position { target } = &mut run.goal {
+            if let RunGoal::Position { target } = &mut run.goal {
                 *target += delta;
             }
         }

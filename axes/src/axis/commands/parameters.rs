@@ -24,11 +24,11 @@ impl Axis {
         let def = id.def();
         let idle = self.fifo.is_empty() && matches!(self.activity, Activity::Idle);
         match def.access {
-            Access::ReadOnly => return Err(EngineError::ReadOnlyParameter { name: def.name }),
-            Access::WriteWhenIdle if !idle => {
+            ParamAccess::ReadOnly => return Err(EngineError::ReadOnlyParameter { name: def.name }),
+            ParamAccess::WriteWhenIdle if !idle => {
                 return Err(self.invalid_state("change this parameter while commands are queued"))
             }
-            Access::WriteWhenDisabled if self.enabled => {
+            ParamAccess::WriteWhenDisabled if self.enabled => {
                 return Err(self.invalid_state("change this parameter while enabled"))
             }
             _ => {}
