@@ -33,7 +33,7 @@ use crate::rng::Rng;
 use crate::status::{AxisFlags, AxisState, AxisStatus, CommandRef};
 
 pub(crate) use commands::MotionSubmission;
-pub use fifo::{Action, Fifo, Ledger, Overrides, Queued};
+pub use fifo::{Fifo, Ledger, MotionAction, Overrides, Queued};
 use setup::Setup;
 
 /// What the engine lends an axis for one tick or one command.

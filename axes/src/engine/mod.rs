@@ -2,7 +2,7 @@
 //! [`Engine::step`] (ARCHITECTURE §3). Same config + same commands at the same ticks ⇒
 //! bit-identical state: nothing here reads a clock, iterates a hash map or uses a thread.
 
-use crate::axis::{Action, Axis, Context, Ledger, MotionSubmission, Overrides};
+use crate::axis::{Axis, Context, Ledger, MotionAction, MotionSubmission, Overrides};
 use crate::cia402::{controlword_for, obj, Cia402Drive, DriveMaster, PowerTarget, State};
 use crate::command::{
     AxisCommand, AxisIndex, Cancel, Command, CommandKind, CouplingCommand, Disable, Enable,
@@ -297,7 +297,7 @@ impl Engine {
                 &mut ctx,
                 MotionSubmission {
                     kind: CommandKind::MoveAbsolute,
-                    action: Action::MoveAbsolute { position },
+                    action: MotionAction::MoveAbsolute { position },
                     overrides: Overrides {
                         velocity,
                         acceleration,
@@ -319,7 +319,7 @@ impl Engine {
                 &mut ctx,
                 MotionSubmission {
                     kind: CommandKind::MoveRelative,
-                    action: Action::MoveRelative { distance },
+                    action: MotionAction::MoveRelative { distance },
                     overrides: Overrides {
                         velocity,
                         acceleration,
@@ -340,7 +340,7 @@ impl Engine {
                 &mut ctx,
                 MotionSubmission {
                     kind: CommandKind::MoveVelocity,
-                    action: Action::MoveVelocity { velocity },
+                    action: MotionAction::MoveVelocity { velocity },
                     overrides: Overrides {
                         velocity: None,
                         acceleration,
@@ -366,7 +366,7 @@ impl Engine {
                     &mut ctx,
                     MotionSubmission {
                         kind: CommandKind::Home,
-                        action: Action::Home(spec),
+                        action: MotionAction::Home(spec),
                         overrides: Overrides::default(),
                         buffer_mode: home.buffer_mode,
                     },

@@ -8,8 +8,8 @@ mod power;
 mod streams;
 
 use super::{
-    apply_rollover, counts_per_unit, pulses_per_unit, setup::Setup, smoothing_window, Action,
-    Activity, Axis, Context, Overrides, Queued, Ramp, Run, RunGoal, Source,
+    apply_rollover, counts_per_unit, pulses_per_unit, setup::Setup, smoothing_window, Activity,
+    Axis, Context, MotionAction, Overrides, Queued, Ramp, Run, RunGoal, Source,
 };
 use crate::command::{
     bounded, finite, positive, AxisInput, BufferMode, CancelScope, CommandKind, CommandState,
@@ -25,7 +25,7 @@ use crate::status::AxisFlags;
 /// A motion request as it arrives, before it gets an id.
 pub(crate) struct MotionSubmission {
     pub kind: CommandKind,
-    pub action: Action,
+    pub action: MotionAction,
     pub overrides: Overrides,
     pub buffer_mode: BufferMode,
 }

@@ -31,16 +31,16 @@ impl Axis {
         self.check_can_move()?;
         Self::check_overrides(&request.overrides)?;
         match &request.action {
-            Action::MoveAbsolute { position } => {
+            MotionAction::MoveAbsolute { position } => {
                 bounded("position", *position)?;
             }
-            Action::MoveRelative { distance } => {
+            MotionAction::MoveRelative { distance } => {
                 bounded("distance", *distance)?;
             }
-            Action::MoveVelocity { velocity } => {
+            MotionAction::MoveVelocity { velocity } => {
                 bounded("velocity", *velocity)?;
             }
-            Action::Home(_) => {}
+            MotionAction::Home(_) => {}
         }
         if self.halted && request.buffer_mode == BufferMode::Aborting {
             self.halted = false;
@@ -50,7 +50,7 @@ impl Axis {
                 let direction = self.direction_of(&request.action, self.raw.p);
                 self.admit(direction)?;
                 self.check_soft_limit_target(&request.action, self.raw.p)?;
-                if let Action::Home(spec) = &request.action {
+                if let MotionAction::Home(spec) = &request.action {
                     // Refuse a homing the axis cannot do before anything is aborted.
                     self.start_homing(ctx.tick, spec)?;
                 }
@@ -68,8 +68,7 @@ impl Axis {
             }
             BufferMode::Buffered => {
                 // HMC §10.7: consecutive zero-length moves share one id.
-                let zero_length =
-                    matches!(request.action, Action::MoveRelative { distance } if distance == 0.0);
+                let zero_length = matches!(request.action, MotionAction::MoveRelative { distance } if distance == 0.0);
                 if zero_length {
                     if let Some(id) = self.zero_length_id {
                         if self.fifo.position_of(id).is_some() {
@@ -100,12 +99,12 @@ impl Axis {
     }
 
     /// Direction a command would move in, from position `from`.
-    pub(super) fn direction_of(&self, action: &Action, from: f64) -> Option<Direction> {
+    pub(super) fn direction_of(&self, action: &MotionAction, from: f64) -> Option<Direction> {
         let delta = match action {
-            Action::MoveAbsolute { position } => self.unwrap_target(*position, from) - from,
-            Action::MoveRelative { distance } => *distance,
-            Action::MoveVelocity { velocity } => *velocity,
-            Action::Home(_) => 0.0,
+            MotionAction::MoveAbsolute { position } => self.unwrap_target(*position, from) - from,
+            MotionAction::MoveRelative { distance } => *distance,
+            MotionAction::MoveVelocity { velocity } => *velocity,
+            MotionAction::Home(_) => 0.0,
         };
         if delta > 0.0 {
             Some(Direction::Positive)
@@ -119,7 +118,7 @@ impl Axis {
     /// HIMC: a target beyond a soft limit is refused up front (`sw_limit_reject_targets`).
     pub(super) fn check_soft_limit_target(
         &self,
-        action: &Action,
+        action: &MotionAction,
         from: f64,
     ) -> Result<(), EngineError> {
         if !self.flag(ParamId::SwLimitRejectTargets)
@@ -129,8 +128,8 @@ impl Axis {
             return Ok(());
         }
         let target = match action {
-            Action::MoveAbsolute { position } => *position,
-            Action::MoveRelative { distance } => from + distance,
+            MotionAction::MoveAbsolute { position } => *position,
+            MotionAction::MoveRelative { distance } => from + distance,
             _ => return Ok(()),
         };
         let (fs, rs) = (self.param(ParamId::FsLimit), self.param(ParamId::RsLimit));
@@ -234,10 +233,10 @@ impl Axis {
         self.halted = false;
         let limits = self.limits_for(&q.overrides);
         let (goal, planner_goal) = match &q.action {
-            Action::MoveAbsolute { .. } | Action::MoveRelative { .. } => {
+            MotionAction::MoveAbsolute { .. } | MotionAction::MoveRelative { .. } => {
                 let target = match &q.action {
-                    Action::MoveAbsolute { position } => self.unwrap_target(*position, from),
-                    Action::MoveRelative { distance } => from + distance,
+                    MotionAction::MoveAbsolute { position } => self.unwrap_target(*position, from),
+                    MotionAction::MoveRelative { distance } => from + distance,
                     _ => from,
                 };
                 self.target_pos = target;
@@ -252,7 +251,7 @@ impl Axis {
                     },
                 )
             }
-            Action::MoveVelocity { velocity } => {
+            MotionAction::MoveVelocity { velocity } => {
                 if *velocity != 0.0 {
                     self.direction = velocity.signum();
                 }
@@ -264,7 +263,7 @@ impl Axis {
                     Goal::Velocity { target: *velocity },
                 )
             }
-            Action::Home(spec) => {
+            MotionAction::Home(spec) => {
                 let homing = self.start_homing(ctx.tick, spec)?;
                 self.activity = Activity::Running(Run {
                     id: q.id,
@@ -423,9 +422,9 @@ impl Axis {
             None if self.fifo.is_empty() => {
                 // HMC: with an empty FIFO it posts a MoveAbs (mode 0) or a Move (mode 1).
                 let action = if relative {
-                    Action::MoveRelative { distance: position }
+                    MotionAction::MoveRelative { distance: position }
                 } else {
-                    Action::MoveAbsolute { position }
+                    MotionAction::MoveAbsolute { position }
                 };
                 let kind = if relative {
                     CommandKind::MoveRelative
