@@ -32,6 +32,7 @@ use crate::profile::{
 use crate::rng::Rng;
 use crate::status::{AxisFlags, AxisState, AxisStatus, CommandRef};
 
+pub use commands::Feed;
 pub(crate) use commands::MotionSubmission;
 pub use fifo::{Fifo, Ledger, MotionAction, Overrides, Queued};
 use setup::Setup;

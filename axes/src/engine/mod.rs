@@ -20,7 +20,8 @@ use crate::status::{AxisStatus, DriveStatus, IoImage, Snapshot};
 use std::sync::Arc;
 
 mod planner;
-pub use planner::{Feed, Feeds, MachinePlanner};
+pub use crate::axis::Feed;
+pub use planner::{Feeds, MachinePlanner};
 
 /// The machine's digital and analog I/O.
 #[derive(Clone, Debug)]

@@ -7,6 +7,8 @@ mod parameters;
 mod power;
 mod streams;
 
+pub use streams::Feed;
+
 use super::{
     apply_rollover, counts_per_unit, pulses_per_unit, setup::Setup, smoothing_window, Activity,
     Axis, Context, MotionAction, Overrides, Queued, Ramp, Run, RunGoal, Source,
@@ -15,7 +17,6 @@ use crate::command::{
     bounded, finite, positive, AxisInput, BufferMode, CancelScope, CommandKind, CommandState,
     Direction, EngineError, ErrorKind, PositionFrame, Reply, Setpoint, StopMode,
 };
-use crate::engine::Feed;
 use crate::homing::{Homing, HomingHardware, HomingSpec};
 use crate::hw::AxisClass;
 use crate::param::{ParamAccess, ParamId};

@@ -2,6 +2,17 @@
 //! axes, and the start of homing.
 
 use super::*;
+use crate::profile::MotionState;
+
+/// What a machine-level planner ([`crate::engine::MachinePlanner`]) asks of one axis for one
+/// tick. Defined with the axis that takes it, below the engine in the module chain.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Feed {
+    /// Follow this commanded state this tick.
+    Follow(MotionState),
+    /// Stop being fed: the axis decelerates to rest with its `decel` and is free again.
+    Release,
+}
 
 impl Axis {
     pub(crate) fn force_input(
