@@ -52,8 +52,8 @@ impl std::fmt::Display for Direction {
     }
 }
 
-/// The name of an [`EngineError`] variant without its data: `Copy`, so it fits in status records
-/// and traces.
+/// The name of an [`EngineError`](crate::error::EngineError) variant without its data: `Copy`, so
+/// it fits in status records and traces.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ErrorKind {
