@@ -9,7 +9,7 @@ use std::collections::BTreeMap;
 use serde::{Deserialize, Serialize};
 
 use crate::cia402::DriveConfig;
-use crate::param::{Access, ParamId};
+use crate::param::{ParamAccess, ParamId};
 
 /// Shortest and longest servo period (ARCHITECTURE §3.1).
 pub const MIN_PERIOD: f64 = 62.5e-6;
@@ -152,128 +152,11 @@ impl Default for PulseConfig {
     }
 }
 
-/// Incremental encoder (ARCHITECTURE §3.2).
-#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct EncoderConfig {
-    /// Counts per motor revolution: the index (Z) pulse comes once per revolution. 0 = no index.
-    pub counts_per_rev: u32,
-    /// Width of the index pulse, counts.
-    pub index_width: u32,
-    /// Count offset of the index pulse within a revolution.
-    pub index_offset: u32,
-    /// Peak amplitude of uniform noise added to the count, counts (0 = none).
-    pub noise: f64,
-}
-
-impl Default for EncoderConfig {
-    fn default() -> Self {
-        EncoderConfig {
-            counts_per_rev: 10_000,
-            index_width: 1,
-            index_offset: 0,
-            noise: 0.0,
-        }
-    }
-}
-
-/// The drive and motor that turn the command into actual motion.
-#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum PlantModel {
-    /// The motor follows its position command exactly.
-    #[default]
-    Ideal,
-    /// The motor follows its position command with a first-order lag (`time_constant`).
-    Lag,
-    /// The controller closes the HMC position loop (HMC §2.1 fig. 3: gains `kp` … `ko`, dead band,
-    /// DAC clamp) and drives a velocity-mode motor. Required by the closed-loop axis types (analog
-    /// servo 20, bus velocity 41/51).
-    PositionLoop,
-}
-
-/// The drive and motor model: how the actual position follows the command.
-#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct PlantConfig {
-    /// How the motor follows the command.
-    pub model: PlantModel,
-    /// Lag time constant, seconds (model `lag`).
-    pub time_constant: f64,
-    /// Motor velocity at servo output 32767, user units/s (model `position_loop`).
-    pub full_scale_velocity: f64,
-    /// Time constant of the drive's velocity loop, seconds, 0 = instant (model `position_loop`).
-    pub velocity_time_constant: f64,
-}
-
-impl Default for PlantConfig {
-    fn default() -> Self {
-        PlantConfig {
-            model: PlantModel::Ideal,
-            time_constant: 0.01,
-            full_scale_velocity: 1000.0,
-            velocity_time_constant: 0.0,
-        }
-    }
-}
-
-/// Limit and home switches, computed from the actual position.
-#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct SwitchesConfig {
-    /// Positive limit: active for actual position ≥ `position`.
-    pub limit_pos: Option<SwitchConfig>,
-    /// Negative limit: active for actual position ≤ `position`.
-    pub limit_neg: Option<SwitchConfig>,
-    /// Home switch (a cam): active for actual position in `[low, high]`.
-    pub home: Option<HomeSwitchConfig>,
-}
-
-#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SwitchConfig {
-    /// Actual position (user units) where the switch becomes active.
-    pub position: f64,
-    /// The sensor outputs low while actuated (normally-closed wiring). The controller's
-    /// `*_invert` parameter must match, or the input reads inverted — as on a real machine.
-    #[serde(default)]
-    pub active_low: bool,
-    /// Ticks the raw level must be stable before the input follows it (debounce).
-    #[serde(default)]
-    pub filter: u32,
-}
-
-/// A home switch active on `[low, high]` (a cam). Leave one bound out for a switch that stays
-/// active to that side (CiA 402 "positive/negative home switch").
-#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct HomeSwitchConfig {
-    /// Lower end of the active range, user units; omitted: unbounded (active to −∞).
-    #[serde(default = "neg_inf")]
-    pub low: f64,
-    /// Upper end of the active range, user units; omitted: unbounded (active to +∞).
-    #[serde(default = "pos_inf")]
-    pub high: f64,
-    /// The sensor outputs low while actuated; `home_invert` must match.
-    #[serde(default)]
-    pub active_low: bool,
-    /// Ticks the raw level must be stable before the input follows it (debounce).
-    #[serde(default)]
-    pub filter: u32,
-}
-
-fn neg_inf() -> f64 {
-    f64::NEG_INFINITY
-}
-fn pos_inf() -> f64 {
-    f64::INFINITY
-}
+// Each hardware model owns its configuration (the hw modules sit below `config` in the module
+// chain); re-exported here, where the axis configuration is assembled, under their old paths.
+pub use crate::hw::encoder::EncoderConfig;
+pub use crate::hw::plant::{PlantConfig, PlantModel};
+pub use crate::hw::switch::{HomeSwitchConfig, SwitchConfig, SwitchesConfig};
 
 /// Machine I/O images.
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
@@ -419,7 +302,7 @@ impl AxisConfig {
         }
         for (id, value) in &self.params {
             let def = id.def();
-            if def.access == Access::ReadOnly {
+            if def.access == ParamAccess::ReadOnly {
                 return Err(ConfigError::new(
                     format!("{key}.params.{}", def.name),
                     "is computed by the engine and cannot be configured",

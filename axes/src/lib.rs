@@ -10,6 +10,7 @@ pub mod cia402;
 pub mod command;
 pub mod config;
 pub mod engine;
+pub mod error;
 pub mod homing;
 pub mod hw;
 pub mod od;
@@ -18,6 +19,7 @@ pub mod profile;
 pub mod rng;
 pub mod runtime;
 pub mod status;
+pub mod types;
 
 pub use command::{AxisIndex, Command, CommandId, EngineError, Reply};
 pub use config::EngineConfig;

@@ -9,7 +9,7 @@
 
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-use crate::command::EngineError;
+use crate::error::EngineError;
 use crate::status::{AxisFlags, AxisStatus};
 
 /// How to read a parameter's `f64`.
@@ -69,7 +69,7 @@ pub enum Range {
 
 /// Who may write a parameter, and when.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Access {
+pub enum ParamAccess {
     /// Any time; takes effect in the next tick, also during motion (HMC §3.5).
     ReadWrite,
     /// Only while the axis has no command in its FIFO (HMC setters such as HMC_SetAxisType).
@@ -101,7 +101,7 @@ pub struct ParamDef {
     pub unit: Unit,
     pub default: f64,
     pub range: Range,
-    pub access: Access,
+    pub access: ParamAccess,
     pub lenient: Lenient,
     /// One line for the control API and the generated reference.
     pub doc: &'static str,
@@ -188,9 +188,9 @@ macro_rules! param_table {
     };
 }
 
-use Access::{ReadOnly as RO, ReadWrite as RW, WriteWhenDisabled as WD, WriteWhenIdle as WI};
 use Kind::{Bool, Enum, Int, Real};
 use Lenient::{Abs, AbsOrDefault as AOD, No};
+use ParamAccess::{ReadOnly as RO, ReadWrite as RW, WriteWhenDisabled as WD, WriteWhenIdle as WI};
 use Range::{Above, Any, AtLeast, Between, NonZero};
 
 param_table! {
@@ -643,7 +643,7 @@ mod tests {
         for (i, def) in PARAMS.iter().enumerate() {
             assert_eq!(def.id as usize, i);
             assert!(
-                def.validate(def.default).is_ok() || def.access == Access::ReadOnly,
+                def.validate(def.default).is_ok() || def.access == ParamAccess::ReadOnly,
                 "default of {} is outside its own range",
                 def.name
             );

@@ -13,7 +13,7 @@
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
-use axes::param::{Access, Kind, ParamDef, Range, Unit, PARAMS};
+use axes::param::{Kind, ParamAccess, ParamDef, Range, Unit, PARAMS};
 use serde::de::{self, DeserializeOwned, Deserializer, Visitor};
 use serde_json::{Map, Value};
 
@@ -595,12 +595,12 @@ fn range(r: Range) -> String {
     }
 }
 
-fn access(a: Access) -> &'static str {
+fn access(a: ParamAccess) -> &'static str {
     match a {
-        Access::ReadWrite => "read/write",
-        Access::WriteWhenIdle => "write when idle",
-        Access::WriteWhenDisabled => "write when disabled",
-        Access::ReadOnly => "read-only",
+        ParamAccess::ReadWrite => "read/write",
+        ParamAccess::WriteWhenIdle => "write when idle",
+        ParamAccess::WriteWhenDisabled => "write when disabled",
+        ParamAccess::ReadOnly => "read-only",
     }
 }
 

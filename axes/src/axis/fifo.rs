@@ -30,7 +30,7 @@ impl Overrides {
 
 /// What a queued command asks for.
 #[derive(Clone, Debug, PartialEq)]
-pub enum Action {
+pub enum MotionAction {
     MoveAbsolute { position: f64 },
     MoveRelative { distance: f64 },
     MoveVelocity { velocity: f64 },
@@ -41,7 +41,7 @@ pub enum Action {
 pub struct Queued {
     pub id: CommandId,
     pub kind: CommandKind,
-    pub action: Action,
+    pub action: MotionAction,
     pub overrides: Overrides,
 }
 
@@ -179,7 +179,7 @@ mod tests {
         let q = |id| Queued {
             id,
             kind: CommandKind::MoveRelative,
-            action: Action::MoveRelative { distance: 1.0 },
+            action: MotionAction::MoveRelative { distance: 1.0 },
             overrides: Overrides::default(),
         };
         f.push(q(1));

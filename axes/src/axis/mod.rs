@@ -32,8 +32,9 @@ use crate::profile::{
 use crate::rng::Rng;
 use crate::status::{AxisFlags, AxisState, AxisStatus, CommandRef};
 
-pub(crate) use commands::MotionRequest;
-pub use fifo::{Action, Fifo, Ledger, Overrides, Queued};
+pub use commands::Feed;
+pub(crate) use commands::MotionSubmission;
+pub use fifo::{Fifo, Ledger, MotionAction, Overrides, Queued};
 use setup::Setup;
 
 /// What the engine lends an axis for one tick or one command.
@@ -82,7 +83,7 @@ enum Ramp {
 
 /// The goal of the running command.
 #[derive(Clone, Copy, Debug, PartialEq)]
-enum Goal1 {
+enum RunGoal {
     Position { target: f64 },
     Velocity { velocity: f64 },
     Homing,
@@ -92,7 +93,7 @@ enum Goal1 {
 struct Run {
     id: CommandId,
     kind: CommandKind,
-    goal: Goal1,
+    goal: RunGoal,
     overrides: Overrides,
     /// Tick at which the commanded position arrived (for `cmd_stop_mode` 1).
     arrived_at: Option<u64>,
@@ -793,12 +794,12 @@ impl Axis {
     /// The goal of `run` as a planner goal, given the current state.
     fn run_goal(run: &Run) -> Option<Goal> {
         match run.goal {
-            Goal1::Position { target } => Some(Goal::Position {
+            RunGoal::Position { target } => Some(Goal::Position {
                 target,
                 end_velocity: 0.0,
             }),
-            Goal1::Velocity { velocity } => Some(Goal::Velocity { target: velocity }),
-            Goal1::Homing => None,
+            RunGoal::Velocity { velocity } => Some(Goal::Velocity { target: velocity }),
+            RunGoal::Homing => None,
         }
     }
 
@@ -857,9 +858,9 @@ impl Axis {
         match &self.activity {
             Activity::Idle => AxisState::Standstill,
             Activity::Running(run) => match run.goal {
-                Goal1::Homing => AxisState::Homing,
-                Goal1::Velocity { .. } => AxisState::ContinuousMotion,
-                Goal1::Position { .. } => AxisState::DiscreteMotion,
+                RunGoal::Homing => AxisState::Homing,
+                RunGoal::Velocity { .. } => AxisState::ContinuousMotion,
+                RunGoal::Position { .. } => AxisState::DiscreteMotion,
             },
             Activity::Ramping(_) => AxisState::Stopping,
             Activity::Streaming => AxisState::SynchronizedMotion,

@@ -1,7 +1,7 @@
 //! Per-tick supervision (limits, following error, drive alarm, encoder loss, the HMC error
 //! mask) and command progress (completion, stop ramps, the next command).
 
-use super::{setup::Route, unbinding_velocity, Activity, Axis, Context, Goal1, Ramp, Source};
+use super::{setup::Route, unbinding_velocity, Activity, Axis, Context, Ramp, RunGoal, Source};
 use crate::command::{CommandState, Direction, ErrorKind, StopMode};
 use crate::homing::{HomingInputs, MotionRequest};
 use crate::hw::switch::Edge;
@@ -11,7 +11,7 @@ use crate::status::AxisFlags;
 
 impl Axis {
     pub(super) fn supervise(&mut self, ctx: &mut Context) {
-        let homing = matches!(&self.activity, Activity::Running(r) if r.goal == Goal1::Homing);
+        let homing = matches!(&self.activity, Activity::Running(r) if r.goal == RunGoal::Homing);
         // The live flags are built in a local and stored once: single-bit updates in place
         // compile to byte-wide read-modify-writes, and reading the whole word back right after
         // stalls on store forwarding (measured: a third of this function's time).
@@ -202,13 +202,13 @@ impl Axis {
                 }
             }
             Activity::Running(run) => match run.goal {
-                Goal1::Homing => self.progress_homing(ctx),
-                Goal1::Velocity { .. } => {
+                RunGoal::Homing => self.progress_homing(ctx),
+                RunGoal::Velocity { .. } => {
                     if self.halted && profile_done {
                         self.source = Source::Hold;
                     }
                 }
-                Goal1::Position { .. } => {
+                RunGoal::Position { .. } => {
                     if self.halted {
                         if profile_done {
                             self.source = Source::Hold;

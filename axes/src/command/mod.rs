@@ -6,15 +6,12 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::homing::HomingError;
-use crate::od::{OdError, Value};
-use crate::status::{AxisFlags, AxisState};
+use crate::od::Value;
 
-/// Index of an axis in the machine, from 0.
-pub type AxisIndex = u16;
-
-/// Identifier of a queued motion command. Engine-wide, increasing from 1; 0 is never used.
-pub type CommandId = u32;
+// Defined below `command` in the module chain (docs/architecture.md) and re-exported here, so
+// that `axes::command::EngineError` and friends keep their paths.
+pub use crate::error::EngineError;
+pub use crate::types::{AxisIndex, CommandId, CommandKind, Direction, ErrorKind};
 
 /// PLCopen buffer mode of a motion command (ARCHITECTURE §3.5).
 ///
@@ -196,31 +193,6 @@ pub enum Setpoint {
     Torque { torque: f64 },
 }
 
-/// What kind of command occupies a FIFO slot; reported in status (HMC MCmdType/NCmdType).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum CommandKind {
-    MoveAbsolute,
-    MoveRelative,
-    MoveVelocity,
-    Home,
-    /// A drive-driven or externally streamed setpoint (CSP/CSV/CST, HMC_SetDposSwitch).
-    External,
-}
-
-impl CommandKind {
-    /// Stable numeric code used where a status word carries the kind (0 = idle).
-    pub const fn code(self) -> u16 {
-        match self {
-            CommandKind::MoveAbsolute => 1,
-            CommandKind::MoveRelative => 2,
-            CommandKind::MoveVelocity => 3,
-            CommandKind::Home => 4,
-            CommandKind::External => 5,
-        }
-    }
-}
-
 /// Lifecycle of a motion command (HMC §2.2 HMC_GetCmdState).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -258,161 +230,6 @@ pub enum Reply {
     Object {
         value: Value,
     },
-}
-
-/// Direction of travel or of a limit.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Direction {
-    Positive,
-    Negative,
-}
-
-impl std::fmt::Display for Direction {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(match self {
-            Direction::Positive => "positive",
-            Direction::Negative => "negative",
-        })
-    }
-}
-
-/// Why the engine refused a command or ended one. A closed set: dialects map each variant to
-/// their own codes (Modbus exceptions, SDO aborts, NMC return codes, HIMC 0xCCNNVVVV …).
-#[derive(Clone, Debug, PartialEq, thiserror::Error, Serialize)]
-#[serde(tag = "code", rename_all = "snake_case")]
-pub enum EngineError {
-    #[error("axis {axis} does not exist (the machine has {count} axes)")]
-    InvalidAxis { axis: u32, count: u32 },
-    #[error("unknown parameter `{name}`")]
-    UnknownParameter { name: String },
-    #[error("parameter `{name}` = {value}: {reason}")]
-    InvalidParameter {
-        name: &'static str,
-        value: f64,
-        reason: String,
-    },
-    #[error("parameter `{name}` is read-only")]
-    ReadOnlyParameter { name: &'static str },
-    #[error("{name} = {value}: {reason}")]
-    InvalidArgument {
-        name: &'static str,
-        value: f64,
-        reason: &'static str,
-    },
-    #[error("axis {axis} is disabled")]
-    AxisDisabled { axis: AxisIndex },
-    #[error("axis {axis} is in error stop ({faults})")]
-    AxisInError { axis: AxisIndex, faults: AxisFlags },
-    #[error("axis {axis}: {direction} limit active; motion further into it is refused")]
-    LimitActive {
-        axis: AxisIndex,
-        direction: Direction,
-    },
-    #[error("axis {axis}: command queue full ({depth} commands)")]
-    QueueFull { axis: AxisIndex, depth: u16 },
-    #[error("unsupported: {what}")]
-    Unsupported { what: String },
-    #[error("axis {axis} is {state}: cannot {action}")]
-    InvalidState {
-        axis: AxisIndex,
-        state: AxisState,
-        action: &'static str,
-    },
-    #[error("axis {axis}: cannot clear {faults}: the cause is still present")]
-    CauseStillPresent { axis: AxisIndex, faults: AxisFlags },
-    #[error("no command with id {id}")]
-    UnknownCommand { id: CommandId },
-    #[error("homing: {0}")]
-    Homing(HomingError),
-    #[error("slave {slave}: {error}")]
-    Object { slave: u16, error: OdError },
-    #[error("slave {slave} does not exist (the machine has {count} slaves)")]
-    InvalidSlave { slave: u16, count: u16 },
-    #[error("I/O channel {channel} does not exist ({kind} has {count} channels)")]
-    InvalidChannel {
-        kind: &'static str,
-        channel: u16,
-        count: u16,
-    },
-}
-
-/// The name of an [`EngineError`] variant without its data: `Copy`, so it fits in status records
-/// and traces.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum ErrorKind {
-    InvalidAxis,
-    UnknownParameter,
-    InvalidParameter,
-    ReadOnlyParameter,
-    InvalidArgument,
-    AxisDisabled,
-    AxisInError,
-    LimitActive,
-    QueueFull,
-    Unsupported,
-    InvalidState,
-    CauseStillPresent,
-    UnknownCommand,
-    Homing,
-    Object,
-    InvalidSlave,
-    InvalidChannel,
-    /// Not a refusal: a running command ended because a limit was reached.
-    LimitReached,
-    /// Not a refusal: a running command ended because of a fault (following error, alarm …).
-    Fault,
-}
-
-impl ErrorKind {
-    pub const fn name(self) -> &'static str {
-        match self {
-            ErrorKind::InvalidAxis => "invalid_axis",
-            ErrorKind::UnknownParameter => "unknown_parameter",
-            ErrorKind::InvalidParameter => "invalid_parameter",
-            ErrorKind::ReadOnlyParameter => "read_only_parameter",
-            ErrorKind::InvalidArgument => "invalid_argument",
-            ErrorKind::AxisDisabled => "axis_disabled",
-            ErrorKind::AxisInError => "axis_in_error",
-            ErrorKind::LimitActive => "limit_active",
-            ErrorKind::QueueFull => "queue_full",
-            ErrorKind::Unsupported => "unsupported",
-            ErrorKind::InvalidState => "invalid_state",
-            ErrorKind::CauseStillPresent => "cause_still_present",
-            ErrorKind::UnknownCommand => "unknown_command",
-            ErrorKind::Homing => "homing",
-            ErrorKind::Object => "object",
-            ErrorKind::InvalidSlave => "invalid_slave",
-            ErrorKind::InvalidChannel => "invalid_channel",
-            ErrorKind::LimitReached => "limit_reached",
-            ErrorKind::Fault => "fault",
-        }
-    }
-}
-
-impl EngineError {
-    pub fn kind(&self) -> ErrorKind {
-        match self {
-            EngineError::InvalidAxis { .. } => ErrorKind::InvalidAxis,
-            EngineError::UnknownParameter { .. } => ErrorKind::UnknownParameter,
-            EngineError::InvalidParameter { .. } => ErrorKind::InvalidParameter,
-            EngineError::ReadOnlyParameter { .. } => ErrorKind::ReadOnlyParameter,
-            EngineError::InvalidArgument { .. } => ErrorKind::InvalidArgument,
-            EngineError::AxisDisabled { .. } => ErrorKind::AxisDisabled,
-            EngineError::AxisInError { .. } => ErrorKind::AxisInError,
-            EngineError::LimitActive { .. } => ErrorKind::LimitActive,
-            EngineError::QueueFull { .. } => ErrorKind::QueueFull,
-            EngineError::Unsupported { .. } => ErrorKind::Unsupported,
-            EngineError::InvalidState { .. } => ErrorKind::InvalidState,
-            EngineError::CauseStillPresent { .. } => ErrorKind::CauseStillPresent,
-            EngineError::UnknownCommand { .. } => ErrorKind::UnknownCommand,
-            EngineError::Homing(_) => ErrorKind::Homing,
-            EngineError::Object { .. } => ErrorKind::Object,
-            EngineError::InvalidSlave { .. } => ErrorKind::InvalidSlave,
-            EngineError::InvalidChannel { .. } => ErrorKind::InvalidChannel,
-        }
-    }
 }
 
 /// Largest magnitude of a position, distance, velocity or offset a command may carry, in user

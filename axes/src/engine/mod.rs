@@ -2,7 +2,7 @@
 //! [`Engine::step`] (ARCHITECTURE §3). Same config + same commands at the same ticks ⇒
 //! bit-identical state: nothing here reads a clock, iterates a hash map or uses a thread.
 
-use crate::axis::{Action, Axis, Context, Ledger, MotionRequest, Overrides};
+use crate::axis::{Axis, Context, Ledger, MotionAction, MotionSubmission, Overrides};
 use crate::cia402::{controlword_for, obj, Cia402Drive, DriveMaster, PowerTarget, State};
 use crate::command::{
     AxisCommand, AxisIndex, Cancel, Command, CommandKind, CouplingCommand, Disable, Enable,
@@ -20,7 +20,8 @@ use crate::status::{AxisStatus, DriveStatus, IoImage, Snapshot};
 use std::sync::Arc;
 
 mod planner;
-pub use planner::{Feed, Feeds, MachinePlanner};
+pub use crate::axis::Feed;
+pub use planner::{Feeds, MachinePlanner};
 
 /// The machine's digital and analog I/O.
 #[derive(Clone, Debug)]
@@ -295,9 +296,9 @@ impl Engine {
                 buffer_mode,
             }) => axis.submit(
                 &mut ctx,
-                MotionRequest {
+                MotionSubmission {
                     kind: CommandKind::MoveAbsolute,
-                    action: Action::MoveAbsolute { position },
+                    action: MotionAction::MoveAbsolute { position },
                     overrides: Overrides {
                         velocity,
                         acceleration,
@@ -317,9 +318,9 @@ impl Engine {
                 buffer_mode,
             }) => axis.submit(
                 &mut ctx,
-                MotionRequest {
+                MotionSubmission {
                     kind: CommandKind::MoveRelative,
-                    action: Action::MoveRelative { distance },
+                    action: MotionAction::MoveRelative { distance },
                     overrides: Overrides {
                         velocity,
                         acceleration,
@@ -338,9 +339,9 @@ impl Engine {
                 buffer_mode,
             }) => axis.submit(
                 &mut ctx,
-                MotionRequest {
+                MotionSubmission {
                     kind: CommandKind::MoveVelocity,
-                    action: Action::MoveVelocity { velocity },
+                    action: MotionAction::MoveVelocity { velocity },
                     overrides: Overrides {
                         velocity: None,
                         acceleration,
@@ -364,9 +365,9 @@ impl Engine {
                 let spec = homing_spec(axis, &home)?;
                 axis.submit(
                     &mut ctx,
-                    MotionRequest {
+                    MotionSubmission {
                         kind: CommandKind::Home,
-                        action: Action::Home(spec),
+                        action: MotionAction::Home(spec),
                         overrides: Overrides::default(),
                         buffer_mode: home.buffer_mode,
                     },

@@ -15,7 +15,7 @@
 
 use std::fmt;
 
-use crate::axis::Axis;
+use crate::axis::{Axis, Feed};
 use crate::command::{AxisIndex, EngineError};
 use crate::profile::MotionState;
 
@@ -42,15 +42,6 @@ pub trait MachinePlanner: Send + fmt::Debug {
 #[derive(Debug, Default)]
 pub struct Feeds {
     entries: Vec<(AxisIndex, Feed)>,
-}
-
-/// What a planner asks of one axis for one tick.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Feed {
-    /// Follow this commanded state this tick.
-    Follow(MotionState),
-    /// Stop being fed: the axis decelerates to rest with its `decel` and is free again.
-    Release,
 }
 
 impl Feeds {

@@ -1,7 +1,7 @@
 //! The CiA 402 method table: one row per method, read by the one machine in `machine.rs`.
 
 use super::{HomingError, HomingHardware, HomingInput};
-use crate::command::Direction;
+use crate::types::Direction;
 
 /// A direction of travel with arithmetic.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -55,7 +55,7 @@ mod tests;
 
 pub use machine::Homing;
 
-use crate::command::Direction;
+use crate::types::Direction;
 use serde::{Deserialize, Serialize};
 
 /// What the axis does once the home point is found.

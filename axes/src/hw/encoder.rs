@@ -1,8 +1,8 @@
 //! Incremental encoder (ARCHITECTURE §3.2): physical motion → counts, A/B quadrature and an
 //! index (Z) pulse once per revolution; optional noise from the seeded RNG; loss of feedback.
 
-use crate::config::EncoderConfig;
 use crate::rng::Rng;
+use serde::{Deserialize, Serialize};
 
 /// Encoder of one axis.
 #[derive(Clone, Debug)]
@@ -176,6 +176,32 @@ impl Encoder {
     /// Whether the encoder has an index pulse at all.
     pub fn has_index(&self) -> bool {
         self.counts_per_rev > 0
+    }
+}
+
+/// Incremental encoder (ARCHITECTURE §3.2).
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct EncoderConfig {
+    /// Counts per motor revolution: the index (Z) pulse comes once per revolution. 0 = no index.
+    pub counts_per_rev: u32,
+    /// Width of the index pulse, counts.
+    pub index_width: u32,
+    /// Count offset of the index pulse within a revolution.
+    pub index_offset: u32,
+    /// Peak amplitude of uniform noise added to the count, counts (0 = none).
+    pub noise: f64,
+}
+
+impl Default for EncoderConfig {
+    fn default() -> Self {
+        EncoderConfig {
+            counts_per_rev: 10_000,
+            index_width: 1,
+            index_offset: 0,
+            noise: 0.0,
+        }
     }
 }
 

@@ -1,7 +1,7 @@
 //! The drive and motor (ARCHITECTURE §3.3 step 4): ideal, first-order lag, or the HMC closed
 //! position loop driving a velocity-mode motor.
 
-use crate::config::{PlantConfig, PlantModel};
+use serde::{Deserialize, Serialize};
 
 /// Gains and output shaping of the HMC position loop (HMC §2.1 fig. 3, §2.5, §2.9).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -200,6 +200,48 @@ impl Plant {
     pub fn set_position(&mut self, position: f64) {
         self.position = position;
         self.velocity = 0.0;
+    }
+}
+
+/// The drive and motor that turn the command into actual motion.
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PlantModel {
+    /// The motor follows its position command exactly.
+    #[default]
+    Ideal,
+    /// The motor follows its position command with a first-order lag (`time_constant`).
+    Lag,
+    /// The controller closes the HMC position loop (HMC §2.1 fig. 3: gains `kp` … `ko`, dead band,
+    /// DAC clamp) and drives a velocity-mode motor. Required by the closed-loop axis types (analog
+    /// servo 20, bus velocity 41/51).
+    PositionLoop,
+}
+
+/// The drive and motor model: how the actual position follows the command.
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct PlantConfig {
+    /// How the motor follows the command.
+    pub model: PlantModel,
+    /// Lag time constant, seconds (model `lag`).
+    pub time_constant: f64,
+    /// Motor velocity at servo output 32767, user units/s (model `position_loop`).
+    pub full_scale_velocity: f64,
+    /// Time constant of the drive's velocity loop, seconds, 0 = instant (model `position_loop`).
+    pub velocity_time_constant: f64,
+}
+
+impl Default for PlantConfig {
+    fn default() -> Self {
+        PlantConfig {
+            model: PlantModel::Ideal,
+            time_constant: 0.01,
+            full_scale_velocity: 1000.0,
+            velocity_time_constant: 0.0,
+        }
     }
 }
 

@@ -2,7 +2,7 @@
 //! step 6), with debounce. Inversion (active-low wiring) is the controller's business and lives
 //! in the axis, since the parameters that choose it are the controller's.
 
-use crate::config::{HomeSwitchConfig, SwitchConfig, SwitchesConfig};
+use serde::{Deserialize, Serialize};
 
 /// Where a switch changed level during a tick.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -296,6 +296,61 @@ impl Switches {
         }
         (lo, hi)
     }
+}
+
+/// Limit and home switches, computed from the actual position.
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SwitchesConfig {
+    /// Positive limit: active for actual position ≥ `position`.
+    pub limit_pos: Option<SwitchConfig>,
+    /// Negative limit: active for actual position ≤ `position`.
+    pub limit_neg: Option<SwitchConfig>,
+    /// Home switch (a cam): active for actual position in `[low, high]`.
+    pub home: Option<HomeSwitchConfig>,
+}
+
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SwitchConfig {
+    /// Actual position (user units) where the switch becomes active.
+    pub position: f64,
+    /// The sensor outputs low while actuated (normally-closed wiring). The controller's
+    /// `*_invert` parameter must match, or the input reads inverted — as on a real machine.
+    #[serde(default)]
+    pub active_low: bool,
+    /// Ticks the raw level must be stable before the input follows it (debounce).
+    #[serde(default)]
+    pub filter: u32,
+}
+
+/// A home switch active on `[low, high]` (a cam). Leave one bound out for a switch that stays
+/// active to that side (CiA 402 "positive/negative home switch").
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HomeSwitchConfig {
+    /// Lower end of the active range, user units; omitted: unbounded (active to −∞).
+    #[serde(default = "neg_inf")]
+    pub low: f64,
+    /// Upper end of the active range, user units; omitted: unbounded (active to +∞).
+    #[serde(default = "pos_inf")]
+    pub high: f64,
+    /// The sensor outputs low while actuated; `home_invert` must match.
+    #[serde(default)]
+    pub active_low: bool,
+    /// Ticks the raw level must be stable before the input follows it (debounce).
+    #[serde(default)]
+    pub filter: u32,
+}
+
+fn neg_inf() -> f64 {
+    f64::NEG_INFINITY
+}
+fn pos_inf() -> f64 {
+    f64::INFINITY
 }
 
 #[cfg(test)]

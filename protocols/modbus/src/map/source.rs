@@ -416,7 +416,7 @@ pub fn parse_target(path: &str, scope: &Scope<'_>) -> Result<Target, String> {
     if let Some((axis, rest)) = axis_path(path, scope)? {
         if let Some(name) = rest.strip_prefix("param.") {
             let id = param(name)?;
-            if id.def().access == axes::param::Access::ReadOnly {
+            if id.def().access == axes::param::ParamAccess::ReadOnly {
                 return Err(format!("parameter `{}` is read-only", id.name()));
             }
             return Ok(Target::Param { axis, id });

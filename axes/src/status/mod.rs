@@ -6,7 +6,10 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::command::{CommandId, CommandKind, ErrorKind};
+use crate::types::{CommandId, CommandKind, ErrorKind};
+
+mod snapshot;
+pub use snapshot::Snapshot;
 
 /// PLCopen axis state.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -266,36 +269,6 @@ pub struct DriveStatus {
     pub mode: i8,
     /// 0x603F.
     pub error_code: u16,
-}
-
-/// The machine's state after a tick: what front-ends read without waiting for the servo thread.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-pub struct Snapshot {
-    /// Ticks since start.
-    pub tick: u64,
-    /// Servo period, seconds.
-    pub period: f64,
-    pub axes: Vec<AxisStatus>,
-    pub io: IoImage,
-    /// Changes whenever the I/O image changes: readers (and the snapshot refresh) can skip
-    /// comparing images that did not change.
-    pub io_version: u64,
-    /// The CiA 402 drives, by slave number.
-    pub drives: Vec<DriveStatus>,
-    /// Every axis's stored parameters, shared between snapshots until one changes, so that
-    /// front-ends read parameters without a round trip to the servo thread. Live values
-    /// (positions, status words) come from [`crate::param::parameter_value`].
-    #[serde(skip)]
-    pub params: std::sync::Arc<Vec<crate::param::ParamSet>>,
-    /// Changes whenever a parameter of any axis changes.
-    pub params_version: u64,
-}
-
-impl Snapshot {
-    /// Engine time, seconds.
-    pub fn time(&self) -> f64 {
-        self.tick as f64 * self.period
-    }
 }
 
 #[cfg(test)]

@@ -1,0 +1,171 @@
+//! Simulated inputs, setpoint streams (external master), feeds from an engine stage above the
+//! axes, and the start of homing.
+
+use super::*;
+use crate::profile::MotionState;
+
+/// What a machine-level planner ([`crate::engine::MachinePlanner`]) asks of one axis for one
+/// tick. Defined with the axis that takes it, below the engine in the module chain.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Feed {
+    /// Follow this commanded state this tick.
+    Follow(MotionState),
+    /// Stop being fed: the axis decelerates to rest with its `decel` and is free again.
+    Release,
+}
+
+impl Axis {
+    pub(crate) fn force_input(
+        &mut self,
+        input: AxisInput,
+        value: Option<bool>,
+    ) -> Result<Reply, EngineError> {
+        let f = &mut self.forces;
+        match input {
+            AxisInput::LimitPos => f.limit_pos = value,
+            AxisInput::LimitNeg => f.limit_neg = value,
+            AxisInput::Home => f.home = value,
+            AxisInput::Index => f.index = value,
+            AxisInput::DriveAlarm => f.drive_alarm = value,
+            AxisInput::EncoderLoss => f.encoder_loss = value,
+        }
+        Ok(Reply::Done)
+    }
+
+    pub(crate) fn inject_following_error(
+        &mut self,
+        amount: Option<f64>,
+    ) -> Result<Reply, EngineError> {
+        let amount = match amount {
+            Some(a) => bounded("amount", a)?,
+            None => 0.0,
+        };
+        self.injected_fe = amount;
+        Ok(Reply::Done)
+    }
+
+    /// Start, update or end an external setpoint stream.
+    pub(crate) fn setpoint(
+        &mut self,
+        ctx: &mut Context,
+        setpoint: Option<Setpoint>,
+    ) -> Result<Reply, EngineError> {
+        if let Err(e) = self.check_not_fed() {
+            return self.refuse(e);
+        }
+        let Some(sp) = setpoint else {
+            self.end_stream(ctx);
+            return Ok(Reply::Done);
+        };
+        let value = match sp {
+            Setpoint::Position { position } => position,
+            Setpoint::Velocity { velocity } => velocity,
+            Setpoint::Torque { torque } => torque,
+        };
+        if let Err(e) = bounded("setpoint", value) {
+            return self.refuse(e);
+        }
+        let toward = match sp {
+            Setpoint::Position { position } => position - self.raw.p,
+            Setpoint::Velocity { velocity } => velocity,
+            Setpoint::Torque { torque } => torque,
+        };
+        self.start_stream(ctx, toward, Source::External(sp))?;
+        Ok(Reply::Done)
+    }
+
+    /// Take this tick's setpoint from a machine-level planner (engine stage 2), or let go of
+    /// the planner. Same rules as a `setpoint` stream: a fed axis is in SynchronizedMotion, its
+    /// FIFO waits, and a setpoint into an active limit is refused.
+    pub(crate) fn feed(&mut self, ctx: &mut Context, feed: Feed) -> Result<(), EngineError> {
+        let state = match feed {
+            Feed::Follow(state) => state,
+            Feed::Release => {
+                if matches!(self.source, Source::Fed(_)) {
+                    self.end_stream(ctx);
+                }
+                return Ok(());
+            }
+        };
+        for (name, value) in [
+            ("position", state.p),
+            ("velocity", state.v),
+            ("acceleration", state.a),
+        ] {
+            if let Err(e) = bounded(name, value) {
+                return self.refuse(e);
+            }
+        }
+        self.start_stream(ctx, state.p - self.raw.p, Source::Fed(state))
+    }
+
+    /// Refuse single-axis commands that would take the command source from a machine-level
+    /// planner (PLCopen: an axis in a group takes no single-axis motion).
+    pub(super) fn check_not_fed(&self) -> Result<(), EngineError> {
+        if matches!(self.source, Source::Fed(_)) && matches!(self.activity, Activity::Streaming) {
+            Err(self.invalid_state("take single-axis motion while a machine planner feeds it"))
+        } else {
+            Ok(())
+        }
+    }
+
+    /// Make `source` the axis's command source if the axis may move `toward` (the sign is the
+    /// direction); the first setpoint of a stream aborts everything else.
+    pub(super) fn start_stream(
+        &mut self,
+        ctx: &mut Context,
+        toward: f64,
+        source: Source,
+    ) -> Result<(), EngineError> {
+        if let Err(e) = self.check_can_move() {
+            return self.refuse(e);
+        }
+        let direction = if toward > 0.0 {
+            Some(Direction::Positive)
+        } else if toward < 0.0 {
+            Some(Direction::Negative)
+        } else {
+            None
+        };
+        if let Err(e) = self.admit(direction) {
+            return self.refuse(e);
+        }
+        if !matches!(self.activity, Activity::Streaming) {
+            self.abort_all(ctx, CommandState::Aborted);
+            self.activity = Activity::Streaming;
+        }
+        self.source = source;
+        Ok(())
+    }
+
+    /// End a stream: decelerate to rest with `decel`.
+    pub(super) fn end_stream(&mut self, ctx: &mut Context) {
+        if matches!(self.activity, Activity::Streaming) {
+            self.activity = Activity::Idle;
+            self.plan_stop(ctx.tick, self.param(ParamId::Decel));
+            if !matches!(self.source, Source::Hold) {
+                self.activity = Activity::Ramping(Ramp::Cancel);
+            }
+        }
+    }
+
+    /// Start a homing run: validate it against the axis's inputs, then take its first step in
+    /// this same tick (the homing contract).
+    pub(in crate::axis) fn start_homing(
+        &mut self,
+        tick: u64,
+        spec: &HomingSpec,
+    ) -> Result<Homing, EngineError> {
+        let w = self.setup;
+        let hardware = HomingHardware {
+            limit_pos: w.limit_pos.exists(self.switches.has_limit_pos()),
+            limit_neg: w.limit_neg.exists(self.switches.has_limit_neg()),
+            home: w.home.exists(self.switches.has_home()),
+            index: self.encoder.has_index(),
+        };
+        let inputs = self.homing_inputs(tick);
+        let homing = Homing::start(spec, hardware, &inputs).map_err(EngineError::Homing)?;
+        self.flags.remove(AxisFlags::HOMED);
+        Ok(homing)
+    }
+}

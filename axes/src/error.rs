@@ -1,0 +1,93 @@
+//! [`EngineError`]: why the engine refused a command or ended one. Below `param` and `command`
+//! in the module chain, so that both can return it; `command` re-exports it under its old path.
+
+use serde::Serialize;
+
+use crate::homing::HomingError;
+use crate::od::OdError;
+use crate::status::{AxisFlags, AxisState};
+use crate::types::{AxisIndex, CommandId, Direction, ErrorKind};
+
+/// Why the engine refused a command or ended one. A closed set: dialects map each variant to
+/// their own codes (Modbus exceptions, SDO aborts, NMC return codes, HIMC 0xCCNNVVVV …).
+#[derive(Clone, Debug, PartialEq, thiserror::Error, Serialize)]
+#[serde(tag = "code", rename_all = "snake_case")]
+pub enum EngineError {
+    #[error("axis {axis} does not exist (the machine has {count} axes)")]
+    InvalidAxis { axis: u32, count: u32 },
+    #[error("unknown parameter `{name}`")]
+    UnknownParameter { name: String },
+    #[error("parameter `{name}` = {value}: {reason}")]
+    InvalidParameter {
+        name: &'static str,
+        value: f64,
+        reason: String,
+    },
+    #[error("parameter `{name}` is read-only")]
+    ReadOnlyParameter { name: &'static str },
+    #[error("{name} = {value}: {reason}")]
+    InvalidArgument {
+        name: &'static str,
+        value: f64,
+        reason: &'static str,
+    },
+    #[error("axis {axis} is disabled")]
+    AxisDisabled { axis: AxisIndex },
+    #[error("axis {axis} is in error stop ({faults})")]
+    AxisInError { axis: AxisIndex, faults: AxisFlags },
+    #[error("axis {axis}: {direction} limit active; motion further into it is refused")]
+    LimitActive {
+        axis: AxisIndex,
+        direction: Direction,
+    },
+    #[error("axis {axis}: command queue full ({depth} commands)")]
+    QueueFull { axis: AxisIndex, depth: u16 },
+    #[error("unsupported: {what}")]
+    Unsupported { what: String },
+    #[error("axis {axis} is {state}: cannot {action}")]
+    InvalidState {
+        axis: AxisIndex,
+        state: AxisState,
+        action: &'static str,
+    },
+    #[error("axis {axis}: cannot clear {faults}: the cause is still present")]
+    CauseStillPresent { axis: AxisIndex, faults: AxisFlags },
+    #[error("no command with id {id}")]
+    UnknownCommand { id: CommandId },
+    #[error("homing: {0}")]
+    Homing(HomingError),
+    #[error("slave {slave}: {error}")]
+    Object { slave: u16, error: OdError },
+    #[error("slave {slave} does not exist (the machine has {count} slaves)")]
+    InvalidSlave { slave: u16, count: u16 },
+    #[error("I/O channel {channel} does not exist ({kind} has {count} channels)")]
+    InvalidChannel {
+        kind: &'static str,
+        channel: u16,
+        count: u16,
+    },
+}
+
+impl EngineError {
+    pub fn kind(&self) -> ErrorKind {
+        match self {
+            EngineError::InvalidAxis { .. } => ErrorKind::InvalidAxis,
+            EngineError::UnknownParameter { .. } => ErrorKind::UnknownParameter,
+            EngineError::InvalidParameter { .. } => ErrorKind::InvalidParameter,
+            EngineError::ReadOnlyParameter { .. } => ErrorKind::ReadOnlyParameter,
+            EngineError::InvalidArgument { .. } => ErrorKind::InvalidArgument,
+            EngineError::AxisDisabled { .. } => ErrorKind::AxisDisabled,
+            EngineError::AxisInError { .. } => ErrorKind::AxisInError,
+            EngineError::LimitActive { .. } => ErrorKind::LimitActive,
+            EngineError::QueueFull { .. } => ErrorKind::QueueFull,
+            EngineError::Unsupported { .. } => ErrorKind::Unsupported,
+            EngineError::InvalidState { .. } => ErrorKind::InvalidState,
+            EngineError::CauseStillPresent { .. } => ErrorKind::CauseStillPresent,
+            EngineError::UnknownCommand { .. } => ErrorKind::UnknownCommand,
+            EngineError::Homing(_) => ErrorKind::Homing,
+            EngineError::Object { .. } => ErrorKind::Object,
+            EngineError::InvalidSlave { .. } => ErrorKind::InvalidSlave,
+            EngineError::InvalidChannel { .. } => ErrorKind::InvalidChannel,
+        }
+    }
+}

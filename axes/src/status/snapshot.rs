@@ -1,0 +1,38 @@
+//! The machine snapshot. A child of `status` but above `param` in the module chain (it carries
+//! every axis's [`ParamSet`]), so that `status` itself stays below `param`; `status` re-exports
+//! [`Snapshot`] under its old path.
+
+use serde::{Deserialize, Serialize};
+
+use super::{AxisStatus, DriveStatus, IoImage};
+use crate::param::ParamSet;
+
+/// The machine's state after a tick: what front-ends read without waiting for the servo thread.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Snapshot {
+    /// Ticks since start.
+    pub tick: u64,
+    /// Servo period, seconds.
+    pub period: f64,
+    pub axes: Vec<AxisStatus>,
+    pub io: IoImage,
+    /// Changes whenever the I/O image changes: readers (and the snapshot refresh) can skip
+    /// comparing images that did not change.
+    pub io_version: u64,
+    /// The CiA 402 drives, by slave number.
+    pub drives: Vec<DriveStatus>,
+    /// Every axis's stored parameters, shared between snapshots until one changes, so that
+    /// front-ends read parameters without a round trip to the servo thread. Live values
+    /// (positions, status words) come from [`crate::param::parameter_value`].
+    #[serde(skip)]
+    pub params: std::sync::Arc<Vec<ParamSet>>,
+    /// Changes whenever a parameter of any axis changes.
+    pub params_version: u64,
+}
+
+impl Snapshot {
+    /// Engine time, seconds.
+    pub fn time(&self) -> f64 {
+        self.tick as f64 * self.period
+    }
+}
