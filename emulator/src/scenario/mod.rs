@@ -97,11 +97,11 @@ struct Step {
     index: usize,
     at: f64,
     tick: u64,
-    action: Action,
+    action: StepAction,
 }
 
 #[derive(Clone, Debug)]
-enum Action {
+enum StepAction {
     Command {
         command: Command,
         /// The refusal the step expects, if it expects one.
@@ -364,7 +364,7 @@ impl Machine {
 type StepError = (String, String);
 
 /// The one action of a step, checked against the machine.
-fn action(spec: StepSpec, machine: &Machine) -> Result<Action, StepError> {
+fn action(spec: StepSpec, machine: &Machine) -> Result<StepAction, StepError> {
     let given: Vec<&str> = [
         ("command", spec.command.is_some()),
         ("force", spec.force.is_some()),
@@ -405,11 +405,11 @@ fn action(spec: StepSpec, machine: &Machine) -> Result<Action, StepError> {
                 .axis(axis)
                 .map_err(|e| (".command.axis".to_string(), e))?;
         }
-        return Ok(Action::Command { command, refusal });
+        return Ok(StepAction::Command { command, refusal });
     }
     if let Some(force) = spec.force {
         return force_command(force, machine)
-            .map(Action::Force)
+            .map(StepAction::Force)
             .map_err(|(k, why)| (format!(".force.{k}"), why));
     }
     let Some(spec) = spec.expect else {
@@ -442,7 +442,7 @@ fn action(spec: StepSpec, machine: &Machine) -> Result<Action, StepError> {
         };
         result.map_err(|why| (key.to_string(), why))?;
     }
-    Ok(Action::Expect(e))
+    Ok(StepAction::Expect(e))
 }
 
 fn force_command(f: ForceSpec, machine: &Machine) -> Result<Command, (&'static str, String)> {
@@ -502,7 +502,7 @@ const _: fn(AxisInput) = |i| match i {
 /// `command_state` conditions must name an earlier motion command (one that gets an id).
 fn check_command_refs(steps: &[Step]) -> Result<(), (String, String)> {
     for (order, step) in steps.iter().enumerate() {
-        let Action::Expect(e) = &step.action else {
+        let StepAction::Expect(e) = &step.action else {
             continue;
         };
         for check in &e.checks {
@@ -514,7 +514,7 @@ fn check_command_refs(steps: &[Step]) -> Result<(), (String, String)> {
                 return Err((key, format!("there is no step[{target}]")));
             };
             let Some(Step {
-                action: Action::Command { command, refusal },
+                action: StepAction::Command { command, refusal },
                 ..
             }) = steps.get(pos)
             else {
@@ -583,7 +583,7 @@ impl Run<'_> {
             self.scenario.file, step.index, step.at
         );
         match &step.action {
-            Action::Command { command, refusal } => {
+            StepAction::Command { command, refusal } => {
                 let result = engine.apply(command.clone());
                 let issued = match &result {
                     Ok(Reply::Accepted { id }) => Issued::Id(*id),
@@ -604,13 +604,13 @@ impl Run<'_> {
                     (Err(e), want) => self.report.failures.push(refused(&at, &name, &e, *want)),
                 }
             }
-            Action::Force(command) => {
+            StepAction::Force(command) => {
                 if let Err(e) = engine.apply(command.clone()) {
                     let failure = refused(&at, "force", &e, None);
                     self.report.failures.push(failure);
                 }
             }
-            Action::Expect(e) => {
+            StepAction::Expect(e) => {
                 self.report.expectations += 1;
                 let states: Vec<(usize, Result<CommandState, String>)> = e
                     .checks

@@ -9,7 +9,7 @@
 
 use libfuzzer_sys::fuzz_target;
 use mcemu_can::socketcand::codec::{encode_frame, MAX_ELEMENT};
-use mcemu_can::socketcand::{Action, Command, Decoder, Session};
+use mcemu_can::socketcand::{Command, Decoder, Session, SessionAction};
 use mcemu_can::{Timestamp, WireFrame};
 
 fn decode(chunks: &[&[u8]]) -> Vec<String> {
@@ -45,7 +45,7 @@ fuzz_target!(|data: &[u8]| {
         session.on_command(command, &served, &mut actions);
     });
     for action in &actions {
-        if let Action::Reply(reply) = action {
+        if let SessionAction::Reply(reply) = action {
             one_element(reply);
         }
     }

@@ -12,4 +12,4 @@ pub mod session;
 pub use codec::{Command, CommandError, Decoder};
 pub use mcemu_frontend::bound::AtLimit;
 pub use server::{SocketcandConfig, SocketcandError, SocketcandServer, SocketcandStats};
-pub use session::{Action, Mode, Session};
+pub use session::{Mode, Session, SessionAction};

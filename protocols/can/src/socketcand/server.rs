@@ -25,7 +25,7 @@ use tokio::time::Instant;
 
 use crate::hub::{Delivery, Endpoint, EndpointOptions, Hub};
 use crate::socketcand::codec::{encode_error_reply, Decoder, HI};
-use crate::socketcand::session::{Action, Session};
+use crate::socketcand::session::{Session, SessionAction};
 
 /// socketcand's default port.
 pub const DEFAULT_PORT: u16 = 29536;
@@ -317,17 +317,17 @@ async fn serve(c: Connection, shared: &Shared) -> io::Result<()> {
                 });
                 for action in actions.drain(..) {
                     match action {
-                        Action::Reply(reply) => {
+                        SessionAction::Reply(reply) => {
                             stats.errors.add(u64::from(reply.starts_with("< error")));
                             out.push_str(&reply);
                         }
-                        Action::Attach(bus) => {
+                        SessionAction::Attach(bus) => {
                             if let Some(hub) = shared.buses.get(&bus) {
                                 let name = format!("socketcand {peer}");
                                 feed.endpoint = Some(hub.attach(EndpointOptions::new(name)));
                             }
                         }
-                        Action::Transmit(frame) => {
+                        SessionAction::Transmit(frame) => {
                             let sent = feed.endpoint.as_ref().map(|e| e.send(frame));
                             match sent {
                                 Some(Ok(())) => stats.frames_from_clients.inc(),
@@ -338,7 +338,7 @@ async fn serve(c: Connection, shared: &Shared) -> io::Result<()> {
                                 None => {}
                             }
                         }
-                        Action::EnteredRawMode => {
+                        SessionAction::EnteredRawMode => {
                             // Frames of the BCM phase were never asked for.
                             if let Some(endpoint) = feed.endpoint.as_mut() {
                                 while endpoint.try_recv().is_some() {}

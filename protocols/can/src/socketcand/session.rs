@@ -22,7 +22,7 @@ pub enum Mode {
 
 /// What the transport must do after a command.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Action {
+pub enum SessionAction {
     /// Write this message to the client.
     Reply(String),
     /// Attach to the bus of this name (it is served: the session checked).
@@ -68,7 +68,7 @@ impl Session {
         &mut self,
         command: Result<Command, CommandError>,
         served: &[String],
-        actions: &mut Vec<Action>,
+        actions: &mut Vec<SessionAction>,
     ) {
         let command = match command {
             Ok(command) => command,
@@ -79,8 +79,8 @@ impl Session {
                 if served.contains(&bus) {
                     self.mode = Mode::Bcm;
                     self.bus = Some(bus.clone());
-                    actions.push(Action::Attach(bus));
-                    actions.push(Action::Reply(OK.to_string()));
+                    actions.push(SessionAction::Attach(bus));
+                    actions.push(SessionAction::Reply(OK.to_string()));
                 } else {
                     actions.push(error_reply(&format!(
                         "could not open bus {bus}: not served here (served: {})",
@@ -94,24 +94,24 @@ impl Session {
             (_, Command::Unsupported { command, reason }) => {
                 actions.push(error_reply(&format!("{command} not supported: {reason}")));
             }
-            (Mode::NoBus, Command::Echo) => actions.push(Action::Reply(ECHO.to_string())),
+            (Mode::NoBus, Command::Echo) => actions.push(SessionAction::Reply(ECHO.to_string())),
             (Mode::NoBus, _) => actions.push(error_reply("open a bus first: < open vcan0 >")),
-            (_, Command::Echo) => actions.push(Action::Reply(ECHO.to_string())),
+            (_, Command::Echo) => actions.push(SessionAction::Reply(ECHO.to_string())),
             (_, Command::RawMode) => {
                 let entering = self.mode != Mode::Raw;
                 self.mode = Mode::Raw;
-                actions.push(Action::Reply(OK.to_string()));
+                actions.push(SessionAction::Reply(OK.to_string()));
                 if entering {
-                    actions.push(Action::EnteredRawMode);
+                    actions.push(SessionAction::EnteredRawMode);
                 }
             }
             (_, Command::BcmMode) => {
                 self.mode = Mode::Bcm;
-                actions.push(Action::Reply(OK.to_string()));
+                actions.push(SessionAction::Reply(OK.to_string()));
             }
             (_, Command::ControlMode) => {
                 self.mode = Mode::Control;
-                actions.push(Action::Reply(OK.to_string()));
+                actions.push(SessionAction::Reply(OK.to_string()));
             }
             (_, Command::IsoTpMode) => {
                 actions.push(error_reply(
@@ -123,7 +123,9 @@ impl Session {
                     "send is not available in control mode: < rawmode > first",
                 ));
             }
-            (Mode::Bcm | Mode::Raw, Command::Send(frame)) => actions.push(Action::Transmit(frame)),
+            (Mode::Bcm | Mode::Raw, Command::Send(frame)) => {
+                actions.push(SessionAction::Transmit(frame))
+            }
         }
     }
 
@@ -137,10 +139,10 @@ impl Session {
     }
 }
 
-fn error_reply(text: &str) -> Action {
+fn error_reply(text: &str) -> SessionAction {
     let mut out = String::new();
     encode_error_reply(&mut out, text);
-    Action::Reply(out)
+    SessionAction::Reply(out)
 }
 
 #[cfg(test)]
@@ -149,14 +151,14 @@ mod tests {
 
     use super::*;
 
-    fn run(session: &mut Session, command: Result<Command, CommandError>) -> Vec<Action> {
+    fn run(session: &mut Session, command: Result<Command, CommandError>) -> Vec<SessionAction> {
         let mut actions = vec![];
         session.on_command(command, &["vcan0".to_string()], &mut actions);
         actions
     }
 
-    fn reply(text: &str) -> Action {
-        Action::Reply(text.to_string())
+    fn reply(text: &str) -> SessionAction {
+        SessionAction::Reply(text.to_string())
     }
 
     #[test]
@@ -164,17 +166,17 @@ mod tests {
         let mut s = Session::new();
         assert_eq!(
             run(&mut s, Ok(Command::Open("vcan0".into()))),
-            [Action::Attach("vcan0".into()), reply("< ok >")]
+            [SessionAction::Attach("vcan0".into()), reply("< ok >")]
         );
         assert_eq!(s.mode(), Mode::Bcm);
         assert_eq!(
             run(&mut s, Ok(Command::RawMode)),
-            [reply("< ok >"), Action::EnteredRawMode]
+            [reply("< ok >"), SessionAction::EnteredRawMode]
         );
         let frame = WireFrame::standard(1, &[2]).unwrap();
         assert_eq!(
             run(&mut s, Ok(Command::Send(frame))),
-            [Action::Transmit(frame)]
+            [SessionAction::Transmit(frame)]
         );
         let mut out = String::new();
         assert!(s.on_frame(Timestamp { secs: 1, micros: 2 }, &frame, &mut out));
@@ -184,7 +186,7 @@ mod tests {
     #[test]
     fn refusals_keep_the_connection() {
         let mut s = Session::new();
-        let is_error = |actions: Vec<Action>| matches!(actions.as_slice(), [Action::Reply(r)] if r.starts_with("< error ") && r.ends_with(" >"));
+        let is_error = |actions: Vec<SessionAction>| matches!(actions.as_slice(), [SessionAction::Reply(r)] if r.starts_with("< error ") && r.ends_with(" >"));
         assert!(is_error(run(&mut s, Ok(Command::RawMode))));
         assert!(is_error(run(&mut s, Ok(Command::Open("vcan9".into())))));
         assert_eq!(s.mode(), Mode::NoBus);

@@ -14,7 +14,7 @@ use crate::sdo::{Completion, ObjectAccess, SdoAbort};
 use crate::store::{self, ParameterGroup, LOAD_SIGNATURE, SAVE_SIGNATURE};
 
 /// What a checked write does.
-enum Action {
+enum WriteEffect {
     /// Store in the dictionary.
     Write,
     /// 0x1003:00 = 0.
@@ -30,7 +30,7 @@ impl<D: Device> Node<D> {
         index: u16,
         subindex: u8,
         value: &Value,
-    ) -> Result<Action, SdoAbort> {
+    ) -> Result<WriteEffect, SdoAbort> {
         let od = self.device.od();
         // The node reads its communication objects as unsigned integers (CiA 301 §7.5.2 gives
         // each one's UNSIGNEDn type). A device table or user EDS/DCF may define one otherwise
@@ -49,7 +49,7 @@ impl<D: Device> Node<D> {
         match index {
             idx::ERROR_HISTORY if subindex == 0 => {
                 if v == 0 {
-                    Ok(Action::ClearHistory)
+                    Ok(WriteEffect::ClearHistory)
                 } else {
                     Err(SdoAbort::INVALID_VALUE)
                 }
@@ -57,9 +57,9 @@ impl<D: Device> Node<D> {
             idx::STORE | idx::RESTORE => {
                 let group = ParameterGroup::from_subindex(subindex).ok_or(SdoAbort::NO_SUBINDEX)?;
                 let (want, action) = if index == idx::STORE {
-                    (SAVE_SIGNATURE, Action::Store(group))
+                    (SAVE_SIGNATURE, WriteEffect::Store(group))
                 } else {
-                    (LOAD_SIGNATURE, Action::Restore(group))
+                    (LOAD_SIGNATURE, WriteEffect::Restore(group))
                 };
                 if v != u64::from(want) {
                     return Err(SdoAbort::CANNOT_STORE);
@@ -74,7 +74,7 @@ impl<D: Device> Node<D> {
                 if v & 0x6000_0000 != 0 || restricted_can_id((v & 0x7FF) as u16) {
                     Err(SdoAbort::INVALID_VALUE)
                 } else {
-                    Ok(Action::Write)
+                    Ok(WriteEffect::Write)
                 }
             }
             // §7.5.2.17: the CAN-ID changes only while the EMCY is invalid (bit 31).
@@ -87,7 +87,7 @@ impl<D: Device> Node<D> {
                 {
                     Err(SdoAbort::INVALID_VALUE)
                 } else {
-                    Ok(Action::Write)
+                    Ok(WriteEffect::Write)
                 }
             }
             // §7.5.2.22: one entry per monitored node.
@@ -104,7 +104,7 @@ impl<D: Device> Node<D> {
                         return Err(SdoAbort::PARAMETER_INCOMPATIBLE);
                     }
                 }
-                Ok(Action::Write)
+                Ok(WriteEffect::Write)
             }
             // §7.5.2.23: 0x1019 changes only while 0x1006 is 0; values 0 or 2–240.
             idx::SYNC_OVERFLOW => {
@@ -113,7 +113,7 @@ impl<D: Device> Node<D> {
                 } else if v == 1 || v > 240 {
                     Err(SdoAbort::INVALID_VALUE)
                 } else {
-                    Ok(Action::Write)
+                    Ok(WriteEffect::Write)
                 }
             }
             idx::ERROR_BEHAVIOUR if subindex == 1 && v > 2 => Err(SdoAbort::INVALID_VALUE),
@@ -122,9 +122,9 @@ impl<D: Device> Node<D> {
                     if self.nmt == NmtState::Operational && !self.config.pdo_config_in_operational {
                         return Err(SdoAbort::DEVICE_STATE);
                     }
-                    check_write(od, object, subindex, v).map(|()| Action::Write)
+                    check_write(od, object, subindex, v).map(|()| WriteEffect::Write)
                 }
-                None => Ok(Action::Write),
+                None => Ok(WriteEffect::Write),
             },
         }
     }
@@ -224,13 +224,13 @@ impl<D: Device> ObjectAccess for Node<D> {
         }
         let value = self.device.od().decode(index, subindex, data)?;
         let completion = match self.check_comm_write(index, subindex, &value)? {
-            Action::ClearHistory => {
+            WriteEffect::ClearHistory => {
                 clear_history(self.device.od_mut());
                 Completion::Done
             }
-            Action::Store(group) => return Ok(self.persist(true, group)),
-            Action::Restore(group) => return Ok(self.persist(false, group)),
-            Action::Write => {
+            WriteEffect::Store(group) => return Ok(self.persist(true, group)),
+            WriteEffect::Restore(group) => return Ok(self.persist(false, group)),
+            WriteEffect::Write => {
                 self.device.write(index, subindex, value)?;
                 Completion::Done
             }

@@ -58,7 +58,7 @@ pub enum Arg {
 
 /// A command a write issues: a JSON template of `axes::Command` with holes.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Action {
+pub struct IssuedCommand {
     pub when: When,
     pub template: Map<String, Value>,
     pub holes: Vec<(String, Arg)>,
@@ -93,7 +93,7 @@ pub struct Point {
     pub axis_code: Option<u8>,
     /// Writes: where the value goes, `None` with no actions = read-only.
     pub write: Option<Target>,
-    pub actions: Vec<Action>,
+    pub actions: Vec<IssuedCommand>,
     /// First word of the point's memory cell in [`UnitMap::initial_memory`], if it has one.
     pub cell: Option<usize>,
 }
@@ -642,7 +642,7 @@ fn action(
     own: usize,
     pending: &[Placed<'_>],
     points: &[Point],
-) -> Result<Action, CompileError> {
+) -> Result<IssuedCommand, CompileError> {
     let when = parse_when(&a.when).ok_or_else(|| {
         err(
             format!("{key}.when"),
@@ -707,7 +707,7 @@ fn action(
     // Holes hold 0 here: what cannot become a command with zeros cannot with other numbers.
     serde_json::from_value::<Command>(Value::Object(template.clone()))
         .map_err(|e| err(format!("{key}.command"), format!("`{}`: {e}", a.command)))?;
-    Ok(Action {
+    Ok(IssuedCommand {
         when,
         template,
         holes,

@@ -16,7 +16,7 @@ use axes::runtime::{CallError, EngineHandle, SubmitError};
 use axes::{Command, Snapshot};
 use serde_json::Value;
 
-use super::compile::{Action, Arg, Point, Read, UnitMap, When};
+use super::compile::{Arg, IssuedCommand, Point, Read, UnitMap, When};
 use super::schema::{Gaps, Table};
 use super::source::Target;
 use super::value::{decode, encode, PointType};
@@ -440,7 +440,7 @@ impl UnitService {
         Ok(())
     }
 
-    fn command(&self, action: &Action, written: f64) -> Result<Command, ExecError> {
+    fn command(&self, action: &IssuedCommand, written: f64) -> Result<Command, ExecError> {
         let snapshot = self.handle.snapshot();
         let mut template = action.template.clone();
         for (field, arg) in &action.holes {
