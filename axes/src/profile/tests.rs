@@ -202,10 +202,11 @@ pub(super) fn check_profile(pb: &Problem, p: &Profile) -> Result<(), TestCaseErr
             s.a
         );
         // Acceleration while |v| grows, deceleration while it shrinks (away from v = 0,
-        // where the sign of v is rounding). Not checked when the start state reverses the
+        // where the sign of v is rounding: of the arithmetic, and of the sample time by
+        // `dt_round`, which on a long stretched profile is larger than `TOL * v_cap`). Not checked when the start state reverses the
         // motion by itself (v0 and v_stop on opposite sides of 0): the first ramp then uses the
         // limit of the direction it ends in throughout (docs/decisions.md, Profiles).
-        if !self_reversing && s.v.abs() > TOL * v_cap {
+        if !self_reversing && s.v.abs() > TOL * v_cap + dt_round * a_cap {
             let limit = if s.v * s.a > 0.0 {
                 lim.acceleration
             } else {

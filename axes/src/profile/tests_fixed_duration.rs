@@ -212,6 +212,30 @@ proptest! {
 
 /// Rest to rest, trapezoid: the peak is the smaller root of k·vp² − T·vp + d = 0,
 /// k = 1/2a + 1/2d (ramps vp/a and vp/d, cruise (d − k·vp²)/vp).
+/// A trapezoid stretched 38 000 times (CI's proptest found it): the end of its last ramp is
+/// sampled at t ≈ 1.6e7 s, where rounding the time leaves a velocity of −3e-10 instead of 0;
+/// the phase check must not take that sign for a reversal.
+#[test]
+fn a_very_long_trapezoid_meets_the_phase_limits() {
+    let c = Case {
+        start: MotionState {
+            p: 0.0,
+            v: 0.0,
+            a: 0.0,
+        },
+        target: 11.07091242912458,
+        end_velocity: 0.0,
+        limits: Limits {
+            velocity: 0.026532159312857462,
+            acceleration: 0.4812768934877148,
+            deceleration: 0.6728582991616205,
+            jerk: f64::INFINITY,
+        },
+    };
+    let planned = plan_stretched(&c, 38020.20642061043);
+    assert!(matches!(planned, Ok(Some(_))), "{planned:?}");
+}
+
 #[test]
 fn trapezoid_rest_to_rest_cruises_at_the_closed_form_velocity() {
     let limits = Limits {
