@@ -15,7 +15,9 @@ pub mod homing;
 pub mod hw;
 pub mod od;
 pub mod param;
-pub mod profile;
+/// One-dimensional profiles, the `profile` crate (re-exported so that `axes::profile::…` paths
+/// stay as they were).
+pub use profile;
 pub mod rng;
 pub mod runtime;
 pub mod status;

@@ -290,7 +290,7 @@ fn clamp_time(s: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::profile::{Goal, MotionState, Profile};
+    use crate::{Goal, MotionState, Profile};
 
     fn close(a: f64, b: f64, rel: f64) -> bool {
         (a - b).abs() <= rel * a.abs().max(b.abs()).max(1e-300)
