@@ -220,6 +220,36 @@ impl Arc {
         PathPoint { p, t, k }
     }
 
+    /// The part of the arc from path length `s0` to `s1` (clamped, `s0 ≤ s1`): same circle,
+    /// start turned by θ(s0), sweep and linear part shortened. `s1 = length` keeps the exact end.
+    pub fn trimmed(&self, s0: f64, s1: f64) -> Arc {
+        let s0 = s0.clamp(0.0, self.length);
+        let s1 = s1.clamp(s0, self.length);
+        if self.length <= 0.0 {
+            return self.clone();
+        }
+        let theta0 = self.sweep * s0 / self.length;
+        let (sin, cos) = theta0.sin_cos();
+        let f0 = s0 / self.length;
+        let mut u = [0.0; MAX_AXES];
+        let mut v = [0.0; MAX_AXES];
+        let mut center = self.center;
+        let mut h = [0.0; MAX_AXES];
+        for k in 0..MAX_AXES {
+            u[k] = cos * self.u[k] + sin * self.v[k];
+            v[k] = -sin * self.u[k] + cos * self.v[k];
+            center[k] += f0 * self.h[k];
+            h[k] = self.h[k] * (s1 - s0) / self.length;
+        }
+        let end = if s1 >= self.length {
+            self.end
+        } else {
+            self.sample(s1).p
+        };
+        let sweep = self.sweep * (s1 - s0) / self.length;
+        Arc::from_parts(center, u, v, self.radius, sweep, h, end, self.dims)
+    }
+
     /// The in-plane unit vectors (toward the start from the centre; 90° ahead).
     pub fn basis(&self) -> (Point, Point) {
         (self.u, self.v)
@@ -294,6 +324,28 @@ mod tests {
         let half = a.sample(a.length() / 2.0);
         assert!((half.p[2] - 2.5).abs() < 1e-12);
         assert!((norm(&half.t) - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_trimmed_arc_follows_the_original() {
+        let a = Arc::from_center(
+            p(&[10.0, 0.0, 0.0]),
+            p(&[0.0, 10.0, 3.0]),
+            p(&[0.0, 0.0, 0.0]),
+            (0, 1),
+            Turn::Ccw,
+            1,
+            3,
+        )
+        .unwrap();
+        let t = a.trimmed(2.0, a.length() - 1.0);
+        assert!((t.length() - (a.length() - 3.0)).abs() < 1e-9);
+        for i in 0..=10 {
+            let s = t.length() * i as f64 / 10.0;
+            let (x, y) = (t.sample(s), a.sample(s + 2.0));
+            assert!(norm(&sub(&x.p, &y.p)) < 1e-9 && norm(&sub(&x.t, &y.t)) < 1e-9);
+        }
+        assert_eq!(a.trimmed(1.0, a.length()).end(), a.end());
     }
 
     #[test]

@@ -62,6 +62,20 @@ impl Line {
         &self.direction
     }
 
+    /// The part from path length `s0` to `s1` (clamped, `s0 ≤ s1`); `s1 = length` keeps the
+    /// exact end.
+    pub fn trimmed(&self, s0: f64, s1: f64) -> Line {
+        let s0 = s0.clamp(0.0, self.length);
+        let s1 = s1.clamp(s0, self.length);
+        let start = self.sample(s0).p;
+        let end = self.sample(s1).p;
+        let mut l = self.clone();
+        l.start = start;
+        l.end = end;
+        l.length = s1 - s0;
+        l
+    }
+
     pub fn sample(&self, s: f64) -> PathPoint {
         let s = s.clamp(0.0, self.length);
         let mut p = self.start;

@@ -74,6 +74,15 @@ impl Segment {
         }
     }
 
+    /// The part of the segment from path length `s0` to `s1` (clamped, `s0 ≤ s1`), sampled
+    /// by its own `s` from 0; `s1 = length` keeps the exact end point.
+    pub fn trimmed(&self, s0: f64, s1: f64) -> Segment {
+        match self {
+            Segment::Line(l) => Segment::Line(l.trimmed(s0, s1)),
+            Segment::Arc(a) => Segment::Arc(a.trimmed(s0, s1)),
+        }
+    }
+
     pub fn start(&self) -> Point {
         self.sample(0.0).p
     }
