@@ -11,6 +11,7 @@
 use super::{Engine, Io, Slave};
 use crate::axis::fifo::LedgerMark;
 use crate::axis::Axis;
+use crate::cia402::DriveMaster;
 use crate::command::{
     positive, AxisCommand, AxisIndex, BufferMode, Command, Disable, EmergencyStopAll, Enable,
     EngineError, GetCommandState, MachineCommand, MoveTogether, Reply, Reset, Stop, StopAll,
@@ -231,10 +232,13 @@ impl Engine {
     }
 
     /// HIMC `EStop` (digest 004 §2.9, §1.10): every axis that can move latches `ESTOP` (as
-    /// NMC `MtEstp` does, digest 001 TV19) and is disabled at once (a category 0 stop; an
-    /// engine-mastered drive ramps with `fast_decel` until its power state machine has left
-    /// Operation enabled). The latch holds the axes in ErrorStop: `enable` and motion are
-    /// refused until `reset` / `reset_all` clears it (HIMC: "the user may re-enable").
+    /// NMC `MtEstp` does, digest 001 TV19) and is disabled at once (a category 0 stop). The
+    /// latch holds the axes in ErrorStop: `enable` and motion are refused until `reset` /
+    /// `reset_all` clears it (HIMC: "the user may re-enable"). An engine-mastered CiA 402 drive
+    /// is not walked down by controlword (from Fault that walk is a fault reset, which would
+    /// clear the latch): the latch is an axis fault to the drive, whose fault reaction (0x605E)
+    /// stops the axis, powers it off and leaves the drive in Fault; a power walk in progress is
+    /// dropped.
     /// Groups (issue 11): every group goes to ErrorStop here too.
     fn emergency_stop_everything(&mut self) {
         for axis in 0..self.axes.len() {
@@ -242,11 +246,23 @@ impl Engine {
                 continue;
             }
             self.stop_axis(axis, StopMode::Emergency, None);
+            if let Some(slave) = self.engine_mastered_slave(axis) {
+                slave.power = None;
+                continue;
+            }
             // `disable` never refuses.
             let _ = self.apply_axis_command(AxisCommand::Disable(Disable {
                 axis: axis as AxisIndex,
             }));
         }
+    }
+
+    /// The drive bound to `axis`, if the engine masters its power (see `route_power`).
+    fn engine_mastered_slave(&mut self, axis: usize) -> Option<&mut Slave> {
+        let slave = self.axis_slave.get(axis).copied().flatten()?;
+        self.slaves
+            .get_mut(slave)
+            .filter(|s| s.master == DriveMaster::Engine)
     }
 
     /// HMC `ClearAllErr` (digest 000 §4.9): every axis clears the latched errors whose cause
