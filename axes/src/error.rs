@@ -73,6 +73,8 @@ pub enum EngineError {
     #[error("{list}[{index}]: {error}")]
     Item {
         list: &'static str,
+        /// `item` in JSON: the control API's `index` is the command's place in a request.
+        #[serde(rename = "item")]
         index: u32,
         error: Box<EngineError>,
     },

@@ -229,6 +229,20 @@ impl IntoResponse for ApiError {
 /// `code`, the variant's data (fault sets as lists of flag names), `message` (its Display).
 pub fn engine_error_fields(error: &EngineError) -> Vec<(String, Value)> {
     let mut fields = vec![("code".to_string(), json!(error.kind().name()))];
+    // A refused item (a move of `move_together` …): which list and item, and the item's own
+    // error with its fields, under `error`.
+    if let EngineError::Item {
+        list,
+        index,
+        error: inner,
+    } = error
+    {
+        fields.push(("list".into(), json!(list)));
+        fields.push(("item".into(), json!(index)));
+        fields.push(("error".into(), json!(Ordered(engine_error_fields(inner)))));
+        fields.push(("message".into(), json!(error.to_string())));
+        return fields;
+    }
     // Every variant serializes to a map; should one not, the code and message still go out.
     if let Ok(Value::Object(data)) = serde_json::to_value(error) {
         fields.extend(data.into_iter().filter(|(k, _)| k != "code"));
