@@ -60,15 +60,23 @@ fn rel(axis: u16, distance: f64) -> TogetherMove {
     })
 }
 
-fn vel(axis: u16, velocity: f64) -> TogetherMove {
-    TogetherMove::MoveVelocity(MoveVelocity {
+fn jog_move(axis: u16, velocity: f64) -> MoveVelocity {
+    MoveVelocity {
         axis,
         velocity,
         acceleration: None,
         deceleration: None,
         jerk: None,
         buffer_mode: BufferMode::Aborting,
-    })
+    }
+}
+
+fn vel(axis: u16, velocity: f64) -> TogetherMove {
+    TogetherMove::MoveVelocity(jog_move(axis, velocity))
+}
+
+fn jog_axis(axis: u16, velocity: f64) -> Command {
+    Command::from(jog_move(axis, velocity))
 }
 
 fn together(moves: Vec<TogetherMove>) -> Command {
@@ -124,17 +132,7 @@ fn moves_started_together_leave_on_the_same_tick() {
         enable(&mut e, a);
     }
     // Axis 2 already jogs: the aborting move replaces its jog in the same tick.
-    ok(
-        &mut e,
-        Command::from(MoveVelocity {
-            axis: 2,
-            velocity: 5.0,
-            acceleration: None,
-            deceleration: None,
-            jerk: None,
-            buffer_mode: BufferMode::Aborting,
-        }),
-    );
+    ok(&mut e, jog_axis(2, 5.0));
     run(&mut e, 0.1);
     let reply = ok(
         &mut e,
@@ -231,17 +229,7 @@ fn one_refused_move_starts_none_and_leaves_the_machine_as_it_was() {
         let mut e = engine_with(axes);
         enable(&mut e, 0);
         enable(&mut e, 2);
-        ok(
-            &mut e,
-            Command::from(MoveVelocity {
-                axis: 0,
-                velocity: 10.0,
-                acceleration: None,
-                deceleration: None,
-                jerk: None,
-                buffer_mode: BufferMode::Aborting,
-            }),
-        );
+        ok(&mut e, jog_axis(0, 10.0));
         ok(
             &mut e,
             Command::from(ForceInput {
@@ -300,17 +288,7 @@ fn jogging(n: usize, velocity: f64) -> Engine {
     let mut e = machine(n);
     for a in 0..n as u16 {
         enable(&mut e, a);
-        ok(
-            &mut e,
-            Command::from(MoveVelocity {
-                axis: a,
-                velocity,
-                acceleration: None,
-                deceleration: None,
-                jerk: None,
-                buffer_mode: BufferMode::Aborting,
-            }),
-        );
+        ok(&mut e, jog_axis(a, velocity));
     }
     run(&mut e, 0.5);
     e
@@ -699,29 +677,19 @@ fn a_refused_batch_applies_nothing_and_names_the_command() {
     }
     let mut e = build();
     let before = e.snapshot();
-    let err = e.apply_batch(vec![]).unwrap_err();
-    assert!(
-        matches!(
+    for batch in [
+        vec![],
+        vec![Command::from(DisableAll {}); MAX_ATOMIC_COMMANDS + 1],
+    ] {
+        let err = e.apply_batch(batch).unwrap_err();
+        let is_commands = matches!(
             err,
             EngineError::InvalidArgument {
                 name: "commands",
                 ..
             }
-        ),
-        "{err}"
-    );
-    let err = e
-        .apply_batch(vec![Command::from(DisableAll {}); MAX_ATOMIC_COMMANDS + 1])
-        .unwrap_err();
-    assert!(
-        matches!(
-            err,
-            EngineError::InvalidArgument {
-                name: "commands",
-                ..
-            }
-        ),
-        "{err}"
-    );
+        );
+        assert!(is_commands, "{err}");
+    }
     assert_eq!(e.snapshot(), before);
 }
