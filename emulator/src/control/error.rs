@@ -644,6 +644,39 @@ mod tests {
     }
 
     #[test]
+    fn a_refused_item_carries_its_list_its_place_and_its_own_error() {
+        let e = ApiError::Engine {
+            error: EngineError::item(
+                "axes",
+                1,
+                EngineError::AxisInError {
+                    axis: 1,
+                    faults: AxisFlags::ESTOP,
+                },
+            ),
+            index: Some(3),
+            replies: vec![],
+        };
+        let keys: Vec<String> = e.fields().into_iter().map(|(k, _)| k).collect();
+        assert_eq!(
+            keys,
+            ["code", "list", "item", "error", "message", "index", "replies"]
+        );
+        assert_eq!(
+            e.body(),
+            json!({
+                "code": "axis_in_error", "list": "axes", "item": 1,
+                "error": {
+                    "code": "axis_in_error", "axis": 1, "faults": ["estop"],
+                    "message": "axis 1 is in error stop (ESTOP)",
+                },
+                "message": "axes[1]: axis 1 is in error stop (ESTOP)",
+                "index": 3, "replies": [],
+            })
+        );
+    }
+
+    #[test]
     fn content_types() {
         let mut h = HeaderMap::new();
         assert!(check_json_content_type(&h).is_err());
