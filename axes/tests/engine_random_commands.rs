@@ -492,6 +492,9 @@ proptest! {
             jerk: None,
             buffer_mode: BufferMode::Buffered,
         });
-        prop_assert_eq!(atomic.apply(probe.clone()), twin.apply(probe));
+        prop_assert_eq!(
+            format!("{:?}", atomic.apply(probe.clone())),
+            format!("{:?}", twin.apply(probe))
+        );
     }
 }
