@@ -7,8 +7,17 @@
 //! travel, and `h` is the linear displacement of the axes outside the plane. θ is proportional
 //! to path length, so `s → θ` is one multiplication.
 
-use super::{norm, sub, GeometryError, PathPoint, POINT_TOLERANCE};
+use std::f64::consts::TAU;
+
+use super::{
+    check_axis, check_dims, check_finite, check_number, check_plane, norm, sub, GeometryError,
+    PathPoint, POINT_TOLERANCE,
+};
 use crate::{Point, MAX_AXES};
+
+/// The smallest sweep an arc may be given explicitly (radians): below it the arc is a point
+/// turning in place, which HIMC refuses too (`eERR_CRD_CMD_CIRC_ANGLE_SMALL`, digest 004 §5).
+pub const MIN_SWEEP: f64 = 1e-12;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Arc {
@@ -33,12 +42,50 @@ pub enum Turn {
     Cw,
 }
 
+impl Turn {
+    /// `"cw"` or `"ccw"` (any case), as the JSON commands spell it; `None` for anything else.
+    pub fn from_name(name: &str) -> Option<Turn> {
+        if name.eq_ignore_ascii_case("ccw") {
+            Some(Turn::Ccw)
+        } else if name.eq_ignore_ascii_case("cw") {
+            Some(Turn::Cw)
+        } else {
+            None
+        }
+    }
+
+    /// +1 for counter-clockwise, −1 for clockwise: the sign of the swept angle.
+    pub fn sign(self) -> f64 {
+        match self {
+            Turn::Ccw => 1.0,
+            Turn::Cw => -1.0,
+        }
+    }
+
+    /// The direction of a signed angle (> 0 counter-clockwise; 0 counts as counter-clockwise).
+    pub fn of_angle(angle: f64) -> Turn {
+        if angle < 0.0 {
+            Turn::Cw
+        } else {
+            Turn::Ccw
+        }
+    }
+}
+
+/// How far a centre may be from equidistant, or a radius below half the chord, before the
+/// arc is refused: [`POINT_TOLERANCE`] plus 1e-9 of the radius (rounding of the caller's
+/// arithmetic, not a second geometry).
+fn radius_tolerance(radius: f64) -> f64 {
+    POINT_TOLERANCE + 1e-9 * radius
+}
+
 impl Arc {
     /// The arc from `start` around `center` to `end` in the plane of axes `plane.0` (x) and
     /// `plane.1` (y), turning `turn`, after `extra_turns` full turns. Start = end in the plane
-    /// is a full circle (plus the extra turns). The other axes move linearly from `start` to
-    /// `end` (a helix). The centre must be equidistant from start and end within
-    /// [`POINT_TOLERANCE`] + 1e-9 × radius.
+    /// is a full circle (plus the extra turns): NMC `ArcCenterEx` with target = start (digest
+    /// 001 §4.4, TV 43). The other axes move linearly from `start` to `end` (a helix; NMC D8
+    /// and HMC MoveND extra axes ride along the same way). The centre must be equidistant from
+    /// start and end within [`POINT_TOLERANCE`] + 1e-9 × radius.
     pub fn from_center(
         start: Point,
         end: Point,
@@ -49,18 +96,10 @@ impl Arc {
         dims: usize,
     ) -> Result<Arc, GeometryError> {
         let (i, j) = plane;
-        if dims == 0 || dims > MAX_AXES {
-            return Err(GeometryError::Dimensions { dims });
-        }
-        if i == j || i >= dims || j >= dims {
-            return Err(GeometryError::Invalid(
-                "the arc's plane needs two different axes of the group",
-            ));
-        }
+        check_dims(dims)?;
+        check_plane(plane, dims)?;
         for (name, p) in [("start", &start), ("end", &end), ("center", &center)] {
-            if let Some(&value) = p.iter().find(|c| !c.is_finite()) {
-                return Err(GeometryError::NotFinite { name, value });
-            }
+            check_finite(name, p)?;
         }
         let (sx, sy) = (start[i] - center[i], start[j] - center[j]);
         let (ex, ey) = (end[i] - center[i], end[j] - center[j]);
@@ -71,7 +110,7 @@ impl Arc {
                 "the arc's centre is its start point",
             ));
         }
-        if (radius - r_end).abs() > POINT_TOLERANCE + 1e-9 * radius {
+        if (radius - r_end).abs() > radius_tolerance(radius) {
             return Err(GeometryError::Invalid(
                 "the arc's centre is not equidistant from its start and end",
             ));
@@ -79,38 +118,235 @@ impl Arc {
         let ccw = turn == Turn::Ccw;
         let a0 = sy.atan2(sx);
         let a1 = ey.atan2(ex);
-        let tau = std::f64::consts::TAU;
         let mut sweep = if ccw { a1 - a0 } else { a0 - a1 };
-        sweep = sweep.rem_euclid(tau);
+        sweep = sweep.rem_euclid(TAU);
         let chord = (ex - sx).hypot(ey - sy);
         if chord <= POINT_TOLERANCE || sweep < 1e-12 {
-            sweep = tau;
+            sweep = TAU;
         }
-        sweep += tau * extra_turns as f64;
+        sweep += TAU * extra_turns as f64;
+        Ok(Arc::planar(
+            start,
+            end,
+            (center[i], center[j]),
+            plane,
+            turn,
+            sweep,
+            dims,
+        ))
+    }
+
+    /// The arc from `start` to `end` of radius `|radius|` in the plane `plane`, turning `turn`:
+    /// `radius > 0` takes the minor arc (≤ 180°), `radius < 0` the major arc (≥ 180°), as NMC
+    /// `CrdArcRadiusEx` (digest 001 §4.4, TV 44–45) and CPU 226H `MC_CIRCLE_*` RADIUS
+    /// (digest 003 §2.14, TV-31). A radius below half the chord is refused unless within
+    /// rounding ([`POINT_TOLERANCE`] + 1e-9 × radius), where it is taken as exactly half (a
+    /// semicircle). Start = end in the plane is refused: a full circle needs its centre. The
+    /// other axes move linearly (a helix), as in [`Arc::from_center`].
+    pub fn from_radius(
+        start: Point,
+        end: Point,
+        radius: f64,
+        plane: (usize, usize),
+        turn: Turn,
+        dims: usize,
+    ) -> Result<Arc, GeometryError> {
+        let (i, j) = plane;
+        check_dims(dims)?;
+        check_plane(plane, dims)?;
+        check_finite("start", &start)?;
+        check_finite("end", &end)?;
+        check_number("radius", radius)?;
+        let (dx, dy) = (end[i] - start[i], end[j] - start[j]);
+        let chord = dx.hypot(dy);
+        if chord <= POINT_TOLERANCE {
+            return Err(GeometryError::Invalid(
+                "an arc by radius needs an end different from its start in the plane (a full circle needs a centre)",
+            ));
+        }
+        let r = radius.abs();
+        let half_chord = chord / 2.0;
+        if r < half_chord - radius_tolerance(r) {
+            return Err(GeometryError::RadiusTooSmall {
+                radius: r,
+                half_chord,
+            });
+        }
+        let r = r.max(half_chord);
+        // The centre lies on the chord's perpendicular bisector, at `rise` from the midpoint;
+        // for a counter-clockwise minor arc on the left of start → end (the arc then turns
+        // < 180° about it), and each of "clockwise" and "major" moves it to the other side.
+        let rise = (r * r - half_chord * half_chord).max(0.0).sqrt();
+        let (nx, ny) = (-dy / chord, dx / chord);
+        let side = turn.sign() * radius.signum();
+        let cx = start[i] + dx / 2.0 + side * rise * nx;
+        let cy = start[j] + dy / 2.0 + side * rise * ny;
+        let minor = 2.0 * (half_chord / r).min(1.0).asin();
+        let sweep = if radius > 0.0 { minor } else { TAU - minor };
+        Ok(Arc::planar(start, end, (cx, cy), plane, turn, sweep, dims))
+    }
+
+    /// The arc from `start` about `center` (its in-plane coordinates; the others are ignored)
+    /// through the signed angle `angle` (radians: > 0 counter-clockwise, < 0 clockwise, any
+    /// magnitude, so more than one turn is allowed), as HIMC `ArcAngle2D` (digest 004 §2.7,
+    /// TV 44, which gives degrees: the caller converts). The other axes stay where they are.
+    /// The end point is computed.
+    pub fn from_center_angle(
+        start: Point,
+        center: Point,
+        angle: f64,
+        plane: (usize, usize),
+        dims: usize,
+    ) -> Result<Arc, GeometryError> {
+        let (i, j) = plane;
+        check_dims(dims)?;
+        check_plane(plane, dims)?;
+        check_finite("start", &start)?;
+        check_finite("center", &center)?;
+        check_number("angle", angle)?;
+        let radius = (start[i] - center[i]).hypot(start[j] - center[j]);
+        if radius <= POINT_TOLERANCE {
+            return Err(GeometryError::Invalid(
+                "the arc's centre is its start point",
+            ));
+        }
+        if angle.abs() < MIN_SWEEP {
+            return Err(GeometryError::Invalid("the arc's angle is 0"));
+        }
+        let turn = Turn::of_angle(angle);
+        let a1 = (start[j] - center[j]).atan2(start[i] - center[i]) + angle;
+        let mut end = start;
+        end[i] = center[i] + radius * a1.cos();
+        end[j] = center[j] + radius * a1.sin();
+        Ok(Arc::planar(
+            start,
+            end,
+            (center[i], center[j]),
+            plane,
+            turn,
+            angle.abs(),
+            dims,
+        ))
+    }
+
+    /// The 3-D arc from `start` about the axis through `center` along `normal`, turning
+    /// `angle` radians by the right-hand rule about `normal` (< 0 turns the other way; any
+    /// magnitude), in the space of path axes `axes` (x, y, z); the other axes stay put. As
+    /// HIMC `CircleAbs` (digest 004 §2.7: the normal gives the direction, {0,0,1} is CCW).
+    /// A centre off the plane through `start` ⟂ `normal` is projected onto it along the
+    /// normal (the circle is the one `start` describes turning about that axis). The end point
+    /// is computed.
+    pub fn about_normal(
+        start: Point,
+        center: Point,
+        normal: [f64; 3],
+        angle: f64,
+        axes: [usize; 3],
+        dims: usize,
+    ) -> Result<Arc, GeometryError> {
+        check_dims(dims)?;
+        for &a in &axes {
+            check_axis(a, dims)?;
+        }
+        if axes[0] == axes[1] || axes[1] == axes[2] || axes[0] == axes[2] {
+            return Err(GeometryError::Invalid(
+                "a 3-D arc needs three different axes of the group",
+            ));
+        }
+        check_finite("start", &start)?;
+        check_finite("center", &center)?;
+        for &c in &normal {
+            check_number("normal", c)?;
+        }
+        check_number("angle", angle)?;
+        let n_len = normal[0].hypot(normal[1]).hypot(normal[2]);
+        if n_len <= f64::MIN_POSITIVE.sqrt() || !n_len.is_finite() {
+            return Err(GeometryError::Invalid("the arc's normal vector is 0"));
+        }
+        let n = normal.map(|c| c / n_len);
+        if angle.abs() < MIN_SWEEP {
+            return Err(GeometryError::Invalid("the arc's angle is 0"));
+        }
+        let s3 = axes.map(|a| start[a]);
+        let c3 = axes.map(|a| center[a]);
+        let d = [s3[0] - c3[0], s3[1] - c3[1], s3[2] - c3[2]];
+        let along = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+        // Radius vector: start minus the centre moved along the normal into start's plane.
+        let r3 = [
+            d[0] - along * n[0],
+            d[1] - along * n[1],
+            d[2] - along * n[2],
+        ];
+        let radius = r3[0].hypot(r3[1]).hypot(r3[2]);
+        if radius <= POINT_TOLERANCE {
+            return Err(GeometryError::Invalid(
+                "the arc's start is on its axis (radius 0)",
+            ));
+        }
+        let u3 = r3.map(|c| c / radius);
+        // Right-hand rule: turning about n carries u toward n × u.
+        let sign = angle.signum();
+        let v3 = [
+            sign * (n[1] * u3[2] - n[2] * u3[1]),
+            sign * (n[2] * u3[0] - n[0] * u3[2]),
+            sign * (n[0] * u3[1] - n[1] * u3[0]),
+        ];
         let mut u = [0.0; MAX_AXES];
         let mut v = [0.0; MAX_AXES];
-        u[i] = sx / radius;
-        u[j] = sy / radius;
-        // v is u turned 90° in the direction of travel.
-        let sign = if ccw { 1.0 } else { -1.0 };
-        v[i] = -u[j] * sign;
-        v[j] = u[i] * sign;
         let mut center_full = start;
-        center_full[i] = center[i];
-        center_full[j] = center[j];
-        let mut h = sub(&end, &start);
-        h[i] = 0.0;
-        h[j] = 0.0;
+        for (k, &a) in axes.iter().enumerate() {
+            u[a] = u3[k];
+            v[a] = v3[k];
+            center_full[a] = s3[k] - r3[k];
+        }
+        let sweep = angle.abs();
+        let (sin, cos) = sweep.sin_cos();
+        let mut end = start;
+        for &a in &axes {
+            end[a] = center_full[a] + radius * (cos * u[a] + sin * v[a]);
+        }
         Ok(Arc::from_parts(
             center_full,
             u,
             v,
             radius,
             sweep,
-            h,
+            [0.0; MAX_AXES],
             end,
             dims,
         ))
+    }
+
+    /// A planar arc from checked parts: the centre `(cx, cy)` in `plane`, the sweep (> 0) and
+    /// the turn; the radius is start's distance from the centre, and the other axes move
+    /// linearly from `start` to `end`.
+    fn planar(
+        start: Point,
+        end: Point,
+        (cx, cy): (f64, f64),
+        plane: (usize, usize),
+        turn: Turn,
+        sweep: f64,
+        dims: usize,
+    ) -> Arc {
+        let (i, j) = plane;
+        let (sx, sy) = (start[i] - cx, start[j] - cy);
+        let radius = sx.hypot(sy);
+        let mut u = [0.0; MAX_AXES];
+        let mut v = [0.0; MAX_AXES];
+        u[i] = sx / radius;
+        u[j] = sy / radius;
+        // v is u turned 90° in the direction of travel.
+        let sign = turn.sign();
+        v[i] = -u[j] * sign;
+        v[j] = u[i] * sign;
+        let mut center_full = start;
+        center_full[i] = cx;
+        center_full[j] = cy;
+        let mut h = sub(&end, &start);
+        h[i] = 0.0;
+        h[j] = 0.0;
+        Arc::from_parts(center_full, u, v, radius, sweep, h, end, dims)
     }
 
     /// An arc from its parts (see the module doc). `u` and `v` must be orthonormal and `h`

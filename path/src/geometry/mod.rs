@@ -12,8 +12,9 @@ use crate::{Point, MAX_AXES};
 
 mod arc;
 mod line;
+mod three_points;
 
-pub use arc::Arc;
+pub use arc::{Arc, Turn, MIN_SWEEP};
 pub use line::Line;
 
 /// Two points closer than this (in user units) are the same point; an arc's centre must be
@@ -29,6 +30,17 @@ pub enum GeometryError {
     Invalid(&'static str),
     #[error("{dims} axes: a path has 1 to 9")]
     Dimensions { dims: usize },
+    #[error("axis {axis} is not one of the path's {dims} axes")]
+    AxisOutOfRange { axis: usize, dims: usize },
+    #[error("{first} and {second} are the same point")]
+    Coincident {
+        first: &'static str,
+        second: &'static str,
+    },
+    #[error(
+        "radius {radius} is smaller than half the chord ({half_chord}): no arc joins the points"
+    )]
+    RadiusTooSmall { radius: f64, half_chord: f64 },
 }
 
 /// Position, unit tangent and curvature vector at one path length.
@@ -136,6 +148,69 @@ pub fn sub(a: &Point, b: &Point) -> Point {
 
 pub fn dot(a: &Point, b: &Point) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+/// Checks a path's axis count (1 to [`MAX_AXES`]).
+pub(crate) fn check_dims(dims: usize) -> Result<(), GeometryError> {
+    if dims == 0 || dims > MAX_AXES {
+        return Err(GeometryError::Dimensions { dims });
+    }
+    Ok(())
+}
+
+/// Checks that every component of `p` is finite.
+pub(crate) fn check_finite(name: &'static str, p: &Point) -> Result<(), GeometryError> {
+    match p.iter().find(|c| !c.is_finite()) {
+        Some(&value) => Err(GeometryError::NotFinite { name, value }),
+        None => Ok(()),
+    }
+}
+
+/// Checks that a number is finite.
+pub(crate) fn check_number(name: &'static str, value: f64) -> Result<(), GeometryError> {
+    if value.is_finite() {
+        Ok(())
+    } else {
+        Err(GeometryError::NotFinite { name, value })
+    }
+}
+
+/// Checks that `axis` is one of the first `dims` axes.
+pub(crate) fn check_axis(axis: usize, dims: usize) -> Result<(), GeometryError> {
+    if axis >= dims {
+        return Err(GeometryError::AxisOutOfRange { axis, dims });
+    }
+    Ok(())
+}
+
+/// Checks a plane: two different axes of the path.
+pub(crate) fn check_plane(plane: (usize, usize), dims: usize) -> Result<(), GeometryError> {
+    check_axis(plane.0, dims)?;
+    check_axis(plane.1, dims)?;
+    if plane.0 == plane.1 {
+        return Err(GeometryError::Invalid(
+            "the arc's plane needs two different axes of the group",
+        ));
+    }
+    Ok(())
+}
+
+pub fn add(a: &Point, b: &Point) -> Point {
+    let mut out = [0.0; MAX_AXES];
+    for i in 0..MAX_AXES {
+        out[i] = a[i] + b[i];
+    }
+    out
+}
+
+/// `a · k`.
+pub fn scale(a: &Point, k: f64) -> Point {
+    a.map(|x| x * k)
+}
+
+/// Distance between two points.
+pub fn distance(a: &Point, b: &Point) -> f64 {
+    norm(&sub(a, b))
 }
 
 /// A point from a slice of up to 9 coordinates, checked finite.
