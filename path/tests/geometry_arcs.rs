@@ -448,3 +448,188 @@ fn turn_names() {
     assert_eq!(Turn::from_name("CCW"), Some(Turn::Ccw));
     assert_eq!(Turn::from_name("left"), None);
 }
+
+/// HIMC Circle2D from (0,0) about (0,0)+… for θ = 210°: start (10,0) about the origin, end at
+/// 210°.
+fn circle2d(turns: i32) -> Arc {
+    let end = p(&[
+        10.0 * 210f64.to_radians().cos(),
+        10.0 * 210f64.to_radians().sin(),
+    ]);
+    Arc::from_center_turns(p(&[10.0, 0.0]), end, p(&[0.0, 0.0]), (0, 1), turns, 2).unwrap()
+}
+
+#[test]
+fn himc_circle2d_turn_table() {
+    // Digest 004 §8.2.17: θ = 210°: −2 → −510°, −1 → −150°, 0 → 210°, 1 → 210°, 2 → 570°.
+    for (turns, degrees) in [
+        (-2, -510.0),
+        (-1, -150.0),
+        (0, 210.0),
+        (1, 210.0),
+        (2, 570.0),
+    ] {
+        let a = circle2d(turns);
+        let signed = a.sweep().to_degrees() * if a.sample(0.1).p[1] > 0.0 { 1.0 } else { -1.0 };
+        assert!((signed - degrees).abs() < 1e-9, "turns {turns}: {signed}");
+        assert!((a.length() - 10.0 * a.sweep()).abs() < 1e-9);
+    }
+    assert_eq!(path::geometry::himc_turns_angle(PI, 3), 5.0 * PI);
+}
+
+#[test]
+fn himc_tv45_circle2d_half_turn() {
+    // Circle2D(0, 100, 0, 200, 0, 1) from (0,0): 180° CCW to (200,0), passing (100,−100).
+    let a = Arc::from_center_turns(
+        p(&[0.0, 0.0]),
+        p(&[200.0, 0.0]),
+        p(&[100.0, 0.0]),
+        (0, 1),
+        1,
+        2,
+    )
+    .unwrap();
+    assert!(close(
+        &a.sample(a.length() / 2.0).p,
+        &p(&[100.0, -100.0]),
+        1e-9
+    ));
+    assert_eq!(a.end(), p(&[200.0, 0.0]));
+    // End = start: turns 0/1 is no motion (refused), 2 is one full circle, −1 one clockwise.
+    let s = p(&[0.0, 0.0]);
+    let c = p(&[100.0, 0.0]);
+    assert!(Arc::from_center_turns(s, s, c, (0, 1), 1, 2).is_err());
+    assert!(Arc::from_center_turns(s, s, c, (0, 1), 0, 2).is_err());
+    let full = Arc::from_center_turns(s, s, c, (0, 1), 2, 2).unwrap();
+    assert!((full.sweep() - TAU).abs() < 1e-12);
+    let cw = Arc::from_center_turns(s, s, c, (0, 1), -1, 2).unwrap();
+    assert!((cw.sweep() - TAU).abs() < 1e-12 && cw.sample(1.0).p[1] > 0.0);
+}
+
+#[test]
+fn himc_tv55_circle_abs_stadium() {
+    // CircleAbs centre (100,50,0), normal {0,0,1}, turns 0, from (100,0) to (100,100): passes
+    // (150,50); centre (0,50,0) from (0,100) to (0,0): passes (−50,50).
+    let a = Arc::from_center_normal_turns(
+        p(&[100.0, 0.0, 0.0]),
+        p(&[100.0, 100.0, 0.0]),
+        p(&[100.0, 50.0, 0.0]),
+        [0.0, 0.0, 1.0],
+        0,
+        [0, 1, 2],
+        3,
+    )
+    .unwrap();
+    assert!(close(
+        &a.sample(a.length() / 2.0).p,
+        &p(&[150.0, 50.0, 0.0]),
+        1e-9
+    ));
+    let b = Arc::from_center_normal_turns(
+        p(&[0.0, 100.0, 0.0]),
+        p(&[0.0, 0.0, 0.0]),
+        p(&[0.0, 50.0, 0.0]),
+        [0.0, 0.0, 1.0],
+        0,
+        [0, 1, 2],
+        3,
+    )
+    .unwrap();
+    assert!(close(
+        &b.sample(b.length() / 2.0).p,
+        &p(&[-50.0, 50.0, 0.0]),
+        1e-9
+    ));
+    assert_eq!(b.end(), p(&[0.0, 0.0, 0.0]));
+}
+
+#[test]
+fn circle_about_a_normal_with_a_helix_along_it() {
+    // Normal +x: the circle is in the YZ plane; the end's x offset is the helix's rise.
+    let a = Arc::from_center_normal(
+        p(&[0.0, 10.0, 0.0]),
+        p(&[6.0, 10.0, 0.0]),
+        p(&[3.0, 0.0, 0.0]),
+        [1.0, 0.0, 0.0],
+        Turn::Ccw,
+        2,
+        [0, 1, 2],
+        3,
+    )
+    .unwrap();
+    assert!((a.sweep() - 3.0 * TAU).abs() < 1e-12);
+    assert!((a.radius() - 10.0).abs() < 1e-12);
+    // Counter-clockwise about +x carries +y toward +z.
+    assert!(a.sample(0.5).p[2] > 0.0);
+    let q = a.sample(a.length() / 3.0).p;
+    assert!(close(&q, &p(&[2.0, 10.0, 0.0]), 1e-9), "{q:?}");
+    assert_eq!(a.end(), p(&[6.0, 10.0, 0.0]));
+    // The end off the cylinder is refused.
+    let e = Arc::from_center_normal(
+        p(&[0.0, 10.0, 0.0]),
+        p(&[6.0, 11.0, 0.0]),
+        p(&[3.0, 0.0, 0.0]),
+        [1.0, 0.0, 0.0],
+        Turn::Ccw,
+        0,
+        [0, 1, 2],
+        3,
+    );
+    assert!(matches!(e, Err(GeometryError::Invalid(_))));
+}
+
+#[test]
+fn hmc_tv14_full_circle_and_ray_projection() {
+    // MoveCircle(0,1,2,3,0,0,10000,0) from (0,0): CW full circle about (10000,0), 2π·10000.
+    let a = Arc::from_center_toward(
+        p(&[0.0, 0.0]),
+        p(&[0.0, 0.0]),
+        p(&[10000.0, 0.0]),
+        (0, 1),
+        Turn::Cw,
+        2,
+    )
+    .unwrap();
+    assert!((a.length() - 62831.853).abs() < 1e-3);
+    assert_eq!(a.end(), p(&[0.0, 0.0]));
+    // An end off the circle is moved along the ray from the centre.
+    let b = Arc::from_center_toward(
+        p(&[10.0, 0.0]),
+        p(&[0.0, 3.0]),
+        p(&[0.0, 0.0]),
+        (0, 1),
+        Turn::Ccw,
+        2,
+    )
+    .unwrap();
+    assert!(close(&b.end(), &p(&[0.0, 10.0]), 1e-12));
+    // HMC TV 18's slot: from (2000,0) CW about (2000,−1000) to (2000,−2000): π·1000.
+    let c = Arc::from_center_toward(
+        p(&[2000.0, 0.0]),
+        p(&[2000.0, -2000.0]),
+        p(&[2000.0, -1000.0]),
+        (0, 1),
+        Turn::Cw,
+        2,
+    )
+    .unwrap();
+    assert!((c.length() - PI * 1000.0).abs() < 1e-9);
+    assert!(c.sample(c.length() / 2.0).p[0] > 2000.0);
+}
+
+#[test]
+fn hmc_tv19_helical_thread() {
+    // MoveHelical mode 7: CW full circle of radius 50 about (50,0) with Z +500, twice.
+    let mut start = p(&[0.0, 0.0, 0.0]);
+    let mut xy_length = 0.0;
+    for _ in 0..2 {
+        let mut end = start;
+        end[2] += 500.0;
+        let a = Arc::helix_turns(start, end, p(&[50.0, 0.0, 0.0]), (0, 1), Turn::Cw, 1, 3).unwrap();
+        xy_length += a.radius() * a.sweep();
+        start = a.end();
+    }
+    assert!((xy_length - 2.0 * 314.159).abs() < 1e-2);
+    assert_eq!(start, p(&[0.0, 0.0, 1000.0]));
+    assert!(Arc::helix_turns(start, start, p(&[50.0, 0.0, 0.0]), (0, 1), Turn::Cw, 0, 3).is_err());
+}

@@ -9,8 +9,9 @@
 
 use std::f64::consts::TAU;
 
+use super::arc_center::{in_plane_of, normal_basis, plane_basis, sweep_for};
 use super::{
-    check_axis, check_dims, check_finite, check_number, check_plane, norm, sub, GeometryError,
+    add, check_dims, check_finite, check_number, check_plane, dot, norm, scale, sub, GeometryError,
     PathPoint, POINT_TOLERANCE,
 };
 use crate::{Point, MAX_AXES};
@@ -75,7 +76,7 @@ impl Turn {
 /// How far a centre may be from equidistant, or a radius below half the chord, before the
 /// arc is refused: [`POINT_TOLERANCE`] plus 1e-9 of the radius (rounding of the caller's
 /// arithmetic, not a second geometry).
-fn radius_tolerance(radius: f64) -> f64 {
+pub(crate) fn radius_tolerance(radius: f64) -> f64 {
     POINT_TOLERANCE + 1e-9 * radius
 }
 
@@ -95,45 +96,21 @@ impl Arc {
         extra_turns: u32,
         dims: usize,
     ) -> Result<Arc, GeometryError> {
-        let (i, j) = plane;
         check_dims(dims)?;
         check_plane(plane, dims)?;
         for (name, p) in [("start", &start), ("end", &end), ("center", &center)] {
             check_finite(name, p)?;
         }
-        let (sx, sy) = (start[i] - center[i], start[j] - center[j]);
-        let (ex, ey) = (end[i] - center[i], end[j] - center[j]);
-        let radius = sx.hypot(sy);
-        let r_end = ex.hypot(ey);
-        if radius <= POINT_TOLERANCE {
-            return Err(GeometryError::Invalid(
-                "the arc's centre is its start point",
-            ));
-        }
-        if (radius - r_end).abs() > radius_tolerance(radius) {
-            return Err(GeometryError::Invalid(
-                "the arc's centre is not equidistant from its start and end",
-            ));
-        }
-        let ccw = turn == Turn::Ccw;
-        let a0 = sy.atan2(sx);
-        let a1 = ey.atan2(ex);
-        let mut sweep = if ccw { a1 - a0 } else { a0 - a1 };
-        sweep = sweep.rem_euclid(TAU);
-        let chord = (ex - sx).hypot(ey - sy);
-        if chord <= POINT_TOLERANCE || sweep < 1e-12 {
-            sweep = TAU;
-        }
-        sweep += TAU * extra_turns as f64;
-        Ok(Arc::planar(
+        let (e1, e2) = plane_basis(plane);
+        Arc::around(
             start,
             end,
-            (center[i], center[j]),
-            plane,
-            turn,
-            sweep,
+            in_plane_of(&start, &center, &e1, &e2),
+            e1,
+            e2,
             dims,
-        ))
+            |theta, closed| Ok((turn, sweep_for(turn, extra_turns, theta, closed))),
+        )
     }
 
     /// The arc from `start` to `end` of radius `|radius|` in the plane `plane`, turning `turn`:
@@ -244,77 +221,24 @@ impl Arc {
         axes: [usize; 3],
         dims: usize,
     ) -> Result<Arc, GeometryError> {
-        check_dims(dims)?;
-        for &a in &axes {
-            check_axis(a, dims)?;
-        }
-        if axes[0] == axes[1] || axes[1] == axes[2] || axes[0] == axes[2] {
-            return Err(GeometryError::Invalid(
-                "a 3-D arc needs three different axes of the group",
-            ));
-        }
-        check_finite("start", &start)?;
-        check_finite("center", &center)?;
-        for &c in &normal {
-            check_number("normal", c)?;
-        }
+        let (e1, e2) = normal_basis(&start, &start, &center, normal, axes, dims)?;
         check_number("angle", angle)?;
-        let n_len = normal[0].hypot(normal[1]).hypot(normal[2]);
-        if n_len <= f64::MIN_POSITIVE.sqrt() || !n_len.is_finite() {
-            return Err(GeometryError::Invalid("the arc's normal vector is 0"));
-        }
-        let n = normal.map(|c| c / n_len);
         if angle.abs() < MIN_SWEEP {
             return Err(GeometryError::Invalid("the arc's angle is 0"));
         }
-        let s3 = axes.map(|a| start[a]);
-        let c3 = axes.map(|a| center[a]);
-        let d = [s3[0] - c3[0], s3[1] - c3[1], s3[2] - c3[2]];
-        let along = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
-        // Radius vector: start minus the centre moved along the normal into start's plane.
-        let r3 = [
-            d[0] - along * n[0],
-            d[1] - along * n[1],
-            d[2] - along * n[2],
-        ];
-        let radius = r3[0].hypot(r3[1]).hypot(r3[2]);
-        if radius <= POINT_TOLERANCE {
-            return Err(GeometryError::Invalid(
-                "the arc's start is on its axis (radius 0)",
-            ));
-        }
-        let u3 = r3.map(|c| c / radius);
-        // Right-hand rule: turning about n carries u toward n × u.
-        let sign = angle.signum();
-        let v3 = [
-            sign * (n[1] * u3[2] - n[2] * u3[1]),
-            sign * (n[2] * u3[0] - n[0] * u3[2]),
-            sign * (n[0] * u3[1] - n[1] * u3[0]),
-        ];
-        let mut u = [0.0; MAX_AXES];
-        let mut v = [0.0; MAX_AXES];
-        let mut center_full = start;
-        for (k, &a) in axes.iter().enumerate() {
-            u[a] = u3[k];
-            v[a] = v3[k];
-            center_full[a] = s3[k] - r3[k];
-        }
+        let turn = Turn::of_angle(angle);
         let sweep = angle.abs();
+        let c = in_plane_of(&start, &center, &e1, &e2);
+        // The end: start turned by `sweep` about the axis, found from the arc itself.
         let (sin, cos) = sweep.sin_cos();
-        let mut end = start;
-        for &a in &axes {
-            end[a] = center_full[a] + radius * (cos * u[a] + sin * v[a]);
-        }
-        Ok(Arc::from_parts(
-            center_full,
-            u,
-            v,
-            radius,
-            sweep,
-            [0.0; MAX_AXES],
-            end,
-            dims,
-        ))
+        let d = sub(&start, &c);
+        let (a, b) = (dot(&d, &e1), dot(&d, &e2));
+        let rotated = add(
+            &scale(&e1, a * cos - turn.sign() * b * sin),
+            &scale(&e2, b * cos + turn.sign() * a * sin),
+        );
+        let end = add(&c, &rotated);
+        Arc::around(start, end, c, e1, e2, dims, |_, _| Ok((turn, sweep)))
     }
 
     /// A planar arc from checked parts: the centre `(cx, cy)` in `plane`, the sweep (> 0) and

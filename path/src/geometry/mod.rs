@@ -11,10 +11,12 @@
 use crate::{Point, MAX_AXES};
 
 mod arc;
+mod arc_center;
 mod line;
 mod three_points;
 
 pub use arc::{Arc, Turn, MIN_SWEEP};
+pub use arc_center::himc_turns_angle;
 pub use line::Line;
 
 /// Two points closer than this (in user units) are the same point; an arc's centre must be
