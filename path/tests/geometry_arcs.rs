@@ -451,12 +451,12 @@ fn turn_names() {
 
 /// HIMC Circle2D from (0,0) about (0,0)+… for θ = 210°: start (10,0) about the origin, end at
 /// 210°.
-fn circle2d(turns: i32) -> Arc {
+fn circle2d(turns: i32) -> Result<Arc, GeometryError> {
     let end = p(&[
         10.0 * 210f64.to_radians().cos(),
         10.0 * 210f64.to_radians().sin(),
     ]);
-    Arc::from_center_turns(p(&[10.0, 0.0]), end, p(&[0.0, 0.0]), (0, 1), turns, 2).unwrap()
+    Arc::from_center_turns(p(&[10.0, 0.0]), end, p(&[0.0, 0.0]), (0, 1), turns, 2)
 }
 
 #[test]
@@ -469,7 +469,7 @@ fn himc_circle2d_turn_table() {
         (1, 210.0),
         (2, 570.0),
     ] {
-        let a = circle2d(turns);
+        let a = circle2d(turns).unwrap();
         let signed = a.sweep().to_degrees() * if a.sample(0.1).p[1] > 0.0 { 1.0 } else { -1.0 };
         assert!((signed - degrees).abs() < 1e-9, "turns {turns}: {signed}");
         assert!((a.length() - 10.0 * a.sweep()).abs() < 1e-9);
