@@ -14,6 +14,7 @@ use super::{
     add, check_dims, check_finite, check_number, check_plane, dot, norm, scale, sub, GeometryError,
     PathPoint, POINT_TOLERANCE,
 };
+use crate::frames::Transform;
 use crate::{Point, MAX_AXES};
 
 /// The smallest sweep an arc may be given explicitly (radians): below it the arc is a point
@@ -408,6 +409,19 @@ impl Arc {
         };
         let sweep = self.sweep * (s1 - s0) / self.length;
         Arc::from_parts(center, u, v, self.radius, sweep, h, end, self.dims)
+    }
+
+    /// The arc moved by a rigid transform: centre and end moved, the plane's vectors and the
+    /// helix's rise turned; radius, sweep and length unchanged, so the arc stays exact.
+    pub fn transformed(&self, t: &Transform) -> Arc {
+        Arc {
+            center: t.apply(&self.center),
+            u: t.apply_vector(&self.u),
+            v: t.apply_vector(&self.v),
+            h: t.apply_vector(&self.h),
+            end: t.apply(&self.end),
+            ..self.clone()
+        }
     }
 
     /// The in-plane unit vectors (toward the start from the centre; 90° ahead).

@@ -8,6 +8,7 @@
 //!
 //! All vectors are [`Point`]s; a path of `dims` axes leaves the components past `dims` at 0.
 
+use crate::frames::Transform;
 use crate::{Point, MAX_AXES};
 
 mod arc;
@@ -97,6 +98,17 @@ impl Segment {
         }
     }
 
+    /// The segment moved by a rigid transform (program frame → machine frame): lines and arcs
+    /// stay exact. The transform should keep the path in its axes
+    /// ([`Transform::keeps`]`(self.dims())`); components it moves past them are kept but
+    /// ignored by the path's dimension count.
+    pub fn transformed(&self, t: &Transform) -> Segment {
+        match self {
+            Segment::Line(l) => Segment::Line(l.transformed(t)),
+            Segment::Arc(a) => Segment::Arc(a.transformed(t)),
+        }
+    }
+
     pub fn start(&self) -> Point {
         self.sample(0.0).p
     }
@@ -153,7 +165,7 @@ pub fn dot(a: &Point, b: &Point) -> f64 {
 }
 
 /// Checks a path's axis count (1 to [`MAX_AXES`]).
-pub(crate) fn check_dims(dims: usize) -> Result<(), GeometryError> {
+pub fn check_dims(dims: usize) -> Result<(), GeometryError> {
     if dims == 0 || dims > MAX_AXES {
         return Err(GeometryError::Dimensions { dims });
     }
@@ -161,7 +173,7 @@ pub(crate) fn check_dims(dims: usize) -> Result<(), GeometryError> {
 }
 
 /// Checks that every component of `p` is finite.
-pub(crate) fn check_finite(name: &'static str, p: &Point) -> Result<(), GeometryError> {
+pub fn check_finite(name: &'static str, p: &Point) -> Result<(), GeometryError> {
     match p.iter().find(|c| !c.is_finite()) {
         Some(&value) => Err(GeometryError::NotFinite { name, value }),
         None => Ok(()),
@@ -169,7 +181,7 @@ pub(crate) fn check_finite(name: &'static str, p: &Point) -> Result<(), Geometry
 }
 
 /// Checks that a number is finite.
-pub(crate) fn check_number(name: &'static str, value: f64) -> Result<(), GeometryError> {
+pub fn check_number(name: &'static str, value: f64) -> Result<(), GeometryError> {
     if value.is_finite() {
         Ok(())
     } else {
@@ -178,7 +190,7 @@ pub(crate) fn check_number(name: &'static str, value: f64) -> Result<(), Geometr
 }
 
 /// Checks that `axis` is one of the first `dims` axes.
-pub(crate) fn check_axis(axis: usize, dims: usize) -> Result<(), GeometryError> {
+pub fn check_axis(axis: usize, dims: usize) -> Result<(), GeometryError> {
     if axis >= dims {
         return Err(GeometryError::AxisOutOfRange { axis, dims });
     }
