@@ -13,11 +13,13 @@ use crate::{Point, MAX_AXES};
 
 mod arc;
 mod arc_center;
+mod curve;
 mod line;
 mod three_points;
 
 pub use arc::{Arc, Turn, MIN_SWEEP};
 pub use arc_center::himc_turns_angle;
+pub use curve::{Curve, CurveKind, ELLIPSE_RATIO, MAX_SPLINE_POINTS};
 pub use line::Line;
 
 /// Two points closer than this (in user units) are the same point; an arc's centre must be
@@ -62,6 +64,8 @@ pub enum Segment {
     Line(Line),
     /// A circular arc in a plane, plus linear motion of the other axes (a helix).
     Arc(Arc),
+    /// A spline through points or an ellipse, sampled through a length table.
+    Curve(Curve),
 }
 
 impl Segment {
@@ -70,6 +74,7 @@ impl Segment {
         match self {
             Segment::Line(l) => l.length(),
             Segment::Arc(a) => a.length(),
+            Segment::Curve(c) => c.length(),
         }
     }
 
@@ -78,6 +83,7 @@ impl Segment {
         match self {
             Segment::Line(l) => l.dims(),
             Segment::Arc(a) => a.dims(),
+            Segment::Curve(c) => c.dims(),
         }
     }
 
@@ -86,6 +92,7 @@ impl Segment {
         match self {
             Segment::Line(l) => l.sample(s),
             Segment::Arc(a) => a.sample(s),
+            Segment::Curve(c) => c.sample(s),
         }
     }
 
@@ -95,6 +102,7 @@ impl Segment {
         match self {
             Segment::Line(l) => Segment::Line(l.trimmed(s0, s1)),
             Segment::Arc(a) => Segment::Arc(a.trimmed(s0, s1)),
+            Segment::Curve(c) => Segment::Curve(c.trimmed(s0, s1)),
         }
     }
 
@@ -106,6 +114,7 @@ impl Segment {
         match self {
             Segment::Line(l) => Segment::Line(l.transformed(t)),
             Segment::Arc(a) => Segment::Arc(a.transformed(t)),
+            Segment::Curve(c) => Segment::Curve(c.transformed(t)),
         }
     }
 
@@ -118,6 +127,7 @@ impl Segment {
         match self {
             Segment::Line(l) => l.end(),
             Segment::Arc(a) => a.end(),
+            Segment::Curve(c) => c.end(),
         }
     }
 
@@ -135,6 +145,7 @@ impl Segment {
         match self {
             Segment::Line(l) => l.direction().get(axis).map_or(0.0, |c| c.abs()),
             Segment::Arc(a) => a.max_tangent(axis),
+            Segment::Curve(c) => c.max_tangent(axis),
         }
     }
 
@@ -143,6 +154,7 @@ impl Segment {
         match self {
             Segment::Line(_) => 0.0,
             Segment::Arc(a) => a.curvature(),
+            Segment::Curve(c) => c.max_curvature(),
         }
     }
 }
