@@ -87,10 +87,8 @@ proptest! {
     #[test]
     fn lines_in_n_dimensions(dims in 1usize..=9, a in prop::array::uniform9(coord()), b in prop::array::uniform9(coord())) {
         let (mut start, mut end) = (a, b);
-        for k in dims..MAX_AXES {
-            start[k] = 0.0;
-            end[k] = 0.0;
-        }
+        start.iter_mut().skip(dims).for_each(|x| *x = 0.0);
+        end.iter_mut().skip(dims).for_each(|x| *x = 0.0);
         let seg = Segment::Line(Line::new(start, end, dims).unwrap());
         prop_assume!(seg.length() > 1e-6);
         check_segment(&seg, &start, &end, 1000.0).map_err(TestCaseError::fail)?;
@@ -148,9 +146,7 @@ proptest! {
     ) {
         let mut pts = pts;
         for q in pts.iter_mut() {
-            for k in dims..MAX_AXES {
-                q[k] = 0.0;
-            }
+            q.iter_mut().skip(dims).for_each(|x| *x = 0.0);
         }
         let [start, via, end] = pts;
         match Segment::through_points(start, via, end, dims) {
