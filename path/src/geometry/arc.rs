@@ -21,6 +21,12 @@ use crate::{Point, MAX_AXES};
 /// turning in place, which HIMC refuses too (`eERR_CRD_CMD_CIRC_ANGLE_SMALL`, digest 004 §5).
 pub const MIN_SWEEP: f64 = 1e-12;
 
+/// A circular arc or helix (see the module doc).
+///
+/// Inputs: one constructor (they differ in how the centre, plane and sweep are given; see
+/// [`crate::geometry`]). Outputs, in any order: [`Arc::length`], [`Arc::sample`],
+/// [`Arc::end`] (exactly as programmed), [`Arc::curvature`], [`Arc::max_tangent`];
+/// [`Arc::trimmed`] and [`Arc::transformed`] make new arcs.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Arc {
     center: Point,

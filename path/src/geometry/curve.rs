@@ -179,6 +179,11 @@ pub enum CurveKind {
 }
 
 /// A curve sampled by path length (see the module doc). A trimmed curve shares its table.
+///
+/// Inputs: [`Curve::spline`] or [`Curve::ellipse`] (once; they build the table). Outputs, in
+/// any order and as often as needed: [`Curve::length`], [`Curve::sample`], [`Curve::end`],
+/// the bounds [`Curve::max_tangent`] and [`Curve::max_curvature`]; [`Curve::trimmed`] and
+/// [`Curve::transformed`] make new curves.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Curve {
     table: Shared<Table>,

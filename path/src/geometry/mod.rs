@@ -7,6 +7,22 @@
 //! sample is a bounded lookup.
 //!
 //! All vectors are [`Point`]s; a path of `dims` axes leaves the components past `dims` at 0.
+//!
+//! Constructors, by vendor rule (each validates its input into a [`GeometryError`]):
+//! - lines: [`Line::new`] (any axes, extra axes in proportion: NMC D8, HMC MoveND);
+//! - arcs in an axis plane: [`Arc::from_center`] (direction + extra turns; end = start is a
+//!   full circle), [`Arc::from_radius`] (signed radius: NMC, CPU 226H),
+//!   [`Arc::from_center_angle`] (HIMC ArcAngle2D), [`Arc::from_center_turns`] (HIMC
+//!   Circle2D's signed turns), [`Arc::from_center_toward`] (HMC MoveCircle's projected end),
+//!   [`Arc::helix_turns`] (NMC HelixCenterEx, HMC MoveHelical); the other axes move linearly;
+//! - arcs through points: [`Segment::through_points`] (collinear → line, HMC),
+//!   [`Arc::circle_through`] (full circle);
+//! - 3-D arcs about a normal: [`Arc::about_normal`], [`Arc::from_center_normal`],
+//!   [`Arc::from_center_normal_turns`] (HIMC CircleAbs);
+//! - curves: [`Curve::spline`] (HMC MoveSplineND), [`Curve::ellipse`] (NMC CrdEllipse).
+//!
+//! Any segment moves to another frame exactly with [`Segment::transformed`]
+//! ([`crate::frames`]).
 
 use crate::frames::Transform;
 use crate::{Point, MAX_AXES};
