@@ -626,7 +626,7 @@ fn hmc_tv19_helical_thread() {
         let mut end = start;
         end[2] += 500.0;
         let a = Arc::helix_turns(start, end, p(&[50.0, 0.0, 0.0]), (0, 1), Turn::Cw, 1, 3).unwrap();
-        xy_length += a.radius() * a.sweep();
+        xy_length += a.circle_length();
         start = a.end();
     }
     assert!((xy_length - 2.0 * 314.159).abs() < 1e-2);

@@ -57,7 +57,7 @@ impl Default for Link {
 /// links not selected are skipped. With only the PCS set this is TV 56's
 /// `MCS = R_z(C)·p + t`; the order of the other links is our reading of the chain's arrows
 /// (the manual gives no numbers for it).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct FrameChain {
     offset: Link,
     wcs: [Link; WCS_COUNT],

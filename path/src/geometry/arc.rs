@@ -333,6 +333,13 @@ impl Arc {
         self.end
     }
 
+    /// The length of the circular part alone, `radius × sweep` (HMC `MoveHelical` modes
+    /// 4/5/7 advance the result axis by this, not by the helix's length: digest 000 §4.3,
+    /// TV 19).
+    pub fn circle_length(&self) -> f64 {
+        self.radius * self.sweep
+    }
+
     /// Norm of the curvature vector (1/radius for a flat arc, less for a helix).
     pub fn curvature(&self) -> f64 {
         if self.length > 0.0 {
