@@ -1,20 +1,14 @@
 //! Arc constructors against the manuals' vectors (NMC TV 43–46, CPU 226H TV-31/32, HIMC TV
 //! 42–45 and the Circle2D table, HMC TV 14/19) and their invariants.
 
+mod common;
+
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 use path::geometry::{norm, sub, Arc, GeometryError, Segment, Turn};
-use path::{Point, MAX_AXES};
+use path::Point;
 
-fn p(c: &[f64]) -> Point {
-    let mut out = [0.0; MAX_AXES];
-    out[..c.len()].copy_from_slice(c);
-    out
-}
-
-fn close(a: &Point, b: &Point, tol: f64) -> bool {
-    norm(&sub(a, b)) <= tol
-}
+use common::{close, p};
 
 /// The point of the arc nearest to `q`, by sampling (for "passes through" checks).
 fn min_distance(seg: &Segment, q: &Point) -> f64 {

@@ -1,6 +1,8 @@
 //! Curves: splines through points (HMC MoveSplineND) and ellipses (NMC CrdEllipse), sampled by
 //! path length through their tables.
 
+mod common;
+
 use std::f64::consts::TAU;
 
 use path::frames::Transform;
@@ -8,11 +10,7 @@ use path::geometry::{norm, sub, Curve, CurveKind, GeometryError, Segment, Turn};
 use path::{Point, MAX_AXES};
 use proptest::prelude::*;
 
-fn p(c: &[f64]) -> Point {
-    let mut out = [0.0; MAX_AXES];
-    out[..c.len()].copy_from_slice(c);
-    out
-}
+use common::p;
 
 fn curve(seg: &Segment) -> Option<&Curve> {
     match seg {

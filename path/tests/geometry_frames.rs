@@ -1,6 +1,8 @@
 //! Frames: HIMC TV 56–57, the roll-pitch-yaw order, the frame chain, NMC's origin offset and
 //! rotary transforms, segments moved exactly, and round trips (proptest).
 
+mod common;
+
 use std::f64::consts::{FRAC_PI_2, PI};
 
 use path::frames::{
@@ -8,18 +10,10 @@ use path::frames::{
     XyzaTransform,
 };
 use path::geometry::{norm, sub, Arc, Line, Segment, Turn};
-use path::{Point, MAX_AXES};
+use path::MAX_AXES;
 use proptest::prelude::*;
 
-fn p(c: &[f64]) -> Point {
-    let mut out = [0.0; MAX_AXES];
-    out[..c.len()].copy_from_slice(c);
-    out
-}
-
-fn close(a: &Point, b: &Point, tol: f64) -> bool {
-    norm(&sub(a, b)) <= tol
-}
+use common::{close, p};
 
 #[test]
 fn himc_tv56_pcs_rotated_45_degrees() {

@@ -3,21 +3,15 @@
 //! sampled path, trimmed pieces follow the original; and the bad inputs each constructor
 //! refuses with a typed error.
 
+mod common;
+
 use std::f64::consts::TAU;
 
 use path::geometry::{dot, norm, sub, Arc, GeometryError, Line, Segment, Turn};
 use path::{Point, MAX_AXES};
 use proptest::prelude::*;
 
-fn p(c: &[f64]) -> Point {
-    let mut out = [0.0; MAX_AXES];
-    out[..c.len()].copy_from_slice(c);
-    out
-}
-
-fn close(a: &Point, b: &Point, tol: f64) -> bool {
-    norm(&sub(a, b)) <= tol
-}
+use common::{close, p};
 
 /// The invariants of a segment; `scale` is the size of its coordinates (for tolerances).
 fn check_segment(seg: &Segment, start: &Point, end: &Point, scale: f64) -> Result<(), String> {

@@ -9,10 +9,10 @@
 
 use std::f64::consts::TAU;
 
-use super::arc_center::{in_plane_of, normal_basis, plane_basis, sweep_for};
+use super::arc_center::{in_plane_of, normal_basis, sweep_for};
 use super::{
-    add, check_dims, check_finite, check_number, check_plane, dot, norm, scale, sub, GeometryError,
-    PathPoint, POINT_TOLERANCE,
+    add, check_number, check_planar, dot, norm, scale, sub, GeometryError, PathPoint,
+    POINT_TOLERANCE,
 };
 use crate::frames::Transform;
 use crate::{Point, MAX_AXES};
@@ -103,21 +103,9 @@ impl Arc {
         extra_turns: u32,
         dims: usize,
     ) -> Result<Arc, GeometryError> {
-        check_dims(dims)?;
-        check_plane(plane, dims)?;
-        for (name, p) in [("start", &start), ("end", &end), ("center", &center)] {
-            check_finite(name, p)?;
-        }
-        let (e1, e2) = plane_basis(plane);
-        Arc::around(
-            start,
-            end,
-            in_plane_of(&start, &center, &e1, &e2),
-            e1,
-            e2,
-            dims,
-            |theta, closed| Ok((turn, sweep_for(turn, extra_turns, theta, closed))),
-        )
+        Arc::around_in_plane(start, end, center, plane, dims, |theta, closed| {
+            Ok((turn, sweep_for(turn, extra_turns, theta, closed)))
+        })
     }
 
     /// The arc from `start` to `end` of radius `|radius|` in the plane `plane`, turning `turn`:
@@ -136,10 +124,7 @@ impl Arc {
         dims: usize,
     ) -> Result<Arc, GeometryError> {
         let (i, j) = plane;
-        check_dims(dims)?;
-        check_plane(plane, dims)?;
-        check_finite("start", &start)?;
-        check_finite("end", &end)?;
+        check_planar(plane, dims, &[("start", &start), ("end", &end)])?;
         check_number("radius", radius)?;
         let (dx, dy) = (end[i] - start[i], end[j] - start[j]);
         let chord = dx.hypot(dy);
@@ -183,10 +168,7 @@ impl Arc {
         dims: usize,
     ) -> Result<Arc, GeometryError> {
         let (i, j) = plane;
-        check_dims(dims)?;
-        check_plane(plane, dims)?;
-        check_finite("start", &start)?;
-        check_finite("center", &center)?;
+        check_planar(plane, dims, &[("start", &start), ("center", &center)])?;
         check_number("angle", angle)?;
         let radius = (start[i] - center[i]).hypot(start[j] - center[j]);
         if radius <= POINT_TOLERANCE {

@@ -481,10 +481,7 @@ impl Curve {
         turn: Turn,
         dims: usize,
     ) -> Result<Segment, GeometryError> {
-        check_dims(dims)?;
-        super::check_plane(plane, dims)?;
-        check_finite("start", &start)?;
-        check_finite("center", &center)?;
+        super::check_planar(plane, dims, &[("start", &start), ("center", &center)])?;
         check_number("ratio", ratio)?;
         if !ELLIPSE_RATIO.contains(&ratio) {
             return Err(GeometryError::Invalid(

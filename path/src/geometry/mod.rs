@@ -237,6 +237,19 @@ pub(crate) fn check_plane(plane: (usize, usize), dims: usize) -> Result<(), Geom
     Ok(())
 }
 
+/// Checks a planar construction's input: the axis count, the plane, and named points finite.
+pub(crate) fn check_planar(
+    plane: (usize, usize),
+    dims: usize,
+    points: &[(&'static str, &Point)],
+) -> Result<(), GeometryError> {
+    check_dims(dims)?;
+    check_plane(plane, dims)?;
+    points
+        .iter()
+        .try_for_each(|&(name, p)| check_finite(name, p))
+}
+
 pub fn add(a: &Point, b: &Point) -> Point {
     let mut out = [0.0; MAX_AXES];
     for i in 0..MAX_AXES {
