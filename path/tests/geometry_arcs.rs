@@ -627,3 +627,32 @@ fn hmc_tv19_helical_thread() {
     assert_eq!(start, p(&[0.0, 0.0, 1000.0]));
     assert!(Arc::helix_turns(start, start, p(&[50.0, 0.0, 0.0]), (0, 1), Turn::Cw, 0, 3).is_err());
 }
+
+#[test]
+fn himc_tv43_arc_cw_and_ccw() {
+    // ArcCW2D(0, 100, 0, 200, 0) from (0,0) passes (100, 100); ArcCCW2D passes (100, −100).
+    let (s, e, c) = (p(&[0.0, 0.0]), p(&[200.0, 0.0]), p(&[100.0, 0.0]));
+    let cw = Arc::from_center(s, e, c, (0, 1), Turn::Cw, 0, 2).unwrap();
+    assert!(close(
+        &cw.sample(cw.length() / 2.0).p,
+        &p(&[100.0, 100.0]),
+        1e-9
+    ));
+    let ccw = Arc::from_center(s, e, c, (0, 1), Turn::Ccw, 0, 2).unwrap();
+    assert!(close(
+        &ccw.sample(ccw.length() / 2.0).p,
+        &p(&[100.0, -100.0]),
+        1e-9
+    ));
+}
+
+#[test]
+fn cpu226h_tv33_line_components_in_proportion() {
+    // MC_LINE_R A 3000, B 4000: B is the long axis, A moves at 3/4 of its rate.
+    let seg =
+        Segment::Line(path::geometry::Line::new(p(&[0.0, 0.0]), p(&[3000.0, 4000.0]), 2).unwrap());
+    let t = seg.start_tangent();
+    assert!((t[0] / t[1] - 0.75).abs() < 1e-15);
+    assert_eq!(seg.max_tangent(1), 0.8);
+    assert_eq!(seg.end(), p(&[3000.0, 4000.0]));
+}
