@@ -7,9 +7,26 @@
 //! travel, and `h` is the linear displacement of the axes outside the plane. θ is proportional
 //! to path length, so `s → θ` is one multiplication.
 
-use super::{norm, sub, GeometryError, PathPoint, POINT_TOLERANCE};
+use std::f64::consts::TAU;
+
+use super::arc_center::{in_plane_of, normal_basis, sweep_for};
+use super::{
+    add, check_number, check_planar, dot, norm, scale, sub, GeometryError, PathPoint,
+    POINT_TOLERANCE,
+};
+use crate::frames::Transform;
 use crate::{Point, MAX_AXES};
 
+/// The smallest sweep an arc may be given explicitly (radians): below it the arc is a point
+/// turning in place, which HIMC refuses too (`eERR_CRD_CMD_CIRC_ANGLE_SMALL`, digest 004 §5).
+pub const MIN_SWEEP: f64 = 1e-12;
+
+/// A circular arc or helix (see the module doc).
+///
+/// Inputs: one constructor (they differ in how the centre, plane and sweep are given; see
+/// [`crate::geometry`]). Outputs, in any order: [`Arc::length`], [`Arc::sample`],
+/// [`Arc::end`] (exactly as programmed), [`Arc::curvature`], [`Arc::max_tangent`];
+/// [`Arc::trimmed`] and [`Arc::transformed`] make new arcs.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Arc {
     center: Point,
@@ -33,12 +50,50 @@ pub enum Turn {
     Cw,
 }
 
+impl Turn {
+    /// `"cw"` or `"ccw"` (any case), as the JSON commands spell it; `None` for anything else.
+    pub fn from_name(name: &str) -> Option<Turn> {
+        if name.eq_ignore_ascii_case("ccw") {
+            Some(Turn::Ccw)
+        } else if name.eq_ignore_ascii_case("cw") {
+            Some(Turn::Cw)
+        } else {
+            None
+        }
+    }
+
+    /// +1 for counter-clockwise, −1 for clockwise: the sign of the swept angle.
+    pub fn sign(self) -> f64 {
+        match self {
+            Turn::Ccw => 1.0,
+            Turn::Cw => -1.0,
+        }
+    }
+
+    /// The direction of a signed angle (> 0 counter-clockwise; 0 counts as counter-clockwise).
+    pub fn of_angle(angle: f64) -> Turn {
+        if angle < 0.0 {
+            Turn::Cw
+        } else {
+            Turn::Ccw
+        }
+    }
+}
+
+/// How far a centre may be from equidistant, or a radius below half the chord, before the
+/// arc is refused: [`POINT_TOLERANCE`] plus 1e-9 of the radius (rounding of the caller's
+/// arithmetic, not a second geometry).
+pub(crate) fn radius_tolerance(radius: f64) -> f64 {
+    POINT_TOLERANCE + 1e-9 * radius
+}
+
 impl Arc {
     /// The arc from `start` around `center` to `end` in the plane of axes `plane.0` (x) and
     /// `plane.1` (y), turning `turn`, after `extra_turns` full turns. Start = end in the plane
-    /// is a full circle (plus the extra turns). The other axes move linearly from `start` to
-    /// `end` (a helix). The centre must be equidistant from start and end within
-    /// [`POINT_TOLERANCE`] + 1e-9 × radius.
+    /// is a full circle (plus the extra turns): NMC `ArcCenterEx` with target = start (digest
+    /// 001 §4.4, TV 43). The other axes move linearly from `start` to `end` (a helix; NMC D8
+    /// and HMC MoveND extra axes ride along the same way). The centre must be equidistant from
+    /// start and end within [`POINT_TOLERANCE`] + 1e-9 × radius.
     pub fn from_center(
         start: Point,
         end: Point,
@@ -48,69 +103,163 @@ impl Arc {
         extra_turns: u32,
         dims: usize,
     ) -> Result<Arc, GeometryError> {
+        Arc::around_in_plane(start, end, center, plane, dims, |theta, closed| {
+            Ok((turn, sweep_for(turn, extra_turns, theta, closed)))
+        })
+    }
+
+    /// The arc from `start` to `end` of radius `|radius|` in the plane `plane`, turning `turn`:
+    /// `radius > 0` takes the minor arc (≤ 180°), `radius < 0` the major arc (≥ 180°), as NMC
+    /// `CrdArcRadiusEx` (digest 001 §4.4, TV 44–45) and CPU 226H `MC_CIRCLE_*` RADIUS
+    /// (digest 003 §2.14, TV-31). A radius below half the chord is refused unless within
+    /// rounding ([`POINT_TOLERANCE`] + 1e-9 × radius), where it is taken as exactly half (a
+    /// semicircle). Start = end in the plane is refused: a full circle needs its centre. The
+    /// other axes move linearly (a helix), as in [`Arc::from_center`].
+    pub fn from_radius(
+        start: Point,
+        end: Point,
+        radius: f64,
+        plane: (usize, usize),
+        turn: Turn,
+        dims: usize,
+    ) -> Result<Arc, GeometryError> {
         let (i, j) = plane;
-        if dims == 0 || dims > MAX_AXES {
-            return Err(GeometryError::Dimensions { dims });
-        }
-        if i == j || i >= dims || j >= dims {
+        check_planar(plane, dims, &[("start", &start), ("end", &end)])?;
+        check_number("radius", radius)?;
+        let (dx, dy) = (end[i] - start[i], end[j] - start[j]);
+        let chord = dx.hypot(dy);
+        if chord <= POINT_TOLERANCE {
             return Err(GeometryError::Invalid(
-                "the arc's plane needs two different axes of the group",
+                "an arc by radius needs an end different from its start in the plane (a full circle needs a centre)",
             ));
         }
-        for (name, p) in [("start", &start), ("end", &end), ("center", &center)] {
-            if let Some(&value) = p.iter().find(|c| !c.is_finite()) {
-                return Err(GeometryError::NotFinite { name, value });
-            }
+        let r = radius.abs();
+        let half_chord = chord / 2.0;
+        if r < half_chord - radius_tolerance(r) {
+            return Err(GeometryError::RadiusTooSmall {
+                radius: r,
+                half_chord,
+            });
         }
-        let (sx, sy) = (start[i] - center[i], start[j] - center[j]);
-        let (ex, ey) = (end[i] - center[i], end[j] - center[j]);
-        let radius = sx.hypot(sy);
-        let r_end = ex.hypot(ey);
+        let r = r.max(half_chord);
+        // The centre lies on the chord's perpendicular bisector, at `rise` from the midpoint;
+        // for a counter-clockwise minor arc on the left of start → end (the arc then turns
+        // < 180° about it), and each of "clockwise" and "major" moves it to the other side.
+        let rise = (r * r - half_chord * half_chord).max(0.0).sqrt();
+        let (nx, ny) = (-dy / chord, dx / chord);
+        let side = turn.sign() * radius.signum();
+        let cx = start[i] + dx / 2.0 + side * rise * nx;
+        let cy = start[j] + dy / 2.0 + side * rise * ny;
+        let minor = 2.0 * (half_chord / r).min(1.0).asin();
+        let sweep = if radius > 0.0 { minor } else { TAU - minor };
+        Ok(Arc::planar(start, end, (cx, cy), plane, turn, sweep, dims))
+    }
+
+    /// The arc from `start` about `center` (its in-plane coordinates; the others are ignored)
+    /// through the signed angle `angle` (radians: > 0 counter-clockwise, < 0 clockwise, any
+    /// magnitude, so more than one turn is allowed), as HIMC `ArcAngle2D` (digest 004 §2.7,
+    /// TV 44, which gives degrees: the caller converts). The other axes stay where they are.
+    /// The end point is computed.
+    pub fn from_center_angle(
+        start: Point,
+        center: Point,
+        angle: f64,
+        plane: (usize, usize),
+        dims: usize,
+    ) -> Result<Arc, GeometryError> {
+        let (i, j) = plane;
+        check_planar(plane, dims, &[("start", &start), ("center", &center)])?;
+        check_number("angle", angle)?;
+        let radius = (start[i] - center[i]).hypot(start[j] - center[j]);
         if radius <= POINT_TOLERANCE {
             return Err(GeometryError::Invalid(
                 "the arc's centre is its start point",
             ));
         }
-        if (radius - r_end).abs() > POINT_TOLERANCE + 1e-9 * radius {
-            return Err(GeometryError::Invalid(
-                "the arc's centre is not equidistant from its start and end",
-            ));
+        if angle.abs() < MIN_SWEEP {
+            return Err(GeometryError::Invalid("the arc's angle is 0"));
         }
-        let ccw = turn == Turn::Ccw;
-        let a0 = sy.atan2(sx);
-        let a1 = ey.atan2(ex);
-        let tau = std::f64::consts::TAU;
-        let mut sweep = if ccw { a1 - a0 } else { a0 - a1 };
-        sweep = sweep.rem_euclid(tau);
-        let chord = (ex - sx).hypot(ey - sy);
-        if chord <= POINT_TOLERANCE || sweep < 1e-12 {
-            sweep = tau;
+        let turn = Turn::of_angle(angle);
+        let a1 = (start[j] - center[j]).atan2(start[i] - center[i]) + angle;
+        let mut end = start;
+        end[i] = center[i] + radius * a1.cos();
+        end[j] = center[j] + radius * a1.sin();
+        Ok(Arc::planar(
+            start,
+            end,
+            (center[i], center[j]),
+            plane,
+            turn,
+            angle.abs(),
+            dims,
+        ))
+    }
+
+    /// The 3-D arc from `start` about the axis through `center` along `normal`, turning
+    /// `angle` radians by the right-hand rule about `normal` (< 0 turns the other way; any
+    /// magnitude), in the space of path axes `axes` (x, y, z); the other axes stay put. As
+    /// HIMC `CircleAbs` (digest 004 §2.7: the normal gives the direction, {0,0,1} is CCW).
+    /// A centre off the plane through `start` ⟂ `normal` is projected onto it along the
+    /// normal (the circle is the one `start` describes turning about that axis). The end point
+    /// is computed.
+    pub fn about_normal(
+        start: Point,
+        center: Point,
+        normal: [f64; 3],
+        angle: f64,
+        axes: [usize; 3],
+        dims: usize,
+    ) -> Result<Arc, GeometryError> {
+        let (e1, e2) = normal_basis(&start, &start, &center, normal, axes, dims)?;
+        check_number("angle", angle)?;
+        if angle.abs() < MIN_SWEEP {
+            return Err(GeometryError::Invalid("the arc's angle is 0"));
         }
-        sweep += tau * extra_turns as f64;
+        let turn = Turn::of_angle(angle);
+        let sweep = angle.abs();
+        let c = in_plane_of(&start, &center, &e1, &e2);
+        // The end: start turned by `sweep` about the axis, found from the arc itself.
+        let (sin, cos) = sweep.sin_cos();
+        let d = sub(&start, &c);
+        let (a, b) = (dot(&d, &e1), dot(&d, &e2));
+        let rotated = add(
+            &scale(&e1, a * cos - turn.sign() * b * sin),
+            &scale(&e2, b * cos + turn.sign() * a * sin),
+        );
+        let end = add(&c, &rotated);
+        Arc::around(start, end, c, e1, e2, dims, |_, _| Ok((turn, sweep)))
+    }
+
+    /// A planar arc from checked parts: the centre `(cx, cy)` in `plane`, the sweep (> 0) and
+    /// the turn; the radius is start's distance from the centre, and the other axes move
+    /// linearly from `start` to `end`.
+    fn planar(
+        start: Point,
+        end: Point,
+        (cx, cy): (f64, f64),
+        plane: (usize, usize),
+        turn: Turn,
+        sweep: f64,
+        dims: usize,
+    ) -> Arc {
+        let (i, j) = plane;
+        let (sx, sy) = (start[i] - cx, start[j] - cy);
+        let radius = sx.hypot(sy);
         let mut u = [0.0; MAX_AXES];
         let mut v = [0.0; MAX_AXES];
         u[i] = sx / radius;
         u[j] = sy / radius;
         // v is u turned 90° in the direction of travel.
-        let sign = if ccw { 1.0 } else { -1.0 };
+        let sign = turn.sign();
         v[i] = -u[j] * sign;
         v[j] = u[i] * sign;
         let mut center_full = start;
-        center_full[i] = center[i];
-        center_full[j] = center[j];
+        center_full[i] = cx;
+        center_full[j] = cy;
         let mut h = sub(&end, &start);
         h[i] = 0.0;
         h[j] = 0.0;
-        Ok(Arc::from_parts(
-            center_full,
-            u,
-            v,
-            radius,
-            sweep,
-            h,
-            end,
-            dims,
-        ))
+        Arc::from_parts(center_full, u, v, radius, sweep, h, end, dims)
     }
 
     /// An arc from its parts (see the module doc). `u` and `v` must be orthonormal and `h`
@@ -164,6 +313,13 @@ impl Arc {
 
     pub fn end(&self) -> Point {
         self.end
+    }
+
+    /// The length of the circular part alone, `radius × sweep` (HMC `MoveHelical` modes
+    /// 4/5/7 advance the result axis by this, not by the helix's length: digest 000 §4.3,
+    /// TV 19).
+    pub fn circle_length(&self) -> f64 {
+        self.radius * self.sweep
     }
 
     /// Norm of the curvature vector (1/radius for a flat arc, less for a helix).
@@ -248,6 +404,19 @@ impl Arc {
         };
         let sweep = self.sweep * (s1 - s0) / self.length;
         Arc::from_parts(center, u, v, self.radius, sweep, h, end, self.dims)
+    }
+
+    /// The arc moved by a rigid transform: centre and end moved, the plane's vectors and the
+    /// helix's rise turned; radius, sweep and length unchanged, so the arc stays exact.
+    pub fn transformed(&self, t: &Transform) -> Arc {
+        Arc {
+            center: t.apply(&self.center),
+            u: t.apply_vector(&self.u),
+            v: t.apply_vector(&self.v),
+            h: t.apply_vector(&self.h),
+            end: t.apply(&self.end),
+            ..self.clone()
+        }
     }
 
     /// The in-plane unit vectors (toward the start from the centre; 90° ahead).
