@@ -13,7 +13,7 @@ use crate::{Point, MAX_AXES};
 mod arc;
 mod line;
 
-pub use arc::Arc;
+pub use arc::{Arc, Turn};
 pub use line::Line;
 
 /// Two points closer than this (in user units) are the same point; an arc's centre must be
