@@ -102,11 +102,7 @@ impl PathPlanner {
                         velocity: v.max(w).max(f64::MIN_POSITIVE),
                         ..limits
                     };
-                    let goal = Goal::Position {
-                        target: m.length,
-                        end_velocity: w,
-                    };
-                    return Profile::plan(start, goal, &limits, &Options::default()).ok();
+                    return Profile::plan_passing(start, m.length, w, &limits).ok();
                 }
             }
         }
@@ -125,11 +121,7 @@ impl PathPlanner {
             deceleration: l.deceleration,
             jerk: l.jerk,
         };
-        let goal = Goal::Position {
-            target: m.length,
-            end_velocity: w,
-        };
-        Profile::plan(start, goal, &limits, &Options::default()).ok()
+        Profile::plan_passing(start, m.length, w, &limits).ok()
     }
 
     /// Advance one period (see [`PathPlanner::step`]).
