@@ -128,6 +128,7 @@ impl PathPlanner {
     pub(super) fn advance(&mut self, events: &mut Vec<PathEvent>) {
         let period = self.config.period;
         self.starts_last_step = 0;
+        self.lookahead_visits = 0;
         if self.replan_pending {
             match self.exec {
                 Some(e) => {
@@ -256,17 +257,10 @@ impl PathPlanner {
         self.pop_front();
         self.exec = None;
         self.carry = arrival;
-        // A motion has entered the window: extend the look-ahead to it.
-        if self.motion_count() >= self.config.lookahead {
+        // A motion may have entered the window: extend the look-ahead to it.
+        if self.queue.len() >= self.config.lookahead {
             self.lookahead(self.queue.len());
         }
-    }
-
-    pub(super) fn motion_count(&self) -> usize {
-        self.queue
-            .iter()
-            .filter(|e| matches!(e, Entry::Motion(_)))
-            .count()
     }
 
     /// Write the path state from the executing motion (or the last point reached).

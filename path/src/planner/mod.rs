@@ -190,7 +190,7 @@ struct Halt {
 }
 
 /// See the module doc.
-#[derive(Debug)]
+#[derive(Clone, Debug)]
 pub struct PathPlanner {
     config: PlannerConfig,
     state: PathState,
@@ -211,6 +211,8 @@ pub struct PathPlanner {
     at_rest_reported: bool,
     hold_released: bool,
     starts_last_step: usize,
+    /// Queue entries the look-ahead visited since the last step began (its work).
+    lookahead_visits: usize,
 }
 
 impl PathPlanner {
@@ -260,6 +262,7 @@ impl PathPlanner {
             at_rest_reported: false,
             hold_released: false,
             starts_last_step: 0,
+            lookahead_visits: 0,
         })
     }
 
@@ -473,5 +476,11 @@ impl PathPlanner {
     /// Motions started during the last step (bounded by [`MAX_STARTS_PER_STEP`]).
     pub fn starts_last_step(&self) -> usize {
         self.starts_last_step
+    }
+
+    /// Queue entries the look-ahead visited since the last step began (pushes after it
+    /// included): the planning work, deterministic, for benchmarks and tests.
+    pub fn lookahead_visits(&self) -> usize {
+        self.lookahead_visits
     }
 }
