@@ -566,3 +566,153 @@ fn the_same_inputs_give_bit_identical_states() {
     };
     assert_eq!(go(), go());
 }
+
+/// PLCopen Part 4 buffer modes at a collinear junction between a slow (10) and a fast (50)
+/// motion: the junction velocity is the lower, the first's, the second's or the higher.
+#[test]
+fn buffer_modes_set_the_junction_velocity() {
+    let cfg = PlannerConfig::uniform(1, axis(100.0, 1000.0, f64::INFINITY), 1e-3);
+    for (join, slow_first, expected) in [
+        (Join::BlendingLow, true, 10.0),
+        (Join::BlendingPrevious, true, 10.0),
+        (Join::BlendingNext, true, 50.0),
+        (Join::BlendingHigh, true, 50.0),
+        (Join::BlendingPrevious, false, 50.0),
+        (Join::BlendingNext, false, 10.0),
+        (Join::Buffered, true, 0.0),
+    ] {
+        let (v1, v2) = if slow_first {
+            (10.0, 50.0)
+        } else {
+            (50.0, 10.0)
+        };
+        let mut pl = PathPlanner::new(cfg.clone(), p(&[0.0])).unwrap();
+        let m1 = motion(
+            line(p(&[0.0]), p(&[20.0]), 1),
+            limits(v1, 1000.0, f64::INFINITY),
+            Join::Buffered,
+            Transition::None,
+            1,
+        );
+        let m2 = motion(
+            line(p(&[20.0]), p(&[40.0]), 1),
+            limits(v2, 1000.0, f64::INFINITY),
+            join,
+            Transition::None,
+            2,
+        );
+        pl.push_motion(m1).unwrap();
+        pl.push_motion(m2).unwrap();
+        let (states, _) = run(&mut pl, 100_000);
+        assert_eq!(states.last().unwrap().position, p(&[40.0]));
+        // The velocity as the path passes x = 20 (interpolated between ticks).
+        let i = states.iter().position(|s| s.position[0] >= 20.0).unwrap();
+        let (a, b) = (&states[i - 1], &states[i]);
+        let f = (20.0 - a.position[0]) / (b.position[0] - a.position[0]);
+        let at_junction = a.path_velocity + f * (b.path_velocity - a.path_velocity);
+        assert!(
+            (at_junction - expected).abs() <= 1000.0 * 1e-3 + 1e-9,
+            "{join:?} {slow_first}: {at_junction}"
+        );
+        // Each motion runs at its own velocity in its middle (x = 10 and x = 30).
+        for (x, v) in [(10.0, v1), (30.0, v2)] {
+            let s = states.iter().find(|s| s.position[0] >= x).unwrap();
+            assert!(
+                (s.path_velocity - v).abs() < 1e-9,
+                "{join:?} at {x}: {}",
+                s.path_velocity
+            );
+        }
+        let pk = peaks(&states, &cfg);
+        assert!(pk.a_fd <= 1.0 && pk.v_fd <= 1.0);
+    }
+}
+
+/// HIMC TV 55 (digest 004 §6.4): a motion blends only if the next is queued before it ends.
+/// Pushed after the corner arc would have begun, the corner is passed on the corner rule
+/// (no arc: the path goes through the programmed corner); pushed after the end, the next
+/// motion starts from rest.
+#[test]
+fn a_motion_pushed_too_late_for_its_corner_goes_through_the_corner() {
+    let cfg = square_config();
+    for late_at in [9.5, 10.0] {
+        let mut pl = PathPlanner::new(cfg.clone(), p(&[0.0, 0.0])).unwrap();
+        let a = motion(
+            line(p(&[0.0, 0.0]), p(&[10.0, 0.0]), 2),
+            limits(50.0, 500.0, f64::INFINITY),
+            Join::Buffered,
+            Transition::None,
+            1,
+        );
+        pl.push_motion(a).unwrap();
+        let mut events = Vec::new();
+        let mut states = vec![*pl.state()];
+        while pl.state().position[0] < late_at && !pl.is_idle() {
+            states.push(*pl.step(&mut events));
+        }
+        let b = motion(
+            line(p(&[10.0, 0.0]), p(&[10.0, 10.0]), 2),
+            limits(50.0, 500.0, f64::INFINITY),
+            Join::BlendingHigh,
+            Transition::CornerDistance(2.0),
+            2,
+        );
+        pl.push_motion(b).unwrap();
+        let (rest, _) = run(&mut pl, 100_000);
+        states.extend_from_slice(&rest[1..]);
+        assert_eq!(states.last().unwrap().position, p(&[10.0, 10.0]));
+        let pts = [p(&[0.0, 0.0]), p(&[10.0, 0.0]), p(&[10.0, 10.0])];
+        for s in &states {
+            assert!(
+                distance_to_polyline(&s.position, &pts) < 1e-9,
+                "{late_at}: {:?}",
+                s.position
+            );
+        }
+    }
+}
+
+/// A halt with a low deceleration brakes across several short motions, on the path.
+#[test]
+fn a_halt_brakes_across_motion_ends_and_resume_goes_on() {
+    let cfg = square_config();
+    let mut pl = PathPlanner::new(cfg.clone(), p(&[0.0, 0.0])).unwrap();
+    for i in 0..40 {
+        let (x0, x1) = (i as f64, i as f64 + 1.0);
+        let m = motion(
+            line(p(&[x0, 0.5 * x0]), p(&[x1, 0.5 * x1]), 2),
+            limits(50.0, 1000.0, f64::INFINITY),
+            Join::BlendingLow,
+            Transition::None,
+            i,
+        );
+        pl.push_motion(m).unwrap();
+    }
+    let mut events = Vec::new();
+    let mut states = vec![*pl.state()];
+    for _ in 0..200 {
+        states.push(*pl.step(&mut events));
+    }
+    let v0 = pl.state().path_velocity;
+    let done_before = pl.state().completed;
+    assert!(v0 > 40.0);
+    pl.halt(Some(100.0));
+    while !events.contains(&PathEvent::AtRest) {
+        states.push(*pl.step(&mut events));
+    }
+    // v²/(2·d) = 12.5 mm at 50 mm/s: about 12 motions of 1.1 mm.
+    let crossed = pl.state().completed - done_before;
+    assert!(crossed >= 8, "{crossed}");
+    assert!(pl.state().halted);
+    for w in states.windows(2).skip(201) {
+        assert!(w[1].path_velocity <= w[0].path_velocity + 1e-9);
+        assert!((w[1].path_velocity - w[0].path_velocity).abs() <= 100.0 * 1e-3 + 1e-9);
+    }
+    pl.resume();
+    let (rest, _) = run(&mut pl, 100_000);
+    states.extend_from_slice(&rest[1..]);
+    assert_eq!(states.last().unwrap().position, p(&[40.0, 20.0]));
+    assert_eq!(states.last().unwrap().completed, 40);
+    let pk = peaks(&states, &cfg);
+    assert!(pk.a_fd <= 1.0 && pk.v_fd <= 1.0);
+}
