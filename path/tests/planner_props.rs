@@ -112,7 +112,29 @@ struct Outcome {
     tolerance: f64,
 }
 
+#[derive(Clone, Copy, Debug)]
+enum Action {
+    Override(f64),
+    Halt(Option<f64>),
+    Resume,
+}
+
+fn action() -> impl Strategy<Value = (usize, Action)> {
+    (
+        0..3000usize,
+        prop_oneof![
+            (0.05..4.0f64).prop_map(Action::Override),
+            prop::option::of(20.0..5000.0f64).prop_map(Action::Halt),
+            Just(Action::Resume),
+        ],
+    )
+}
+
 fn simulate(c: &Case, jerk: bool) -> Outcome {
+    simulate_with(c, jerk, &[])
+}
+
+fn simulate_with(c: &Case, jerk: bool, actions: &[(usize, Action)]) -> Outcome {
     let mut config = PlannerConfig::uniform(c.dims, axis(1.0, 1.0, f64::INFINITY), c.period);
     for (k, &(v, a, j)) in c.axes.iter().enumerate() {
         config.axes[k] = axis(v, a, j);
@@ -169,7 +191,24 @@ fn simulate(c: &Case, jerk: bool) -> Outcome {
         at = to;
         corners.push(at);
     }
-    let (states, _) = run(&mut pl, 2_000_000);
+    let mut states = vec![*pl.state()];
+    let mut events = Vec::new();
+    for tick in 0..2_000_000usize {
+        for (_, a) in actions.iter().filter(|(t, _)| *t == tick) {
+            match a {
+                Action::Override(f) => pl.set_override(*f),
+                Action::Halt(d) => pl.halt(*d),
+                Action::Resume => pl.resume(),
+            }
+        }
+        if tick > 3000 {
+            pl.resume();
+        }
+        states.push(*pl.step(&mut events));
+        if pl.is_idle() && tick > 3000 {
+            break;
+        }
+    }
     assert!(pl.is_idle(), "not done");
     Outcome {
         config,
@@ -250,6 +289,18 @@ proptest! {
 
 proptest! {
     #![proptest_config(ProptestConfig { cases: 400, ..ProptestConfig::default() })]
+
+    /// Overrides, halts and resumes at random ticks, S-curves or trapezoids, arcs, blends:
+    /// the same limits hold, the path ends exactly.
+    #[test]
+    fn random_overrides_and_halts_keep_the_limits(
+        c in case(true, false, true),
+        jerk in any::<bool>(),
+        actions in prop::collection::vec(action(), 0..6),
+    ) {
+        let o = simulate_with(&c, jerk, &actions);
+        check(&o);
+    }
 
     /// S-curves on buffered line paths: every axis's jerk (third finite differences) within
     /// its limit too.

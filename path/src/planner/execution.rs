@@ -21,6 +21,10 @@ pub const MAX_STARTS_PER_STEP: usize = 8;
 /// only be rounding: the last stage starts where the first ended).
 const STAGE_MIN: f64 = 1e-9;
 
+/// A re-plan part-way needs more room than this fraction of the motion left once its
+/// acceleration is settled.
+const REPLAN_SLACK: f64 = 1e-6;
+
 /// The executing motion's profile and where the path is on it.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Execution {
@@ -57,17 +61,33 @@ impl Execution {
 /// the look-ahead's `pref` if it can be reached (accelerating or braking), else the lowest
 /// velocity the motion can brake to (≤ `phys` whenever the path entered the motion below its
 /// look-ahead start velocity, which the look-ahead guarantees). `None` when the start
-/// acceleration cannot be brought to 0 within the room left (try again next step).
-fn end_velocity(m: &QueuedMotion, v: f64, a: f64, room: f64) -> Option<f64> {
+/// acceleration cannot be brought to 0 within the room left, or, for a `replan` part-way
+/// (where `settle` is conservative for a braking start), when `pref` cannot be reached: the
+/// current profile goes on, and the re-plan is tried again next step.
+fn end_velocity(m: &QueuedMotion, v: f64, a: f64, room: f64, replan: bool) -> Option<f64> {
     let l = &m.limits;
     let (v1, s1) = settle(v, a, l.jerk);
     let room = room - s1;
     if room < 0.0 || v1 < 0.0 {
         return None;
     }
+    if replan && room <= REPLAN_SLACK * m.length {
+        // Part-way, on the boundary of what is reachable: the current profile is the one
+        // that gets there; a new plan would only add rounding.
+        return None;
+    }
+    // Part-way, keep off the boundary too (a profile braking exactly to `pref` is common).
+    let room = if replan {
+        room * (1.0 - REPLAN_SLACK)
+    } else {
+        room
+    };
     let wanted = m.end_pref.min(reach(v1, room, l.acceleration, l.jerk));
     if wanted >= v1 || ramp_distance(v1, wanted, l.deceleration, l.jerk) <= room {
         return Some(wanted);
+    }
+    if replan {
+        return None;
     }
     Some(lowest_end(v1, room, l.deceleration, l.jerk).max(wanted))
 }
@@ -98,7 +118,9 @@ fn rest_at(s: f64) -> Profile {
 impl PathPlanner {
     /// The profile for the front motion from path state `(s, v, a)` on it, and the path
     /// length at which it ends (the motion's end, or where its last stage begins).
-    fn plan_front(&self, s: f64, v: f64, a: f64) -> Option<(Profile, f64)> {
+    /// `replan`: part-way through the motion and moving, with a profile that already works
+    /// (see `end_velocity`); from rest every plan is a fresh start.
+    fn plan_front(&self, s: f64, v: f64, a: f64, replan: bool) -> Option<(Profile, f64)> {
         let Some(Entry::Motion(m)) = self.queue.front() else {
             return None;
         };
@@ -115,7 +137,7 @@ impl PathPlanner {
                 return Some((rest_at(s), m.length));
             }
             let (v1, s1) = settle(v, a, l.jerk);
-            let room = m.length - s - s1;
+            let room = (m.length - s - s1) * if replan { 1.0 - REPLAN_SLACK } else { 1.0 };
             if room >= 0.0 {
                 let limits = Limits {
                     velocity: v.max(cruise).max(f64::MIN_POSITIVE),
@@ -131,7 +153,7 @@ impl PathPlanner {
                 let w = lowest_end(v1, room, dec, l.jerk);
                 if w <= m.end_phys {
                     let limits = Limits {
-                        velocity: v.max(w).max(f64::MIN_POSITIVE),
+                        velocity: v1.max(v).max(w).max(f64::MIN_POSITIVE),
                         ..limits
                     };
                     let p = Profile::plan_passing(start, m.length, w, &limits).ok()?;
@@ -139,7 +161,7 @@ impl PathPlanner {
                 }
             }
         }
-        let w = end_velocity(m, v, a, m.length - s)?;
+        let w = end_velocity(m, v, a, m.length - s, replan)?;
         if self.halt.is_none() && w > cruise && cruise > 0.0 {
             // BlendingNext/High into a faster motion (PLCopen Part 4): run at this motion's
             // own velocity, then speed up to the junction velocity at the end — two stages.
@@ -161,16 +183,28 @@ impl PathPlanner {
                 return Some((p, split));
             }
         }
-        let velocity = cruise.max(w);
+        let (v1, s1) = settle(v, a, l.jerk);
+        let mut velocity = if self.halt.is_some() {
+            v1.max(v).max(w)
+        } else {
+            cruise.max(w)
+        };
+        // Faster than the cruise velocity (override lowered, BlendingPrevious/High): the
+        // profile brakes to the cruise velocity, then to `w`. With a jerk limit those two
+        // ramps take longer than one straight to `w`; when the room left is between, brake
+        // straight to `w` (the lower cruise velocity applies from the next motion on).
+        if v1 > velocity
+            && ramp_distance(v1, velocity, l.deceleration, l.jerk)
+                + ramp_distance(velocity, w, l.deceleration, l.jerk)
+                > m.length - s - s1
+        {
+            velocity = v1;
+        }
         if velocity.is_nan() || velocity <= 0.0 {
             return Some((rest_at(s), m.length));
         }
         let limits = Limits {
-            velocity: if self.halt.is_some() {
-                v.max(w).max(f64::MIN_POSITIVE)
-            } else {
-                velocity
-            },
+            velocity,
             acceleration: l.acceleration,
             deceleration: l.deceleration,
             jerk: l.jerk,
@@ -187,7 +221,9 @@ impl PathPlanner {
         if self.replan_pending {
             match self.exec {
                 Some(e) => {
-                    if let Some((profile, target)) = self.plan_front(e.s, e.v, e.a) {
+                    if let Some((profile, target)) =
+                        self.plan_front(e.s, e.v, e.a, e.v > 0.0 || e.a != 0.0)
+                    {
                         self.exec = Some(Execution::new(profile, target, period, e.s, e.v, e.a));
                         self.replan_pending = false;
                     }
@@ -227,7 +263,7 @@ impl PathPlanner {
                     // The first stage of a two-stage motion ended: plan the last one.
                     self.starts_last_step += 1;
                     let (profile, end) = self
-                        .plan_front(target, arrival, 0.0)
+                        .plan_front(target, arrival, 0.0, false)
                         .unwrap_or((rest_at(target), length));
                     self.exec = Some(Execution::new(profile, end, dt, target, arrival, 0.0));
                     continue;
@@ -274,7 +310,7 @@ impl PathPlanner {
                         continue;
                     }
                     let v = self.carry;
-                    let (profile, target) = match self.plan_front(0.0, v, 0.0) {
+                    let (profile, target) = match self.plan_front(0.0, v, 0.0, false) {
                         Some(planned) => planned,
                         None => {
                             // Unreachable with validated limits; rather a stop than a jump,
