@@ -227,6 +227,7 @@ fn dense_gcode() {
     let (mut max_step, mut max_push) = (Duration::ZERO, Duration::ZERO);
     let (mut max_starts, mut steps, mut total) = (0usize, 0u64, Duration::ZERO);
     let mut over_100us = 0u32;
+    let mut durations: Vec<Duration> = Vec::with_capacity(110_000);
     let mut max_visits = 0usize;
     let mut pushed = 0;
     const SEGMENTS: usize = 100_000;
@@ -250,6 +251,7 @@ fn dense_gcode() {
         events.clear();
         max_visits = max_visits.max(pl.lookahead_visits());
         max_step = max_step.max(dt);
+        durations.push(dt);
         if dt > Duration::from_micros(100) {
             over_100us += 1;
         }
@@ -266,6 +268,17 @@ fn dense_gcode() {
     println!(
         "    mean step()               {:10.3} µs",
         total.as_secs_f64() * 1e6 / steps as f64
+    );
+    durations.sort_unstable();
+    let pct = |q: f64| {
+        let i = ((durations.len() as f64 - 1.0) * q) as usize;
+        durations.get(i).map_or(0.0, |d| d.as_secs_f64() * 1e6)
+    };
+    println!(
+        "    step() percentiles        99 %: {:.3} µs, 99.9 %: {:.3} µs, 99.99 %: {:.3} µs",
+        pct(0.99),
+        pct(0.999),
+        pct(0.9999)
     );
     println!("    steps over 100 µs         {over_100us:10}     (preemption on a shared machine shows here)");
     println!(

@@ -78,7 +78,7 @@ fn end_velocity(m: &QueuedMotion, v: f64, a: f64, room: f64, replan: bool) -> Op
     }
     // Part-way, keep off the boundary too (a profile braking exactly to `pref` is common).
     let room = if replan {
-        room * (1.0 - REPLAN_SLACK)
+        room - REPLAN_SLACK * m.length
     } else {
         room
     };
@@ -137,7 +137,13 @@ impl PathPlanner {
                 return Some((rest_at(s), m.length));
             }
             let (v1, s1) = settle(v, a, l.jerk);
-            let room = (m.length - s - s1) * if replan { 1.0 - REPLAN_SLACK } else { 1.0 };
+            let room = m.length - s - s1;
+            if replan && room <= REPLAN_SLACK * m.length {
+                // On the boundary (see `end_velocity`): the current profile goes on to the
+                // motion's end, and the halt continues from there.
+                return None;
+            }
+            let room = room - if replan { REPLAN_SLACK * m.length } else { 0.0 };
             if room >= 0.0 {
                 let limits = Limits {
                     velocity: v.max(cruise).max(f64::MIN_POSITIVE),

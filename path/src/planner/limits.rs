@@ -97,3 +97,81 @@ pub(super) fn check_axis_limits(limits: &AxisLimits) -> Result<(), &'static str>
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::{Arc, Line, Turn};
+    use crate::MAX_AXES;
+
+    fn p(x: f64, y: f64) -> crate::Point {
+        let mut out = [0.0; MAX_AXES];
+        out[0] = x;
+        out[1] = y;
+        out
+    }
+
+    const AXES: [AxisLimits; 2] = [
+        AxisLimits {
+            velocity: 60.0,
+            acceleration: 600.0,
+            jerk: 6000.0,
+        },
+        AxisLimits {
+            velocity: 100.0,
+            acceleration: 1000.0,
+            jerk: f64::INFINITY,
+        },
+    ];
+
+    const FAST: PathLimits = PathLimits {
+        velocity: 1e6,
+        acceleration: 1e6,
+        deceleration: 1e6,
+        jerk: f64::INFINITY,
+    };
+
+    #[test]
+    fn a_diagonal_line_takes_each_axis_limit_over_its_direction_component() {
+        // Direction (0.6, 0.8): x allows 60/0.6 = 100, y 100/0.8 = 125.
+        let line = Segment::Line(Line::new(p(0.0, 0.0), p(30.0, 40.0), 2).unwrap());
+        let l = motion_limits(&line, &FAST, &AXES, 1e-3);
+        assert!((l.velocity_cap - 100.0).abs() < 1e-9);
+        assert!((l.acceleration - 1000.0).abs() < 1e-9);
+        assert!((l.deceleration - 1000.0).abs() < 1e-9);
+        assert!((l.jerk - 10_000.0).abs() < 1e-9);
+        // The programmed limits win when lower; a 0.05 mm line is capped at 50 mm/s at 1 kHz.
+        let short = Segment::Line(Line::new(p(0.0, 0.0), p(0.03, 0.04), 2).unwrap());
+        let l = motion_limits(&short, &FAST, &AXES, 1e-3);
+        assert!((l.velocity_cap - 50.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn an_arc_splits_each_axis_budget_in_quadrature() {
+        let arc = Segment::Arc(
+            Arc::from_center(
+                p(10.0, 0.0),
+                p(10.0, 0.0),
+                p(0.0, 0.0),
+                (0, 1),
+                Turn::Ccw,
+                0,
+                2,
+            )
+            .unwrap(),
+        );
+        let l = motion_limits(&arc, &FAST, &AXES, 1e-3);
+        let split = 600.0 * std::f64::consts::FRAC_1_SQRT_2;
+        // v²/r ≤ A_x/√2: v ≤ √(424.3·10) = 65.1, above x's 60 mm/s: the velocity limit wins.
+        assert!((l.velocity_cap - 60.0).abs() < 1e-9);
+        assert!((l.acceleration - split).abs() < 1e-9);
+        let slow = [AxisLimits {
+            acceleration: 100.0,
+            ..AXES[0]
+        }; 2];
+        let l = motion_limits(&arc, &FAST, &slow, 1e-3);
+        assert!(
+            (l.velocity_cap - (100.0 * std::f64::consts::FRAC_1_SQRT_2 * 10.0).sqrt()).abs() < 1e-9
+        );
+    }
+}
