@@ -716,3 +716,42 @@ fn a_halt_brakes_across_motion_ends_and_resume_goes_on() {
     let pk = peaks(&states, &cfg);
     assert!(pk.a_fd <= 1.0 && pk.v_fd <= 1.0);
 }
+
+/// Dense G-code: 0.05 mm lines at 1 kHz. Each motion's speed is capped at its length per
+/// period, so a step starts at most two motions, and the look-ahead work per step stays
+/// within the window.
+#[test]
+fn dense_short_lines_start_a_bounded_number_of_motions_per_step() {
+    let mut cfg = PlannerConfig::uniform(2, axis(200.0, 2000.0, f64::INFINITY), 1e-3);
+    cfg.capacity = 1024;
+    let mut pl = PathPlanner::new(cfg, p(&[0.0, 0.0])).unwrap();
+    let (mut at, mut heading) = (p(&[0.0, 0.0]), 0.0f64);
+    let mut events = Vec::new();
+    let (mut pushed, mut max_starts, mut max_visits, mut top) = (0, 0, 0, 0.0f64);
+    while pushed < 3000 || !pl.is_idle() {
+        while pushed < 3000 && pl.queued() < 1024 {
+            heading += if pushed % 7 < 3 { 0.02 } else { -0.015 };
+            let to = p(&[at[0] + 0.05 * heading.cos(), at[1] + 0.05 * heading.sin()]);
+            let m = motion(
+                line(at, to, 2),
+                limits(150.0, 3000.0, f64::INFINITY),
+                Join::BlendingLow,
+                Transition::None,
+                pushed,
+            );
+            pl.push_motion(m).unwrap();
+            at = to;
+            pushed += 1;
+        }
+        let st = *pl.step(&mut events);
+        top = top.max(st.path_velocity);
+        max_starts = max_starts.max(pl.starts_last_step());
+        max_visits = max_visits.max(pl.lookahead_visits());
+    }
+    assert_eq!(pl.state().position, at);
+    assert_eq!(pl.state().completed, 3000);
+    assert!(max_starts <= 2, "{max_starts}");
+    assert!(max_visits <= 64, "{max_visits}");
+    // Length per period: 0.05 mm / 1 ms = 50 mm/s.
+    assert!(top <= 50.0 + 1e-9 && top > 45.0, "{top}");
+}
