@@ -42,6 +42,8 @@ pub(super) fn motion_limits(
     let mut acceleration = programmed.acceleration;
     let mut deceleration = programmed.deceleration;
     let mut jerk = programmed.jerk;
+    // The lowest jerk limit of the axes that move here, for the curvature rule below.
+    let mut curve_jerk = programmed.jerk;
     for (axis, lim) in axes.iter().enumerate() {
         let tangent = segment.max_tangent(axis);
         if tangent.is_nan() || tangent <= 0.0 {
@@ -59,6 +61,13 @@ pub(super) fn motion_limits(
         acceleration = acceleration.min(along);
         deceleration = deceleration.min(along);
         jerk = jerk.min(lim.jerk / tangent);
+        curve_jerk = curve_jerk.min(lim.jerk);
+    }
+    if curvature > 0.0 && curve_jerk.is_finite() {
+        // On a circle at speed v the acceleration vector v²κ turns at vκ: jerk v³κ². HMC caps
+        // curve speed at (Jerk/κ²)^(1/3) (digest 000 §3.5, `HMC_ClcJerk`); so does mcemu, with
+        // the lowest of the path's and the moving axes' jerk limits.
+        velocity_cap = velocity_cap.min((curve_jerk / (curvature * curvature)).cbrt());
     }
     let length = segment.length();
     velocity_cap = velocity_cap.min(length / period);

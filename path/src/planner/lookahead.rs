@@ -24,6 +24,8 @@ struct Next {
     join: super::Join,
     cruise: f64,
     cap: f64,
+    /// The corner-angle factor of the junction into it.
+    factor: f64,
 }
 
 impl PathPlanner {
@@ -71,7 +73,7 @@ impl PathPlanner {
                     (
                         junction.min(n.start_phys),
                         junction
-                            .min(mode_velocity(n.join, cruise, n.cruise))
+                            .min(mode_velocity(n.join, cruise, n.cruise) * n.factor)
                             .min(n.start_pref),
                     )
                 }
@@ -99,6 +101,7 @@ impl PathPlanner {
                 join: m.join,
                 cruise,
                 cap,
+                factor: m.entry_factor,
             });
             hold_between = false;
         }

@@ -121,6 +121,36 @@ pub enum Transition {
     CornerDeviation(f64),
 }
 
+/// The corner-angle rule of HMC merge (`HMC_SetMergeAngle(axis, decelAngle, stopAngle)`,
+/// digest 000 §3.4) and NMC look-ahead (`slowAng`, `stopAng`, digest 001 §3.9), for junctions
+/// without corner geometry. θ is the angle between the directions before and after the
+/// junction, radians: below `slow` the buffer mode's velocity applies; from `slow` to `stop`
+/// it is scaled by `k = (θ − stop)/(slow − stop)`; from `stop` on the path stops there.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CornerAngles {
+    pub slow: f64,
+    pub stop: f64,
+}
+
+impl CornerAngles {
+    /// HMC's defaults: π/6 and π/2.
+    pub const HMC_DEFAULT: CornerAngles = CornerAngles {
+        slow: std::f64::consts::FRAC_PI_6,
+        stop: std::f64::consts::FRAC_PI_2,
+    };
+
+    /// The factor on the junction velocity for a direction change of `theta` radians.
+    pub fn factor(&self, theta: f64) -> f64 {
+        if theta < self.slow {
+            1.0
+        } else if theta >= self.stop {
+            0.0
+        } else {
+            ((theta - self.stop) / (self.slow - self.stop)).clamp(0.0, 1.0)
+        }
+    }
+}
+
 /// One queued motion.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Motion {
@@ -221,6 +251,8 @@ pub struct PathPlanner {
     starts_last_step: usize,
     /// Queue entries the look-ahead visited since the last step began (its work).
     lookahead_visits: usize,
+    /// HMC merge angles / NMC slow and stop angles, if set.
+    corner_angles: Option<CornerAngles>,
 }
 
 impl PathPlanner {
@@ -268,6 +300,7 @@ impl PathPlanner {
             replan_pending: false,
             halt: None,
             at_rest_reported: false,
+            corner_angles: None,
             hold_released: false,
             starts_last_step: 0,
             lookahead_visits: 0,
@@ -370,6 +403,27 @@ impl PathPlanner {
                 Entry::Marker { .. } => None,
             })
             .unwrap_or(self.position)
+    }
+
+    /// Slow down at sharp corners between blended motions (HMC `HMC_SetMergeAngle`, digest 000
+    /// §3.4; NMC `TLookaheadPara` slowAng/stopAng, digest 001 §3.9): applies to motions pushed
+    /// from now on. `None` turns the rule off (the default). Refused unless
+    /// `0 ≤ slow ≤ stop ≤ π`.
+    pub fn set_corner_angles(&mut self, angles: Option<CornerAngles>) -> Result<(), PlannerError> {
+        if let Some(a) = angles {
+            let ok = |x: f64| (0.0..=std::f64::consts::PI).contains(&x);
+            if !(ok(a.slow) && ok(a.stop) && a.slow <= a.stop) {
+                return Err(PlannerError::Invalid(
+                    "corner angles need 0 ≤ slow ≤ stop ≤ π radians",
+                ));
+            }
+        }
+        self.corner_angles = angles;
+        Ok(())
+    }
+
+    pub fn corner_angles(&self) -> Option<CornerAngles> {
+        self.corner_angles
     }
 
     /// Path velocity scale, (0, 10] (NMC CrdSetOverride; HIMC SetGrpVelScale 0–100 % is

@@ -31,6 +31,7 @@ fn queued(
         start_phys: 0.0,
         start_pref: 0.0,
         reports_start: true,
+        entry_factor: 1.0,
         reports_done: true,
     }
 }
@@ -87,9 +88,16 @@ impl PathPlanner {
             return pi;
         }
         // Transition::None, or corners with arcs (documented): the corner rule.
+        let mut before_end = [0.0; crate::MAX_AXES];
         if let Some(Entry::Motion(prev)) = self.queue.get_mut(pi) {
             let before = prev.segment.end_tangent();
+            before_end = before;
             prev.end_cap = corner_cap(&before, &new.segment.start_tangent(), axes, period);
+        }
+        let mut new = new;
+        if let Some(angles) = self.corner_angles {
+            new.entry_factor =
+                angles.factor(direction_change(&before_end, &new.segment.start_tangent()));
         }
         self.queue.push_back(Entry::Motion(Box::new(new)));
         pi
@@ -161,4 +169,15 @@ impl PathPlanner {
         }
         Some((arc, rest))
     }
+}
+
+/// The angle between two unit directions, radians in [0, π] (0 when either is 0).
+fn direction_change(before: &crate::Point, after: &crate::Point) -> f64 {
+    let (nb, na) = (crate::geometry::norm(before), crate::geometry::norm(after));
+    if nb == 0.0 || na == 0.0 {
+        return 0.0;
+    }
+    (crate::geometry::dot(before, after) / (nb * na))
+        .clamp(-1.0, 1.0)
+        .acos()
 }

@@ -28,6 +28,8 @@ pub(super) struct QueuedMotion {
     /// Whether its start and end are reported (`Started`, `Done`); false for the parts of a
     /// blended motion that are not its first or last.
     pub reports_start: bool,
+    /// The corner-angle factor on the velocity of the junction into it (1: none).
+    pub entry_factor: f64,
     pub reports_done: bool,
 }
 
