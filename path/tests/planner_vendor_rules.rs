@@ -6,15 +6,22 @@ mod common;
 
 use common::*;
 use path::geometry::{Arc, Segment, Turn};
-use path::planner::{CornerAngles, Join, PathEvent, PathPlanner, PlannerConfig, Transition};
+use path::planner::{
+    CornerAngles, Join, LookaheadLimits, PathEvent, PathPlanner, PlannerConfig, Transition,
+};
 
 /// Two lines of 100 with a turn of `angle` between them, blended at the previous motion's
 /// velocity (HMC Merge 1); the path velocity when the second motion starts.
 fn junction_velocity(angle: f64, angles: Option<CornerAngles>) -> f64 {
+    junction_velocity_with(angle, angles, LookaheadLimits::default())
+}
+
+fn junction_velocity_with(angle: f64, angles: Option<CornerAngles>, rules: LookaheadLimits) -> f64 {
     // Axis accelerations so high that the corner rule (A·T/|Δt|) never binds.
     let cfg = PlannerConfig::uniform(2, axis(1e6, 1e9, f64::INFINITY), 1e-3);
     let mut pl = PathPlanner::new(cfg, p(&[0.0, 0.0])).unwrap();
     pl.set_corner_angles(angles).unwrap();
+    pl.set_lookahead_limits(rules).unwrap();
     let corner = p(&[100.0, 0.0]);
     let (dx, dy) = rotate(100.0, 0.0, angle);
     let end = p(&[100.0 + dx, dy]);
@@ -101,4 +108,79 @@ fn hmc_curvature_jerk_limit_caps_a_circle_at_the_cube_root_of_jerk_over_curvatur
     let (states, _) = run(&mut pl, 1_000_000);
     let peak = states.iter().map(|s| s.path_velocity).fold(0.0, f64::max);
     assert!((peak - 7937.005).abs() < 0.01, "peak path velocity {peak}");
+}
+
+/// Peak path velocity over one full circle of radius 10 at a programmed 1000, axes far faster.
+fn circle_peak(rules: LookaheadLimits) -> f64 {
+    let cfg = PlannerConfig::uniform(2, axis(1e9, 1e9, f64::INFINITY), 1e-3);
+    let mut pl = PathPlanner::new(cfg, p(&[10.0, 0.0])).unwrap();
+    pl.set_lookahead_limits(rules).unwrap();
+    let circle = Arc::from_center(
+        p(&[10.0, 0.0]),
+        p(&[10.0, 0.0]),
+        p(&[0.0, 0.0]),
+        (0, 1),
+        Turn::Ccw,
+        0,
+        2,
+    )
+    .unwrap();
+    pl.push_motion(motion(
+        Segment::Arc(circle),
+        limits(1000.0, 1e6, f64::INFINITY),
+        Join::Buffered,
+        Transition::None,
+        1,
+    ))
+    .unwrap();
+    let (states, _) = run(&mut pl, 1_000_000);
+    states.iter().map(|s| s.path_velocity).fold(0.0, f64::max)
+}
+
+#[test]
+fn himc_arc_acceleration_caps_arc_speed_at_the_root_of_a_arc_times_r() {
+    // HIMC V_arc = √(A_arc·r) (digest 004 §2.7): √(100 · 10) = 31.62.
+    let peak = circle_peak(LookaheadLimits::HIMC_DEFAULT);
+    assert!((peak - 1000f64.sqrt()).abs() < 1e-6, "{peak}");
+    assert!(circle_peak(LookaheadLimits::default()) > 900.0);
+}
+
+#[test]
+fn himc_chord_error_caps_arc_speed() {
+    // V_chord = 2·r·φ/T with cos φ = 1 − ε/r: r = 10, ε = 0.001, T = 1 ms → 282.84.
+    let rules = LookaheadLimits {
+        chord_error: Some(0.001),
+        ..LookaheadLimits::default()
+    };
+    let expected = 2.0 * 10.0 * (1.0 - 0.0001f64).acos() / 1e-3;
+    let peak = circle_peak(rules);
+    assert!((peak - expected).abs() < 1e-6, "{peak} vs {expected}");
+}
+
+#[test]
+fn himc_corner_acceleration_caps_a_corner_without_geometry() {
+    // A right angle: |t₁ − t₂| = √2, so A_corner·T/√2 = 5000 · 0.001 / 1.414 = 3.54.
+    let v = junction_velocity_with(
+        std::f64::consts::FRAC_PI_2,
+        None,
+        LookaheadLimits::HIMC_DEFAULT,
+    );
+    // The sample nearest the junction is within one step of path acceleration (1 mm/s) of it.
+    let cap = 5.0 / 2f64.sqrt();
+    assert!(v > cap - 0.01 && v < cap + 1.01, "{v} vs {cap}");
+    assert!(junction_velocity(std::f64::consts::FRAC_PI_2, None) > 90.0);
+}
+
+#[test]
+fn lookahead_limits_must_be_positive() {
+    let cfg = PlannerConfig::uniform(2, axis(100.0, 1000.0, f64::INFINITY), 1e-3);
+    let mut pl = PathPlanner::new(cfg, p(&[0.0, 0.0])).unwrap();
+    for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+        let rules = LookaheadLimits {
+            arc_acceleration: Some(bad),
+            ..LookaheadLimits::default()
+        };
+        assert!(pl.set_lookahead_limits(rules).is_err());
+    }
+    assert_eq!(pl.lookahead_limits(), LookaheadLimits::default());
 }

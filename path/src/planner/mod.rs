@@ -151,6 +151,69 @@ impl CornerAngles {
     }
 }
 
+/// HIMC's look-ahead limits (`SetGrpLookAheadPrm(gid, prm_id, value)`: 0 corner acceleration,
+/// 1 arc acceleration, 2 chord error; digest 004 §2.7, §8.1.4 Table 8.1.4.2), and NMC's
+/// `accMax` and `centAcc` (digest 001 §3.9). Each is off when `None`; they only ever lower
+/// the path speed below what the axes' own limits allow.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LookaheadLimits {
+    /// Acceleration allowed for the direction change at a junction without corner geometry
+    /// (HIMC A_corner, default 5000 mm/s²; NMC accMax): the junction speed is at most
+    /// `A_corner·T/|t₁ − t₂|`, the same rule as the axes' own (see `junction::corner_cap`).
+    pub corner_acceleration: Option<f64>,
+    /// Centripetal acceleration on curves (HIMC A_arc, default 100 mm/s²; NMC centAcc):
+    /// `v ≤ √(A_arc·r)`.
+    pub arc_acceleration: Option<f64>,
+    /// Largest chord error ε of one servo period's chord on a curve (HIMC, off by default):
+    /// `v ≤ 2·r·acos(1 − ε/r)/T`.
+    pub chord_error: Option<f64>,
+}
+
+impl LookaheadLimits {
+    /// HIMC's defaults (digest 004 §3: 5000 mm/s², 100 mm/s², chord error off).
+    pub const HIMC_DEFAULT: LookaheadLimits = LookaheadLimits {
+        corner_acceleration: Some(5000.0),
+        arc_acceleration: Some(100.0),
+        chord_error: None,
+    };
+
+    /// Cap on the path speed of a segment whose largest curvature is `curvature`.
+    pub(crate) fn curve_cap(&self, curvature: f64, period: f64) -> f64 {
+        if curvature <= 0.0 || !curvature.is_finite() {
+            return f64::INFINITY;
+        }
+        let r = 1.0 / curvature;
+        let mut cap = f64::INFINITY;
+        if let Some(a) = self.arc_acceleration {
+            cap = cap.min((a * r).sqrt());
+        }
+        if let Some(e) = self.chord_error {
+            // Half the angle a chord of one period subtends when it is ε from the arc.
+            let half = (1.0 - (e / r).min(1.0)).acos();
+            cap = cap.min(2.0 * r * half / period);
+        }
+        cap
+    }
+
+    fn check(&self) -> Result<(), PlannerError> {
+        for v in [
+            self.corner_acceleration,
+            self.arc_acceleration,
+            self.chord_error,
+        ]
+        .into_iter()
+        .flatten()
+        {
+            if !(v > 0.0 && v.is_finite()) {
+                return Err(PlannerError::Invalid(
+                    "look-ahead limits must be positive finite numbers",
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
 /// One queued motion.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Motion {
@@ -253,6 +316,7 @@ pub struct PathPlanner {
     lookahead_visits: usize,
     /// HMC merge angles / NMC slow and stop angles, if set.
     corner_angles: Option<CornerAngles>,
+    lookahead_limits: LookaheadLimits,
 }
 
 impl PathPlanner {
@@ -301,6 +365,7 @@ impl PathPlanner {
             halt: None,
             at_rest_reported: false,
             corner_angles: None,
+            lookahead_limits: LookaheadLimits::default(),
             hold_released: false,
             starts_last_step: 0,
             lookahead_visits: 0,
@@ -424,6 +489,18 @@ impl PathPlanner {
 
     pub fn corner_angles(&self) -> Option<CornerAngles> {
         self.corner_angles
+    }
+
+    /// Set the vendor look-ahead limits (see [`LookaheadLimits`]); they apply to motions pushed
+    /// from now on. Refused unless every value set is positive and finite.
+    pub fn set_lookahead_limits(&mut self, limits: LookaheadLimits) -> Result<(), PlannerError> {
+        limits.check()?;
+        self.lookahead_limits = limits;
+        Ok(())
+    }
+
+    pub fn lookahead_limits(&self) -> LookaheadLimits {
+        self.lookahead_limits
     }
 
     /// Path velocity scale, (0, 10] (NMC CrdSetOverride; HIMC SetGrpVelScale 0–100 % is

@@ -6,7 +6,7 @@ use super::junction::{corner_cap, mode_velocity};
 use super::limits::motion_limits;
 use super::queue::{Entry, QueuedMotion};
 use super::reach::{lowest_end, reach, settle};
-use super::{AxisLimits, Join, MarkerKind, Motion, PathLimits, PathPlanner};
+use super::{AxisLimits, Join, LookaheadLimits, MarkerKind, Motion, PathLimits, PathPlanner};
 use crate::geometry::Segment;
 
 fn queued(
@@ -16,8 +16,12 @@ fn queued(
     tag: u64,
     axes: &[AxisLimits],
     period: f64,
+    rules: &LookaheadLimits,
 ) -> QueuedMotion {
-    let limits = motion_limits(&segment, &programmed, axes, period);
+    let mut limits = motion_limits(&segment, &programmed, axes, period);
+    limits.velocity_cap = limits
+        .velocity_cap
+        .min(rules.curve_cap(segment.max_curvature(), period));
     QueuedMotion {
         length: segment.length(),
         segment,
@@ -61,6 +65,7 @@ impl PathPlanner {
             motion.tag,
             axes,
             period,
+            &self.lookahead_limits,
         );
         let mut previous = None;
         let mut hold = false;
@@ -92,7 +97,14 @@ impl PathPlanner {
         if let Some(Entry::Motion(prev)) = self.queue.get_mut(pi) {
             let before = prev.segment.end_tangent();
             before_end = before;
-            prev.end_cap = corner_cap(&before, &new.segment.start_tangent(), axes, period);
+            let after = new.segment.start_tangent();
+            prev.end_cap = corner_cap(&before, &after, axes, period);
+            if let Some(a) = self.lookahead_limits.corner_acceleration {
+                let step = crate::geometry::norm(&crate::geometry::sub(&before, &after));
+                if step > 0.0 {
+                    prev.end_cap = prev.end_cap.min(a * period / step);
+                }
+            }
         }
         let mut new = new;
         if let Some(angles) = self.corner_angles {
@@ -138,11 +150,20 @@ impl PathPlanner {
                 .min(new.programmed.deceleration),
             jerk: prev.programmed.jerk.min(new.programmed.jerk),
         };
-        let mut arc = queued(Segment::Arc(arc), programmed, join, new.tag, axes, period);
+        let rules = self.lookahead_limits;
+        let mut arc = queued(
+            Segment::Arc(arc),
+            programmed,
+            join,
+            new.tag,
+            axes,
+            period,
+            &rules,
+        );
         arc.reports_done = false;
         arc.end_cap = f64::INFINITY;
         let rest = new.segment.trimmed(tangent, new.length);
-        let mut rest = queued(rest, new.programmed, join, new.tag, axes, period);
+        let mut rest = queued(rest, new.programmed, join, new.tag, axes, period, &rules);
         rest.reports_start = false;
         let shortened = prev.length - tangent;
         if let Some(e) = executing {
@@ -160,6 +181,10 @@ impl PathPlanner {
         let prev_programmed = prev.programmed;
         if let Some(Entry::Motion(prev)) = self.queue.get_mut(pi) {
             prev.limits = motion_limits(&segment, &prev_programmed, axes, period);
+            prev.limits.velocity_cap = prev
+                .limits
+                .velocity_cap
+                .min(rules.curve_cap(segment.max_curvature(), period));
             prev.length = segment.length();
             prev.segment = segment;
             prev.end_cap = f64::INFINITY;
