@@ -11,6 +11,12 @@ use super::{
     SetParameter, SetPosition, SlaveCommand, Stop, StreamSetpoint, WriteAnalogOutput,
     WriteDigitalOutput, WriteObject,
 };
+use super::{
+    GroupAxisMove, GroupCommand, GroupContinue, GroupCreate, GroupDelete, GroupDisable, GroupDwell,
+    GroupEmergencyStop, GroupEnable, GroupHalt, GroupReset, GroupSetOrigin, GroupSetOutput,
+    GroupSetOverride, GroupSetParameter, GroupStop, GroupWaitInput, GroupWaitPosition,
+    MoveCircularAbsolute, MoveCircularRelative, MoveLinearAbsolute, MoveLinearRelative,
+};
 
 /// Named `Command` like the type it stands for: serde writes this name in "expected internally
 /// tagged enum Command" (a `rename` does not change that message).
@@ -44,6 +50,27 @@ pub(super) enum Command {
     Setpoint(StreamSetpoint),
     ReadObject(ReadObject),
     WriteObject(WriteObject),
+    GroupCreate(GroupCreate),
+    GroupDelete(GroupDelete),
+    GroupEnable(GroupEnable),
+    GroupDisable(GroupDisable),
+    GroupReset(GroupReset),
+    MoveLinearAbsolute(MoveLinearAbsolute),
+    MoveLinearRelative(MoveLinearRelative),
+    MoveCircularAbsolute(MoveCircularAbsolute),
+    MoveCircularRelative(MoveCircularRelative),
+    GroupStop(GroupStop),
+    GroupHalt(GroupHalt),
+    GroupContinue(GroupContinue),
+    GroupEmergencyStop(GroupEmergencyStop),
+    GroupSetOverride(GroupSetOverride),
+    GroupSetOrigin(GroupSetOrigin),
+    GroupSetParameter(GroupSetParameter),
+    GroupSetOutput(GroupSetOutput),
+    GroupDwell(GroupDwell),
+    GroupWaitInput(GroupWaitInput),
+    GroupWaitPosition(GroupWaitPosition),
+    GroupAxisMove(GroupAxisMove),
 }
 
 impl From<Command> for super::Command {
@@ -76,6 +103,35 @@ impl From<Command> for super::Command {
             Command::Setpoint(c) => super::Command::Axis(AxisCommand::Setpoint(c)),
             Command::ReadObject(c) => super::Command::Slave(SlaveCommand::ReadObject(c)),
             Command::WriteObject(c) => super::Command::Slave(SlaveCommand::WriteObject(c)),
+            Command::GroupCreate(c) => super::Command::Group(GroupCommand::Create(c)),
+            Command::GroupDelete(c) => super::Command::Group(GroupCommand::Delete(c)),
+            Command::GroupEnable(c) => super::Command::Group(GroupCommand::Enable(c)),
+            Command::GroupDisable(c) => super::Command::Group(GroupCommand::Disable(c)),
+            Command::GroupReset(c) => super::Command::Group(GroupCommand::Reset(c)),
+            Command::MoveLinearAbsolute(c) => {
+                super::Command::Group(GroupCommand::MoveLinearAbsolute(c))
+            }
+            Command::MoveLinearRelative(c) => {
+                super::Command::Group(GroupCommand::MoveLinearRelative(c))
+            }
+            Command::MoveCircularAbsolute(c) => {
+                super::Command::Group(GroupCommand::MoveCircularAbsolute(c))
+            }
+            Command::MoveCircularRelative(c) => {
+                super::Command::Group(GroupCommand::MoveCircularRelative(c))
+            }
+            Command::GroupStop(c) => super::Command::Group(GroupCommand::Stop(c)),
+            Command::GroupHalt(c) => super::Command::Group(GroupCommand::Halt(c)),
+            Command::GroupContinue(c) => super::Command::Group(GroupCommand::Continue(c)),
+            Command::GroupEmergencyStop(c) => super::Command::Group(GroupCommand::EmergencyStop(c)),
+            Command::GroupSetOverride(c) => super::Command::Group(GroupCommand::SetOverride(c)),
+            Command::GroupSetOrigin(c) => super::Command::Group(GroupCommand::SetOrigin(c)),
+            Command::GroupSetParameter(c) => super::Command::Group(GroupCommand::SetParameter(c)),
+            Command::GroupSetOutput(c) => super::Command::Group(GroupCommand::SetOutput(c)),
+            Command::GroupDwell(c) => super::Command::Group(GroupCommand::Dwell(c)),
+            Command::GroupWaitInput(c) => super::Command::Group(GroupCommand::WaitInput(c)),
+            Command::GroupWaitPosition(c) => super::Command::Group(GroupCommand::WaitPosition(c)),
+            Command::GroupAxisMove(c) => super::Command::Group(GroupCommand::AxisMove(c)),
         }
     }
 }
@@ -110,7 +166,35 @@ impl From<super::Command> for Command {
             super::Command::Axis(AxisCommand::Setpoint(c)) => Command::Setpoint(c),
             super::Command::Slave(SlaveCommand::ReadObject(c)) => Command::ReadObject(c),
             super::Command::Slave(SlaveCommand::WriteObject(c)) => Command::WriteObject(c),
-            super::Command::Group(c) => match c {},
+            super::Command::Group(GroupCommand::Create(c)) => Command::GroupCreate(c),
+            super::Command::Group(GroupCommand::Delete(c)) => Command::GroupDelete(c),
+            super::Command::Group(GroupCommand::Enable(c)) => Command::GroupEnable(c),
+            super::Command::Group(GroupCommand::Disable(c)) => Command::GroupDisable(c),
+            super::Command::Group(GroupCommand::Reset(c)) => Command::GroupReset(c),
+            super::Command::Group(GroupCommand::MoveLinearAbsolute(c)) => {
+                Command::MoveLinearAbsolute(c)
+            }
+            super::Command::Group(GroupCommand::MoveLinearRelative(c)) => {
+                Command::MoveLinearRelative(c)
+            }
+            super::Command::Group(GroupCommand::MoveCircularAbsolute(c)) => {
+                Command::MoveCircularAbsolute(c)
+            }
+            super::Command::Group(GroupCommand::MoveCircularRelative(c)) => {
+                Command::MoveCircularRelative(c)
+            }
+            super::Command::Group(GroupCommand::Stop(c)) => Command::GroupStop(c),
+            super::Command::Group(GroupCommand::Halt(c)) => Command::GroupHalt(c),
+            super::Command::Group(GroupCommand::Continue(c)) => Command::GroupContinue(c),
+            super::Command::Group(GroupCommand::EmergencyStop(c)) => Command::GroupEmergencyStop(c),
+            super::Command::Group(GroupCommand::SetOverride(c)) => Command::GroupSetOverride(c),
+            super::Command::Group(GroupCommand::SetOrigin(c)) => Command::GroupSetOrigin(c),
+            super::Command::Group(GroupCommand::SetParameter(c)) => Command::GroupSetParameter(c),
+            super::Command::Group(GroupCommand::SetOutput(c)) => Command::GroupSetOutput(c),
+            super::Command::Group(GroupCommand::Dwell(c)) => Command::GroupDwell(c),
+            super::Command::Group(GroupCommand::WaitInput(c)) => Command::GroupWaitInput(c),
+            super::Command::Group(GroupCommand::WaitPosition(c)) => Command::GroupWaitPosition(c),
+            super::Command::Group(GroupCommand::AxisMove(c)) => Command::GroupAxisMove(c),
             super::Command::Coupling(c) => match c {},
         }
     }

@@ -1,0 +1,279 @@
+//! Axis groups (issue 11): 1–9 axes that move together on one path.
+//!
+//! The engine owns a [`Groups`] registry and runs every group in stage 2 of
+//! [`crate::Engine::step`], before the other machine-level planners. A group owns a
+//! [`PathPlanner`] (the `path` crate) and a mirror of its queue that remembers what each entry is
+//! (a motion, or a buffered non-motion command) so that the planner's events become command
+//! states, digital outputs, waits and single-axis moves.
+//!
+//! Inputs: group commands ([`Groups::apply`], between steps) and the axes as the previous tick
+//! left them. Outputs, per tick ([`Groups::step`]): each moving group's members are fed this
+//! tick's setpoint (axis position = group coordinate + origin offset), buffered outputs are
+//! written, the ledger gets the finished commands. Queries: [`Groups::status_into`],
+//! [`Groups::queued_state`]. Order: apply* → step → (status) → apply* → step …
+//!
+//! Files: `state` (the PLCopen Part 4 state machine and member checks), `queue` (the entries of
+//! the group queue), `segment` (commands → path segments), `commands` (each group command),
+//! `tick` (the per-tick work).
+
+use path::planner::{AxisLimits, PathLimits, PathPlanner, PlannerConfig};
+use path::{Point, MAX_AXES};
+
+use crate::axis::{Axis, Context, Ledger};
+use crate::command::{AxisIndex, CommandId, CommandState, EngineError, GroupId};
+use crate::config::GroupsConfig;
+use crate::param::ParamId;
+use crate::status::{AxisFlags, GroupFault, GroupState, GroupStatus};
+
+mod commands;
+mod queue;
+mod segment;
+mod state;
+mod tick;
+
+use queue::{GroupQueue, Wait};
+use segment::PendingMotion;
+
+/// What the engine lends the groups for one command or one tick (split borrows of its fields).
+pub(crate) struct Env<'a> {
+    pub tick: u64,
+    pub period: f64,
+    pub axes: &'a mut [Axis],
+    pub ledger: &'a mut Ledger,
+    /// The machine's digital inputs (waits read them) and outputs (buffered outputs write them).
+    pub di: &'a [bool],
+    pub outputs: &'a mut [bool],
+    /// Set when an output changed (the engine bumps its I/O version).
+    pub outputs_changed: bool,
+}
+
+impl Env<'_> {
+    /// An axis context for one call into an axis.
+    fn context(&mut self) -> (Context<'_>, &mut [Axis]) {
+        (
+            Context {
+                tick: self.tick,
+                di: self.di,
+                ledger: self.ledger,
+            },
+            self.axes,
+        )
+    }
+}
+
+/// HIMC SetGrpMotionProfile defaults (digest 004 §8.3.6): 100 mm/s, 5000 mm/s² up and down.
+/// HIMC's fourth number is a 50 ms smoothing time; mcemu reads it as a jerk time, so the default
+/// jerk is 5000 / 0.05 = 100 000 units/s³ (docs/decisions.md, "Axis groups").
+pub const DEFAULT_PATH_LIMITS: PathLimits = PathLimits {
+    velocity: 100.0,
+    acceleration: 5000.0,
+    deceleration: 5000.0,
+    jerk: 100_000.0,
+};
+
+/// One group. See the module doc.
+#[derive(Debug)]
+pub struct Group {
+    id: GroupId,
+    members: Vec<AxisIndex>,
+    state: GroupState,
+    planner: PathPlanner,
+    queue: GroupQueue,
+    origin: Point,
+    /// Path limits of motions that give none (`group_set_parameter`).
+    defaults: PathLimits,
+    override_factor: f64,
+    /// The members were fed last tick (they are in SynchronizedMotion).
+    feeding: bool,
+    /// The motion being executed.
+    running: Option<CommandId>,
+    segment: u64,
+    user_segment: u32,
+    /// The buffered wait the path stands at.
+    waiting: Option<Wait>,
+    /// An aborting motion waiting for the path to come to rest.
+    pending: Option<PendingMotion>,
+    last_error: Option<crate::command::ErrorKind>,
+    fault: Option<GroupFault>,
+    /// Sum of the members' parameter versions when their limits were last given to the planner.
+    params_version: u64,
+    /// The planner's events of one step (reused).
+    events: Vec<path::planner::PathEvent>,
+}
+
+impl Group {
+    pub fn id(&self) -> GroupId {
+        self.id
+    }
+
+    pub fn members(&self) -> &[AxisIndex] {
+        &self.members
+    }
+
+    pub fn state(&self) -> GroupState {
+        self.state
+    }
+
+    /// Number of group coordinates.
+    fn dims(&self) -> usize {
+        self.members.len()
+    }
+
+    /// The group coordinates of the members' commanded positions (minus the origin offset).
+    fn current_position(&self, axes: &[Axis]) -> Point {
+        let mut p = [0.0; MAX_AXES];
+        for (k, &a) in self.members.iter().enumerate() {
+            if let (Some(out), Some(axis), Some(o)) =
+                (p.get_mut(k), axes.get(a as usize), self.origin.get(k))
+            {
+                *out = axis.commanded().p - o;
+            }
+        }
+        p
+    }
+
+    /// The status record, with each member's flags from `axes`.
+    pub fn status(&self, axes: &[Axis]) -> GroupStatus {
+        let st = self.planner.state();
+        let mut members = [0; MAX_AXES];
+        for (out, &a) in members.iter_mut().zip(&self.members) {
+            *out = a;
+        }
+        let idle = self.planner.is_idle() && self.waiting.is_none() && self.pending.is_none();
+        let all_in_position = self.members.iter().all(|&a| {
+            axes.get(a as usize)
+                .is_some_and(|x| x.status().flags.contains(AxisFlags::IN_POSITION))
+        });
+        let used = self.queued() as u32;
+        GroupStatus {
+            group: self.id,
+            state: self.state,
+            axis_count: self.members.len() as u8,
+            members,
+            coordinates: self.current_position(axes),
+            origin: self.origin,
+            path_velocity: st.path_velocity,
+            path_acceleration: st.path_acceleration,
+            current_command: self.running.or(self.waiting.as_ref().map(|w| w.id)),
+            segment: self.segment,
+            user_segment: self.user_segment,
+            queue_used: used,
+            queue_free: self.queue.capacity().saturating_sub(used),
+            remaining_length: self.planner.remaining_length(),
+            in_position: idle && all_in_position,
+            override_factor: self.override_factor,
+            last_error: self.last_error,
+            fault: self.fault,
+        }
+    }
+
+    /// Entries in the queue, the running one and a wait included.
+    fn queued(&self) -> usize {
+        self.queue.len() + usize::from(self.waiting.is_some()) + usize::from(self.pending.is_some())
+    }
+
+    /// State of a command still owned by this group.
+    fn queued_state(&self, id: CommandId) -> Option<CommandState> {
+        if self.running == Some(id) || self.waiting.as_ref().is_some_and(|w| w.id == id) {
+            return Some(CommandState::Running);
+        }
+        if self.queue.contains(id) || self.pending.as_ref().is_some_and(|p| p.id == id) {
+            return Some(CommandState::Waiting);
+        }
+        None
+    }
+}
+
+/// One axis's own limits as the path planner sees them: `max_velocity` (else `speed`),
+/// `max_accel` (else `accel`), and `jerk` in S-curve mode (else none).
+fn axis_limits(axis: &Axis) -> AxisLimits {
+    let p = axis.params();
+    let positive_or = |v: f64, fallback: f64| if v > 0.0 { v } else { fallback };
+    AxisLimits {
+        velocity: positive_or(p.get(ParamId::MaxVelocity), p.get(ParamId::Speed)),
+        acceleration: positive_or(p.get(ParamId::MaxAccel), p.get(ParamId::Accel)),
+        jerk: if p.flag(ParamId::JerkMode) {
+            p.get(ParamId::Jerk)
+        } else {
+            f64::INFINITY
+        },
+    }
+}
+
+/// The planner configuration of a group of `members`.
+fn planner_config(
+    members: &[AxisIndex],
+    axes: &[Axis],
+    period: f64,
+    capacity: u32,
+    lookahead: u32,
+) -> PlannerConfig {
+    let unlimited = AxisLimits {
+        velocity: f64::INFINITY,
+        acceleration: f64::INFINITY,
+        jerk: f64::INFINITY,
+    };
+    let mut limits = [unlimited; MAX_AXES];
+    for (out, &a) in limits.iter_mut().zip(members) {
+        if let Some(axis) = axes.get(a as usize) {
+            *out = axis_limits(axis);
+        }
+    }
+    PlannerConfig {
+        dims: members.len(),
+        axes: limits,
+        period,
+        lookahead: lookahead as usize,
+        capacity: capacity as usize,
+    }
+}
+
+/// Every group of the machine, by group number.
+#[derive(Debug)]
+pub struct Groups {
+    config: GroupsConfig,
+    /// Sorted by group number (deterministic order, no hash map).
+    groups: Vec<Group>,
+}
+
+impl Groups {
+    pub fn new(config: GroupsConfig) -> Groups {
+        Groups {
+            config,
+            groups: Vec::new(),
+        }
+    }
+
+    pub fn iter(&self) -> impl Iterator<Item = &Group> {
+        self.groups.iter()
+    }
+
+    pub fn get(&self, id: GroupId) -> Option<&Group> {
+        self.groups.iter().find(|g| g.id == id)
+    }
+
+    fn get_mut(&mut self, id: GroupId) -> Result<&mut Group, EngineError> {
+        self.groups
+            .iter_mut()
+            .find(|g| g.id == id)
+            .ok_or(EngineError::UnknownGroup { group: id })
+    }
+
+    /// Stage 2, first part: every group in group-number order. See [`Group::step`].
+    pub(crate) fn step(&mut self, env: &mut Env) {
+        for g in &mut self.groups {
+            g.step(env);
+        }
+    }
+
+    /// State of a command a group still holds.
+    pub(crate) fn queued_state(&self, id: CommandId) -> Option<CommandState> {
+        self.groups.iter().find_map(|g| g.queued_state(id))
+    }
+
+    /// Every group's status record, reusing `out`.
+    pub fn status_into(&self, axes: &[Axis], out: &mut Vec<GroupStatus>) {
+        out.clear();
+        out.extend(self.groups.iter().map(|g| g.status(axes)));
+    }
+}
