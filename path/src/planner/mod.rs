@@ -14,8 +14,23 @@
 //! Work per step is closed form and bounded (no iterative solve, LinuxCNC PR #4154); the
 //! look-ahead runs when a segment is pushed, not per tick.
 
-use crate::geometry::Segment;
+use std::collections::VecDeque;
+
+use crate::geometry::{norm, sub, Segment, POINT_TOLERANCE};
 use crate::{Point, MAX_AXES};
+
+mod blend;
+mod execution;
+mod junction;
+mod limits;
+mod lookahead;
+mod push;
+mod queue;
+mod reach;
+
+use execution::Execution;
+pub use execution::MAX_STARTS_PER_STEP;
+use queue::Entry;
 
 /// One axis's own limits, in the path's units (user units of the axis). `jerk = ∞`: none.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -37,6 +52,26 @@ pub struct PlannerConfig {
     pub lookahead: usize,
     /// Most queued entries (motions and markers); default 512, at most 1024.
     pub capacity: usize,
+}
+
+impl PlannerConfig {
+    /// Default look-ahead depth (LinuxCNC's is 50; issue 11 asks for at least 64).
+    pub const DEFAULT_LOOKAHEAD: usize = 64;
+    /// Default queue capacity (issue 11 item 1).
+    pub const DEFAULT_CAPACITY: usize = 512;
+    /// Largest queue capacity (issue 11 item 1).
+    pub const MAX_CAPACITY: usize = 1024;
+
+    /// `dims` axes with the same limits, the default look-ahead and capacity.
+    pub fn uniform(dims: usize, axis: AxisLimits, period: f64) -> PlannerConfig {
+        PlannerConfig {
+            dims,
+            axes: [axis; MAX_AXES],
+            period,
+            lookahead: Self::DEFAULT_LOOKAHEAD,
+            capacity: Self::DEFAULT_CAPACITY,
+        }
+    }
 }
 
 /// Limits along the path for one motion. `jerk = ∞` plans a trapezoid along the path.
@@ -145,20 +180,87 @@ pub struct PathState {
     pub halted: bool,
 }
 
+/// A halt or stop in progress (PLCopen Part 4 MC_GroupHalt / MC_GroupStop).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Halt {
+    /// Path deceleration; `None`: each motion's own.
+    deceleration: Option<f64>,
+    /// Drop the queue once at rest.
+    stop: bool,
+}
+
 /// See the module doc.
 #[derive(Debug)]
 pub struct PathPlanner {
     config: PlannerConfig,
     state: PathState,
+    queue: VecDeque<Entry>,
+    /// Queued entries the caller pushed (blend arcs are not counted).
+    user_entries: usize,
+    override_factor: f64,
+    /// The front motion's profile, once it has started.
+    exec: Option<Execution>,
+    /// Path velocity at the junction reached when no motion is executing (0 at rest).
+    carry: f64,
+    /// Where the path is when no motion is executing, and its last direction.
+    position: Point,
+    end_tangent: Point,
+    /// The executing motion's profile is to be planned again from the current state.
+    replan_pending: bool,
+    halt: Option<Halt>,
+    at_rest_reported: bool,
+    hold_released: bool,
+    starts_last_step: usize,
 }
 
 impl PathPlanner {
     pub fn new(config: PlannerConfig, position: Point) -> Result<PathPlanner, PlannerError> {
+        if config.dims == 0 || config.dims > MAX_AXES {
+            return Err(PlannerError::Invalid("a path has 1 to 9 axes"));
+        }
+        for lim in config.axes.iter().take(config.dims) {
+            limits::check_axis_limits(lim).map_err(PlannerError::Invalid)?;
+        }
+        if !(config.period > 0.0 && config.period.is_finite()) {
+            return Err(PlannerError::Invalid(
+                "the period must be a positive finite number",
+            ));
+        }
+        if config.lookahead == 0 {
+            return Err(PlannerError::Invalid(
+                "the look-ahead needs at least 1 motion",
+            ));
+        }
+        if config.capacity == 0 || config.capacity > PlannerConfig::MAX_CAPACITY {
+            return Err(PlannerError::Invalid(
+                "the queue capacity must be 1 to 1024",
+            ));
+        }
+        if position.iter().any(|c| !c.is_finite()) {
+            return Err(PlannerError::Invalid("the start position must be finite"));
+        }
         let state = PathState {
             position,
             ..PathState::default()
         };
-        Ok(PathPlanner { config, state })
+        // Room for the pushed entries plus one blend arc per motion: no allocation later.
+        let queue = VecDeque::with_capacity(2 * config.capacity + 1);
+        Ok(PathPlanner {
+            config,
+            state,
+            queue,
+            user_entries: 0,
+            override_factor: 1.0,
+            exec: None,
+            carry: 0.0,
+            position,
+            end_tangent: [0.0; MAX_AXES],
+            replan_pending: false,
+            halt: None,
+            at_rest_reported: false,
+            hold_released: false,
+            starts_last_step: 0,
+        })
     }
 
     pub fn config(&self) -> &PlannerConfig {
@@ -168,12 +270,26 @@ impl PathPlanner {
     /// Where the path is (at rest, queue empty): the next motion starts here. Refused while
     /// moving.
     pub fn reset_position(&mut self, position: Point) -> Result<(), PlannerError> {
+        if !self.is_idle() {
+            return Err(PlannerError::Invalid(
+                "the path position can only be set at rest with an empty queue",
+            ));
+        }
+        if position.iter().any(|c| !c.is_finite()) {
+            return Err(PlannerError::Invalid("the position must be finite"));
+        }
+        self.position = position;
         self.state.position = position;
         Ok(())
     }
 
     /// Change one axis's limits (a parameter changed); applies to motions pushed from now on.
+    /// Limits that are not positive (velocity and acceleration finite) are ignored: the
+    /// engine validates parameters before they get here.
     pub fn set_axis_limits(&mut self, axis: usize, limits: AxisLimits) {
+        if limits::check_axis_limits(&limits).is_err() {
+            return;
+        }
         if let Some(l) = self.config.axes.get_mut(axis) {
             *l = limits;
         }
@@ -181,56 +297,149 @@ impl PathPlanner {
 
     /// Append a motion. Its segment must start at [`PathPlanner::queue_end`].
     pub fn push_motion(&mut self, motion: Motion) -> Result<(), PlannerError> {
-        let _ = motion;
-        Err(PlannerError::Invalid("the path planner is not built yet"))
+        self.check_room()?;
+        let dims = self.config.dims;
+        if motion.segment.dims() != dims {
+            return Err(PlannerError::Invalid(
+                "the segment's axis count differs from the path's",
+            ));
+        }
+        let length = motion.segment.length();
+        if !length.is_finite() {
+            return Err(PlannerError::Invalid("the segment's length is not finite"));
+        }
+        let end = self.queue_end();
+        let gap = norm(&sub(&motion.segment.start(), &end));
+        if gap.is_nan() || gap > POINT_TOLERANCE * (1.0 + norm(&end)) {
+            return Err(PlannerError::Invalid(
+                "the segment does not start where the queue ends",
+            ));
+        }
+        limits::check_path_limits(&motion.limits).map_err(PlannerError::Invalid)?;
+        match motion.transition {
+            Transition::None => {}
+            Transition::CornerDistance(x) | Transition::CornerDeviation(x) => {
+                if !(x >= 0.0 && x.is_finite()) {
+                    return Err(PlannerError::Invalid(
+                        "the corner distance or deviation must be a finite number ≥ 0",
+                    ));
+                }
+            }
+        }
+        let first_new = self.queue.len();
+        let dirty = self.append_motion(motion);
+        self.user_entries += 1;
+        self.lookahead(dirty.min(first_new));
+        Ok(())
     }
 
     pub fn push_marker(&mut self, tag: u64, kind: MarkerKind) -> Result<(), PlannerError> {
-        let _ = (tag, kind);
-        Err(PlannerError::Invalid("the path planner is not built yet"))
+        self.check_room()?;
+        self.queue.push_back(Entry::Marker { tag, kind });
+        self.user_entries += 1;
+        Ok(())
+    }
+
+    fn check_room(&self) -> Result<(), PlannerError> {
+        if self.user_entries >= self.config.capacity {
+            return Err(PlannerError::QueueFull {
+                capacity: self.config.capacity,
+            });
+        }
+        Ok(())
     }
 
     /// The end point of the last queued motion, or the current position when none is queued.
     pub fn queue_end(&self) -> Point {
-        self.state.position
+        self.queue
+            .iter()
+            .rev()
+            .find_map(|e| match e {
+                Entry::Motion(m) => Some(m.segment.end()),
+                Entry::Marker { .. } => None,
+            })
+            .unwrap_or(self.position)
     }
 
     /// Path velocity scale, (0, 10] (NMC CrdSetOverride; HIMC SetGrpVelScale 0–100 % is
-    /// 0–1). Takes effect at once, within every limit.
+    /// 0–1). Takes effect at once, within every limit: the executing motion is planned again
+    /// from its current state, so the speed changes with the path acceleration and
+    /// deceleration (no velocity step). A factor above 10 counts as 10; NaN and factors ≤ 0
+    /// are ignored (the engine refuses them with a typed error before they get here).
     pub fn set_override(&mut self, factor: f64) {
-        let _ = factor;
+        if factor.is_nan() || factor <= 0.0 {
+            return;
+        }
+        let factor = factor.min(10.0);
+        if factor == self.override_factor {
+            return;
+        }
+        self.override_factor = factor;
+        self.lookahead(usize::MAX);
+        if self.exec.is_some() {
+            self.replan_pending = true;
+        }
+    }
+
+    /// The override factor in effect.
+    pub fn override_factor(&self) -> f64 {
+        self.override_factor
     }
 
     /// Decelerate to rest along the path with `deceleration` (None: each motion's own) and
-    /// keep the queue; [`PathPlanner::resume`] goes on.
+    /// keep the queue; [`PathPlanner::resume`] goes on. The deceleration never exceeds what
+    /// the axes allow on the motion being executed; a deceleration that is not a positive
+    /// number counts as None.
     pub fn halt(&mut self, deceleration: Option<f64>) {
-        let _ = deceleration;
+        self.begin_halt(deceleration, false);
         self.state.halted = true;
     }
 
     pub fn resume(&mut self) {
-        self.state.halted = false;
+        if self.halt.is_some_and(|h| !h.stop) {
+            self.halt = None;
+            self.state.halted = false;
+            self.at_rest_reported = false;
+            if self.exec.is_some() {
+                self.replan_pending = true;
+            }
+        }
     }
 
     /// Decelerate to rest along the path with `deceleration`, then drop the queue.
     pub fn stop(&mut self, deceleration: f64) {
-        let _ = deceleration;
+        self.begin_halt(Some(deceleration), true);
+        self.state.halted = false;
+    }
+
+    fn begin_halt(&mut self, deceleration: Option<f64>, stop: bool) {
+        let deceleration = deceleration.filter(|d| *d > 0.0);
+        self.halt = Some(Halt { deceleration, stop });
+        self.at_rest_reported = false;
+        if self.exec.is_some() {
+            self.replan_pending = true;
+        }
     }
 
     /// Stop at once where the path is (velocity 0 this tick) and drop the queue; for a fault
     /// the caller has already handled (the axes stop on their own).
     pub fn abort(&mut self, events: &mut Vec<PathEvent>) {
-        let _ = events;
+        self.drop_queue(events);
+        self.halt = None;
+        self.state.halted = false;
+        self.at_rest_reported = false;
     }
 
     /// Go on past the `Hold` marker the path waits at.
     pub fn release_hold(&mut self) {
-        self.state.holding = None;
+        if self.state.holding.is_some() {
+            self.hold_released = true;
+        }
     }
 
     /// Advance one period.
     pub fn step(&mut self, events: &mut Vec<PathEvent>) -> &PathState {
-        let _ = events;
+        self.advance(events);
         &self.state
     }
 
@@ -240,16 +449,29 @@ impl PathPlanner {
 
     /// Queued entries (the motion being executed counts).
     pub fn queued(&self) -> usize {
-        0
+        self.user_entries
     }
 
     /// Nothing queued and at rest.
     pub fn is_idle(&self) -> bool {
-        true
+        self.queue.is_empty() && self.exec.is_none() && self.carry <= 0.0
     }
 
     /// Path length left to the end of the last queued motion.
     pub fn remaining_length(&self) -> f64 {
-        0.0
+        let total: f64 = self
+            .queue
+            .iter()
+            .map(|e| match e {
+                Entry::Motion(m) => m.length,
+                Entry::Marker { .. } => 0.0,
+            })
+            .sum();
+        total - self.exec.map_or(0.0, |e| e.s)
+    }
+
+    /// Motions started during the last step (bounded by [`MAX_STARTS_PER_STEP`]).
+    pub fn starts_last_step(&self) -> usize {
+        self.starts_last_step
     }
 }

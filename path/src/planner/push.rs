@@ -1,0 +1,164 @@
+//! Appending a motion: its path limits, its junction with the motion before it, and the
+//! corner blend that may replace that junction (issue 11 item 4).
+
+use super::blend::corner_arc;
+use super::junction::{corner_cap, mode_velocity};
+use super::limits::motion_limits;
+use super::queue::{Entry, QueuedMotion};
+use super::reach::{lowest_end, reach, settle};
+use super::{AxisLimits, Join, MarkerKind, Motion, PathLimits, PathPlanner};
+use crate::geometry::Segment;
+
+fn queued(
+    segment: Segment,
+    programmed: PathLimits,
+    join: Join,
+    tag: u64,
+    axes: &[AxisLimits],
+    period: f64,
+) -> QueuedMotion {
+    let limits = motion_limits(&segment, &programmed, axes, period);
+    QueuedMotion {
+        length: segment.length(),
+        segment,
+        tag,
+        join,
+        programmed,
+        limits,
+        end_cap: 0.0,
+        end_phys: 0.0,
+        end_pref: 0.0,
+        start_phys: 0.0,
+        start_pref: 0.0,
+        reports_start: true,
+        reports_done: true,
+    }
+}
+
+/// The highest velocity at which the path may enter `first` and still stop by the end of
+/// `second` (the look-ahead's rule for two motions that end the queue).
+fn entry_velocity(first: &QueuedMotion, second: &QueuedMotion) -> f64 {
+    let l2 = &second.limits;
+    let start2 = reach(0.0, second.length, l2.deceleration, l2.jerk).min(l2.velocity_cap);
+    let l1 = &first.limits;
+    let end1 = start2.min(l1.velocity_cap);
+    reach(end1, first.length, l1.deceleration, l1.jerk).min(l1.velocity_cap)
+}
+
+impl PathPlanner {
+    /// Append `motion` after the queue's last entry; returns the queue index from which the
+    /// look-ahead data changed.
+    pub(super) fn append_motion(&mut self, motion: Motion) -> usize {
+        let period = self.config.period;
+        let dims = self.config.dims.min(self.config.axes.len());
+        let axes = self.config.axes;
+        let axes = axes.get(..dims).unwrap_or(&[]);
+        let new = queued(
+            motion.segment,
+            motion.limits,
+            motion.join,
+            motion.tag,
+            axes,
+            period,
+        );
+        let mut previous = None;
+        let mut hold = false;
+        for (i, e) in self.queue.iter().enumerate().rev() {
+            match e {
+                Entry::Marker { kind, .. } => hold |= *kind == MarkerKind::Hold,
+                Entry::Motion(_) => {
+                    previous = Some(i);
+                    break;
+                }
+            }
+        }
+        let Some(pi) = previous else {
+            self.queue.push_back(Entry::Motion(Box::new(new)));
+            return self.queue.len() - 1;
+        };
+        // PLCopen Part 4: Buffered stops exactly; a Hold marker in between stops there too.
+        if motion.join == Join::Buffered || hold {
+            self.queue.push_back(Entry::Motion(Box::new(new)));
+            return pi;
+        }
+        if let Some((arc, second)) = self.blend(pi, &new, motion.transition, axes) {
+            self.queue.push_back(Entry::Motion(Box::new(arc)));
+            self.queue.push_back(Entry::Motion(Box::new(second)));
+            return pi;
+        }
+        // Transition::None, or corners with arcs (documented): the corner rule.
+        if let Some(Entry::Motion(prev)) = self.queue.get_mut(pi) {
+            let before = prev.segment.end_tangent();
+            prev.end_cap = corner_cap(&before, &new.segment.start_tangent(), axes, period);
+        }
+        self.queue.push_back(Entry::Motion(Box::new(new)));
+        pi
+    }
+
+    /// Round the corner between the motion at queue index `pi` and `new` (both lines) with a
+    /// tangent arc: trims the previous line in place and returns the arc and the trimmed new
+    /// line. `None` when there is no corner geometry to make, or the path is already past
+    /// where the arc would begin, or too fast to enter it (HIMC TV 55, digest 004 §6.4: a
+    /// motion blends only if the next is queued before it ends; then the corner rule applies).
+    fn blend(
+        &mut self,
+        pi: usize,
+        new: &QueuedMotion,
+        transition: super::Transition,
+        axes: &[AxisLimits],
+    ) -> Option<(QueuedMotion, QueuedMotion)> {
+        let period = self.config.period;
+        let dims = self.config.dims;
+        let executing = if pi == 0 { self.exec } else { None };
+        let Some(Entry::Motion(prev)) = self.queue.get(pi) else {
+            return None;
+        };
+        let (Segment::Line(first), Segment::Line(second)) = (&prev.segment, &new.segment) else {
+            return None;
+        };
+        let (tangent, arc) = corner_arc(first, second, transition, dims)?;
+        let join = new.join;
+        let programmed = PathLimits {
+            velocity: mode_velocity(join, prev.programmed.velocity, new.programmed.velocity),
+            acceleration: prev
+                .programmed
+                .acceleration
+                .min(new.programmed.acceleration),
+            deceleration: prev
+                .programmed
+                .deceleration
+                .min(new.programmed.deceleration),
+            jerk: prev.programmed.jerk.min(new.programmed.jerk),
+        };
+        let mut arc = queued(Segment::Arc(arc), programmed, join, new.tag, axes, period);
+        arc.reports_done = false;
+        arc.end_cap = f64::INFINITY;
+        let rest = new.segment.trimmed(tangent, new.length);
+        let mut rest = queued(rest, new.programmed, join, new.tag, axes, period);
+        rest.reports_start = false;
+        let shortened = prev.length - tangent;
+        if let Some(e) = executing {
+            // The path must be able to enter the arc from where it is now.
+            let l = &prev.limits;
+            let (v1, s1) = settle(e.v, e.a, l.jerk);
+            let room = shortened - e.s - s1;
+            if room < 0.0
+                || lowest_end(v1, room, l.deceleration, l.jerk) > entry_velocity(&arc, &rest)
+            {
+                return None;
+            }
+        }
+        let segment = prev.segment.trimmed(0.0, shortened);
+        let prev_programmed = prev.programmed;
+        if let Some(Entry::Motion(prev)) = self.queue.get_mut(pi) {
+            prev.limits = motion_limits(&segment, &prev_programmed, axes, period);
+            prev.length = segment.length();
+            prev.segment = segment;
+            prev.end_cap = f64::INFINITY;
+        }
+        if executing.is_some() {
+            self.replan_pending = true;
+        }
+        Some((arc, rest))
+    }
+}

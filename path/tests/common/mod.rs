@@ -1,0 +1,115 @@
+//! Helpers shared by the planner tests.
+#![allow(dead_code, clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+use path::geometry::{Arc, Line, Segment, Turn};
+use path::planner::{
+    AxisLimits, Join, Motion, PathEvent, PathLimits, PathPlanner, PathState, PlannerConfig,
+    Transition,
+};
+use path::{Point, MAX_AXES};
+
+pub fn p(c: &[f64]) -> Point {
+    let mut out = [0.0; MAX_AXES];
+    out[..c.len()].copy_from_slice(c);
+    out
+}
+
+pub fn line(a: Point, b: Point, dims: usize) -> Segment {
+    Segment::Line(Line::new(a, b, dims).unwrap())
+}
+
+pub fn arc(a: Point, b: Point, c: Point, turn: Turn, dims: usize) -> Segment {
+    Segment::Arc(Arc::from_center(a, b, c, (0, 1), turn, 0, dims).unwrap())
+}
+
+pub fn limits(v: f64, a: f64, j: f64) -> PathLimits {
+    PathLimits {
+        velocity: v,
+        acceleration: a,
+        deceleration: a,
+        jerk: j,
+    }
+}
+
+pub fn axis(v: f64, a: f64, j: f64) -> AxisLimits {
+    AxisLimits {
+        velocity: v,
+        acceleration: a,
+        jerk: j,
+    }
+}
+
+pub fn motion(
+    segment: Segment,
+    limits: PathLimits,
+    join: Join,
+    tr: Transition,
+    tag: u64,
+) -> Motion {
+    Motion {
+        segment,
+        limits,
+        join,
+        transition: tr,
+        tag,
+    }
+}
+
+/// Step until idle (or `max` steps); the states after every step (the first is the start
+/// state) and the events.
+pub fn run(planner: &mut PathPlanner, max: usize) -> (Vec<PathState>, Vec<PathEvent>) {
+    let mut states = vec![*planner.state()];
+    let mut events = Vec::new();
+    for _ in 0..max {
+        let st = *planner.step(&mut events);
+        states.push(st);
+        if planner.is_idle() {
+            break;
+        }
+    }
+    (states, events)
+}
+
+/// Largest ratio over all ticks and axes of |finite-difference velocity| / V_k and of
+/// |finite-difference acceleration| / A_k, and of the reported values.
+pub struct Peaks {
+    pub v_fd: f64,
+    pub a_fd: f64,
+    pub v_reported: f64,
+    pub a_reported: f64,
+}
+
+/// `tolerance_a`: absolute slack in acceleration, for the rounding of positions divided by T².
+pub fn peaks(states: &[PathState], config: &PlannerConfig) -> Peaks {
+    let t = config.period;
+    let mut pk = Peaks {
+        v_fd: 0.0,
+        a_fd: 0.0,
+        v_reported: 0.0,
+        a_reported: 0.0,
+    };
+    for k in 0..config.dims {
+        let lim = config.axes[k];
+        // Rounding of a position of magnitude |x| is ≤ ε|x|; a second difference of three
+        // rounded positions errs by ≤ 4ε|x|/T², which the ratio discounts.
+        let scale = states
+            .iter()
+            .map(|s| s.position[k].abs())
+            .fold(1.0, f64::max);
+        let slack_v = 2.0 * f64::EPSILON * scale / t;
+        let slack_a = 4.0 * f64::EPSILON * scale / (t * t);
+        for w in states.windows(2) {
+            let v = (w[1].position[k] - w[0].position[k]) / t;
+            pk.v_fd = pk.v_fd.max((v.abs() - slack_v).max(0.0) / lim.velocity);
+            pk.v_reported = pk.v_reported.max(w[1].velocity[k].abs() / lim.velocity);
+            pk.a_reported = pk
+                .a_reported
+                .max(w[1].acceleration[k].abs() / lim.acceleration);
+        }
+        for w in states.windows(3) {
+            let a = (w[2].position[k] - 2.0 * w[1].position[k] + w[0].position[k]) / (t * t);
+            pk.a_fd = pk.a_fd.max((a.abs() - slack_a).max(0.0) / lim.acceleration);
+        }
+    }
+    pk
+}
