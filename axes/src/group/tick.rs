@@ -26,7 +26,7 @@ impl Group {
         if matches!(self.state, GroupState::Disabled | GroupState::ErrorStop) {
             return;
         }
-        self.refresh_limits(env);
+        self.refresh_limits(env.axes);
         if let Some(fault) = self.member_fault(env.axes) {
             self.fault(env, fault);
             return;
@@ -65,12 +65,13 @@ impl Group {
         self.planner.is_idle() && self.waiting.is_none() && self.pending.is_none()
     }
 
-    /// Give the planner the members' limits again when one of their parameters changed.
-    fn refresh_limits(&mut self, env: &Env) {
+    /// Give the planner the members' limits again when one of their parameters changed (each
+    /// tick, and before a motion is queued: the planner plans a motion when it is pushed).
+    fn refresh_limits(&mut self, axes: &[crate::axis::Axis]) {
         let version = self
             .members
             .iter()
-            .filter_map(|&a| env.axes.get(a as usize))
+            .filter_map(|&a| axes.get(a as usize))
             .map(|a| a.params_version())
             .sum();
         if version == self.params_version {
@@ -78,7 +79,7 @@ impl Group {
         }
         self.params_version = version;
         for (k, &a) in self.members.iter().enumerate() {
-            if let Some(axis) = env.axes.get(a as usize) {
+            if let Some(axis) = axes.get(a as usize) {
                 self.planner.set_axis_limits(k, axis_limits(axis));
             }
         }
@@ -292,6 +293,7 @@ impl Group {
         id: CommandId,
         request: &super::segment::PathRequest,
     ) -> Result<(), EngineError> {
+        self.refresh_limits(env.axes);
         self.sync_position(env)?;
         let start = self.planner.queue_end();
         let segment = request.segment(self.id, start, self.dims())?;
