@@ -308,7 +308,11 @@ fn the_same_scenario_gives_the_same_trace() {
 
 #[test]
 fn the_shipped_scenarios_pass() {
-    for name in ["issue-example.toml", "inline-machine.toml"] {
+    for name in [
+        "issue-example.toml",
+        "inline-machine.toml",
+        "coordinated-motion.toml",
+    ] {
         let out = mcemu(&["scenario", &fixture(name)]);
         assert!(out.status.success(), "{name}: {}", stderr(&out));
         assert!(stderr(&out).is_empty(), "{name}: {}", stderr(&out));

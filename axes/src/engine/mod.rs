@@ -258,6 +258,11 @@ impl Engine {
         &self.groups
     }
 
+    /// The status record of group `id`, assembled now.
+    pub fn group_status(&self, id: crate::command::GroupId) -> Option<crate::status::GroupStatus> {
+        self.groups.get(id).map(|g| g.status(&self.axes))
+    }
+
     /// Issue 12's coupling commands arrive here; there are none yet.
     fn apply_coupling_command(&mut self, command: CouplingCommand) -> Result<Reply, EngineError> {
         match command {}

@@ -114,6 +114,21 @@ impl Group {
         self.state
     }
 
+    /// Commanded velocity along the path.
+    pub fn path_velocity(&self) -> f64 {
+        self.planner.state().path_velocity
+    }
+
+    /// Ordinal of the motion being executed (counted from 1 since the group was created).
+    pub fn segment(&self) -> u64 {
+        self.segment
+    }
+
+    /// The `user_segment` of the motion being executed or last executed (NMC CrdGetUserSegNo).
+    pub fn user_segment(&self) -> u32 {
+        self.user_segment
+    }
+
     /// Number of group coordinates.
     fn dims(&self) -> usize {
         self.members.len()
