@@ -183,7 +183,7 @@ impl Group {
     }
 
     /// Entries in the queue, the running one and a wait included.
-    fn queued(&self) -> usize {
+    pub fn queued(&self) -> usize {
         self.queue.len() + usize::from(self.waiting.is_some()) + usize::from(self.pending.is_some())
     }
 
