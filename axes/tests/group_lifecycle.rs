@@ -376,15 +376,15 @@ fn bad_motion_input_is_refused_with_a_typed_error_and_nothing_is_queued() {
                 factor: 0.0,
             }),
             ErrorKind::InvalidArgument,
-            "factor = 0: must be in (0, 10] (1 = 100 %)",
+            "factor = 0: must be in (0, 10) (1 = 100 %)",
         ),
         (
             Command::from(GroupSetOverride {
                 group: 1,
-                factor: 10.5,
+                factor: 10.0,
             }),
             ErrorKind::InvalidArgument,
-            "factor = 10.5: must be in (0, 10] (1 = 100 %)",
+            "factor = 10: must be in (0, 10) (1 = 100 %)",
         ),
         (
             Command::from(GroupSetParameter {

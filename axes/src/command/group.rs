@@ -266,7 +266,7 @@ pub struct GroupEmergencyStop {
     pub group: GroupId,
 }
 
-/// Path velocity override, (0, 10] (NMC CrdSetOverride; HIMC SetGrpVelScale 0–100 % is 0–1).
+/// Path velocity override, (0, 10) (NMC CrdSetOverride; HIMC SetGrpVelScale 0–100 % is 0–1).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct GroupSetOverride {

@@ -15,7 +15,7 @@ use crate::config::MAX_GROUP_QUEUE;
 use crate::param::ParamId;
 use crate::status::{AxisState, GroupFault, GroupState};
 
-/// The largest path velocity override (NMC CrdSetOverride: (0, 10)).
+/// The path velocity override is below this (NMC CrdSetOverride: (0, 10), TV 51).
 pub const MAX_OVERRIDE: f64 = 10.0;
 
 impl Groups {
@@ -219,11 +219,11 @@ impl Group {
             }
             GroupCommand::SetOverride(c) => {
                 let f = finite("factor", c.factor)?;
-                if !(f > 0.0 && f <= MAX_OVERRIDE) {
+                if !(f > 0.0 && f < MAX_OVERRIDE) {
                     return Err(EngineError::InvalidArgument {
                         name: "factor",
                         value: f,
-                        reason: "must be in (0, 10] (1 = 100 %)",
+                        reason: "must be in (0, 10) (1 = 100 %)",
                     });
                 }
                 self.override_factor = f;
