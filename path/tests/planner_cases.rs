@@ -270,3 +270,449 @@ fn an_arc_keeps_every_axis_within_its_acceleration() {
     );
     let _ = (Arc::from_center, Segment::length);
 }
+
+#[test]
+fn a_square_with_corner_distance_stays_within_it_and_never_stops_at_a_corner() {
+    for (d, deviation) in [(2.0, false), (0.5, true), (12.0, false)] {
+        let cfg = square_config();
+        let pts = [
+            p(&[0.0, 0.0]),
+            p(&[20.0, 0.0]),
+            p(&[20.0, 20.0]),
+            p(&[0.0, 20.0]),
+            p(&[0.0, 0.0]),
+        ];
+        let mut pl = PathPlanner::new(cfg.clone(), pts[0]).unwrap();
+        let tr = if deviation {
+            Transition::CornerDeviation(d)
+        } else {
+            Transition::CornerDistance(d)
+        };
+        for i in 0..4 {
+            let m = motion(
+                line(pts[i], pts[i + 1], 2),
+                limits(80.0, 800.0, f64::INFINITY),
+                Join::BlendingLow,
+                tr,
+                i as u64,
+            );
+            pl.push_motion(m).unwrap();
+        }
+        assert_eq!(pl.queued(), 4);
+        let (states, events) = run(&mut pl, 100_000);
+        assert_eq!(states.last().unwrap().position, pts[4]);
+        let done: Vec<_> = events
+            .iter()
+            .filter_map(|e| match e {
+                PathEvent::Done { tag } => Some(*tag),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(done, vec![0, 1, 2, 3]);
+        // Within d of the programmed square (deviation e: within e).
+        let worst = states
+            .iter()
+            .map(|s| distance_to_polyline(&s.position, &pts))
+            .fold(0.0, f64::max);
+        assert!(worst <= d + 1e-9, "d = {d}: {worst}");
+        // The speed does not drop to 0 at the three inner corners.
+        for c in &pts[1..4] {
+            let near: Vec<_> = states
+                .iter()
+                .filter(|s| (s.position[0] - c[0]).hypot(s.position[1] - c[1]) < d.min(10.0) + 0.5)
+                .collect();
+            let slowest = near
+                .iter()
+                .map(|s| s.path_velocity)
+                .fold(f64::INFINITY, f64::min);
+            assert!(slowest > 1.0, "corner {c:?}: {slowest}");
+        }
+        let pk = peaks(&states, &cfg);
+        assert!(pk.a_fd <= 1.0 && pk.v_fd <= 1.0, "{} {}", pk.a_fd, pk.v_fd);
+        assert!(pk.a_reported <= 1.0 + 1e-12);
+    }
+}
+
+/// LinuxCNC issue #3773: many small arcs (R ≈ 4 mm) joined tangentially, 1 kHz, 1750 mm/s²
+/// per axis, a commanded speed far above what the arcs allow. LinuxCNC measured peak axis
+/// accelerations of 1.9–8× the limit; here the finite-difference peak stays ≤ 1.00×.
+#[test]
+fn linuxcnc_3773_small_tangent_arcs_keep_the_acceleration_within_the_limit() {
+    let cfg = PlannerConfig::uniform(3, axis(400.0, 1750.0, f64::INFINITY), 1e-3);
+    let mut pl = PathPlanner::new(cfg.clone(), p(&[0.0, 0.0, 0.0])).unwrap();
+    let (mut x, mut y) = (0.0, 0.0);
+    let mut heading: f64 = 0.0;
+    let mut seed = 0x2545_f491_4f6c_dd1du64;
+    let mut rnd = || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for i in 0..200 {
+        let r = 3.8 + 0.4 * rnd();
+        let sweep = (20.0 + 70.0 * rnd()).to_radians();
+        let ccw = i % 2 == 0;
+        let side = if ccw { 1.0 } else { -1.0 };
+        // Centre on the left (CCW) or right (CW) of the heading: tangent junctions.
+        let (nx, ny) = rotate(
+            heading.cos(),
+            heading.sin(),
+            side * std::f64::consts::FRAC_PI_2,
+        );
+        let (cx, cy) = (x + r * nx, y + r * ny);
+        let (ex, ey) = rotate(x - cx, y - cy, side * sweep);
+        let (ex, ey) = (cx + ex, cy + ey);
+        let z = 0.01 * i as f64;
+        let turn = if ccw { Turn::Ccw } else { Turn::Cw };
+        let seg = Segment::Arc(
+            Arc::from_center(
+                p(&[x, y, z]),
+                p(&[ex, ey, z + 0.01]),
+                p(&[cx, cy, z]),
+                (0, 1),
+                turn,
+                0,
+                3,
+            )
+            .unwrap(),
+        );
+        let m = motion(
+            seg,
+            limits(2000.0, 20_000.0, f64::INFINITY),
+            Join::BlendingHigh,
+            Transition::None,
+            i,
+        );
+        pl.push_motion(m).unwrap();
+        x = ex;
+        y = ey;
+        heading += side * sweep;
+    }
+    let end = pl.queue_end();
+    let (states, _) = run(&mut pl, 1_000_000);
+    assert_eq!(states.last().unwrap().position, end);
+    let pk = peaks(&states, &cfg);
+    assert!(
+        pk.a_fd <= 1.0,
+        "peak FD acceleration {}× the limit",
+        pk.a_fd
+    );
+    assert!(pk.a_reported <= 1.0 + 1e-12 && pk.v_fd <= 1.0);
+    // It does not crawl either: the arcs run at their curvature speed, √(A/√2·r) ≈ 70 mm/s.
+    let top = states.iter().map(|s| s.path_velocity).fold(0.0, f64::max);
+    assert!(top > 60.0, "{top}");
+}
+
+#[test]
+fn a_five_turn_helix_ends_exactly_within_the_limits() {
+    let cfg = PlannerConfig::uniform(3, axis(100.0, 1000.0, f64::INFINITY), 1e-3);
+    let start = p(&[10.0, 0.0, 0.0]);
+    let mut pl = PathPlanner::new(cfg.clone(), start).unwrap();
+    let helix = Arc::from_center(
+        start,
+        p(&[10.0, 0.0, 25.0]),
+        p(&[0.0, 0.0, 0.0]),
+        (0, 1),
+        Turn::Ccw,
+        4,
+        3,
+    )
+    .unwrap();
+    assert!((helix.sweep() - 5.0 * std::f64::consts::TAU).abs() < 1e-12);
+    pl.push_motion(motion(
+        Segment::Arc(helix),
+        limits(200.0, 2000.0, f64::INFINITY),
+        Join::Buffered,
+        Transition::None,
+        5,
+    ))
+    .unwrap();
+    let (states, events) = run(&mut pl, 1_000_000);
+    assert_eq!(states.last().unwrap().position, p(&[10.0, 0.0, 25.0]));
+    assert_eq!(
+        events,
+        vec![PathEvent::Started { tag: 5 }, PathEvent::Done { tag: 5 }]
+    );
+    let pk = peaks(&states, &cfg);
+    assert!(pk.a_fd <= 1.0 && pk.v_fd <= 1.0 && pk.a_reported <= 1.0 + 1e-12);
+    // z rises linearly with the path length: 5 mm per turn.
+    let half = states
+        .iter()
+        .find(|s| s.travelled >= 0.5 * states.last().unwrap().travelled)
+        .unwrap();
+    assert!((half.position[2] - 12.5).abs() < 0.2, "{:?}", half.position);
+}
+
+fn long_line(pl: &mut PathPlanner, v: f64) {
+    let m = motion(
+        line(p(&[0.0, 0.0]), p(&[300.0, 400.0]), 2),
+        limits(v, 400.0, f64::INFINITY),
+        Join::Buffered,
+        Transition::None,
+        1,
+    );
+    pl.push_motion(m).unwrap();
+}
+
+#[test]
+fn override_scales_the_path_speed_without_a_step_and_within_the_axis_limits() {
+    for (factor, expected) in [(0.5, 20.0), (2.0, 80.0), (10.0, 125.0)] {
+        // Axis velocity 100 along x with tangent 0.6 and 75 along y with tangent 0.8: the path
+        // may go 125 at most.
+        let mut cfg = square_config();
+        cfg.axes[1].velocity = 100.0;
+        let mut pl = PathPlanner::new(cfg.clone(), p(&[0.0, 0.0])).unwrap();
+        long_line(&mut pl, 40.0);
+        let mut events = Vec::new();
+        let mut states = vec![*pl.state()];
+        for _ in 0..1000 {
+            states.push(*pl.step(&mut events));
+        }
+        assert_eq!(pl.state().path_velocity, 40.0);
+        pl.set_override(factor);
+        for _ in 0..1000 {
+            states.push(*pl.step(&mut events));
+        }
+        assert!(
+            (pl.state().path_velocity - expected).abs() < 1e-9,
+            "{factor}: {}",
+            pl.state().path_velocity
+        );
+        let (rest, _) = run(&mut pl, 100_000);
+        states.extend_from_slice(&rest[1..]);
+        assert_eq!(states.last().unwrap().position, p(&[300.0, 400.0]));
+        let pk = peaks(&states, &cfg);
+        assert!(
+            pk.v_fd <= 1.0 && pk.a_fd <= 1.0,
+            "{factor}: {} {}",
+            pk.v_fd,
+            pk.a_fd
+        );
+        // No velocity step: the path speed changes by at most one period of acceleration.
+        for w in states.windows(2) {
+            assert!((w[1].path_velocity - w[0].path_velocity).abs() <= 400.0 * 1e-3 + 1e-9);
+        }
+    }
+}
+
+#[test]
+fn a_one_axis_path_samples_like_the_axis_profile() {
+    use profile::{Goal, Limits, MotionState, Options, Profile};
+    for (target, jerk) in [(37.5, f64::INFINITY), (-12.25, 20_000.0), (0.3, 5_000.0)] {
+        let cfg = PlannerConfig::uniform(1, axis(100.0, 1000.0, jerk), 1e-3);
+        let mut pl = PathPlanner::new(cfg, p(&[0.0])).unwrap();
+        let m = motion(
+            line(p(&[0.0]), p(&[target]), 1),
+            limits(1e4, 1e6, f64::INFINITY),
+            Join::Buffered,
+            Transition::None,
+            1,
+        );
+        pl.push_motion(m).unwrap();
+        let (states, _) = run(&mut pl, 100_000);
+        let lim = Limits {
+            velocity: 100.0,
+            acceleration: 1000.0,
+            deceleration: 1000.0,
+            jerk,
+        };
+        let goal = Goal::Position {
+            target,
+            end_velocity: 0.0,
+        };
+        let axis = Profile::plan(MotionState::default(), goal, &lim, &Options::default()).unwrap();
+        assert_eq!(states.len() - 1, (axis.duration() / 1e-3).ceil() as usize);
+        for (n, st) in states.iter().enumerate() {
+            let s = axis.sample(n as f64 * 1e-3);
+            assert!(
+                (st.position[0] - s.p).abs() <= 1e-9,
+                "{n}: {} {}",
+                st.position[0],
+                s.p
+            );
+            assert!(
+                (st.velocity[0] - s.v).abs() <= 1e-6,
+                "{n}: {} {}",
+                st.velocity[0],
+                s.v
+            );
+            assert!((st.acceleration[0] - s.a).abs() <= 1e-6 || n == 0);
+        }
+        assert_eq!(states.last().unwrap().position[0], target);
+    }
+}
+
+#[test]
+fn the_same_inputs_give_bit_identical_states() {
+    let go = || {
+        let mut pl = PathPlanner::new(square_config(), p(&[0.0, 0.0])).unwrap();
+        three_lines(&mut pl, Join::BlendingHigh);
+        let mut events = Vec::new();
+        let mut states = Vec::new();
+        for i in 0..3000 {
+            if i == 200 {
+                pl.set_override(1.7);
+            }
+            if i == 400 {
+                pl.halt(None);
+            }
+            if i == 600 {
+                pl.resume();
+            }
+            states.push(*pl.step(&mut events));
+        }
+        (states, events)
+    };
+    assert_eq!(go(), go());
+}
+
+/// PLCopen Part 4 buffer modes at a collinear junction between a slow (10) and a fast (50)
+/// motion: the junction velocity is the lower, the first's, the second's or the higher.
+#[test]
+fn buffer_modes_set_the_junction_velocity() {
+    let cfg = PlannerConfig::uniform(1, axis(100.0, 1000.0, f64::INFINITY), 1e-3);
+    for (join, slow_first, expected) in [
+        (Join::BlendingLow, true, 10.0),
+        (Join::BlendingPrevious, true, 10.0),
+        (Join::BlendingNext, true, 50.0),
+        (Join::BlendingHigh, true, 50.0),
+        (Join::BlendingPrevious, false, 50.0),
+        (Join::BlendingNext, false, 10.0),
+        (Join::Buffered, true, 0.0),
+    ] {
+        let (v1, v2) = if slow_first {
+            (10.0, 50.0)
+        } else {
+            (50.0, 10.0)
+        };
+        let mut pl = PathPlanner::new(cfg.clone(), p(&[0.0])).unwrap();
+        let m1 = motion(
+            line(p(&[0.0]), p(&[20.0]), 1),
+            limits(v1, 1000.0, f64::INFINITY),
+            Join::Buffered,
+            Transition::None,
+            1,
+        );
+        let m2 = motion(
+            line(p(&[20.0]), p(&[40.0]), 1),
+            limits(v2, 1000.0, f64::INFINITY),
+            join,
+            Transition::None,
+            2,
+        );
+        pl.push_motion(m1).unwrap();
+        pl.push_motion(m2).unwrap();
+        let (states, _) = run(&mut pl, 100_000);
+        assert_eq!(states.last().unwrap().position, p(&[40.0]));
+        // The velocity as the path passes x = 20 (interpolated between ticks).
+        let i = states.iter().position(|s| s.position[0] >= 20.0).unwrap();
+        let (a, b) = (&states[i - 1], &states[i]);
+        let f = (20.0 - a.position[0]) / (b.position[0] - a.position[0]);
+        let at_junction = a.path_velocity + f * (b.path_velocity - a.path_velocity);
+        assert!(
+            (at_junction - expected).abs() <= 1000.0 * 1e-3 + 1e-9,
+            "{join:?} {slow_first}: {at_junction}"
+        );
+        // Each motion runs at its own velocity in its middle (x = 10 and x = 30).
+        for (x, v) in [(10.0, v1), (30.0, v2)] {
+            let s = states.iter().find(|s| s.position[0] >= x).unwrap();
+            assert!(
+                (s.path_velocity - v).abs() < 1e-9,
+                "{join:?} at {x}: {}",
+                s.path_velocity
+            );
+        }
+        let pk = peaks(&states, &cfg);
+        assert!(pk.a_fd <= 1.0 && pk.v_fd <= 1.0);
+    }
+}
+
+/// HIMC TV 55 (digest 004 §6.4): a motion blends only if the next is queued before it ends.
+/// Pushed after the corner arc would have begun, the corner is passed on the corner rule
+/// (no arc: the path goes through the programmed corner); pushed after the end, the next
+/// motion starts from rest.
+#[test]
+fn a_motion_pushed_too_late_for_its_corner_goes_through_the_corner() {
+    let cfg = square_config();
+    for late_at in [9.5, 10.0] {
+        let mut pl = PathPlanner::new(cfg.clone(), p(&[0.0, 0.0])).unwrap();
+        let a = motion(
+            line(p(&[0.0, 0.0]), p(&[10.0, 0.0]), 2),
+            limits(50.0, 500.0, f64::INFINITY),
+            Join::Buffered,
+            Transition::None,
+            1,
+        );
+        pl.push_motion(a).unwrap();
+        let mut events = Vec::new();
+        let mut states = vec![*pl.state()];
+        while pl.state().position[0] < late_at && !pl.is_idle() {
+            states.push(*pl.step(&mut events));
+        }
+        let b = motion(
+            line(p(&[10.0, 0.0]), p(&[10.0, 10.0]), 2),
+            limits(50.0, 500.0, f64::INFINITY),
+            Join::BlendingHigh,
+            Transition::CornerDistance(2.0),
+            2,
+        );
+        pl.push_motion(b).unwrap();
+        let (rest, _) = run(&mut pl, 100_000);
+        states.extend_from_slice(&rest[1..]);
+        assert_eq!(states.last().unwrap().position, p(&[10.0, 10.0]));
+        let pts = [p(&[0.0, 0.0]), p(&[10.0, 0.0]), p(&[10.0, 10.0])];
+        for s in &states {
+            assert!(
+                distance_to_polyline(&s.position, &pts) < 1e-9,
+                "{late_at}: {:?}",
+                s.position
+            );
+        }
+    }
+}
+
+/// A halt with a low deceleration brakes across several short motions, on the path.
+#[test]
+fn a_halt_brakes_across_motion_ends_and_resume_goes_on() {
+    let cfg = square_config();
+    let mut pl = PathPlanner::new(cfg.clone(), p(&[0.0, 0.0])).unwrap();
+    for i in 0..40 {
+        let (x0, x1) = (i as f64, i as f64 + 1.0);
+        let m = motion(
+            line(p(&[x0, 0.5 * x0]), p(&[x1, 0.5 * x1]), 2),
+            limits(50.0, 1000.0, f64::INFINITY),
+            Join::BlendingLow,
+            Transition::None,
+            i,
+        );
+        pl.push_motion(m).unwrap();
+    }
+    let mut events = Vec::new();
+    let mut states = vec![*pl.state()];
+    for _ in 0..200 {
+        states.push(*pl.step(&mut events));
+    }
+    let v0 = pl.state().path_velocity;
+    let done_before = pl.state().completed;
+    assert!(v0 > 40.0);
+    pl.halt(Some(100.0));
+    while !events.contains(&PathEvent::AtRest) {
+        states.push(*pl.step(&mut events));
+    }
+    // v²/(2·d) = 12.5 mm at 50 mm/s: about 12 motions of 1.1 mm.
+    let crossed = pl.state().completed - done_before;
+    assert!(crossed >= 8, "{crossed}");
+    assert!(pl.state().halted);
+    for w in states.windows(2).skip(201) {
+        assert!(w[1].path_velocity <= w[0].path_velocity + 1e-9);
+        assert!((w[1].path_velocity - w[0].path_velocity).abs() <= 100.0 * 1e-3 + 1e-9);
+    }
+    pl.resume();
+    let (rest, _) = run(&mut pl, 100_000);
+    states.extend_from_slice(&rest[1..]);
+    assert_eq!(states.last().unwrap().position, p(&[40.0, 20.0]));
+    assert_eq!(states.last().unwrap().completed, 40);
+    let pk = peaks(&states, &cfg);
+    assert!(pk.a_fd <= 1.0 && pk.v_fd <= 1.0);
+}

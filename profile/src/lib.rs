@@ -190,6 +190,37 @@ impl Profile {
         limits: &Limits,
         options: &Options,
     ) -> Result<Profile, PlanError> {
+        Profile::plan_with(start, goal, limits, options, false)
+    }
+
+    /// Plan to arrive at `target` moving *forward* (from `start.p` toward `target`) at
+    /// `end_velocity`, even when the start is too fast to stop before the target: where
+    /// [`Profile::plan`] would approach from the far side (its end velocity points the way of
+    /// the final approach), this passes the target without turning back. For the path planner
+    /// (issue 11), whose motions end at a junction velocity and may be shorter than the
+    /// braking distance. The caller checks that `end_velocity` can be reached within the
+    /// distance; if it cannot, the profile passes the target, comes back and arrives moving
+    /// forward.
+    pub fn plan_passing(
+        start: MotionState,
+        target: f64,
+        end_velocity: f64,
+        limits: &Limits,
+    ) -> Result<Profile, PlanError> {
+        let goal = Goal::Position {
+            target,
+            end_velocity,
+        };
+        Profile::plan_with(start, goal, limits, &Options::default(), true)
+    }
+
+    fn plan_with(
+        start: MotionState,
+        goal: Goal,
+        limits: &Limits,
+        options: &Options,
+        forward: bool,
+    ) -> Result<Profile, PlanError> {
         validate(start, goal, limits, options)?;
         let scale = Scale::new(limits)?;
         let lim = scale.lim;
@@ -222,7 +253,7 @@ impl Profile {
                 }
                 let e = (end_velocity / scale.v).min(1.0);
                 let jump = options.overshoot == Overshoot::JumpToZeroAtTarget;
-                plan::position(v0, a0, d, e, &lim, jump, &mut plan);
+                plan::position(v0, a0, d, e, &lim, jump, forward, &mut plan);
                 Some(target)
             }
             Goal::Velocity { target } => {

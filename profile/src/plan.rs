@@ -108,6 +108,7 @@ pub(crate) fn velocity(v0: f64, a0: f64, target: f64, lim: &Lim, out: &mut Plan)
 /// Position goal at distance `d`, arriving with speed `e ≥ 0` in the direction of the final
 /// approach. With `jump_to_zero`, a target that braking would pass ends the plan where the
 /// braking profile reaches it (HMC §2.3.1).
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn position(
     v0: f64,
     a0: f64,
@@ -115,14 +116,20 @@ pub(crate) fn position(
     e: f64,
     lim: &Lim,
     jump_to_zero: bool,
+    forward: bool,
     out: &mut Plan,
 ) {
     out.clear();
     let brake = change(v0, a0, 0.0, lim);
     let d_brake = brake.distance();
     // The final approach comes from the side of the stopping point: the frame `sigma` makes
-    // the target lie ahead of it.
-    let below = d < d_brake || (d == d_brake && lim.v_stop(v0, a0) < 0.0);
+    // the target lie ahead of it. `forward` (Profile::plan_passing): from the start's side
+    // whenever the end velocity is not 0.
+    let below = if forward && e != 0.0 {
+        d < 0.0
+    } else {
+        d < d_brake || (d == d_brake && lim.v_stop(v0, a0) < 0.0)
+    };
     let sigma = if below { -1.0 } else { 1.0 };
     if jump_to_zero && sigma * d < 0.0 && sigma * d_brake < sigma * d {
         // Braking passes the target (it lies between here and the stopping point).

@@ -1038,3 +1038,43 @@ fn sample_from_matches_sample_bit_for_bit() {
         }
     }
 }
+
+#[test]
+fn plan_passing_passes_a_target_nearer_than_the_braking_distance_without_turning_back() {
+    let limits = Limits {
+        velocity: 69.54,
+        acceleration: 1237.0,
+        deceleration: 1237.0,
+        jerk: f64::INFINITY,
+    };
+    let start = MotionState {
+        p: 0.0,
+        v: 69.54,
+        a: 0.0,
+    };
+    // Braking from 69.54 takes 1.95: `plan` approaches 1.8 from beyond; `plan_passing` cruises.
+    let back = Profile::plan(
+        start,
+        Goal::Position {
+            target: 1.8,
+            end_velocity: 69.54,
+        },
+        &limits,
+        &Options::default(),
+    )
+    .unwrap();
+    assert!(back.duration() > 0.1);
+    for jerk in [f64::INFINITY, 200_000.0] {
+        let limits = Limits { jerk, ..limits };
+        let p = Profile::plan_passing(start, 1.8, 60.0, &limits).unwrap();
+        assert!(p.duration() < 0.035, "{}", p.duration());
+        let mut t = 0.0;
+        while t < p.duration() {
+            let s = p.sample(t);
+            assert!(s.v > 0.0 && s.p <= 1.8 + 1e-12, "{t}: {s:?}");
+            t += 1e-4;
+        }
+        assert_eq!(p.sample(p.duration()).p, 1.8);
+        assert!((p.arrival_velocity() - 60.0).abs() < 1e-9);
+    }
+}

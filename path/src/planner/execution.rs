@@ -17,10 +17,16 @@ use crate::MAX_AXES;
 /// the step ends early at a junction and the next step goes on.
 pub const MAX_STARTS_PER_STEP: usize = 8;
 
+/// A first stage shorter than this fraction of its motion is not worth planning (it would
+/// only be rounding: the last stage starts where the first ended).
+const STAGE_MIN: f64 = 1e-9;
+
 /// The executing motion's profile and where the path is on it.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Execution {
     profile: Profile,
+    /// Path length along the motion at which the profile ends.
+    target: f64,
     /// Profile time at the end of the step in which it was planned; each later step adds a
     /// period (`lead + n·T`, not a running sum, so long motions do not drift).
     lead: f64,
@@ -33,9 +39,10 @@ pub(super) struct Execution {
 }
 
 impl Execution {
-    fn new(profile: Profile, lead: f64, s: f64, v: f64, a: f64) -> Execution {
+    fn new(profile: Profile, target: f64, lead: f64, s: f64, v: f64, a: f64) -> Execution {
         Execution {
             profile,
+            target,
             lead,
             advances: 0,
             hint: 0,
@@ -65,9 +72,33 @@ fn end_velocity(m: &QueuedMotion, v: f64, a: f64, room: f64) -> Option<f64> {
     Some(lowest_end(v1, room, l.deceleration, l.jerk).max(wanted))
 }
 
+/// A profile that stays at rest at `s` and never ends (a velocity goal of 0): a motion halted
+/// part-way waits on it.
+fn rest_at(s: f64) -> Profile {
+    let limits = Limits {
+        velocity: 1.0,
+        acceleration: 1.0,
+        deceleration: 1.0,
+        jerk: f64::INFINITY,
+    };
+    let start = MotionState {
+        p: s,
+        v: 0.0,
+        a: 0.0,
+    };
+    Profile::plan(
+        start,
+        Goal::Velocity { target: 0.0 },
+        &limits,
+        &Options::default(),
+    )
+    .unwrap_or(Profile::hold(s))
+}
+
 impl PathPlanner {
-    /// The profile for the front motion from path state `(s, v, a)` on it.
-    fn plan_front(&self, s: f64, v: f64, a: f64) -> Option<Profile> {
+    /// The profile for the front motion from path state `(s, v, a)` on it, and the path
+    /// length at which it ends (the motion's end, or where its last stage begins).
+    fn plan_front(&self, s: f64, v: f64, a: f64) -> Option<(Profile, f64)> {
         let Some(Entry::Motion(m)) = self.queue.front() else {
             return None;
         };
@@ -81,7 +112,7 @@ impl PathPlanner {
                 .deceleration
                 .map_or(l.deceleration, |d| d.min(l.deceleration));
             if v <= 0.0 && a <= 0.0 {
-                return Some(Profile::hold(s));
+                return Some((rest_at(s), m.length));
             }
             let (v1, s1) = settle(v, a, l.jerk);
             let room = m.length - s - s1;
@@ -94,7 +125,8 @@ impl PathPlanner {
                 };
                 if ramp_distance(v1, 0.0, dec, l.jerk) <= room {
                     let goal = Goal::Velocity { target: 0.0 };
-                    return Profile::plan(start, goal, &limits, &Options::default()).ok();
+                    let p = Profile::plan(start, goal, &limits, &Options::default()).ok()?;
+                    return Some((p, m.length));
                 }
                 let w = lowest_end(v1, room, dec, l.jerk);
                 if w <= m.end_phys {
@@ -102,18 +134,36 @@ impl PathPlanner {
                         velocity: v.max(w).max(f64::MIN_POSITIVE),
                         ..limits
                     };
-                    let goal = Goal::Position {
-                        target: m.length,
-                        end_velocity: w,
-                    };
-                    return Profile::plan(start, goal, &limits, &Options::default()).ok();
+                    let p = Profile::plan_passing(start, m.length, w, &limits).ok()?;
+                    return Some((p, m.length));
                 }
             }
         }
         let w = end_velocity(m, v, a, m.length - s)?;
+        if self.halt.is_none() && w > cruise && cruise > 0.0 {
+            // BlendingNext/High into a faster motion (PLCopen Part 4): run at this motion's
+            // own velocity, then speed up to the junction velocity at the end — two stages.
+            let split = m.length - ramp_distance(cruise, w, l.acceleration, l.jerk) * (1.0 + 1e-9);
+            let (v1, s1) = settle(v, a, l.jerk);
+            let room = split - s - s1;
+            let reachable = split - s > STAGE_MIN * m.length
+                && room >= 0.0
+                && (v1 <= cruise || ramp_distance(v1, cruise, l.deceleration, l.jerk) <= room)
+                && reach(v1, room, l.acceleration, l.jerk) >= cruise;
+            if reachable {
+                let limits = Limits {
+                    velocity: cruise,
+                    acceleration: l.acceleration,
+                    deceleration: l.deceleration,
+                    jerk: l.jerk,
+                };
+                let p = Profile::plan_passing(start, split, cruise, &limits).ok()?;
+                return Some((p, split));
+            }
+        }
         let velocity = cruise.max(w);
         if velocity.is_nan() || velocity <= 0.0 {
-            return Some(Profile::hold(s));
+            return Some((rest_at(s), m.length));
         }
         let limits = Limits {
             velocity: if self.halt.is_some() {
@@ -125,22 +175,20 @@ impl PathPlanner {
             deceleration: l.deceleration,
             jerk: l.jerk,
         };
-        let goal = Goal::Position {
-            target: m.length,
-            end_velocity: w,
-        };
-        Profile::plan(start, goal, &limits, &Options::default()).ok()
+        let p = Profile::plan_passing(start, m.length, w, &limits).ok()?;
+        Some((p, m.length))
     }
 
     /// Advance one period (see [`PathPlanner::step`]).
     pub(super) fn advance(&mut self, events: &mut Vec<PathEvent>) {
         let period = self.config.period;
         self.starts_last_step = 0;
+        self.lookahead_visits = 0;
         if self.replan_pending {
             match self.exec {
                 Some(e) => {
-                    if let Some(profile) = self.plan_front(e.s, e.v, e.a) {
-                        self.exec = Some(Execution::new(profile, period, e.s, e.v, e.a));
+                    if let Some((profile, target)) = self.plan_front(e.s, e.v, e.a) {
+                        self.exec = Some(Execution::new(profile, target, period, e.s, e.v, e.a));
                         self.replan_pending = false;
                     }
                 }
@@ -165,13 +213,31 @@ impl PathPlanner {
             if !profile.is_velocity_goal() && t >= profile.duration() {
                 dt = t - profile.duration();
                 let arrival = profile.arrival_velocity().max(0.0);
-                self.state.travelled += length - exec.s;
+                let target = exec.target;
+                self.state.travelled += target - exec.s;
+                if target < length {
+                    if self.starts_last_step >= MAX_STARTS_PER_STEP {
+                        // The per-step bound: wait at the stage's end, plan next step.
+                        exec.s = target;
+                        exec.v = arrival;
+                        exec.a = 0.0;
+                        self.replan_pending = true;
+                        break;
+                    }
+                    // The first stage of a two-stage motion ended: plan the last one.
+                    self.starts_last_step += 1;
+                    let (profile, end) = self
+                        .plan_front(target, arrival, 0.0)
+                        .unwrap_or((rest_at(target), length));
+                    self.exec = Some(Execution::new(profile, end, dt, target, arrival, 0.0));
+                    continue;
+                }
                 self.complete_front(events, arrival);
                 continue;
             }
             let sample = profile.sample_from(t, &mut exec.hint);
             // The path never goes back (a profile that would is a planning bug: hold the line).
-            let s = sample.p.clamp(exec.s, length);
+            let s = sample.p.clamp(exec.s, exec.target.min(length));
             self.state.travelled += s - exec.s;
             exec.s = s;
             exec.v = sample.v.max(0.0);
@@ -208,11 +274,16 @@ impl PathPlanner {
                         continue;
                     }
                     let v = self.carry;
-                    let profile = self
-                        .plan_front(0.0, v, 0.0)
-                        // Unreachable with validated limits; rather a stop than a jump.
-                        .unwrap_or(Profile::hold(0.0));
-                    self.exec = Some(Execution::new(profile, dt, 0.0, v, 0.0));
+                    let (profile, target) = match self.plan_front(0.0, v, 0.0) {
+                        Some(planned) => planned,
+                        None => {
+                            // Unreachable with validated limits; rather a stop than a jump,
+                            // and try again next step.
+                            self.replan_pending = true;
+                            (rest_at(0.0), m.length)
+                        }
+                    };
+                    self.exec = Some(Execution::new(profile, target, dt, 0.0, v, 0.0));
                     return true;
                 }
             };
@@ -264,17 +335,10 @@ impl PathPlanner {
         self.pop_front();
         self.exec = None;
         self.carry = arrival;
-        // A motion has entered the window: extend the look-ahead to it.
-        if self.motion_count() >= self.config.lookahead {
+        // A motion may have entered the window: extend the look-ahead to it.
+        if self.queue.len() >= self.config.lookahead {
             self.lookahead(self.queue.len());
         }
-    }
-
-    pub(super) fn motion_count(&self) -> usize {
-        self.queue
-            .iter()
-            .filter(|e| matches!(e, Entry::Motion(_)))
-            .count()
     }
 
     /// Write the path state from the executing motion (or the last point reached).

@@ -52,6 +52,7 @@ impl PathPlanner {
             let Some(entry) = self.queue.get_mut(i) else {
                 continue;
             };
+            self.lookahead_visits += 1;
             let m = match entry {
                 Entry::Marker { kind, .. } => {
                     hold_between |= *kind == MarkerKind::Hold;

@@ -1,18 +1,26 @@
 //! [`PathPlanner`]: moves a point along a queue of segments, one servo period per
 //! [`PathPlanner::step`], under each segment's path limits and every axis's own limits, with
-//! look-ahead over the queued segments and blending at their junctions.
+//! look-ahead over the queued segments and blending at their junctions (issue 11 items 3–4).
 //!
 //! Inputs, in any order between steps: [`PathPlanner::push_motion`] and
 //! [`PathPlanner::push_marker`] (append to the queue), [`PathPlanner::set_override`],
 //! [`PathPlanner::halt`] / [`PathPlanner::resume`], [`PathPlanner::stop`],
-//! [`PathPlanner::abort`], [`PathPlanner::release_hold`], [`PathPlanner::reset_position`].
+//! [`PathPlanner::abort`], [`PathPlanner::release_hold`], [`PathPlanner::reset_position`],
+//! [`PathPlanner::set_axis_limits`].
 //! Output: [`PathPlanner::step`] advances one period, returns the new [`PathState`] and appends
 //! what happened during the period ([`PathEvent`]s, in order) to the caller's vector.
 //! Queries: [`PathPlanner::state`], [`PathPlanner::queued`], [`PathPlanner::queue_end`],
-//! [`PathPlanner::is_idle`], [`PathPlanner::remaining_length`].
+//! [`PathPlanner::is_idle`], [`PathPlanner::remaining_length`], and for benchmarks
+//! [`PathPlanner::starts_last_step`] and [`PathPlanner::lookahead_visits`].
 //!
-//! Work per step is closed form and bounded (no iterative solve, LinuxCNC PR #4154); the
-//! look-ahead runs when a segment is pushed, not per tick.
+//! How (docs/decisions.md, "Path planner (issue 11)"): each motion runs a 1-D
+//! `profile::Profile` along its path length (`execution`), under path limits derived from the
+//! axes (`limits`); its end velocity comes from a backward look-ahead pass (`lookahead`) over
+//! junction velocities (`junction`: PLCopen Part 4 buffer modes, the corner rule) and corner
+//! arcs (`blend`), all decided when a motion is pushed (`push`). Work per step is closed form
+//! and bounded: at most one re-plan, and per motion started (≤ [`MAX_STARTS_PER_STEP`]) one
+//! profile plan and at most one look-ahead pass over the window — no iterative solve
+//! (LinuxCNC PR #4154). No allocation per step once the queue has grown.
 
 use std::collections::VecDeque;
 
@@ -190,7 +198,7 @@ struct Halt {
 }
 
 /// See the module doc.
-#[derive(Debug)]
+#[derive(Clone, Debug)]
 pub struct PathPlanner {
     config: PlannerConfig,
     state: PathState,
@@ -211,6 +219,8 @@ pub struct PathPlanner {
     at_rest_reported: bool,
     hold_released: bool,
     starts_last_step: usize,
+    /// Queue entries the look-ahead visited since the last step began (its work).
+    lookahead_visits: usize,
 }
 
 impl PathPlanner {
@@ -260,6 +270,7 @@ impl PathPlanner {
             at_rest_reported: false,
             hold_released: false,
             starts_last_step: 0,
+            lookahead_visits: 0,
         })
     }
 
@@ -473,5 +484,11 @@ impl PathPlanner {
     /// Motions started during the last step (bounded by [`MAX_STARTS_PER_STEP`]).
     pub fn starts_last_step(&self) -> usize {
         self.starts_last_step
+    }
+
+    /// Queue entries the look-ahead visited since the last step began (pushes after it
+    /// included): the planning work, deterministic, for benchmarks and tests.
+    pub fn lookahead_visits(&self) -> usize {
+        self.lookahead_visits
     }
 }

@@ -113,3 +113,35 @@ pub fn peaks(states: &[PathState], config: &PlannerConfig) -> Peaks {
     }
     pk
 }
+
+/// Distance from `q` to the polyline through `pts` (first two axes … all axes).
+pub fn distance_to_polyline(q: &Point, pts: &[Point]) -> f64 {
+    let mut best = f64::INFINITY;
+    for w in pts.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        let mut ab = [0.0; MAX_AXES];
+        let mut aq = [0.0; MAX_AXES];
+        for k in 0..MAX_AXES {
+            ab[k] = b[k] - a[k];
+            aq[k] = q[k] - a[k];
+        }
+        let len2: f64 = ab.iter().map(|x| x * x).sum();
+        let t = if len2 > 0.0 {
+            (ab.iter().zip(&aq).map(|(x, y)| x * y).sum::<f64>() / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let d: f64 = (0..MAX_AXES)
+            .map(|k| (aq[k] - t * ab[k]).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        best = best.min(d);
+    }
+    best
+}
+
+/// Rotate the planar vector (x, y) by `angle`.
+pub fn rotate(x: f64, y: f64, angle: f64) -> (f64, f64) {
+    let (s, c) = angle.sin_cos();
+    (c * x - s * y, s * x + c * y)
+}

@@ -1,0 +1,271 @@
+//! Property tests of the planner (issue 11 tests): thousands of random paths of lines and arcs
+//! under random per-axis limits, joins and transitions.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+mod common;
+
+use common::*;
+use path::geometry::{Arc, Segment, Turn};
+use path::planner::{Join, PathPlanner, PathState, PlannerConfig, Transition};
+use path::Point;
+use proptest::prelude::*;
+
+/// One random piece of path: a line by its displacement, or an arc in the (0, 1) plane by
+/// its centre offset from the start, its sweep and a rise of the other axes.
+#[derive(Clone, Debug)]
+enum Piece {
+    Line([f64; 3]),
+    Arc {
+        center: (f64, f64),
+        sweep: f64,
+        ccw: bool,
+        rise: f64,
+    },
+}
+
+fn piece(arcs: bool) -> impl Strategy<Value = Piece> {
+    let line = prop::array::uniform3(-20.0..20.0f64).prop_map(Piece::Line);
+    let arc = (
+        (-8.0..8.0f64, -8.0..8.0f64),
+        0.05..6.0f64,
+        any::<bool>(),
+        -3.0..3.0f64,
+    )
+        .prop_filter("radius", |(c, ..)| c.0.hypot(c.1) > 0.2)
+        .prop_map(|(center, sweep, ccw, rise)| Piece::Arc {
+            center,
+            sweep,
+            ccw,
+            rise,
+        });
+    if arcs {
+        prop_oneof![2 => line, 1 => arc].boxed()
+    } else {
+        line.boxed()
+    }
+}
+
+fn join() -> impl Strategy<Value = Join> {
+    prop_oneof![
+        Just(Join::Buffered),
+        Just(Join::BlendingLow),
+        Just(Join::BlendingPrevious),
+        Just(Join::BlendingNext),
+        Just(Join::BlendingHigh),
+    ]
+}
+
+fn transition() -> impl Strategy<Value = Transition> {
+    prop_oneof![
+        Just(Transition::None),
+        (0.0..5.0f64).prop_map(Transition::CornerDistance),
+        (0.0..1.0f64).prop_map(Transition::CornerDeviation),
+    ]
+}
+
+#[derive(Clone, Debug)]
+struct Case {
+    dims: usize,
+    axes: Vec<(f64, f64, f64)>,
+    period: f64,
+    pieces: Vec<(Piece, f64, f64, Join, Transition)>,
+}
+
+fn case(arcs: bool, jerk: bool, joins: bool) -> impl Strategy<Value = Case> {
+    let j: BoxedStrategy<f64> = if jerk {
+        (2e4..2e6f64).boxed()
+    } else {
+        Just(f64::INFINITY).boxed()
+    };
+    (
+        2..=3usize,
+        prop::collection::vec((20.0..500.0f64, 200.0..10_000.0f64, j), 3),
+        prop_oneof![Just(1e-3), Just(5e-4), Just(2e-3)],
+        prop::collection::vec(
+            (
+                piece(arcs),
+                10.0..800.0f64,
+                200.0..20_000.0f64,
+                if joins {
+                    join().boxed()
+                } else {
+                    Just(Join::Buffered).boxed()
+                },
+                transition(),
+            ),
+            1..8,
+        ),
+    )
+        .prop_map(|(dims, axes, period, pieces)| Case {
+            dims,
+            axes,
+            period,
+            pieces,
+        })
+}
+
+struct Outcome {
+    config: PlannerConfig,
+    states: Vec<PathState>,
+    corners: Vec<Point>,
+    end: Point,
+    tolerance: f64,
+}
+
+fn simulate(c: &Case, jerk: bool) -> Outcome {
+    let mut config = PlannerConfig::uniform(c.dims, axis(1.0, 1.0, f64::INFINITY), c.period);
+    for (k, &(v, a, j)) in c.axes.iter().enumerate() {
+        config.axes[k] = axis(v, a, j);
+    }
+    let mut pl = PathPlanner::new(config.clone(), p(&[0.0; 3])).unwrap();
+    let mut at = p(&[0.0; 3]);
+    let mut corners = vec![at];
+    let mut tolerance: f64 = 0.0;
+    for (i, (pc, v, a, jn, tr)) in c.pieces.iter().enumerate() {
+        let mut to = at;
+        let seg = match pc {
+            Piece::Line(d) => {
+                for k in 0..c.dims {
+                    to[k] += d[k];
+                }
+                line(at, to, c.dims)
+            }
+            Piece::Arc {
+                center,
+                sweep,
+                ccw,
+                rise,
+            } => {
+                let mut ctr = at;
+                ctr[0] += center.0;
+                ctr[1] += center.1;
+                let angle = if *ccw { *sweep } else { -*sweep };
+                let (x, y) = rotate(at[0] - ctr[0], at[1] - ctr[1], angle);
+                to[0] = ctr[0] + x;
+                to[1] = ctr[1] + y;
+                if c.dims == 3 {
+                    to[2] += rise;
+                }
+                let turn = if *ccw { Turn::Ccw } else { Turn::Cw };
+                Segment::Arc(Arc::from_center(at, to, ctr, (0, 1), turn, 0, c.dims).unwrap())
+            }
+        };
+        let j = if jerk { 1e5 } else { f64::INFINITY };
+        let limits = path::planner::PathLimits {
+            velocity: *v,
+            acceleration: *a,
+            deceleration: *a,
+            jerk: j,
+        };
+        if *jn != Join::Buffered {
+            tolerance = tolerance.max(match tr {
+                Transition::None => 0.0,
+                Transition::CornerDistance(d) => *d,
+                Transition::CornerDeviation(e) => *e,
+            });
+        }
+        pl.push_motion(motion(seg, limits, *jn, *tr, i as u64))
+            .unwrap();
+        at = to;
+        corners.push(at);
+    }
+    let (states, _) = run(&mut pl, 2_000_000);
+    assert!(pl.is_idle(), "not done");
+    Outcome {
+        config,
+        states,
+        corners,
+        end: at,
+        tolerance,
+    }
+}
+
+/// Check every axis's velocity and acceleration (finite differences and reported), the path
+/// speed ≥ 0 and the exact end. Windows across a junction with a direction step (the corner
+/// rule: a velocity step that fits in one period of every axis's acceleration) may reach
+/// twice the acceleration: A_k from the continuous part plus A_k·T/T from the step.
+fn check(o: &Outcome) {
+    let cfg = &o.config;
+    let t = cfg.period;
+    assert_eq!(o.states.last().unwrap().position, o.end);
+    for k in 0..cfg.dims {
+        let lim = cfg.axes[k];
+        let scale = o
+            .states
+            .iter()
+            .map(|s| s.position[k].abs())
+            .fold(1.0, f64::max);
+        let slack_v = 2.0 * f64::EPSILON * scale / t;
+        let slack_a = 4.0 * f64::EPSILON * scale / (t * t);
+        for w in o.states.windows(2) {
+            let v = (w[1].position[k] - w[0].position[k]) / t;
+            assert!(
+                v.abs() <= lim.velocity * (1.0 + 1e-9) + slack_v,
+                "axis {k}: v {v} > {}",
+                lim.velocity
+            );
+            assert!(w[1].velocity[k].abs() <= lim.velocity * (1.0 + 1e-9));
+            assert!(
+                w[1].acceleration[k].abs() <= lim.acceleration * (1.0 + 1e-9),
+                "axis {k}: reported a {} > {}",
+                w[1].acceleration[k],
+                lim.acceleration
+            );
+            assert!(w[1].path_velocity >= 0.0);
+        }
+        for w in o.states.windows(3) {
+            let a = (w[2].position[k] - 2.0 * w[1].position[k] + w[0].position[k]) / (t * t);
+            let junction = w[0].completed != w[2].completed || w[0].tag != w[2].tag;
+            let bound =
+                if junction { 2.0 } else { 1.0 } * lim.acceleration * (1.0 + 1e-9) + slack_a;
+            assert!(
+                a.abs() <= bound,
+                "axis {k}: FD a {a} > {} (junction {junction})",
+                lim.acceleration
+            );
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 1000, ..ProptestConfig::default() })]
+
+    #[test]
+    fn random_paths_of_lines_and_arcs_keep_every_axis_within_its_limits(c in case(true, false, true)) {
+        let o = simulate(&c, false);
+        check(&o);
+    }
+
+    #[test]
+    fn random_line_paths_stay_within_the_corner_tolerance(c in case(false, false, true)) {
+        let o = simulate(&c, false);
+        check(&o);
+        let scale = o.corners.iter().flat_map(|p| p.iter()).fold(1.0f64, |m, x| m.max(x.abs()));
+        for s in &o.states {
+            let d = distance_to_polyline(&s.position, &o.corners);
+            prop_assert!(d <= o.tolerance + 1e-12 * scale, "{d} > {}", o.tolerance);
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 400, ..ProptestConfig::default() })]
+
+    /// S-curves on buffered line paths: every axis's jerk (third finite differences) within
+    /// its limit too.
+    #[test]
+    fn random_buffered_line_paths_with_s_curves_keep_the_jerk_within_the_limits(c in case(false, true, false)) {
+        let o = simulate(&c, true);
+        check(&o);
+        let t = o.config.period;
+        for k in 0..o.config.dims {
+            let lim = o.config.axes[k];
+            let scale = o.states.iter().map(|s| s.position[k].abs()).fold(1.0, f64::max);
+            let slack = 8.0 * f64::EPSILON * scale / (t * t * t);
+            for w in o.states.windows(4) {
+                let j = (w[3].position[k] - 3.0 * w[2].position[k] + 3.0 * w[1].position[k] - w[0].position[k]) / (t * t * t);
+                prop_assert!(j.abs() <= lim.jerk * (1.0 + 1e-9) + slack, "axis {k}: j {j} > {}", lim.jerk);
+            }
+        }
+    }
+}
