@@ -2,7 +2,9 @@
 //!
 //! - [`geometry`]: segments (lines, circular arcs and helices, curves through points) with
 //!   their length, and position, unit tangent and curvature vector at any path length `s`;
-//!   corner blends; frames and transforms.
+//!   corner blends.
+//! - [`frames`]: rigid transforms between program and machine coordinates (HIMC's frame
+//!   chain with roll-pitch-yaw poses, NMC's origin offset and rotary transforms).
 //! - [`planner`]: [`planner::PathPlanner`], which moves a point along a queue of segments one
 //!   servo period per call, under the segments' path limits and every axis's own limits, with
 //!   look-ahead and blending.
@@ -11,6 +13,7 @@
 //! queue has grown. The engine (`axes`) owns one planner per axis group and feeds its axes
 //! from it.
 
+pub mod frames;
 pub mod geometry;
 pub mod planner;
 

@@ -1,20 +1,14 @@
 //! Arc constructors against the manuals' vectors (NMC TV 43–46, CPU 226H TV-31/32, HIMC TV
 //! 42–45 and the Circle2D table, HMC TV 14/19) and their invariants.
 
+mod common;
+
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 use path::geometry::{norm, sub, Arc, GeometryError, Segment, Turn};
-use path::{Point, MAX_AXES};
+use path::Point;
 
-fn p(c: &[f64]) -> Point {
-    let mut out = [0.0; MAX_AXES];
-    out[..c.len()].copy_from_slice(c);
-    out
-}
-
-fn close(a: &Point, b: &Point, tol: f64) -> bool {
-    norm(&sub(a, b)) <= tol
-}
+use common::{close, p};
 
 /// The point of the arc nearest to `q`, by sampling (for "passes through" checks).
 fn min_distance(seg: &Segment, q: &Point) -> f64 {
@@ -451,12 +445,12 @@ fn turn_names() {
 
 /// HIMC Circle2D from (0,0) about (0,0)+… for θ = 210°: start (10,0) about the origin, end at
 /// 210°.
-fn circle2d(turns: i32) -> Arc {
+fn circle2d(turns: i32) -> Result<Arc, GeometryError> {
     let end = p(&[
         10.0 * 210f64.to_radians().cos(),
         10.0 * 210f64.to_radians().sin(),
     ]);
-    Arc::from_center_turns(p(&[10.0, 0.0]), end, p(&[0.0, 0.0]), (0, 1), turns, 2).unwrap()
+    Arc::from_center_turns(p(&[10.0, 0.0]), end, p(&[0.0, 0.0]), (0, 1), turns, 2)
 }
 
 #[test]
@@ -469,7 +463,7 @@ fn himc_circle2d_turn_table() {
         (1, 210.0),
         (2, 570.0),
     ] {
-        let a = circle2d(turns);
+        let a = circle2d(turns).unwrap();
         let signed = a.sweep().to_degrees() * if a.sample(0.1).p[1] > 0.0 { 1.0 } else { -1.0 };
         assert!((signed - degrees).abs() < 1e-9, "turns {turns}: {signed}");
         assert!((a.length() - 10.0 * a.sweep()).abs() < 1e-9);
@@ -626,7 +620,7 @@ fn hmc_tv19_helical_thread() {
         let mut end = start;
         end[2] += 500.0;
         let a = Arc::helix_turns(start, end, p(&[50.0, 0.0, 0.0]), (0, 1), Turn::Cw, 1, 3).unwrap();
-        xy_length += a.radius() * a.sweep();
+        xy_length += a.circle_length();
         start = a.end();
     }
     assert!((xy_length - 2.0 * 314.159).abs() < 1e-2);

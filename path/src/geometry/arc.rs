@@ -9,17 +9,24 @@
 
 use std::f64::consts::TAU;
 
-use super::arc_center::{in_plane_of, normal_basis, plane_basis, sweep_for};
+use super::arc_center::{in_plane_of, normal_basis, sweep_for};
 use super::{
-    add, check_dims, check_finite, check_number, check_plane, dot, norm, scale, sub, GeometryError,
-    PathPoint, POINT_TOLERANCE,
+    add, check_number, check_planar, dot, norm, scale, sub, GeometryError, PathPoint,
+    POINT_TOLERANCE,
 };
+use crate::frames::Transform;
 use crate::{Point, MAX_AXES};
 
 /// The smallest sweep an arc may be given explicitly (radians): below it the arc is a point
 /// turning in place, which HIMC refuses too (`eERR_CRD_CMD_CIRC_ANGLE_SMALL`, digest 004 §5).
 pub const MIN_SWEEP: f64 = 1e-12;
 
+/// A circular arc or helix (see the module doc).
+///
+/// Inputs: one constructor (they differ in how the centre, plane and sweep are given; see
+/// [`crate::geometry`]). Outputs, in any order: [`Arc::length`], [`Arc::sample`],
+/// [`Arc::end`] (exactly as programmed), [`Arc::curvature`], [`Arc::max_tangent`];
+/// [`Arc::trimmed`] and [`Arc::transformed`] make new arcs.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Arc {
     center: Point,
@@ -96,21 +103,9 @@ impl Arc {
         extra_turns: u32,
         dims: usize,
     ) -> Result<Arc, GeometryError> {
-        check_dims(dims)?;
-        check_plane(plane, dims)?;
-        for (name, p) in [("start", &start), ("end", &end), ("center", &center)] {
-            check_finite(name, p)?;
-        }
-        let (e1, e2) = plane_basis(plane);
-        Arc::around(
-            start,
-            end,
-            in_plane_of(&start, &center, &e1, &e2),
-            e1,
-            e2,
-            dims,
-            |theta, closed| Ok((turn, sweep_for(turn, extra_turns, theta, closed))),
-        )
+        Arc::around_in_plane(start, end, center, plane, dims, |theta, closed| {
+            Ok((turn, sweep_for(turn, extra_turns, theta, closed)))
+        })
     }
 
     /// The arc from `start` to `end` of radius `|radius|` in the plane `plane`, turning `turn`:
@@ -129,10 +124,7 @@ impl Arc {
         dims: usize,
     ) -> Result<Arc, GeometryError> {
         let (i, j) = plane;
-        check_dims(dims)?;
-        check_plane(plane, dims)?;
-        check_finite("start", &start)?;
-        check_finite("end", &end)?;
+        check_planar(plane, dims, &[("start", &start), ("end", &end)])?;
         check_number("radius", radius)?;
         let (dx, dy) = (end[i] - start[i], end[j] - start[j]);
         let chord = dx.hypot(dy);
@@ -176,10 +168,7 @@ impl Arc {
         dims: usize,
     ) -> Result<Arc, GeometryError> {
         let (i, j) = plane;
-        check_dims(dims)?;
-        check_plane(plane, dims)?;
-        check_finite("start", &start)?;
-        check_finite("center", &center)?;
+        check_planar(plane, dims, &[("start", &start), ("center", &center)])?;
         check_number("angle", angle)?;
         let radius = (start[i] - center[i]).hypot(start[j] - center[j]);
         if radius <= POINT_TOLERANCE {
@@ -326,6 +315,13 @@ impl Arc {
         self.end
     }
 
+    /// The length of the circular part alone, `radius × sweep` (HMC `MoveHelical` modes
+    /// 4/5/7 advance the result axis by this, not by the helix's length: digest 000 §4.3,
+    /// TV 19).
+    pub fn circle_length(&self) -> f64 {
+        self.radius * self.sweep
+    }
+
     /// Norm of the curvature vector (1/radius for a flat arc, less for a helix).
     pub fn curvature(&self) -> f64 {
         if self.length > 0.0 {
@@ -408,6 +404,19 @@ impl Arc {
         };
         let sweep = self.sweep * (s1 - s0) / self.length;
         Arc::from_parts(center, u, v, self.radius, sweep, h, end, self.dims)
+    }
+
+    /// The arc moved by a rigid transform: centre and end moved, the plane's vectors and the
+    /// helix's rise turned; radius, sweep and length unchanged, so the arc stays exact.
+    pub fn transformed(&self, t: &Transform) -> Arc {
+        Arc {
+            center: t.apply(&self.center),
+            u: t.apply_vector(&self.u),
+            v: t.apply_vector(&self.v),
+            h: t.apply_vector(&self.h),
+            end: t.apply(&self.end),
+            ..self.clone()
+        }
     }
 
     /// The in-plane unit vectors (toward the start from the centre; 90° ahead).

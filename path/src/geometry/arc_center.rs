@@ -6,7 +6,7 @@ use std::f64::consts::TAU;
 
 use super::arc::{radius_tolerance, MIN_SWEEP};
 use super::{
-    add, check_axis, check_dims, check_finite, check_number, check_plane, dot, scale, sub, Arc,
+    add, check_axis, check_dims, check_finite, check_number, check_planar, dot, scale, sub, Arc,
     GeometryError, Turn, POINT_TOLERANCE,
 };
 use crate::{Point, MAX_AXES};
@@ -111,6 +111,41 @@ impl Arc {
         Ok(Arc::from_parts(center, u, v, radius, sweep, h, end, dims))
     }
 
+    /// [`Arc::around`] in the axis plane `plane`, after checking the input.
+    pub(crate) fn around_in_plane(
+        start: Point,
+        end: Point,
+        center: Point,
+        plane: (usize, usize),
+        dims: usize,
+        choose: impl FnOnce(f64, bool) -> Result<(Turn, f64), GeometryError>,
+    ) -> Result<Arc, GeometryError> {
+        check_planar(
+            plane,
+            dims,
+            &[("start", &start), ("end", &end), ("center", &center)],
+        )?;
+        let (e1, e2) = plane_basis(plane);
+        let c = in_plane_of(&start, &center, &e1, &e2);
+        Arc::around(start, end, c, e1, e2, dims, choose)
+    }
+
+    /// [`Arc::around`] in the plane ⟂ `normal` through `start` (axes `axes`), after checking
+    /// the input.
+    pub(crate) fn around_normal(
+        start: Point,
+        end: Point,
+        center: Point,
+        normal: [f64; 3],
+        axes: [usize; 3],
+        dims: usize,
+        choose: impl FnOnce(f64, bool) -> Result<(Turn, f64), GeometryError>,
+    ) -> Result<Arc, GeometryError> {
+        let (e1, e2) = normal_basis(&start, &end, &center, normal, axes, dims)?;
+        let c = in_plane_of(&start, &center, &e1, &e2);
+        Arc::around(start, end, c, e1, e2, dims, choose)
+    }
+
     /// HIMC `Circle2D` (digest 004 §2.7, §8.2.17, TV 45): the arc about `center` from `start`
     /// to `end` in `plane`, with the signed `turns` of [`himc_turns_angle`] (≥ 0
     /// counter-clockwise, < 0 clockwise). The other axes move linearly.
@@ -122,14 +157,7 @@ impl Arc {
         turns: i32,
         dims: usize,
     ) -> Result<Arc, GeometryError> {
-        check_dims(dims)?;
-        check_plane(plane, dims)?;
-        for (name, p) in [("start", &start), ("end", &end), ("center", &center)] {
-            check_finite(name, p)?;
-        }
-        let (e1, e2) = plane_basis(plane);
-        let c = in_plane_of(&start, &center, &e1, &e2);
-        Arc::around(start, end, c, e1, e2, dims, |theta, closed| {
+        Arc::around_in_plane(start, end, center, plane, dims, |theta, closed| {
             himc_choice(if closed { 0.0 } else { theta }, turns)
         })
     }
@@ -151,9 +179,7 @@ impl Arc {
         axes: [usize; 3],
         dims: usize,
     ) -> Result<Arc, GeometryError> {
-        let (e1, e2) = normal_basis(&start, &end, &center, normal, axes, dims)?;
-        let c = in_plane_of(&start, &center, &e1, &e2);
-        Arc::around(start, end, c, e1, e2, dims, |theta, closed| {
+        Arc::around_normal(start, end, center, normal, axes, dims, |theta, closed| {
             Ok((turn, sweep_for(turn, extra_turns, theta, closed)))
         })
     }
@@ -190,11 +216,11 @@ impl Arc {
         turn: Turn,
         dims: usize,
     ) -> Result<Arc, GeometryError> {
-        check_dims(dims)?;
-        check_plane(plane, dims)?;
-        for (name, p) in [("start", &start), ("end", &toward), ("center", &center)] {
-            check_finite(name, p)?;
-        }
+        check_planar(
+            plane,
+            dims,
+            &[("start", &start), ("end", &toward), ("center", &center)],
+        )?;
         let (i, j) = plane;
         let radius = (start[i] - center[i]).hypot(start[j] - center[j]);
         let (dx, dy) = (toward[i] - center[i], toward[j] - center[j]);
@@ -226,9 +252,7 @@ impl Arc {
         axes: [usize; 3],
         dims: usize,
     ) -> Result<Arc, GeometryError> {
-        let (e1, e2) = normal_basis(&start, &end, &center, normal, axes, dims)?;
-        let c = in_plane_of(&start, &center, &e1, &e2);
-        Arc::around(start, end, c, e1, e2, dims, |theta, closed| {
+        Arc::around_normal(start, end, center, normal, axes, dims, |theta, closed| {
             himc_choice(if closed { 0.0 } else { theta }, turns)
         })
     }

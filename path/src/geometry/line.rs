@@ -1,6 +1,7 @@
 //! Straight lines in N dimensions (HMC Move2D/3D/ND, NMC CrdLine*, HIMC Line, MC_LINE).
 
 use super::{norm, sub, GeometryError, PathPoint};
+use crate::frames::Transform;
 use crate::{Point, MAX_AXES};
 
 #[derive(Clone, Debug, PartialEq)]
@@ -74,6 +75,17 @@ impl Line {
         l.end = end;
         l.length = s1 - s0;
         l
+    }
+
+    /// The line moved by a rigid transform: exact, same length.
+    pub fn transformed(&self, t: &Transform) -> Line {
+        Line {
+            start: t.apply(&self.start),
+            end: t.apply(&self.end),
+            direction: t.apply_vector(&self.direction),
+            length: self.length,
+            dims: self.dims,
+        }
     }
 
     pub fn sample(&self, s: f64) -> PathPoint {

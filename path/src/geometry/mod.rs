@@ -7,16 +7,35 @@
 //! sample is a bounded lookup.
 //!
 //! All vectors are [`Point`]s; a path of `dims` axes leaves the components past `dims` at 0.
+//!
+//! Constructors, by vendor rule (each validates its input into a [`GeometryError`]):
+//! - lines: [`Line::new`] (any axes, extra axes in proportion: NMC D8, HMC MoveND);
+//! - arcs in an axis plane: [`Arc::from_center`] (direction + extra turns; end = start is a
+//!   full circle), [`Arc::from_radius`] (signed radius: NMC, CPU 226H),
+//!   [`Arc::from_center_angle`] (HIMC ArcAngle2D), [`Arc::from_center_turns`] (HIMC
+//!   Circle2D's signed turns), [`Arc::from_center_toward`] (HMC MoveCircle's projected end),
+//!   [`Arc::helix_turns`] (NMC HelixCenterEx, HMC MoveHelical); the other axes move linearly;
+//! - arcs through points: [`Segment::through_points`] (collinear → line, HMC),
+//!   [`Arc::circle_through`] (full circle);
+//! - 3-D arcs about a normal: [`Arc::about_normal`], [`Arc::from_center_normal`],
+//!   [`Arc::from_center_normal_turns`] (HIMC CircleAbs);
+//! - curves: [`Curve::spline`] (HMC MoveSplineND), [`Curve::ellipse`] (NMC CrdEllipse).
+//!
+//! Any segment moves to another frame exactly with [`Segment::transformed`]
+//! ([`crate::frames`]).
 
+use crate::frames::Transform;
 use crate::{Point, MAX_AXES};
 
 mod arc;
 mod arc_center;
+mod curve;
 mod line;
 mod three_points;
 
 pub use arc::{Arc, Turn, MIN_SWEEP};
 pub use arc_center::himc_turns_angle;
+pub use curve::{Curve, CurveKind, ELLIPSE_RATIO, MAX_SPLINE_POINTS};
 pub use line::Line;
 
 /// Two points closer than this (in user units) are the same point; an arc's centre must be
@@ -61,6 +80,8 @@ pub enum Segment {
     Line(Line),
     /// A circular arc in a plane, plus linear motion of the other axes (a helix).
     Arc(Arc),
+    /// A spline through points or an ellipse, sampled through a length table.
+    Curve(Curve),
 }
 
 impl Segment {
@@ -69,6 +90,7 @@ impl Segment {
         match self {
             Segment::Line(l) => l.length(),
             Segment::Arc(a) => a.length(),
+            Segment::Curve(c) => c.length(),
         }
     }
 
@@ -77,6 +99,7 @@ impl Segment {
         match self {
             Segment::Line(l) => l.dims(),
             Segment::Arc(a) => a.dims(),
+            Segment::Curve(c) => c.dims(),
         }
     }
 
@@ -85,6 +108,7 @@ impl Segment {
         match self {
             Segment::Line(l) => l.sample(s),
             Segment::Arc(a) => a.sample(s),
+            Segment::Curve(c) => c.sample(s),
         }
     }
 
@@ -94,6 +118,19 @@ impl Segment {
         match self {
             Segment::Line(l) => Segment::Line(l.trimmed(s0, s1)),
             Segment::Arc(a) => Segment::Arc(a.trimmed(s0, s1)),
+            Segment::Curve(c) => Segment::Curve(c.trimmed(s0, s1)),
+        }
+    }
+
+    /// The segment moved by a rigid transform (program frame → machine frame): lines and arcs
+    /// stay exact. The transform should keep the path in its axes
+    /// ([`Transform::keeps`]`(self.dims())`); components it moves past them are kept but
+    /// ignored by the path's dimension count.
+    pub fn transformed(&self, t: &Transform) -> Segment {
+        match self {
+            Segment::Line(l) => Segment::Line(l.transformed(t)),
+            Segment::Arc(a) => Segment::Arc(a.transformed(t)),
+            Segment::Curve(c) => Segment::Curve(c.transformed(t)),
         }
     }
 
@@ -106,6 +143,7 @@ impl Segment {
         match self {
             Segment::Line(l) => l.end(),
             Segment::Arc(a) => a.end(),
+            Segment::Curve(c) => c.end(),
         }
     }
 
@@ -123,6 +161,7 @@ impl Segment {
         match self {
             Segment::Line(l) => l.direction().get(axis).map_or(0.0, |c| c.abs()),
             Segment::Arc(a) => a.max_tangent(axis),
+            Segment::Curve(c) => c.max_tangent(axis),
         }
     }
 
@@ -131,6 +170,7 @@ impl Segment {
         match self {
             Segment::Line(_) => 0.0,
             Segment::Arc(a) => a.curvature(),
+            Segment::Curve(c) => c.max_curvature(),
         }
     }
 }
@@ -153,7 +193,7 @@ pub fn dot(a: &Point, b: &Point) -> f64 {
 }
 
 /// Checks a path's axis count (1 to [`MAX_AXES`]).
-pub(crate) fn check_dims(dims: usize) -> Result<(), GeometryError> {
+pub fn check_dims(dims: usize) -> Result<(), GeometryError> {
     if dims == 0 || dims > MAX_AXES {
         return Err(GeometryError::Dimensions { dims });
     }
@@ -161,7 +201,7 @@ pub(crate) fn check_dims(dims: usize) -> Result<(), GeometryError> {
 }
 
 /// Checks that every component of `p` is finite.
-pub(crate) fn check_finite(name: &'static str, p: &Point) -> Result<(), GeometryError> {
+pub fn check_finite(name: &'static str, p: &Point) -> Result<(), GeometryError> {
     match p.iter().find(|c| !c.is_finite()) {
         Some(&value) => Err(GeometryError::NotFinite { name, value }),
         None => Ok(()),
@@ -169,7 +209,7 @@ pub(crate) fn check_finite(name: &'static str, p: &Point) -> Result<(), Geometry
 }
 
 /// Checks that a number is finite.
-pub(crate) fn check_number(name: &'static str, value: f64) -> Result<(), GeometryError> {
+pub fn check_number(name: &'static str, value: f64) -> Result<(), GeometryError> {
     if value.is_finite() {
         Ok(())
     } else {
@@ -178,7 +218,7 @@ pub(crate) fn check_number(name: &'static str, value: f64) -> Result<(), Geometr
 }
 
 /// Checks that `axis` is one of the first `dims` axes.
-pub(crate) fn check_axis(axis: usize, dims: usize) -> Result<(), GeometryError> {
+pub fn check_axis(axis: usize, dims: usize) -> Result<(), GeometryError> {
     if axis >= dims {
         return Err(GeometryError::AxisOutOfRange { axis, dims });
     }
@@ -195,6 +235,19 @@ pub(crate) fn check_plane(plane: (usize, usize), dims: usize) -> Result<(), Geom
         ));
     }
     Ok(())
+}
+
+/// Checks a planar construction's input: the axis count, the plane, and named points finite.
+pub(crate) fn check_planar(
+    plane: (usize, usize),
+    dims: usize,
+    points: &[(&'static str, &Point)],
+) -> Result<(), GeometryError> {
+    check_dims(dims)?;
+    check_plane(plane, dims)?;
+    points
+        .iter()
+        .try_for_each(|&(name, p)| check_finite(name, p))
 }
 
 pub fn add(a: &Point, b: &Point) -> Point {

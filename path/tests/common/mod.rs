@@ -1,13 +1,16 @@
-//! Helpers shared by the planner tests.
+//! Helpers shared by the path crate's integration tests (planner and geometry).
+
+// Each test binary uses its own subset.
 #![allow(dead_code, clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-use path::geometry::{Arc, Line, Segment, Turn};
+use path::geometry::{norm, sub, Arc, Line, Segment, Turn};
 use path::planner::{
     AxisLimits, Join, Motion, PathEvent, PathLimits, PathPlanner, PathState, PlannerConfig,
     Transition,
 };
 use path::{Point, MAX_AXES};
 
+/// A point from its first coordinates (the rest 0).
 pub fn p(c: &[f64]) -> Point {
     let mut out = [0.0; MAX_AXES];
     out[..c.len()].copy_from_slice(c);
@@ -144,4 +147,9 @@ pub fn distance_to_polyline(q: &Point, pts: &[Point]) -> f64 {
 pub fn rotate(x: f64, y: f64, angle: f64) -> (f64, f64) {
     let (s, c) = angle.sin_cos();
     (c * x - s * y, s * x + c * y)
+}
+
+/// Whether two points are within `tol` of each other.
+pub fn close(a: &Point, b: &Point, tol: f64) -> bool {
+    norm(&sub(a, b)) <= tol
 }

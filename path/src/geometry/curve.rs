@@ -1,0 +1,743 @@
+//! Curves through points (HMC `MoveSplineND`, digest 000 §4.3: a C2 cubic spline) and
+//! ellipses (NMC `CrdEllipse`, digest 001 §4.4), sampled by path length through a table
+//! built once.
+//!
+//! A curve is a parametric shape `p(u)` (exact position, tangent and curvature at any `u`)
+//! plus a table of `(s, u, du/ds)` at fixed parameter steps, the lengths found by Gauss–
+//! Legendre quadrature. `sample(s)` finds the table interval by binary search, interpolates
+//! `u(s)` with a cubic Hermite (the table's slopes), and evaluates the shape at that `u`: the
+//! point is on the curve exactly and the tangent has norm 1; only the `s ↔ u` mapping carries
+//! the (small) interpolation error. No allocation per sample. The table is shared (`Rc`-like
+//! [`std::sync::Arc`]), so clones and trimmed pieces are cheap.
+
+use std::f64::consts::TAU;
+use std::sync::Arc as Shared;
+
+use super::{
+    add, check_dims, check_finite, check_number, dot, norm, scale, sub, GeometryError, Line,
+    PathPoint, Segment, Turn, POINT_TOLERANCE,
+};
+use crate::frames::Transform;
+use crate::{Point, MAX_AXES};
+
+/// Most points of one spline (HMC: `uiSplineNum` 1 to 1000 nodes after the start).
+pub const MAX_SPLINE_POINTS: usize = 1001;
+
+/// Table intervals per spline span, and for a whole ellipse.
+const STEPS_PER_SPAN: usize = 4;
+const ELLIPSE_STEPS: usize = 64;
+/// cos 30°: the most the tangent may turn between two bound evaluations.
+const SHARPEST_STEP_COS: f64 = 0.866;
+/// Extra evaluations per table interval when bounding the tangent and curvature.
+const BOUND_SUBSTEPS: usize = 8;
+
+/// The NMC ellipse's axis ratio range (`abRatio`, digest 001 §4.4).
+pub const ELLIPSE_RATIO: std::ops::RangeInclusive<f64> = 0.05..=1.0;
+
+#[derive(Clone, Debug, PartialEq)]
+enum Shape {
+    /// Span `i` covers `u ∈ [knots[i], knots[i+1]]`: `p = c[0] + c[1]·t + c[2]·t² + c[3]·t³`
+    /// with `t = u − knots[i]`.
+    Spline {
+        knots: Vec<f64>,
+        coefficients: Vec<[Point; 4]>,
+    },
+    /// `p(φ) = center + cos φ·major + sin φ·minor`, φ from 0 to 2π.
+    Ellipse {
+        center: Point,
+        major: Point,
+        minor: Point,
+    },
+}
+
+/// Position and the first two derivatives with respect to the parameter.
+struct Eval {
+    p: Point,
+    d1: Point,
+    d2: Point,
+}
+
+impl Eval {
+    const ZERO: Eval = Eval {
+        p: [0.0; MAX_AXES],
+        d1: [0.0; MAX_AXES],
+        d2: [0.0; MAX_AXES],
+    };
+}
+
+impl Shape {
+    // Several arrays indexed by the same axis: an index loop reads best.
+    #[allow(clippy::needless_range_loop)]
+    fn eval(&self, u: f64, span: usize) -> Eval {
+        match self {
+            Shape::Spline {
+                knots,
+                coefficients,
+            } => {
+                let span = span.min(coefficients.len().saturating_sub(1));
+                let mut e = Eval::ZERO;
+                let (Some(k0), Some(c)) = (knots.get(span), coefficients.get(span)) else {
+                    return e;
+                };
+                let t = u - k0;
+                for a in 0..MAX_AXES {
+                    let (c0, c1, c2, c3) = (c[0][a], c[1][a], c[2][a], c[3][a]);
+                    e.p[a] = c0 + t * (c1 + t * (c2 + t * c3));
+                    e.d1[a] = c1 + t * (2.0 * c2 + 3.0 * t * c3);
+                    e.d2[a] = 2.0 * c2 + 6.0 * t * c3;
+                }
+                e
+            }
+            Shape::Ellipse {
+                center,
+                major,
+                minor,
+            } => {
+                let (s, c) = u.sin_cos();
+                let mut e = Eval::ZERO;
+                for a in 0..MAX_AXES {
+                    e.p[a] = center[a] + c * major[a] + s * minor[a];
+                    e.d1[a] = -s * major[a] + c * minor[a];
+                    e.d2[a] = -c * major[a] - s * minor[a];
+                }
+                e
+            }
+        }
+    }
+
+    fn transformed(&self, t: &Transform) -> Shape {
+        match self {
+            Shape::Spline {
+                knots,
+                coefficients,
+            } => Shape::Spline {
+                knots: knots.clone(),
+                coefficients: coefficients
+                    .iter()
+                    .map(|c| {
+                        [
+                            t.apply(&c[0]),
+                            t.apply_vector(&c[1]),
+                            t.apply_vector(&c[2]),
+                            t.apply_vector(&c[3]),
+                        ]
+                    })
+                    .collect(),
+            },
+            Shape::Ellipse {
+                center,
+                major,
+                minor,
+            } => Shape::Ellipse {
+                center: t.apply(center),
+                major: t.apply_vector(major),
+                minor: t.apply_vector(minor),
+            },
+        }
+    }
+}
+
+/// One table row: path length, parameter, `du/ds`, `d²u/ds²`, and the spline span the row
+/// starts.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Row {
+    s: f64,
+    u: f64,
+    du_ds: f64,
+    d2u_ds2: f64,
+    span: usize,
+}
+
+impl Row {
+    fn new(s: f64, u: f64, e: &Eval, span: usize) -> Row {
+        let speed2 = dot(&e.d1, &e.d1);
+        Row {
+            s,
+            u,
+            du_ds: 1.0 / speed2.sqrt(),
+            // d/ds (1/|p'|) = −(p'·p'')/|p'|⁴.
+            d2u_ds2: -dot(&e.d1, &e.d2) / (speed2 * speed2),
+            span,
+        }
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+struct Table {
+    shape: Shape,
+    rows: Vec<Row>,
+    /// Bounds over the whole curve (see [`Curve::max_tangent`]).
+    max_tangent: Point,
+    max_curvature: f64,
+}
+
+/// Which kind of curve, for status and errors.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CurveKind {
+    Spline,
+    Ellipse,
+}
+
+/// A curve sampled by path length (see the module doc). A trimmed curve shares its table.
+///
+/// Inputs: [`Curve::spline`] or [`Curve::ellipse`] (once; they build the table). Outputs, in
+/// any order and as often as needed: [`Curve::length`], [`Curve::sample`], [`Curve::end`],
+/// the bounds [`Curve::max_tangent`] and [`Curve::max_curvature`]; [`Curve::trimmed`] and
+/// [`Curve::transformed`] make new curves.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Curve {
+    table: Shared<Table>,
+    kind: CurveKind,
+    /// Path length of this piece's start on the shared table.
+    s0: f64,
+    length: f64,
+    end: Point,
+    dims: usize,
+}
+
+/// 5-point Gauss–Legendre nodes and weights on [−1, 1].
+const GAUSS: [(f64, f64); 5] = [
+    (0.0, 0.568_888_888_888_888_9),
+    (-0.538_469_310_105_683_1, 0.478_628_670_499_366_5),
+    (0.538_469_310_105_683_1, 0.478_628_670_499_366_5),
+    (-0.906_179_845_938_664, 0.236_926_885_056_189_1),
+    (0.906_179_845_938_664, 0.236_926_885_056_189_1),
+];
+
+/// The length of `p(u)` for `u ∈ [u0, u1]`: 5-point Gauss–Legendre, halved until the halves
+/// agree with the whole to 1e-12 (relative) or 8 levels deep (the speed |p'| has a kink
+/// where it nears 0 in a tight turn, where a single rule is poor).
+fn arc_length(shape: &Shape, u0: f64, u1: f64, span: usize, depth: u32) -> f64 {
+    let rule = |a: f64, b: f64| {
+        let half = (b - a) / 2.0;
+        GAUSS
+            .iter()
+            .map(|&(x, w)| w * norm(&shape.eval(a + half * (1.0 + x), span).d1))
+            .sum::<f64>()
+            * half
+    };
+    let whole = rule(u0, u1);
+    let mid = (u0 + u1) / 2.0;
+    let halves = rule(u0, mid) + rule(mid, u1);
+    if depth >= 8 || (whole - halves).abs() <= 1e-12 * halves.abs() {
+        return halves;
+    }
+    arc_length(shape, u0, mid, span, depth + 1) + arc_length(shape, mid, u1, span, depth + 1)
+}
+
+/// The table being built, with the running bounds.
+struct Builder<'a> {
+    shape: &'a Shape,
+    rows: Vec<Row>,
+    max_tangent: Point,
+    max_curvature: f64,
+    min_speed: f64,
+    longest_step: f64,
+    previous_tangent: Option<Point>,
+    sharp: bool,
+}
+
+/// How far the table's `u(s)` may stray from the curve's inside a step, as a distance
+/// along the curve relative to the step's length.
+const TABLE_TOLERANCE: f64 = 1e-8;
+/// Most halvings of one step.
+const MAX_REFINE_DEPTH: u32 = 12;
+
+impl Builder<'_> {
+    /// Adds the rows of the step `[u0, u1]` starting at path length `s0`, halving it while
+    /// the interpolated `u` inside the step misses the true one; returns `s` at `u1`.
+    fn step(&mut self, u0: f64, u1: f64, span: usize, s0: f64, depth: u32) -> f64 {
+        let shape = self.shape;
+        let length = arc_length(shape, u0, u1, span, 0);
+        let um = (u0 + u1) / 2.0;
+        let a = Row::new(s0, u0, &shape.eval(u0, span), span);
+        let b = Row::new(s0 + length, u1, &shape.eval(u1, span), span);
+        // The interpolation's error vanishes at both ends and may be odd about the middle,
+        // so it is checked at the quarter points.
+        let miss_at = |f: f64| {
+            let uq = u0 + (u1 - u0) * f;
+            let sq = s0 + arc_length(shape, u0, uq, span, 0);
+            (hermite(&a, &b, sq) - uq).abs() * norm(&shape.eval(uq, span).d1)
+        };
+        let miss = miss_at(0.25).max(miss_at(0.75));
+        let fine = miss <= TABLE_TOLERANCE * length || !miss.is_finite();
+        if !fine && depth < MAX_REFINE_DEPTH {
+            let s_mid = self.step(u0, um, span, s0, depth + 1);
+            return self.step(um, u1, span, s_mid, depth + 1);
+        }
+        self.rows.push(a);
+        self.longest_step = self.longest_step.max(length);
+        for k in 0..BOUND_SUBSTEPS {
+            let u = u0 + (u1 - u0) * k as f64 / BOUND_SUBSTEPS as f64;
+            let e = shape.eval(u, span);
+            let speed = norm(&e.d1);
+            self.min_speed = self.min_speed.min(speed);
+            if speed > 0.0 {
+                let t = scale(&e.d1, 1.0 / speed);
+                for (m, d) in self.max_tangent.iter_mut().zip(&t) {
+                    *m = f64::max(*m, d.abs());
+                }
+                self.max_curvature = self.max_curvature.max(norm(&curvature(&e)));
+                // A turn of more than ~30° between two evaluations is a cusp or a kink the
+                // table cannot follow.
+                if self
+                    .previous_tangent
+                    .is_some_and(|prev| dot(&prev, &t) < SHARPEST_STEP_COS)
+                {
+                    self.sharp = true;
+                }
+                self.previous_tangent = Some(t);
+            }
+        }
+        s0 + length
+    }
+}
+
+/// The quintic Hermite `u(s)` between two rows (their `u`, `du/ds` and `d²u/ds²`), clamped to
+/// the interval.
+fn hermite(a: &Row, b: &Row, s: f64) -> f64 {
+    let h = b.s - a.s;
+    if h <= 0.0 {
+        return a.u;
+    }
+    let x = ((s - a.s) / h).clamp(0.0, 1.0);
+    let (x2, x3) = (x * x, x * x * x);
+    let (x4, x5) = (x3 * x, x3 * x2);
+    let h2 = h * h;
+    let u = (1.0 - 10.0 * x3 + 15.0 * x4 - 6.0 * x5) * a.u
+        + (x - 6.0 * x3 + 8.0 * x4 - 3.0 * x5) * h * a.du_ds
+        + 0.5 * (x2 - 3.0 * x3 + 3.0 * x4 - x5) * h2 * a.d2u_ds2
+        + 0.5 * (x3 - 2.0 * x4 + x5) * h2 * b.d2u_ds2
+        + (-4.0 * x3 + 7.0 * x4 - 3.0 * x5) * h * b.du_ds
+        + (10.0 * x3 - 15.0 * x4 + 6.0 * x5) * b.u;
+    u.clamp(a.u.min(b.u), a.u.max(b.u))
+}
+
+/// Builds the table over parameter steps `(u0, u1, span)`, refining each as needed.
+fn build_table(
+    shape: Shape,
+    steps: impl Iterator<Item = (f64, f64, usize)>,
+) -> Result<Table, GeometryError> {
+    let mut builder = Builder {
+        shape: &shape,
+        rows: Vec::new(),
+        max_tangent: [0.0; MAX_AXES],
+        max_curvature: 0.0,
+        min_speed: f64::INFINITY,
+        longest_step: 0.0,
+        previous_tangent: None,
+        sharp: false,
+    };
+    let mut s = 0.0;
+    let mut first_u = None;
+    let mut last = None;
+    for (u0, u1, span) in steps {
+        first_u.get_or_insert(u0);
+        s = builder.step(u0, u1, span, s, 0);
+        last = Some((u1, span));
+    }
+    let Some((u_end, span)) = last else {
+        return Err(GeometryError::Invalid("a curve needs at least one step"));
+    };
+    let e = shape.eval(u_end, span);
+    let min_speed = builder.min_speed.min(norm(&e.d1));
+    // The parameter runs at about unit speed on average (chord length, or the ellipse's mean
+    // radius); a speed near 0 somewhere is a cusp.
+    let mean_speed = s / (u_end - first_u.unwrap_or(0.0));
+    let stalls = min_speed.is_nan() || min_speed <= 1e-3 * mean_speed;
+    if builder.sharp || stalls || !s.is_finite() {
+        return Err(GeometryError::Invalid(
+            "the curve stops or turns back on itself (a cusp): no tangent there",
+        ));
+    }
+    let mut rows = builder.rows;
+    rows.push(Row::new(s, u_end, &e, span));
+    // Between the evaluations the tangent turns by at most κ·Δs; pad both bounds for it
+    // (conservative, so the planner never under-estimates an axis's share of the speed).
+    let spacing = builder.longest_step / BOUND_SUBSTEPS as f64;
+    let mut max_tangent = builder.max_tangent;
+    let max_curvature = builder.max_curvature;
+    for m in max_tangent.iter_mut() {
+        *m = (*m + max_curvature * spacing).min(1.0);
+    }
+    Ok(Table {
+        shape,
+        rows,
+        max_tangent,
+        max_curvature: max_curvature * 1.05,
+    })
+}
+
+/// The curvature vector `d²p/ds²` from the parameter derivatives.
+fn curvature(e: &Eval) -> Point {
+    let speed2 = dot(&e.d1, &e.d1);
+    if speed2 <= 0.0 {
+        return [0.0; MAX_AXES];
+    }
+    let along = dot(&e.d2, &e.d1) / speed2;
+    scale(&sub(&e.d2, &scale(&e.d1, along)), 1.0 / speed2)
+}
+
+impl Curve {
+    /// The natural cubic spline (C2, second derivative 0 at both ends) through `points`
+    /// (the first is the start), parametrised by chord length, over the first `dims` axes.
+    /// HMC's `MoveSplineND` gives its spline as "cubic, C2-continuous" without end conditions
+    /// or parametrisation (digest 000 §4.3); these are ours (docs/decisions.md). Two points, or
+    /// points all on one line in order, give a [`Line`] (HMC: "collinear nodes → a straight
+    /// line"; "a single node → the segment from the origin to it"). Consecutive equal points,
+    /// fewer than 2 or more than [`MAX_SPLINE_POINTS`] points are refused.
+    pub fn spline(points: &[Point], dims: usize) -> Result<Segment, GeometryError> {
+        check_dims(dims)?;
+        if points.len() < 2 {
+            return Err(GeometryError::Invalid(
+                "a spline needs its start and at least one more point",
+            ));
+        }
+        if points.len() > MAX_SPLINE_POINTS {
+            return Err(GeometryError::Invalid("a spline has at most 1001 points"));
+        }
+        for (k, p) in points.iter().enumerate() {
+            check_finite(if k == 0 { "start" } else { "spline point" }, p)?;
+            if p.iter().skip(dims).any(|&c| c != 0.0) {
+                return Err(GeometryError::Invalid(
+                    "a point has coordinates past the path's axes",
+                ));
+            }
+        }
+        let mut h = Vec::with_capacity(points.len() - 1);
+        for w in points.windows(2) {
+            let d = norm(&sub(&w[1], &w[0]));
+            if d <= POINT_TOLERANCE {
+                return Err(GeometryError::Coincident {
+                    first: "a spline point",
+                    second: "the next one",
+                });
+            }
+            h.push(d);
+        }
+        let (first, last) = (points[0], points[points.len() - 1]);
+        if collinear_in_order(points) {
+            return Ok(Segment::Line(Line::new(first, last, dims)?));
+        }
+        let m = natural_second_derivatives(points, &h);
+        let mut knots = Vec::with_capacity(points.len());
+        let mut u = 0.0;
+        knots.push(u);
+        let mut coefficients = Vec::with_capacity(h.len());
+        for (i, &hi) in h.iter().enumerate() {
+            let (p0, p1, m0, m1) = (points[i], points[i + 1], m[i], m[i + 1]);
+            let slope = scale(&sub(&p1, &p0), 1.0 / hi);
+            let b = sub(&slope, &scale(&add(&scale(&m0, 2.0), &m1), hi / 6.0));
+            let c = scale(&m0, 0.5);
+            let d = scale(&sub(&m1, &m0), 1.0 / (6.0 * hi));
+            coefficients.push([p0, b, c, d]);
+            u += hi;
+            knots.push(u);
+        }
+        let steps: Vec<(f64, f64, usize)> = knots
+            .windows(2)
+            .enumerate()
+            .flat_map(|(span, k)| {
+                let (a, b) = (k[0], k[1]);
+                (0..STEPS_PER_SPAN).map(move |j| {
+                    let f0 = j as f64 / STEPS_PER_SPAN as f64;
+                    let f1 = (j + 1) as f64 / STEPS_PER_SPAN as f64;
+                    (
+                        a + (b - a) * f0,
+                        if j + 1 == STEPS_PER_SPAN {
+                            b
+                        } else {
+                            a + (b - a) * f1
+                        },
+                        span,
+                    )
+                })
+            })
+            .collect();
+        let table = build_table(
+            Shape::Spline {
+                knots,
+                coefficients,
+            },
+            steps.into_iter(),
+        )?;
+        Ok(Segment::Curve(Curve::whole(
+            table,
+            CurveKind::Spline,
+            last,
+            dims,
+        )))
+    }
+
+    /// NMC `CrdEllipse` (digest 001 §4.4): the full ellipse from `start` around `center`
+    /// (only its coordinates in `plane` are used) turning `turn`, back to `start`; the
+    /// semi-major axis is start − centre and the semi-minor axis `ratio` × that
+    /// (`abRatio` ∈ [0.05, 1]; 1 is a circle).
+    pub fn ellipse(
+        start: Point,
+        center: Point,
+        ratio: f64,
+        plane: (usize, usize),
+        turn: Turn,
+        dims: usize,
+    ) -> Result<Segment, GeometryError> {
+        super::check_planar(plane, dims, &[("start", &start), ("center", &center)])?;
+        check_number("ratio", ratio)?;
+        if !ELLIPSE_RATIO.contains(&ratio) {
+            return Err(GeometryError::Invalid(
+                "an ellipse's axis ratio is 0.05 to 1",
+            ));
+        }
+        let (i, j) = plane;
+        let (ax, ay) = (start[i] - center[i], start[j] - center[j]);
+        let a = ax.hypot(ay);
+        if a <= POINT_TOLERANCE {
+            return Err(GeometryError::Invalid(
+                "the ellipse's centre is its start point",
+            ));
+        }
+        let mut c = start;
+        c[i] = center[i];
+        c[j] = center[j];
+        let mut major = [0.0; MAX_AXES];
+        major[i] = ax;
+        major[j] = ay;
+        let mut minor = [0.0; MAX_AXES];
+        let sign = turn.sign();
+        minor[i] = -ay * ratio * sign;
+        minor[j] = ax * ratio * sign;
+        let steps = (0..ELLIPSE_STEPS).map(|k| {
+            let u0 = TAU * k as f64 / ELLIPSE_STEPS as f64;
+            let u1 = if k + 1 == ELLIPSE_STEPS {
+                TAU
+            } else {
+                TAU * (k + 1) as f64 / ELLIPSE_STEPS as f64
+            };
+            (u0, u1, 0)
+        });
+        let table = build_table(
+            Shape::Ellipse {
+                center: c,
+                major,
+                minor,
+            },
+            steps,
+        )?;
+        Ok(Segment::Curve(Curve::whole(
+            table,
+            CurveKind::Ellipse,
+            start,
+            dims,
+        )))
+    }
+
+    fn whole(table: Table, kind: CurveKind, end: Point, dims: usize) -> Curve {
+        let length = table.rows.last().map_or(0.0, |r| r.s);
+        Curve {
+            table: Shared::new(table),
+            kind,
+            s0: 0.0,
+            length,
+            end,
+            dims,
+        }
+    }
+
+    pub fn kind(&self) -> CurveKind {
+        self.kind
+    }
+
+    pub fn length(&self) -> f64 {
+        self.length
+    }
+
+    pub fn dims(&self) -> usize {
+        self.dims
+    }
+
+    /// The end point, exactly as programmed.
+    pub fn end(&self) -> Point {
+        self.end
+    }
+
+    /// Number of rows of the length table (memory and lookup cost: a binary search over it).
+    pub fn table_len(&self) -> usize {
+        self.table.rows.len()
+    }
+
+    /// For a spline, the path lengths (from this piece's start) at which it passes its
+    /// points, within the piece; empty for an ellipse.
+    pub fn point_lengths(&self) -> impl Iterator<Item = f64> + '_ {
+        let knots: &[f64] = match &self.table.shape {
+            Shape::Spline { knots, .. } => knots,
+            Shape::Ellipse { .. } => &[],
+        };
+        self.table
+            .rows
+            .iter()
+            .filter(move |r| knots.binary_search_by(|k| k.total_cmp(&r.u)).is_ok())
+            .map(move |r| r.s - self.s0)
+            .filter(move |&s| (0.0..=self.length).contains(&s))
+    }
+
+    /// A bound on |tangent component| of `axis` over the whole curve (≤ 1): the largest
+    /// value at 8 evaluations per table step, padded by the most the tangent can turn between
+    /// them (curvature × spacing). For a trimmed piece, the whole curve's bound.
+    pub fn max_tangent(&self, axis: usize) -> f64 {
+        self.table.max_tangent.get(axis).copied().unwrap_or(0.0)
+    }
+
+    /// A bound on the curvature over the whole curve: the largest evaluated value + 5 %.
+    pub fn max_curvature(&self) -> f64 {
+        self.table.max_curvature
+    }
+
+    /// The point, unit tangent and curvature vector at path length `s` (clamped).
+    pub fn sample(&self, s: f64) -> PathPoint {
+        let s = if s.is_nan() {
+            0.0
+        } else {
+            s.clamp(0.0, self.length)
+        };
+        let (u, span) = self.parameter_at(self.s0 + s);
+        let e = self.table.shape.eval(u, span);
+        let speed = norm(&e.d1);
+        let t = if speed > 0.0 {
+            scale(&e.d1, 1.0 / speed)
+        } else {
+            [0.0; MAX_AXES]
+        };
+        let p = if s >= self.length { self.end } else { e.p };
+        PathPoint {
+            p,
+            t,
+            k: curvature(&e),
+        }
+    }
+
+    /// `u(s)` on the shared table: binary search, then the quintic Hermite through the
+    /// interval's ends with their `du/ds` and `d²u/ds²` (so the path speed and the
+    /// acceleration along the path carry almost no table ripple).
+    fn parameter_at(&self, s: f64) -> (f64, usize) {
+        let rows = &self.table.rows;
+        // The last row with row.s ≤ s.
+        let k = rows.partition_point(|r| r.s <= s).saturating_sub(1);
+        let (Some(a), Some(b)) = (rows.get(k), rows.get(k + 1)) else {
+            return rows.last().map_or((0.0, 0), |r| (r.u, r.span));
+        };
+        (hermite(a, b, s), a.span)
+    }
+
+    /// The piece from `s0` to `s1` (clamped, `s0 ≤ s1`), sharing the table; `s1 = length`
+    /// keeps the exact end.
+    pub fn trimmed(&self, s0: f64, s1: f64) -> Curve {
+        let s0 = s0.clamp(0.0, self.length);
+        let s1 = s1.clamp(s0, self.length);
+        let end = if s1 >= self.length {
+            self.end
+        } else {
+            self.sample(s1).p
+        };
+        Curve {
+            table: Shared::clone(&self.table),
+            kind: self.kind,
+            s0: self.s0 + s0,
+            length: s1 - s0,
+            end,
+            dims: self.dims,
+        }
+    }
+
+    /// The curve moved by a rigid transform: its shape is moved, the length table (a
+    /// function of the shape's lengths only) is kept; the tangent bounds are recomputed
+    /// from the rotation (each axis's bound becomes the sum over the source axes it mixes).
+    pub fn transformed(&self, t: &Transform) -> Curve {
+        let table = &self.table;
+        let r = t.rotation_part();
+        let mut max_tangent = [0.0; MAX_AXES];
+        for (out, row) in max_tangent.iter_mut().zip(&r) {
+            *out = row
+                .iter()
+                .zip(&table.max_tangent)
+                .map(|(x, m)| x.abs() * m)
+                .sum::<f64>()
+                .min(1.0);
+        }
+        Curve {
+            table: Shared::new(Table {
+                shape: table.shape.transformed(t),
+                rows: table.rows.clone(),
+                max_tangent,
+                max_curvature: table.max_curvature,
+            }),
+            end: t.apply(&self.end),
+            ..self.clone()
+        }
+    }
+}
+
+/// Whether every point lies on the line from the first to the last, in order along it, within
+/// [`POINT_TOLERANCE`] + 1e-9 of the span.
+fn collinear_in_order(points: &[Point]) -> bool {
+    let (Some(first), Some(last)) = (points.first(), points.last()) else {
+        return false;
+    };
+    let d = sub(last, first);
+    let len = norm(&d);
+    if len <= POINT_TOLERANCE {
+        return false;
+    }
+    let dir = scale(&d, 1.0 / len);
+    let tol = POINT_TOLERANCE + 1e-9 * len;
+    let mut previous = -tol;
+    for p in points {
+        let w = sub(p, first);
+        let along = dot(&w, &dir);
+        if norm(&sub(&w, &scale(&dir, along))) > tol || along < previous - tol {
+            return false;
+        }
+        previous = along;
+    }
+    true
+}
+
+/// The natural spline's second derivatives at the points (0 at both ends), by the Thomas
+/// algorithm on the tridiagonal system, all axes at once.
+fn natural_second_derivatives(points: &[Point], h: &[f64]) -> Vec<Point> {
+    let n = points.len();
+    let mut m = vec![[0.0; MAX_AXES]; n];
+    if n < 3 {
+        return m;
+    }
+    // Unknowns m[1..n-1]: h[i-1]·m[i-1] + 2(h[i-1]+h[i])·m[i] + h[i]·m[i+1] = rhs[i].
+    let inner = n - 2;
+    let mut diag = vec![0.0; inner];
+    let mut upper = vec![0.0; inner];
+    let mut rhs = vec![[0.0; MAX_AXES]; inner];
+    for k in 0..inner {
+        let i = k + 1;
+        diag[k] = 2.0 * (h[i - 1] + h[i]);
+        upper[k] = h[i];
+        let right = scale(&sub(&points[i + 1], &points[i]), 1.0 / h[i]);
+        let left = scale(&sub(&points[i], &points[i - 1]), 1.0 / h[i - 1]);
+        rhs[k] = scale(&sub(&right, &left), 6.0);
+    }
+    // Forward sweep: the lower diagonal of row k is h[k] (= h[i-1]).
+    for k in 1..inner {
+        let w = h[k] / diag[k - 1];
+        diag[k] -= w * upper[k - 1];
+        let prev = rhs[k - 1];
+        rhs[k] = sub(&rhs[k], &scale(&prev, w));
+    }
+    let mut x = vec![[0.0; MAX_AXES]; inner];
+    for k in (0..inner).rev() {
+        let next = if k + 1 < inner {
+            x[k + 1]
+        } else {
+            [0.0; MAX_AXES]
+        };
+        x[k] = scale(&sub(&rhs[k], &scale(&next, upper[k])), 1.0 / diag[k]);
+    }
+    m[1..=inner].copy_from_slice(&x);
+    m
+}
