@@ -39,17 +39,7 @@ fn create(group: u16, axes: &[u16]) -> Command {
 }
 
 fn line(group: u16, position: &[f64]) -> MoveLinearAbsolute {
-    MoveLinearAbsolute {
-        group,
-        position: position.to_vec(),
-        velocity: None,
-        acceleration: None,
-        deceleration: None,
-        jerk: None,
-        buffer_mode: Default::default(),
-        transition: TransitionMode::None,
-        user_segment: None,
-    }
+    common::group_line(group, position)
 }
 
 fn group(e: &Engine, id: u16) -> GroupStatus {
@@ -250,23 +240,8 @@ fn bad_motion_input_is_refused_with_a_typed_error_and_nothing_is_queued() {
     enable_all(&mut e);
     ok(&mut e, create(1, &[0, 1]));
     ok(&mut e, Command::from(GroupEnable { group: 1 }));
-    let circle = |aux: Vec<f64>, end: Vec<f64>| MoveCircularAbsolute {
-        group: 1,
-        mode: Default::default(),
-        aux_point: aux,
-        radius: None,
-        end_point: end,
-        direction: Default::default(),
-        plane: None,
-        normal: None,
-        turns: 0,
-        velocity: None,
-        acceleration: None,
-        deceleration: None,
-        jerk: None,
-        buffer_mode: Default::default(),
-        transition: TransitionMode::None,
-        user_segment: None,
+    let circle = |aux: Vec<f64>, end: Vec<f64>| {
+        common::group_arc(1, &aux, &end, axes::command::ArcDirection::Ccw)
     };
     let cases: Vec<(Command, ErrorKind, &str)> = vec![
         (
@@ -306,7 +281,7 @@ fn bad_motion_input_is_refused_with_a_typed_error_and_nothing_is_queued() {
                 ..line(1, &[1.0, 1.0])
             }),
             ErrorKind::InvalidArgument,
-            "jerk = -1: must be ≥ 0 (0 = trapezoid)",
+            "jerk = -1: must be ≥ 0",
         ),
         (
             Command::from(MoveLinearAbsolute {

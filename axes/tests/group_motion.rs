@@ -24,60 +24,20 @@ const TOL: f64 = 1e-9;
 /// `n` stepper axes (speed 100 mm/s, accel 1000 mm/s², limits ±500 mm), all enabled, and a
 /// group 1 of the first `members` of them, enabled.
 fn machine(n: usize, members: &[u16]) -> Engine {
-    let mut e = Engine::new(&EngineConfig {
+    let e = Engine::new(&EngineConfig {
         axes: (0..n).map(|_| stepper_mm()).collect(),
         ..EngineConfig::default()
     })
     .unwrap();
-    for axis in 0..n as u16 {
-        ok(&mut e, Command::from(Enable { axis }));
-    }
-    ok(
-        &mut e,
-        Command::from(GroupCreate {
-            group: 1,
-            axes: members.to_vec(),
-            queue_capacity: None,
-            lookahead: None,
-        }),
-    );
-    ok(&mut e, Command::from(GroupEnable { group: 1 }));
-    e
+    common::with_group(e, members)
 }
 
 fn line(position: &[f64]) -> MoveLinearAbsolute {
-    MoveLinearAbsolute {
-        group: 1,
-        position: position.to_vec(),
-        velocity: None,
-        acceleration: None,
-        deceleration: None,
-        jerk: None,
-        buffer_mode: GroupBufferMode::Buffered,
-        transition: TransitionMode::None,
-        user_segment: None,
-    }
+    common::group_line(1, position)
 }
 
 fn circle(aux: &[f64], end: &[f64], direction: ArcDirection) -> MoveCircularAbsolute {
-    MoveCircularAbsolute {
-        group: 1,
-        mode: CircleMode::Center,
-        aux_point: aux.to_vec(),
-        radius: None,
-        end_point: end.to_vec(),
-        direction,
-        plane: None,
-        normal: None,
-        turns: 0,
-        velocity: None,
-        acceleration: None,
-        deceleration: None,
-        jerk: None,
-        buffer_mode: GroupBufferMode::Buffered,
-        transition: TransitionMode::None,
-        user_segment: None,
-    }
+    common::group_arc(1, aux, end, direction)
 }
 
 fn group(e: &Engine) -> GroupStatus {

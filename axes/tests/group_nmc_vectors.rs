@@ -8,10 +8,9 @@
 mod common;
 
 use axes::command::{
-    ArcDirection, CircleMode, Command, CommandState, Enable, ErrorKind, GroupAxisMove,
-    GroupBufferMode, GroupContinue, GroupCreate, GroupDwell, GroupEnable, GroupHalt,
-    GroupSetOutput, GroupSetOverride, MoveCircularAbsolute, MoveLinearAbsolute, TransitionMode,
-    WriteDigitalOutput,
+    ArcDirection, CircleMode, Command, CommandState, ErrorKind, GroupAxisMove, GroupContinue,
+    GroupDwell, GroupHalt, GroupSetOutput, GroupSetOverride, MoveCircularAbsolute,
+    MoveLinearAbsolute, WriteDigitalOutput,
 };
 use axes::config::AxisConfig;
 use axes::status::{GroupState, GroupStatus};
@@ -40,60 +39,35 @@ fn pulse_axis() -> AxisConfig {
 
 /// `n` pulse axes, enabled; group 1 of `members`.
 fn machine(n: usize, members: &[u16]) -> Engine {
-    let mut e = Engine::new(&EngineConfig {
+    let e = Engine::new(&EngineConfig {
         axes: vec![pulse_axis(); n],
         ..EngineConfig::default()
     })
     .unwrap();
-    for axis in 0..n as u16 {
-        ok(&mut e, Command::from(Enable { axis }));
-    }
-    ok(
-        &mut e,
-        Command::from(GroupCreate {
-            group: 1,
-            axes: members.to_vec(),
-            queue_capacity: None,
-            lookahead: None,
-        }),
-    );
-    ok(&mut e, Command::from(GroupEnable { group: 1 }));
-    e
+    common::with_group(e, members)
 }
 
 /// `CrdLine…(crd, seg, mask, pos, endVel 0, vel, acc)`.
 fn line(seg: u32, pos: &[f64], vel: f64, acc: f64) -> MoveLinearAbsolute {
     MoveLinearAbsolute {
-        group: 1,
-        position: pos.to_vec(),
         velocity: Some(vel * P_PER_MS),
         acceleration: Some(acc * P_PER_MS2),
         deceleration: Some(acc * P_PER_MS2),
         jerk: Some(0.0),
-        buffer_mode: GroupBufferMode::Buffered,
-        transition: TransitionMode::None,
         user_segment: Some(seg),
+        ..common::group_line(1, pos)
     }
 }
 
+/// An arc about `center` at 10 p/ms and 1 p/ms².
 fn arc(seg: u32, end: &[f64], center: &[f64], dir: ArcDirection) -> MoveCircularAbsolute {
     MoveCircularAbsolute {
-        group: 1,
-        mode: CircleMode::Center,
-        aux_point: center.to_vec(),
-        radius: None,
-        end_point: end.to_vec(),
-        direction: dir,
-        plane: None,
-        normal: None,
-        turns: 0,
         velocity: Some(10.0 * P_PER_MS),
         acceleration: Some(1.0 * P_PER_MS2),
         deceleration: Some(1.0 * P_PER_MS2),
         jerk: Some(0.0),
-        buffer_mode: GroupBufferMode::Buffered,
-        transition: TransitionMode::None,
         user_segment: Some(seg),
+        ..common::group_arc(1, center, end, dir)
     }
 }
 

@@ -265,6 +265,21 @@ pub(crate) fn finite(name: &'static str, value: f64) -> Result<f64, EngineError>
     }
 }
 
+/// A number within ±[`MAX_MAGNITUDE`] and ≥ 0 (tolerances, corner distances, jerk where 0
+/// means none).
+pub(crate) fn nonnegative(name: &'static str, value: f64) -> Result<f64, EngineError> {
+    let value = bounded(name, value)?;
+    if value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(EngineError::InvalidArgument {
+            name,
+            value,
+            reason: "must be ≥ 0",
+        })
+    }
+}
+
 /// A finite, strictly positive number.
 pub(crate) fn positive(name: &'static str, value: f64) -> Result<f64, EngineError> {
     let value = finite(name, value)?;

@@ -228,6 +228,12 @@ impl Engine {
     /// A command on an axis group (issue 11), applied to the group registry with the axes,
     /// the ledger and the I/O image it may need.
     fn apply_group_command(&mut self, command: GroupCommand) -> Result<Reply, EngineError> {
+        self.with_groups(|groups, env| groups.apply(env, command))
+    }
+
+    /// Lend the group registry what a group command or tick may touch (the axes, the ledger,
+    /// the digital inputs and outputs), and bump the I/O version if an output changed.
+    fn with_groups<R>(&mut self, f: impl FnOnce(&mut Groups, &mut GroupEnv) -> R) -> R {
         let Engine {
             axes,
             io,
@@ -246,7 +252,7 @@ impl Engine {
             outputs: &mut io.image.do_,
             outputs_changed: false,
         };
-        let result = groups.apply(&mut env, command);
+        let result = f(groups, &mut env);
         if env.outputs_changed {
             io.version += 1;
         }
@@ -553,30 +559,16 @@ impl Engine {
     /// each setpoint becomes its axis's command source for this tick, or goes back to the
     /// planner as a refusal.
     fn run_planners(&mut self) {
+        self.with_groups(|groups, env| groups.step(env));
         let Engine {
             axes,
             io,
             ledger,
             tick,
-            period,
-            groups,
             planners,
             feeds,
             ..
         } = self;
-        let mut env = GroupEnv {
-            tick: *tick,
-            period: *period,
-            axes,
-            ledger,
-            di: &io.image.di,
-            outputs: &mut io.image.do_,
-            outputs_changed: false,
-        };
-        groups.step(&mut env);
-        if env.outputs_changed {
-            io.version += 1;
-        }
         let mut ctx = Context {
             tick: *tick,
             di: &io.image.di,
@@ -714,7 +706,8 @@ impl Engine {
         for (out, axis) in snapshot.axes.iter_mut().zip(&self.axes) {
             axis.status_into(out);
         }
-        self.groups.status_into(&self.axes, &mut snapshot.groups);
+        self.groups
+            .status_into(&self.axes, &snapshot.axes, &mut snapshot.groups);
         if snapshot.io_version != self.io.version {
             snapshot.io.clone_from(&self.io.image);
             snapshot.io_version = self.io.version;

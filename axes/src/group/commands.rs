@@ -8,8 +8,9 @@ use super::queue::{Entry, GroupQueue, Item};
 use super::segment::{self, CircularFields, PathRequest, PendingMotion};
 use super::{planner_config, Env, Group, Groups, DEFAULT_PATH_LIMITS};
 use crate::command::{
-    bounded, finite, positive, CommandState, EngineError, GroupAxisMove, GroupCommand, GroupCreate,
-    GroupDwell, GroupId, GroupParameter, GroupSetOutput, GroupWaitInput, GroupWaitPosition, Reply,
+    bounded, finite, nonnegative, positive, CommandState, EngineError, GroupAxisMove, GroupCommand,
+    GroupCreate, GroupDwell, GroupId, GroupParameter, GroupSetOutput, GroupWaitInput,
+    GroupWaitPosition, Reply,
 };
 use crate::config::MAX_GROUP_QUEUE;
 use crate::param::ParamId;
@@ -26,17 +27,19 @@ impl Groups {
         command: GroupCommand,
     ) -> Result<Reply, EngineError> {
         let id = command.group();
-        let result = match command {
+        match command {
             GroupCommand::Create(c) => self.create(env, c),
             GroupCommand::Delete(_) => self.delete(env, id),
-            other => self.get_mut(id)?.apply(env, other),
-        };
-        if let Err(e) = &result {
-            if let Ok(g) = self.get_mut(id) {
-                g.last_error = Some(e.kind());
+            other => {
+                let g = self.get_mut(id)?;
+                let result = g.apply(env, other);
+                if let Err(e) = &result {
+                    // The group's status shows its last refusal, as an axis's does.
+                    g.last_error = Some(e.kind());
+                }
+                result
             }
         }
-        result
     }
 
     fn create(&mut self, env: &mut Env, c: GroupCreate) -> Result<Reply, EngineError> {
@@ -349,7 +352,13 @@ impl Group {
             if let Some(p) = self.pending.take() {
                 env.ledger.finish(p.id, CommandState::Aborted);
             }
+            // A halted path stops too (the halt gives way to the stop), and the new motion
+            // runs once at rest: the group is Moving again.
+            self.planner.resume();
             self.planner.stop(self.defaults.deceleration);
+            if self.state == GroupState::Halted {
+                self.state = GroupState::Moving;
+            }
             self.pending = Some(PendingMotion { id, request });
             return Ok(Reply::Accepted { id });
         }
@@ -549,17 +558,7 @@ fn wait_position_item(env: &Env, c: &GroupWaitPosition) -> Result<Item, EngineEr
         })?;
     let position = bounded("position", c.position)?;
     let tolerance = match c.tolerance {
-        Some(t) => {
-            let t = bounded("tolerance", t)?;
-            if t < 0.0 {
-                return Err(EngineError::InvalidArgument {
-                    name: "tolerance",
-                    value: t,
-                    reason: "must be ≥ 0",
-                });
-            }
-            t
-        }
+        Some(t) => nonnegative("tolerance", t)?,
         None => axis
             .params()
             .get(ParamId::InPositionWindow)

@@ -23,7 +23,7 @@ use crate::axis::{Axis, Context, Ledger};
 use crate::command::{AxisIndex, CommandId, CommandState, EngineError, GroupId};
 use crate::config::GroupsConfig;
 use crate::param::ParamId;
-use crate::status::{AxisFlags, GroupFault, GroupState, GroupStatus};
+use crate::status::{AxisFlags, AxisStatus, GroupFault, GroupState, GroupStatus};
 
 mod commands;
 mod queue;
@@ -147,18 +147,24 @@ impl Group {
         p
     }
 
-    /// The status record, with each member's flags from `axes`.
+    /// The status record, each member's IN_POSITION from its status now.
     pub fn status(&self, axes: &[Axis]) -> GroupStatus {
+        self.status_with(axes, |a| {
+            axes.get(a as usize)
+                .is_some_and(|x| x.status().flags.contains(AxisFlags::IN_POSITION))
+        })
+    }
+
+    /// The status record, with `in_position(axis)` for each member (a snapshot passes the
+    /// records it has just assembled).
+    fn status_with(&self, axes: &[Axis], in_position: impl Fn(AxisIndex) -> bool) -> GroupStatus {
         let st = self.planner.state();
         let mut members = [0; MAX_AXES];
         for (out, &a) in members.iter_mut().zip(&self.members) {
             *out = a;
         }
         let idle = self.planner.is_idle() && self.waiting.is_none() && self.pending.is_none();
-        let all_in_position = self.members.iter().all(|&a| {
-            axes.get(a as usize)
-                .is_some_and(|x| x.status().flags.contains(AxisFlags::IN_POSITION))
-        });
+        let all_in_position = self.members.iter().all(|&a| in_position(a));
         let used = self.queued() as u32;
         GroupStatus {
             group: self.id,
@@ -286,9 +292,15 @@ impl Groups {
         self.groups.iter().find_map(|g| g.queued_state(id))
     }
 
-    /// Every group's status record, reusing `out`.
-    pub fn status_into(&self, axes: &[Axis], out: &mut Vec<GroupStatus>) {
+    /// Every group's status record, reusing `out`; `statuses` are the axes' records of the
+    /// same tick (for the members' IN_POSITION).
+    pub fn status_into(&self, axes: &[Axis], statuses: &[AxisStatus], out: &mut Vec<GroupStatus>) {
+        let in_position = |a: AxisIndex| {
+            statuses
+                .get(a as usize)
+                .is_some_and(|s| s.flags.contains(AxisFlags::IN_POSITION))
+        };
         out.clear();
-        out.extend(self.groups.iter().map(|g| g.status(axes)));
+        out.extend(self.groups.iter().map(|g| g.status_with(axes, in_position)));
     }
 }

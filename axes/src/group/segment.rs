@@ -7,9 +7,9 @@ use path::planner::{Join, PathLimits, Transition};
 use path::{Point, MAX_AXES};
 
 use crate::command::{
-    bounded, finite, positive, ArcDirection, CircleMode, CommandId, EngineError, GroupBufferMode,
-    GroupId, MoveCircularAbsolute, MoveCircularRelative, MoveLinearAbsolute, MoveLinearRelative,
-    TransitionMode,
+    bounded, nonnegative, positive, ArcDirection, CircleMode, CommandId, EngineError,
+    GroupBufferMode, GroupId, MoveCircularAbsolute, MoveCircularRelative, MoveLinearAbsolute,
+    MoveLinearRelative, TransitionMode,
 };
 
 /// Where a motion goes, in group coordinates (checked, `dims` components used).
@@ -81,14 +81,7 @@ pub(super) fn path_limits(
 
 /// A jerk from a command or parameter: ≥ 0, and 0 means none (a trapezoid).
 pub(super) fn jerk_value(j: f64) -> Result<f64, EngineError> {
-    let j = finite("jerk", j)?;
-    if j < 0.0 {
-        return Err(EngineError::InvalidArgument {
-            name: "jerk",
-            value: j,
-            reason: "must be ≥ 0 (0 = trapezoid)",
-        });
-    }
+    let j = nonnegative("jerk", j)?;
     Ok(if j == 0.0 { f64::INFINITY } else { j })
 }
 
@@ -236,55 +229,38 @@ pub(super) struct CircularFields<'a> {
     pub relative: bool,
 }
 
-impl<'a> From<&'a MoveCircularAbsolute> for CircularFields<'a> {
-    fn from(c: &'a MoveCircularAbsolute) -> Self {
-        CircularFields {
-            mode: c.mode,
-            aux_point: &c.aux_point,
-            radius: c.radius,
-            end_point: &c.end_point,
-            direction: c.direction,
-            plane: c.plane,
-            normal: c.normal.as_deref(),
-            turns: c.turns,
-            kinematics: Kinematics {
-                velocity: c.velocity,
-                acceleration: c.acceleration,
-                deceleration: c.deceleration,
-                jerk: c.jerk,
-            },
-            buffer_mode: c.buffer_mode,
-            transition: c.transition,
-            user_segment: c.user_segment,
-            relative: false,
+/// `CircularFields` from either circular command: they differ only in `relative`.
+macro_rules! circular_fields {
+    ($command:ident, $relative:expr) => {
+        impl<'a> From<&'a $command> for CircularFields<'a> {
+            fn from(c: &'a $command) -> Self {
+                CircularFields {
+                    mode: c.mode,
+                    aux_point: &c.aux_point,
+                    radius: c.radius,
+                    end_point: &c.end_point,
+                    direction: c.direction,
+                    plane: c.plane,
+                    normal: c.normal.as_deref(),
+                    turns: c.turns,
+                    kinematics: Kinematics {
+                        velocity: c.velocity,
+                        acceleration: c.acceleration,
+                        deceleration: c.deceleration,
+                        jerk: c.jerk,
+                    },
+                    buffer_mode: c.buffer_mode,
+                    transition: c.transition,
+                    user_segment: c.user_segment,
+                    relative: $relative,
+                }
+            }
         }
-    }
+    };
 }
 
-impl<'a> From<&'a MoveCircularRelative> for CircularFields<'a> {
-    fn from(c: &'a MoveCircularRelative) -> Self {
-        CircularFields {
-            mode: c.mode,
-            aux_point: &c.aux_point,
-            radius: c.radius,
-            end_point: &c.end_point,
-            direction: c.direction,
-            plane: c.plane,
-            normal: c.normal.as_deref(),
-            turns: c.turns,
-            kinematics: Kinematics {
-                velocity: c.velocity,
-                acceleration: c.acceleration,
-                deceleration: c.deceleration,
-                jerk: c.jerk,
-            },
-            buffer_mode: c.buffer_mode,
-            transition: c.transition,
-            user_segment: c.user_segment,
-            relative: true,
-        }
-    }
-}
+circular_fields!(MoveCircularAbsolute, false);
+circular_fields!(MoveCircularRelative, true);
 
 pub(super) fn circular(
     group: GroupId,
