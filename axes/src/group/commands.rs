@@ -345,17 +345,8 @@ impl Group {
     fn submit(&mut self, env: &mut Env, request: PathRequest) -> Result<Reply, EngineError> {
         if request.aborting && !self.is_idle() {
             let id = env.ledger.allocate();
-            if let Some(wait) = self.waiting.take() {
-                self.planner.release_hold();
-                env.ledger.finish(wait.id, CommandState::Aborted);
-            }
-            if let Some(p) = self.pending.take() {
-                env.ledger.finish(p.id, CommandState::Aborted);
-            }
-            // A halted path stops too (the halt gives way to the stop), and the new motion
-            // runs once at rest: the group is Moving again.
-            self.planner.resume();
-            self.planner.stop(self.defaults.deceleration);
+            // The new motion runs once the path is at rest: the group is Moving again.
+            self.stop_path(env, self.defaults.deceleration);
             if self.state == GroupState::Halted {
                 self.state = GroupState::Moving;
             }
@@ -402,6 +393,15 @@ impl Group {
             }
             GroupState::Moving | GroupState::Halted | GroupState::Stopping => {}
         }
+        self.stop_path(env, deceleration);
+        self.state = GroupState::Stopping;
+        Ok(Reply::Done)
+    }
+
+    /// Decelerate the path to rest and drop the queue (the planner reports the queued entries
+    /// dropped); a wait in progress and an aborting motion not yet started end `aborted`. A
+    /// halted path stops too: the halt gives way to the stop.
+    fn stop_path(&mut self, env: &mut Env, deceleration: f64) {
         if let Some(wait) = self.waiting.take() {
             self.planner.release_hold();
             env.ledger.finish(wait.id, CommandState::Aborted);
@@ -411,8 +411,6 @@ impl Group {
         }
         self.planner.resume();
         self.planner.stop(deceleration);
-        self.state = GroupState::Stopping;
-        Ok(Reply::Done)
     }
 
     /// `group_halt`: decelerate along the path, keep the queue (HIMC HaltGroup).

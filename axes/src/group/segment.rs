@@ -58,6 +58,18 @@ pub(super) struct Kinematics {
     pub jerk: Option<f64>,
 }
 
+/// The [`Kinematics`] of any group motion command (they all have these four fields).
+macro_rules! kinematics {
+    ($c:expr) => {
+        Kinematics {
+            velocity: $c.velocity,
+            acceleration: $c.acceleration,
+            deceleration: $c.deceleration,
+            jerk: $c.jerk,
+        }
+    };
+}
+
 /// The path limits of a motion: its own, else the group's. `jerk = 0` is a trapezoid.
 pub(super) fn path_limits(
     k: &Kinematics,
@@ -169,22 +181,8 @@ pub(super) fn linear_absolute(
     defaults: &PathLimits,
 ) -> Result<PathRequest, EngineError> {
     let point = coordinates(group, "position", &c.position, dims)?;
-    request(
-        Geometry::Linear {
-            point,
-            relative: false,
-        },
-        Kinematics {
-            velocity: c.velocity,
-            acceleration: c.acceleration,
-            deceleration: c.deceleration,
-            jerk: c.jerk,
-        },
-        c.buffer_mode,
-        c.transition,
-        c.user_segment,
-        defaults,
-    )
+    let mode = (c.buffer_mode, c.transition, c.user_segment);
+    linear(point, false, kinematics!(c), mode, defaults)
 }
 
 pub(super) fn linear_relative(
@@ -194,20 +192,25 @@ pub(super) fn linear_relative(
     defaults: &PathLimits,
 ) -> Result<PathRequest, EngineError> {
     let point = coordinates(group, "distance", &c.distance, dims)?;
+    let mode = (c.buffer_mode, c.transition, c.user_segment);
+    linear(point, true, kinematics!(c), mode, defaults)
+}
+
+/// A line to `point` (from the start when `relative`), with its buffer mode, transition and
+/// user segment.
+fn linear(
+    point: Point,
+    relative: bool,
+    k: Kinematics,
+    (buffer_mode, transition, user_segment): (GroupBufferMode, TransitionMode, Option<u32>),
+    defaults: &PathLimits,
+) -> Result<PathRequest, EngineError> {
     request(
-        Geometry::Linear {
-            point,
-            relative: true,
-        },
-        Kinematics {
-            velocity: c.velocity,
-            acceleration: c.acceleration,
-            deceleration: c.deceleration,
-            jerk: c.jerk,
-        },
-        c.buffer_mode,
-        c.transition,
-        c.user_segment,
+        Geometry::Linear { point, relative },
+        k,
+        buffer_mode,
+        transition,
+        user_segment,
         defaults,
     )
 }
@@ -243,12 +246,7 @@ macro_rules! circular_fields {
                     plane: c.plane,
                     normal: c.normal.as_deref(),
                     turns: c.turns,
-                    kinematics: Kinematics {
-                        velocity: c.velocity,
-                        acceleration: c.acceleration,
-                        deceleration: c.deceleration,
-                        jerk: c.jerk,
-                    },
+                    kinematics: kinematics!(c),
                     buffer_mode: c.buffer_mode,
                     transition: c.transition,
                     user_segment: c.user_segment,
