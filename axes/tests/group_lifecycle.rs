@@ -455,3 +455,41 @@ fn a_refused_group_motion_takes_no_command_id() {
     );
     assert_eq!(r, axes::Reply::Accepted { id: 1 });
 }
+
+#[test]
+fn a_bad_groups_section_is_refused_with_its_key_and_reason() {
+    for (groups, key, reason) in [
+        (
+            GroupsConfig {
+                queue_capacity: 2000,
+                ..GroupsConfig::default()
+            },
+            "groups.queue_capacity",
+            "2000 is outside 1 … 1024",
+        ),
+        (
+            GroupsConfig {
+                max_groups: 0,
+                ..GroupsConfig::default()
+            },
+            "groups.max_groups",
+            "0 is outside 1 … 64",
+        ),
+        (
+            GroupsConfig {
+                queue_capacity: 32,
+                lookahead: 64,
+                ..GroupsConfig::default()
+            },
+            "groups.lookahead",
+            "64 is outside 1 … queue_capacity (32)",
+        ),
+    ] {
+        let err = Engine::new(&EngineConfig {
+            groups,
+            ..EngineConfig::default()
+        })
+        .unwrap_err();
+        assert_eq!((err.key.as_str(), err.reason.as_str()), (key, reason));
+    }
+}

@@ -799,3 +799,26 @@ fn a_parameter_change_of_a_member_limits_the_next_path() {
     assert!(fastest <= 10.0 + 1e-9, "{fastest}");
     assert_eq!(positions(&e, 2), [50.0, 0.0]);
 }
+
+#[test]
+fn a_member_refuses_set_position_while_the_path_runs_and_takes_it_between_paths() {
+    let mut e = machine(2, &[0, 1]);
+    send(&mut e, line(&[50.0, 0.0]));
+    common::run(&mut e, 0.1);
+    let set = |position| {
+        Command::from(axes::command::SetPosition {
+            axis: 0,
+            position,
+            frame: Default::default(),
+        })
+    };
+    let err = refused(&mut e, set(0.0));
+    assert_eq!(err, EngineError::AxisInGroup { axis: 0, group: 1 });
+    run_to_standby(&mut e, 5.0);
+    ok(&mut e, set(100.0));
+    // The next path starts from the re-based position.
+    assert_eq!(group(&e).position(), &[100.0, 0.0]);
+    send(&mut e, line(&[110.0, 0.0]));
+    run_to_standby(&mut e, 5.0);
+    assert_eq!(positions(&e, 2), [110.0, 0.0]);
+}
