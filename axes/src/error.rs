@@ -66,6 +66,18 @@ pub enum EngineError {
         channel: u16,
         count: u16,
     },
+    /// One item of a list in a command was refused, and with it the whole command: a move of a
+    /// `move_together` (`list` = "moves"), an axis of `stop_axes` or `enable_all` ("axes"), a
+    /// command of an atomic batch ("commands"). Nothing of the command was applied. Its
+    /// [`EngineError::kind`] is the item's, so dialects map it as they map the item's refusal.
+    #[error("{list}[{index}]: {error}")]
+    Item {
+        list: &'static str,
+        /// `item` in JSON: the control API's `index` is the command's place in a request.
+        #[serde(rename = "item")]
+        index: u32,
+        error: Box<EngineError>,
+    },
     #[error("group {group} does not exist")]
     UnknownGroup { group: GroupId },
     #[error("group {group}: {reason}")]
@@ -98,6 +110,23 @@ pub enum EngineError {
 }
 
 impl EngineError {
+    /// `error` as the refusal of item `index` of `list`.
+    pub fn item(list: &'static str, index: usize, error: EngineError) -> EngineError {
+        EngineError::Item {
+            list,
+            index: u32::try_from(index).unwrap_or(u32::MAX),
+            error: Box::new(error),
+        }
+    }
+
+    /// The refusal inside any [`EngineError::Item`] wrappers.
+    pub fn innermost(&self) -> &EngineError {
+        match self {
+            EngineError::Item { error, .. } => error.innermost(),
+            other => other,
+        }
+    }
+
     pub fn kind(&self) -> ErrorKind {
         match self {
             EngineError::InvalidAxis { .. } => ErrorKind::InvalidAxis,
@@ -117,6 +146,7 @@ impl EngineError {
             EngineError::Object { .. } => ErrorKind::Object,
             EngineError::InvalidSlave { .. } => ErrorKind::InvalidSlave,
             EngineError::InvalidChannel { .. } => ErrorKind::InvalidChannel,
+            EngineError::Item { error, .. } => error.kind(),
             EngineError::UnknownGroup { .. } | EngineError::InvalidGroup { .. } => {
                 ErrorKind::InvalidGroup
             }

@@ -6,11 +6,12 @@
 //! show them to users, and the control API reads the field name out of them.
 
 use axes::command::{
-    AxisInput, BufferMode, Cancel, CancelScope, Command, Disable, Enable, ForceAnalogInput,
-    ForceDigitalInput, ForceInput, GetCommandState, GetParameter, Halt, Home, InjectFollowingError,
-    ModifyTarget, MoveAbsolute, MoveRelative, MoveVelocity, PositionFrame, ReadObject, Reset,
-    Resume, SetParameter, SetPosition, Setpoint, Stop, StopMode, StreamSetpoint, WriteAnalogOutput,
-    WriteDigitalOutput, WriteObject,
+    AxisInput, BufferMode, Cancel, CancelScope, Command, Disable, DisableAll, EmergencyStopAll,
+    Enable, EnableAll, ForceAnalogInput, ForceDigitalInput, ForceInput, GetCommandState,
+    GetParameter, Halt, Home, InjectFollowingError, ModifyTarget, MoveAbsolute, MoveRelative,
+    MoveTogether, MoveVelocity, PositionFrame, ReadObject, Reset, ResetAll, Resume, SetParameter,
+    SetPosition, Setpoint, Stop, StopAll, StopAxes, StopMode, StreamSetpoint, TogetherMove,
+    WriteAnalogOutput, WriteDigitalOutput, WriteObject,
 };
 use axes::homing::{AfterHome, HomingQuirks, Latch};
 use axes::od::Value;
@@ -219,6 +220,66 @@ fn full() -> Vec<(Command, &'static str)> {
             }),
             r#"{"type":"write_object","slave":0,"index":24672,"subindex":0,"value":{"i8":8}}"#,
         ),
+        (
+            Command::from(MoveTogether {
+                moves: vec![
+                    TogetherMove::MoveAbsolute(MoveAbsolute {
+                        axis: 0,
+                        position: 1000.0,
+                        velocity: Some(50.0),
+                        acceleration: None,
+                        deceleration: None,
+                        jerk: None,
+                        buffer_mode: BufferMode::Aborting,
+                    }),
+                    TogetherMove::MoveRelative(MoveRelative {
+                        axis: 1,
+                        distance: -2.0,
+                        velocity: None,
+                        acceleration: Some(100.0),
+                        deceleration: None,
+                        jerk: Some(0.0),
+                        buffer_mode: BufferMode::Aborting,
+                    }),
+                    TogetherMove::MoveVelocity(MoveVelocity {
+                        axis: 2,
+                        velocity: 3.0,
+                        acceleration: None,
+                        deceleration: Some(9.0),
+                        jerk: None,
+                        buffer_mode: BufferMode::Aborting,
+                    }),
+                ],
+            }),
+            concat!(
+                r#"{"type":"move_together","moves":["#,
+                r#"{"type":"move_absolute","axis":0,"position":1000.0,"velocity":50.0,"acceleration":null,"deceleration":null,"jerk":null,"buffer_mode":"aborting"},"#,
+                r#"{"type":"move_relative","axis":1,"distance":-2.0,"velocity":null,"acceleration":100.0,"deceleration":null,"jerk":0.0,"buffer_mode":"aborting"},"#,
+                r#"{"type":"move_velocity","axis":2,"velocity":3.0,"acceleration":null,"deceleration":9.0,"jerk":null,"buffer_mode":"aborting"}]}"#
+            ),
+        ),
+        (
+            Command::from(StopAxes {
+                axes: vec![0, 2],
+                mode: StopMode::Emergency,
+                deceleration: Some(500.0),
+            }),
+            r#"{"type":"stop_axes","axes":[0,2],"mode":"emergency","deceleration":500.0}"#,
+        ),
+        (
+            Command::from(StopAll {
+                mode: StopMode::Smooth,
+                deceleration: Some(20.0),
+            }),
+            r#"{"type":"stop_all","mode":"smooth","deceleration":20.0}"#,
+        ),
+        (Command::from(EnableAll {}), r#"{"type":"enable_all"}"#),
+        (Command::from(DisableAll {}), r#"{"type":"disable_all"}"#),
+        (
+            Command::from(EmergencyStopAll {}),
+            r#"{"type":"emergency_stop_all"}"#,
+        ),
+        (Command::from(ResetAll {}), r#"{"type":"reset_all"}"#),
     ]
 }
 
@@ -372,12 +433,44 @@ fn minimal() -> Vec<(&'static str, Command, &'static str)> {
             }),
             r#"{"type":"setpoint","axis":0,"setpoint":null}"#,
         ),
+        (
+            r#"{"type":"move_together","moves":[{"type":"move_relative","axis":1,"distance":5}]}"#,
+            Command::from(MoveTogether {
+                moves: vec![TogetherMove::MoveRelative(MoveRelative {
+                    axis: 1,
+                    distance: 5.0,
+                    velocity: None,
+                    acceleration: None,
+                    deceleration: None,
+                    jerk: None,
+                    buffer_mode: BufferMode::Aborting,
+                })],
+            }),
+            r#"{"type":"move_together","moves":[{"type":"move_relative","axis":1,"distance":5.0,"velocity":null,"acceleration":null,"deceleration":null,"jerk":null,"buffer_mode":"aborting"}]}"#,
+        ),
+        (
+            r#"{"type":"stop_axes","axes":[1]}"#,
+            Command::from(StopAxes {
+                axes: vec![1],
+                mode: StopMode::Smooth,
+                deceleration: None,
+            }),
+            r#"{"type":"stop_axes","axes":[1],"mode":"smooth","deceleration":null}"#,
+        ),
+        (
+            r#"{"type":"stop_all"}"#,
+            Command::from(StopAll {
+                mode: StopMode::Abrupt,
+                deceleration: None,
+            }),
+            r#"{"type":"stop_all","mode":"abrupt","deceleration":null}"#,
+        ),
     ]
 }
 
 /// Inputs whose error serde reports, and the text it reports today.
 const ERRORS: &[(&str, &str)] = &[
-    (r#"{"type":"teleport","axis":0}"#, "unknown variant `teleport`, expected one of `enable`, `disable`, `reset`, `move_absolute`, `move_relative`, `move_velocity`, `stop`, `halt`, `resume`, `home`, `set_position`, `set_parameter`, `get_parameter`, `modify_target`, `cancel`, `command_state`, `force_input`, `force_digital_input`, `force_analog_input`, `write_digital_output`, `write_analog_output`, `inject_following_error`, `setpoint`, `read_object`, `write_object`, `group_create`, `group_delete`, `group_enable`, `group_disable`, `group_reset`, `move_linear_absolute`, `move_linear_relative`, `move_circular_absolute`, `move_circular_relative`, `group_stop`, `group_halt`, `group_continue`, `group_emergency_stop`, `group_set_override`, `group_set_origin`, `group_set_parameter`, `group_set_output`, `group_dwell`, `group_wait_input`, `group_wait_position`, `group_axis_move` at line 1 column 18"),
+    (r#"{"type":"teleport","axis":0}"#, "unknown variant `teleport`, expected one of `enable`, `disable`, `reset`, `move_absolute`, `move_relative`, `move_velocity`, `stop`, `halt`, `resume`, `home`, `set_position`, `set_parameter`, `get_parameter`, `modify_target`, `cancel`, `command_state`, `force_input`, `force_digital_input`, `force_analog_input`, `write_digital_output`, `write_analog_output`, `inject_following_error`, `setpoint`, `read_object`, `write_object`, `move_together`, `stop_axes`, `stop_all`, `enable_all`, `disable_all`, `emergency_stop_all`, `reset_all`, `group_create`, `group_delete`, `group_enable`, `group_disable`, `group_reset`, `move_linear_absolute`, `move_linear_relative`, `move_circular_absolute`, `move_circular_relative`, `group_stop`, `group_halt`, `group_continue`, `group_emergency_stop`, `group_set_override`, `group_set_origin`, `group_set_parameter`, `group_set_output`, `group_dwell`, `group_wait_input`, `group_wait_position`, `group_axis_move` at line 1 column 18"),
     (r#"{"axis":0}"#, "missing field `type` at line 1 column 10"),
     (r#"{"type":"move_absolute","axis":0}"#, "missing field `position`"),
     (r#"{"type":"move_absolute","axis":0,"positon":10}"#, "unknown field `positon`, expected one of `axis`, `position`, `velocity`, `acceleration`, `deceleration`, `jerk`, `buffer_mode`"),
@@ -390,6 +483,9 @@ const ERRORS: &[(&str, &str)] = &[
     (r#"{"type":"enable"}"#, "missing field `axis`"),
     (r#""enable""#, "invalid type: string \"enable\", expected internally tagged enum Command at line 1 column 8"),
     (r#"[1]"#, "invalid type: integer `1`, expected variant identifier at line 1 column 2"),
+    (r#"{"type":"move_together","moves":[{"type":"stop","axis":0}]}"#, "unknown variant `stop`, expected one of `move_absolute`, `move_relative`, `move_velocity`"),
+    (r#"{"type":"stop_all","mode":"abrupt","axes":[0]}"#, "unknown field `axes`, expected `mode` or `deceleration`"),
+    (r#"{"type":"disable_all","axis":0}"#, "unknown field `axis`, there are no fields"),
 ];
 
 #[test]
@@ -397,8 +493,8 @@ fn every_variant_serializes_to_its_pinned_json_and_back() {
     let cases = full();
     assert_eq!(
         cases.len(),
-        25,
-        "one case per axis, I/O, slave and machine variant (groups: group_json.rs)"
+        32,
+        "one case per variant but the group commands (group_json.rs)"
     );
     for (command, json) in cases {
         assert_eq!(serde_json::to_string(&command).unwrap(), json);

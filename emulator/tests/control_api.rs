@@ -431,6 +431,132 @@ fn control_command_arrays_apply_in_order_and_stop_at_the_first_error() {
 }
 
 #[test]
+fn control_atomic_arrays_apply_in_one_tick_all_or_none() {
+    let m = Mcemu::start("virtual", &[]);
+    m.post_raw("/api/v1/trace/start", "text/plain", "")
+        .expect(200);
+    let replies = m
+        .post(
+            "/api/v1/commands?atomic=true",
+            json!([
+                {"type": "enable", "axis": 0},
+                {"type": "enable", "axis": 1},
+                {"type": "move_together", "moves": [
+                    {"type": "move_absolute", "axis": 0, "position": 10},
+                    {"type": "move_relative", "axis": 1, "distance": -5, "velocity": 20},
+                ]},
+            ]),
+        )
+        .expect(200);
+    assert_eq!(replies[0], json!({"reply": "done"}));
+    assert_eq!(replies[2], json!({"reply": "accepted_all", "ids": [1, 2]}));
+    m.advance(json!({"ticks": 20}));
+    // Same tick: both axes' first non-zero commanded velocity is on the first tick recorded.
+    let (header, rows) = parse_csv(&m.get("/api/v1/trace").body);
+    let (time, axis, cmd_vel) = (
+        column(&header, "time_s"),
+        column(&header, "axis"),
+        column(&header, "cmd_vel"),
+    );
+    let first_moving = |a: &str| {
+        rows.iter()
+            .find(|r| r[axis] == a && r[cmd_vel].parse::<f64>().unwrap() != 0.0)
+            .map(|r| r[time].clone())
+    };
+    assert_eq!(first_moving("0"), Some("0.001".to_string()));
+    assert_eq!(first_moving("1"), first_moving("0"));
+
+    // Refused at index 2: the parameter and the output written before it are undone.
+    let e = m
+        .post(
+            "/api/v1/commands?atomic=true",
+            json!([
+                {"type": "set_parameter", "axis": 1, "name": "speed", "value": 20},
+                {"type": "write_digital_output", "channel": 0, "value": true},
+                {"type": "enable", "axis": 7},
+            ]),
+        )
+        .expect(422);
+    assert_eq!(e["code"], "invalid_axis");
+    assert_eq!(e["index"], 2);
+    assert_eq!(e["replies"], json!([]));
+    assert_eq!(
+        e["message"],
+        "axis 7 does not exist (the machine has 2 axes)"
+    );
+    let speed = m.command(json!({"type": "get_parameter", "axis": 1, "name": "speed"}));
+    assert_eq!(speed, json!({"reply": "value", "value": 100.0}));
+    assert_eq!(m.state()["io"]["do"][0], false);
+
+    // A refused move inside a batch: the batch's index, the move's item and its own error.
+    let e = m
+        .post(
+            "/api/v1/commands?atomic=true",
+            json!([
+                {"type": "disable_all"},
+                {"type": "move_together", "moves": [
+                    {"type": "move_relative", "axis": 0, "distance": 1},
+                ]},
+            ]),
+        )
+        .expect(422);
+    assert_eq!(e["code"], "axis_disabled");
+    assert_eq!(
+        (e["index"].as_u64(), e["list"].as_str()),
+        (Some(1), Some("moves"))
+    );
+    assert_eq!(e["item"], 0);
+    assert_eq!(e["error"]["code"], "axis_disabled");
+    assert_eq!(e["error"]["axis"], 0);
+    assert_eq!(e["message"], "moves[0]: axis 0 is disabled");
+    assert!(has_flag(&m.axis(0), "enabled"), "disable_all was undone");
+
+    // Bad input, nothing applied.
+    let e = m
+        .post("/api/v1/commands?atomic=true", json!([]))
+        .expect(422);
+    assert_eq!(
+        (e["code"].as_str(), e["name"].as_str()),
+        (Some("invalid_argument"), Some("commands"))
+    );
+    let many = vec![json!({"type": "disable_all"}); 1025];
+    let e = m
+        .post("/api/v1/commands?atomic=true", json!(many))
+        .expect(400);
+    assert_eq!(e["error"], "invalid_request");
+    let e = m
+        .post(
+            "/api/v1/commands?atomic=true",
+            json!([
+                {"type": "write_digital_output", "channel": 1, "value": true},
+                {"type": "move_absolute", "axis": 0, "position": 1e13},
+            ]),
+        )
+        .expect(422);
+    assert_eq!(
+        (e["code"].as_str(), e["index"].as_u64()),
+        (Some("invalid_argument"), Some(1))
+    );
+    let e = m
+        .post(
+            "/api/v1/commands?atomic=true",
+            json!([{"type": "disable_all"}, {"type": "teleport", "axis": 0}]),
+        )
+        .expect(400);
+    assert_eq!(e["error"], "invalid_body");
+    let e = m
+        .post(
+            "/api/v1/commands?atomic=maybe",
+            json!([{"type": "disable_all"}]),
+        )
+        .expect(400);
+    assert_eq!(e["error"], "invalid_request");
+    assert!(has_flag(&m.axis(0), "enabled"));
+    assert_eq!(m.state()["io"]["do"][1], false);
+    m.stop();
+}
+
+#[test]
 fn control_forced_limit_refuses_motion_into_it() {
     let m = Mcemu::start("virtual", &[]);
     m.command(json!({"type": "enable", "axis": 0}));

@@ -118,6 +118,18 @@ pub struct Ledger {
     next_id: CommandId,
     finished: VecDeque<(CommandId, CommandState)>,
     capacity: usize,
+    /// While a checkpoint is open: every `finish`, with the entry it pushed out (if any), so
+    /// that [`Ledger::rollback`] can undo them without copying the whole history.
+    journal: Vec<Option<(CommandId, CommandState)>>,
+    /// Checkpoints open (they nest: an atomic batch holding a `move_together`).
+    open: u32,
+}
+
+/// Where [`Ledger::rollback`] returns to: from [`Ledger::checkpoint`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LedgerMark {
+    next_id: CommandId,
+    journal_len: usize,
 }
 
 /// How many finished commands the ledger remembers.
@@ -135,6 +147,46 @@ impl Ledger {
             next_id: 1,
             finished: VecDeque::new(),
             capacity: capacity.max(1),
+            journal: Vec::new(),
+            open: 0,
+        }
+    }
+
+    /// Open a checkpoint: from here, ids and finished commands can be rolled back to this
+    /// point. Close it with [`Ledger::rollback`] or [`Ledger::commit`], innermost first.
+    pub fn checkpoint(&mut self) -> LedgerMark {
+        self.open += 1;
+        LedgerMark {
+            next_id: self.next_id,
+            journal_len: self.journal.len(),
+        }
+    }
+
+    /// Undo every id and finish since `mark`, and close its checkpoint.
+    pub fn rollback(&mut self, mark: LedgerMark) {
+        while self.journal.len() > mark.journal_len {
+            let Some(evicted) = self.journal.pop() else {
+                break;
+            };
+            self.finished.pop_back();
+            if let Some(entry) = evicted {
+                self.finished.push_front(entry);
+            }
+        }
+        self.next_id = mark.next_id;
+        self.close();
+    }
+
+    /// Keep everything since `mark`, and close its checkpoint.
+    pub fn commit(&mut self, mark: LedgerMark) {
+        let _ = mark;
+        self.close();
+    }
+
+    fn close(&mut self) {
+        self.open = self.open.saturating_sub(1);
+        if self.open == 0 {
+            self.journal.clear();
         }
     }
 
@@ -152,10 +204,15 @@ impl Ledger {
 
     /// Record the final state of a command.
     pub fn finish(&mut self, id: CommandId, state: CommandState) {
-        if self.finished.len() >= self.capacity {
-            self.finished.pop_front();
-        }
+        let evicted = if self.finished.len() >= self.capacity {
+            self.finished.pop_front()
+        } else {
+            None
+        };
         self.finished.push_back((id, state));
+        if self.open > 0 {
+            self.journal.push(evicted);
+        }
     }
 
     /// Final state of a finished command, if still remembered. Ids finish roughly in order, so
@@ -208,5 +265,40 @@ mod tests {
         w.next_id = u32::MAX;
         assert_eq!(w.allocate(), u32::MAX);
         assert_eq!(w.allocate(), 1);
+    }
+
+    #[test]
+    fn ledger_rollback_undoes_ids_and_finishes_even_past_the_capacity() {
+        let history = |l: &Ledger| l.finished.iter().copied().collect::<Vec<_>>();
+        let mut l = Ledger::with_capacity(3);
+        for _ in 0..3 {
+            let id = l.allocate();
+            l.finish(id, CommandState::Done);
+        }
+        let before = history(&l);
+        let outer = l.checkpoint();
+        let id = l.allocate();
+        l.finish(id, CommandState::Aborted);
+        let inner = l.checkpoint();
+        for _ in 0..4 {
+            let id = l.allocate();
+            l.finish(id, CommandState::Done);
+        }
+        l.rollback(inner);
+        assert_eq!(l.lookup(4), Some(CommandState::Aborted));
+        assert_eq!(
+            l.allocate(),
+            5,
+            "the inner checkpoint's ids are issued again"
+        );
+        l.rollback(outer);
+        assert_eq!(history(&l), before);
+        assert_eq!(l.allocate(), 4);
+        assert!(l.journal.is_empty() && l.open == 0);
+        let mark = l.checkpoint();
+        l.finish(4, CommandState::Done);
+        l.commit(mark);
+        assert_eq!(l.lookup(4), Some(CommandState::Done));
+        assert!(l.journal.is_empty());
     }
 }

@@ -146,6 +146,7 @@ struct Inputs {
 }
 
 /// One simulated axis.
+#[derive(Clone)]
 pub struct Axis {
     index: AxisIndex,
     name: String,
@@ -293,6 +294,11 @@ impl Axis {
         }
         axis.refresh_inputs(0.0, 0.0, &[], EncoderTick::default());
         axis
+    }
+
+    /// Whether the axis can be enabled and moved at all (not encoder-only or unused).
+    pub fn can_move(&self) -> bool {
+        self.class.can_move()
     }
 
     pub fn index(&self) -> AxisIndex {

@@ -34,10 +34,11 @@ pub enum StopMode {
     /// Decelerate with the command's deceleration, else the axis `decel` (NMC_MtStop, MC_Stop).
     #[default]
     Smooth,
-    /// Decelerate with `fast_decel`; latches nothing (NMC_MtAbruptStop).
+    /// Decelerate with `fast_decel`; latches nothing (NMC_MtAbruptStop, HIMC StopAll's kill
+    /// deceleration).
     Abrupt,
     /// Decelerate with `fast_decel` and latch `ESTOP`: the axis needs a reset before it moves
-    /// again (NMC_MtEstp, HIMC StopAll).
+    /// again (NMC_MtEstp).
     Emergency,
     /// Velocity jumps to zero in the current tick (CPU 226H E_STOP, HMC CancelMode 2).
     Immediate,
@@ -105,7 +106,10 @@ pub use group::{
 pub use io::{
     ForceAnalogInput, ForceDigitalInput, IoCommand, WriteAnalogOutput, WriteDigitalOutput,
 };
-pub use machine::{GetCommandState, MachineCommand};
+pub use machine::{
+    DisableAll, EmergencyStopAll, EnableAll, GetCommandState, MachineCommand, MoveTogether,
+    ResetAll, StopAll, StopAxes, TogetherMove,
+};
 pub use slave::{ReadObject, SlaveCommand, WriteObject};
 
 /// A command into the engine, by family: what it addresses decides which stage of the engine
@@ -134,7 +138,8 @@ pub enum Command {
     Io(IoCommand),
     /// The object dictionaries of the CiA 402 drives on the engine's fieldbus.
     Slave(SlaveCommand),
-    /// Machine-wide: queries across all axes (command states).
+    /// Machine-wide: queries across all axes (command states), and commands on several or all
+    /// axes at once (start together, stop, enable, disable, emergency stop, reset all).
     Machine(MachineCommand),
 }
 
@@ -229,6 +234,11 @@ pub enum Reply {
     },
     Object {
         value: Value,
+    },
+    /// Several motion commands were accepted together (`move_together`): their ids, in the
+    /// order of the moves.
+    AcceptedAll {
+        ids: Vec<CommandId>,
     },
 }
 

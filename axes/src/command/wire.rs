@@ -5,11 +5,12 @@
 use serde::{Deserialize, Serialize};
 
 use super::{
-    AxisCommand, Cancel, Disable, Enable, ForceAnalogInput, ForceDigitalInput, ForceInput,
-    GetCommandState, GetParameter, Halt, Home, InjectFollowingError, IoCommand, MachineCommand,
-    ModifyTarget, MoveAbsolute, MoveRelative, MoveVelocity, ReadObject, Reset, Resume,
-    SetParameter, SetPosition, SlaveCommand, Stop, StreamSetpoint, WriteAnalogOutput,
-    WriteDigitalOutput, WriteObject,
+    AxisCommand, Cancel, Disable, DisableAll, EmergencyStopAll, Enable, EnableAll,
+    ForceAnalogInput, ForceDigitalInput, ForceInput, GetCommandState, GetParameter, Halt, Home,
+    InjectFollowingError, IoCommand, MachineCommand, ModifyTarget, MoveAbsolute, MoveRelative,
+    MoveTogether, MoveVelocity, ReadObject, Reset, ResetAll, Resume, SetParameter, SetPosition,
+    SlaveCommand, Stop, StopAll, StopAxes, StreamSetpoint, WriteAnalogOutput, WriteDigitalOutput,
+    WriteObject,
 };
 use super::{
     GroupAxisMove, GroupCommand, GroupContinue, GroupCreate, GroupDelete, GroupDisable, GroupDwell,
@@ -50,6 +51,14 @@ pub(super) enum Command {
     Setpoint(StreamSetpoint),
     ReadObject(ReadObject),
     WriteObject(WriteObject),
+    // Issue 11 item 6, machine-wide commands (appended: the order above is users' error text).
+    MoveTogether(MoveTogether),
+    StopAxes(StopAxes),
+    StopAll(StopAll),
+    EnableAll(EnableAll),
+    DisableAll(DisableAll),
+    EmergencyStopAll(EmergencyStopAll),
+    ResetAll(ResetAll),
     GroupCreate(GroupCreate),
     GroupDelete(GroupDelete),
     GroupEnable(GroupEnable),
@@ -103,6 +112,15 @@ impl From<Command> for super::Command {
             Command::Setpoint(c) => super::Command::Axis(AxisCommand::Setpoint(c)),
             Command::ReadObject(c) => super::Command::Slave(SlaveCommand::ReadObject(c)),
             Command::WriteObject(c) => super::Command::Slave(SlaveCommand::WriteObject(c)),
+            Command::MoveTogether(c) => super::Command::Machine(MachineCommand::MoveTogether(c)),
+            Command::StopAxes(c) => super::Command::Machine(MachineCommand::StopAxes(c)),
+            Command::StopAll(c) => super::Command::Machine(MachineCommand::StopAll(c)),
+            Command::EnableAll(c) => super::Command::Machine(MachineCommand::EnableAll(c)),
+            Command::DisableAll(c) => super::Command::Machine(MachineCommand::DisableAll(c)),
+            Command::EmergencyStopAll(c) => {
+                super::Command::Machine(MachineCommand::EmergencyStopAll(c))
+            }
+            Command::ResetAll(c) => super::Command::Machine(MachineCommand::ResetAll(c)),
             Command::GroupCreate(c) => super::Command::Group(GroupCommand::Create(c)),
             Command::GroupDelete(c) => super::Command::Group(GroupCommand::Delete(c)),
             Command::GroupEnable(c) => super::Command::Group(GroupCommand::Enable(c)),
@@ -166,6 +184,15 @@ impl From<super::Command> for Command {
             super::Command::Axis(AxisCommand::Setpoint(c)) => Command::Setpoint(c),
             super::Command::Slave(SlaveCommand::ReadObject(c)) => Command::ReadObject(c),
             super::Command::Slave(SlaveCommand::WriteObject(c)) => Command::WriteObject(c),
+            super::Command::Machine(MachineCommand::MoveTogether(c)) => Command::MoveTogether(c),
+            super::Command::Machine(MachineCommand::StopAxes(c)) => Command::StopAxes(c),
+            super::Command::Machine(MachineCommand::StopAll(c)) => Command::StopAll(c),
+            super::Command::Machine(MachineCommand::EnableAll(c)) => Command::EnableAll(c),
+            super::Command::Machine(MachineCommand::DisableAll(c)) => Command::DisableAll(c),
+            super::Command::Machine(MachineCommand::EmergencyStopAll(c)) => {
+                Command::EmergencyStopAll(c)
+            }
+            super::Command::Machine(MachineCommand::ResetAll(c)) => Command::ResetAll(c),
             super::Command::Group(GroupCommand::Create(c)) => Command::GroupCreate(c),
             super::Command::Group(GroupCommand::Delete(c)) => Command::GroupDelete(c),
             super::Command::Group(GroupCommand::Enable(c)) => Command::GroupEnable(c),

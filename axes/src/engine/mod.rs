@@ -6,10 +6,10 @@ use crate::axis::{Axis, Context, Ledger, MotionAction, MotionSubmission, Overrid
 use crate::cia402::{controlword_for, obj, Cia402Drive, DriveMaster, PowerTarget, State};
 use crate::command::{
     AxisCommand, AxisIndex, Cancel, Command, CommandKind, CouplingCommand, Disable, Enable,
-    EngineError, ForceAnalogInput, ForceDigitalInput, ForceInput, GetCommandState, GetParameter,
-    GroupCommand, Halt, Home, InjectFollowingError, IoCommand, MachineCommand, ModifyTarget,
-    MoveAbsolute, MoveRelative, MoveVelocity, ReadObject, Reply, Reset, SetParameter, SetPosition,
-    SlaveCommand, Stop, StreamSetpoint, WriteAnalogOutput, WriteDigitalOutput, WriteObject,
+    EngineError, ForceAnalogInput, ForceDigitalInput, ForceInput, GetParameter, GroupCommand, Halt,
+    Home, InjectFollowingError, IoCommand, ModifyTarget, MoveAbsolute, MoveRelative, MoveVelocity,
+    ReadObject, Reply, Reset, SetParameter, SetPosition, SlaveCommand, Stop, StreamSetpoint,
+    WriteAnalogOutput, WriteDigitalOutput, WriteObject,
 };
 use crate::config::{ConfigError, EngineConfig, InputBinding};
 use crate::group::{Env as GroupEnv, Groups};
@@ -20,8 +20,10 @@ use crate::rng::Rng;
 use crate::status::{AxisStatus, DriveStatus, IoImage, Snapshot};
 use std::sync::Arc;
 
+mod machine;
 mod planner;
 pub use crate::axis::Feed;
+pub use machine::MAX_ATOMIC_COMMANDS;
 pub use planner::{Feeds, MachinePlanner};
 
 /// The machine's digital and analog I/O.
@@ -86,7 +88,7 @@ impl Io {
 }
 
 /// A CiA 402 drive on the engine's fieldbus.
-#[derive(Debug)]
+#[derive(Clone, Debug)]
 struct Slave {
     drive: Cia402Drive,
     master: DriveMaster,
@@ -504,23 +506,6 @@ impl Engine {
             .get_mut(slave as usize)
             .map(|s| &mut s.drive)
             .ok_or(EngineError::InvalidSlave { slave, count })
-    }
-
-    /// Machine-wide commands: a command's state is looked up in every axis's queue, then in the
-    /// ledger of finished commands.
-    fn apply_machine_command(&mut self, command: MachineCommand) -> Result<Reply, EngineError> {
-        match command {
-            MachineCommand::CommandState(GetCommandState { id }) => {
-                let state = self
-                    .axes
-                    .iter()
-                    .find_map(|a| a.queued_state(id))
-                    .or_else(|| self.groups.queued_state(id))
-                    .or_else(|| self.ledger.lookup(id))
-                    .ok_or(EngineError::UnknownCommand { id })?;
-                Ok(Reply::CommandState { id, state })
-            }
-        }
     }
 
     /// Advance one servo period, in stages (the order of operations inside a tick is fixed:

@@ -72,7 +72,7 @@ pub const DEFAULT_PATH_LIMITS: PathLimits = PathLimits {
 };
 
 /// One group. See the module doc.
-#[derive(Debug)]
+#[derive(Clone, Debug)]
 pub struct Group {
     id: GroupId,
     members: Vec<AxisIndex>,
@@ -249,8 +249,8 @@ fn planner_config(
     }
 }
 
-/// Every group of the machine, by group number.
-#[derive(Debug)]
+/// Every group of the machine, by group number. `Clone` for the atomic batches' checkpoint.
+#[derive(Clone, Debug)]
 pub struct Groups {
     config: GroupsConfig,
     /// Sorted by group number (deterministic order, no hash map).
@@ -284,6 +284,51 @@ impl Groups {
     pub(crate) fn step(&mut self, env: &mut Env) {
         for g in &mut self.groups {
             g.step(env);
+        }
+    }
+
+    /// Machine-wide `stop_all` (issue 11 item 6): every moving group's path is dropped and the
+    /// group stays enabled (Standby); the machine command stops the members themselves.
+    pub(crate) fn drop_paths(&mut self, env: &mut Env) {
+        for g in &mut self.groups {
+            if matches!(
+                g.state,
+                GroupState::Moving | GroupState::Halted | GroupState::Stopping
+            ) {
+                g.drop_all(env, CommandState::Aborted);
+                g.state = GroupState::Standby;
+            }
+        }
+    }
+
+    /// Machine-wide `disable_all`: every group is disabled, its path dropped.
+    pub(crate) fn disable_all(&mut self, env: &mut Env) {
+        for g in &mut self.groups {
+            g.drop_all(env, CommandState::Aborted);
+            g.state = GroupState::Disabled;
+            g.fault = None;
+        }
+    }
+
+    /// Machine-wide `emergency_stop_all`: every enabled group goes to ErrorStop
+    /// (`emergency_stop`); the machine command stops the members themselves.
+    pub(crate) fn emergency_stop_all(&mut self, env: &mut Env) {
+        for g in &mut self.groups {
+            if g.state != GroupState::Disabled {
+                g.fault(env, GroupFault::EmergencyStop);
+            }
+        }
+    }
+
+    /// Machine-wide `reset_all`: every group in ErrorStop whose members are all enabled and at
+    /// rest goes back to Standby; the others stay in ErrorStop.
+    pub(crate) fn reset_all(&mut self, env: &mut Env) {
+        for g in &mut self.groups {
+            if g.state == GroupState::ErrorStop && g.member_not_ready(env.axes).is_none() {
+                g.state = GroupState::Standby;
+                g.fault = None;
+                g.last_error = None;
+            }
         }
     }
 

@@ -439,6 +439,31 @@ impl EngineHandle {
         Ok(pending)
     }
 
+    /// Queue commands to be applied in one go, between the same two ticks, in order, all or
+    /// none ([`Engine::apply_batch`]: a refusal puts the engine back and names the command's
+    /// index). Without blocking; the reply holds one reply per command.
+    pub fn submit_batch(
+        &self,
+        commands: Vec<Command>,
+    ) -> Result<Pending<Vec<Reply>, CallError>, SubmitError> {
+        let (reply, pending) = reply_channel();
+        self.enqueue(Request::Batch { commands, reply })?;
+        Ok(pending)
+    }
+
+    /// [`EngineHandle::submit_batch`] and block until the replies. Refused on the servo thread.
+    pub fn call_batch(&self, commands: Vec<Command>) -> Result<Vec<Reply>, CallError> {
+        if self.shared.on_servo_thread() {
+            return Err(CallError::OnServoThread);
+        }
+        self.submit_batch(commands)?.wait()
+    }
+
+    /// [`EngineHandle::submit_batch`] and await the replies (any executor).
+    pub async fn call_batch_async(&self, commands: Vec<Command>) -> Result<Vec<Reply>, CallError> {
+        self.submit_batch(commands)?.await
+    }
+
     /// Submit and block until the reply. Refused on the servo thread itself.
     pub fn call(&self, command: Command) -> Result<Reply, CallError> {
         if self.shared.on_servo_thread() {

@@ -21,6 +21,12 @@ pub(super) enum Request {
         command: Command,
         reply: ReplySender<Reply, CallError>,
     },
+    /// Commands applied in one go, between the same two ticks, all or none
+    /// ([`Engine::apply_batch`]).
+    Batch {
+        commands: Vec<Command>,
+        reply: ReplySender<Vec<Reply>, CallError>,
+    },
     Advance {
         ticks: u64,
         until: Option<Condition>,
@@ -111,6 +117,15 @@ impl Schedule {
     }
 }
 
+/// A reply waiting for the snapshot that includes its effect.
+enum HeldReply {
+    One(ReplySender<Reply, CallError>, Result<Reply, CallError>),
+    Batch(
+        ReplySender<Vec<Reply>, CallError>,
+        Result<Vec<Reply>, CallError>,
+    ),
+}
+
 /// Which side of a step a fieldbus is served on.
 #[derive(Clone, Copy)]
 enum Phase {
@@ -129,7 +144,7 @@ pub(super) struct Servo<C> {
     stats_publisher: Publisher<RuntimeStats>,
     stats: RuntimeStats,
     /// Replies held back until the snapshot with their effect is published.
-    replies: Vec<(ReplySender<Reply, CallError>, Result<Reply, CallError>)>,
+    replies: Vec<HeldReply>,
     /// Called after every step, in installation order.
     observers: Vec<(ObserverId, Observer)>,
     next_observer: u64,
@@ -222,6 +237,12 @@ impl<C: Clock> Servo<C> {
             match request {
                 Request::Command { command, reply } => {
                     self.apply(command, reply);
+                    self.publish_snapshot();
+                    self.publish_stats();
+                    self.send_replies();
+                }
+                Request::Batch { commands, reply } => {
+                    self.apply_batch(commands, reply);
                     self.publish_snapshot();
                     self.publish_stats();
                     self.send_replies();
@@ -365,6 +386,11 @@ impl<C: Clock> Servo<C> {
                     self.apply(command, reply);
                     applied += 1;
                 }
+                // A batch counts as one request: its size is bounded by MAX_ATOMIC_COMMANDS.
+                Ok(Request::Batch { commands, reply }) => {
+                    self.apply_batch(commands, reply);
+                    applied += 1;
+                }
                 Ok(Request::Advance { reply, .. }) => {
                     reply.send(Err(AdvanceError::NotVirtual(self.shared.clock)));
                 }
@@ -480,12 +506,24 @@ impl<C: Clock> Servo<C> {
     fn apply(&mut self, command: Command, reply: ReplySender<Reply, CallError>) {
         let result = self.engine.apply(command).map_err(CallError::Engine);
         self.stats.commands_applied += 1;
-        self.replies.push((reply, result));
+        self.replies.push(HeldReply::One(reply, result));
+    }
+
+    fn apply_batch(&mut self, commands: Vec<Command>, reply: ReplySender<Vec<Reply>, CallError>) {
+        let count = commands.len() as u64;
+        let result = self.engine.apply_batch(commands).map_err(CallError::Engine);
+        if result.is_ok() {
+            self.stats.commands_applied += count;
+        }
+        self.replies.push(HeldReply::Batch(reply, result));
     }
 
     fn send_replies(&mut self) {
-        for (reply, result) in self.replies.drain(..) {
-            reply.send(result);
+        for held in self.replies.drain(..) {
+            match held {
+                HeldReply::One(reply, result) => reply.send(result),
+                HeldReply::Batch(reply, result) => reply.send(result),
+            }
         }
     }
 

@@ -261,6 +261,67 @@ fn engine_errors_come_back_as_call_errors() {
     assert_eq!(handle.call(enable(0)), Ok(Reply::Done));
 }
 
+fn jog(axis: u16, velocity: f64) -> Command {
+    Command::from(MoveVelocity {
+        axis,
+        velocity,
+        acceleration: None,
+        deceleration: None,
+        jerk: None,
+        buffer_mode: Default::default(),
+    })
+}
+
+#[test]
+fn a_batch_is_applied_in_one_go_and_a_refused_one_not_at_all() {
+    let (handle, _guard) = virtual_runtime(2);
+    let replies = handle
+        .call_batch(vec![enable(0), enable(1), jog(0, 1.0), jog(1, -1.0)])
+        .unwrap();
+    assert_eq!(replies.len(), 4);
+    assert_eq!(replies[2], Reply::Accepted { id: 1 });
+    assert_eq!(handle.stats().commands_applied, 4);
+    handle.advance(1).unwrap();
+    let snapshot = handle.snapshot();
+    assert!(snapshot.axes[0].cmd_vel > 0.0 && snapshot.axes[1].cmd_vel < 0.0);
+    // Refused at index 1: the stop of axis 0 before it is undone too.
+    let before = handle.snapshot();
+    let stop = Command::from(Stop {
+        axis: 0,
+        mode: crate::command::StopMode::Immediate,
+        deceleration: None,
+    });
+    let err = block_on(handle.call_batch_async(vec![stop, enable(9)])).unwrap_err();
+    let CallError::Engine(EngineError::Item { list, index, error }) = err else {
+        panic!("{err:?}");
+    };
+    assert_eq!((list, index), ("commands", 1));
+    assert_eq!(*error, EngineError::InvalidAxis { axis: 9, count: 2 });
+    assert_eq!(*handle.snapshot(), *before);
+    assert_eq!(handle.stats().commands_applied, 4);
+}
+
+#[test]
+fn a_batch_on_a_paced_clock_lands_between_two_ticks_as_one_request() {
+    let options = RuntimeOptions {
+        max_commands_per_tick: 1,
+        ..RuntimeOptions::default()
+    };
+    let (handle, _guard, fake) = paced_fake(ClockMode::Realtime, &[], options);
+    fake.wait_at_gate();
+    let batch = handle
+        .submit_batch(vec![enable(0), enable(1), jog(0, 1.0), jog(1, 1.0)])
+        .unwrap();
+    fake.allow(1);
+    fake.wait_at_gate();
+    assert_eq!(batch.try_take().map(|r| r.map(|r| r.len())), Some(Ok(4)));
+    let snapshot = handle.snapshot();
+    // Both jogs started before the same step: their first velocities are equal.
+    assert!(snapshot.axes[0].cmd_vel > 0.0);
+    assert_eq!(snapshot.axes[0].cmd_vel, snapshot.axes[1].cmd_vel);
+    assert_eq!(handle.stats().command_bound_hits, 1);
+}
+
 /// Runs the same script of commands and advances, returning every snapshot seen after an
 /// advance and the engine at the end.
 fn scripted_run() -> (Vec<String>, Snapshot) {

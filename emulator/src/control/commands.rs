@@ -2,10 +2,11 @@
 //! `axes::Command`, queued to the servo thread.
 
 use axes::command::{
-    AxisIndex, AxisInput, Command, ForceAnalogInput, ForceDigitalInput, ForceInput,
+    AxisIndex, AxisInput, Command, EngineError, ForceAnalogInput, ForceDigitalInput, ForceInput,
     InjectFollowingError, Reply,
 };
-use axum::extract::State;
+use axes::runtime::CallError;
+use axum::extract::{RawQuery, State};
 use axum::response::{IntoResponse, Response};
 use axum::Json;
 use serde::Deserialize;
@@ -68,19 +69,74 @@ pub async fn apply_all(
     Ok(replies)
 }
 
+/// The query of `POST /commands`: `?atomic=true` applies an array in one go (see
+/// [`apply_atomically`]); `atomic=false` or no query, one after another.
+pub fn atomic_query(query: Option<&str>) -> Result<bool, ApiError> {
+    let mut atomic = false;
+    for pair in query.unwrap_or("").split('&').filter(|p| !p.is_empty()) {
+        match pair.split_once('=') {
+            Some(("atomic", "true")) => atomic = true,
+            Some(("atomic", "false")) => atomic = false,
+            Some(("atomic", other)) => {
+                return Err(ApiError::InvalidRequest(format!(
+                    "atomic={other}: use atomic=true or atomic=false"
+                )))
+            }
+            _ => {
+                return Err(ApiError::InvalidRequest(format!(
+                    "unknown query parameter `{pair}`: /commands takes only atomic=true|false"
+                )))
+            }
+        }
+    }
+    Ok(atomic)
+}
+
+/// Apply `commands` between the same two ticks, in order, all or none (`?atomic=true`): the
+/// servo thread applies them in one go ([`axes::Engine::apply_batch`]). A refusal undoes the
+/// commands before it, so the error carries the refused command's `index` and no replies.
+pub async fn apply_atomically(
+    state: &ControlState,
+    commands: Vec<Command>,
+) -> Result<Vec<Reply>, ApiError> {
+    state
+        .handle
+        .call_batch_async(commands)
+        .await
+        .map_err(|e| match e {
+            CallError::Engine(EngineError::Item {
+                list: "commands",
+                index,
+                error,
+            }) => ApiError::Engine {
+                error: *error,
+                index: Some(index as usize),
+                replies: Vec::new(),
+            },
+            other => ApiError::from(other),
+        })
+}
+
 pub async fn post_commands(
     State(state): State<ControlState>,
+    RawQuery(query): RawQuery,
     JsonBody(body): JsonBody,
 ) -> Response {
-    let result = match CommandBody::parse(&body) {
+    let result = match atomic_query(query.as_deref())
+        .and_then(|atomic| CommandBody::parse(&body).map(|body| (atomic, body)))
+    {
         Err(e) => Err(e),
-        Ok(CommandBody::One(command)) => state
+        // One command is applied in one go anyway: `atomic` changes nothing for it.
+        Ok((_, CommandBody::One(command))) => state
             .handle
             .call_async(command)
             .await
             .map(|reply| Json(reply).into_response())
             .map_err(ApiError::from),
-        Ok(CommandBody::Many(commands)) => apply_all(&state, commands)
+        Ok((false, CommandBody::Many(commands))) => apply_all(&state, commands)
+            .await
+            .map(|replies| Json(replies).into_response()),
+        Ok((true, CommandBody::Many(commands))) => apply_atomically(&state, commands)
             .await
             .map(|replies| Json(replies).into_response()),
     };
@@ -366,6 +422,18 @@ mod tests {
             CommandBody::parse(big.as_bytes()),
             Err(ApiError::InvalidRequest(_))
         ));
+    }
+
+    #[test]
+    fn the_commands_query_takes_only_atomic() {
+        assert!(!atomic_query(None).unwrap());
+        assert!(!atomic_query(Some("")).unwrap());
+        assert!(atomic_query(Some("atomic=true")).unwrap());
+        assert!(!atomic_query(Some("atomic=true&atomic=false")).unwrap());
+        for bad in ["atomic=yes", "atomic", "atomically=true", "atomic=true&x=1"] {
+            let e = atomic_query(Some(bad)).unwrap_err();
+            assert_eq!(e.status(), axum::http::StatusCode::BAD_REQUEST, "{bad}");
+        }
     }
 
     #[test]

@@ -229,6 +229,20 @@ impl IntoResponse for ApiError {
 /// `code`, the variant's data (fault sets as lists of flag names), `message` (its Display).
 pub fn engine_error_fields(error: &EngineError) -> Vec<(String, Value)> {
     let mut fields = vec![("code".to_string(), json!(error.kind().name()))];
+    // A refused item (a move of `move_together` …): which list and item, and the item's own
+    // error with its fields, under `error`.
+    if let EngineError::Item {
+        list,
+        index,
+        error: inner,
+    } = error
+    {
+        fields.push(("list".into(), json!(list)));
+        fields.push(("item".into(), json!(index)));
+        fields.push(("error".into(), json!(Ordered(engine_error_fields(inner)))));
+        fields.push(("message".into(), json!(error.to_string())));
+        return fields;
+    }
     // Every variant serializes to a map; should one not, the code and message still go out.
     if let Ok(Value::Object(data)) = serde_json::to_value(error) {
         fields.extend(data.into_iter().filter(|(k, _)| k != "code"));
@@ -627,6 +641,39 @@ mod tests {
             .map(|(k, _)| k)
             .collect();
         assert_eq!(keys, ["error", "detail"]);
+    }
+
+    #[test]
+    fn a_refused_item_carries_its_list_its_place_and_its_own_error() {
+        let e = ApiError::Engine {
+            error: EngineError::item(
+                "axes",
+                1,
+                EngineError::AxisInError {
+                    axis: 1,
+                    faults: AxisFlags::ESTOP,
+                },
+            ),
+            index: Some(3),
+            replies: vec![],
+        };
+        let keys: Vec<String> = e.fields().into_iter().map(|(k, _)| k).collect();
+        assert_eq!(
+            keys,
+            ["code", "list", "item", "error", "message", "index", "replies"]
+        );
+        assert_eq!(
+            e.body(),
+            json!({
+                "code": "axis_in_error", "list": "axes", "item": 1,
+                "error": {
+                    "code": "axis_in_error", "axis": 1, "faults": ["estop"],
+                    "message": "axis 1 is in error stop (ESTOP)",
+                },
+                "message": "axes[1]: axis 1 is in error stop (ESTOP)",
+                "index": 3, "replies": [],
+            })
+        );
     }
 
     #[test]

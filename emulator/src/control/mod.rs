@@ -5,7 +5,7 @@
 //! |---|---|
 //! | `GET /api/v1` | lists the routes |
 //! | `GET /api/v1/state` | machine, clock, axes, I/O, drives, runtime statistics, trace status |
-//! | `POST /api/v1/commands` | one `axes::Command` or an array, applied in order |
+//! | `POST /api/v1/commands` | one `axes::Command` or an array, applied in order (`?atomic=true`: in one tick, all or none) |
 //! | `POST /api/v1/inputs` | force or release an axis input, a digital or an analog input |
 //! | `POST /api/v1/faults` | inject or clear a drive alarm, encoder loss, following error |
 //! | `POST /api/v1/time/advance` | virtual clock: run ticks or seconds, optionally until … |
@@ -119,7 +119,7 @@ const ROUTES: [(&str, &str, &str); 11] = [
     (
         "POST",
         "/api/v1/commands",
-        "one command or an array, e.g. {\"type\":\"enable\",\"axis\":0}",
+        "one command or an array, e.g. {\"type\":\"enable\",\"axis\":0}; ?atomic=true: an array in one tick, all or none",
     ),
     (
         "POST",
