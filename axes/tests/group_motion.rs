@@ -822,3 +822,51 @@ fn a_member_refuses_set_position_while_the_path_runs_and_takes_it_between_paths(
     run_to_standby(&mut e, 5.0);
     assert_eq!(positions(&e, 2), [110.0, 0.0]);
 }
+
+#[test]
+fn a_refused_batch_with_group_commands_leaves_the_groups_as_they_were() {
+    let mut e = machine(2, &[0, 1]);
+    let before = group(&e);
+    let err = e
+        .apply_batch(vec![
+            Command::from(line(&[10.0, 0.0])),
+            Command::from(line(&[f64::NAN, 0.0])),
+        ])
+        .unwrap_err();
+    assert_eq!(err.kind(), ErrorKind::InvalidArgument);
+    assert_eq!(group(&e), before, "the first motion was taken back");
+    common::run(&mut e, 0.1);
+    assert_eq!(positions(&e, 2), [0.0, 0.0]);
+    let replies = e
+        .apply_batch(vec![Command::from(line(&[10.0, 0.0]))])
+        .unwrap();
+    assert_eq!(replies.len(), 1);
+    run_to_standby(&mut e, 5.0);
+    assert_eq!(positions(&e, 2), [10.0, 0.0]);
+}
+
+#[test]
+fn machine_wide_stop_drops_the_path_and_emergency_stop_puts_the_group_in_error_stop() {
+    let mut e = machine(2, &[0, 1]);
+    let id = send(&mut e, line(&[100.0, 0.0]));
+    common::run(&mut e, 0.3);
+    ok(
+        &mut e,
+        Command::from(axes::command::StopAll {
+            mode: Default::default(),
+            deceleration: None,
+        }),
+    );
+    assert_eq!(group(&e).state, GroupState::Standby);
+    assert_eq!(state_of(&mut e, id), CommandState::Aborted);
+    common::run(&mut e, 1.0);
+    assert_eq!(group(&e).state, GroupState::Standby, "{:?}", group(&e));
+    send(&mut e, line(&[0.0, 0.0]));
+    common::run(&mut e, 0.1);
+    ok(&mut e, Command::from(axes::command::EmergencyStopAll {}));
+    let g = group(&e);
+    assert_eq!(
+        (g.state, g.fault),
+        (GroupState::ErrorStop, Some(GroupFault::EmergencyStop))
+    );
+}
