@@ -31,6 +31,9 @@ pub struct EngineConfig {
     /// CiA 402 drives, each bound to an axis; slave numbers are positions in this list.
     #[serde(default)]
     pub drives: Vec<DriveConfig>,
+    /// Axis groups (issue 11): how many, and the defaults of `group_create`.
+    #[serde(default)]
+    pub groups: GroupsConfig,
 }
 
 fn default_period() -> f64 {
@@ -45,7 +48,63 @@ impl Default for EngineConfig {
             axes: Vec::new(),
             io: IoConfig::default(),
             drives: Vec::new(),
+            groups: GroupsConfig::default(),
         }
+    }
+}
+
+/// Most entries a group queue may hold (HIMC SetGrpQueueSize: 2^10).
+pub const MAX_GROUP_QUEUE: u32 = 1024;
+
+/// The `[groups]` section: limits and defaults of the axis groups (issue 11).
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct GroupsConfig {
+    /// How many groups may exist at once (1–64).
+    pub max_groups: u16,
+    /// Entries a group queue holds (motions and buffered commands) when `group_create` gives no
+    /// `queue_capacity`: 1–1024 (HIMC: 512).
+    pub queue_capacity: u32,
+    /// Segments the look-ahead plans over when `group_create` gives no `lookahead`: 1 up to the
+    /// queue capacity (default 64).
+    pub lookahead: u32,
+}
+
+impl Default for GroupsConfig {
+    fn default() -> Self {
+        GroupsConfig {
+            max_groups: 8,
+            queue_capacity: 512,
+            lookahead: 64,
+        }
+    }
+}
+
+impl GroupsConfig {
+    fn validate(&self) -> Result<(), ConfigError> {
+        if !(1..=64).contains(&self.max_groups) {
+            return Err(ConfigError::new(
+                "groups.max_groups",
+                format!("{} is outside 1 … 64", self.max_groups),
+            ));
+        }
+        if !(1..=MAX_GROUP_QUEUE).contains(&self.queue_capacity) {
+            return Err(ConfigError::new(
+                "groups.queue_capacity",
+                format!("{} is outside 1 … {MAX_GROUP_QUEUE}", self.queue_capacity),
+            ));
+        }
+        if !(1..=self.queue_capacity).contains(&self.lookahead) {
+            return Err(ConfigError::new(
+                "groups.lookahead",
+                format!(
+                    "{} is outside 1 … queue_capacity ({})",
+                    self.lookahead, self.queue_capacity
+                ),
+            ));
+        }
+        Ok(())
     }
 }
 
@@ -249,6 +308,7 @@ impl EngineConfig {
         for (i, axis) in self.axes.iter().enumerate() {
             axis.validate(&format!("axes[{i}]"))?;
         }
+        self.groups.validate()?;
         let mut bound = vec![false; self.axes.len()];
         for (i, d) in self.drives.iter().enumerate() {
             let key = format!("drives[{i}]");

@@ -5,8 +5,8 @@ use serde::Serialize;
 
 use crate::homing::HomingError;
 use crate::od::OdError;
-use crate::status::{AxisFlags, AxisState};
-use crate::types::{AxisIndex, CommandId, Direction, ErrorKind};
+use crate::status::{AxisFlags, AxisState, GroupState};
+use crate::types::{AxisIndex, CommandId, Direction, ErrorKind, GroupId};
 
 /// Why the engine refused a command or ended one. A closed set: dialects map each variant to
 /// their own codes (Modbus exceptions, SDO aborts, NMC return codes, HIMC 0xCCNNVVVV …).
@@ -78,6 +78,35 @@ pub enum EngineError {
         index: u32,
         error: Box<EngineError>,
     },
+    #[error("group {group} does not exist")]
+    UnknownGroup { group: GroupId },
+    #[error("group {group}: {reason}")]
+    InvalidGroup { group: GroupId, reason: String },
+    #[error("group {group} is {state}: cannot {action}")]
+    GroupState {
+        group: GroupId,
+        state: GroupState,
+        action: &'static str,
+    },
+    #[error("group {group}: member axis {axis} is {state}: cannot {action}")]
+    GroupMember {
+        group: GroupId,
+        axis: AxisIndex,
+        state: AxisState,
+        action: &'static str,
+    },
+    #[error("group {group}: cannot reset: member axis {axis} is still {state}")]
+    GroupCauseStillPresent {
+        group: GroupId,
+        axis: AxisIndex,
+        state: AxisState,
+    },
+    #[error("axis {axis} is in group {group}: it takes no single-axis motion")]
+    AxisInGroup { axis: AxisIndex, group: GroupId },
+    #[error("group {group}: queue full ({capacity} entries)")]
+    GroupQueueFull { group: GroupId, capacity: u32 },
+    #[error("group {group}: {reason}")]
+    InvalidPath { group: GroupId, reason: String },
 }
 
 impl EngineError {
@@ -118,6 +147,16 @@ impl EngineError {
             EngineError::InvalidSlave { .. } => ErrorKind::InvalidSlave,
             EngineError::InvalidChannel { .. } => ErrorKind::InvalidChannel,
             EngineError::Item { error, .. } => error.kind(),
+            EngineError::UnknownGroup { .. } | EngineError::InvalidGroup { .. } => {
+                ErrorKind::InvalidGroup
+            }
+            EngineError::GroupState { .. } | EngineError::GroupMember { .. } => {
+                ErrorKind::GroupState
+            }
+            EngineError::GroupCauseStillPresent { .. } => ErrorKind::CauseStillPresent,
+            EngineError::AxisInGroup { .. } => ErrorKind::InvalidState,
+            EngineError::GroupQueueFull { .. } => ErrorKind::QueueFull,
+            EngineError::InvalidPath { .. } => ErrorKind::InvalidArgument,
         }
     }
 }

@@ -11,6 +11,7 @@ pub mod command;
 pub mod config;
 pub mod engine;
 pub mod error;
+pub mod group;
 pub mod homing;
 pub mod hw;
 pub mod od;

@@ -7,6 +7,12 @@ use serde::{Deserialize, Serialize};
 /// Index of an axis in the machine, from 0.
 pub type AxisIndex = u16;
 
+/// Number of an axis group, chosen by the user at `group_create` (issue 11).
+pub type GroupId = u16;
+
+/// Most axes in one group (HIMC: 9, digest 004 §3; `path::MAX_AXES`).
+pub const MAX_GROUP_AXES: usize = 9;
+
 /// Identifier of a queued motion command. Engine-wide, increasing from 1; 0 is never used.
 pub type CommandId = u32;
 
@@ -78,6 +84,10 @@ pub enum ErrorKind {
     LimitReached,
     /// Not a refusal: a running command ended because of a fault (following error, alarm …).
     Fault,
+    /// No such group, or a group definition that cannot be (issue 11).
+    InvalidGroup,
+    /// The group's state (or a member's) does not allow the command.
+    GroupState,
 }
 
 impl ErrorKind {
@@ -102,6 +112,8 @@ impl ErrorKind {
             ErrorKind::InvalidChannel => "invalid_channel",
             ErrorKind::LimitReached => "limit_reached",
             ErrorKind::Fault => "fault",
+            ErrorKind::InvalidGroup => "invalid_group",
+            ErrorKind::GroupState => "group_state",
         }
     }
 }

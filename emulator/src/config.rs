@@ -15,7 +15,7 @@ use std::path::Path;
 use std::str::FromStr;
 
 use axes::cia402::DriveConfig;
-use axes::config::{AxisConfig, EngineConfig, IoConfig, MAX_PERIOD, MIN_PERIOD};
+use axes::config::{AxisConfig, EngineConfig, GroupsConfig, IoConfig, MAX_PERIOD, MIN_PERIOD};
 use axes::runtime::ClockMode;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
@@ -39,6 +39,9 @@ pub struct Config {
     /// CiA 402 drives, each bound to an axis; slave numbers are positions in this list.
     #[serde(default)]
     pub drives: Vec<DriveConfig>,
+    /// Axis groups (coordinated motion): how many may exist and the defaults of `group_create`.
+    #[serde(default)]
+    pub groups: GroupsConfig,
     /// The front-ends, one section each.
     #[serde(default)]
     pub frontends: FrontendsConfig,
@@ -340,6 +343,7 @@ impl Config {
             axes: self.axes.clone(),
             io: self.io.clone(),
             drives: self.drives.clone(),
+            groups: self.groups.clone(),
         }
     }
 

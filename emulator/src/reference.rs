@@ -109,8 +109,8 @@ fn field_orders() -> BTreeMap<&'static str, Vec<&'static str>> {
     use crate::config::{ControlConfig, FrontendsConfig, MachineConfig, PlannedFrontend};
     use axes::cia402::DriveConfig;
     use axes::config::{
-        AxisConfig, EncoderConfig, HomeSwitchConfig, InputBinding, IoConfig, PlantConfig,
-        PulseConfig, SwitchConfig, SwitchesConfig,
+        AxisConfig, EncoderConfig, GroupsConfig, HomeSwitchConfig, InputBinding, IoConfig,
+        PlantConfig, PulseConfig, SwitchConfig, SwitchesConfig,
     };
     use mcemu_modbus::config::{RtuConfig, RtuOverTcpConfig, TcpConfig, UnitConfig};
     BTreeMap::from([
@@ -126,6 +126,7 @@ fn field_orders() -> BTreeMap<&'static str, Vec<&'static str>> {
         ("IoConfig", field_order::<IoConfig>()),
         ("InputBinding", field_order::<InputBinding>()),
         ("DriveConfig", field_order::<DriveConfig>()),
+        ("GroupsConfig", field_order::<GroupsConfig>()),
         ("FrontendsConfig", field_order::<FrontendsConfig>()),
         ("ControlConfig", field_order::<ControlConfig>()),
         ("PlannedFrontend", field_order::<PlannedFrontend>()),

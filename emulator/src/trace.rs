@@ -1,5 +1,7 @@
 //! Traces: one CSV row per tick per axis, the columns named exactly as below (scenarios write
-//! them with `--trace`, the control API serves them at `GET /api/v1/trace`).
+//! them with `--trace`, the control API serves them at `GET /api/v1/trace`). An axis in a group
+//! carries its group's columns (`group`, `path_velocity`, `segment`, `user_segment`: the same
+//! values on every member's row); they are empty for a free axis.
 //!
 //! Numbers are written in their shortest round-trip form (`zmij`, `itoa`): a reader that parses
 //! them gets back the exact f64 the engine had. Integral floats drop the `.0` (`100`, not
@@ -8,27 +10,65 @@
 
 use std::io::{self, Write};
 
-use axes::{AxisFlags, AxisStatus};
+use axes::{AxisFlags, AxisStatus, Engine};
 
 /// The header row, in column order.
-pub const HEADER: &str = "time_s,axis,state,cmd_pos,cmd_vel,cmd_acc,act_pos,act_vel,following_error,pulses,encoder_counts,limit_pos,limit_neg,home_switch,homed,error";
+pub const HEADER: &str = "time_s,axis,state,cmd_pos,cmd_vel,cmd_acc,act_pos,act_vel,following_error,pulses,encoder_counts,limit_pos,limit_neg,home_switch,homed,error,group,path_velocity,segment,user_segment";
+
+/// The group columns of a member axis's row (issue 11 item 7).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct GroupColumns {
+    pub group: u16,
+    /// Commanded velocity along the path.
+    pub path_velocity: f64,
+    /// Ordinal of the motion being executed since the group was created.
+    pub segment: u64,
+    /// The running motion's `user_segment` (0: none given).
+    pub user_segment: u32,
+}
+
+impl GroupColumns {
+    /// The columns of `axis`'s group, if it is in one.
+    pub fn of(engine: &Engine, axis: usize) -> Option<GroupColumns> {
+        let id = engine.axis(axis)?.group()?;
+        let g = engine.groups().get(id)?;
+        Some(GroupColumns {
+            group: id,
+            path_velocity: g.path_velocity(),
+            segment: g.segment(),
+            user_segment: g.user_segment(),
+        })
+    }
+}
 
 /// Write one row: `time` in seconds of engine time, booleans as 0/1, `state` as its snake_case
-/// name, `error` the name of the last engine error or empty.
+/// name, `error` the name of the last engine error or empty, the group columns empty.
 pub fn write_row(out: &mut impl Write, time: f64, axis: usize, s: &AxisStatus) -> io::Result<()> {
+    write_member_row(out, time, axis, s, None)
+}
+
+/// [`write_row`] with the group columns of a member axis.
+pub fn write_member_row(
+    out: &mut impl Write,
+    time: f64,
+    axis: usize,
+    s: &AxisStatus,
+    group: Option<&GroupColumns>,
+) -> io::Result<()> {
     let mut row = Vec::with_capacity(192);
-    format_row(&mut row, time, axis, s);
+    push_f64(&mut row, &mut zmij::Buffer::new(), time);
+    format_fields(&mut row, axis, s, group);
     out.write_all(&row)
 }
 
 /// Append one row (with its newline) to `buf`; [`write_row`] without the I/O.
 pub fn format_row(buf: &mut Vec<u8>, time: f64, axis: usize, s: &AxisStatus) {
     push_f64(buf, &mut zmij::Buffer::new(), time);
-    format_fields(buf, axis, s);
+    format_fields(buf, axis, s, None);
 }
 
 /// Everything after the time column, from its comma to the newline.
-fn format_fields(buf: &mut Vec<u8>, axis: usize, s: &AxisStatus) {
+fn format_fields(buf: &mut Vec<u8>, axis: usize, s: &AxisStatus, group: Option<&GroupColumns>) {
     let mut ints = itoa::Buffer::new();
     let mut floats = zmij::Buffer::new();
     buf.push(b',');
@@ -62,6 +102,19 @@ fn format_fields(buf: &mut Vec<u8>, axis: usize, s: &AxisStatus) {
     buf.push(b',');
     if let Some(e) = s.last_error {
         buf.extend_from_slice(e.name().as_bytes());
+    }
+    match group {
+        Some(g) => {
+            buf.push(b',');
+            buf.extend_from_slice(ints.format(g.group).as_bytes());
+            buf.push(b',');
+            push_f64(buf, &mut floats, g.path_velocity);
+            buf.push(b',');
+            buf.extend_from_slice(ints.format(g.segment).as_bytes());
+            buf.push(b',');
+            buf.extend_from_slice(ints.format(g.user_segment).as_bytes());
+        }
+        None => buf.extend_from_slice(b",,,,"),
     }
     buf.push(b'\n');
 }
@@ -143,11 +196,11 @@ impl<W: Write> TraceWriter<W> {
         }
     }
 
-    /// The rows of one tick, axis by axis.
+    /// The rows of one tick, axis by axis, each with its group's columns (if any).
     pub fn write_tick<'a>(
         &mut self,
         tick: u64,
-        axes: impl IntoIterator<Item = &'a AxisStatus>,
+        axes: impl IntoIterator<Item = (&'a AxisStatus, Option<&'a GroupColumns>)>,
     ) -> io::Result<()> {
         // Every axis's row starts with the same time: format it once.
         self.time.clear();
@@ -156,9 +209,9 @@ impl<W: Write> TraceWriter<W> {
             &mut zmij::Buffer::new(),
             self.clock.time(tick),
         );
-        for (axis, status) in axes.into_iter().enumerate() {
+        for (axis, (status, group)) in axes.into_iter().enumerate() {
             self.buf.extend_from_slice(&self.time);
-            format_fields(&mut self.buf, axis, status);
+            format_fields(&mut self.buf, axis, status, group);
             self.rows += 1;
         }
         if self.buf.len() >= CHUNK {
@@ -218,7 +271,7 @@ mod tests {
         let line = row(&s, 0.035);
         assert_eq!(
             line,
-            "0.035,3,discrete_motion,0.30000000000000004,-1234.5,1e-7,100,-0,2.5e+20,-42,9223372036854775807,0,1,0,1,limit_reached\n"
+            "0.035,3,discrete_motion,0.30000000000000004,-1234.5,1e-7,100,-0,2.5e+20,-42,9223372036854775807,0,1,0,1,limit_reached,,,,\n"
         );
         assert_eq!(
             line.trim_end().split(',').count(),
@@ -243,7 +296,19 @@ mod tests {
         );
         assert!(floats[4].is_sign_negative());
         let idle = row(&AxisStatus::default(), 0.0);
-        assert_eq!(idle, "0,3,disabled,0,0,0,0,0,0,0,0,0,0,0,0,\n");
+        assert_eq!(idle, "0,3,disabled,0,0,0,0,0,0,0,0,0,0,0,0,,,,,\n");
+        let mut member = Vec::new();
+        let g = GroupColumns {
+            group: 2,
+            path_velocity: 12.5,
+            segment: 3,
+            user_segment: 40,
+        };
+        write_member_row(&mut member, 0.0, 1, &AxisStatus::default(), Some(&g)).unwrap();
+        assert_eq!(
+            String::from_utf8(member).unwrap(),
+            "0,1,disabled,0,0,0,0,0,0,0,0,0,0,0,0,,2,12.5,3,40\n"
+        );
     }
 
     #[test]
@@ -261,8 +326,8 @@ mod tests {
     fn the_writer_starts_with_the_header_and_counts() {
         let mut w = TraceWriter::new(Vec::new(), 1e-3);
         let a = AxisStatus::default();
-        w.write_tick(0, [&a, &a]).unwrap();
-        w.write_tick(1, [&a, &a]).unwrap();
+        w.write_tick(0, [(&a, None), (&a, None)]).unwrap();
+        w.write_tick(1, [(&a, None), (&a, None)]).unwrap();
         assert_eq!(w.rows(), 4);
         let (out, bytes) = w.finish().unwrap();
         let text = String::from_utf8(out).unwrap();

@@ -787,7 +787,7 @@ fn control_trace_records_every_tick_of_an_advance() {
     let num = |row: &[String], c: usize| row[c].parse::<f64>().unwrap();
     let mut last_pos = f64::NEG_INFINITY;
     for (i, row) in rows.iter().enumerate() {
-        assert_eq!(row.len(), 16, "{row:?}");
+        assert_eq!(row.len(), 20, "{row:?}");
         // One row per tick per axis, ticks 8 … 507, axes in order.
         let tick = 8 + (i / 2) as u64;
         assert_eq!(num(row, time), tick as f64 * PERIOD, "row {i}: {row:?}");
@@ -1108,5 +1108,104 @@ fn control_bounds_the_requests_in_flight_and_recovers() {
         assert!(Instant::now() < deadline, "the slots were not released");
         std::thread::sleep(Duration::from_millis(10));
     }
+    m.stop();
+}
+
+/// The README's "Coordinated motion" example over real HTTP: x and y as group 1, a square with
+/// rounded corners, a buffered output, and a circle; the group in `/state`, its columns in the
+/// trace, a refused bad motion.
+#[test]
+fn control_runs_a_group_through_a_rounded_square_and_a_circle() {
+    let m = Mcemu::start("virtual", &[]);
+    let replies = m.command(json!([
+        {"type": "enable", "axis": 0},
+        {"type": "enable", "axis": 1},
+        {"type": "group_create", "group": 1, "axes": [0, 1]},
+        {"type": "group_enable", "group": 1},
+    ]));
+    assert_eq!(replies.as_array().map(Vec::len), Some(4));
+    let g = &m.state()["groups"][0];
+    assert_eq!(
+        (g["group"].as_u64(), g["state"].as_str()),
+        (Some(1), Some("standby"))
+    );
+    assert_eq!(g["axes"], json!([0, 1]));
+    assert!(has_flag(&m.axis(0), "in_group"));
+    // A grouped axis takes no single-axis motion; a motion with one coordinate too few is
+    // refused with the reason.
+    let e = m
+        .post(
+            "/api/v1/commands",
+            json!({"type": "move_absolute", "axis": 0, "position": 5}),
+        )
+        .expect(422);
+    assert_eq!(e["code"], "invalid_state");
+    assert_eq!(
+        e["message"],
+        "axis 0 is in group 1: it takes no single-axis motion"
+    );
+    let e = m
+        .post(
+            "/api/v1/commands",
+            json!({"type": "move_linear_absolute", "group": 1, "position": [5]}),
+        )
+        .expect(422);
+    assert_eq!(e["code"], "invalid_argument");
+    assert_eq!(
+        e["message"],
+        "group 1: position has 1 coordinates; the group has 2 axes"
+    );
+    m.post("/api/v1/trace/start", json!({})).expect(200);
+    let corner = |x: f64, y: f64| {
+        json!({"type": "move_linear_absolute", "group": 1, "position": [x, y], "velocity": 50,
+               "buffer_mode": "blending_low", "transition": {"corner_distance": 5}})
+    };
+    let replies = m.command(json!([
+        corner(40.0, 0.0),
+        corner(40.0, 40.0),
+        corner(0.0, 40.0),
+        {"type": "move_linear_absolute", "group": 1, "position": [0, 0], "velocity": 50},
+        {"type": "group_set_output", "group": 1, "channel": 1, "value": true},
+        {"type": "move_linear_relative", "group": 1, "distance": [0, 20], "velocity": 50},
+        {"type": "move_circular_absolute", "group": 1, "mode": "center", "aux_point": [20, 20],
+         "end_point": [0, 20], "direction": "ccw", "velocity": 50, "user_segment": 7},
+    ]));
+    let circle = replies[6]["id"].as_u64().unwrap();
+    let reached = m.advance(json!({"seconds": 1.0}));
+    assert_eq!(reached["tick"], 1000);
+    let g = &m.state()["groups"][0];
+    assert_eq!(g["state"], "moving");
+    assert!(f(&g["path_velocity"]) > 1.0, "{g}");
+    assert_eq!(g["queue_used"], 7 - g["segment"].as_u64().unwrap() + 1);
+    assert_eq!(m.axis(0)["state"], "synchronized_motion");
+    assert_eq!(m.state()["io"]["do"][1], false);
+    let done = m.advance(json!({"seconds": 20, "until": {"group": 1, "group_state": "standby"}}));
+    assert_eq!(done["met"], true, "{done}");
+    let state = m.state();
+    let g = &state["groups"][0];
+    assert_eq!(g["position"], json!([0.0, 20.0]));
+    assert_eq!(
+        (g["queue_used"].as_u64(), g["user_segment"].as_u64()),
+        (Some(0), Some(7))
+    );
+    assert_eq!(state["io"]["do"][1], true);
+    assert_eq!(
+        m.command(json!({"type": "command_state", "id": circle}))["state"],
+        "done"
+    );
+    // The trace's x and y rows carry the group's columns.
+    m.post("/api/v1/trace/stop", json!({})).expect(200);
+    let csv = m.get("/api/v1/trace").body;
+    let (header, rows) = parse_csv(&csv);
+    let (group, speed) = (column(&header, "group"), column(&header, "path_velocity"));
+    assert!(
+        rows.iter().all(|r| r[group] == "1"),
+        "every row is a member's"
+    );
+    let fastest = rows
+        .iter()
+        .map(|r| r[speed].parse::<f64>().unwrap())
+        .fold(0.0, f64::max);
+    assert!((fastest - 50.0).abs() < 1e-9, "{fastest}");
     m.stop();
 }

@@ -68,7 +68,7 @@ fn read_trace(path: &Path, axes: usize) -> Vec<Vec<Row>> {
     let mut per_axis = vec![Vec::new(); axes];
     for (n, line) in lines.enumerate() {
         let c: Vec<&str> = line.split(',').collect();
-        assert_eq!(c.len(), 16, "line {n}: {line}");
+        assert_eq!(c.len(), 20, "line {n}: {line}");
         let f = |i: usize| -> f64 { c[i].parse().unwrap_or_else(|_| panic!("{line}")) };
         let int = |i: usize| -> i64 { c[i].parse().unwrap_or_else(|_| panic!("{line}")) };
         let flag = |i: usize| match c[i] {
@@ -308,7 +308,11 @@ fn the_same_scenario_gives_the_same_trace() {
 
 #[test]
 fn the_shipped_scenarios_pass() {
-    for name in ["issue-example.toml", "inline-machine.toml"] {
+    for name in [
+        "issue-example.toml",
+        "inline-machine.toml",
+        "coordinated-motion.toml",
+    ] {
         let out = mcemu(&["scenario", &fixture(name)]);
         assert!(out.status.success(), "{name}: {}", stderr(&out));
         assert!(stderr(&out).is_empty(), "{name}: {}", stderr(&out));

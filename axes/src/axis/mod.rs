@@ -17,7 +17,8 @@ mod setup;
 mod supervision;
 
 use crate::command::{
-    AxisIndex, CommandId, CommandKind, CommandState, Direction, ErrorKind, Setpoint, StopMode,
+    AxisIndex, CommandId, CommandKind, CommandState, Direction, ErrorKind, GroupId, Setpoint,
+    StopMode,
 };
 use crate::config::{AxisConfig, AxisSignal, PlantModel, DEFAULT_FIFO_DEPTH};
 use crate::homing::Homing;
@@ -188,6 +189,8 @@ pub struct Axis {
     rate: f64,
 
     // Commands.
+    /// The group the axis belongs to (issue 11): single-axis motion is refused while set.
+    group: Option<GroupId>,
     fifo: Fifo,
     activity: Activity,
     halted: bool,
@@ -264,6 +267,7 @@ impl Axis {
             act_vel: 0.0,
             encoder_pos: 0.0,
             rate: 1.0 / period,
+            group: None,
             fifo: Fifo::new(config.fifo_depth.unwrap_or(DEFAULT_FIFO_DEPTH)),
             activity: Activity::Idle,
             halted: false,
@@ -337,6 +341,38 @@ impl Axis {
 
     pub fn fifo(&self) -> &Fifo {
         &self.fifo
+    }
+
+    /// The group the axis belongs to, if any.
+    pub fn group(&self) -> Option<GroupId> {
+        self.group
+    }
+
+    /// Join (`Some`) or leave (`None`) a group; the engine's group registry keeps this in step
+    /// with its members.
+    pub(crate) fn set_group(&mut self, group: Option<GroupId>) {
+        self.group = group;
+    }
+
+    /// The latched faults (cleared by `reset`).
+    pub fn latched(&self) -> AxisFlags {
+        self.latched
+    }
+
+    /// The live flags of the last tick's supervision (limits, warnings), without the ones
+    /// [`Axis::status`] assembles.
+    pub fn live_flags(&self) -> AxisFlags {
+        self.flags
+    }
+
+    /// The actual position (user frame, unwrapped).
+    pub fn actual_position(&self) -> f64 {
+        self.act_pos
+    }
+
+    /// The unsmoothed commanded state (user frame, unwrapped): what a group's path starts from.
+    pub fn commanded(&self) -> MotionState {
+        self.raw
     }
 
     /// State of a command that is still in this axis's FIFO.
@@ -854,7 +890,7 @@ impl Axis {
         }
     }
 
-    pub(crate) fn state(&self) -> AxisState {
+    pub fn state(&self) -> AxisState {
         if !self.blocking.is_empty() {
             return AxisState::ErrorStop;
         }
@@ -916,6 +952,7 @@ impl Axis {
         flags.put(AxisFlags::HALTED, self.halted);
         flags.put(AxisFlags::QUEUE_FULL, self.fifo.is_full());
         flags.put(AxisFlags::ACCELERATING, self.cmd.v * self.cmd.a > 0.0);
+        flags.put(AxisFlags::IN_GROUP, self.group.is_some());
         let next = self
             .fifo
             .get(usize::from(current.is_some()))

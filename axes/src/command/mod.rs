@@ -11,7 +11,7 @@ use crate::od::Value;
 // Defined below `command` in the module chain (docs/architecture.md) and re-exported here, so
 // that `axes::command::EngineError` and friends keep their paths.
 pub use crate::error::EngineError;
-pub use crate::types::{AxisIndex, CommandId, CommandKind, Direction, ErrorKind};
+pub use crate::types::{AxisIndex, CommandId, CommandKind, Direction, ErrorKind, GroupId};
 
 /// PLCopen buffer mode of a motion command (ARCHITECTURE §3.5).
 ///
@@ -85,6 +85,7 @@ pub enum AxisInput {
 }
 
 mod axis;
+mod group;
 mod io;
 mod machine;
 mod slave;
@@ -94,6 +95,13 @@ pub use axis::{
     AxisCommand, Cancel, Disable, Enable, ForceInput, GetParameter, Halt, Home,
     InjectFollowingError, ModifyTarget, MoveAbsolute, MoveRelative, MoveVelocity, Reset, Resume,
     SetParameter, SetPosition, Stop, StreamSetpoint,
+};
+pub use group::{
+    ArcDirection, CircleMode, GroupAxisMove, GroupBufferMode, GroupCommand, GroupContinue,
+    GroupCreate, GroupDelete, GroupDisable, GroupDwell, GroupEmergencyStop, GroupEnable, GroupHalt,
+    GroupParameter, GroupReset, GroupSetOrigin, GroupSetOutput, GroupSetOverride,
+    GroupSetParameter, GroupStop, GroupWaitInput, GroupWaitPosition, MoveCircularAbsolute,
+    MoveCircularRelative, MoveLinearAbsolute, MoveLinearRelative, TransitionMode,
 };
 pub use io::{
     ForceAnalogInput, ForceDigitalInput, IoCommand, WriteAnalogOutput, WriteDigitalOutput,
@@ -135,14 +143,8 @@ pub enum Command {
     Machine(MachineCommand),
 }
 
-/// Commands on a group of axes moving on one path. None yet: issue 11 adds them here (each a
-/// struct, a variant here and one in the wire form), and [`crate::Engine::apply`] already routes
-/// this family to its own function, which will hand them to the group planner stage.
-#[derive(Clone, Debug, PartialEq)]
-pub enum GroupCommand {}
-
 /// Commands that couple a slave axis to a master (gear, cam). None yet: issue 12 adds them here,
-/// routed like [`GroupCommand`] to the coupling planner stage.
+/// routed like [`GroupCommand`] to its planner stage.
 #[derive(Clone, Debug, PartialEq)]
 pub enum CouplingCommand {}
 
@@ -151,9 +153,8 @@ impl Command {
     pub fn axis(&self) -> Option<AxisIndex> {
         match self {
             Command::Axis(c) => Some(c.axis()),
-            Command::Group(c) => match *c {},
             Command::Coupling(c) => match *c {},
-            Command::Io(_) | Command::Slave(_) | Command::Machine(_) => None,
+            Command::Group(_) | Command::Io(_) | Command::Slave(_) | Command::Machine(_) => None,
         }
     }
 }
@@ -183,7 +184,6 @@ macro_rules! command_from {
 }
 pub(crate) use command_from;
 
-command_from!(GroupCommand, Group, []);
 command_from!(CouplingCommand, Coupling, []);
 
 /// One cycle's setpoint from an external master.
@@ -271,6 +271,21 @@ pub(crate) fn finite(name: &'static str, value: f64) -> Result<f64, EngineError>
             name,
             value,
             reason: "must be a finite number",
+        })
+    }
+}
+
+/// A number within ±[`MAX_MAGNITUDE`] and ≥ 0 (tolerances, corner distances, jerk where 0
+/// means none).
+pub(crate) fn nonnegative(name: &'static str, value: f64) -> Result<f64, EngineError> {
+    let value = bounded(name, value)?;
+    if value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(EngineError::InvalidArgument {
+            name,
+            value,
+            reason: "must be ≥ 0",
         })
     }
 }

@@ -12,6 +12,12 @@ use super::{
     SlaveCommand, Stop, StopAll, StopAxes, StreamSetpoint, WriteAnalogOutput, WriteDigitalOutput,
     WriteObject,
 };
+use super::{
+    GroupAxisMove, GroupCommand, GroupContinue, GroupCreate, GroupDelete, GroupDisable, GroupDwell,
+    GroupEmergencyStop, GroupEnable, GroupHalt, GroupReset, GroupSetOrigin, GroupSetOutput,
+    GroupSetOverride, GroupSetParameter, GroupStop, GroupWaitInput, GroupWaitPosition,
+    MoveCircularAbsolute, MoveCircularRelative, MoveLinearAbsolute, MoveLinearRelative,
+};
 
 /// Named `Command` like the type it stands for: serde writes this name in "expected internally
 /// tagged enum Command" (a `rename` does not change that message).
@@ -53,6 +59,27 @@ pub(super) enum Command {
     DisableAll(DisableAll),
     EmergencyStopAll(EmergencyStopAll),
     ResetAll(ResetAll),
+    GroupCreate(GroupCreate),
+    GroupDelete(GroupDelete),
+    GroupEnable(GroupEnable),
+    GroupDisable(GroupDisable),
+    GroupReset(GroupReset),
+    MoveLinearAbsolute(MoveLinearAbsolute),
+    MoveLinearRelative(MoveLinearRelative),
+    MoveCircularAbsolute(MoveCircularAbsolute),
+    MoveCircularRelative(MoveCircularRelative),
+    GroupStop(GroupStop),
+    GroupHalt(GroupHalt),
+    GroupContinue(GroupContinue),
+    GroupEmergencyStop(GroupEmergencyStop),
+    GroupSetOverride(GroupSetOverride),
+    GroupSetOrigin(GroupSetOrigin),
+    GroupSetParameter(GroupSetParameter),
+    GroupSetOutput(GroupSetOutput),
+    GroupDwell(GroupDwell),
+    GroupWaitInput(GroupWaitInput),
+    GroupWaitPosition(GroupWaitPosition),
+    GroupAxisMove(GroupAxisMove),
 }
 
 impl From<Command> for super::Command {
@@ -94,6 +121,35 @@ impl From<Command> for super::Command {
                 super::Command::Machine(MachineCommand::EmergencyStopAll(c))
             }
             Command::ResetAll(c) => super::Command::Machine(MachineCommand::ResetAll(c)),
+            Command::GroupCreate(c) => super::Command::Group(GroupCommand::Create(c)),
+            Command::GroupDelete(c) => super::Command::Group(GroupCommand::Delete(c)),
+            Command::GroupEnable(c) => super::Command::Group(GroupCommand::Enable(c)),
+            Command::GroupDisable(c) => super::Command::Group(GroupCommand::Disable(c)),
+            Command::GroupReset(c) => super::Command::Group(GroupCommand::Reset(c)),
+            Command::MoveLinearAbsolute(c) => {
+                super::Command::Group(GroupCommand::MoveLinearAbsolute(c))
+            }
+            Command::MoveLinearRelative(c) => {
+                super::Command::Group(GroupCommand::MoveLinearRelative(c))
+            }
+            Command::MoveCircularAbsolute(c) => {
+                super::Command::Group(GroupCommand::MoveCircularAbsolute(c))
+            }
+            Command::MoveCircularRelative(c) => {
+                super::Command::Group(GroupCommand::MoveCircularRelative(c))
+            }
+            Command::GroupStop(c) => super::Command::Group(GroupCommand::Stop(c)),
+            Command::GroupHalt(c) => super::Command::Group(GroupCommand::Halt(c)),
+            Command::GroupContinue(c) => super::Command::Group(GroupCommand::Continue(c)),
+            Command::GroupEmergencyStop(c) => super::Command::Group(GroupCommand::EmergencyStop(c)),
+            Command::GroupSetOverride(c) => super::Command::Group(GroupCommand::SetOverride(c)),
+            Command::GroupSetOrigin(c) => super::Command::Group(GroupCommand::SetOrigin(c)),
+            Command::GroupSetParameter(c) => super::Command::Group(GroupCommand::SetParameter(c)),
+            Command::GroupSetOutput(c) => super::Command::Group(GroupCommand::SetOutput(c)),
+            Command::GroupDwell(c) => super::Command::Group(GroupCommand::Dwell(c)),
+            Command::GroupWaitInput(c) => super::Command::Group(GroupCommand::WaitInput(c)),
+            Command::GroupWaitPosition(c) => super::Command::Group(GroupCommand::WaitPosition(c)),
+            Command::GroupAxisMove(c) => super::Command::Group(GroupCommand::AxisMove(c)),
         }
     }
 }
@@ -137,7 +193,35 @@ impl From<super::Command> for Command {
                 Command::EmergencyStopAll(c)
             }
             super::Command::Machine(MachineCommand::ResetAll(c)) => Command::ResetAll(c),
-            super::Command::Group(c) => match c {},
+            super::Command::Group(GroupCommand::Create(c)) => Command::GroupCreate(c),
+            super::Command::Group(GroupCommand::Delete(c)) => Command::GroupDelete(c),
+            super::Command::Group(GroupCommand::Enable(c)) => Command::GroupEnable(c),
+            super::Command::Group(GroupCommand::Disable(c)) => Command::GroupDisable(c),
+            super::Command::Group(GroupCommand::Reset(c)) => Command::GroupReset(c),
+            super::Command::Group(GroupCommand::MoveLinearAbsolute(c)) => {
+                Command::MoveLinearAbsolute(c)
+            }
+            super::Command::Group(GroupCommand::MoveLinearRelative(c)) => {
+                Command::MoveLinearRelative(c)
+            }
+            super::Command::Group(GroupCommand::MoveCircularAbsolute(c)) => {
+                Command::MoveCircularAbsolute(c)
+            }
+            super::Command::Group(GroupCommand::MoveCircularRelative(c)) => {
+                Command::MoveCircularRelative(c)
+            }
+            super::Command::Group(GroupCommand::Stop(c)) => Command::GroupStop(c),
+            super::Command::Group(GroupCommand::Halt(c)) => Command::GroupHalt(c),
+            super::Command::Group(GroupCommand::Continue(c)) => Command::GroupContinue(c),
+            super::Command::Group(GroupCommand::EmergencyStop(c)) => Command::GroupEmergencyStop(c),
+            super::Command::Group(GroupCommand::SetOverride(c)) => Command::GroupSetOverride(c),
+            super::Command::Group(GroupCommand::SetOrigin(c)) => Command::GroupSetOrigin(c),
+            super::Command::Group(GroupCommand::SetParameter(c)) => Command::GroupSetParameter(c),
+            super::Command::Group(GroupCommand::SetOutput(c)) => Command::GroupSetOutput(c),
+            super::Command::Group(GroupCommand::Dwell(c)) => Command::GroupDwell(c),
+            super::Command::Group(GroupCommand::WaitInput(c)) => Command::GroupWaitInput(c),
+            super::Command::Group(GroupCommand::WaitPosition(c)) => Command::GroupWaitPosition(c),
+            super::Command::Group(GroupCommand::AxisMove(c)) => Command::GroupAxisMove(c),
             super::Command::Coupling(c) => match c {},
         }
     }

@@ -17,16 +17,19 @@ use crate::command::{
     EngineError, GetCommandState, MachineCommand, MoveTogether, Reply, Reset, Stop, StopAll,
     StopAxes, StopMode, TogetherMove,
 };
+use crate::group::Groups;
 
 /// Commands one atomic batch ([`Engine::apply_batch`]) may carry: it is applied inside one
 /// servo period, so its size bounds the work done there.
 pub const MAX_ATOMIC_COMMANDS: usize = 1024;
 
-/// What a command may change, saved before it is applied (see the module doc). Groups and
-/// couplings (issues 11, 12) add their state here when their commands join atomic batches.
+/// What a command may change, saved before it is applied (see the module doc). Couplings
+/// (issue 12) add their state here when their commands join atomic batches.
 struct Checkpoint {
     /// Copies of the axes the command may change, by index.
     axes: Vec<(usize, Axis)>,
+    /// The axis groups (a whole-machine checkpoint: a batch may carry group commands).
+    groups: Option<Groups>,
     io: Option<Io>,
     slaves: Option<Vec<Slave>>,
     ledger: LedgerMark,
@@ -78,7 +81,7 @@ impl Engine {
     }
 
     /// Machine-wide commands. Each `*_everything` function is the one place its command reaches
-    /// every axis; groups (issue 11) add "and every group" there.
+    /// every axis and every group.
     pub(super) fn apply_machine_command(
         &mut self,
         command: MachineCommand,
@@ -90,6 +93,7 @@ impl Engine {
                     .axes
                     .iter()
                     .find_map(|a| a.queued_state(id))
+                    .or_else(|| self.groups.queued_state(id))
                     .or_else(|| self.ledger.lookup(id))
                     .ok_or(EngineError::UnknownCommand { id })?;
                 Ok(Reply::CommandState { id, state })
@@ -189,8 +193,11 @@ impl Engine {
 
     /// HIMC `StopAll` (digest 004 §2.8, §6.1 TV4): every axis stops with `mode` (default the
     /// kill deceleration, `fast_decel`), stays enabled, its queue cleared.
-    /// Groups (issue 11): every group stops here too.
+    /// Every moving group's path is dropped first; the groups stay enabled (Standby).
     fn stop_everything(&mut self, mode: StopMode, deceleration: Option<f64>) {
+        // Groups first: their paths are dropped (they stay enabled), so each member stops by
+        // this command like any axis rather than leaving its group in ErrorStop.
+        self.with_groups(|groups, env| groups.drop_paths(env));
         for axis in 0..self.axes.len() {
             self.stop_axis(axis, mode, deceleration);
         }
@@ -200,7 +207,8 @@ impl Engine {
     /// axis that would refuse (error stop, drive alarm) leaves every axis and drive as it was,
     /// and the error names it. Engine-mastered drives are walked to Operation enabled as a
     /// single `enable` does (`route_power`). Encoder-only and unused axes are skipped.
-    /// Groups (issue 11): every group is enabled here too.
+    /// Groups keep their state: an engine-mastered drive powers its axis only ticks later, so
+    /// `group_enable` follows once the members are enabled (docs/decisions.md, "Axis groups").
     fn enable_everything(&mut self) -> Result<Reply, EngineError> {
         let checkpoint = self.checkpoint(Scope::AxesAndDrives);
         for axis in 0..self.axes.len() {
@@ -221,8 +229,9 @@ impl Engine {
 
     /// HIMC `DisableAll` (digest 004 §2.7, §6.1 TV5): every axis disabled, queues and plans
     /// cleared; engine-mastered drives go through `route_power`.
-    /// Groups (issue 11): every group is disabled (and its queue cleared) here too.
+    /// Every group is disabled (its path dropped) too.
     fn disable_everything(&mut self) {
+        self.with_groups(|groups, env| groups.disable_all(env));
         for axis in 0..self.axes.len() {
             // `disable` never refuses.
             let _ = self.apply_axis_command(AxisCommand::Disable(Disable {
@@ -239,8 +248,9 @@ impl Engine {
     /// clear the latch): the latch is an axis fault to the drive, whose fault reaction (0x605E)
     /// stops the axis, powers it off and leaves the drive in Fault; a power walk in progress is
     /// dropped.
-    /// Groups (issue 11): every group goes to ErrorStop here too.
+    /// Every enabled group goes to ErrorStop (`emergency_stop`) too.
     fn emergency_stop_everything(&mut self) {
+        self.with_groups(|groups, env| groups.emergency_stop_all(env));
         for axis in 0..self.axes.len() {
             if !self.axes.get(axis).is_some_and(Axis::can_move) {
                 continue;
@@ -269,7 +279,8 @@ impl Engine {
     /// is gone (engine-mastered drives in Fault are walked out of it, as by `reset`). Not all or
     /// none: each axis clears what it can, and the first axis whose cause is still present is
     /// the error.
-    /// Groups (issue 11): every group in ErrorStop is reset here too.
+    /// Then every group in ErrorStop whose members are all enabled and at rest goes back to
+    /// Standby; the others stay (their members' errors are the ones reported).
     fn reset_everything(&mut self) -> Result<Reply, EngineError> {
         let mut first_error = None;
         for axis in 0..self.axes.len() {
@@ -280,6 +291,7 @@ impl Engine {
                 first_error.get_or_insert(e);
             }
         }
+        self.with_groups(|groups, env| groups.reset_all(env));
         first_error.map_or(Ok(Reply::Done), Err)
     }
 
@@ -337,8 +349,10 @@ impl Engine {
                 Some(self.slaves.clone()),
             ),
         };
+        let groups = matches!(scope, Scope::Machine).then(|| self.groups.clone());
         Checkpoint {
             axes,
+            groups,
             io,
             slaves,
             ledger: self.ledger.checkpoint(),
@@ -350,6 +364,9 @@ impl Engine {
             if let Some(slot) = self.axes.get_mut(index) {
                 *slot = axis;
             }
+        }
+        if let Some(groups) = checkpoint.groups {
+            self.groups = groups;
         }
         if let Some(io) = checkpoint.io {
             self.io = io;

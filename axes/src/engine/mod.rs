@@ -12,6 +12,7 @@ use crate::command::{
     WriteAnalogOutput, WriteDigitalOutput, WriteObject,
 };
 use crate::config::{ConfigError, EngineConfig, InputBinding};
+use crate::group::{Env as GroupEnv, Groups};
 use crate::homing::HomingSpec;
 use crate::od::Value;
 use crate::param::ParamId;
@@ -109,6 +110,8 @@ pub struct Engine {
     axis_slave: Vec<Option<usize>>,
     /// Commands the drives emitted this tick (reused; no allocation per tick).
     drive_commands: Vec<Command>,
+    /// The axis groups (issue 11): stage 2 runs them before the other planners.
+    groups: Groups,
     /// Stage 2's planners, in the order they were added.
     planners: Vec<Box<dyn MachinePlanner>>,
     /// The setpoints of the planner being run (reused; no allocation per tick).
@@ -162,6 +165,7 @@ impl Engine {
             slaves,
             axis_slave,
             drive_commands: Vec::new(),
+            groups: Groups::new(config.groups.clone()),
             planners: Vec::new(),
             feeds: Feeds::default(),
         })
@@ -223,9 +227,48 @@ impl Engine {
         self.apply_to_axis(command)
     }
 
-    /// Issue 11's group commands arrive here; there are none yet.
+    /// A command on an axis group (issue 11), applied to the group registry with the axes,
+    /// the ledger and the I/O image it may need.
     fn apply_group_command(&mut self, command: GroupCommand) -> Result<Reply, EngineError> {
-        match command {}
+        self.with_groups(|groups, env| groups.apply(env, command))
+    }
+
+    /// Lend the group registry what a group command or tick may touch (the axes, the ledger,
+    /// the digital inputs and outputs), and bump the I/O version if an output changed.
+    fn with_groups<R>(&mut self, f: impl FnOnce(&mut Groups, &mut GroupEnv) -> R) -> R {
+        let Engine {
+            axes,
+            io,
+            ledger,
+            tick,
+            period,
+            groups,
+            ..
+        } = self;
+        let mut env = GroupEnv {
+            tick: *tick,
+            period: *period,
+            axes,
+            ledger,
+            di: &io.image.di,
+            outputs: &mut io.image.do_,
+            outputs_changed: false,
+        };
+        let result = f(groups, &mut env);
+        if env.outputs_changed {
+            io.version += 1;
+        }
+        result
+    }
+
+    /// The axis groups.
+    pub fn groups(&self) -> &Groups {
+        &self.groups
+    }
+
+    /// The status record of group `id`, assembled now.
+    pub fn group_status(&self, id: crate::command::GroupId) -> Option<crate::status::GroupStatus> {
+        self.groups.get(id).map(|g| g.status(&self.axes))
     }
 
     /// Issue 12's coupling commands arrive here; there are none yet.
@@ -469,8 +512,8 @@ impl Engine {
     /// traces compare bit for bit):
     ///
     /// 1. `read_inputs`: the I/O image's inputs from last tick's sensors;
-    /// 2. `run_planners`: machine-level planners (groups, couplings, streams) feed
-    ///    their axes this tick's setpoints (none are built in yet: issues 11 and 12 add them);
+    /// 2. `run_planners`: the axis groups (issue 11), in group-number order, then the other
+    ///    machine-level planners (couplings, issue 12), feed their axes this tick's setpoints;
     /// 3. `step_axes`: every axis, in index order;
     /// 4. `step_drives`: the CiA 402 drives see their axes and answer with commands;
     /// 5. outputs and status: no per-tick work. Outputs change only by command, and status is
@@ -492,11 +535,16 @@ impl Engine {
         self.planners.push(planner);
     }
 
-    /// Stage 2, machine-level planners. Each planner reads the axes as the previous tick left
-    /// them (so a coupling's slave lags its master by one tick) and writes setpoints; each
-    /// setpoint becomes its axis's command source for this tick, or goes back to the planner
-    /// as a refusal. Writes nothing else.
+    /// Stage 2, machine-level planners. First the axis groups (`group::Groups::step`): each
+    /// reads its members as the previous tick left them, steps its path and feeds every member
+    /// this tick's setpoint; a refusal or a member in trouble stops the whole group. They also
+    /// write the buffered digital outputs, start buffered single-axis moves and finish their
+    /// commands in the ledger. Then every registered planner reads the axes as the previous
+    /// tick left them (so a coupling's slave lags its master by one tick) and writes setpoints;
+    /// each setpoint becomes its axis's command source for this tick, or goes back to the
+    /// planner as a refusal.
     fn run_planners(&mut self) {
+        self.with_groups(|groups, env| groups.step(env));
         let Engine {
             axes,
             io,
@@ -643,6 +691,8 @@ impl Engine {
         for (out, axis) in snapshot.axes.iter_mut().zip(&self.axes) {
             axis.status_into(out);
         }
+        self.groups
+            .status_into(&self.axes, &snapshot.axes, &mut snapshot.groups);
         if snapshot.io_version != self.io.version {
             snapshot.io.clone_from(&self.io.image);
             snapshot.io_version = self.io.version;

@@ -8,7 +8,9 @@ use serde::{Deserialize, Serialize};
 
 use crate::types::{CommandId, CommandKind, ErrorKind};
 
+mod group;
 mod snapshot;
+pub use group::{GroupFault, GroupState, GroupStatus};
 pub use snapshot::Snapshot;
 
 /// PLCopen axis state.

@@ -4,7 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{AxisStatus, DriveStatus, IoImage};
+use super::{AxisStatus, DriveStatus, GroupStatus, IoImage};
 use crate::param::ParamSet;
 
 /// The machine's state after a tick: what front-ends read without waiting for the servo thread.
@@ -15,6 +15,9 @@ pub struct Snapshot {
     /// Servo period, seconds.
     pub period: f64,
     pub axes: Vec<AxisStatus>,
+    /// The axis groups (issue 11), by group number.
+    #[serde(default)]
+    pub groups: Vec<GroupStatus>,
     pub io: IoImage,
     /// Changes whenever the I/O image changes: readers (and the snapshot refresh) can skip
     /// comparing images that did not change.

@@ -3,8 +3,10 @@
 #![allow(dead_code, clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use axes::command::{
-    AxisInput, Command, CommandState, Enable, ForceInput, GetCommandState, GetParameter,
-    MoveAbsolute, MoveRelative, MoveVelocity, Reply, SetParameter,
+    ArcDirection, AxisInput, CircleMode, Command, CommandState, Enable, ForceInput,
+    GetCommandState, GetParameter, GroupBufferMode, GroupCreate, GroupEnable, MoveAbsolute,
+    MoveCircularAbsolute, MoveLinearAbsolute, MoveRelative, MoveVelocity, Reply, SetParameter,
+    TransitionMode,
 };
 use axes::config::{AxisConfig, HomeSwitchConfig, SwitchConfig};
 use axes::{Engine, EngineConfig, EngineError, ParamId, Snapshot};
@@ -196,4 +198,65 @@ pub fn status(e: &Engine) -> axes::AxisStatus {
 
 pub fn snapshot(e: &Engine) -> Snapshot {
     e.snapshot()
+}
+
+/// Enable every axis of `e`, make group 1 of `members` and enable it.
+pub fn with_group(mut e: Engine, members: &[u16]) -> Engine {
+    for axis in 0..e.axis_count() as u16 {
+        ok(&mut e, Command::from(Enable { axis }));
+    }
+    ok(
+        &mut e,
+        Command::from(GroupCreate {
+            group: 1,
+            axes: members.to_vec(),
+            queue_capacity: None,
+            lookahead: None,
+        }),
+    );
+    ok(&mut e, Command::from(GroupEnable { group: 1 }));
+    e
+}
+
+/// A buffered straight group motion to `position`, the group's own limits, no transition.
+pub fn group_line(group: u16, position: &[f64]) -> MoveLinearAbsolute {
+    MoveLinearAbsolute {
+        group,
+        position: position.to_vec(),
+        velocity: None,
+        acceleration: None,
+        deceleration: None,
+        jerk: None,
+        buffer_mode: GroupBufferMode::Buffered,
+        transition: TransitionMode::None,
+        user_segment: None,
+    }
+}
+
+/// A buffered arc of group `group` about `center` to `end`, in the plane of the first two
+/// coordinates, the group's own limits.
+pub fn group_arc(
+    group: u16,
+    center: &[f64],
+    end: &[f64],
+    direction: ArcDirection,
+) -> MoveCircularAbsolute {
+    MoveCircularAbsolute {
+        group,
+        mode: CircleMode::Center,
+        aux_point: center.to_vec(),
+        radius: None,
+        end_point: end.to_vec(),
+        direction,
+        plane: None,
+        normal: None,
+        turns: 0,
+        velocity: None,
+        acceleration: None,
+        deceleration: None,
+        jerk: None,
+        buffer_mode: GroupBufferMode::Buffered,
+        transition: TransitionMode::None,
+        user_segment: None,
+    }
 }

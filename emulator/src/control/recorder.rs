@@ -14,16 +14,17 @@ use axes::Engine;
 use serde::{Deserialize, Serialize};
 
 use super::error::ApiError;
+use crate::trace::GroupColumns;
 
 /// Default of `[frontends.control] trace_max_rows`: the row cap when a start request gives
-/// none, and the largest it may give — about 80 MB of buffer and about 110 MB of CSV at most.
+/// none, and the largest it may give — about 110 MB of buffer and about 130 MB of CSV at most.
 pub const MAX_TRACE_ROWS: usize = 1_000_000;
 
 /// Rows copied out of the buffer per lock while a trace is read, so a long read never holds
 /// the servo thread up for more than a few microseconds at a time.
 const READ_CHUNK: usize = 8192;
 
-/// One recorded axis at one tick: what a trace row needs, and no more (80 bytes).
+/// One recorded axis at one tick: what a trace row needs, and no more (112 bytes).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TraceRow {
     pub tick: u64,
@@ -39,10 +40,12 @@ pub struct TraceRow {
     pub following_error: f64,
     pub pulses: i64,
     pub encoder_counts: i64,
+    /// The group columns of a member axis.
+    pub group: Option<GroupColumns>,
 }
 
 impl TraceRow {
-    fn new(tick: u64, axis: u16, s: &AxisStatus) -> TraceRow {
+    fn new(tick: u64, axis: u16, s: &AxisStatus, group: Option<GroupColumns>) -> TraceRow {
         TraceRow {
             tick,
             axis,
@@ -57,6 +60,7 @@ impl TraceRow {
             following_error: s.following_error,
             pulses: s.pulses,
             encoder_counts: s.encoder_counts,
+            group,
         }
     }
 
@@ -166,7 +170,8 @@ impl Recording {
         let tick = engine.tick();
         for &axis in &self.axes {
             if let Some(status) = engine.axis_status(usize::from(axis)) {
-                self.rows.push(TraceRow::new(tick, axis, &status));
+                let group = GroupColumns::of(engine, usize::from(axis));
+                self.rows.push(TraceRow::new(tick, axis, &status, group));
             }
         }
         true
@@ -334,8 +339,14 @@ impl TraceRecorder {
             next += chunk.len();
             for row in &chunk {
                 let time = row.tick as f64 * period;
-                crate::trace::write_row(&mut out, time, usize::from(row.axis), &row.status())
-                    .map_err(|e| ApiError::Internal(format!("cannot write a trace row: {e}")))?;
+                crate::trace::write_member_row(
+                    &mut out,
+                    time,
+                    usize::from(row.axis),
+                    &row.status(),
+                    row.group.as_ref(),
+                )
+                .map_err(|e| ApiError::Internal(format!("cannot write a trace row: {e}")))?;
             }
         }
         Ok((out, status))
@@ -471,7 +482,7 @@ mod tests {
 
     #[test]
     fn rows_are_compact_and_round_trip_the_columns() {
-        assert!(std::mem::size_of::<TraceRow>() <= 80);
+        assert!(std::mem::size_of::<TraceRow>() <= 112);
         let s = AxisStatus {
             state: AxisState::DiscreteMotion,
             flags: AxisFlags::HOMED | AxisFlags::HW_LIMIT_NEG,
@@ -483,7 +494,7 @@ mod tests {
         };
         let (mut a, mut b) = (Vec::new(), Vec::new());
         crate::trace::write_row(&mut a, 0.5, 1, &s).unwrap();
-        crate::trace::write_row(&mut b, 0.5, 1, &TraceRow::new(500, 1, &s).status()).unwrap();
+        crate::trace::write_row(&mut b, 0.5, 1, &TraceRow::new(500, 1, &s, None).status()).unwrap();
         assert_eq!(a, b);
     }
 }

@@ -1,9 +1,12 @@
 //! `GET /api/v1/state`: the machine as humans and scripts read it. Field names are part of the
 //! API (docs/decisions.md "Control API"); axis fields are named as the trace CSV columns.
 
+use axes::command::CommandId;
 use axes::command::{Direction, ErrorKind};
 use axes::runtime::RuntimeStats;
-use axes::status::{AxisState, AxisStatus, CommandRef, DriveStatus, IoImage};
+use axes::status::{
+    AxisState, AxisStatus, CommandRef, DriveStatus, GroupFault, GroupState, GroupStatus, IoImage,
+};
 use axum::extract::State;
 use axum::Json;
 use serde::Serialize;
@@ -23,6 +26,8 @@ pub struct StateView<'a> {
     /// Engine time, seconds (tick × period).
     pub time: f64,
     pub axes: Vec<AxisView<'a>>,
+    /// The axis groups (coordinated motion), by group number.
+    pub groups: Vec<GroupView<'a>>,
     pub io: IoView<'a>,
     pub drives: Vec<DriveView>,
     /// The servo runtime's counters and lateness histogram (`axes::runtime::RuntimeStats`).
@@ -99,6 +104,57 @@ impl<'a> AxisView<'a> {
     }
 }
 
+/// One axis group (`axes::status::GroupStatus`, coordinates as arrays of the members' count).
+#[derive(Serialize)]
+pub struct GroupView<'a> {
+    pub group: u16,
+    pub state: GroupState,
+    /// Member axes in group-coordinate order.
+    pub axes: &'a [u16],
+    /// Commanded path position in group coordinates (member position − origin).
+    pub position: &'a [f64],
+    pub origin: &'a [f64],
+    pub path_velocity: f64,
+    pub path_acceleration: f64,
+    pub current_command: Option<CommandId>,
+    /// Ordinal of the motion being executed since the group was created.
+    pub segment: u64,
+    pub user_segment: u32,
+    pub queue_used: u32,
+    pub queue_free: u32,
+    pub remaining_length: f64,
+    pub in_position: bool,
+    pub override_factor: f64,
+    pub last_error: Option<ErrorKind>,
+    /// Why the group is in ErrorStop.
+    pub fault: Option<GroupFault>,
+}
+
+impl<'a> GroupView<'a> {
+    pub fn new(g: &'a GroupStatus) -> GroupView<'a> {
+        let n = g.axes().len();
+        GroupView {
+            group: g.group,
+            state: g.state,
+            axes: g.axes(),
+            position: g.position(),
+            origin: g.origin.get(..n).unwrap_or(&g.origin),
+            path_velocity: g.path_velocity,
+            path_acceleration: g.path_acceleration,
+            current_command: g.current_command,
+            segment: g.segment,
+            user_segment: g.user_segment,
+            queue_used: g.queue_used,
+            queue_free: g.queue_free,
+            remaining_length: g.remaining_length,
+            in_position: g.in_position,
+            override_factor: g.override_factor,
+            last_error: g.last_error,
+            fault: g.fault,
+        }
+    }
+}
+
 /// I/O images by channel number.
 #[derive(Serialize)]
 pub struct IoView<'a> {
@@ -164,6 +220,7 @@ pub async fn get_state(State(state): State<ControlState>) -> axum::response::Res
             .enumerate()
             .map(|(i, s)| AxisView::new(i, machine.axis_name(i), s))
             .collect(),
+        groups: snapshot.groups.iter().map(GroupView::new).collect(),
         io: IoView::from(&snapshot.io),
         drives: snapshot
             .drives

@@ -2,7 +2,7 @@
 //! condition holds.
 
 use axes::runtime::{AdvanceError, ClockMode, EngineHandle};
-use axes::status::{AxisFlags, AxisState};
+use axes::status::{AxisFlags, AxisState, GroupState};
 use axes::Snapshot;
 use axum::extract::State;
 use axum::response::{IntoResponse, Response};
@@ -34,10 +34,16 @@ pub struct AdvanceRequest {
 
 /// A condition on one axis, checked on the snapshot after each tick: its `state` is the one
 /// named, and/or its `flag` is set (or clear with `"value": false`). Both given: both hold.
+/// Or a condition on an axis group: `{"group": 1, "group_state": "standby"}`.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct UntilCondition {
-    axis: u16,
+    #[serde(default)]
+    axis: Option<u16>,
+    #[serde(default)]
+    group: Option<u16>,
+    #[serde(default)]
+    group_state: Option<GroupState>,
     #[serde(default)]
     state: Option<AxisState>,
     #[serde(default)]
@@ -52,20 +58,30 @@ fn yes() -> bool {
 
 /// A checked condition, cheap to evaluate on the servo thread.
 #[derive(Clone, Copy, Debug)]
-struct Check {
-    axis: usize,
-    state: Option<AxisState>,
-    flag: Option<(AxisFlags, bool)>,
+enum Check {
+    Axis {
+        axis: usize,
+        state: Option<AxisState>,
+        flag: Option<(AxisFlags, bool)>,
+    },
+    Group {
+        group: u16,
+        state: GroupState,
+    },
 }
 
 impl Check {
     fn holds(&self, snapshot: &Snapshot) -> bool {
-        snapshot.axes.get(self.axis).is_some_and(|a| {
-            self.state.is_none_or(|s| a.state == s)
-                && self
-                    .flag
-                    .is_none_or(|(flag, value)| a.flags.contains(flag) == value)
-        })
+        match *self {
+            Check::Axis { axis, state, flag } => snapshot.axes.get(axis).is_some_and(|a| {
+                state.is_none_or(|s| a.state == s)
+                    && flag.is_none_or(|(flag, value)| a.flags.contains(flag) == value)
+            }),
+            Check::Group { group, state } => snapshot
+                .groups
+                .iter()
+                .any(|g| g.group == group && g.state == state),
+        }
     }
 }
 
@@ -127,10 +143,27 @@ fn too_long(period: f64) -> ApiError {
 
 impl UntilCondition {
     fn check(self, axes: usize) -> Result<Check, ApiError> {
-        if usize::from(self.axis) >= axes {
+        let axis = match (self.axis, self.group, self.group_state) {
+            (None, Some(group), Some(state)) => {
+                if self.state.is_some() || self.flag.is_some() {
+                    return Err(ApiError::InvalidRequest(
+                        "until: a group condition takes `group_state` only".into(),
+                    ));
+                }
+                return Ok(Check::Group { group, state });
+            }
+            (Some(axis), None, None) => axis,
+            _ => {
+                return Err(ApiError::InvalidRequest(
+                    "until needs an `axis` with `state` or `flag`, or a `group` with \
+                     `group_state`, e.g. {\"axis\": 0, \"state\": \"standstill\"}"
+                        .into(),
+                ))
+            }
+        };
+        if usize::from(axis) >= axes {
             return Err(ApiError::InvalidRequest(format!(
-                "until.axis: axis {} does not exist (the machine has {axes} axes)",
-                self.axis
+                "until.axis: axis {axis} does not exist (the machine has {axes} axes)"
             )));
         }
         let flag = match self.flag {
@@ -151,8 +184,8 @@ impl UntilCondition {
                     .into(),
             ));
         }
-        Ok(Check {
-            axis: usize::from(self.axis),
+        Ok(Check::Axis {
+            axis: usize::from(axis),
             state: self.state,
             flag,
         })

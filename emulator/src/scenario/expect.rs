@@ -1,8 +1,10 @@
-//! Expectations: conditions on an axis, a command or the I/O image, checked at one tick.
+//! Expectations: conditions on an axis, an axis group, a command or the I/O image, checked at
+//! one tick.
 
 use std::fmt::Write as _;
 
 use axes::command::{CommandState, ErrorKind};
+use axes::status::{GroupState, GroupStatus};
 use axes::{AxisFlags, AxisState, AxisStatus};
 use serde::de::IntoDeserializer;
 use serde::Deserialize;
@@ -13,6 +15,7 @@ use super::file::ExpectSpec;
 #[derive(Clone, Debug, PartialEq)]
 pub(super) struct Expectation {
     pub axis: Option<u16>,
+    pub group: Option<u16>,
     pub tolerance: f64,
     pub checks: Vec<Check>,
 }
@@ -40,6 +43,11 @@ pub(super) enum Check {
         channel: u16,
         value: bool,
     },
+    GroupState(GroupState),
+    /// Each coordinate within the tolerance.
+    GroupPosition(Vec<f64>),
+    GroupInPosition(bool),
+    GroupUserSegment(u32),
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -198,11 +206,17 @@ impl Expectation {
                 format!("{tolerance}: must be a finite number ≥ 0"),
             ));
         }
-        if spec.tolerance.is_some() && !checks.iter().any(|c| matches!(c, Check::Number(..))) {
+        let group_checks = group_checks(&spec)?;
+        if spec.tolerance.is_some()
+            && !checks.iter().any(|c| matches!(c, Check::Number(..)))
+            && !group_checks
+                .iter()
+                .any(|c| matches!(c, Check::GroupPosition(_)))
+        {
             return Err((
                 "tolerance",
-                "applies to position, velocity, command_position, command_velocity or \
-                 following_error, and none is given"
+                "applies to position, velocity, command_position, command_velocity, \
+                 following_error or group_position, and none is given"
                     .into(),
             ));
         }
@@ -232,6 +246,23 @@ impl Expectation {
                  command_velocity, following_error, flags, not_flags or error"
                     .into(),
             ));
+        }
+        match (spec.group, group_checks.is_empty()) {
+            (None, false) => {
+                return Err((
+                    "group",
+                    "missing: these conditions are about a group".into(),
+                ))
+            }
+            (Some(_), true) => {
+                return Err((
+                    "group",
+                    "no condition on it: give group_state, group_position, in_position or \
+                     user_segment"
+                        .into(),
+                ))
+            }
+            _ => checks.extend(group_checks),
         }
         match (spec.step, &spec.command_state) {
             (Some(step), Some(state)) => checks.push(Check::CommandState {
@@ -276,15 +307,45 @@ impl Expectation {
         }
         Ok(Expectation {
             axis: spec.axis,
+            group: spec.group,
             tolerance,
             checks,
         })
     }
 }
 
+/// The conditions of an `expect` about a group.
+fn group_checks(spec: &ExpectSpec) -> Result<Vec<Check>, SpecError> {
+    let mut checks = Vec::new();
+    if let Some(name) = &spec.group_state {
+        let state = GroupState::from_name(name).ok_or((
+            "group_state",
+            format!(
+                "unknown state `{name}`: one of disabled, standby, moving, halted, stopping, \
+                 error_stop"
+            ),
+        ))?;
+        checks.push(Check::GroupState(state));
+    }
+    if let Some(p) = &spec.group_position {
+        if let Some(v) = p.iter().find(|v| !v.is_finite()) {
+            return Err(("group_position", format!("{v} is not a finite number")));
+        }
+        checks.push(Check::GroupPosition(p.clone()));
+    }
+    if let Some(v) = spec.in_position {
+        checks.push(Check::GroupInPosition(v));
+    }
+    if let Some(v) = spec.user_segment {
+        checks.push(Check::GroupUserSegment(v));
+    }
+    Ok(checks)
+}
+
 /// What an expectation sees at its tick.
 pub(super) struct Seen<'a> {
     pub axis: Option<&'a AxisStatus>,
+    pub group: Option<&'a GroupStatus>,
     pub di: &'a [bool],
     pub do_: &'a [bool],
     /// The state of the command step `k` issued: `Err` says why there is none.
@@ -296,6 +357,7 @@ impl Expectation {
     pub fn failures(&self, seen: &Seen) -> Vec<String> {
         let mut out = Vec::new();
         let axis = self.axis.unwrap_or(0);
+        let group = self.group.unwrap_or(0);
         for check in &self.checks {
             let mut msg = String::new();
             // Writing to a String cannot fail.
@@ -358,11 +420,54 @@ impl Expectation {
                     }
                     write!(msg, "do[{channel}]: expected {value}, saw {got}")
                 }
+                (
+                    Check::GroupState(_)
+                    | Check::GroupPosition(_)
+                    | Check::GroupInPosition(_)
+                    | Check::GroupUserSegment(_),
+                    _,
+                ) => {
+                    let Some(g) = seen.group else {
+                        out.push(format!("group {group}: it does not exist"));
+                        continue;
+                    };
+                    match group_failure(check, g, self.tolerance) {
+                        Some(m) => write!(msg, "group {group} {m}"),
+                        None => continue,
+                    }
+                }
                 _ => continue,
             };
             out.push(msg);
         }
         out
+    }
+}
+
+/// What a group condition saw, when it does not hold.
+fn group_failure(check: &Check, g: &GroupStatus, tolerance: f64) -> Option<String> {
+    match check {
+        Check::GroupState(want) if g.state != *want => {
+            Some(format!("state: expected {want}, saw {}", g.state))
+        }
+        Check::GroupPosition(want) => {
+            let got = g.position();
+            let close = got.len() == want.len()
+                && got
+                    .iter()
+                    .zip(want)
+                    .all(|(a, b)| (a - b).abs() <= tolerance);
+            (!close).then(|| format!("position: expected {want:?} ± {tolerance}, saw {got:?}"))
+        }
+        Check::GroupInPosition(want) if g.in_position != *want => Some(format!(
+            "in_position: expected {want}, saw {}",
+            g.in_position
+        )),
+        Check::GroupUserSegment(want) if g.user_segment != *want => Some(format!(
+            "user_segment: expected {want}, saw {}",
+            g.user_segment
+        )),
+        _ => None,
     }
 }
 
@@ -463,6 +568,7 @@ mod tests {
     fn failures_say_what_was_expected_and_seen() {
         let e = Expectation {
             axis: Some(2),
+            group: None,
             tolerance: 0.5,
             checks: vec![
                 Check::State(AxisState::Standstill),
@@ -483,6 +589,7 @@ mod tests {
         let none = |_: usize| Err::<CommandState, String>("no".into());
         let seen = Seen {
             axis: Some(&status),
+            group: None,
             di: &[false, false],
             do_: &[],
             command_state: &none,
@@ -496,5 +603,60 @@ mod tests {
                 "di[1]: expected true, saw false",
             ]
         );
+    }
+
+    #[test]
+    fn group_conditions_need_a_group_and_say_what_they_saw() {
+        let spec = ExpectSpec {
+            group_state: Some("moving".into()),
+            ..ExpectSpec::default()
+        };
+        assert_eq!(Expectation::from_spec(spec).unwrap_err().0, "group");
+        let spec = ExpectSpec {
+            group: Some(1),
+            group_state: Some("gliding".into()),
+            ..ExpectSpec::default()
+        };
+        assert_eq!(Expectation::from_spec(spec).unwrap_err().0, "group_state");
+        let e = Expectation::from_spec(ExpectSpec {
+            group: Some(1),
+            group_state: Some("standby".into()),
+            group_position: Some(vec![1.0, 2.0]),
+            tolerance: Some(0.1),
+            in_position: Some(true),
+            user_segment: Some(4),
+            ..ExpectSpec::default()
+        })
+        .unwrap();
+        let mut g = GroupStatus {
+            group: 1,
+            state: GroupState::Moving,
+            axis_count: 2,
+            user_segment: 4,
+            ..GroupStatus::default()
+        };
+        g.coordinates[0] = 1.05;
+        g.coordinates[1] = 2.5;
+        let none = |_: usize| Err::<CommandState, String>("no".into());
+        let seen = Seen {
+            axis: None,
+            group: Some(&g),
+            di: &[],
+            do_: &[],
+            command_state: &none,
+        };
+        assert_eq!(
+            e.failures(&seen),
+            [
+                "group 1 state: expected standby, saw moving",
+                "group 1 position: expected [1.0, 2.0] ± 0.1, saw [1.05, 2.5]",
+                "group 1 in_position: expected true, saw false",
+            ]
+        );
+        let gone = Seen {
+            group: None,
+            ..seen
+        };
+        assert_eq!(e.failures(&gone).len(), 4);
     }
 }

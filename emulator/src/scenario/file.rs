@@ -101,6 +101,21 @@ pub(super) struct ExpectSpec {
     /// With `di` or `do`: the level.
     #[serde(default)]
     pub value: Option<bool>,
+    /// An axis group (coordinated motion): the conditions below are about it.
+    #[serde(default)]
+    pub group: Option<u16>,
+    /// The group's state (`standby`, `moving`, `halted`, `stopping`, `error_stop`, `disabled`).
+    #[serde(default)]
+    pub group_state: Option<String>,
+    /// The group's commanded path position, one coordinate per member (within `tolerance`).
+    #[serde(default)]
+    pub group_position: Option<Vec<f64>>,
+    /// Every member in position and the path at rest with nothing queued.
+    #[serde(default)]
+    pub in_position: Option<bool>,
+    /// The `user_segment` of the motion running or last run.
+    #[serde(default)]
+    pub user_segment: Option<u32>,
 }
 
 impl<'de> Deserialize<'de> for ScenarioFile {

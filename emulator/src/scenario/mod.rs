@@ -38,12 +38,13 @@ use std::path::{Path, PathBuf};
 
 use axes::command::{
     AxisCommand, AxisInput, Command, CommandId, CommandState, ErrorKind, ForceDigitalInput,
-    ForceInput, GetCommandState, Home, MoveAbsolute, MoveRelative, MoveVelocity, Reply,
+    ForceInput, GetCommandState, GroupCommand, Home, MoveAbsolute, MoveRelative, MoveVelocity,
+    Reply,
 };
 use axes::{AxisStatus, Engine, EngineError};
 
 use crate::config::{Config, ConfigError};
-use crate::trace::TraceWriter;
+use crate::trace::{GroupColumns, TraceWriter};
 use expect::{Check, Expectation, Seen};
 use file::{ForceSpec, ScenarioFile, StepSpec};
 
@@ -266,6 +267,7 @@ impl Scenario {
             },
         };
         let mut statuses = vec![AxisStatus::default(); engine.axis_count()];
+        let mut groups: Vec<Option<GroupColumns>> = vec![None; engine.axis_count()];
         let mut next = 0;
         let mut tick = 0;
         loop {
@@ -274,12 +276,14 @@ impl Scenario {
                 next += 1;
             }
             if let Some(trace) = trace.as_mut() {
-                for (i, status) in statuses.iter_mut().enumerate() {
+                for (i, (status, group)) in statuses.iter_mut().zip(&mut groups).enumerate() {
                     if let Some(axis) = engine.axis(i) {
                         axis.status_into(status);
                     }
+                    *group = GroupColumns::of(&engine, i);
                 }
-                trace.write_tick(tick, &statuses).map_err(trace_error)?;
+                let rows = statuses.iter().zip(groups.iter().map(Option::as_ref));
+                trace.write_tick(tick, rows).map_err(trace_error)?;
             }
             if tick == self.end_tick {
                 break;
@@ -538,6 +542,17 @@ fn check_command_refs(steps: &[Step]) -> Result<(), (String, String)> {
                     | Command::Axis(AxisCommand::MoveRelative(MoveRelative { .. }))
                     | Command::Axis(AxisCommand::MoveVelocity(MoveVelocity { .. }))
                     | Command::Axis(AxisCommand::Home(Home { .. }))
+                    | Command::Group(
+                        GroupCommand::MoveLinearAbsolute(_)
+                            | GroupCommand::MoveLinearRelative(_)
+                            | GroupCommand::MoveCircularAbsolute(_)
+                            | GroupCommand::MoveCircularRelative(_)
+                            | GroupCommand::SetOutput(_)
+                            | GroupCommand::Dwell(_)
+                            | GroupCommand::WaitInput(_)
+                            | GroupCommand::WaitPosition(_)
+                            | GroupCommand::AxisMove(_)
+                    )
             ) {
                 return Err((
                     key,
@@ -628,8 +643,10 @@ impl Run<'_> {
                         .map_or_else(|| Err("it has not run".to_string()), |(_, s)| s.clone())
                 };
                 let status = e.axis.and_then(|a| engine.axis_status(a as usize));
+                let group = e.group.and_then(|id| engine.group_status(id));
                 let seen = Seen {
                     axis: status.as_ref(),
+                    group: group.as_ref(),
                     di: &engine.io().di,
                     do_: &engine.io().do_,
                     command_state: &command_state,

@@ -114,6 +114,8 @@ pub fn code_for_kind(kind: ErrorKind) -> i16 {
         ErrorKind::InvalidChannel => 17,
         ErrorKind::LimitReached => 18,
         ErrorKind::Fault => 19,
+        ErrorKind::InvalidGroup => 20,
+        ErrorKind::GroupState => 21,
     }
 }
 
@@ -236,6 +238,8 @@ mod tests {
             ErrorKind::InvalidChannel,
             ErrorKind::LimitReached,
             ErrorKind::Fault,
+            ErrorKind::InvalidGroup,
+            ErrorKind::GroupState,
         ];
         let mut codes: Vec<i16> = kinds.iter().map(|k| code_for_kind(*k)).collect();
         assert!(codes.iter().all(|c| *c > 0));

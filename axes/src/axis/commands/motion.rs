@@ -548,6 +548,14 @@ impl Axis {
                 return self.refuse(e);
             }
         }
+        if let (Some(group), Source::Fed(_)) = (self.group, &self.source) {
+            // The group's path would jump by the shift; between paths the group re-bases on
+            // the members' positions instead.
+            return self.refuse(EngineError::AxisInGroup {
+                axis: self.index,
+                group,
+            });
+        }
         if let Some(f) = &self.smoothing {
             if !f.is_settled() {
                 let e = self

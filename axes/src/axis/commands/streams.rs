@@ -100,8 +100,15 @@ impl Axis {
     }
 
     /// Refuse single-axis commands that would take the command source from a machine-level
-    /// planner (PLCopen: an axis in a group takes no single-axis motion).
+    /// planner, or move an axis of a group (PLCopen Part 4: an axis in a group takes no
+    /// single-axis motion).
     pub(super) fn check_not_fed(&self) -> Result<(), EngineError> {
+        if let Some(group) = self.group {
+            return Err(EngineError::AxisInGroup {
+                axis: self.index,
+                group,
+            });
+        }
         if matches!(self.source, Source::Fed(_)) && matches!(self.activity, Activity::Streaming) {
             Err(self.invalid_state("take single-axis motion while a machine planner feeds it"))
         } else {

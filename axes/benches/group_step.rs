@@ -1,0 +1,128 @@
+//! `Engine::step()` cost per axis of a moving 4-axis group with blending (issue 11: aim ≤ 100 ns
+//! per axis, as single axes are), beside 4 free axes each running its own move in the same run.
+//! The group runs an endless polygon of 100 mm lines in 4-D, blended (`blending_low`, 5 mm
+//! corner distance), topped up every 1024 ticks when fewer than 32 entries are queued (a refill
+//! runs the look-ahead; its cost is in the figure, spread over the ticks it serves, as on a
+//! machine streaming a program).
+//!
+//! `cargo bench -p axes --bench group_step`
+
+// A benchmark that cannot build its machine should stop loudly.
+#![allow(clippy::expect_used, clippy::panic)]
+
+use std::hint::black_box;
+
+use axes::command::{
+    Command, GroupBufferMode, GroupCreate, GroupEnable, MoveLinearAbsolute, TransitionMode,
+};
+use axes::Engine;
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+
+mod common;
+
+const AXES: usize = 4;
+
+/// The corners of a 4-D hypercube of side 100 mm in Gray-code order: consecutive corners differ
+/// in one coordinate, so every segment is a 100 mm line and every junction a right angle.
+fn corner(k: u64) -> Vec<f64> {
+    let gray = k ^ (k >> 1);
+    (0..AXES as u64)
+        .map(|bit| if (gray >> bit) & 1 == 1 { 100.0 } else { 0.0 })
+        .collect()
+}
+
+struct Group {
+    engine: Engine,
+    next: u64,
+}
+
+impl Group {
+    fn new() -> Group {
+        let mut engine = common::engine(AXES);
+        for c in common::motion_commands(AXES)
+            .into_iter()
+            .filter(|c| matches!(c, Command::Axis(axes::command::AxisCommand::Enable(_))))
+        {
+            engine.apply(c).expect("enable");
+        }
+        engine
+            .apply(Command::from(GroupCreate {
+                group: 1,
+                axes: (0..AXES as u16).collect(),
+                queue_capacity: None,
+                lookahead: None,
+            }))
+            .expect("group_create");
+        engine
+            .apply(Command::from(GroupEnable { group: 1 }))
+            .expect("group_enable");
+        let mut g = Group { engine, next: 1 };
+        g.refill();
+        // Past the first acceleration.
+        for _ in 0..500 {
+            g.engine.step();
+        }
+        let moving = g
+            .engine
+            .group_status(1)
+            .is_some_and(|s| s.path_velocity > 0.0);
+        assert!(moving, "the group should be moving");
+        g
+    }
+
+    fn refill(&mut self) {
+        let queued = self.engine.groups().get(1).map_or(0, |g| g.queued());
+        if queued >= 32 {
+            return;
+        }
+        for _ in 0..64 {
+            self.engine
+                .apply(Command::from(MoveLinearAbsolute {
+                    group: 1,
+                    position: corner(self.next),
+                    velocity: Some(50.0),
+                    acceleration: None,
+                    deceleration: None,
+                    jerk: None,
+                    buffer_mode: GroupBufferMode::BlendingLow,
+                    transition: TransitionMode::CornerDistance(5.0),
+                    user_segment: None,
+                }))
+                .expect("move_linear_absolute");
+            self.next += 1;
+        }
+    }
+}
+
+fn step_cost(c: &mut Criterion) {
+    let mut bench = c.benchmark_group("step_per_axis_group");
+    bench.throughput(Throughput::Elements(AXES as u64));
+    let mut free = common::moving_engine(AXES);
+    for _ in 0..200 {
+        free.step();
+    }
+    bench.bench_with_input(BenchmarkId::new("free_axes_moving", AXES), &AXES, |b, _| {
+        b.iter(|| {
+            free.step();
+            black_box(&mut free);
+        })
+    });
+    let mut group = Group::new();
+    bench.bench_with_input(
+        BenchmarkId::new("group_blending_moving", AXES),
+        &AXES,
+        |b, _| {
+            b.iter(|| {
+                group.engine.step();
+                if group.engine.tick().is_multiple_of(1024) {
+                    group.refill();
+                }
+                black_box(&mut group.engine);
+            });
+        },
+    );
+    bench.finish();
+}
+
+criterion_group!(benches, step_cost);
+criterion_main!(benches);

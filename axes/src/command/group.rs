@@ -1,0 +1,445 @@
+//! The group family (issue 11): commands on a group of axes that move on one path, named after
+//! PLCopen Part 4 in snake_case (`group_create`, `move_linear_absolute` …).
+//!
+//! Coordinates (`position`, `distance`, `end_point`, `aux_point`, `offset`) have one number per
+//! member axis, in the order of the group's `axes`. Kinematic limits given in a motion apply to
+//! that motion only and are along the path; where absent, the group parameters apply
+//! (`group_set_parameter`). Every member's own velocity, acceleration and jerk limits hold
+//! whatever the path asks for.
+
+use serde::{Deserialize, Serialize};
+
+use super::{command_from, AxisIndex, GroupId};
+
+/// Make a group of 1–9 axes (PLCopen MC_AddAxisToGroup ×n; HIMC SetupGroup without the enable;
+/// NMC CrdSetMtSys). The group starts Disabled.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GroupCreate {
+    pub group: GroupId,
+    pub axes: Vec<AxisIndex>,
+    /// Entries the group queue holds, 1–1024 (default: the `[groups]` config, 512).
+    #[serde(default)]
+    pub queue_capacity: Option<u32>,
+    /// Segments the look-ahead plans over (default: the `[groups]` config, 64).
+    #[serde(default)]
+    pub lookahead: Option<u32>,
+}
+
+/// Dissolve a group (HIMC UngrpAllAxes); its axes are free again. Refused while it moves.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GroupDelete {
+    pub group: GroupId,
+}
+
+/// Disabled → Standby, if every member is enabled (PLCopen MC_GroupEnable).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GroupEnable {
+    pub group: GroupId,
+}
+
+/// → Disabled: the path is dropped and the members ramp to rest (MC_GroupDisable).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GroupDisable {
+    pub group: GroupId,
+}
+
+/// ErrorStop → Standby once the causes are gone (MC_GroupReset, HIMC ResetGroup).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GroupReset {
+    pub group: GroupId,
+}
+
+/// How a group motion joins the motion queued before it (PLCopen Part 4 buffer modes, HIMC
+/// BM_*). The default is `buffered`: the group queue is a program of segments (HIMC, NMC).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum GroupBufferMode {
+    /// Stop the path (group deceleration), drop the queue, then start this motion.
+    Aborting,
+    /// Stop exactly at the end of the previous motion, then start.
+    #[default]
+    Buffered,
+    /// Pass the junction at the lower of the two motions' velocities.
+    BlendingLow,
+    /// … at the previous motion's velocity.
+    BlendingPrevious,
+    /// … at this motion's velocity.
+    BlendingNext,
+    /// … at the higher of the two.
+    BlendingHigh,
+}
+
+/// The corner geometry of a blended junction (PLCopen transition modes, HIMC TM_*, G64 P).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TransitionMode {
+    /// Through the corner point.
+    #[default]
+    None,
+    /// Round the corner, starting at most this path distance before it.
+    CornerDistance(f64),
+    /// Round the corner, passing it at most this far away.
+    CornerDeviation(f64),
+}
+
+/// Move along a straight line to a point in group coordinates (MC_MoveLinearAbsolute).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MoveLinearAbsolute {
+    pub group: GroupId,
+    pub position: Vec<f64>,
+    #[serde(default)]
+    pub velocity: Option<f64>,
+    #[serde(default)]
+    pub acceleration: Option<f64>,
+    #[serde(default)]
+    pub deceleration: Option<f64>,
+    /// Along the path; 0 = trapezoid.
+    #[serde(default)]
+    pub jerk: Option<f64>,
+    #[serde(default)]
+    pub buffer_mode: GroupBufferMode,
+    #[serde(default)]
+    pub transition: TransitionMode,
+    /// A number the status reports while this motion runs (NMC CrdGetUserSegNo).
+    #[serde(default)]
+    pub user_segment: Option<u32>,
+}
+
+/// Move along a straight line by a distance from where the previous motion ends
+/// (MC_MoveLinearRelative).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MoveLinearRelative {
+    pub group: GroupId,
+    pub distance: Vec<f64>,
+    #[serde(default)]
+    pub velocity: Option<f64>,
+    #[serde(default)]
+    pub acceleration: Option<f64>,
+    #[serde(default)]
+    pub deceleration: Option<f64>,
+    #[serde(default)]
+    pub jerk: Option<f64>,
+    #[serde(default)]
+    pub buffer_mode: GroupBufferMode,
+    #[serde(default)]
+    pub transition: TransitionMode,
+    #[serde(default)]
+    pub user_segment: Option<u32>,
+}
+
+/// What `aux_point` (and `radius`) of a circular move mean (PLCopen MC_CircMode).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CircleMode {
+    /// `aux_point` is the centre (HIMC ArcCenter, NMC ArcXYC, HMC MoveCircle).
+    #[default]
+    Center,
+    /// `radius` gives the circle: > 0 the minor arc, < 0 the major arc (NMC ArcXYR).
+    Radius,
+    /// `aux_point` is a point on the arc between start and end (MC_3P_CIRCLE, HMC 3-point).
+    Border,
+}
+
+/// Which way an arc turns, seen from the positive side of its plane's normal.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ArcDirection {
+    Cw,
+    #[default]
+    Ccw,
+}
+
+/// Move on a circular arc (MC_MoveCircularAbsolute): points in group coordinates. The arc
+/// lies in the plane of the group coordinates `plane` (default `[0, 1]`), or about `normal` (a
+/// vector over the first three coordinates); the other coordinates move linearly (a helix).
+/// `turns` adds full turns (a start equal to the end is a full circle).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MoveCircularAbsolute {
+    pub group: GroupId,
+    #[serde(default)]
+    pub mode: CircleMode,
+    #[serde(default)]
+    pub aux_point: Vec<f64>,
+    #[serde(default)]
+    pub radius: Option<f64>,
+    pub end_point: Vec<f64>,
+    #[serde(default)]
+    pub direction: ArcDirection,
+    #[serde(default)]
+    pub plane: Option<[usize; 2]>,
+    #[serde(default)]
+    pub normal: Option<Vec<f64>>,
+    #[serde(default)]
+    pub turns: u32,
+    #[serde(default)]
+    pub velocity: Option<f64>,
+    #[serde(default)]
+    pub acceleration: Option<f64>,
+    #[serde(default)]
+    pub deceleration: Option<f64>,
+    #[serde(default)]
+    pub jerk: Option<f64>,
+    #[serde(default)]
+    pub buffer_mode: GroupBufferMode,
+    #[serde(default)]
+    pub transition: TransitionMode,
+    #[serde(default)]
+    pub user_segment: Option<u32>,
+}
+
+/// [`MoveCircularAbsolute`] with `aux_point` and `end_point` relative to the arc's start
+/// (MC_MoveCircularRelative).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MoveCircularRelative {
+    pub group: GroupId,
+    #[serde(default)]
+    pub mode: CircleMode,
+    #[serde(default)]
+    pub aux_point: Vec<f64>,
+    #[serde(default)]
+    pub radius: Option<f64>,
+    pub end_point: Vec<f64>,
+    #[serde(default)]
+    pub direction: ArcDirection,
+    #[serde(default)]
+    pub plane: Option<[usize; 2]>,
+    #[serde(default)]
+    pub normal: Option<Vec<f64>>,
+    #[serde(default)]
+    pub turns: u32,
+    #[serde(default)]
+    pub velocity: Option<f64>,
+    #[serde(default)]
+    pub acceleration: Option<f64>,
+    #[serde(default)]
+    pub deceleration: Option<f64>,
+    #[serde(default)]
+    pub jerk: Option<f64>,
+    #[serde(default)]
+    pub buffer_mode: GroupBufferMode,
+    #[serde(default)]
+    pub transition: TransitionMode,
+    #[serde(default)]
+    pub user_segment: Option<u32>,
+}
+
+/// Decelerate to rest along the path and drop the queue (MC_GroupStop). `deceleration`
+/// defaults to the group parameter.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GroupStop {
+    pub group: GroupId,
+    #[serde(default)]
+    pub deceleration: Option<f64>,
+}
+
+/// Decelerate to rest along the path and keep the queue (MC_GroupInterrupt, HIMC HaltGroup).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GroupHalt {
+    pub group: GroupId,
+    #[serde(default)]
+    pub deceleration: Option<f64>,
+}
+
+/// Go on after a halt (MC_GroupContinue).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GroupContinue {
+    pub group: GroupId,
+}
+
+/// Drop the path at once, stop every member with its `fast_decel`, go to ErrorStop (HIMC
+/// EStop for one group).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GroupEmergencyStop {
+    pub group: GroupId,
+}
+
+/// Path velocity override, (0, 10) (NMC CrdSetOverride; HIMC SetGrpVelScale 0–100 % is 0–1).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GroupSetOverride {
+    pub group: GroupId,
+    pub factor: f64,
+}
+
+/// Set the group's origin offset: group coordinate = member's commanded position − offset
+/// (NMC orgFlag/offset). Only while nothing is queued.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GroupSetOrigin {
+    pub group: GroupId,
+    pub offset: Vec<f64>,
+}
+
+/// A group parameter: the path limits of motions that do not give their own.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum GroupParameter {
+    Velocity,
+    Acceleration,
+    Deceleration,
+    /// 0 = trapezoid along the path.
+    Jerk,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GroupSetParameter {
+    pub group: GroupId,
+    pub name: GroupParameter,
+    pub value: f64,
+}
+
+/// Buffered: set a digital output when the path reaches this point of the queue; the path does
+/// not slow down for it (NMC CrdBufDO).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GroupSetOutput {
+    pub group: GroupId,
+    pub channel: u16,
+    pub value: bool,
+}
+
+/// Buffered: stop here and wait (NMC CrdBufDelay).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GroupDwell {
+    pub group: GroupId,
+    pub seconds: f64,
+}
+
+/// Buffered: stop here until a digital input has `level` (NMC CrdBufWaitDI); past `timeout`
+/// seconds the group goes to ErrorStop.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GroupWaitInput {
+    pub group: GroupId,
+    pub channel: u16,
+    pub level: bool,
+    #[serde(default)]
+    pub timeout: Option<f64>,
+}
+
+/// Buffered: stop here until `axis`'s actual position is within `tolerance` of `position`
+/// (default: the axis's `in_position_window`); past `timeout` seconds the group goes to
+/// ErrorStop.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GroupWaitPosition {
+    pub group: GroupId,
+    pub axis: AxisIndex,
+    pub position: f64,
+    #[serde(default)]
+    pub tolerance: Option<f64>,
+    #[serde(default)]
+    pub timeout: Option<f64>,
+}
+
+/// Buffered: a single-axis absolute move of an axis outside the group that starts when the
+/// path reaches this point (with the next segment, NMC CrdBufAxMoveEx).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GroupAxisMove {
+    pub group: GroupId,
+    pub axis: AxisIndex,
+    pub position: f64,
+    #[serde(default)]
+    pub velocity: Option<f64>,
+    #[serde(default)]
+    pub acceleration: Option<f64>,
+    #[serde(default)]
+    pub deceleration: Option<f64>,
+    #[serde(default)]
+    pub jerk: Option<f64>,
+}
+
+/// A command on one axis group.
+#[derive(Clone, Debug, PartialEq)]
+pub enum GroupCommand {
+    Create(GroupCreate),
+    Delete(GroupDelete),
+    Enable(GroupEnable),
+    Disable(GroupDisable),
+    Reset(GroupReset),
+    MoveLinearAbsolute(MoveLinearAbsolute),
+    MoveLinearRelative(MoveLinearRelative),
+    MoveCircularAbsolute(MoveCircularAbsolute),
+    MoveCircularRelative(MoveCircularRelative),
+    Stop(GroupStop),
+    Halt(GroupHalt),
+    Continue(GroupContinue),
+    EmergencyStop(GroupEmergencyStop),
+    SetOverride(GroupSetOverride),
+    SetOrigin(GroupSetOrigin),
+    SetParameter(GroupSetParameter),
+    SetOutput(GroupSetOutput),
+    Dwell(GroupDwell),
+    WaitInput(GroupWaitInput),
+    WaitPosition(GroupWaitPosition),
+    AxisMove(GroupAxisMove),
+}
+
+impl GroupCommand {
+    /// The group the command addresses.
+    pub fn group(&self) -> GroupId {
+        match self {
+            GroupCommand::Create(c) => c.group,
+            GroupCommand::Delete(c) => c.group,
+            GroupCommand::Enable(c) => c.group,
+            GroupCommand::Disable(c) => c.group,
+            GroupCommand::Reset(c) => c.group,
+            GroupCommand::MoveLinearAbsolute(c) => c.group,
+            GroupCommand::MoveLinearRelative(c) => c.group,
+            GroupCommand::MoveCircularAbsolute(c) => c.group,
+            GroupCommand::MoveCircularRelative(c) => c.group,
+            GroupCommand::Stop(c) => c.group,
+            GroupCommand::Halt(c) => c.group,
+            GroupCommand::Continue(c) => c.group,
+            GroupCommand::EmergencyStop(c) => c.group,
+            GroupCommand::SetOverride(c) => c.group,
+            GroupCommand::SetOrigin(c) => c.group,
+            GroupCommand::SetParameter(c) => c.group,
+            GroupCommand::SetOutput(c) => c.group,
+            GroupCommand::Dwell(c) => c.group,
+            GroupCommand::WaitInput(c) => c.group,
+            GroupCommand::WaitPosition(c) => c.group,
+            GroupCommand::AxisMove(c) => c.group,
+        }
+    }
+}
+
+command_from!(GroupCommand, Group, [
+    GroupCreate => Create,
+    GroupDelete => Delete,
+    GroupEnable => Enable,
+    GroupDisable => Disable,
+    GroupReset => Reset,
+    MoveLinearAbsolute => MoveLinearAbsolute,
+    MoveLinearRelative => MoveLinearRelative,
+    MoveCircularAbsolute => MoveCircularAbsolute,
+    MoveCircularRelative => MoveCircularRelative,
+    GroupStop => Stop,
+    GroupHalt => Halt,
+    GroupContinue => Continue,
+    GroupEmergencyStop => EmergencyStop,
+    GroupSetOverride => SetOverride,
+    GroupSetOrigin => SetOrigin,
+    GroupSetParameter => SetParameter,
+    GroupSetOutput => SetOutput,
+    GroupDwell => Dwell,
+    GroupWaitInput => WaitInput,
+    GroupWaitPosition => WaitPosition,
+    GroupAxisMove => AxisMove,
+]);

@@ -1,0 +1,571 @@
+//! Group commands (issue 11 items 1, 3, 5, 8): each checked completely before it changes
+//! anything, so a refused command leaves the group (and every other) as it was.
+
+use path::planner::{MarkerKind, PathPlanner};
+use path::MAX_AXES;
+
+use super::queue::{Entry, GroupQueue, Item};
+use super::segment::{self, CircularFields, PathRequest, PendingMotion};
+use super::{planner_config, Env, Group, Groups, DEFAULT_PATH_LIMITS};
+use crate::command::{
+    bounded, finite, nonnegative, positive, CommandState, EngineError, GroupAxisMove, GroupCommand,
+    GroupCreate, GroupDwell, GroupId, GroupParameter, GroupSetOutput, GroupWaitInput,
+    GroupWaitPosition, Reply,
+};
+use crate::config::MAX_GROUP_QUEUE;
+use crate::param::ParamId;
+use crate::status::{AxisState, GroupFault, GroupState};
+
+/// The path velocity override is below this (NMC CrdSetOverride: (0, 10), TV 51).
+pub const MAX_OVERRIDE: f64 = 10.0;
+
+impl Groups {
+    /// Apply one group command at the current tick.
+    pub(crate) fn apply(
+        &mut self,
+        env: &mut Env,
+        command: GroupCommand,
+    ) -> Result<Reply, EngineError> {
+        let id = command.group();
+        match command {
+            GroupCommand::Create(c) => self.create(env, c),
+            GroupCommand::Delete(_) => self.delete(env, id),
+            other => {
+                let g = self.get_mut(id)?;
+                let result = g.apply(env, other);
+                if let Err(e) = &result {
+                    // The group's status shows its last refusal, as an axis's does.
+                    g.last_error = Some(e.kind());
+                }
+                result
+            }
+        }
+    }
+
+    fn create(&mut self, env: &mut Env, c: GroupCreate) -> Result<Reply, EngineError> {
+        let group = c.group;
+        let invalid = |reason: String| EngineError::InvalidGroup { group, reason };
+        if self.get(group).is_some() {
+            return Err(invalid("exists already".into()));
+        }
+        if self.groups.len() >= usize::from(self.config.max_groups) {
+            return Err(invalid(format!(
+                "at most {} groups may exist at once ([groups] max_groups)",
+                self.config.max_groups
+            )));
+        }
+        if c.axes.is_empty() || c.axes.len() > MAX_AXES {
+            return Err(invalid(format!(
+                "a group has 1 to {MAX_AXES} axes, not {}",
+                c.axes.len()
+            )));
+        }
+        let count = env.axes.len() as u32;
+        for (k, &a) in c.axes.iter().enumerate() {
+            let axis = env.axes.get(a as usize).ok_or(EngineError::InvalidAxis {
+                axis: u32::from(a),
+                count,
+            })?;
+            if c.axes.get(..k).is_some_and(|before| before.contains(&a)) {
+                return Err(invalid(format!("axis {a} is listed twice")));
+            }
+            if let Some(other) = axis.group() {
+                return Err(invalid(format!("axis {a} is already in group {other}")));
+            }
+            let state = axis.state();
+            if !matches!(
+                state,
+                AxisState::Disabled | AxisState::Standstill | AxisState::ErrorStop
+            ) {
+                return Err(EngineError::GroupMember {
+                    group,
+                    axis: a,
+                    state,
+                    action: "join a group while it moves",
+                });
+            }
+        }
+        let capacity = c.queue_capacity.unwrap_or(self.config.queue_capacity);
+        if !(1..=MAX_GROUP_QUEUE).contains(&capacity) {
+            return Err(EngineError::InvalidArgument {
+                name: "queue_capacity",
+                value: f64::from(capacity),
+                reason: "must be 1 to 1024",
+            });
+        }
+        let lookahead = c.lookahead.unwrap_or(self.config.lookahead.min(capacity));
+        if !(1..=capacity).contains(&lookahead) {
+            return Err(EngineError::InvalidArgument {
+                name: "lookahead",
+                value: f64::from(lookahead),
+                reason: "must be 1 to the queue capacity",
+            });
+        }
+        let config = planner_config(&c.axes, env.axes, env.period, capacity, lookahead);
+        let mut g = Group {
+            id: group,
+            members: c.axes,
+            state: GroupState::Disabled,
+            planner: PathPlanner::new(config, [0.0; MAX_AXES]).map_err(|e| {
+                EngineError::InvalidPath {
+                    group,
+                    reason: e.to_string(),
+                }
+            })?,
+            queue: GroupQueue::new(capacity),
+            origin: [0.0; MAX_AXES],
+            defaults: DEFAULT_PATH_LIMITS,
+            override_factor: 1.0,
+            feeding: false,
+            running: None,
+            segment: 0,
+            user_segment: 0,
+            waiting: None,
+            pending: None,
+            last_error: None,
+            fault: None,
+            params_version: 0,
+            events: Vec::new(),
+        };
+        g.params_version = g
+            .members
+            .iter()
+            .filter_map(|&a| env.axes.get(a as usize))
+            .map(|a| a.params_version())
+            .sum();
+        for &a in &g.members {
+            if let Some(axis) = env.axes.get_mut(a as usize) {
+                axis.set_group(Some(group));
+            }
+        }
+        let at = self.groups.partition_point(|x| x.id < group);
+        self.groups.insert(at, g);
+        Ok(Reply::Done)
+    }
+
+    fn delete(&mut self, env: &mut Env, group: GroupId) -> Result<Reply, EngineError> {
+        let g = self.get_mut(group)?;
+        g.require(
+            &[
+                GroupState::Disabled,
+                GroupState::Standby,
+                GroupState::ErrorStop,
+            ],
+            "be deleted while its path runs",
+        )?;
+        g.drop_all(env, CommandState::Aborted);
+        for &a in &g.members {
+            if let Some(axis) = env.axes.get_mut(a as usize) {
+                axis.set_group(None);
+            }
+        }
+        self.groups.retain(|x| x.id != group);
+        Ok(Reply::Done)
+    }
+}
+
+impl Group {
+    fn apply(&mut self, env: &mut Env, command: GroupCommand) -> Result<Reply, EngineError> {
+        match command {
+            GroupCommand::Create(_) | GroupCommand::Delete(_) => Ok(Reply::Done),
+            GroupCommand::Enable(_) => self.enable(env),
+            GroupCommand::Disable(_) => {
+                self.drop_all(env, CommandState::Aborted);
+                self.state = GroupState::Disabled;
+                self.fault = None;
+                Ok(Reply::Done)
+            }
+            GroupCommand::Reset(_) => self.reset(env),
+            GroupCommand::MoveLinearAbsolute(c) => {
+                self.require_accepts_motion()?;
+                let r = segment::linear_absolute(self.id, self.dims(), &c, &self.defaults)?;
+                self.submit(env, r)
+            }
+            GroupCommand::MoveLinearRelative(c) => {
+                self.require_accepts_motion()?;
+                let r = segment::linear_relative(self.id, self.dims(), &c, &self.defaults)?;
+                self.submit(env, r)
+            }
+            GroupCommand::MoveCircularAbsolute(c) => {
+                self.require_accepts_motion()?;
+                let f = CircularFields::from(&c);
+                let r = segment::circular(self.id, self.dims(), f, &self.defaults)?;
+                self.submit(env, r)
+            }
+            GroupCommand::MoveCircularRelative(c) => {
+                self.require_accepts_motion()?;
+                let f = CircularFields::from(&c);
+                let r = segment::circular(self.id, self.dims(), f, &self.defaults)?;
+                self.submit(env, r)
+            }
+            GroupCommand::Stop(c) => {
+                let decel = match c.deceleration {
+                    Some(d) => positive("deceleration", d)?,
+                    None => self.defaults.deceleration,
+                };
+                self.stop(env, decel)
+            }
+            GroupCommand::Halt(c) => {
+                let decel = match c.deceleration {
+                    Some(d) => Some(positive("deceleration", d)?),
+                    None => None,
+                };
+                self.halt(decel)
+            }
+            GroupCommand::Continue(_) => self.resume(),
+            GroupCommand::EmergencyStop(_) => {
+                if self.state != GroupState::Disabled {
+                    self.fault(env, GroupFault::EmergencyStop);
+                    self.stop_members_fast(env);
+                }
+                Ok(Reply::Done)
+            }
+            GroupCommand::SetOverride(c) => {
+                let f = finite("factor", c.factor)?;
+                if !(f > 0.0 && f < MAX_OVERRIDE) {
+                    return Err(EngineError::InvalidArgument {
+                        name: "factor",
+                        value: f,
+                        reason: "must be in (0, 10) (1 = 100 %)",
+                    });
+                }
+                self.override_factor = f;
+                self.planner.set_override(f);
+                Ok(Reply::Done)
+            }
+            GroupCommand::SetOrigin(c) => {
+                let offset = segment::coordinates(self.id, "offset", &c.offset, self.dims())?;
+                if !self.is_idle() {
+                    return Err(EngineError::GroupState {
+                        group: self.id,
+                        state: self.state,
+                        action: "change its origin while a path is queued",
+                    });
+                }
+                self.origin = offset;
+                Ok(Reply::Done)
+            }
+            GroupCommand::SetParameter(c) => {
+                let d = &mut self.defaults;
+                match c.name {
+                    GroupParameter::Velocity => {
+                        d.velocity = positive("velocity", bounded("velocity", c.value)?)?
+                    }
+                    GroupParameter::Acceleration => {
+                        d.acceleration = positive("acceleration", c.value)?
+                    }
+                    GroupParameter::Deceleration => {
+                        d.deceleration = positive("deceleration", c.value)?
+                    }
+                    GroupParameter::Jerk => d.jerk = segment::jerk_value(c.value)?,
+                }
+                Ok(Reply::Done)
+            }
+            GroupCommand::SetOutput(c) => {
+                let item = self.output_item(env, &c)?;
+                self.submit_marker(env, item, MarkerKind::PassThrough)
+            }
+            GroupCommand::Dwell(c) => {
+                let item = dwell_item(env, &c)?;
+                self.submit_marker(env, item, MarkerKind::Hold)
+            }
+            GroupCommand::WaitInput(c) => {
+                let item = wait_input_item(env, &c)?;
+                self.submit_marker(env, item, MarkerKind::Hold)
+            }
+            GroupCommand::WaitPosition(c) => {
+                let item = wait_position_item(env, &c)?;
+                self.submit_marker(env, item, MarkerKind::Hold)
+            }
+            GroupCommand::AxisMove(c) => {
+                let item = self.axis_move_item(env, c)?;
+                self.submit_marker(env, item, MarkerKind::PassThrough)
+            }
+        }
+    }
+
+    /// Disabled → Standby when every member is enabled and at rest (PLCopen MC_GroupEnable).
+    fn enable(&mut self, env: &Env) -> Result<Reply, EngineError> {
+        match self.state {
+            GroupState::Disabled => {}
+            GroupState::ErrorStop => {
+                return Err(EngineError::GroupState {
+                    group: self.id,
+                    state: self.state,
+                    action: "be enabled before a reset",
+                })
+            }
+            _ => return Ok(Reply::Done),
+        }
+        if let Some((axis, state)) = self.member_not_ready(env.axes) {
+            return Err(EngineError::GroupMember {
+                group: self.id,
+                axis,
+                state,
+                action: "enable the group",
+            });
+        }
+        self.state = GroupState::Standby;
+        self.fault = None;
+        Ok(Reply::Done)
+    }
+
+    /// ErrorStop → Standby once every member is enabled and at rest (HIMC ResetGroup: "only
+    /// after all errors are cleared"); other states: nothing to do.
+    fn reset(&mut self, env: &Env) -> Result<Reply, EngineError> {
+        if self.state != GroupState::ErrorStop {
+            return Ok(Reply::Done);
+        }
+        if let Some((axis, state)) = self.member_not_ready(env.axes) {
+            return Err(EngineError::GroupCauseStillPresent {
+                group: self.id,
+                axis,
+                state,
+            });
+        }
+        self.state = GroupState::Standby;
+        self.fault = None;
+        self.last_error = None;
+        Ok(Reply::Done)
+    }
+
+    fn check_room(&self) -> Result<(), EngineError> {
+        if self.queued() >= self.queue.capacity() as usize {
+            Err(EngineError::GroupQueueFull {
+                group: self.id,
+                capacity: self.queue.capacity(),
+            })
+        } else {
+            Ok(())
+        }
+    }
+
+    /// Queue a checked motion, or (aborting while the path runs) stop the path and start it
+    /// at rest.
+    fn submit(&mut self, env: &mut Env, request: PathRequest) -> Result<Reply, EngineError> {
+        if request.aborting && !self.is_idle() {
+            let id = env.ledger.allocate();
+            // The new motion runs once the path is at rest: the group is Moving again.
+            self.stop_path(env, self.defaults.deceleration);
+            if self.state == GroupState::Halted {
+                self.state = GroupState::Moving;
+            }
+            self.pending = Some(PendingMotion { id, request });
+            return Ok(Reply::Accepted { id });
+        }
+        self.check_room()?;
+        // Build the segment before taking an id: a refused motion uses none.
+        self.sync_position(env)?;
+        request.segment(self.id, self.planner.queue_end(), self.dims())?;
+        let id = env.ledger.allocate();
+        self.enqueue(env, id, &request)?;
+        if self.state == GroupState::Standby {
+            self.state = GroupState::Moving;
+        }
+        Ok(Reply::Accepted { id })
+    }
+
+    fn submit_marker(
+        &mut self,
+        env: &mut Env,
+        item: Item,
+        kind: MarkerKind,
+    ) -> Result<Reply, EngineError> {
+        self.require_accepts_motion()?;
+        self.check_room()?;
+        self.sync_position(env)?;
+        let id = env.ledger.allocate();
+        self.planner
+            .push_marker(u64::from(id), kind)
+            .map_err(|e| self.planner_error(e))?;
+        self.queue.push(Entry { id, item });
+        if self.state == GroupState::Standby {
+            self.state = GroupState::Moving;
+        }
+        Ok(Reply::Accepted { id })
+    }
+
+    /// `group_stop`: decelerate along the path and drop the queue (MC_GroupStop).
+    fn stop(&mut self, env: &mut Env, deceleration: f64) -> Result<Reply, EngineError> {
+        match self.state {
+            GroupState::Disabled | GroupState::ErrorStop | GroupState::Standby => {
+                return Ok(Reply::Done)
+            }
+            GroupState::Moving | GroupState::Halted | GroupState::Stopping => {}
+        }
+        self.stop_path(env, deceleration);
+        self.state = GroupState::Stopping;
+        Ok(Reply::Done)
+    }
+
+    /// Decelerate the path to rest and drop the queue (the planner reports the queued entries
+    /// dropped); a wait in progress and an aborting motion not yet started end `aborted`. A
+    /// halted path stops too: the halt gives way to the stop.
+    fn stop_path(&mut self, env: &mut Env, deceleration: f64) {
+        if let Some(wait) = self.waiting.take() {
+            self.planner.release_hold();
+            env.ledger.finish(wait.id, CommandState::Aborted);
+        }
+        if let Some(p) = self.pending.take() {
+            env.ledger.finish(p.id, CommandState::Aborted);
+        }
+        self.planner.resume();
+        self.planner.stop(deceleration);
+    }
+
+    /// `group_halt`: decelerate along the path, keep the queue (HIMC HaltGroup).
+    fn halt(&mut self, deceleration: Option<f64>) -> Result<Reply, EngineError> {
+        match self.state {
+            GroupState::Moving => {
+                self.planner.halt(deceleration);
+                self.state = GroupState::Halted;
+                Ok(Reply::Done)
+            }
+            GroupState::Standby | GroupState::Halted => Ok(Reply::Done),
+            GroupState::Disabled | GroupState::Stopping | GroupState::ErrorStop => {
+                Err(EngineError::GroupState {
+                    group: self.id,
+                    state: self.state,
+                    action: "halt",
+                })
+            }
+        }
+    }
+
+    /// `group_continue` after a halt.
+    fn resume(&mut self) -> Result<Reply, EngineError> {
+        match self.state {
+            GroupState::Halted => {
+                self.planner.resume();
+                self.state = GroupState::Moving;
+                Ok(Reply::Done)
+            }
+            GroupState::Standby | GroupState::Moving => Ok(Reply::Done),
+            GroupState::Disabled | GroupState::Stopping | GroupState::ErrorStop => {
+                Err(EngineError::GroupState {
+                    group: self.id,
+                    state: self.state,
+                    action: "continue",
+                })
+            }
+        }
+    }
+
+    fn output_item(&self, env: &Env, c: &GroupSetOutput) -> Result<Item, EngineError> {
+        if usize::from(c.channel) >= env.outputs.len() {
+            return Err(EngineError::InvalidChannel {
+                kind: "digital outputs",
+                channel: c.channel,
+                count: env.outputs.len() as u16,
+            });
+        }
+        Ok(Item::SetOutput {
+            channel: c.channel,
+            value: c.value,
+        })
+    }
+
+    fn axis_move_item(&self, env: &Env, c: GroupAxisMove) -> Result<Item, EngineError> {
+        let count = env.axes.len() as u32;
+        if env.axes.get(c.axis as usize).is_none() {
+            return Err(EngineError::InvalidAxis {
+                axis: u32::from(c.axis),
+                count,
+            });
+        }
+        if self.members.contains(&c.axis) {
+            return Err(EngineError::InvalidGroup {
+                group: self.id,
+                reason: format!(
+                    "axis {} is a member: it moves with the path, not on its own",
+                    c.axis
+                ),
+            });
+        }
+        bounded("position", c.position)?;
+        for (name, v) in [
+            ("velocity", c.velocity),
+            ("acceleration", c.acceleration),
+            ("deceleration", c.deceleration),
+        ] {
+            if let Some(v) = v {
+                positive(name, bounded(name, v)?)?;
+            }
+        }
+        if let Some(j) = c.jerk {
+            segment::jerk_value(j)?;
+        }
+        Ok(Item::AxisMove(c))
+    }
+}
+
+/// Seconds as whole ticks (rounded; ≥ 0, at most 1e9 s).
+fn ticks(name: &'static str, seconds: f64, period: f64) -> Result<u64, EngineError> {
+    let s = finite(name, seconds)?;
+    if !(0.0..=1e9).contains(&s) {
+        return Err(EngineError::InvalidArgument {
+            name,
+            value: s,
+            reason: "must be 0 to 1e9 seconds",
+        });
+    }
+    Ok((s / period).round() as u64)
+}
+
+fn dwell_item(env: &Env, c: &GroupDwell) -> Result<Item, EngineError> {
+    Ok(Item::Dwell {
+        ticks: ticks("seconds", c.seconds, env.period)?,
+    })
+}
+
+fn timeout_ticks(env: &Env, timeout: Option<f64>) -> Result<Option<u64>, EngineError> {
+    timeout
+        .map(|t| {
+            positive("timeout", t)?;
+            ticks("timeout", t, env.period)
+        })
+        .transpose()
+}
+
+fn wait_input_item(env: &Env, c: &GroupWaitInput) -> Result<Item, EngineError> {
+    if usize::from(c.channel) >= env.di.len() {
+        return Err(EngineError::InvalidChannel {
+            kind: "digital inputs",
+            channel: c.channel,
+            count: env.di.len() as u16,
+        });
+    }
+    Ok(Item::WaitInput {
+        channel: c.channel,
+        level: c.level,
+        timeout: timeout_ticks(env, c.timeout)?,
+    })
+}
+
+/// The default tolerance of a position wait: the axis's `in_position_window`, or 1e-6 user
+/// units where the window is 0 (docs/decisions.md, "Axis groups").
+const MIN_WAIT_TOLERANCE: f64 = 1e-6;
+
+fn wait_position_item(env: &Env, c: &GroupWaitPosition) -> Result<Item, EngineError> {
+    let axis = env
+        .axes
+        .get(c.axis as usize)
+        .ok_or(EngineError::InvalidAxis {
+            axis: u32::from(c.axis),
+            count: env.axes.len() as u32,
+        })?;
+    let position = bounded("position", c.position)?;
+    let tolerance = match c.tolerance {
+        Some(t) => nonnegative("tolerance", t)?,
+        None => axis
+            .params()
+            .get(ParamId::InPositionWindow)
+            .max(MIN_WAIT_TOLERANCE),
+    };
+    Ok(Item::WaitPosition {
+        axis: c.axis,
+        position,
+        tolerance,
+        timeout: timeout_ticks(env, c.timeout)?,
+    })
+}

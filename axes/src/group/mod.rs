@@ -1,0 +1,351 @@
+//! Axis groups (issue 11): 1–9 axes that move together on one path.
+//!
+//! The engine owns a [`Groups`] registry and runs every group in stage 2 of
+//! [`crate::Engine::step`], before the other machine-level planners. A group owns a
+//! [`PathPlanner`] (the `path` crate) and a mirror of its queue that remembers what each entry is
+//! (a motion, or a buffered non-motion command) so that the planner's events become command
+//! states, digital outputs, waits and single-axis moves.
+//!
+//! Inputs: group commands ([`Groups::apply`], between steps) and the axes as the previous tick
+//! left them. Outputs, per tick ([`Groups::step`]): each moving group's members are fed this
+//! tick's setpoint (axis position = group coordinate + origin offset), buffered outputs are
+//! written, the ledger gets the finished commands. Queries: [`Groups::status_into`],
+//! [`Groups::queued_state`]. Order: apply* → step → (status) → apply* → step …
+//!
+//! Files: `state` (the PLCopen Part 4 state machine and member checks), `queue` (the entries of
+//! the group queue), `segment` (commands → path segments), `commands` (each group command),
+//! `tick` (the per-tick work).
+
+use path::planner::{AxisLimits, PathLimits, PathPlanner, PlannerConfig};
+use path::{Point, MAX_AXES};
+
+use crate::axis::{Axis, Context, Ledger};
+use crate::command::{AxisIndex, CommandId, CommandState, EngineError, GroupId};
+use crate::config::GroupsConfig;
+use crate::param::ParamId;
+use crate::status::{AxisFlags, AxisStatus, GroupFault, GroupState, GroupStatus};
+
+mod commands;
+mod queue;
+mod segment;
+mod state;
+mod tick;
+
+use queue::{GroupQueue, Wait};
+use segment::PendingMotion;
+
+/// What the engine lends the groups for one command or one tick (split borrows of its fields).
+pub(crate) struct Env<'a> {
+    pub tick: u64,
+    pub period: f64,
+    pub axes: &'a mut [Axis],
+    pub ledger: &'a mut Ledger,
+    /// The machine's digital inputs (waits read them) and outputs (buffered outputs write them).
+    pub di: &'a [bool],
+    pub outputs: &'a mut [bool],
+    /// Set when an output changed (the engine bumps its I/O version).
+    pub outputs_changed: bool,
+}
+
+impl Env<'_> {
+    /// An axis context for one call into an axis.
+    fn context(&mut self) -> (Context<'_>, &mut [Axis]) {
+        (
+            Context {
+                tick: self.tick,
+                di: self.di,
+                ledger: self.ledger,
+            },
+            self.axes,
+        )
+    }
+}
+
+/// HIMC SetGrpMotionProfile defaults (digest 004 §8.3.6): 100 mm/s, 5000 mm/s² up and down.
+/// HIMC's fourth number is a 50 ms smoothing time; mcemu reads it as a jerk time, so the default
+/// jerk is 5000 / 0.05 = 100 000 units/s³ (docs/decisions.md, "Axis groups").
+pub const DEFAULT_PATH_LIMITS: PathLimits = PathLimits {
+    velocity: 100.0,
+    acceleration: 5000.0,
+    deceleration: 5000.0,
+    jerk: 100_000.0,
+};
+
+/// One group. See the module doc.
+#[derive(Clone, Debug)]
+pub struct Group {
+    id: GroupId,
+    members: Vec<AxisIndex>,
+    state: GroupState,
+    planner: PathPlanner,
+    queue: GroupQueue,
+    origin: Point,
+    /// Path limits of motions that give none (`group_set_parameter`).
+    defaults: PathLimits,
+    override_factor: f64,
+    /// The members were fed last tick (they are in SynchronizedMotion).
+    feeding: bool,
+    /// The motion being executed.
+    running: Option<CommandId>,
+    segment: u64,
+    user_segment: u32,
+    /// The buffered wait the path stands at.
+    waiting: Option<Wait>,
+    /// An aborting motion waiting for the path to come to rest.
+    pending: Option<PendingMotion>,
+    last_error: Option<crate::command::ErrorKind>,
+    fault: Option<GroupFault>,
+    /// Sum of the members' parameter versions when their limits were last given to the planner.
+    params_version: u64,
+    /// The planner's events of one step (reused).
+    events: Vec<path::planner::PathEvent>,
+}
+
+impl Group {
+    pub fn id(&self) -> GroupId {
+        self.id
+    }
+
+    pub fn members(&self) -> &[AxisIndex] {
+        &self.members
+    }
+
+    pub fn state(&self) -> GroupState {
+        self.state
+    }
+
+    /// Commanded velocity along the path.
+    pub fn path_velocity(&self) -> f64 {
+        self.planner.state().path_velocity
+    }
+
+    /// Ordinal of the motion being executed (counted from 1 since the group was created).
+    pub fn segment(&self) -> u64 {
+        self.segment
+    }
+
+    /// The `user_segment` of the motion being executed or last executed (NMC CrdGetUserSegNo).
+    pub fn user_segment(&self) -> u32 {
+        self.user_segment
+    }
+
+    /// Number of group coordinates.
+    fn dims(&self) -> usize {
+        self.members.len()
+    }
+
+    /// The group coordinates of the members' commanded positions (minus the origin offset).
+    fn current_position(&self, axes: &[Axis]) -> Point {
+        let mut p = [0.0; MAX_AXES];
+        for (k, &a) in self.members.iter().enumerate() {
+            if let (Some(out), Some(axis), Some(o)) =
+                (p.get_mut(k), axes.get(a as usize), self.origin.get(k))
+            {
+                *out = axis.commanded().p - o;
+            }
+        }
+        p
+    }
+
+    /// The status record, each member's IN_POSITION from its status now.
+    pub fn status(&self, axes: &[Axis]) -> GroupStatus {
+        self.status_with(axes, |a| {
+            axes.get(a as usize)
+                .is_some_and(|x| x.status().flags.contains(AxisFlags::IN_POSITION))
+        })
+    }
+
+    /// The status record, with `in_position(axis)` for each member (a snapshot passes the
+    /// records it has just assembled).
+    fn status_with(&self, axes: &[Axis], in_position: impl Fn(AxisIndex) -> bool) -> GroupStatus {
+        let st = self.planner.state();
+        let mut members = [0; MAX_AXES];
+        for (out, &a) in members.iter_mut().zip(&self.members) {
+            *out = a;
+        }
+        let idle = self.planner.is_idle() && self.waiting.is_none() && self.pending.is_none();
+        let all_in_position = self.members.iter().all(|&a| in_position(a));
+        let used = self.queued() as u32;
+        GroupStatus {
+            group: self.id,
+            state: self.state,
+            axis_count: self.members.len() as u8,
+            members,
+            coordinates: self.current_position(axes),
+            origin: self.origin,
+            path_velocity: st.path_velocity,
+            path_acceleration: st.path_acceleration,
+            current_command: self.running.or(self.waiting.as_ref().map(|w| w.id)),
+            segment: self.segment,
+            user_segment: self.user_segment,
+            queue_used: used,
+            queue_free: self.queue.capacity().saturating_sub(used),
+            remaining_length: self.planner.remaining_length(),
+            in_position: idle && all_in_position,
+            override_factor: self.override_factor,
+            last_error: self.last_error,
+            fault: self.fault,
+        }
+    }
+
+    /// Entries in the queue, the running one and a wait included.
+    pub fn queued(&self) -> usize {
+        self.queue.len() + usize::from(self.waiting.is_some()) + usize::from(self.pending.is_some())
+    }
+
+    /// State of a command still owned by this group.
+    fn queued_state(&self, id: CommandId) -> Option<CommandState> {
+        if self.running == Some(id) || self.waiting.as_ref().is_some_and(|w| w.id == id) {
+            return Some(CommandState::Running);
+        }
+        if self.queue.contains(id) || self.pending.as_ref().is_some_and(|p| p.id == id) {
+            return Some(CommandState::Waiting);
+        }
+        None
+    }
+}
+
+/// One axis's own limits as the path planner sees them: `max_velocity` (else `speed`),
+/// `max_accel` (else `accel`), and `jerk` in S-curve mode (else none).
+fn axis_limits(axis: &Axis) -> AxisLimits {
+    let p = axis.params();
+    let positive_or = |v: f64, fallback: f64| if v > 0.0 { v } else { fallback };
+    AxisLimits {
+        velocity: positive_or(p.get(ParamId::MaxVelocity), p.get(ParamId::Speed)),
+        acceleration: positive_or(p.get(ParamId::MaxAccel), p.get(ParamId::Accel)),
+        jerk: if p.flag(ParamId::JerkMode) {
+            p.get(ParamId::Jerk)
+        } else {
+            f64::INFINITY
+        },
+    }
+}
+
+/// The planner configuration of a group of `members`.
+fn planner_config(
+    members: &[AxisIndex],
+    axes: &[Axis],
+    period: f64,
+    capacity: u32,
+    lookahead: u32,
+) -> PlannerConfig {
+    let unlimited = AxisLimits {
+        velocity: f64::INFINITY,
+        acceleration: f64::INFINITY,
+        jerk: f64::INFINITY,
+    };
+    let mut limits = [unlimited; MAX_AXES];
+    for (out, &a) in limits.iter_mut().zip(members) {
+        if let Some(axis) = axes.get(a as usize) {
+            *out = axis_limits(axis);
+        }
+    }
+    PlannerConfig {
+        dims: members.len(),
+        axes: limits,
+        period,
+        lookahead: lookahead as usize,
+        capacity: capacity as usize,
+    }
+}
+
+/// Every group of the machine, by group number. `Clone` for the atomic batches' checkpoint.
+#[derive(Clone, Debug)]
+pub struct Groups {
+    config: GroupsConfig,
+    /// Sorted by group number (deterministic order, no hash map).
+    groups: Vec<Group>,
+}
+
+impl Groups {
+    pub fn new(config: GroupsConfig) -> Groups {
+        Groups {
+            config,
+            groups: Vec::new(),
+        }
+    }
+
+    pub fn iter(&self) -> impl Iterator<Item = &Group> {
+        self.groups.iter()
+    }
+
+    pub fn get(&self, id: GroupId) -> Option<&Group> {
+        self.groups.iter().find(|g| g.id == id)
+    }
+
+    fn get_mut(&mut self, id: GroupId) -> Result<&mut Group, EngineError> {
+        self.groups
+            .iter_mut()
+            .find(|g| g.id == id)
+            .ok_or(EngineError::UnknownGroup { group: id })
+    }
+
+    /// Stage 2, first part: every group in group-number order. See [`Group::step`].
+    pub(crate) fn step(&mut self, env: &mut Env) {
+        for g in &mut self.groups {
+            g.step(env);
+        }
+    }
+
+    /// Machine-wide `stop_all` (issue 11 item 6): every moving group's path is dropped and the
+    /// group stays enabled (Standby); the machine command stops the members themselves.
+    pub(crate) fn drop_paths(&mut self, env: &mut Env) {
+        for g in &mut self.groups {
+            if matches!(
+                g.state,
+                GroupState::Moving | GroupState::Halted | GroupState::Stopping
+            ) {
+                g.drop_all(env, CommandState::Aborted);
+                g.state = GroupState::Standby;
+            }
+        }
+    }
+
+    /// Machine-wide `disable_all`: every group is disabled, its path dropped.
+    pub(crate) fn disable_all(&mut self, env: &mut Env) {
+        for g in &mut self.groups {
+            g.drop_all(env, CommandState::Aborted);
+            g.state = GroupState::Disabled;
+            g.fault = None;
+        }
+    }
+
+    /// Machine-wide `emergency_stop_all`: every enabled group goes to ErrorStop
+    /// (`emergency_stop`); the machine command stops the members themselves.
+    pub(crate) fn emergency_stop_all(&mut self, env: &mut Env) {
+        for g in &mut self.groups {
+            if g.state != GroupState::Disabled {
+                g.fault(env, GroupFault::EmergencyStop);
+            }
+        }
+    }
+
+    /// Machine-wide `reset_all`: every group in ErrorStop whose members are all enabled and at
+    /// rest goes back to Standby; the others stay in ErrorStop.
+    pub(crate) fn reset_all(&mut self, env: &mut Env) {
+        for g in &mut self.groups {
+            if g.state == GroupState::ErrorStop && g.member_not_ready(env.axes).is_none() {
+                g.state = GroupState::Standby;
+                g.fault = None;
+                g.last_error = None;
+            }
+        }
+    }
+
+    /// State of a command a group still holds.
+    pub(crate) fn queued_state(&self, id: CommandId) -> Option<CommandState> {
+        self.groups.iter().find_map(|g| g.queued_state(id))
+    }
+
+    /// Every group's status record, reusing `out`; `statuses` are the axes' records of the
+    /// same tick (for the members' IN_POSITION).
+    pub fn status_into(&self, axes: &[Axis], statuses: &[AxisStatus], out: &mut Vec<GroupStatus>) {
+        let in_position = |a: AxisIndex| {
+            statuses
+                .get(a as usize)
+                .is_some_and(|s| s.flags.contains(AxisFlags::IN_POSITION))
+        };
+        out.clear();
+        out.extend(self.groups.iter().map(|g| g.status_with(axes, in_position)));
+    }
+}

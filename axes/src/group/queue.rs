@@ -1,0 +1,94 @@
+//! The group queue as the group sees it: the planner holds the geometry, this mirror holds what
+//! each entry is (its command id is the planner's tag) so the planner's events can be turned
+//! into command states and the buffered commands' effects (issue 11 item 5).
+
+use std::collections::VecDeque;
+
+use crate::command::{AxisIndex, CommandId, GroupAxisMove};
+
+/// A buffered non-motion command, or a motion.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) enum Item {
+    /// A path motion; `user_segment` is reported while it runs.
+    Motion { user_segment: u32 },
+    /// Set a digital output as the path passes (NMC CrdBufDO).
+    SetOutput { channel: u16, value: bool },
+    /// Stand for a number of ticks (NMC CrdBufDelay).
+    Dwell { ticks: u64 },
+    /// Stand until the digital input has the level (NMC CrdBufWaitDI).
+    WaitInput {
+        channel: u16,
+        level: bool,
+        timeout: Option<u64>,
+    },
+    /// Stand until the axis's actual position is within the tolerance.
+    WaitPosition {
+        axis: AxisIndex,
+        position: f64,
+        tolerance: f64,
+        timeout: Option<u64>,
+    },
+    /// Start a single-axis move of a non-member axis (NMC CrdBufAxMoveEx).
+    AxisMove(GroupAxisMove),
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub(super) struct Entry {
+    pub id: CommandId,
+    pub item: Item,
+}
+
+/// A buffered wait the path stands at, since `since` (tick).
+#[derive(Clone, Debug, PartialEq)]
+pub(super) struct Wait {
+    pub id: CommandId,
+    pub item: Item,
+    pub since: u64,
+}
+
+/// The entries in queue order, bounded by the group's capacity.
+#[derive(Clone, Debug)]
+pub(super) struct GroupQueue {
+    entries: VecDeque<Entry>,
+    capacity: u32,
+}
+
+impl GroupQueue {
+    pub fn new(capacity: u32) -> GroupQueue {
+        GroupQueue {
+            entries: VecDeque::new(),
+            capacity,
+        }
+    }
+
+    pub fn capacity(&self) -> u32 {
+        self.capacity
+    }
+
+    pub fn len(&self) -> usize {
+        self.entries.len()
+    }
+
+    pub fn push(&mut self, entry: Entry) {
+        self.entries.push_back(entry);
+    }
+
+    pub fn contains(&self, id: CommandId) -> bool {
+        self.entries.iter().any(|e| e.id == id)
+    }
+
+    pub fn get(&self, id: CommandId) -> Option<&Entry> {
+        self.entries.iter().find(|e| e.id == id)
+    }
+
+    /// Take the entry `id` out (events arrive in queue order, so it is at or near the front).
+    pub fn take(&mut self, id: CommandId) -> Option<Entry> {
+        let i = self.entries.iter().position(|e| e.id == id)?;
+        self.entries.remove(i)
+    }
+
+    /// Remove everything, oldest first.
+    pub fn drain(&mut self) -> impl Iterator<Item = Entry> + '_ {
+        self.entries.drain(..)
+    }
+}

@@ -1,0 +1,390 @@
+//! A group's work in one tick (engine stage 2, before the other machine-level planners), and
+//! the ways a path ends: done, dropped, or faulted.
+
+use path::planner::{Motion, PathEvent, PathState, PlannerError};
+
+use super::queue::{Entry, Item, Wait};
+use super::{axis_limits, Env, Group};
+use crate::axis::{Feed, MotionAction, MotionSubmission, Overrides};
+use crate::command::{CommandId, CommandKind, CommandState, EngineError, ErrorKind, StopMode};
+use crate::profile::MotionState;
+use crate::status::{GroupFault, GroupState};
+
+impl Group {
+    /// One tick. Reads the members as the previous tick left them, the digital inputs (waits)
+    /// and the members' parameter versions; writes the members' feeds for this tick, buffered
+    /// outputs, single-axis moves started by the path, and the ledger. In order:
+    ///
+    /// 1. members' limits to the planner if a parameter changed;
+    /// 2. a member in trouble → ErrorStop (the whole group stops);
+    /// 3. a buffered wait the path stands at: met → go on, timed out → ErrorStop;
+    /// 4. an aborting motion waiting for rest starts once the path is at rest;
+    /// 5. nothing left: the members are let go (the tick after their last setpoint, so they
+    ///    take it first), Moving/Stopping → Standby;
+    /// 6. else the planner steps, its events are acted on, and every member is fed.
+    pub(super) fn step(&mut self, env: &mut Env) {
+        if matches!(self.state, GroupState::Disabled | GroupState::ErrorStop) {
+            return;
+        }
+        self.refresh_limits(env.axes);
+        if let Some(fault) = self.member_fault(env.axes) {
+            self.fault(env, fault);
+            return;
+        }
+        self.check_wait(env);
+        if self.state == GroupState::ErrorStop {
+            return;
+        }
+        self.start_pending(env);
+        if self.is_idle() {
+            self.settle(env);
+            return;
+        }
+        let mut events = std::mem::take(&mut self.events);
+        events.clear();
+        let state = *self.planner.step(&mut events);
+        for event in events.drain(..) {
+            self.on_event(env, event);
+        }
+        self.events = events;
+        if let Err((axis, error)) = self.feed(env, &state) {
+            self.fault(
+                env,
+                GroupFault::Member {
+                    axis,
+                    error: error.kind(),
+                },
+            );
+            return;
+        }
+        self.feeding = true;
+    }
+
+    /// Nothing queued, waited for or pending, and the path at rest.
+    pub(super) fn is_idle(&self) -> bool {
+        self.planner.is_idle() && self.waiting.is_none() && self.pending.is_none()
+    }
+
+    /// Give the planner the members' limits again when one of their parameters changed (each
+    /// tick, and before a motion is queued: the planner plans a motion when it is pushed).
+    fn refresh_limits(&mut self, axes: &[crate::axis::Axis]) {
+        let version = self
+            .members
+            .iter()
+            .filter_map(|&a| axes.get(a as usize))
+            .map(|a| a.params_version())
+            .sum();
+        if version == self.params_version {
+            return;
+        }
+        self.params_version = version;
+        for (k, &a) in self.members.iter().enumerate() {
+            if let Some(axis) = axes.get(a as usize) {
+                self.planner.set_axis_limits(k, axis_limits(axis));
+            }
+        }
+    }
+
+    /// The path is done: let the members go and return to Standby.
+    fn settle(&mut self, env: &mut Env) {
+        if self.feeding {
+            self.release(env);
+        }
+        self.running = None;
+        if matches!(self.state, GroupState::Moving | GroupState::Stopping) {
+            self.state = GroupState::Standby;
+        }
+    }
+
+    /// Stop feeding the members: each ramps to rest with its own `decel` (a member at rest
+    /// simply stands) and is free of the feed.
+    pub(super) fn release(&mut self, env: &mut Env) {
+        self.feeding = false;
+        for &a in &self.members {
+            let (mut ctx, axes) = env.context();
+            if let Some(axis) = axes.get_mut(a as usize) {
+                // Release never fails: it only ends a feed.
+                let _ = axis.feed(&mut ctx, Feed::Release);
+            }
+        }
+    }
+
+    /// Feed every member this tick's point of the path (axis = group coordinate + origin).
+    fn feed(&mut self, env: &mut Env, state: &PathState) -> Result<(), (u16, EngineError)> {
+        for (k, &a) in self.members.iter().enumerate() {
+            let (Some(p), Some(v), Some(acc), Some(o)) = (
+                state.position.get(k),
+                state.velocity.get(k),
+                state.acceleration.get(k),
+                self.origin.get(k),
+            ) else {
+                continue;
+            };
+            let (mut ctx, axes) = env.context();
+            let Some(axis) = axes.get_mut(a as usize) else {
+                continue;
+            };
+            let setpoint = MotionState {
+                p: p + o,
+                v: *v,
+                a: *acc,
+            };
+            axis.feed(&mut ctx, Feed::Follow(setpoint))
+                .map_err(|e| (a, e))?;
+        }
+        Ok(())
+    }
+
+    fn on_event(&mut self, env: &mut Env, event: PathEvent) {
+        match event {
+            PathEvent::Started { tag } => {
+                let id = tag as CommandId;
+                self.running = Some(id);
+                self.segment += 1;
+                if let Some(Entry {
+                    item: Item::Motion { user_segment },
+                    ..
+                }) = self.queue.get(id)
+                {
+                    self.user_segment = *user_segment;
+                }
+            }
+            PathEvent::Done { tag } => {
+                let id = tag as CommandId;
+                if self.queue.take(id).is_some() {
+                    env.ledger.finish(id, CommandState::Done);
+                }
+                if self.running == Some(id) {
+                    self.running = None;
+                }
+            }
+            PathEvent::Marker { tag, .. } => {
+                let id = tag as CommandId;
+                if let Some(entry) = self.queue.take(id) {
+                    self.reach_marker(env, entry);
+                }
+            }
+            PathEvent::Dropped { tag } => {
+                let id = tag as CommandId;
+                if self.queue.take(id).is_some() {
+                    env.ledger.finish(id, CommandState::Aborted);
+                }
+                if self.running == Some(id) {
+                    self.running = None;
+                }
+            }
+            PathEvent::AtRest => {}
+        }
+    }
+
+    /// The path reached a buffered command (issue 11 item 5).
+    fn reach_marker(&mut self, env: &mut Env, entry: Entry) {
+        let id = entry.id;
+        let result = match &entry.item {
+            Item::SetOutput { channel, value } => match env.outputs.get_mut(*channel as usize) {
+                Some(out) => {
+                    if *out != *value {
+                        *out = *value;
+                        env.outputs_changed = true;
+                    }
+                    Ok(())
+                }
+                None => Err(ErrorKind::InvalidChannel),
+            },
+            Item::AxisMove(c) => {
+                let (mut ctx, axes) = env.context();
+                match axes.get_mut(c.axis as usize) {
+                    Some(axis) => axis
+                        .submit(
+                            &mut ctx,
+                            MotionSubmission {
+                                kind: CommandKind::MoveAbsolute,
+                                action: MotionAction::MoveAbsolute {
+                                    position: c.position,
+                                },
+                                overrides: Overrides {
+                                    velocity: c.velocity,
+                                    acceleration: c.acceleration,
+                                    deceleration: c.deceleration,
+                                    jerk: c.jerk,
+                                },
+                                buffer_mode: crate::command::BufferMode::Aborting,
+                            },
+                        )
+                        .map(|_| ())
+                        .map_err(|e| e.kind()),
+                    None => Err(ErrorKind::InvalidAxis),
+                }
+            }
+            Item::Dwell { .. } | Item::WaitInput { .. } | Item::WaitPosition { .. } => {
+                self.waiting = Some(Wait {
+                    id,
+                    item: entry.item,
+                    since: env.tick,
+                });
+                return;
+            }
+            Item::Motion { .. } => Ok(()),
+        };
+        match result {
+            Ok(()) => env.ledger.finish(id, CommandState::Done),
+            Err(kind) => {
+                self.last_error = Some(kind);
+                env.ledger.finish(id, CommandState::Error(kind));
+            }
+        }
+    }
+
+    /// A buffered wait: met → the path goes on; timed out → ErrorStop.
+    fn check_wait(&mut self, env: &mut Env) {
+        let Some(wait) = &self.waiting else {
+            return;
+        };
+        let elapsed = env.tick.saturating_sub(wait.since);
+        let (met, timeout) = match &wait.item {
+            Item::Dwell { ticks } => (elapsed >= *ticks, None),
+            Item::WaitInput {
+                channel,
+                level,
+                timeout,
+            } => (env.di.get(*channel as usize) == Some(level), *timeout),
+            Item::WaitPosition {
+                axis,
+                position,
+                tolerance,
+                timeout,
+            } => (
+                env.axes
+                    .get(*axis as usize)
+                    .is_some_and(|a| (a.actual_position() - position).abs() <= *tolerance),
+                *timeout,
+            ),
+            Item::Motion { .. } | Item::SetOutput { .. } | Item::AxisMove(_) => (true, None),
+        };
+        let id = wait.id;
+        if met {
+            self.waiting = None;
+            self.planner.release_hold();
+            env.ledger.finish(id, CommandState::Done);
+        } else if timeout.is_some_and(|t| elapsed >= t) {
+            self.fault(env, GroupFault::WaitTimeout { command: id });
+        }
+    }
+
+    /// An aborting motion accepted while the path moved starts once it is at rest.
+    fn start_pending(&mut self, env: &mut Env) {
+        if !(self.planner.is_idle() && self.waiting.is_none()) {
+            return;
+        }
+        let Some(pending) = self.pending.take() else {
+            return;
+        };
+        if let Err(e) = self.enqueue(env, pending.id, &pending.request) {
+            self.last_error = Some(e.kind());
+            env.ledger.finish(pending.id, CommandState::Error(e.kind()));
+        }
+    }
+
+    /// Append a motion to the planner and the mirror. At rest, the planner is first told where
+    /// the members are (they may have been moved or re-based since).
+    pub(super) fn enqueue(
+        &mut self,
+        env: &Env,
+        id: CommandId,
+        request: &super::segment::PathRequest,
+    ) -> Result<(), EngineError> {
+        self.refresh_limits(env.axes);
+        self.sync_position(env)?;
+        let start = self.planner.queue_end();
+        let segment = request.segment(self.id, start, self.dims())?;
+        self.planner
+            .push_motion(Motion {
+                segment,
+                limits: request.limits,
+                join: request.join,
+                transition: request.transition,
+                tag: u64::from(id),
+            })
+            .map_err(|e| self.planner_error(e))?;
+        self.queue.push(Entry {
+            id,
+            item: Item::Motion {
+                user_segment: request.user_segment,
+            },
+        });
+        Ok(())
+    }
+
+    /// At rest with nothing queued: the path starts where the members are.
+    pub(super) fn sync_position(&mut self, env: &Env) -> Result<(), EngineError> {
+        if self.planner.is_idle() && self.waiting.is_none() {
+            let here = self.current_position(env.axes);
+            self.planner
+                .reset_position(here)
+                .map_err(|e| self.planner_error(e))?;
+        }
+        Ok(())
+    }
+
+    pub(super) fn planner_error(&self, e: PlannerError) -> EngineError {
+        match e {
+            PlannerError::QueueFull { capacity } => EngineError::GroupQueueFull {
+                group: self.id,
+                capacity: capacity as u32,
+            },
+            PlannerError::Invalid(reason) => EngineError::InvalidPath {
+                group: self.id,
+                reason: reason.to_string(),
+            },
+        }
+    }
+
+    /// Drop the path at once (the planner's abort), end every command the group holds
+    /// (`running` with `running_state`, the rest aborted) and let the members go.
+    pub(super) fn drop_all(&mut self, env: &mut Env, running_state: CommandState) {
+        let mut events = std::mem::take(&mut self.events);
+        events.clear();
+        self.planner.abort(&mut events);
+        self.events = events;
+        if let Some(id) = self.running.take() {
+            if self.queue.take(id).is_some() {
+                env.ledger.finish(id, running_state);
+            }
+        }
+        if let Some(wait) = self.waiting.take() {
+            env.ledger.finish(wait.id, running_state);
+        }
+        for entry in self.queue.drain() {
+            env.ledger.finish(entry.id, CommandState::Aborted);
+        }
+        if let Some(p) = self.pending.take() {
+            env.ledger.finish(p.id, CommandState::Aborted);
+        }
+        self.release(env);
+    }
+
+    /// The whole group stops and goes to ErrorStop with `cause` (issue 11 item 3). The path is
+    /// dropped at once and each member ramps down with its own `decel` (no longer coordinated:
+    /// one member already left the path). docs/decisions.md, "Axis groups".
+    pub(super) fn fault(&mut self, env: &mut Env, cause: GroupFault) {
+        let kind = match cause {
+            GroupFault::Member { error, .. } => error,
+            GroupFault::EmergencyStop | GroupFault::WaitTimeout { .. } => ErrorKind::Fault,
+        };
+        self.drop_all(env, CommandState::Error(kind));
+        self.state = GroupState::ErrorStop;
+        self.fault = Some(cause);
+        self.last_error = Some(kind);
+    }
+
+    /// The members' fast stop of an emergency stop (HIMC EStop): each decelerates with its
+    /// `fast_decel`.
+    pub(super) fn stop_members_fast(&mut self, env: &mut Env) {
+        for &a in &self.members {
+            let (mut ctx, axes) = env.context();
+            if let Some(axis) = axes.get_mut(a as usize) {
+                let _ = axis.stop(&mut ctx, StopMode::Abrupt, None);
+            }
+        }
+    }
+}

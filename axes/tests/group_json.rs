@@ -1,0 +1,289 @@
+//! The JSON of every group command (issue 11 item 8), pinned as `command_json.rs` pins the
+//! others: each variant with every field set serializes to a literal and back, and the form
+//! with only the required fields reads back with its defaults (buffer mode `buffered`, no
+//! transition, centre mode, counter-clockwise …).
+#![allow(clippy::unwrap_used)]
+
+use axes::command::{
+    ArcDirection, CircleMode, Command, GroupAxisMove, GroupBufferMode, GroupContinue, GroupCreate,
+    GroupDelete, GroupDisable, GroupDwell, GroupEmergencyStop, GroupEnable, GroupHalt,
+    GroupParameter, GroupReset, GroupSetOrigin, GroupSetOutput, GroupSetOverride,
+    GroupSetParameter, GroupStop, GroupWaitInput, GroupWaitPosition, MoveCircularAbsolute,
+    MoveCircularRelative, MoveLinearAbsolute, MoveLinearRelative, TransitionMode,
+};
+
+fn full() -> Vec<(Command, &'static str)> {
+    vec![
+        (
+            Command::from(GroupCreate {
+                group: 1,
+                axes: vec![0, 2, 1],
+                queue_capacity: Some(1024),
+                lookahead: Some(128),
+            }),
+            r#"{"type":"group_create","group":1,"axes":[0,2,1],"queue_capacity":1024,"lookahead":128}"#,
+        ),
+        (
+            Command::from(GroupDelete { group: 2 }),
+            r#"{"type":"group_delete","group":2}"#,
+        ),
+        (
+            Command::from(GroupEnable { group: 3 }),
+            r#"{"type":"group_enable","group":3}"#,
+        ),
+        (
+            Command::from(GroupDisable { group: 4 }),
+            r#"{"type":"group_disable","group":4}"#,
+        ),
+        (
+            Command::from(GroupReset { group: 5 }),
+            r#"{"type":"group_reset","group":5}"#,
+        ),
+        (
+            Command::from(MoveLinearAbsolute {
+                group: 1,
+                position: vec![10.0, -2.5],
+                velocity: Some(50.0),
+                acceleration: Some(500.0),
+                deceleration: Some(600.0),
+                jerk: Some(0.0),
+                buffer_mode: GroupBufferMode::BlendingLow,
+                transition: TransitionMode::CornerDistance(1.5),
+                user_segment: Some(7),
+            }),
+            r#"{"type":"move_linear_absolute","group":1,"position":[10.0,-2.5],"velocity":50.0,"acceleration":500.0,"deceleration":600.0,"jerk":0.0,"buffer_mode":"blending_low","transition":{"corner_distance":1.5},"user_segment":7}"#,
+        ),
+        (
+            Command::from(MoveLinearRelative {
+                group: 1,
+                distance: vec![1.0, 2.0, 3.0],
+                velocity: Some(5.0),
+                acceleration: None,
+                deceleration: None,
+                jerk: Some(1e6),
+                buffer_mode: GroupBufferMode::Aborting,
+                transition: TransitionMode::CornerDeviation(0.01),
+                user_segment: None,
+            }),
+            r#"{"type":"move_linear_relative","group":1,"distance":[1.0,2.0,3.0],"velocity":5.0,"acceleration":null,"deceleration":null,"jerk":1000000.0,"buffer_mode":"aborting","transition":{"corner_deviation":0.01},"user_segment":null}"#,
+        ),
+        (
+            Command::from(MoveCircularAbsolute {
+                group: 1,
+                mode: CircleMode::Radius,
+                aux_point: vec![],
+                radius: Some(-10.0),
+                end_point: vec![20.0, 0.0],
+                direction: ArcDirection::Cw,
+                plane: Some([0, 1]),
+                normal: None,
+                turns: 0,
+                velocity: Some(20.0),
+                acceleration: Some(200.0),
+                deceleration: Some(200.0),
+                jerk: None,
+                buffer_mode: GroupBufferMode::BlendingPrevious,
+                transition: TransitionMode::None,
+                user_segment: Some(3),
+            }),
+            r#"{"type":"move_circular_absolute","group":1,"mode":"radius","aux_point":[],"radius":-10.0,"end_point":[20.0,0.0],"direction":"cw","plane":[0,1],"normal":null,"turns":0,"velocity":20.0,"acceleration":200.0,"deceleration":200.0,"jerk":null,"buffer_mode":"blending_previous","transition":"none","user_segment":3}"#,
+        ),
+        (
+            Command::from(MoveCircularRelative {
+                group: 2,
+                mode: CircleMode::Border,
+                aux_point: vec![5.0, 5.0, 0.0],
+                radius: None,
+                end_point: vec![10.0, 0.0, 1.0],
+                direction: ArcDirection::Ccw,
+                plane: None,
+                normal: Some(vec![0.0, 0.0, 1.0]),
+                turns: 4,
+                velocity: None,
+                acceleration: None,
+                deceleration: None,
+                jerk: None,
+                buffer_mode: GroupBufferMode::BlendingHigh,
+                transition: TransitionMode::None,
+                user_segment: None,
+            }),
+            r#"{"type":"move_circular_relative","group":2,"mode":"border","aux_point":[5.0,5.0,0.0],"radius":null,"end_point":[10.0,0.0,1.0],"direction":"ccw","plane":null,"normal":[0.0,0.0,1.0],"turns":4,"velocity":null,"acceleration":null,"deceleration":null,"jerk":null,"buffer_mode":"blending_high","transition":"none","user_segment":null}"#,
+        ),
+        (
+            Command::from(GroupStop {
+                group: 1,
+                deceleration: Some(1000.0),
+            }),
+            r#"{"type":"group_stop","group":1,"deceleration":1000.0}"#,
+        ),
+        (
+            Command::from(GroupHalt {
+                group: 1,
+                deceleration: None,
+            }),
+            r#"{"type":"group_halt","group":1,"deceleration":null}"#,
+        ),
+        (
+            Command::from(GroupContinue { group: 1 }),
+            r#"{"type":"group_continue","group":1}"#,
+        ),
+        (
+            Command::from(GroupEmergencyStop { group: 1 }),
+            r#"{"type":"group_emergency_stop","group":1}"#,
+        ),
+        (
+            Command::from(GroupSetOverride {
+                group: 1,
+                factor: 0.5,
+            }),
+            r#"{"type":"group_set_override","group":1,"factor":0.5}"#,
+        ),
+        (
+            Command::from(GroupSetOrigin {
+                group: 1,
+                offset: vec![100.0, 200.0],
+            }),
+            r#"{"type":"group_set_origin","group":1,"offset":[100.0,200.0]}"#,
+        ),
+        (
+            Command::from(GroupSetParameter {
+                group: 1,
+                name: GroupParameter::Deceleration,
+                value: 2500.0,
+            }),
+            r#"{"type":"group_set_parameter","group":1,"name":"deceleration","value":2500.0}"#,
+        ),
+        (
+            Command::from(GroupSetOutput {
+                group: 1,
+                channel: 3,
+                value: true,
+            }),
+            r#"{"type":"group_set_output","group":1,"channel":3,"value":true}"#,
+        ),
+        (
+            Command::from(GroupDwell {
+                group: 1,
+                seconds: 0.25,
+            }),
+            r#"{"type":"group_dwell","group":1,"seconds":0.25}"#,
+        ),
+        (
+            Command::from(GroupWaitInput {
+                group: 1,
+                channel: 4,
+                level: false,
+                timeout: Some(2.0),
+            }),
+            r#"{"type":"group_wait_input","group":1,"channel":4,"level":false,"timeout":2.0}"#,
+        ),
+        (
+            Command::from(GroupWaitPosition {
+                group: 1,
+                axis: 3,
+                position: 50.0,
+                tolerance: Some(0.01),
+                timeout: None,
+            }),
+            r#"{"type":"group_wait_position","group":1,"axis":3,"position":50.0,"tolerance":0.01,"timeout":null}"#,
+        ),
+        (
+            Command::from(GroupAxisMove {
+                group: 1,
+                axis: 3,
+                position: -5.0,
+                velocity: Some(10.0),
+                acceleration: None,
+                deceleration: None,
+                jerk: None,
+            }),
+            r#"{"type":"group_axis_move","group":1,"axis":3,"position":-5.0,"velocity":10.0,"acceleration":null,"deceleration":null,"jerk":null}"#,
+        ),
+    ]
+}
+
+#[test]
+fn every_group_command_serializes_to_its_pinned_json_and_back() {
+    let cases = full();
+    assert_eq!(cases.len(), 21, "one case per group command");
+    for (command, json) in cases {
+        assert_eq!(serde_json::to_string(&command).unwrap(), json);
+        assert_eq!(
+            serde_json::from_str::<Command>(json).unwrap(),
+            command,
+            "{json}"
+        );
+    }
+}
+
+#[test]
+fn a_motion_with_only_its_required_fields_is_buffered_without_transition() {
+    let c: Command =
+        serde_json::from_str(r#"{"type":"move_linear_absolute","group":1,"position":[1,2]}"#)
+            .unwrap();
+    assert_eq!(
+        c,
+        Command::from(MoveLinearAbsolute {
+            group: 1,
+            position: vec![1.0, 2.0],
+            velocity: None,
+            acceleration: None,
+            deceleration: None,
+            jerk: None,
+            buffer_mode: GroupBufferMode::Buffered,
+            transition: TransitionMode::None,
+            user_segment: None,
+        })
+    );
+    let c: Command = serde_json::from_str(
+        r#"{"type":"move_circular_absolute","group":1,"aux_point":[0,0],"end_point":[10,0]}"#,
+    )
+    .unwrap();
+    let Command::Group(axes::command::GroupCommand::MoveCircularAbsolute(m)) = c else {
+        panic!("{c:?}");
+    };
+    assert_eq!(
+        (m.mode, m.direction, m.plane, m.normal, m.turns),
+        (CircleMode::Center, ArcDirection::Ccw, None, None, 0)
+    );
+    let c: Command =
+        serde_json::from_str(r#"{"type":"group_create","group":1,"axes":[0]}"#).unwrap();
+    assert_eq!(
+        c,
+        Command::from(GroupCreate {
+            group: 1,
+            axes: vec![0],
+            queue_capacity: None,
+            lookahead: None,
+        })
+    );
+}
+
+#[test]
+fn group_serde_errors_name_the_field() {
+    for (json, message) in [
+        (
+            r#"{"type":"move_linear_absolute","group":1,"positon":[1]}"#,
+            "unknown field `positon`, expected one of `group`, `position`, `velocity`, `acceleration`, `deceleration`, `jerk`, `buffer_mode`, `transition`, `user_segment`",
+        ),
+        (
+            r#"{"type":"move_linear_absolute","group":1,"position":[1],"buffer_mode":"blend"}"#,
+            "unknown variant `blend`, expected one of `aborting`, `buffered`, `blending_low`, `blending_previous`, `blending_next`, `blending_high`",
+        ),
+        (
+            r#"{"type":"move_linear_absolute","group":1,"position":[1],"transition":{"corner_radius":1}}"#,
+            "unknown variant `corner_radius`, expected one of `none`, `corner_distance`, `corner_deviation`",
+        ),
+        (
+            r#"{"type":"move_circular_absolute","group":1,"end_point":[1,0],"direction":"left"}"#,
+            "unknown variant `left`, expected `cw` or `ccw`",
+        ),
+        (
+            r#"{"type":"group_create","axes":[0]}"#,
+            "missing field `group`",
+        ),
+    ] {
+        let e = serde_json::from_str::<Command>(json).unwrap_err();
+        assert_eq!(e.to_string(), message, "{json}");
+    }
+}
