@@ -10,10 +10,10 @@ mod common;
 use axes::command::{
     ArcDirection, AxisInput, CircleMode, Command, CommandState, Enable, ErrorKind,
     ForceDigitalInput, ForceInput, GroupAxisMove, GroupBufferMode, GroupContinue, GroupCreate,
-    GroupDwell, GroupEnable, GroupHalt, GroupReset, GroupSetOrigin, GroupSetOutput,
-    GroupSetOverride, GroupStop, GroupWaitInput, GroupWaitPosition, InjectFollowingError,
-    MoveAbsolute, MoveCircularAbsolute, MoveCircularRelative, MoveLinearAbsolute,
-    MoveLinearRelative, TransitionMode,
+    GroupDwell, GroupEnable, GroupHalt, GroupParameter, GroupReset, GroupSetOrigin, GroupSetOutput,
+    GroupSetOverride, GroupSetParameter, GroupStop, GroupWaitInput, GroupWaitPosition,
+    InjectFollowingError, MoveAbsolute, MoveCircularAbsolute, MoveCircularRelative,
+    MoveLinearAbsolute, MoveLinearRelative, TransitionMode,
 };
 use axes::status::{GroupFault, GroupState, GroupStatus};
 use axes::{AxisState, Engine, EngineConfig, EngineError, ParamId};
@@ -869,4 +869,65 @@ fn machine_wide_stop_drops_the_path_and_emergency_stop_puts_the_group_in_error_s
         (g.state, g.fault),
         (GroupState::ErrorStop, Some(GroupFault::EmergencyStop))
     );
+}
+
+/// Peak path velocity over a full circle of radius 10 after `parameters` are set on group 1.
+fn circle_peak(parameters: &[(GroupParameter, f64)]) -> f64 {
+    let mut e = machine(2, &[0, 1]);
+    for &(name, value) in parameters {
+        ok(
+            &mut e,
+            Command::from(GroupSetParameter {
+                group: 1,
+                name,
+                value,
+            }),
+        );
+    }
+    send(&mut e, line(&[10.0, 0.0]));
+    run_to_standby(&mut e, 10.0);
+    send(&mut e, circle(&[0.0, 0.0], &[10.0, 0.0], ArcDirection::Ccw));
+    let mut peak: f64 = 0.0;
+    for _ in 0..100_000 {
+        e.step();
+        let g = group(&e);
+        peak = peak.max(g.path_velocity);
+        if g.state == GroupState::Standby {
+            break;
+        }
+    }
+    assert_eq!(positions(&e, 2), [10.0, 0.0]);
+    peak
+}
+
+#[test]
+fn himc_look_ahead_parameters_cap_the_arc_speed_and_zero_turns_them_off() {
+    // HIMC SetGrpLookAheadPrm prm 1 (digest 004 §2.7): v ≤ √(A_arc·r) = √(20 · 10).
+    let capped = circle_peak(&[(GroupParameter::ArcAcceleration, 20.0)]);
+    assert!((capped - 200f64.sqrt()).abs() < 1e-6, "{capped}");
+    let off = circle_peak(&[
+        (GroupParameter::ArcAcceleration, 20.0),
+        (GroupParameter::ArcAcceleration, 0.0),
+    ]);
+    assert!(off > 20.0, "{off}");
+    let mut e = machine(2, &[0, 1]);
+    for (name, value) in [
+        (GroupParameter::ChordError, -1.0),
+        (GroupParameter::CornerSlowAngle, 2.0), // above the default stop angle π/2
+        (GroupParameter::CornerStopAngle, 4.0), // beyond π
+    ] {
+        let kind = refused(
+            &mut e,
+            Command::from(GroupSetParameter {
+                group: 1,
+                name,
+                value,
+            }),
+        );
+        assert_eq!(
+            kind.kind(),
+            ErrorKind::InvalidArgument,
+            "{name:?} = {value}"
+        );
+    }
 }

@@ -283,7 +283,8 @@ pub struct GroupSetOrigin {
     pub offset: Vec<f64>,
 }
 
-/// A group parameter: the path limits of motions that do not give their own.
+/// A group parameter: the path limits of motions that do not give their own, and the vendors'
+/// look-ahead rules (off until set; they apply to motions queued afterwards).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum GroupParameter {
@@ -292,6 +293,19 @@ pub enum GroupParameter {
     Deceleration,
     /// 0 = trapezoid along the path.
     Jerk,
+    /// Corner angle below which a blended junction keeps its speed, radians (HMC
+    /// `HMC_SetMergeAngle` decelAngle, digest 000 §3.4; NMC slowAng, digest 001 §3.9). Setting
+    /// it or `corner_stop_angle` turns the rule on, the other at HMC's default (π/6, π/2).
+    CornerSlowAngle,
+    /// Corner angle from which a blended junction stops, radians (HMC stopAngle; NMC stopAng).
+    CornerStopAngle,
+    /// Acceleration for the direction change at a corner (HIMC look-ahead prm 0; NMC accMax);
+    /// 0 = off.
+    CornerAcceleration,
+    /// Centripetal acceleration on arcs, `v ≤ √(A·r)` (HIMC prm 1; NMC centAcc); 0 = off.
+    ArcAcceleration,
+    /// Largest chord error per servo period on arcs (HIMC prm 2); 0 = off.
+    ChordError,
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

@@ -1,7 +1,7 @@
 //! Group commands (issue 11 items 1, 3, 5, 8): each checked completely before it changes
 //! anything, so a refused command leaves the group (and every other) as it was.
 
-use path::planner::{MarkerKind, PathPlanner};
+use path::planner::{CornerAngles, MarkerKind, PathPlanner};
 use path::MAX_AXES;
 
 use super::queue::{Entry, GroupQueue, Item};
@@ -258,6 +258,48 @@ impl Group {
                         d.deceleration = positive("deceleration", c.value)?
                     }
                     GroupParameter::Jerk => d.jerk = segment::jerk_value(c.value)?,
+                    GroupParameter::CornerSlowAngle | GroupParameter::CornerStopAngle => {
+                        let value = finite("value", c.value)?;
+                        let mut angles = self
+                            .planner
+                            .corner_angles()
+                            .unwrap_or(CornerAngles::HMC_DEFAULT);
+                        if c.name == GroupParameter::CornerSlowAngle {
+                            angles.slow = value;
+                        } else {
+                            angles.stop = value;
+                        }
+                        self.planner.set_corner_angles(Some(angles)).map_err(|_| {
+                            EngineError::InvalidArgument {
+                                name: "value",
+                                value,
+                                reason: "corner angles need 0 ≤ slow ≤ stop ≤ π radians",
+                            }
+                        })?;
+                    }
+                    GroupParameter::CornerAcceleration
+                    | GroupParameter::ArcAcceleration
+                    | GroupParameter::ChordError => {
+                        let value = finite("value", c.value)?;
+                        if value < 0.0 {
+                            return Err(EngineError::InvalidArgument {
+                                name: "value",
+                                value,
+                                reason: "must be 0 (off) or a positive number",
+                            });
+                        }
+                        let setting = (value > 0.0).then_some(value);
+                        let mut limits = self.planner.lookahead_limits();
+                        match c.name {
+                            GroupParameter::CornerAcceleration => {
+                                limits.corner_acceleration = setting
+                            }
+                            GroupParameter::ArcAcceleration => limits.arc_acceleration = setting,
+                            _ => limits.chord_error = setting,
+                        }
+                        // Positive and finite here, so the planner accepts it.
+                        let _ = self.planner.set_lookahead_limits(limits);
+                    }
                 }
                 Ok(Reply::Done)
             }
