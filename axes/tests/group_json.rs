@@ -9,7 +9,8 @@ use axes::command::{
     GroupDelete, GroupDisable, GroupDwell, GroupEmergencyStop, GroupEnable, GroupHalt,
     GroupParameter, GroupReset, GroupSetOrigin, GroupSetOutput, GroupSetOverride,
     GroupSetParameter, GroupStop, GroupWaitInput, GroupWaitPosition, MoveCircularAbsolute,
-    MoveCircularRelative, MoveLinearAbsolute, MoveLinearRelative, TransitionMode,
+    MoveCircularRelative, MoveEllipse, MoveLinearAbsolute, MoveLinearRelative, MoveSpline,
+    TransitionMode,
 };
 
 fn full() -> Vec<(Command, &'static str)> {
@@ -199,13 +200,46 @@ fn full() -> Vec<(Command, &'static str)> {
             }),
             r#"{"type":"group_axis_move","group":1,"axis":3,"position":-5.0,"velocity":10.0,"acceleration":null,"deceleration":null,"jerk":null}"#,
         ),
+        (
+            Command::from(MoveSpline {
+                group: 1,
+                points: vec![vec![1.0, 2.0], vec![3.0, -1.5]],
+                relative: true,
+                velocity: Some(20.0),
+                acceleration: None,
+                deceleration: Some(100.0),
+                jerk: None,
+                buffer_mode: GroupBufferMode::BlendingNext,
+                transition: TransitionMode::None,
+                user_segment: Some(4),
+            }),
+            r#"{"type":"move_spline","group":1,"points":[[1.0,2.0],[3.0,-1.5]],"relative":true,"velocity":20.0,"acceleration":null,"deceleration":100.0,"jerk":null,"buffer_mode":"blending_next","transition":"none","user_segment":4}"#,
+        ),
+        (
+            Command::from(MoveEllipse {
+                group: 2,
+                center: vec![-5.0, 0.0],
+                ratio: 0.5,
+                direction: ArcDirection::Cw,
+                plane: Some([0, 1]),
+                relative: true,
+                velocity: None,
+                acceleration: Some(50.0),
+                deceleration: None,
+                jerk: Some(0.0),
+                buffer_mode: GroupBufferMode::Buffered,
+                transition: TransitionMode::None,
+                user_segment: None,
+            }),
+            r#"{"type":"move_ellipse","group":2,"center":[-5.0,0.0],"ratio":0.5,"direction":"cw","plane":[0,1],"relative":true,"velocity":null,"acceleration":50.0,"deceleration":null,"jerk":0.0,"buffer_mode":"buffered","transition":"none","user_segment":null}"#,
+        ),
     ]
 }
 
 #[test]
 fn every_group_command_serializes_to_its_pinned_json_and_back() {
     let cases = full();
-    assert_eq!(cases.len(), 21, "one case per group command");
+    assert_eq!(cases.len(), 23, "one case per group command");
     for (command, json) in cases {
         assert_eq!(serde_json::to_string(&command).unwrap(), json);
         assert_eq!(

@@ -12,8 +12,8 @@ use axes::command::{
     ForceDigitalInput, ForceInput, GroupAxisMove, GroupBufferMode, GroupContinue, GroupCreate,
     GroupDwell, GroupEnable, GroupHalt, GroupParameter, GroupReset, GroupSetOrigin, GroupSetOutput,
     GroupSetOverride, GroupSetParameter, GroupStop, GroupWaitInput, GroupWaitPosition,
-    InjectFollowingError, MoveAbsolute, MoveCircularAbsolute, MoveCircularRelative,
-    MoveLinearAbsolute, MoveLinearRelative, TransitionMode,
+    InjectFollowingError, MoveAbsolute, MoveCircularAbsolute, MoveCircularRelative, MoveEllipse,
+    MoveLinearAbsolute, MoveLinearRelative, MoveSpline, TransitionMode,
 };
 use axes::status::{GroupFault, GroupState, GroupStatus};
 use axes::{AxisState, Engine, EngineConfig, EngineError, ParamId};
@@ -930,4 +930,149 @@ fn himc_look_ahead_parameters_cap_the_arc_speed_and_zero_turns_them_off() {
             "{name:?} = {value}"
         );
     }
+}
+
+#[test]
+fn a_spline_passes_through_its_points_and_ends_exactly_within_the_axis_limits() {
+    // HMC MoveSplineND (digest 000 §4.3): a natural cubic spline through the nodes.
+    let mut e = machine(2, &[0, 1]);
+    let nodes = [[10.0, 5.0], [20.0, -5.0], [30.0, 0.0]];
+    send(
+        &mut e,
+        MoveSpline {
+            group: 1,
+            points: nodes.iter().map(|n| n.to_vec()).collect(),
+            relative: false,
+            velocity: Some(50.0),
+            acceleration: None,
+            deceleration: None,
+            jerk: None,
+            buffer_mode: GroupBufferMode::Buffered,
+            transition: TransitionMode::None,
+            user_segment: None,
+        },
+    );
+    // Nearest approach to each node over the run.
+    let mut nearest = [f64::INFINITY; 3];
+    for _ in 0..20_000 {
+        e.step();
+        let g = group(&e);
+        let (x, y) = (g.position()[0], g.position()[1]);
+        for (d, n) in nearest.iter_mut().zip(&nodes) {
+            *d = d.min((x - n[0]).hypot(y - n[1]));
+        }
+        if g.state == GroupState::Standby {
+            break;
+        }
+    }
+    assert_eq!(positions(&e, 2), [30.0, 0.0]);
+    // Within one tick's travel (≤ 50 mm/s × 1 ms) of every node.
+    assert!(nearest.iter().all(|&d| d < 0.05), "{nearest:?}");
+    let mut e = machine(2, &[0, 1]);
+    send(
+        &mut e,
+        MoveSpline {
+            group: 1,
+            points: nodes.iter().map(|n| n.to_vec()).collect(),
+            relative: false,
+            velocity: Some(80.0),
+            acceleration: None,
+            deceleration: None,
+            jerk: None,
+            buffer_mode: GroupBufferMode::Buffered,
+            transition: TransitionMode::None,
+            user_segment: None,
+        },
+    );
+    run_within_limits(&mut e, 2, 20.0);
+}
+
+#[test]
+fn an_ellipse_returns_to_its_start_with_semi_axes_from_the_start_and_the_ratio() {
+    // NMC CrdEllipse (digest 001 §4.4): centre relative to the start, semi-major = start − centre.
+    let mut e = machine(2, &[0, 1]);
+    send(&mut e, line(&[10.0, 0.0]));
+    run_to_standby(&mut e, 10.0);
+    send(
+        &mut e,
+        MoveEllipse {
+            group: 1,
+            center: vec![-10.0, 0.0],
+            ratio: 0.5,
+            direction: ArcDirection::Ccw,
+            plane: None,
+            relative: true,
+            velocity: Some(40.0),
+            acceleration: None,
+            deceleration: None,
+            jerk: None,
+            buffer_mode: GroupBufferMode::Buffered,
+            transition: TransitionMode::None,
+            user_segment: None,
+        },
+    );
+    let (mut max_y, mut min_x, mut worst) = (f64::MIN, f64::MAX, 0.0f64);
+    for _ in 0..20_000 {
+        e.step();
+        let g = group(&e);
+        let (x, y) = (g.position()[0], g.position()[1]);
+        max_y = max_y.max(y);
+        min_x = min_x.min(x);
+        // (x/10)² + (y/5)² = 1 about the centre (0, 0).
+        worst = worst.max(((x / 10.0).powi(2) + (y / 5.0).powi(2) - 1.0).abs());
+        if g.state == GroupState::Standby {
+            break;
+        }
+    }
+    assert_eq!(positions(&e, 2), [10.0, 0.0]);
+    assert!(
+        (max_y - 5.0).abs() < 1e-3 && (min_x + 10.0).abs() < 1e-3,
+        "{max_y} {min_x}"
+    );
+    assert!(worst < 1e-6, "off the ellipse by {worst}");
+}
+
+#[test]
+fn bad_splines_and_ellipses_are_refused_and_nothing_is_queued() {
+    let mut e = machine(2, &[0, 1]);
+    let spline = |points: Vec<Vec<f64>>| MoveSpline {
+        group: 1,
+        points,
+        relative: false,
+        velocity: None,
+        acceleration: None,
+        deceleration: None,
+        jerk: None,
+        buffer_mode: GroupBufferMode::Buffered,
+        transition: TransitionMode::None,
+        user_segment: None,
+    };
+    let ellipse = |ratio: f64| MoveEllipse {
+        group: 1,
+        center: vec![5.0, 0.0],
+        ratio,
+        direction: ArcDirection::Ccw,
+        plane: None,
+        relative: false,
+        velocity: None,
+        acceleration: None,
+        deceleration: None,
+        jerk: None,
+        buffer_mode: GroupBufferMode::Buffered,
+        transition: TransitionMode::None,
+        user_segment: None,
+    };
+    for c in [
+        Command::from(spline(vec![])),
+        Command::from(spline(vec![vec![1.0]])),
+        Command::from(spline(vec![vec![1.0, f64::NAN]])),
+        Command::from(spline(vec![vec![1.0, 1.0]; 1001])),
+        Command::from(ellipse(0.01)),
+        Command::from(ellipse(1.5)),
+        Command::from(ellipse(f64::INFINITY)),
+    ] {
+        let err = refused(&mut e, c.clone());
+        assert_eq!(err.kind(), ErrorKind::InvalidArgument, "{c:?}: {err}");
+    }
+    assert_eq!(group(&e).queue_used, 0);
 }

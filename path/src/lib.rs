@@ -13,6 +13,7 @@
 //! queue has grown. The engine (`axes`) owns one planner per axis group and feeds its axes
 //! from it.
 
+mod checks;
 pub mod frames;
 pub mod geometry;
 pub mod planner;

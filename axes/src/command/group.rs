@@ -379,6 +379,65 @@ pub struct GroupAxisMove {
     pub jerk: Option<f64>,
 }
 
+/// Move along a spline from where the previous motion ends through `points` (HMC
+/// `MoveSplineND`, digest 000 §4.3): the natural cubic spline through the start and the points,
+/// parametrised by chord length; points on one line in order make a line. `relative`: the
+/// points are distances from the start. At most 1000 points.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MoveSpline {
+    pub group: GroupId,
+    pub points: Vec<Vec<f64>>,
+    #[serde(default)]
+    pub relative: bool,
+    #[serde(default)]
+    pub velocity: Option<f64>,
+    #[serde(default)]
+    pub acceleration: Option<f64>,
+    #[serde(default)]
+    pub deceleration: Option<f64>,
+    #[serde(default)]
+    pub jerk: Option<f64>,
+    #[serde(default)]
+    pub buffer_mode: GroupBufferMode,
+    #[serde(default)]
+    pub transition: TransitionMode,
+    #[serde(default)]
+    pub user_segment: Option<u32>,
+}
+
+/// A full ellipse from where the previous motion ends, around `center`, back to the start (NMC
+/// `CrdEllipse`, digest 001 §4.4): the semi-major axis is start − centre, the semi-minor axis
+/// `ratio` × that (0.05 to 1), in the plane of group coordinates `plane` (default `[0, 1]`).
+/// `relative`: `center` is relative to the start, as NMC gives it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MoveEllipse {
+    pub group: GroupId,
+    pub center: Vec<f64>,
+    pub ratio: f64,
+    #[serde(default)]
+    pub direction: ArcDirection,
+    #[serde(default)]
+    pub plane: Option<[usize; 2]>,
+    #[serde(default)]
+    pub relative: bool,
+    #[serde(default)]
+    pub velocity: Option<f64>,
+    #[serde(default)]
+    pub acceleration: Option<f64>,
+    #[serde(default)]
+    pub deceleration: Option<f64>,
+    #[serde(default)]
+    pub jerk: Option<f64>,
+    #[serde(default)]
+    pub buffer_mode: GroupBufferMode,
+    #[serde(default)]
+    pub transition: TransitionMode,
+    #[serde(default)]
+    pub user_segment: Option<u32>,
+}
+
 /// A command on one axis group.
 #[derive(Clone, Debug, PartialEq)]
 pub enum GroupCommand {
@@ -403,6 +462,8 @@ pub enum GroupCommand {
     WaitInput(GroupWaitInput),
     WaitPosition(GroupWaitPosition),
     AxisMove(GroupAxisMove),
+    MoveSpline(MoveSpline),
+    MoveEllipse(MoveEllipse),
 }
 
 impl GroupCommand {
@@ -430,6 +491,8 @@ impl GroupCommand {
             GroupCommand::WaitInput(c) => c.group,
             GroupCommand::WaitPosition(c) => c.group,
             GroupCommand::AxisMove(c) => c.group,
+            GroupCommand::MoveSpline(c) => c.group,
+            GroupCommand::MoveEllipse(c) => c.group,
         }
     }
 }
@@ -456,4 +519,6 @@ command_from!(GroupCommand, Group, [
     GroupWaitInput => WaitInput,
     GroupWaitPosition => WaitPosition,
     GroupAxisMove => AxisMove,
+    MoveSpline => MoveSpline,
+    MoveEllipse => MoveEllipse,
 ]);

@@ -101,7 +101,8 @@ pub use group::{
     GroupCreate, GroupDelete, GroupDisable, GroupDwell, GroupEmergencyStop, GroupEnable, GroupHalt,
     GroupParameter, GroupReset, GroupSetOrigin, GroupSetOutput, GroupSetOverride,
     GroupSetParameter, GroupStop, GroupWaitInput, GroupWaitPosition, MoveCircularAbsolute,
-    MoveCircularRelative, MoveLinearAbsolute, MoveLinearRelative, TransitionMode,
+    MoveCircularRelative, MoveEllipse, MoveLinearAbsolute, MoveLinearRelative, MoveSpline,
+    TransitionMode,
 };
 pub use io::{
     ForceAnalogInput, ForceDigitalInput, IoCommand, WriteAnalogOutput, WriteDigitalOutput,

@@ -16,7 +16,8 @@ use super::{
     GroupAxisMove, GroupCommand, GroupContinue, GroupCreate, GroupDelete, GroupDisable, GroupDwell,
     GroupEmergencyStop, GroupEnable, GroupHalt, GroupReset, GroupSetOrigin, GroupSetOutput,
     GroupSetOverride, GroupSetParameter, GroupStop, GroupWaitInput, GroupWaitPosition,
-    MoveCircularAbsolute, MoveCircularRelative, MoveLinearAbsolute, MoveLinearRelative,
+    MoveCircularAbsolute, MoveCircularRelative, MoveEllipse, MoveLinearAbsolute,
+    MoveLinearRelative, MoveSpline,
 };
 
 /// Named `Command` like the type it stands for: serde writes this name in "expected internally
@@ -80,6 +81,8 @@ pub(super) enum Command {
     GroupWaitInput(GroupWaitInput),
     GroupWaitPosition(GroupWaitPosition),
     GroupAxisMove(GroupAxisMove),
+    MoveSpline(MoveSpline),
+    MoveEllipse(MoveEllipse),
 }
 
 impl From<Command> for super::Command {
@@ -150,6 +153,8 @@ impl From<Command> for super::Command {
             Command::GroupWaitInput(c) => super::Command::Group(GroupCommand::WaitInput(c)),
             Command::GroupWaitPosition(c) => super::Command::Group(GroupCommand::WaitPosition(c)),
             Command::GroupAxisMove(c) => super::Command::Group(GroupCommand::AxisMove(c)),
+            Command::MoveSpline(c) => super::Command::Group(GroupCommand::MoveSpline(c)),
+            Command::MoveEllipse(c) => super::Command::Group(GroupCommand::MoveEllipse(c)),
         }
     }
 }
@@ -222,6 +227,8 @@ impl From<super::Command> for Command {
             super::Command::Group(GroupCommand::WaitInput(c)) => Command::GroupWaitInput(c),
             super::Command::Group(GroupCommand::WaitPosition(c)) => Command::GroupWaitPosition(c),
             super::Command::Group(GroupCommand::AxisMove(c)) => Command::GroupAxisMove(c),
+            super::Command::Group(GroupCommand::MoveSpline(c)) => Command::MoveSpline(c),
+            super::Command::Group(GroupCommand::MoveEllipse(c)) => Command::MoveEllipse(c),
             super::Command::Coupling(c) => match c {},
         }
     }

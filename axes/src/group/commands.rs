@@ -192,6 +192,16 @@ impl Group {
                 let r = segment::circular(self.id, self.dims(), f, &self.defaults)?;
                 self.submit(env, r)
             }
+            GroupCommand::MoveSpline(c) => {
+                self.require_accepts_motion()?;
+                let r = segment::spline(self.id, self.dims(), &c, &self.defaults)?;
+                self.submit(env, r)
+            }
+            GroupCommand::MoveEllipse(c) => {
+                self.require_accepts_motion()?;
+                let r = segment::ellipse(self.id, self.dims(), &c, &self.defaults)?;
+                self.submit(env, r)
+            }
             GroupCommand::MoveCircularRelative(c) => {
                 self.require_accepts_motion()?;
                 let f = CircularFields::from(&c);

@@ -2,14 +2,14 @@
 //! `path::planner`). Everything a command carries is checked here, before anything is queued:
 //! coordinate counts, finite numbers, positive limits, and the geometry's own refusals.
 
-use path::geometry::{Arc, Line, Segment, Turn};
+use path::geometry::{Arc, Curve, Line, Segment, Turn};
 use path::planner::{Join, PathLimits, Transition};
 use path::{Point, MAX_AXES};
 
 use crate::command::{
     bounded, nonnegative, positive, ArcDirection, CircleMode, CommandId, EngineError,
-    GroupBufferMode, GroupId, MoveCircularAbsolute, MoveCircularRelative, MoveLinearAbsolute,
-    MoveLinearRelative, TransitionMode,
+    GroupBufferMode, GroupId, MoveCircularAbsolute, MoveCircularRelative, MoveEllipse,
+    MoveLinearAbsolute, MoveLinearRelative, MoveSpline, TransitionMode,
 };
 
 /// Where a motion goes, in group coordinates (checked, `dims` components used).
@@ -28,6 +28,19 @@ pub(super) enum Geometry {
         plane: (usize, usize),
         normal: Option<[f64; 3]>,
         turns: u32,
+        relative: bool,
+    },
+    /// Through `points` after the start (HMC MoveSplineND).
+    Spline {
+        points: Vec<Point>,
+        relative: bool,
+    },
+    /// A full ellipse around `center` (NMC CrdEllipse).
+    Ellipse {
+        center: Point,
+        ratio: f64,
+        turn: Turn,
+        plane: (usize, usize),
         relative: bool,
     },
 }
@@ -350,6 +363,78 @@ pub(super) fn circular(
     )
 }
 
+/// Most points one `move_spline` carries: the curve's length table is built when the command is
+/// applied, on the servo thread, so the bound keeps that work bounded.
+pub(super) const MAX_SPLINE_COMMAND_POINTS: usize = 1000;
+
+pub(super) fn spline(
+    group: GroupId,
+    dims: usize,
+    c: &MoveSpline,
+    defaults: &PathLimits,
+) -> Result<PathRequest, EngineError> {
+    if c.points.is_empty() || c.points.len() > MAX_SPLINE_COMMAND_POINTS {
+        return Err(EngineError::InvalidPath {
+            group,
+            reason: format!(
+                "a spline has 1 to {MAX_SPLINE_COMMAND_POINTS} points, not {}",
+                c.points.len()
+            ),
+        });
+    }
+    let points = c
+        .points
+        .iter()
+        .map(|p| coordinates(group, "points", p, dims))
+        .collect::<Result<Vec<_>, _>>()?;
+    request(
+        Geometry::Spline {
+            points,
+            relative: c.relative,
+        },
+        kinematics!(c),
+        c.buffer_mode,
+        c.transition,
+        c.user_segment,
+        defaults,
+    )
+}
+
+pub(super) fn ellipse(
+    group: GroupId,
+    dims: usize,
+    c: &MoveEllipse,
+    defaults: &PathLimits,
+) -> Result<PathRequest, EngineError> {
+    let center = coordinates(group, "center", &c.center, dims)?;
+    let [i, j] = c.plane.unwrap_or([0, 1]);
+    if i == j || i >= dims || j >= dims {
+        return Err(EngineError::InvalidPath {
+            group,
+            reason: format!(
+                "plane [{i}, {j}] needs two different coordinates of the group's {dims}"
+            ),
+        });
+    }
+    request(
+        Geometry::Ellipse {
+            center,
+            ratio: bounded("ratio", c.ratio)?,
+            turn: match c.direction {
+                ArcDirection::Ccw => Turn::Ccw,
+                ArcDirection::Cw => Turn::Cw,
+            },
+            plane: (i, j),
+            relative: c.relative,
+        },
+        kinematics!(c),
+        c.buffer_mode,
+        c.transition,
+        c.user_segment,
+        defaults,
+    )
+}
+
 impl PathRequest {
     /// The segment from `start`; the geometry's refusals (centre not equidistant, radius below
     /// half the chord, coincident points …) become `InvalidPath` with the geometry's reason.
@@ -403,6 +488,26 @@ impl PathRequest {
                     (CircleMode::Border, _) => Segment::through_points(start, aux, end, dims),
                 }
             }
+            Geometry::Spline { points, relative } => {
+                let mut nodes = Vec::with_capacity(points.len() + 1);
+                nodes.push(start);
+                nodes.extend(points.iter().map(|p| offset(p, *relative)));
+                Curve::spline(&nodes, dims)
+            }
+            Geometry::Ellipse {
+                center,
+                ratio,
+                turn,
+                plane,
+                relative,
+            } => Curve::ellipse(
+                start,
+                offset(center, *relative),
+                *ratio,
+                *plane,
+                *turn,
+                dims,
+            ),
         };
         built.map_err(|e| EngineError::InvalidPath {
             group,

@@ -547,6 +547,8 @@ fn check_command_refs(steps: &[Step]) -> Result<(), (String, String)> {
                             | GroupCommand::MoveLinearRelative(_)
                             | GroupCommand::MoveCircularAbsolute(_)
                             | GroupCommand::MoveCircularRelative(_)
+                            | GroupCommand::MoveSpline(_)
+                            | GroupCommand::MoveEllipse(_)
                             | GroupCommand::SetOutput(_)
                             | GroupCommand::Dwell(_)
                             | GroupCommand::WaitInput(_)

@@ -2,7 +2,7 @@
 //! 5-1…5-3, TV 56–57).
 
 use super::Transform;
-use crate::geometry::GeometryError;
+use crate::checks::GeometryError;
 use crate::Point;
 
 /// Workpiece frames `CS_WCS1` … `CS_WCS15`.

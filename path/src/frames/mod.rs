@@ -15,7 +15,7 @@
 //!
 //! Pure values: nothing here allocates or keeps state beyond its fields.
 
-use crate::geometry::{check_axis, check_dims, check_finite, check_number, GeometryError};
+use crate::checks::{check_axis, check_dims, check_finite, check_number, GeometryError};
 use crate::{Point, MAX_AXES};
 
 mod chain;

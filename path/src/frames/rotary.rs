@@ -3,7 +3,7 @@
 //! conventions below are our reading and are recorded in docs/decisions.md.
 
 use super::Transform;
-use crate::geometry::{check_axis, check_number, GeometryError};
+use crate::checks::{check_axis, check_number, GeometryError};
 use crate::Point;
 
 /// NMC `CrdSetTransRotate(crd, rotAxisNo, angleRadEqual, firstAxisInitPos, secAxisInitPos)`:

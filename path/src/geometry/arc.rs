@@ -11,15 +11,11 @@ use std::f64::consts::TAU;
 
 use super::arc_center::{in_plane_of, normal_basis, sweep_for};
 use super::{
-    add, check_number, check_planar, dot, norm, scale, sub, GeometryError, PathPoint,
-    POINT_TOLERANCE,
+    add, check_number, check_planar, dot, norm, radius_tolerance, scale, sub, GeometryError,
+    PathPoint, MIN_SWEEP, POINT_TOLERANCE,
 };
 use crate::frames::Transform;
 use crate::{Point, MAX_AXES};
-
-/// The smallest sweep an arc may be given explicitly (radians): below it the arc is a point
-/// turning in place, which HIMC refuses too (`eERR_CRD_CMD_CIRC_ANGLE_SMALL`, digest 004 §5).
-pub const MIN_SWEEP: f64 = 1e-12;
 
 /// A circular arc or helix (see the module doc).
 ///
@@ -78,13 +74,6 @@ impl Turn {
             Turn::Ccw
         }
     }
-}
-
-/// How far a centre may be from equidistant, or a radius below half the chord, before the
-/// arc is refused: [`POINT_TOLERANCE`] plus 1e-9 of the radius (rounding of the caller's
-/// arithmetic, not a second geometry).
-pub(crate) fn radius_tolerance(radius: f64) -> f64 {
-    POINT_TOLERANCE + 1e-9 * radius
 }
 
 impl Arc {

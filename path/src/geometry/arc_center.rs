@@ -4,11 +4,11 @@
 
 use std::f64::consts::TAU;
 
-use super::arc::{radius_tolerance, MIN_SWEEP};
 use super::{
     add, check_axis, check_dims, check_finite, check_number, check_planar, dot, scale, sub, Arc,
     GeometryError, Turn, POINT_TOLERANCE,
 };
+use super::{radius_tolerance, MIN_SWEEP};
 use crate::{Point, MAX_AXES};
 
 /// The unit vectors of axes `plane.0` and `plane.1`: counter-clockwise turns from the first

@@ -33,35 +33,27 @@ mod curve;
 mod line;
 mod three_points;
 
-pub use arc::{Arc, Turn, MIN_SWEEP};
+pub use arc::{Arc, Turn};
 pub use arc_center::himc_turns_angle;
 pub use curve::{Curve, CurveKind, ELLIPSE_RATIO, MAX_SPLINE_POINTS};
 pub use line::Line;
+// Defined below both `geometry` and `frames` (which checks its input the same way), and
+// re-exported here where users look for them.
+pub use crate::checks::{check_axis, check_dims, check_finite, check_number, GeometryError};
 
 /// Two points closer than this (in user units) are the same point; an arc's centre must be
 /// this close to equidistant from its start and end (relative to the radius: see [`Arc`]).
 pub const POINT_TOLERANCE: f64 = 1e-9;
 
-/// Why a segment cannot be built. Each names what is wrong, for the engine's typed error.
-#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
-pub enum GeometryError {
-    #[error("{name} = {value}: must be a finite number")]
-    NotFinite { name: &'static str, value: f64 },
-    #[error("{0}")]
-    Invalid(&'static str),
-    #[error("{dims} axes: a path has 1 to 9")]
-    Dimensions { dims: usize },
-    #[error("axis {axis} is not one of the path's {dims} axes")]
-    AxisOutOfRange { axis: usize, dims: usize },
-    #[error("{first} and {second} are the same point")]
-    Coincident {
-        first: &'static str,
-        second: &'static str,
-    },
-    #[error(
-        "radius {radius} is smaller than half the chord ({half_chord}): no arc joins the points"
-    )]
-    RadiusTooSmall { radius: f64, half_chord: f64 },
+/// The smallest sweep an arc may be given explicitly (radians): below it the arc is a point
+/// turning in place, which HIMC refuses too (`eERR_CRD_CMD_CIRC_ANGLE_SMALL`, digest 004 §5).
+pub const MIN_SWEEP: f64 = 1e-12;
+
+/// How far a centre may be from equidistant, or a radius below half the chord, before the
+/// arc is refused: [`POINT_TOLERANCE`] plus 1e-9 of the radius (rounding of the caller's
+/// arithmetic, not a second geometry).
+pub(crate) fn radius_tolerance(radius: f64) -> f64 {
+    POINT_TOLERANCE + 1e-9 * radius
 }
 
 /// Position, unit tangent and curvature vector at one path length.
@@ -190,39 +182,6 @@ pub fn sub(a: &Point, b: &Point) -> Point {
 
 pub fn dot(a: &Point, b: &Point) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
-}
-
-/// Checks a path's axis count (1 to [`MAX_AXES`]).
-pub fn check_dims(dims: usize) -> Result<(), GeometryError> {
-    if dims == 0 || dims > MAX_AXES {
-        return Err(GeometryError::Dimensions { dims });
-    }
-    Ok(())
-}
-
-/// Checks that every component of `p` is finite.
-pub fn check_finite(name: &'static str, p: &Point) -> Result<(), GeometryError> {
-    match p.iter().find(|c| !c.is_finite()) {
-        Some(&value) => Err(GeometryError::NotFinite { name, value }),
-        None => Ok(()),
-    }
-}
-
-/// Checks that a number is finite.
-pub fn check_number(name: &'static str, value: f64) -> Result<(), GeometryError> {
-    if value.is_finite() {
-        Ok(())
-    } else {
-        Err(GeometryError::NotFinite { name, value })
-    }
-}
-
-/// Checks that `axis` is one of the first `dims` axes.
-pub fn check_axis(axis: usize, dims: usize) -> Result<(), GeometryError> {
-    if axis >= dims {
-        return Err(GeometryError::AxisOutOfRange { axis, dims });
-    }
-    Ok(())
 }
 
 /// Checks a plane: two different axes of the path.
