@@ -932,6 +932,41 @@ fn himc_look_ahead_parameters_cap_the_arc_speed_and_zero_turns_them_off() {
     }
 }
 
+/// A buffered spline of group 1 through `points` (absolute), group defaults but `velocity`.
+fn spline(points: Vec<Vec<f64>>, velocity: Option<f64>) -> MoveSpline {
+    MoveSpline {
+        group: 1,
+        points,
+        relative: false,
+        velocity,
+        acceleration: None,
+        deceleration: None,
+        jerk: None,
+        buffer_mode: GroupBufferMode::Buffered,
+        transition: TransitionMode::None,
+        user_segment: None,
+    }
+}
+
+/// A buffered counter-clockwise ellipse of group 1 around `center` (absolute), group defaults.
+fn ellipse(center: Vec<f64>, ratio: f64) -> MoveEllipse {
+    MoveEllipse {
+        group: 1,
+        center,
+        ratio,
+        direction: ArcDirection::Ccw,
+        plane: None,
+        relative: false,
+        velocity: None,
+        acceleration: None,
+        deceleration: None,
+        jerk: None,
+        buffer_mode: GroupBufferMode::Buffered,
+        transition: TransitionMode::None,
+        user_segment: None,
+    }
+}
+
 #[test]
 fn a_spline_passes_through_its_points_and_ends_exactly_within_the_axis_limits() {
     // HMC MoveSplineND (digest 000 §4.3): a natural cubic spline through the nodes.
@@ -939,18 +974,7 @@ fn a_spline_passes_through_its_points_and_ends_exactly_within_the_axis_limits() 
     let nodes = [[10.0, 5.0], [20.0, -5.0], [30.0, 0.0]];
     send(
         &mut e,
-        MoveSpline {
-            group: 1,
-            points: nodes.iter().map(|n| n.to_vec()).collect(),
-            relative: false,
-            velocity: Some(50.0),
-            acceleration: None,
-            deceleration: None,
-            jerk: None,
-            buffer_mode: GroupBufferMode::Buffered,
-            transition: TransitionMode::None,
-            user_segment: None,
-        },
+        spline(nodes.iter().map(|n| n.to_vec()).collect(), Some(50.0)),
     );
     // Nearest approach to each node over the run.
     let mut nearest = [f64::INFINITY; 3];
@@ -971,18 +995,7 @@ fn a_spline_passes_through_its_points_and_ends_exactly_within_the_axis_limits() 
     let mut e = machine(2, &[0, 1]);
     send(
         &mut e,
-        MoveSpline {
-            group: 1,
-            points: nodes.iter().map(|n| n.to_vec()).collect(),
-            relative: false,
-            velocity: Some(80.0),
-            acceleration: None,
-            deceleration: None,
-            jerk: None,
-            buffer_mode: GroupBufferMode::Buffered,
-            transition: TransitionMode::None,
-            user_segment: None,
-        },
+        spline(nodes.iter().map(|n| n.to_vec()).collect(), Some(80.0)),
     );
     run_within_limits(&mut e, 2, 20.0);
 }
@@ -996,19 +1009,9 @@ fn an_ellipse_returns_to_its_start_with_semi_axes_from_the_start_and_the_ratio()
     send(
         &mut e,
         MoveEllipse {
-            group: 1,
-            center: vec![-10.0, 0.0],
-            ratio: 0.5,
-            direction: ArcDirection::Ccw,
-            plane: None,
             relative: true,
             velocity: Some(40.0),
-            acceleration: None,
-            deceleration: None,
-            jerk: None,
-            buffer_mode: GroupBufferMode::Buffered,
-            transition: TransitionMode::None,
-            user_segment: None,
+            ..ellipse(vec![-10.0, 0.0], 0.5)
         },
     );
     let (mut max_y, mut min_x, mut worst) = (f64::MIN, f64::MAX, 0.0f64);
@@ -1035,41 +1038,14 @@ fn an_ellipse_returns_to_its_start_with_semi_axes_from_the_start_and_the_ratio()
 #[test]
 fn bad_splines_and_ellipses_are_refused_and_nothing_is_queued() {
     let mut e = machine(2, &[0, 1]);
-    let spline = |points: Vec<Vec<f64>>| MoveSpline {
-        group: 1,
-        points,
-        relative: false,
-        velocity: None,
-        acceleration: None,
-        deceleration: None,
-        jerk: None,
-        buffer_mode: GroupBufferMode::Buffered,
-        transition: TransitionMode::None,
-        user_segment: None,
-    };
-    let ellipse = |ratio: f64| MoveEllipse {
-        group: 1,
-        center: vec![5.0, 0.0],
-        ratio,
-        direction: ArcDirection::Ccw,
-        plane: None,
-        relative: false,
-        velocity: None,
-        acceleration: None,
-        deceleration: None,
-        jerk: None,
-        buffer_mode: GroupBufferMode::Buffered,
-        transition: TransitionMode::None,
-        user_segment: None,
-    };
     for c in [
-        Command::from(spline(vec![])),
-        Command::from(spline(vec![vec![1.0]])),
-        Command::from(spline(vec![vec![1.0, f64::NAN]])),
-        Command::from(spline(vec![vec![1.0, 1.0]; 1001])),
-        Command::from(ellipse(0.01)),
-        Command::from(ellipse(1.5)),
-        Command::from(ellipse(f64::INFINITY)),
+        Command::from(spline(vec![], None)),
+        Command::from(spline(vec![vec![1.0]], None)),
+        Command::from(spline(vec![vec![1.0, f64::NAN]], None)),
+        Command::from(spline(vec![vec![1.0, 1.0]; 1001], None)),
+        Command::from(ellipse(vec![5.0, 0.0], 0.01)),
+        Command::from(ellipse(vec![5.0, 0.0], 1.5)),
+        Command::from(ellipse(vec![5.0, 0.0], f64::INFINITY)),
     ] {
         let err = refused(&mut e, c.clone());
         assert_eq!(err.kind(), ErrorKind::InvalidArgument, "{c:?}: {err}");

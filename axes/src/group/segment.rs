@@ -297,15 +297,7 @@ pub(super) fn circular(
         }
         (_, None) => None,
     };
-    let (i, j) = match c.plane {
-        Some([i, j]) => (i, j),
-        None => (0, 1),
-    };
-    if i == j || i >= dims || j >= dims {
-        return Err(invalid(format!(
-            "plane [{i}, {j}] needs two different coordinates of the group's {dims}"
-        )));
-    }
+    let (i, j) = plane_of(group, c.plane, dims)?;
     let normal = match c.normal {
         None => None,
         Some(n) => {
@@ -363,6 +355,25 @@ pub(super) fn circular(
     )
 }
 
+/// The plane of a circular or elliptic command: two different group coordinates, `[0, 1]`
+/// when none is given.
+fn plane_of(
+    group: GroupId,
+    plane: Option<[usize; 2]>,
+    dims: usize,
+) -> Result<(usize, usize), EngineError> {
+    let [i, j] = plane.unwrap_or([0, 1]);
+    if i == j || i >= dims || j >= dims {
+        return Err(EngineError::InvalidPath {
+            group,
+            reason: format!(
+                "plane [{i}, {j}] needs two different coordinates of the group's {dims}"
+            ),
+        });
+    }
+    Ok((i, j))
+}
+
 /// Most points one `move_spline` carries: the curve's length table is built when the command is
 /// applied, on the servo thread, so the bound keeps that work bounded.
 pub(super) const MAX_SPLINE_COMMAND_POINTS: usize = 1000;
@@ -407,15 +418,7 @@ pub(super) fn ellipse(
     defaults: &PathLimits,
 ) -> Result<PathRequest, EngineError> {
     let center = coordinates(group, "center", &c.center, dims)?;
-    let [i, j] = c.plane.unwrap_or([0, 1]);
-    if i == j || i >= dims || j >= dims {
-        return Err(EngineError::InvalidPath {
-            group,
-            reason: format!(
-                "plane [{i}, {j}] needs two different coordinates of the group's {dims}"
-            ),
-        });
-    }
+    let (i, j) = plane_of(group, c.plane, dims)?;
     request(
         Geometry::Ellipse {
             center,

@@ -16,7 +16,7 @@
 //! Jerk on curves is not bounded by the axes' jerk limits: the centripetal acceleration
 //! changes with `a_t` and steps where the curvature steps (see docs/decisions.md).
 
-use super::{AxisLimits, PathLimits};
+use super::{AxisLimits, LookaheadLimits, PathLimits};
 use crate::geometry::Segment;
 
 /// Path limits of one motion, once the axes have had their say. The velocity cap does not
@@ -36,6 +36,7 @@ pub(super) fn motion_limits(
     programmed: &PathLimits,
     axes: &[AxisLimits],
     period: f64,
+    rules: &LookaheadLimits,
 ) -> MotionLimits {
     let curvature = segment.max_curvature();
     let mut velocity_cap = f64::INFINITY;
@@ -69,6 +70,8 @@ pub(super) fn motion_limits(
         // the lowest of the path's and the moving axes' jerk limits.
         velocity_cap = velocity_cap.min((curve_jerk / (curvature * curvature)).cbrt());
     }
+    // The vendors' look-ahead limits on curves (HIMC arc acceleration, chord error).
+    velocity_cap = velocity_cap.min(rules.curve_cap(curvature, period));
     let length = segment.length();
     velocity_cap = velocity_cap.min(length / period);
     MotionLimits {
@@ -144,14 +147,14 @@ mod tests {
     fn a_diagonal_line_takes_each_axis_limit_over_its_direction_component() {
         // Direction (0.6, 0.8): x allows 60/0.6 = 100, y 100/0.8 = 125.
         let line = Segment::Line(Line::new(p(0.0, 0.0), p(30.0, 40.0), 2).unwrap());
-        let l = motion_limits(&line, &FAST, &AXES, 1e-3);
+        let l = motion_limits(&line, &FAST, &AXES, 1e-3, &LookaheadLimits::default());
         assert!((l.velocity_cap - 100.0).abs() < 1e-9);
         assert!((l.acceleration - 1000.0).abs() < 1e-9);
         assert!((l.deceleration - 1000.0).abs() < 1e-9);
         assert!((l.jerk - 10_000.0).abs() < 1e-9);
         // The programmed limits win when lower; a 0.05 mm line is capped at 50 mm/s at 1 kHz.
         let short = Segment::Line(Line::new(p(0.0, 0.0), p(0.03, 0.04), 2).unwrap());
-        let l = motion_limits(&short, &FAST, &AXES, 1e-3);
+        let l = motion_limits(&short, &FAST, &AXES, 1e-3, &LookaheadLimits::default());
         assert!((l.velocity_cap - 50.0).abs() < 1e-9);
     }
 
@@ -169,7 +172,7 @@ mod tests {
             )
             .unwrap(),
         );
-        let l = motion_limits(&arc, &FAST, &AXES, 1e-3);
+        let l = motion_limits(&arc, &FAST, &AXES, 1e-3, &LookaheadLimits::default());
         let split = 600.0 * std::f64::consts::FRAC_1_SQRT_2;
         // v²/r ≤ A_x/√2: v ≤ √(424.3·10) = 65.1, above x's 60 mm/s: the velocity limit wins.
         assert!((l.velocity_cap - 60.0).abs() < 1e-9);
@@ -178,7 +181,7 @@ mod tests {
             acceleration: 100.0,
             ..AXES[0]
         }; 2];
-        let l = motion_limits(&arc, &FAST, &slow, 1e-3);
+        let l = motion_limits(&arc, &FAST, &slow, 1e-3, &LookaheadLimits::default());
         assert!(
             (l.velocity_cap - (100.0 * std::f64::consts::FRAC_1_SQRT_2 * 10.0).sqrt()).abs() < 1e-9
         );

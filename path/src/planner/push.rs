@@ -18,10 +18,7 @@ fn queued(
     period: f64,
     rules: &LookaheadLimits,
 ) -> QueuedMotion {
-    let mut limits = motion_limits(&segment, &programmed, axes, period);
-    limits.velocity_cap = limits
-        .velocity_cap
-        .min(rules.curve_cap(segment.max_curvature(), period));
+    let limits = motion_limits(&segment, &programmed, axes, period, rules);
     QueuedMotion {
         length: segment.length(),
         segment,
@@ -180,11 +177,7 @@ impl PathPlanner {
         let segment = prev.segment.trimmed(0.0, shortened);
         let prev_programmed = prev.programmed;
         if let Some(Entry::Motion(prev)) = self.queue.get_mut(pi) {
-            prev.limits = motion_limits(&segment, &prev_programmed, axes, period);
-            prev.limits.velocity_cap = prev
-                .limits
-                .velocity_cap
-                .min(rules.curve_cap(segment.max_curvature(), period));
+            prev.limits = motion_limits(&segment, &prev_programmed, axes, period, &rules);
             prev.length = segment.length();
             prev.segment = segment;
             prev.end_cap = f64::INFINITY;
