@@ -27,7 +27,8 @@ mod modbus;
 mod socketcand;
 
 pub use mcemu::{
-    cargo_test_executable, mcemu_bin, wait_for, Mcemu, McemuExit, TempDir, STOP_TIMEOUT,
+    cargo_test_executable, mcemu_bin, mcemu_release_bin, wait_for, Mcemu, McemuExit, TempDir,
+    STOP_TIMEOUT,
 };
 pub use modbus::{
     crc16, hex, mbap_frame, mbpoll, mbpoll_values, rtu_frame, to_hex, ByteLink, MbapClient,

@@ -46,6 +46,35 @@ pub fn mcemu_bin() -> PathBuf {
     .clone()
 }
 
+/// The optimised `mcemu` binary: `$MCEMU_RELEASE_BIN` if set, else `<target>/release/mcemu`,
+/// brought up to date first with `cargo build --release -p mcemu --bin mcemu` (a no-op when it
+/// is). For tests whose figures depend on the servo thread keeping up with the wall clock where
+/// a debug build cannot: under the vcan VM's TCG a debug tick takes longer than the 1 ms period
+/// (`./scripts/test` builds it before the tests, so this only checks). Checked once per process.
+pub fn mcemu_release_bin() -> PathBuf {
+    static BIN: OnceLock<PathBuf> = OnceLock::new();
+    BIN.get_or_init(|| {
+        if let Some(bin) = std::env::var_os("MCEMU_RELEASE_BIN") {
+            let bin = PathBuf::from(bin);
+            assert!(
+                bin.is_file(),
+                "MCEMU_RELEASE_BIN={} is not a file",
+                bin.display()
+            );
+            return bin;
+        }
+        let release_dir = profile_dir()
+            .parent()
+            .expect("the profile directory lies in the target directory")
+            .join("release");
+        build_mcemu(&release_dir);
+        let bin = release_dir.join("mcemu");
+        assert!(bin.is_file(), "{} was not built", bin.display());
+        bin
+    })
+    .clone()
+}
+
 fn modified(path: &Path) -> Option<SystemTime> {
     std::fs::metadata(path).and_then(|m| m.modified()).ok()
 }
@@ -67,22 +96,26 @@ fn newest_source() -> Option<SystemTime> {
     }
     let root = workspace_root();
     let mut newest = None;
-    let mut dirs = vec![
-        root.join("axes/src"),
-        root.join("emulator/src"),
-        root.join("fixtures"),
-    ];
-    let mut files = vec![
-        root.join("Cargo.lock"),
-        root.join("axes/Cargo.toml"),
-        root.join("emulator/Cargo.toml"),
-    ];
-    // Every protocol crate (Modbus, CAN, CANopen …): the binary links them all.
-    if let Ok(entries) = std::fs::read_dir(root.join("protocols")) {
-        for entry in entries.flatten() {
-            dirs.push(entry.path().join("src"));
-            files.push(entry.path().join("Cargo.toml"));
-        }
+    let mut dirs = vec![root.join("fixtures")];
+    let mut files = vec![root.join("Cargo.lock"), root.join("Cargo.toml")];
+    // Every crate of the workspace (axes, profile, path, emulator, and each protocol crate
+    // under protocols/): the binary links them all; this test crate does not count.
+    let crate_dirs = |dir: PathBuf| {
+        std::fs::read_dir(dir)
+            .into_iter()
+            .flatten()
+            .flatten()
+            .map(|e| e.path())
+            .filter(|p| p.join("Cargo.toml").is_file() && p.join("src").is_dir())
+            .collect::<Vec<_>>()
+    };
+    for krate in crate_dirs(root.clone())
+        .into_iter()
+        .chain(crate_dirs(root.join("protocols")))
+        .filter(|p| p.file_name().is_some_and(|n| n != "tests"))
+    {
+        dirs.push(krate.join("src"));
+        files.push(krate.join("Cargo.toml"));
     }
     for dir in &dirs {
         walk(dir, &mut newest);
