@@ -251,3 +251,50 @@ proptest! {
         }
     }
 }
+
+/// A zigzag through `n` points after the start: tight turns, the table's worst case.
+fn zigzag(n: u32) -> Vec<Point> {
+    (0..=n)
+        .map(|i| p(&[f64::from(i), if i % 2 == 0 { 0.0 } else { 1.0 }]))
+        .collect()
+}
+
+#[test]
+fn a_long_spline_builds_its_rows_only_where_it_is_sampled() {
+    // Construction runs on the servo thread that accepts the command: it finds lengths and
+    // bounds only; the refined rows come a span at a time as the path reaches them.
+    let seg = Curve::spline(&zigzag(1000), 2).unwrap();
+    let c = curve(&seg).unwrap();
+    assert_eq!(c.table_len(), 0);
+    let first = seg.sample(0.5);
+    let built = c.table_len();
+    assert!(
+        (2..200).contains(&built),
+        "one span's rows, not the table's: {built}"
+    );
+    // The middle of the curve, then its start again: one more span, nothing rebuilt.
+    let _ = seg.sample(seg.length() / 2.0);
+    assert!(c.table_len() < 2 * built + 200, "{}", c.table_len());
+    assert_eq!(seg.sample(0.5), first);
+}
+
+#[test]
+fn when_a_curves_rows_are_built_changes_no_sample() {
+    let points = zigzag(40);
+    let forward = Curve::spline(&points, 2).unwrap();
+    let backward = Curve::spline(&points, 2).unwrap();
+    let len = forward.length();
+    assert_eq!(len, backward.length());
+    let at: Vec<f64> = (0..=400).map(|i| len * f64::from(i) / 400.0).collect();
+    // Built front to back in one, back to front in the other: the same samples, bit for bit.
+    let ahead: Vec<_> = at.iter().map(|&s| forward.sample(s)).collect();
+    let behind: Vec<_> = at.iter().rev().map(|&s| backward.sample(s)).collect();
+    assert!(ahead.iter().eq(behind.iter().rev()));
+    // A trimmed piece shares the table; a moved copy builds its own rows, the same lengths.
+    let piece = forward.trimmed(len / 4.0, len / 2.0);
+    assert_eq!(piece.sample(1.0), forward.sample(len / 4.0 + 1.0));
+    let moved = forward.transformed(&Transform::translation(p(&[5.0, -2.0])).unwrap());
+    let q = moved.sample(len / 3.0).p;
+    let r = forward.sample(len / 3.0).p;
+    assert!((q[0] - r[0] - 5.0).abs() < 1e-9 && (q[1] - r[1] + 2.0).abs() < 1e-9);
+}

@@ -408,9 +408,9 @@ impl Group {
         self.check_room()?;
         // Build the segment before taking an id: a refused motion uses none.
         self.sync_position(env)?;
-        request.segment(self.id, self.planner.queue_end(), self.dims())?;
+        let segment = request.segment(self.id, self.planner.queue_end(), self.dims())?;
         let id = env.ledger.allocate();
-        self.enqueue(env, id, &request)?;
+        self.enqueue_segment(env, id, segment, &request)?;
         if self.state == GroupState::Standby {
             self.state = GroupState::Moving;
         }

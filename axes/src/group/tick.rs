@@ -293,10 +293,21 @@ impl Group {
         id: CommandId,
         request: &super::segment::PathRequest,
     ) -> Result<(), EngineError> {
-        self.refresh_limits(env.axes);
         self.sync_position(env)?;
-        let start = self.planner.queue_end();
-        let segment = request.segment(self.id, start, self.dims())?;
+        let segment = request.segment(self.id, self.planner.queue_end(), self.dims())?;
+        self.enqueue_segment(env, id, segment, request)
+    }
+
+    /// [`Group::enqueue`] of a segment built from the queue's end already (a spline's is the
+    /// costly part of accepting it: built once).
+    pub(super) fn enqueue_segment(
+        &mut self,
+        env: &Env,
+        id: CommandId,
+        segment: path::geometry::Segment,
+        request: &super::segment::PathRequest,
+    ) -> Result<(), EngineError> {
+        self.refresh_limits(env.axes);
         self.planner
             .push_motion(Motion {
                 segment,

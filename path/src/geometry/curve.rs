@@ -3,15 +3,23 @@
 //! built once.
 //!
 //! A curve is a parametric shape `p(u)` (exact position, tangent and curvature at any `u`)
-//! plus a table of `(s, u, du/ds)` at fixed parameter steps, the lengths found by Gauss–
-//! Legendre quadrature. `sample(s)` finds the table interval by binary search, interpolates
-//! `u(s)` with a cubic Hermite (the table's slopes), and evaluates the shape at that `u`: the
-//! point is on the curve exactly and the tangent has norm 1; only the `s ↔ u` mapping carries
-//! the (small) interpolation error. No allocation per sample. The table is shared (`Rc`-like
-//! [`std::sync::Arc`]), so clones and trimmed pieces are cheap.
+//! plus a table of `(s, u, du/ds, d²u/ds²)` rows, the lengths found by Gauss–Legendre
+//! quadrature. `sample(s)` finds the table interval by binary search, interpolates `u(s)` with
+//! a quintic Hermite (the rows' derivatives), and evaluates the shape at that `u`: the point is
+//! on the curve exactly and the tangent has norm 1; only the `s ↔ u` mapping carries the
+//! (small) interpolation error. The table is shared ([`std::sync::Arc`]), so clones and
+//! trimmed pieces are cheap.
+//!
+//! The table is built in two passes, so that a command carrying a long spline does not stall
+//! the servo thread that accepts it: construction finds each piece's length (a spline span, or
+//! an eighth of an ellipse) and the bounds the planner needs (tangent components, curvature,
+//! cusps), about 50 evaluations per piece; the rows of a piece, refined until `u(s)` is exact
+//! to 1e-8 of a step (some 20 rows and 2 000 evaluations per span of a tight zigzag), are built
+//! the first time a sample falls in it, a few pieces per tick at most. Lazily built rows are a
+//! pure function of the shape and the piece, so when they are built changes nothing.
 
 use std::f64::consts::TAU;
-use std::sync::Arc as Shared;
+use std::sync::{Arc as Shared, OnceLock};
 
 use super::{
     add, check_dims, check_finite, check_number, dot, norm, scale, sub, GeometryError, Line,
@@ -23,9 +31,11 @@ use crate::{Point, MAX_AXES};
 /// Most points of one spline (HMC: `uiSplineNum` 1 to 1000 nodes after the start).
 pub const MAX_SPLINE_POINTS: usize = 1001;
 
-/// Table intervals per spline span, and for a whole ellipse.
+/// Table intervals per spline span (one piece), and per eighth of an ellipse (one piece of
+/// eight).
 const STEPS_PER_SPAN: usize = 4;
-const ELLIPSE_STEPS: usize = 64;
+const ELLIPSE_PIECES: usize = 8;
+const STEPS_PER_ELLIPSE_PIECE: usize = 8;
 /// cos 30°: the most the tangent may turn between two bound evaluations.
 const SHARPEST_STEP_COS: f64 = 0.866;
 /// Extra evaluations per table interval when bounding the tangent and curvature.
@@ -105,6 +115,30 @@ impl Shape {
         }
     }
 
+    /// `|dp/du|` alone: the integrand of the arc length, evaluated far more often than
+    /// anything else while a table is built.
+    fn speed(&self, u: f64, span: usize) -> f64 {
+        match self {
+            Shape::Spline {
+                knots,
+                coefficients,
+            } => {
+                let span = span.min(coefficients.len().saturating_sub(1));
+                let (Some(k0), Some(c)) = (knots.get(span), coefficients.get(span)) else {
+                    return 0.0;
+                };
+                let t = u - k0;
+                let mut sum = 0.0;
+                for ((c1, c2), c3) in c[1].iter().zip(&c[2]).zip(&c[3]) {
+                    let d = c1 + t * (2.0 * c2 + 3.0 * t * c3);
+                    sum += d * d;
+                }
+                sum.sqrt()
+            }
+            Shape::Ellipse { .. } => norm(&self.eval(u, span).d1),
+        }
+    }
+
     fn transformed(&self, t: &Transform) -> Shape {
         match self {
             Shape::Spline {
@@ -165,10 +199,61 @@ impl Row {
 #[derive(Clone, Debug, PartialEq)]
 struct Table {
     shape: Shape,
-    rows: Vec<Row>,
+    /// In path order; the first starts at `s = 0`.
+    pieces: Vec<Piece>,
     /// Bounds over the whole curve (see [`Curve::max_tangent`]).
     max_tangent: Point,
     max_curvature: f64,
+}
+
+/// A stretch of the curve with a length of its own: a spline span, or an eighth of an ellipse.
+#[derive(Clone, Debug, PartialEq)]
+struct Piece {
+    /// Path length at the piece's start.
+    s0: f64,
+    length: f64,
+    /// Parameter range, in `steps` equal table steps before refinement.
+    u0: f64,
+    u1: f64,
+    steps: usize,
+    /// The spline span `u` lies in (0 for an ellipse).
+    span: usize,
+    /// The rows from `u0` to `u1` inclusive, built on first use ([`Piece::rows`]).
+    rows: OnceLock<Vec<Row>>,
+}
+
+impl Piece {
+    /// The piece's table rows, built now if no sample has needed them before.
+    fn rows(&self, shape: &Shape) -> &[Row] {
+        self.rows.get_or_init(|| {
+            let mut builder = Builder {
+                shape,
+                rows: Vec::with_capacity(self.steps + 1),
+            };
+            let mut s = self.s0;
+            for k in 0..self.steps {
+                let (a, b) = step_bounds(self.u0, self.u1, self.steps, k);
+                s = builder.step(a, b, self.span, s, 0);
+            }
+            let mut rows = builder.rows;
+            // The piece's own length is where the next piece starts: the last row says so
+            // (the steps' lengths add up to it within 1e-12).
+            let end = self.s0 + self.length;
+            rows.push(Row::new(
+                end,
+                self.u1,
+                &shape.eval(self.u1, self.span),
+                self.span,
+            ));
+            rows
+        })
+    }
+}
+
+/// The `k`-th of `steps` equal parameter steps of `[u0, u1]`, ending exactly on `u1`.
+fn step_bounds(u0: f64, u1: f64, steps: usize, k: usize) -> (f64, f64) {
+    let at = |j: usize| u0 + (u1 - u0) * j as f64 / steps as f64;
+    (at(k), if k + 1 == steps { u1 } else { at(k + 1) })
 }
 
 /// Which kind of curve, for status and errors.
@@ -207,34 +292,39 @@ const GAUSS: [(f64, f64); 5] = [
 /// The length of `p(u)` for `u ∈ [u0, u1]`: 5-point Gauss–Legendre, halved until the halves
 /// agree with the whole to 1e-12 (relative) or 8 levels deep (the speed |p'| has a kink
 /// where it nears 0 in a tight turn, where a single rule is poor).
-fn arc_length(shape: &Shape, u0: f64, u1: f64, span: usize, depth: u32) -> f64 {
-    let rule = |a: f64, b: f64| {
-        let half = (b - a) / 2.0;
-        GAUSS
-            .iter()
-            .map(|&(x, w)| w * norm(&shape.eval(a + half * (1.0 + x), span).d1))
-            .sum::<f64>()
-            * half
-    };
-    let whole = rule(u0, u1);
+fn arc_length(shape: &Shape, u0: f64, u1: f64, span: usize) -> f64 {
+    let whole = gauss_length(shape, u0, u1, span);
+    refined_length(shape, u0, u1, span, whole, 0)
+}
+
+/// One 5-point Gauss–Legendre rule over `[a, b]`.
+fn gauss_length(shape: &Shape, a: f64, b: f64, span: usize) -> f64 {
+    let half = (b - a) / 2.0;
+    GAUSS
+        .iter()
+        .map(|&(x, w)| w * shape.speed(a + half * (1.0 + x), span))
+        .sum::<f64>()
+        * half
+}
+
+/// [`arc_length`] given the single rule's value over the interval, so that each level of
+/// the halving evaluates each half once.
+fn refined_length(shape: &Shape, u0: f64, u1: f64, span: usize, whole: f64, depth: u32) -> f64 {
     let mid = (u0 + u1) / 2.0;
-    let halves = rule(u0, mid) + rule(mid, u1);
+    let left = gauss_length(shape, u0, mid, span);
+    let right = gauss_length(shape, mid, u1, span);
+    let halves = left + right;
     if depth >= 8 || (whole - halves).abs() <= 1e-12 * halves.abs() {
         return halves;
     }
-    arc_length(shape, u0, mid, span, depth + 1) + arc_length(shape, mid, u1, span, depth + 1)
+    refined_length(shape, u0, mid, span, left, depth + 1)
+        + refined_length(shape, mid, u1, span, right, depth + 1)
 }
 
-/// The table being built, with the running bounds.
+/// The rows of one piece being built.
 struct Builder<'a> {
     shape: &'a Shape,
     rows: Vec<Row>,
-    max_tangent: Point,
-    max_curvature: f64,
-    min_speed: f64,
-    longest_step: f64,
-    previous_tangent: Option<Point>,
-    sharp: bool,
 }
 
 /// How far the table's `u(s)` may stray from the curve's inside a step, as a distance
@@ -248,7 +338,7 @@ impl Builder<'_> {
     /// the interpolated `u` inside the step misses the true one; returns `s` at `u1`.
     fn step(&mut self, u0: f64, u1: f64, span: usize, s0: f64, depth: u32) -> f64 {
         let shape = self.shape;
-        let length = arc_length(shape, u0, u1, span, 0);
+        let length = arc_length(shape, u0, u1, span);
         let um = (u0 + u1) / 2.0;
         let a = Row::new(s0, u0, &shape.eval(u0, span), span);
         let b = Row::new(s0 + length, u1, &shape.eval(u1, span), span);
@@ -256,8 +346,8 @@ impl Builder<'_> {
         // so it is checked at the quarter points.
         let miss_at = |f: f64| {
             let uq = u0 + (u1 - u0) * f;
-            let sq = s0 + arc_length(shape, u0, uq, span, 0);
-            (hermite(&a, &b, sq) - uq).abs() * norm(&shape.eval(uq, span).d1)
+            let sq = s0 + arc_length(shape, u0, uq, span);
+            (hermite(&a, &b, sq) - uq).abs() * shape.speed(uq, span)
         };
         let miss = miss_at(0.25).max(miss_at(0.75));
         let fine = miss <= TABLE_TOLERANCE * length || !miss.is_finite();
@@ -266,18 +356,61 @@ impl Builder<'_> {
             return self.step(um, u1, span, s_mid, depth + 1);
         }
         self.rows.push(a);
-        self.longest_step = self.longest_step.max(length);
-        for k in 0..BOUND_SUBSTEPS {
-            let u = u0 + (u1 - u0) * k as f64 / BOUND_SUBSTEPS as f64;
-            let e = shape.eval(u, span);
+        s0 + length
+    }
+}
+
+/// The bounds of a curve, gathered over evaluations in path order.
+struct Bounds {
+    max_tangent: Point,
+    max_curvature: f64,
+    min_speed: f64,
+    /// The longest stretch between two evaluations (its length bound).
+    spacing: f64,
+    previous_tangent: Option<Point>,
+    sharp: bool,
+}
+
+impl Bounds {
+    fn new() -> Bounds {
+        Bounds {
+            max_tangent: [0.0; MAX_AXES],
+            max_curvature: 0.0,
+            min_speed: f64::INFINITY,
+            spacing: 0.0,
+            previous_tangent: None,
+            sharp: false,
+        }
+    }
+
+    /// [`BOUND_SUBSTEPS`] evaluations over the step `[u0, u1]` (both ends included), and each
+    /// curvature peak among them searched for between its neighbours: the peaks of a tight
+    /// turn are narrower than the evaluations' spacing.
+    fn visit_step(&mut self, shape: &Shape, u0: f64, u1: f64, span: usize) {
+        let du = (u1 - u0) / BOUND_SUBSTEPS as f64;
+        let at = |k: usize| {
+            if k == BOUND_SUBSTEPS {
+                u1
+            } else {
+                u0 + du * k as f64
+            }
+        };
+        let mut fastest: f64 = 0.0;
+        let mut kappa = [0.0; BOUND_SUBSTEPS + 1];
+        for (k, out) in kappa.iter_mut().enumerate() {
+            let e = shape.eval(at(k), span);
             let speed = norm(&e.d1);
+            fastest = fastest.max(speed);
+            *out = norm(&curvature(&e));
+            if k == BOUND_SUBSTEPS {
+                break;
+            }
             self.min_speed = self.min_speed.min(speed);
             if speed > 0.0 {
                 let t = scale(&e.d1, 1.0 / speed);
                 for (m, d) in self.max_tangent.iter_mut().zip(&t) {
                     *m = f64::max(*m, d.abs());
                 }
-                self.max_curvature = self.max_curvature.max(norm(&curvature(&e)));
                 // A turn of more than ~30° between two evaluations is a cusp or a kink the
                 // table cannot follow.
                 if self
@@ -289,7 +422,52 @@ impl Builder<'_> {
                 self.previous_tangent = Some(t);
             }
         }
-        s0 + length
+        for k in 0..=BOUND_SUBSTEPS {
+            let here = kappa[k];
+            let left = k.checked_sub(1).map_or(0.0, |j| kappa[j]);
+            let right = kappa.get(k + 1).copied().unwrap_or(0.0);
+            self.max_curvature = self.max_curvature.max(here);
+            if here >= left && here >= right && here.is_finite() {
+                let (a, b) = (at(k.saturating_sub(1)), at((k + 1).min(BOUND_SUBSTEPS)));
+                let peak = curvature_peak(shape, span, a, b);
+                self.max_curvature = self.max_curvature.max(peak);
+            }
+        }
+        // Between two evaluations the curve runs at most Δu × the speed there; the fastest
+        // evaluation of the step, with a margin for the speed between them.
+        self.spacing = self.spacing.max(1.25 * fastest * du);
+    }
+}
+
+/// The largest curvature on `[a, b]` found by golden-section search (a single peak assumed,
+/// which the caller's bracketing makes likely); 24 evaluations narrow it to 1e-5 of `b − a`.
+fn curvature_peak(shape: &Shape, span: usize, mut a: f64, mut b: f64) -> f64 {
+    const INVERSE_PHI: f64 = 0.618_033_988_749_895;
+    let kappa = |u: f64| norm(&curvature(&shape.eval(u, span)));
+    let mut c = b - INVERSE_PHI * (b - a);
+    let mut d = a + INVERSE_PHI * (b - a);
+    let (mut kc, mut kd) = (kappa(c), kappa(d));
+    let mut best = kc.max(kd);
+    for _ in 0..24 {
+        if kc >= kd {
+            b = d;
+            d = c;
+            kd = kc;
+            c = b - INVERSE_PHI * (b - a);
+            kc = kappa(c);
+        } else {
+            a = c;
+            c = d;
+            kc = kd;
+            d = a + INVERSE_PHI * (b - a);
+            kd = kappa(d);
+        }
+        best = best.max(kc).max(kd);
+    }
+    if best.is_finite() {
+        best
+    } else {
+        0.0
     }
 }
 
@@ -313,56 +491,60 @@ fn hermite(a: &Row, b: &Row, s: f64) -> f64 {
     u.clamp(a.u.min(b.u), a.u.max(b.u))
 }
 
-/// Builds the table over parameter steps `(u0, u1, span)`, refining each as needed.
+/// The table's pieces `(u0, u1, steps, span)` with their lengths and the curve's bounds; the
+/// rows wait for their first sample (module doc).
 fn build_table(
     shape: Shape,
-    steps: impl Iterator<Item = (f64, f64, usize)>,
+    pieces: impl Iterator<Item = (f64, f64, usize, usize)>,
 ) -> Result<Table, GeometryError> {
-    let mut builder = Builder {
-        shape: &shape,
-        rows: Vec::new(),
-        max_tangent: [0.0; MAX_AXES],
-        max_curvature: 0.0,
-        min_speed: f64::INFINITY,
-        longest_step: 0.0,
-        previous_tangent: None,
-        sharp: false,
-    };
+    let mut bounds = Bounds::new();
+    let mut built = Vec::new();
     let mut s = 0.0;
     let mut first_u = None;
     let mut last = None;
-    for (u0, u1, span) in steps {
+    for (u0, u1, steps, span) in pieces {
         first_u.get_or_insert(u0);
-        s = builder.step(u0, u1, span, s, 0);
+        for k in 0..steps {
+            let (a, b) = step_bounds(u0, u1, steps, k);
+            bounds.visit_step(&shape, a, b, span);
+        }
+        let length = arc_length(&shape, u0, u1, span);
+        built.push(Piece {
+            s0: s,
+            length,
+            u0,
+            u1,
+            steps,
+            span,
+            rows: OnceLock::new(),
+        });
+        s += length;
         last = Some((u1, span));
     }
     let Some((u_end, span)) = last else {
         return Err(GeometryError::Invalid("a curve needs at least one step"));
     };
     let e = shape.eval(u_end, span);
-    let min_speed = builder.min_speed.min(norm(&e.d1));
+    let min_speed = bounds.min_speed.min(norm(&e.d1));
     // The parameter runs at about unit speed on average (chord length, or the ellipse's mean
     // radius); a speed near 0 somewhere is a cusp.
     let mean_speed = s / (u_end - first_u.unwrap_or(0.0));
     let stalls = min_speed.is_nan() || min_speed <= 1e-3 * mean_speed;
-    if builder.sharp || stalls || !s.is_finite() {
+    if bounds.sharp || stalls || !s.is_finite() {
         return Err(GeometryError::Invalid(
             "the curve stops or turns back on itself (a cusp): no tangent there",
         ));
     }
-    let mut rows = builder.rows;
-    rows.push(Row::new(s, u_end, &e, span));
     // Between the evaluations the tangent turns by at most κ·Δs; pad both bounds for it
     // (conservative, so the planner never under-estimates an axis's share of the speed).
-    let spacing = builder.longest_step / BOUND_SUBSTEPS as f64;
-    let mut max_tangent = builder.max_tangent;
-    let max_curvature = builder.max_curvature;
+    let mut max_tangent = bounds.max_tangent;
+    let max_curvature = bounds.max_curvature;
     for m in max_tangent.iter_mut() {
-        *m = (*m + max_curvature * spacing).min(1.0);
+        *m = (*m + max_curvature * bounds.spacing).min(1.0);
     }
     Ok(Table {
         shape,
-        rows,
+        pieces: built,
         max_tangent,
         max_curvature: max_curvature * 1.05,
     })
@@ -434,32 +616,17 @@ impl Curve {
             u += hi;
             knots.push(u);
         }
-        let steps: Vec<(f64, f64, usize)> = knots
+        let pieces: Vec<(f64, f64, usize, usize)> = knots
             .windows(2)
             .enumerate()
-            .flat_map(|(span, k)| {
-                let (a, b) = (k[0], k[1]);
-                (0..STEPS_PER_SPAN).map(move |j| {
-                    let f0 = j as f64 / STEPS_PER_SPAN as f64;
-                    let f1 = (j + 1) as f64 / STEPS_PER_SPAN as f64;
-                    (
-                        a + (b - a) * f0,
-                        if j + 1 == STEPS_PER_SPAN {
-                            b
-                        } else {
-                            a + (b - a) * f1
-                        },
-                        span,
-                    )
-                })
-            })
+            .map(|(span, k)| (k[0], k[1], STEPS_PER_SPAN, span))
             .collect();
         let table = build_table(
             Shape::Spline {
                 knots,
                 coefficients,
             },
-            steps.into_iter(),
+            pieces.into_iter(),
         )?;
         Ok(Segment::Curve(Curve::whole(
             table,
@@ -506,14 +673,9 @@ impl Curve {
         let sign = turn.sign();
         minor[i] = -ay * ratio * sign;
         minor[j] = ax * ratio * sign;
-        let steps = (0..ELLIPSE_STEPS).map(|k| {
-            let u0 = TAU * k as f64 / ELLIPSE_STEPS as f64;
-            let u1 = if k + 1 == ELLIPSE_STEPS {
-                TAU
-            } else {
-                TAU * (k + 1) as f64 / ELLIPSE_STEPS as f64
-            };
-            (u0, u1, 0)
+        let pieces = (0..ELLIPSE_PIECES).map(|k| {
+            let (u0, u1) = step_bounds(0.0, TAU, ELLIPSE_PIECES, k);
+            (u0, u1, STEPS_PER_ELLIPSE_PIECE, 0)
         });
         let table = build_table(
             Shape::Ellipse {
@@ -521,7 +683,7 @@ impl Curve {
                 major,
                 minor,
             },
-            steps,
+            pieces,
         )?;
         Ok(Segment::Curve(Curve::whole(
             table,
@@ -532,7 +694,7 @@ impl Curve {
     }
 
     fn whole(table: Table, kind: CurveKind, end: Point, dims: usize) -> Curve {
-        let length = table.rows.last().map_or(0.0, |r| r.s);
+        let length = table.pieces.last().map_or(0.0, |p| p.s0 + p.length);
         Curve {
             table: Shared::new(table),
             kind,
@@ -560,23 +722,28 @@ impl Curve {
         self.end
     }
 
-    /// Number of rows of the length table (memory and lookup cost: a binary search over it).
+    /// Rows of the length table built so far (memory and lookup cost; a piece's rows are
+    /// built when a sample first falls in it).
     pub fn table_len(&self) -> usize {
-        self.table.rows.len()
+        self.table
+            .pieces
+            .iter()
+            .filter_map(|p| p.rows.get())
+            .map(Vec::len)
+            .sum()
     }
 
     /// For a spline, the path lengths (from this piece's start) at which it passes its
     /// points, within the piece; empty for an ellipse.
     pub fn point_lengths(&self) -> impl Iterator<Item = f64> + '_ {
-        let knots: &[f64] = match &self.table.shape {
-            Shape::Spline { knots, .. } => knots,
-            Shape::Ellipse { .. } => &[],
-        };
-        self.table
-            .rows
+        let spline = matches!(self.table.shape, Shape::Spline { .. });
+        let pieces = if spline { &self.table.pieces[..] } else { &[] };
+        // Each span starts at a point; the last point ends the last span.
+        pieces
             .iter()
-            .filter(move |r| knots.binary_search_by(|k| k.total_cmp(&r.u)).is_ok())
-            .map(move |r| r.s - self.s0)
+            .map(|p| p.s0)
+            .chain(pieces.last().map(|p| p.s0 + p.length))
+            .map(move |s| s - self.s0)
             .filter(move |&s| (0.0..=self.length).contains(&s))
     }
 
@@ -619,7 +786,13 @@ impl Curve {
     /// interval's ends with their `du/ds` and `d²u/ds²` (so the path speed and the
     /// acceleration along the path carry almost no table ripple).
     fn parameter_at(&self, s: f64) -> (f64, usize) {
-        let rows = &self.table.rows;
+        let pieces = &self.table.pieces;
+        // The last piece that starts at or before s.
+        let Some(piece) = pieces.get(pieces.partition_point(|p| p.s0 <= s).saturating_sub(1))
+        else {
+            return (0.0, 0);
+        };
+        let rows = piece.rows(&self.table.shape);
         // The last row with row.s ≤ s.
         let k = rows.partition_point(|r| r.s <= s).saturating_sub(1);
         let (Some(a), Some(b)) = (rows.get(k), rows.get(k + 1)) else {
@@ -648,8 +821,8 @@ impl Curve {
         }
     }
 
-    /// The curve moved by a rigid transform: its shape is moved, the length table (a
-    /// function of the shape's lengths only) is kept; the tangent bounds are recomputed
+    /// The curve moved by a rigid transform: its shape is moved, the pieces' lengths (a
+    /// function of the shape's lengths only) are kept; the tangent bounds are recomputed
     /// from the rotation (each axis's bound becomes the sum over the source axes it mixes).
     pub fn transformed(&self, t: &Transform) -> Curve {
         let table = &self.table;
@@ -666,7 +839,16 @@ impl Curve {
         Curve {
             table: Shared::new(Table {
                 shape: table.shape.transformed(t),
-                rows: table.rows.clone(),
+                // Lengths are kept; rows are rebuilt from the moved shape when sampled (not
+                // shared: which curve built them first must not change a value).
+                pieces: table
+                    .pieces
+                    .iter()
+                    .map(|p| Piece {
+                        rows: OnceLock::new(),
+                        ..p.clone()
+                    })
+                    .collect(),
                 max_tangent,
                 max_curvature: table.max_curvature,
             }),
