@@ -321,3 +321,18 @@ fn group_serde_errors_name_the_field() {
         assert_eq!(e.to_string(), message, "{json}");
     }
 }
+
+/// HMC's stop along the path after a member's trouble is a group parameter (docs/decisions.md,
+/// "Group safety").
+#[test]
+fn the_fault_deceleration_parameter_has_its_pinned_name() {
+    let c = Command::from(GroupSetParameter {
+        group: 1,
+        name: GroupParameter::FaultDeceleration,
+        value: 8000.0,
+    });
+    let json =
+        r#"{"type":"group_set_parameter","group":1,"name":"fault_deceleration","value":8000.0}"#;
+    assert_eq!(serde_json::to_string(&c).unwrap(), json);
+    assert_eq!(serde_json::from_str::<Command>(json).unwrap(), c);
+}

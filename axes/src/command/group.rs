@@ -306,6 +306,11 @@ pub enum GroupParameter {
     ArcAcceleration,
     /// Largest chord error per servo period on arcs (HIMC prm 2); 0 = off.
     ChordError,
+    /// HMC's stop after a member's limit or fault (digest 000 §4.3, §6.1 (b)/(c)): the path
+    /// decelerates to rest with max(`deceleration`, this value) — the result axis's FastDecel —
+    /// and the members still on the path stay on it. 0 = off (the default, NMC and HIMC: the
+    /// path is dropped and each member ramps down on its own).
+    FaultDeceleration,
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

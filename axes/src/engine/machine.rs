@@ -207,8 +207,10 @@ impl Engine {
     /// axis that would refuse (error stop, drive alarm) leaves every axis and drive as it was,
     /// and the error names it. Engine-mastered drives are walked to Operation enabled as a
     /// single `enable` does (`route_power`). Encoder-only and unused axes are skipped.
-    /// Groups keep their state: an engine-mastered drive powers its axis only ticks later, so
-    /// `group_enable` follows once the members are enabled (docs/decisions.md, "Axis groups").
+    /// Then every Disabled group whose members are all enabled and at rest is enabled
+    /// (Standby), as `group_enable` would; this comes after the last point of refusal, so the
+    /// groups need no checkpoint. A member on an engine-mastered drive is powered ticks later:
+    /// its group is enabled by `group_enable` once it is (docs/decisions.md, "Group safety").
     fn enable_everything(&mut self) -> Result<Reply, EngineError> {
         let checkpoint = self.checkpoint(Scope::AxesAndDrives);
         for axis in 0..self.axes.len() {
@@ -224,6 +226,7 @@ impl Engine {
             }
         }
         self.commit(checkpoint);
+        self.with_groups(|groups, env| groups.enable_all(env));
         Ok(Reply::Done)
     }
 

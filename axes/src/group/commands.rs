@@ -115,6 +115,8 @@ impl Groups {
             queue: GroupQueue::new(capacity),
             origin: [0.0; MAX_AXES],
             defaults: DEFAULT_PATH_LIMITS,
+            fault_deceleration: None,
+            fault_stop: None,
             override_factor: 1.0,
             feeding: false,
             running: None,
@@ -224,10 +226,12 @@ impl Group {
             }
             GroupCommand::Continue(_) => self.resume(),
             GroupCommand::EmergencyStop(_) => {
+                // An e-stop of each member plus the group in ErrorStop; a disabled group stays
+                // Disabled (as with `emergency_stop_all`), its members e-stopped all the same.
                 if self.state != GroupState::Disabled {
                     self.fault(env, GroupFault::EmergencyStop);
-                    self.stop_members_fast(env);
                 }
+                self.emergency_stop_members(env);
                 Ok(Reply::Done)
             }
             GroupCommand::SetOverride(c) => {
@@ -287,6 +291,17 @@ impl Group {
                             }
                         })?;
                     }
+                    GroupParameter::FaultDeceleration => {
+                        let value = bounded("value", c.value)?;
+                        if value < 0.0 {
+                            return Err(EngineError::InvalidArgument {
+                                name: "value",
+                                value,
+                                reason: "must be 0 (off) or a positive deceleration",
+                            });
+                        }
+                        self.fault_deceleration = (value > 0.0).then_some(value);
+                    }
                     GroupParameter::CornerAcceleration
                     | GroupParameter::ArcAcceleration
                     | GroupParameter::ChordError => {
@@ -337,7 +352,7 @@ impl Group {
     }
 
     /// Disabled → Standby when every member is enabled and at rest (PLCopen MC_GroupEnable).
-    fn enable(&mut self, env: &Env) -> Result<Reply, EngineError> {
+    pub(super) fn enable(&mut self, env: &Env) -> Result<Reply, EngineError> {
         match self.state {
             GroupState::Disabled => {}
             GroupState::ErrorStop => {

@@ -82,6 +82,11 @@ pub struct Group {
     origin: Point,
     /// Path limits of motions that give none (`group_set_parameter`).
     defaults: PathLimits,
+    /// HMC's path stop after a member's trouble (`fault_deceleration`); None: the path is
+    /// dropped (NMC, HIMC).
+    fault_deceleration: Option<f64>,
+    /// In ErrorStop, the path still decelerating by HMC's rule: which members have left it.
+    fault_stop: Option<[bool; MAX_AXES]>,
     override_factor: f64,
     /// The members were fed last tick (they are in SynchronizedMotion).
     feeding: bool,
@@ -297,6 +302,18 @@ impl Groups {
             ) {
                 g.drop_all(env, CommandState::Aborted);
                 g.state = GroupState::Standby;
+            }
+        }
+    }
+
+    /// Machine-wide `enable_all`, after the axes: every Disabled group whose members are all
+    /// enabled and at rest goes to Standby (`group_enable`'s rule); a group in ErrorStop waits
+    /// for a reset.
+    pub(crate) fn enable_all(&mut self, env: &Env) {
+        for g in &mut self.groups {
+            if g.state == GroupState::Disabled {
+                // A group with a member not ready stays Disabled: not an error of enable_all.
+                let _ = g.enable(env);
             }
         }
     }
