@@ -1,4 +1,4 @@
-//! NMC coordinate-system test vectors (digest 001 §9, TV 42–54) at the engine level, in pulses
+//! NMC coordinate-system test vectors (digest 001 §6, TV 42–54) at the engine level, in pulses
 //! (user unit = 1 pulse) with the manual's p/ms and p/ms² turned into p/s and p/s². The axes'
 //! own limits are far above the path's, so the path limits govern, as in the manual's examples.
 //! The NMC-only rules (4 axes per coordinate system, 18 per D8 pack) belong to the NMC
@@ -9,7 +9,7 @@ mod common;
 
 use axes::command::{
     ArcDirection, CircleMode, Command, CommandState, ErrorKind, GroupAxisMove, GroupContinue,
-    GroupDwell, GroupHalt, GroupSetOutput, GroupSetOverride, MoveCircularAbsolute,
+    GroupDwell, GroupHalt, GroupSetOutput, GroupSetOverride, GroupStop, MoveCircularAbsolute,
     MoveLinearAbsolute, WriteDigitalOutput,
 };
 use axes::config::AxisConfig;
@@ -400,6 +400,41 @@ fn tv49_a_stop_mid_segment_keeps_the_buffer_and_the_start_completes_it() {
     ok(&mut e, Command::from(GroupContinue { group: 1 }));
     run_path(&mut e, 10.0, |_, _| {});
     assert_eq!(group(&e).position(), &[0.0, 0.0, 0.0]);
+}
+
+/// NMC CrdBufClr after CrdStopMtn (the buffer kept, TV49) is `group_stop`: the queue is
+/// dropped; CrdBufGetUsed = 0 and BIT_CORD_EMPTY are `queue_used` 0 with the whole capacity
+/// free.
+#[test]
+fn tv50_clearing_the_buffer_leaves_it_empty() {
+    let mut e = machine(3, &[0, 1, 2]);
+    let first = send(&mut e, line(0, &[10000.0, 10000.0, 0.0], 10.0, 0.5));
+    let second = send(&mut e, line(0, &[0.0, 0.0, 0.0], 10.0, 0.5));
+    common::run(&mut e, 0.5);
+    ok(
+        &mut e,
+        Command::from(GroupHalt {
+            group: 1,
+            deceleration: None,
+        }),
+    );
+    common::run(&mut e, 0.5);
+    assert_eq!(group(&e).queue_used, 2, "the buffer is kept by the stop");
+    ok(
+        &mut e,
+        Command::from(GroupStop {
+            group: 1,
+            deceleration: None,
+        }),
+    );
+    common::run(&mut e, 0.1);
+    let g = group(&e);
+    assert_eq!(g.state, GroupState::Standby);
+    assert_eq!((g.queue_used, g.queue_free), (0, 512));
+    assert_eq!(g.remaining_length, 0.0);
+    for id in [first, second] {
+        assert_eq!(state_of(&mut e, id), CommandState::Aborted);
+    }
 }
 
 #[test]
