@@ -311,6 +311,10 @@ pub enum GroupParameter {
     /// and the members still on the path stay on it. 0 = off (the default, NMC and HIMC: the
     /// path is dropped and each member ramps down on its own).
     FaultDeceleration,
+    /// 1: every member's acceleration limit is the smallest of the members' (CPU 226H, digest
+    /// 003 §2.0 tip 3: a two-axis instruction accelerates its long axis at the smaller of the
+    /// two axes' max accel, TV-15); 0: each member its own (the default).
+    SmallestAxisAcceleration,
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

@@ -117,6 +117,7 @@ impl Groups {
             defaults: DEFAULT_PATH_LIMITS,
             fault_deceleration: None,
             fault_stop: None,
+            smallest_acceleration: false,
             override_factor: 1.0,
             feeding: false,
             running: None,
@@ -301,6 +302,18 @@ impl Group {
                             });
                         }
                         self.fault_deceleration = (value > 0.0).then_some(value);
+                    }
+                    GroupParameter::SmallestAxisAcceleration => {
+                        let value = finite("value", c.value)?;
+                        if value != 0.0 && value != 1.0 {
+                            return Err(EngineError::InvalidArgument {
+                                name: "value",
+                                value,
+                                reason: "must be 0 (off) or 1 (on)",
+                            });
+                        }
+                        self.smallest_acceleration = value == 1.0;
+                        self.push_axis_limits(env.axes);
                     }
                     GroupParameter::CornerAcceleration
                     | GroupParameter::ArcAcceleration

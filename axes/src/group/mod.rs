@@ -87,6 +87,8 @@ pub struct Group {
     fault_deceleration: Option<f64>,
     /// In ErrorStop, the path still decelerating by HMC's rule: which members have left it.
     fault_stop: Option<[bool; MAX_AXES]>,
+    /// Every member limited to the smallest acceleration of the members (CPU 226H).
+    smallest_acceleration: bool,
     override_factor: f64,
     /// The members were fed last tick (they are in SynchronizedMotion).
     feeding: bool,

@@ -93,9 +93,26 @@ impl Group {
             return;
         }
         self.params_version = version;
-        for (k, &a) in self.members.iter().enumerate() {
-            if let Some(axis) = axes.get(a as usize) {
-                self.planner.set_axis_limits(k, axis_limits(axis));
+        self.push_axis_limits(axes);
+    }
+
+    /// Give the planner each member's own limits, every acceleration the smallest of them with
+    /// `smallest_axis_acceleration` (CPU 226H, digest 003 §2.0 tip 3).
+    pub(super) fn push_axis_limits(&mut self, axes: &[crate::axis::Axis]) {
+        let member = |a: &u16| axes.get(usize::from(*a)).map(axis_limits);
+        let smallest = self.smallest_acceleration.then(|| {
+            self.members
+                .iter()
+                .filter_map(member)
+                .map(|l| l.acceleration)
+                .fold(f64::INFINITY, f64::min)
+        });
+        for (k, a) in self.members.iter().enumerate() {
+            if let Some(mut limits) = member(a) {
+                if let Some(acceleration) = smallest {
+                    limits.acceleration = acceleration;
+                }
+                self.planner.set_axis_limits(k, limits);
             }
         }
     }
