@@ -13,9 +13,9 @@ use axes::command::{
     MoveCircularRelative, MoveLinearRelative, TransitionMode,
 };
 use axes::config::AxisConfig;
-use axes::status::{GroupState, GroupStatus};
+use axes::status::GroupStatus;
 use axes::{Engine, EngineConfig, ParamId};
-use common::{id_of, ok};
+use common::{id_of, nearest, ok, run_path, swept_degrees};
 
 /// Hz/ms in pulses/s².
 const HZ_PER_MS: f64 = 1e3;
@@ -23,20 +23,15 @@ const HZ_PER_MS: f64 = 1e3;
 /// A pulse axis ≤ 200 kHz (digest 003 §2.0) whose `max_accel` (MC_SET_MAX_ACCELE) is
 /// `max_accel` Hz/ms.
 fn pulse_axis(max_accel: f64) -> AxisConfig {
-    let mut a = AxisConfig::default();
-    for (p, v) in [
-        (ParamId::AxisType, 10.0),
-        (ParamId::Units, 1.0),
-        (ParamId::RepMode, 0.0),
-        (ParamId::Speed, 200_000.0),
-        (ParamId::Accel, 1e9),
-        (ParamId::Decel, 1e9),
-        (ParamId::MaxAccel, max_accel * HZ_PER_MS),
-        (ParamId::FeLimit, 0.0),
-    ] {
-        a.params.insert(p, v);
-    }
-    a
+    common::free_linear_axis(
+        1.0,
+        &[
+            (ParamId::Speed, 200_000.0),
+            (ParamId::Accel, 1e9),
+            (ParamId::Decel, 1e9),
+            (ParamId::MaxAccel, max_accel * HZ_PER_MS),
+        ],
+    )
 }
 
 /// The CPU's 4 axes, enabled, `max_accel` Hz/ms each; group 1 of `members` (A, B).
@@ -55,20 +50,6 @@ fn group(e: &Engine) -> GroupStatus {
 
 fn send(e: &mut Engine, c: impl Into<Command>) -> u32 {
     id_of(ok(e, c.into()))
-}
-
-/// Step until the group is in Standby again, calling `each` every tick.
-fn run_path(e: &mut Engine, max_s: f64, mut each: impl FnMut(&Engine, &GroupStatus)) {
-    let n = (max_s / e.period()).round() as u64;
-    for _ in 0..n {
-        e.step();
-        let g = group(e);
-        each(e, &g);
-        if g.state == GroupState::Standby {
-            return;
-        }
-    }
-    panic!("path not done after {max_s} s: {:?}", group(e));
 }
 
 /// MC_LINE_R by (a, b) with the long axis at `max_speed` Hz; `acceleration` along the path
@@ -162,26 +143,6 @@ fn trace(e: &mut Engine) -> Vec<(f64, f64)> {
     seen
 }
 
-fn nearest(seen: &[(f64, f64)], p: (f64, f64)) -> f64 {
-    seen.iter()
-        .map(|(x, y)| (x - p.0).hypot(y - p.1))
-        .fold(f64::INFINITY, f64::min)
-}
-
-/// The swept angle about `center` from (0, 0), unwrapped (counter-clockwise positive).
-fn swept_degrees(seen: &[(f64, f64)], center: (f64, f64)) -> f64 {
-    let angle = |(x, y): (f64, f64)| (y - center.1).atan2(x - center.0);
-    let pi = std::f64::consts::PI;
-    let mut last = angle((0.0, 0.0));
-    let mut total = 0.0;
-    for &p in seen {
-        let now = angle(p);
-        total += (now - last + pi).rem_euclid(2.0 * pi) - pi;
-        last = now;
-    }
-    total.to_degrees()
-}
-
 /// At most one servo period's travel at 2000 Hz from a point the arc passes.
 const PASSES: f64 = 2.0;
 
@@ -200,7 +161,7 @@ fn tv31_circle_r_radius_plus_1000_is_a_90_degree_cw_arc_minus_1000_a_270_degree_
             let r = (x - center.0).hypot(y - center.1);
             assert!((r - 1000.0).abs() < 1e-6, "radius {radius}: ({x}, {y})");
         }
-        let swept = swept_degrees(&seen, center);
+        let swept = swept_degrees(&seen, center, (0.0, 0.0));
         assert!((swept - degrees).abs() < 1e-6, "radius {radius}: {swept}°");
     }
 }
@@ -224,7 +185,7 @@ fn tv32_3p_circle_r_through_1000_1000_is_a_cw_semicircle_ending_at_2000_0() {
     for (x, y) in &seen {
         assert!(((x - 1000.0).hypot(*y) - 1000.0).abs() < 1e-6, "({x}, {y})");
     }
-    assert!((swept_degrees(&seen, (1000.0, 0.0)) + 180.0).abs() < 1e-6);
+    assert!((swept_degrees(&seen, (1000.0, 0.0), (0.0, 0.0)) + 180.0).abs() < 1e-6);
 }
 
 #[test]

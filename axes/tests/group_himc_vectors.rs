@@ -14,27 +14,21 @@ mod common;
 use axes::command::{
     ArcDirection, CircleMode, Command, ErrorKind, GroupBufferMode, GroupCreate, GroupEnable,
     GroupParameter, GroupSetParameter, MoveCircularAbsolute, MoveLinearAbsolute,
-    MoveLinearRelative, TransitionMode,
 };
 use axes::config::AxisConfig;
 use axes::status::{GroupState, GroupStatus};
 use axes::{AxisFlags, Engine, EngineConfig, EngineError, ParamId};
-use common::{id_of, ok, refused};
+use common::{id_of, nearest, ok, refused, run_path, swept_degrees};
 
 fn mm_axis() -> AxisConfig {
-    let mut a = AxisConfig::default();
-    for (p, v) in [
-        (ParamId::AxisType, 10.0),
-        (ParamId::Units, 1000.0),
-        (ParamId::RepMode, 0.0),
-        (ParamId::Speed, 1e4),
-        (ParamId::Accel, 1e6),
-        (ParamId::Decel, 1e6),
-        (ParamId::FeLimit, 0.0),
-    ] {
-        a.params.insert(p, v);
-    }
-    a
+    common::free_linear_axis(
+        1000.0,
+        &[
+            (ParamId::Speed, 1e4),
+            (ParamId::Accel, 1e6),
+            (ParamId::Decel, 1e6),
+        ],
+    )
 }
 
 /// `n` mm axes, enabled, no group.
@@ -86,32 +80,13 @@ fn circular(mode: CircleMode, aux: &[f64], end: &[f64], dir: ArcDirection) -> Mo
     }
 }
 
-/// Step until the group is in Standby again (at most `max_s`), calling `each` every tick.
-fn run_path(e: &mut Engine, max_s: f64, mut each: impl FnMut(&GroupStatus)) {
-    let n = (max_s / e.period()).round() as u64;
-    for _ in 0..n {
-        e.step();
-        let g = group(e);
-        each(&g);
-        if g.state == GroupState::Standby {
-            return;
-        }
-    }
-    panic!("path not done after {max_s} s: {:?}", group(e));
-}
-
 /// Every (x, y) the path passes until it is done.
 fn trace_xy(e: &mut Engine, max_s: f64) -> Vec<(f64, f64)> {
     let mut seen = Vec::new();
-    run_path(e, max_s, |g| seen.push((g.position()[0], g.position()[1])));
+    run_path(e, max_s, |_, g| {
+        seen.push((g.position()[0], g.position()[1]))
+    });
     seen
-}
-
-/// Distance from `p` to the nearest point seen.
-fn nearest(seen: &[(f64, f64)], p: (f64, f64)) -> f64 {
-    seen.iter()
-        .map(|(x, y)| (x - p.0).hypot(y - p.1))
-        .fold(f64::INFINITY, f64::min)
 }
 
 /// Within one servo period's travel at 100 mm/s of a point the arc passes.
@@ -127,7 +102,7 @@ fn tv40_setup_group_and_a_line_to_100_100_with_the_motion_profile() {
     set(&mut e, GroupParameter::Jerk, 5000.0 / 0.2);
     send(&mut e, line(&[100.0, 100.0]));
     let mut fastest: f64 = 0.0;
-    run_path(&mut e, 5.0, |g| fastest = fastest.max(g.path_velocity));
+    run_path(&mut e, 5.0, |_, g| fastest = fastest.max(g.path_velocity));
     let g = group(&e);
     assert!(g.in_position, "IsGrpInPos");
     assert_eq!(g.state, GroupState::Standby, "IsGrpEnabled");
@@ -141,22 +116,12 @@ fn tv40_setup_group_and_a_line_to_100_100_with_the_motion_profile() {
 fn tv41_line_rel_2d_from_100_200_ends_at_200_300() {
     let mut e = machine(2, &[0, 1]);
     send(&mut e, line(&[100.0, 200.0]));
-    run_path(&mut e, 10.0, |_| {});
-    send(
-        &mut e,
-        MoveLinearRelative {
-            group: 1,
-            distance: vec![100.0, 100.0],
-            velocity: None,
-            acceleration: None,
-            deceleration: None,
-            jerk: None,
-            buffer_mode: GroupBufferMode::Buffered,
-            transition: TransitionMode::None,
-            user_segment: None,
-        },
-    );
-    run_path(&mut e, 10.0, |_| {});
+    run_path(&mut e, 10.0, |_, _| {});
+    let rel: Command =
+        serde_json::from_str(r#"{"type":"move_linear_relative","group":1,"distance":[100,100]}"#)
+            .unwrap();
+    send(&mut e, rel);
+    run_path(&mut e, 10.0, |_, _| {});
     assert_eq!(group(&e).position(), &[200.0, 300.0]);
 }
 
@@ -196,20 +161,6 @@ fn tv43_arc_cw_2d_passes_100_100_and_arc_ccw_2d_passes_100_minus_100() {
         assert!(nearest(&seen, through) < PASSES, "{dir:?}");
         assert!(nearest(&seen, away) > 100.0, "{dir:?}");
     }
-}
-
-/// The swept angle about `center` from the trace, unwrapped (counter-clockwise positive).
-fn swept_degrees(seen: &[(f64, f64)], center: (f64, f64), start: (f64, f64)) -> f64 {
-    let angle = |(x, y): (f64, f64)| (y - center.1).atan2(x - center.0);
-    let mut last = angle(start);
-    let mut total = 0.0;
-    for &p in seen {
-        let now = angle(p);
-        let pi = std::f64::consts::PI;
-        total += (now - last + pi).rem_euclid(2.0 * pi) - pi;
-        last = now;
-    }
-    total.to_degrees()
 }
 
 #[test]
@@ -258,7 +209,7 @@ fn tv46_circle_2d_turn_table_for_210_degrees() {
     ] {
         let mut e = machine(2, &[0, 1]);
         send(&mut e, line(&[10.0, 0.0]));
-        run_path(&mut e, 5.0, |_| {});
+        run_path(&mut e, 5.0, |_, _| {});
         let (direction, extra) = circle_2d_turns(turns);
         send(
             &mut e,
@@ -296,7 +247,7 @@ fn tv48_a_fresh_group_moves_with_100_mm_s_5000_mm_s2_and_50_ms_smoothing() {
     let mut e = machine(2, &[0, 1]);
     send(&mut e, line(&[300.0, 400.0]));
     let (mut fastest, mut hardest): (f64, f64) = (0.0, 0.0);
-    run_path(&mut e, 10.0, |g| {
+    run_path(&mut e, 10.0, |_, g| {
         fastest = fastest.max(g.path_velocity);
         hardest = hardest.max(g.path_acceleration.abs());
     });
@@ -307,7 +258,7 @@ fn tv48_a_fresh_group_moves_with_100_mm_s_5000_mm_s2_and_50_ms_smoothing() {
     set(&mut e, GroupParameter::Velocity, 1000.0);
     send(&mut e, line(&[0.0, 0.0]));
     let mut hardest: f64 = 0.0;
-    run_path(&mut e, 10.0, |g| {
+    run_path(&mut e, 10.0, |_, g| {
         hardest = hardest.max(g.path_acceleration.abs())
     });
     assert!((hardest - 5000.0).abs() < 1e-3, "{hardest}");
@@ -414,7 +365,7 @@ fn tv55_a_stadium_blends_at_p1_and_p2_and_stops_at_p3_after_waiting_in_position(
             .map(|(_, _, v)| *v)
             .fold(f64::INFINITY, f64::min)
     };
-    run_path(&mut e, 20.0, |g| {
+    run_path(&mut e, 20.0, |_, g| {
         seen.push((g.position()[0], g.position()[1], g.path_velocity))
     });
     assert!(group(&e).in_position);
@@ -431,7 +382,7 @@ fn tv55_a_stadium_blends_at_p1_and_p2_and_stops_at_p3_after_waiting_in_position(
     );
     let mut second = Vec::new();
     let mut slowest_start = f64::INFINITY;
-    run_path(&mut e, 20.0, |g| {
+    run_path(&mut e, 20.0, |_, g| {
         second.push((g.position()[0], g.position()[1]));
         if second.len() == 1 {
             slowest_start = g.path_velocity;

@@ -546,29 +546,33 @@ fn an_override_of_one_half_takes_about_twice_as_long() {
     assert!((1.8..2.05).contains(&ratio), "{full} vs {half} ticks");
 }
 
-#[test]
-fn a_member_on_a_limit_switch_stops_the_whole_group_in_error_stop() {
-    let mut e = machine(2, &[0, 1]);
-    let id = send(&mut e, line(&[200.0, 200.0]));
-    common::run(&mut e, 0.5);
+/// Axis 1 meets its positive limit switch.
+fn limit_switch_on_axis_1(e: &mut Engine) {
     ok(
-        &mut e,
+        e,
         Command::from(ForceInput {
             axis: 1,
             input: AxisInput::LimitPos,
             value: Some(true),
         }),
     );
+}
+
+/// The group's fault after axis 1 meets its positive limit switch.
+const LIMIT_ON_AXIS_1: Option<GroupFault> = Some(GroupFault::Member {
+    axis: 1,
+    error: ErrorKind::LimitReached,
+});
+
+#[test]
+fn a_member_on_a_limit_switch_stops_the_whole_group_in_error_stop() {
+    let mut e = machine(2, &[0, 1]);
+    let id = send(&mut e, line(&[200.0, 200.0]));
+    common::run(&mut e, 0.5);
+    limit_switch_on_axis_1(&mut e);
     common::run(&mut e, 0.01);
     let g = group(&e);
-    assert_eq!(g.state, GroupState::ErrorStop, "{g:?}");
-    assert_eq!(
-        g.fault,
-        Some(GroupFault::Member {
-            axis: 1,
-            error: ErrorKind::LimitReached
-        })
-    );
+    assert_eq!((g.state, g.fault), (GroupState::ErrorStop, LIMIT_ON_AXIS_1));
     assert_eq!(g.last_error, Some(ErrorKind::LimitReached));
     assert_eq!(
         state_of(&mut e, id),
@@ -615,14 +619,7 @@ fn stop_after_a_members_limit(fault_deceleration: Option<f64>) -> (f64, Vec<Axis
     send(&mut e, line(&[200.0, 200.0]));
     common::run(&mut e, 0.5);
     let from = e.axis_status(0).unwrap().cmd_pos;
-    ok(
-        &mut e,
-        Command::from(ForceInput {
-            axis: 1,
-            input: AxisInput::LimitPos,
-            value: Some(true),
-        }),
-    );
+    limit_switch_on_axis_1(&mut e);
     let mut states = Vec::new();
     for _ in 0..2000 {
         e.step();
@@ -633,14 +630,7 @@ fn stop_after_a_members_limit(fault_deceleration: Option<f64>) -> (f64, Vec<Axis
         }
     }
     let g = group(&e);
-    assert_eq!(g.state, GroupState::ErrorStop, "{g:?}");
-    assert_eq!(
-        g.fault,
-        Some(GroupFault::Member {
-            axis: 1,
-            error: ErrorKind::LimitReached
-        })
-    );
+    assert_eq!((g.state, g.fault), (GroupState::ErrorStop, LIMIT_ON_AXIS_1));
     (e.axis_status(0).unwrap().cmd_pos - from, states, e)
 }
 

@@ -293,15 +293,7 @@ impl Group {
                         })?;
                     }
                     GroupParameter::FaultDeceleration => {
-                        let value = bounded("value", c.value)?;
-                        if value < 0.0 {
-                            return Err(EngineError::InvalidArgument {
-                                name: "value",
-                                value,
-                                reason: "must be 0 (off) or a positive deceleration",
-                            });
-                        }
-                        self.fault_deceleration = (value > 0.0).then_some(value);
+                        self.fault_deceleration = off_or_positive(c.value)?;
                     }
                     GroupParameter::SmallestAxisAcceleration => {
                         let value = finite("value", c.value)?;
@@ -318,15 +310,7 @@ impl Group {
                     GroupParameter::CornerAcceleration
                     | GroupParameter::ArcAcceleration
                     | GroupParameter::ChordError => {
-                        let value = finite("value", c.value)?;
-                        if value < 0.0 {
-                            return Err(EngineError::InvalidArgument {
-                                name: "value",
-                                value,
-                                reason: "must be 0 (off) or a positive number",
-                            });
-                        }
-                        let setting = (value > 0.0).then_some(value);
+                        let setting = off_or_positive(c.value)?;
                         let mut limits = self.planner.lookahead_limits();
                         match c.name {
                             GroupParameter::CornerAcceleration => {
@@ -577,6 +561,19 @@ impl Group {
         }
         Ok(Item::AxisMove(c))
     }
+}
+
+/// A group parameter that is 0 (off, None) or a positive number.
+fn off_or_positive(value: f64) -> Result<Option<f64>, EngineError> {
+    let value = finite("value", value)?;
+    if value < 0.0 {
+        return Err(EngineError::InvalidArgument {
+            name: "value",
+            value,
+            reason: "must be 0 (off) or a positive number",
+        });
+    }
+    Ok((value > 0.0).then_some(value))
 }
 
 /// Seconds as whole ticks (rounded; ≥ 0, at most 1e9 s).
