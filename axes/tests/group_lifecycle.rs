@@ -7,11 +7,11 @@
 mod common;
 
 use axes::command::{
-    AxisInput, Command, Disable, DisableAll, Enable, EnableAll, ErrorKind, ForceInput, GroupCreate,
-    GroupDelete, GroupDisable, GroupDwell, GroupEmergencyStop, GroupEnable, GroupParameter,
-    GroupReset, GroupSetOrigin, GroupSetOutput, GroupSetOverride, GroupSetParameter,
-    GroupWaitInput, GroupWaitPosition, MoveAbsolute, MoveCircularAbsolute, MoveLinearAbsolute,
-    MoveLinearRelative, Reset, ResetAll, Stop, StopMode, TransitionMode,
+    AxisInput, Command, Disable, DisableAll, EmergencyStopAll, Enable, EnableAll, ErrorKind,
+    ForceInput, GroupCreate, GroupDelete, GroupDisable, GroupDwell, GroupEmergencyStop,
+    GroupEnable, GroupParameter, GroupReset, GroupSetOrigin, GroupSetOutput, GroupSetOverride,
+    GroupSetParameter, GroupWaitInput, GroupWaitPosition, MoveAbsolute, MoveCircularAbsolute,
+    MoveLinearAbsolute, MoveLinearRelative, Reset, ResetAll, Stop, StopMode, TransitionMode,
 };
 use axes::config::GroupsConfig;
 use axes::status::{GroupFault, GroupState, GroupStatus};
@@ -617,4 +617,46 @@ fn enable_all_enables_the_groups_whose_members_are_enabled_and_disable_all_disab
     assert_eq!(group(&e, 2).state, GroupState::ErrorStop);
     ok(&mut e, Command::from(GroupReset { group: 2 }));
     assert_eq!(group(&e, 2).state, GroupState::Standby);
+}
+
+/// `emergency_stop_all` disables the axes (HIMC EStop); `reset_all` then clears their latches
+/// and, their members all disabled without a fault, takes the groups from ErrorStop to
+/// Disabled (as an axis's reset leaves a disabled axis Disabled), so `enable_all` brings axes
+/// and groups back. A group with an enabled and a disabled member still waits for its cause.
+#[test]
+fn after_emergency_stop_all_reset_all_and_enable_all_bring_the_groups_back() {
+    let mut e = machine(3);
+    enable_all(&mut e);
+    ok(&mut e, create(1, &[0, 1]));
+    ok(&mut e, Command::from(GroupEnable { group: 1 }));
+    ok(&mut e, Command::from(line(1, &[20.0, 20.0])));
+    run(&mut e, 0.1);
+    ok(&mut e, Command::from(EmergencyStopAll {}));
+    run(&mut e, 0.05);
+    assert_eq!(group(&e, 1).state, GroupState::ErrorStop);
+    ok(&mut e, Command::from(ResetAll {}));
+    let g = group(&e, 1);
+    assert_eq!((g.state, g.fault), (GroupState::Disabled, None));
+    ok(&mut e, Command::from(EnableAll {}));
+    assert_eq!(group(&e, 1).state, GroupState::Standby);
+    ok(&mut e, Command::from(line(1, &[0.0, 0.0])));
+    // One member enabled, one disabled: the reset is refused, naming the disabled one.
+    ok(&mut e, Command::from(Disable { axis: 1 }));
+    run(&mut e, 0.5);
+    assert_eq!(group(&e, 1).state, GroupState::ErrorStop);
+    let err = refused(&mut e, Command::from(GroupReset { group: 1 }));
+    assert!(
+        matches!(
+            err,
+            EngineError::GroupCauseStillPresent {
+                axis: 1,
+                state: AxisState::Disabled,
+                ..
+            }
+        ),
+        "{err:?}"
+    );
+    ok(&mut e, Command::from(Disable { axis: 0 }));
+    ok(&mut e, Command::from(GroupReset { group: 1 }));
+    assert_eq!(group(&e, 1).state, GroupState::Disabled);
 }

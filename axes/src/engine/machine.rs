@@ -282,8 +282,9 @@ impl Engine {
     /// is gone (engine-mastered drives in Fault are walked out of it, as by `reset`). Not all or
     /// none: each axis clears what it can, and the first axis whose cause is still present is
     /// the error.
-    /// Then every group in ErrorStop whose members are all enabled and at rest goes back to
-    /// Standby; the others stay (their members' errors are the ones reported).
+    /// Then every group in ErrorStop is reset as by `group_reset`: Standby when its members are
+    /// all enabled and at rest, Disabled when they are all disabled (after
+    /// `emergency_stop_all`); the others stay (their members' errors are the ones reported).
     fn reset_everything(&mut self) -> Result<Reply, EngineError> {
         let mut first_error = None;
         for axis in 0..self.axes.len() {

@@ -375,19 +375,20 @@ impl Group {
     }
 
     /// ErrorStop → Standby once every member is enabled and at rest (HIMC ResetGroup: "only
-    /// after all errors are cleared"); other states: nothing to do.
-    fn reset(&mut self, env: &Env) -> Result<Reply, EngineError> {
+    /// after all errors are cleared"), or → Disabled when every member is disabled without a
+    /// fault ([`Group::reset_target`]); other states: nothing to do.
+    pub(super) fn reset(&mut self, env: &Env) -> Result<Reply, EngineError> {
         if self.state != GroupState::ErrorStop {
             return Ok(Reply::Done);
         }
-        if let Some((axis, state)) = self.member_not_ready(env.axes) {
-            return Err(EngineError::GroupCauseStillPresent {
+        let target = self.reset_target(env.axes).map_err(|(axis, state)| {
+            EngineError::GroupCauseStillPresent {
                 group: self.id,
                 axis,
                 state,
-            });
-        }
-        self.state = GroupState::Standby;
+            }
+        })?;
+        self.state = target;
         self.fault = None;
         self.last_error = None;
         Ok(Reply::Done)

@@ -339,15 +339,12 @@ impl Groups {
         }
     }
 
-    /// Machine-wide `reset_all`: every group in ErrorStop whose members are all enabled and at
-    /// rest goes back to Standby; the others stay in ErrorStop.
+    /// Machine-wide `reset_all`, after the axes: each group in ErrorStop is reset as by
+    /// `group_reset` (Standby, or Disabled when its members are all disabled); one whose cause
+    /// remains stays in ErrorStop (its members' errors are the ones reported).
     pub(crate) fn reset_all(&mut self, env: &mut Env) {
         for g in &mut self.groups {
-            if g.state == GroupState::ErrorStop && g.member_not_ready(env.axes).is_none() {
-                g.state = GroupState::Standby;
-                g.fault = None;
-                g.last_error = None;
-            }
+            let _ = g.reset(env);
         }
     }
 
