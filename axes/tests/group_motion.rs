@@ -675,6 +675,41 @@ fn with_a_fault_deceleration_a_members_limit_stops_the_path_along_itself() {
     }
 }
 
+/// HMC's stop along the path that ends where a dwell holds the path: the stop ends there, the
+/// members are let go and the group can be reset.
+#[test]
+fn a_fault_stop_along_the_path_ends_at_a_dwell_it_reaches() {
+    let mut e = machine(2, &[0, 1]);
+    ok(
+        &mut e,
+        Command::from(GroupSetParameter {
+            group: 1,
+            name: GroupParameter::FaultDeceleration,
+            value: 8000.0,
+        }),
+    );
+    send(&mut e, line(&[10.0, 10.0]));
+    send(
+        &mut e,
+        GroupDwell {
+            group: 1,
+            seconds: 5.0,
+        },
+    );
+    send(&mut e, line(&[0.0, 0.0]));
+    // In the last ramp of the first line: the stop ends at its end, the dwell's place.
+    common::run(&mut e, 0.2);
+    assert!(group(&e).path_velocity > 0.0);
+    limit_switch_on_axis_1(&mut e);
+    common::run(&mut e, 0.3);
+    let g = group(&e);
+    assert_eq!((g.state, g.fault), (GroupState::ErrorStop, LIMIT_ON_AXIS_1));
+    assert_eq!(g.path_velocity, 0.0);
+    assert_eq!(e.axis_status(0).unwrap().state, AxisState::Standstill);
+    ok(&mut e, Command::from(GroupReset { group: 1 }));
+    assert_eq!(group(&e).queue_used, 0);
+}
+
 #[test]
 fn a_member_following_error_fault_stops_the_group_and_reset_needs_the_fault_cleared() {
     let mut e = machine(2, &[0, 1]);

@@ -225,7 +225,10 @@ impl Group {
         }
         self.fault_stop = Some(left);
         let everyone_left = left.iter().take(self.members.len()).all(|&l| l);
-        if self.planner.is_idle() || everyone_left {
+        // At rest: done, even where the stop ended at a buffered wait, which holds the planner
+        // (its queue is not dropped there, and the wait is never released).
+        let at_rest = self.planner.state().path_velocity == 0.0;
+        if self.planner.is_idle() || at_rest || everyone_left {
             let mut events = std::mem::take(&mut self.events);
             events.clear();
             self.planner.abort(&mut events);
