@@ -6,6 +6,7 @@
 
 mod common;
 
+use axes::cia402::{DriveConfig, DriveMaster};
 use axes::command::{
     AxisInput, Command, Disable, DisableAll, EmergencyStopAll, Enable, EnableAll, ErrorKind,
     ForceInput, GroupCreate, GroupDelete, GroupDisable, GroupDwell, GroupEmergencyStop,
@@ -659,4 +660,44 @@ fn after_emergency_stop_all_reset_all_and_enable_all_bring_the_groups_back() {
     ok(&mut e, Command::from(Disable { axis: 0 }));
     ok(&mut e, Command::from(GroupReset { group: 1 }));
     assert_eq!(group(&e, 1).state, GroupState::Disabled);
+}
+
+/// A member on an engine-mastered CiA 402 drive is powered ticks after `enable_all` (its drive
+/// walks to Operation enabled): its group is enabled once the walks have ended, if its members
+/// are all enabled then. `disable_all` meanwhile cancels that.
+#[test]
+fn enable_all_enables_a_group_once_its_engine_mastered_drives_are_powered() {
+    let build = || {
+        let mut e = Engine::new(&EngineConfig {
+            axes: vec![stepper_mm(), stepper_mm()],
+            drives: vec![DriveConfig {
+                axis: 1,
+                master: DriveMaster::Engine,
+                increments_per_unit: 1000.0,
+                ..DriveConfig::default()
+            }],
+            ..EngineConfig::default()
+        })
+        .unwrap();
+        ok(&mut e, create(1, &[0, 1]));
+        ok(&mut e, Command::from(EnableAll {}));
+        assert_eq!(group(&e, 1).state, GroupState::Disabled);
+        e
+    };
+    let mut e = build();
+    let mut ticks = 0;
+    while e.axis_status(1).unwrap().state != AxisState::Standstill && ticks < 100 {
+        e.step();
+        ticks += 1;
+    }
+    assert!(ticks < 100, "the drive powers its axis");
+    e.step();
+    assert_eq!(group(&e, 1).state, GroupState::Standby);
+    // Disabled while the drive still walks: the group stays Disabled.
+    let mut e = build();
+    e.step();
+    ok(&mut e, Command::from(DisableAll {}));
+    run(&mut e, 0.2);
+    assert_eq!(group(&e, 1).state, GroupState::Disabled);
+    assert_eq!(e.axis_status(1).unwrap().state, AxisState::Disabled);
 }
