@@ -6,7 +6,6 @@
 
 mod common;
 
-use axes::cia402::{DriveConfig, DriveMaster};
 use axes::command::{
     AxisInput, Command, Disable, DisableAll, EmergencyStopAll, Enable, EnableAll, ErrorKind,
     ForceInput, GroupCreate, GroupDelete, GroupDisable, GroupDwell, GroupEmergencyStop,
@@ -668,17 +667,7 @@ fn after_emergency_stop_all_reset_all_and_enable_all_bring_the_groups_back() {
 #[test]
 fn enable_all_enables_a_group_once_its_engine_mastered_drives_are_powered() {
     let build = || {
-        let mut e = Engine::new(&EngineConfig {
-            axes: vec![stepper_mm(), stepper_mm()],
-            drives: vec![DriveConfig {
-                axis: 1,
-                master: DriveMaster::Engine,
-                increments_per_unit: 1000.0,
-                ..DriveConfig::default()
-            }],
-            ..EngineConfig::default()
-        })
-        .unwrap();
+        let mut e = common::engine_with_mastered_drive(vec![stepper_mm(), stepper_mm()]);
         ok(&mut e, create(1, &[0, 1]));
         ok(&mut e, Command::from(EnableAll {}));
         assert_eq!(group(&e, 1).state, GroupState::Disabled);

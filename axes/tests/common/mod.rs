@@ -319,3 +319,19 @@ pub fn swept_degrees(seen: &[(f64, f64)], center: (f64, f64), start: (f64, f64))
     }
     total.to_degrees()
 }
+
+/// A machine of `axes`, axis 1 behind a CiA 402 drive whose power the engine masters
+/// (1000 increments per unit).
+pub fn engine_with_mastered_drive(axes: Vec<AxisConfig>) -> Engine {
+    Engine::new(&EngineConfig {
+        axes,
+        drives: vec![axes::cia402::DriveConfig {
+            axis: 1,
+            master: axes::cia402::DriveMaster::Engine,
+            increments_per_unit: 1000.0,
+            ..axes::cia402::DriveConfig::default()
+        }],
+        ..EngineConfig::default()
+    })
+    .expect("valid test machine")
+}
