@@ -321,3 +321,27 @@ fn group_serde_errors_name_the_field() {
         assert_eq!(e.to_string(), message, "{json}");
     }
 }
+
+/// The vendor rules added as group parameters (docs/decisions.md, "Group safety"): HMC's stop
+/// along the path after a member's trouble, CPU 226H's smallest acceleration.
+#[test]
+fn the_safety_and_acceleration_parameters_have_their_pinned_names() {
+    for (name, json) in [
+        (
+            GroupParameter::FaultDeceleration,
+            r#"{"type":"group_set_parameter","group":1,"name":"fault_deceleration","value":1.0}"#,
+        ),
+        (
+            GroupParameter::SmallestAxisAcceleration,
+            r#"{"type":"group_set_parameter","group":1,"name":"smallest_axis_acceleration","value":1.0}"#,
+        ),
+    ] {
+        let c = Command::from(GroupSetParameter {
+            group: 1,
+            name,
+            value: 1.0,
+        });
+        assert_eq!(serde_json::to_string(&c).unwrap(), json);
+        assert_eq!(serde_json::from_str::<Command>(json).unwrap(), c);
+    }
+}

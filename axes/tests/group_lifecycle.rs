@@ -7,14 +7,15 @@
 mod common;
 
 use axes::command::{
-    Command, Disable, Enable, ErrorKind, GroupCreate, GroupDelete, GroupDisable, GroupDwell,
-    GroupEmergencyStop, GroupEnable, GroupParameter, GroupReset, GroupSetOrigin, GroupSetOutput,
-    GroupSetOverride, GroupSetParameter, GroupWaitInput, GroupWaitPosition, MoveAbsolute,
-    MoveCircularAbsolute, MoveLinearAbsolute, MoveLinearRelative, TransitionMode,
+    AxisInput, Command, Disable, DisableAll, EmergencyStopAll, Enable, EnableAll, ErrorKind,
+    ForceInput, GroupCreate, GroupDelete, GroupDisable, GroupDwell, GroupEmergencyStop,
+    GroupEnable, GroupParameter, GroupReset, GroupSetOrigin, GroupSetOutput, GroupSetOverride,
+    GroupSetParameter, GroupWaitInput, GroupWaitPosition, MoveAbsolute, MoveCircularAbsolute,
+    MoveLinearAbsolute, MoveLinearRelative, Reset, ResetAll, Stop, StopMode, TransitionMode,
 };
 use axes::config::GroupsConfig;
 use axes::status::{GroupFault, GroupState, GroupStatus};
-use axes::{AxisFlags, Engine, EngineConfig, EngineError};
+use axes::{AxisFlags, AxisState, Engine, EngineConfig, EngineError};
 use common::{move_abs, ok, refused, run, status, stepper_mm};
 
 fn machine(axes: usize) -> Engine {
@@ -213,23 +214,99 @@ fn a_member_disabled_puts_the_group_in_error_stop_and_reset_waits_for_the_cause(
     assert_eq!((g.state, g.fault), (GroupState::Standby, None));
 }
 
+/// A group e-stop is an e-stop of each member (`stop` with mode `emergency`, NMC MtEstp,
+/// digest 001 TV19: ESTOP latched, the axis held in ErrorStop until a reset) plus the group in
+/// ErrorStop; the group's reset waits for its members' resets.
 #[test]
-fn an_emergency_stop_puts_the_group_in_error_stop_until_reset() {
-    let mut e = machine(2);
-    enable_all(&mut e);
-    ok(&mut e, create(1, &[0, 1]));
-    ok(&mut e, Command::from(GroupEnable { group: 1 }));
+fn a_group_emergency_stop_latches_every_members_estop_until_the_members_are_reset() {
+    let moving = || {
+        let mut e = machine(2);
+        enable_all(&mut e);
+        ok(&mut e, create(1, &[0, 1]));
+        ok(&mut e, Command::from(GroupEnable { group: 1 }));
+        ok(&mut e, Command::from(line(1, &[30.0, 40.0])));
+        run(&mut e, 0.1);
+        e
+    };
+    let mut e = moving();
     ok(&mut e, Command::from(GroupEmergencyStop { group: 1 }));
     let g = group(&e, 1);
     assert_eq!(
         (g.state, g.fault),
         (GroupState::ErrorStop, Some(GroupFault::EmergencyStop))
     );
+    // The members ramp down with their fast_decel (10 000 mm/s²) and stay latched.
+    run(&mut e, 0.05);
+    for axis in 0..2 {
+        let s = e.axis_status(axis).unwrap();
+        assert_eq!(s.state, AxisState::ErrorStop, "axis {axis}");
+        assert!(s.latched.contains(AxisFlags::ESTOP), "axis {axis}");
+        assert_eq!(s.cmd_vel, 0.0, "axis {axis}");
+    }
     let err = refused(&mut e, Command::from(GroupEnable { group: 1 }));
     assert_eq!(err.kind(), ErrorKind::GroupState);
-    run(&mut e, 0.01);
+    let err = refused(&mut e, Command::from(GroupReset { group: 1 }));
+    assert_eq!(
+        err,
+        EngineError::GroupCauseStillPresent {
+            group: 1,
+            axis: 0,
+            state: AxisState::ErrorStop
+        }
+    );
+    let err = refused(&mut e, Command::from(Enable { axis: 1 }));
+    assert_eq!(err.kind(), ErrorKind::AxisInError);
+    for axis in 0..2 {
+        ok(&mut e, Command::from(Reset { axis }));
+    }
     ok(&mut e, Command::from(GroupReset { group: 1 }));
     assert_eq!(group(&e, 1).state, GroupState::Standby);
+    ok(&mut e, Command::from(line(1, &[0.0, 0.0])));
+
+    // `reset_all` clears the members' latches and then the group, in one command.
+    let mut e = moving();
+    ok(&mut e, Command::from(GroupEmergencyStop { group: 1 }));
+    run(&mut e, 0.05);
+    ok(&mut e, Command::from(ResetAll {}));
+    assert_eq!(group(&e, 1).state, GroupState::Standby);
+}
+
+/// The members' states after a group e-stop are those after e-stopping each of them.
+#[test]
+fn a_group_emergency_stop_leaves_the_members_as_their_own_emergency_stops_do() {
+    let mut grouped = machine(2);
+    enable_all(&mut grouped);
+    ok(&mut grouped, create(1, &[0, 1]));
+    ok(&mut grouped, Command::from(GroupEnable { group: 1 }));
+    let mut single = machine(2);
+    enable_all(&mut single);
+    ok(&mut grouped, Command::from(GroupEmergencyStop { group: 1 }));
+    for axis in 0..2 {
+        ok(
+            &mut single,
+            Command::from(Stop {
+                axis,
+                mode: StopMode::Emergency,
+                deceleration: None,
+            }),
+        );
+    }
+    run(&mut grouped, 0.01);
+    run(&mut single, 0.01);
+    for axis in 0..2 {
+        let (g, s) = (
+            grouped.axis_status(axis).unwrap(),
+            single.axis_status(axis).unwrap(),
+        );
+        assert_eq!((g.state, g.latched), (s.state, s.latched), "axis {axis}");
+    }
+    // A disabled group's members are e-stopped too; the group stays Disabled.
+    let mut e = machine(2);
+    enable_all(&mut e);
+    ok(&mut e, create(1, &[0, 1]));
+    ok(&mut e, Command::from(GroupEmergencyStop { group: 1 }));
+    assert_eq!(group(&e, 1).state, GroupState::Disabled);
+    assert!(e.axis_status(1).unwrap().latched.contains(AxisFlags::ESTOP));
 }
 
 /// Every bad input of the list that needs no motion to see: a typed error, nothing
@@ -492,4 +569,124 @@ fn a_bad_groups_section_is_refused_with_its_key_and_reason() {
         .unwrap_err();
         assert_eq!((err.key.as_str(), err.reason.as_str()), (key, reason));
     }
+}
+
+/// `enable_all` (HMC DriveEnable(1), digest 000 §4.1) enables every Disabled group whose members
+/// are all enabled once the axes are (PLCopen MC_GroupEnable's condition); `disable_all` (HIMC
+/// DisableAll, digest 004 §2.7) disables every group. A refused `enable_all` leaves every axis
+/// and group as it was; a group in ErrorStop stays there until a reset.
+#[test]
+fn enable_all_enables_the_groups_whose_members_are_enabled_and_disable_all_disables_them() {
+    let mut e = machine(4);
+    ok(&mut e, create(1, &[0, 1]));
+    ok(&mut e, create(2, &[2]));
+    let alarm = |value| {
+        Command::from(ForceInput {
+            axis: 3,
+            input: AxisInput::DriveAlarm,
+            value: Some(value),
+        })
+    };
+    ok(&mut e, alarm(true));
+    run(&mut e, 0.01);
+    let err = refused(&mut e, Command::from(EnableAll {}));
+    assert_eq!(err.kind(), ErrorKind::AxisInError);
+    for id in [1, 2] {
+        assert_eq!(group(&e, id).state, GroupState::Disabled, "group {id}");
+    }
+    assert_eq!(e.axis_status(0).unwrap().state, AxisState::Disabled);
+    ok(&mut e, alarm(false));
+    run(&mut e, 0.01);
+    ok(&mut e, Command::from(Reset { axis: 3 }));
+    ok(&mut e, Command::from(EnableAll {}));
+    for id in [1, 2] {
+        assert_eq!(group(&e, id).state, GroupState::Standby, "group {id}");
+    }
+    ok(&mut e, Command::from(line(1, &[1.0, 1.0])));
+    ok(&mut e, Command::from(DisableAll {}));
+    for id in [1, 2] {
+        assert_eq!(group(&e, id).state, GroupState::Disabled, "group {id}");
+    }
+    assert_eq!(group(&e, 1).queue_used, 0);
+    // A group in ErrorStop is not enabled by enable_all: its fault needs a reset.
+    ok(&mut e, Command::from(EnableAll {}));
+    ok(&mut e, Command::from(Disable { axis: 2 }));
+    run(&mut e, 0.01);
+    assert_eq!(group(&e, 2).state, GroupState::ErrorStop);
+    ok(&mut e, Command::from(EnableAll {}));
+    assert_eq!(group(&e, 2).state, GroupState::ErrorStop);
+    ok(&mut e, Command::from(GroupReset { group: 2 }));
+    assert_eq!(group(&e, 2).state, GroupState::Standby);
+}
+
+/// `emergency_stop_all` disables the axes (HIMC EStop); `reset_all` then clears their latches
+/// and, their members all disabled without a fault, takes the groups from ErrorStop to
+/// Disabled (as an axis's reset leaves a disabled axis Disabled), so `enable_all` brings axes
+/// and groups back. A group with an enabled and a disabled member still waits for its cause.
+#[test]
+fn after_emergency_stop_all_reset_all_and_enable_all_bring_the_groups_back() {
+    let mut e = machine(3);
+    enable_all(&mut e);
+    ok(&mut e, create(1, &[0, 1]));
+    ok(&mut e, Command::from(GroupEnable { group: 1 }));
+    ok(&mut e, Command::from(line(1, &[20.0, 20.0])));
+    run(&mut e, 0.1);
+    ok(&mut e, Command::from(EmergencyStopAll {}));
+    run(&mut e, 0.05);
+    assert_eq!(group(&e, 1).state, GroupState::ErrorStop);
+    ok(&mut e, Command::from(ResetAll {}));
+    let g = group(&e, 1);
+    assert_eq!((g.state, g.fault), (GroupState::Disabled, None));
+    ok(&mut e, Command::from(EnableAll {}));
+    assert_eq!(group(&e, 1).state, GroupState::Standby);
+    ok(&mut e, Command::from(line(1, &[0.0, 0.0])));
+    // One member enabled, one disabled: the reset is refused, naming the disabled one.
+    ok(&mut e, Command::from(Disable { axis: 1 }));
+    run(&mut e, 0.5);
+    assert_eq!(group(&e, 1).state, GroupState::ErrorStop);
+    let err = refused(&mut e, Command::from(GroupReset { group: 1 }));
+    assert!(
+        matches!(
+            err,
+            EngineError::GroupCauseStillPresent {
+                axis: 1,
+                state: AxisState::Disabled,
+                ..
+            }
+        ),
+        "{err:?}"
+    );
+    ok(&mut e, Command::from(Disable { axis: 0 }));
+    ok(&mut e, Command::from(GroupReset { group: 1 }));
+    assert_eq!(group(&e, 1).state, GroupState::Disabled);
+}
+
+/// A member on an engine-mastered CiA 402 drive is powered ticks after `enable_all` (its drive
+/// walks to Operation enabled): its group is enabled once the walks have ended, if its members
+/// are all enabled then. `disable_all` meanwhile cancels that.
+#[test]
+fn enable_all_enables_a_group_once_its_engine_mastered_drives_are_powered() {
+    let build = || {
+        let mut e = common::engine_with_mastered_drive(vec![stepper_mm(), stepper_mm()]);
+        ok(&mut e, create(1, &[0, 1]));
+        ok(&mut e, Command::from(EnableAll {}));
+        assert_eq!(group(&e, 1).state, GroupState::Disabled);
+        e
+    };
+    let mut e = build();
+    let mut ticks = 0;
+    while e.axis_status(1).unwrap().state != AxisState::Standstill && ticks < 100 {
+        e.step();
+        ticks += 1;
+    }
+    assert!(ticks < 100, "the drive powers its axis");
+    e.step();
+    assert_eq!(group(&e, 1).state, GroupState::Standby);
+    // Disabled while the drive still walks: the group stays Disabled.
+    let mut e = build();
+    e.step();
+    ok(&mut e, Command::from(DisableAll {}));
+    run(&mut e, 0.2);
+    assert_eq!(group(&e, 1).state, GroupState::Disabled);
+    assert_eq!(e.axis_status(1).unwrap().state, AxisState::Disabled);
 }

@@ -546,29 +546,33 @@ fn an_override_of_one_half_takes_about_twice_as_long() {
     assert!((1.8..2.05).contains(&ratio), "{full} vs {half} ticks");
 }
 
-#[test]
-fn a_member_on_a_limit_switch_stops_the_whole_group_in_error_stop() {
-    let mut e = machine(2, &[0, 1]);
-    let id = send(&mut e, line(&[200.0, 200.0]));
-    common::run(&mut e, 0.5);
+/// Axis 1 meets its positive limit switch.
+fn limit_switch_on_axis_1(e: &mut Engine) {
     ok(
-        &mut e,
+        e,
         Command::from(ForceInput {
             axis: 1,
             input: AxisInput::LimitPos,
             value: Some(true),
         }),
     );
+}
+
+/// The group's fault after axis 1 meets its positive limit switch.
+const LIMIT_ON_AXIS_1: Option<GroupFault> = Some(GroupFault::Member {
+    axis: 1,
+    error: ErrorKind::LimitReached,
+});
+
+#[test]
+fn a_member_on_a_limit_switch_stops_the_whole_group_in_error_stop() {
+    let mut e = machine(2, &[0, 1]);
+    let id = send(&mut e, line(&[200.0, 200.0]));
+    common::run(&mut e, 0.5);
+    limit_switch_on_axis_1(&mut e);
     common::run(&mut e, 0.01);
     let g = group(&e);
-    assert_eq!(g.state, GroupState::ErrorStop, "{g:?}");
-    assert_eq!(
-        g.fault,
-        Some(GroupFault::Member {
-            axis: 1,
-            error: ErrorKind::LimitReached
-        })
-    );
+    assert_eq!((g.state, g.fault), (GroupState::ErrorStop, LIMIT_ON_AXIS_1));
     assert_eq!(g.last_error, Some(ErrorKind::LimitReached));
     assert_eq!(
         state_of(&mut e, id),
@@ -588,6 +592,122 @@ fn a_member_on_a_limit_switch_stops_the_whole_group_in_error_stop() {
     send(&mut e, line(&[0.0, 0.0]));
     run_to_standby(&mut e, 10.0);
     assert_eq!(positions(&e, 2), [0.0, 0.0]);
+}
+
+/// How far axis 0 travels after axis 1 of a group running (200, 200) at 100 mm/s hits its
+/// limit switch, and axis 0's states meanwhile; the members' own `decel` is 200 mm/s², their
+/// acceleration limit 1000 mm/s². `fault_deceleration` is set first if given.
+fn stop_after_a_members_limit(fault_deceleration: Option<f64>) -> (f64, Vec<AxisState>, Engine) {
+    let mut axis = stepper_mm();
+    axis.params.insert(ParamId::Decel, 200.0);
+    let e = Engine::new(&EngineConfig {
+        axes: vec![axis; 2],
+        ..EngineConfig::default()
+    })
+    .unwrap();
+    let mut e = common::with_group(e, &[0, 1]);
+    if let Some(value) = fault_deceleration {
+        ok(
+            &mut e,
+            Command::from(GroupSetParameter {
+                group: 1,
+                name: GroupParameter::FaultDeceleration,
+                value,
+            }),
+        );
+    }
+    send(&mut e, line(&[200.0, 200.0]));
+    common::run(&mut e, 0.5);
+    let from = e.axis_status(0).unwrap().cmd_pos;
+    limit_switch_on_axis_1(&mut e);
+    let mut states = Vec::new();
+    for _ in 0..2000 {
+        e.step();
+        let s = e.axis_status(0).unwrap();
+        states.push(s.state);
+        if s.cmd_vel == 0.0 {
+            break;
+        }
+    }
+    let g = group(&e);
+    assert_eq!((g.state, g.fault), (GroupState::ErrorStop, LIMIT_ON_AXIS_1));
+    (e.axis_status(0).unwrap().cmd_pos - from, states, e)
+}
+
+/// HMC §4.3, §6.1 (b)/(c) (digest 000): a member at its limit cancels the whole interpolation,
+/// which stops along the path with max(deceleration, FastDecel): the other members stay on it
+/// (SynchronizedMotion) until it rests. The default (NMC, HIMC §3.6: the group drops out of
+/// sync): each member ramps down with its own `decel`.
+#[test]
+fn with_a_fault_deceleration_a_members_limit_stops_the_path_along_itself() {
+    // 70.7 mm/s per axis: own decel 200 → 12.5 mm; along the path, max(5000, 8000) capped by
+    // the members' 1000 mm/s² (1414 along the diagonal) → 2.5 mm plus the jerk ramp.
+    let (own, states, _) = stop_after_a_members_limit(None);
+    assert!(own > 12.0, "{own}");
+    // Fed for the tick in which axis 1 meets its switch, then on its own.
+    let fed = |states: &[AxisState]| {
+        states
+            .iter()
+            .filter(|s| **s == AxisState::SynchronizedMotion)
+            .count()
+    };
+    assert!(fed(&states) <= 1, "{states:?}");
+    let (along, states, mut e) = stop_after_a_members_limit(Some(8000.0));
+    assert!(along < 4.0, "{along}");
+    assert!(fed(&states) >= states.len() - 1, "{states:?}");
+    common::run(&mut e, 0.1);
+    assert_eq!(e.axis_status(0).unwrap().state, AxisState::Standstill);
+    assert_eq!(group(&e).path_velocity, 0.0);
+    ok(&mut e, Command::from(GroupReset { group: 1 }));
+    assert_eq!(group(&e).state, GroupState::Standby);
+    // 0 turns the rule off again; a negative value is refused.
+    for (value, accepted) in [(0.0, true), (-1.0, false), (f64::NAN, false)] {
+        let c = Command::from(GroupSetParameter {
+            group: 1,
+            name: GroupParameter::FaultDeceleration,
+            value,
+        });
+        if accepted {
+            ok(&mut e, c);
+        } else {
+            assert_eq!(refused(&mut e, c).kind(), ErrorKind::InvalidArgument);
+        }
+    }
+}
+
+/// HMC's stop along the path that ends where a dwell holds the path: the stop ends there, the
+/// members are let go and the group can be reset.
+#[test]
+fn a_fault_stop_along_the_path_ends_at_a_dwell_it_reaches() {
+    let mut e = machine(2, &[0, 1]);
+    ok(
+        &mut e,
+        Command::from(GroupSetParameter {
+            group: 1,
+            name: GroupParameter::FaultDeceleration,
+            value: 8000.0,
+        }),
+    );
+    send(&mut e, line(&[10.0, 10.0]));
+    send(
+        &mut e,
+        GroupDwell {
+            group: 1,
+            seconds: 5.0,
+        },
+    );
+    send(&mut e, line(&[0.0, 0.0]));
+    // In the last ramp of the first line: the stop ends at its end, the dwell's place.
+    common::run(&mut e, 0.2);
+    assert!(group(&e).path_velocity > 0.0);
+    limit_switch_on_axis_1(&mut e);
+    common::run(&mut e, 0.3);
+    let g = group(&e);
+    assert_eq!((g.state, g.fault), (GroupState::ErrorStop, LIMIT_ON_AXIS_1));
+    assert_eq!(g.path_velocity, 0.0);
+    assert_eq!(e.axis_status(0).unwrap().state, AxisState::Standstill);
+    ok(&mut e, Command::from(GroupReset { group: 1 }));
+    assert_eq!(group(&e).queue_used, 0);
 }
 
 #[test]

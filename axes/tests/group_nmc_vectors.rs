@@ -1,4 +1,4 @@
-//! NMC coordinate-system test vectors (digest 001 §9, TV 42–54) at the engine level, in pulses
+//! NMC coordinate-system test vectors (digest 001 §6, TV 42–54) at the engine level, in pulses
 //! (user unit = 1 pulse) with the manual's p/ms and p/ms² turned into p/s and p/s². The axes'
 //! own limits are far above the path's, so the path limits govern, as in the manual's examples.
 //! The NMC-only rules (4 axes per coordinate system, 18 per D8 pack) belong to the NMC
@@ -9,32 +9,27 @@ mod common;
 
 use axes::command::{
     ArcDirection, CircleMode, Command, CommandState, ErrorKind, GroupAxisMove, GroupContinue,
-    GroupDwell, GroupHalt, GroupSetOutput, GroupSetOverride, MoveCircularAbsolute,
+    GroupDwell, GroupHalt, GroupSetOutput, GroupSetOverride, GroupStop, MoveCircularAbsolute,
     MoveLinearAbsolute, WriteDigitalOutput,
 };
 use axes::config::AxisConfig;
 use axes::status::{GroupState, GroupStatus};
 use axes::{Engine, EngineConfig, ParamId};
-use common::{id_of, ok, refused, state_of};
+use common::{id_of, nearest, ok, refused, run_path, state_of};
 
 /// NMC velocities in p/ms and accelerations in p/ms², in p/s and p/s².
 const P_PER_MS: f64 = 1e3;
 const P_PER_MS2: f64 = 1e6;
 
 fn pulse_axis() -> AxisConfig {
-    let mut a = AxisConfig::default();
-    for (p, v) in [
-        (ParamId::AxisType, 10.0),
-        (ParamId::Units, 1.0),
-        (ParamId::RepMode, 0.0),
-        (ParamId::Speed, 1e6),
-        (ParamId::Accel, 1e8),
-        (ParamId::Decel, 1e8),
-        (ParamId::FeLimit, 0.0),
-    ] {
-        a.params.insert(p, v);
-    }
-    a
+    common::free_linear_axis(
+        1.0,
+        &[
+            (ParamId::Speed, 1e6),
+            (ParamId::Accel, 1e8),
+            (ParamId::Decel, 1e8),
+        ],
+    )
 }
 
 /// `n` pulse axes, enabled; group 1 of `members`.
@@ -77,27 +72,6 @@ fn group(e: &Engine) -> GroupStatus {
 
 fn send(e: &mut Engine, c: impl Into<Command>) -> u32 {
     id_of(ok(e, c.into()))
-}
-
-/// Step until the group is in Standby again, calling `each` with every tick's group status.
-fn run_path(e: &mut Engine, max_s: f64, mut each: impl FnMut(&Engine, &GroupStatus)) {
-    let n = (max_s / e.period()).round() as u64;
-    for _ in 0..n {
-        e.step();
-        let g = group(e);
-        each(e, &g);
-        if g.state == GroupState::Standby {
-            return;
-        }
-    }
-    panic!("path not done after {max_s} s: {:?}", group(e));
-}
-
-/// The point of the path nearest to `p` seen during the run (x, y only).
-fn nearest(seen: &[(f64, f64)], p: (f64, f64)) -> f64 {
-    seen.iter()
-        .map(|(x, y)| (x - p.0).hypot(y - p.1))
-        .fold(f64::INFINITY, f64::min)
 }
 
 #[test]
@@ -380,11 +354,12 @@ fn tv48_s_crd_bufio_outputs_dwell_and_an_axis_move_with_the_last_segment() {
     assert_eq!(e.axis_status(3).unwrap().cmd_pos, 10000.0);
 }
 
-#[test]
-fn tv49_a_stop_mid_segment_keeps_the_buffer_and_the_start_completes_it() {
+/// S-CRD-LINE's two lines, stopped mid-segment with the buffer kept (NMC CrdStopMtn is
+/// `group_halt`); the lines' command ids.
+fn stopped_mid_segment() -> (Engine, [u32; 2]) {
     let mut e = machine(3, &[0, 1, 2]);
-    send(&mut e, line(0, &[10000.0, 10000.0, 0.0], 10.0, 0.5));
-    send(&mut e, line(0, &[0.0, 0.0, 0.0], 10.0, 0.5));
+    let first = send(&mut e, line(0, &[10000.0, 10000.0, 0.0], 10.0, 0.5));
+    let second = send(&mut e, line(0, &[0.0, 0.0, 0.0], 10.0, 0.5));
     common::run(&mut e, 0.5);
     ok(
         &mut e,
@@ -394,12 +369,42 @@ fn tv49_a_stop_mid_segment_keeps_the_buffer_and_the_start_completes_it() {
         }),
     );
     common::run(&mut e, 0.5);
+    (e, [first, second])
+}
+
+#[test]
+fn tv49_a_stop_mid_segment_keeps_the_buffer_and_the_start_completes_it() {
+    let (mut e, _) = stopped_mid_segment();
     let g = group(&e);
     assert_eq!((g.state, g.path_velocity), (GroupState::Halted, 0.0));
     assert!(g.queue_used > 0, "the buffer is kept");
     ok(&mut e, Command::from(GroupContinue { group: 1 }));
     run_path(&mut e, 10.0, |_, _| {});
     assert_eq!(group(&e).position(), &[0.0, 0.0, 0.0]);
+}
+
+/// NMC CrdBufClr after CrdStopMtn (the buffer kept, TV49) is `group_stop`: the queue is
+/// dropped; CrdBufGetUsed = 0 and BIT_CORD_EMPTY are `queue_used` 0 with the whole capacity
+/// free.
+#[test]
+fn tv50_clearing_the_buffer_leaves_it_empty() {
+    let (mut e, ids) = stopped_mid_segment();
+    assert_eq!(group(&e).queue_used, 2, "the buffer is kept by the stop");
+    ok(
+        &mut e,
+        Command::from(GroupStop {
+            group: 1,
+            deceleration: None,
+        }),
+    );
+    common::run(&mut e, 0.1);
+    let g = group(&e);
+    assert_eq!(g.state, GroupState::Standby);
+    assert_eq!((g.queue_used, g.queue_free), (0, 512));
+    assert_eq!(g.remaining_length, 0.0);
+    for id in ids {
+        assert_eq!(state_of(&mut e, id), CommandState::Aborted);
+    }
 }
 
 #[test]

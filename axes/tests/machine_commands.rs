@@ -8,7 +8,7 @@
 
 mod common;
 
-use axes::cia402::{DriveConfig, DriveMaster, State};
+use axes::cia402::State;
 use axes::command::{
     AxisInput, BufferMode, Command, CommandState, DisableAll, EmergencyStopAll, Enable, EnableAll,
     EngineError, ErrorKind, ForceInput, GetCommandState, MoveAbsolute, MoveRelative, MoveTogether,
@@ -16,7 +16,7 @@ use axes::command::{
 };
 use axes::config::AxisConfig;
 use axes::engine::MAX_ATOMIC_COMMANDS;
-use axes::{AxisFlags, AxisState, Engine, EngineConfig, ParamId};
+use axes::{AxisFlags, AxisState, Engine, ParamId};
 use common::*;
 
 /// A stepper axis in mm with no switches: travel is free, so NMC's 1000/2000 targets fit.
@@ -545,17 +545,7 @@ fn hmc_clear_all_err_clears_what_it_can_and_names_the_axis_whose_cause_remains()
 
 #[test]
 fn power_commands_on_engine_mastered_drives_go_through_the_drive_state_machine() {
-    let mut e = Engine::new(&EngineConfig {
-        axes: vec![free_axis(), free_axis()],
-        drives: vec![DriveConfig {
-            axis: 1,
-            master: DriveMaster::Engine,
-            increments_per_unit: 1000.0,
-            ..DriveConfig::default()
-        }],
-        ..EngineConfig::default()
-    })
-    .unwrap();
+    let mut e = engine_with_mastered_drive(vec![free_axis(), free_axis()]);
     ok(&mut e, Command::from(EnableAll {}));
     // Axis 0 is powered at once; axis 1 when its drive reaches Operation enabled.
     assert_eq!(st(&e, 0).state, AxisState::Standstill);

@@ -306,6 +306,15 @@ pub enum GroupParameter {
     ArcAcceleration,
     /// Largest chord error per servo period on arcs (HIMC prm 2); 0 = off.
     ChordError,
+    /// HMC's stop after a member's limit or fault (digest 000 §4.3, §6.1 (b)/(c)): the path
+    /// decelerates to rest with max(`deceleration`, this value) — the result axis's FastDecel —
+    /// and the members still on the path stay on it. 0 = off (the default, NMC and HIMC: the
+    /// path is dropped and each member ramps down on its own).
+    FaultDeceleration,
+    /// 1: every member's acceleration limit is the smallest of the members' (CPU 226H, digest
+    /// 003 §2.0 tip 3: a two-axis instruction accelerates its long axis at the smaller of the
+    /// two axes' max accel, TV-15); 0: each member its own (the default).
+    SmallestAxisAcceleration,
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

@@ -11,7 +11,7 @@
 use super::{Engine, Io, Slave};
 use crate::axis::fifo::LedgerMark;
 use crate::axis::Axis;
-use crate::cia402::DriveMaster;
+use crate::cia402::{DriveMaster, PowerTarget};
 use crate::command::{
     positive, AxisCommand, AxisIndex, BufferMode, Command, Disable, EmergencyStopAll, Enable,
     EngineError, GetCommandState, MachineCommand, MoveTogether, Reply, Reset, Stop, StopAll,
@@ -28,8 +28,9 @@ pub const MAX_ATOMIC_COMMANDS: usize = 1024;
 struct Checkpoint {
     /// Copies of the axes the command may change, by index.
     axes: Vec<(usize, Axis)>,
-    /// The axis groups (a whole-machine checkpoint: a batch may carry group commands).
-    groups: Option<Groups>,
+    /// The axis groups and whether they wait for drives to power up (a whole-machine
+    /// checkpoint: a batch may carry group commands).
+    groups: Option<(Groups, bool)>,
     io: Option<Io>,
     slaves: Option<Vec<Slave>>,
     ledger: LedgerMark,
@@ -207,8 +208,11 @@ impl Engine {
     /// axis that would refuse (error stop, drive alarm) leaves every axis and drive as it was,
     /// and the error names it. Engine-mastered drives are walked to Operation enabled as a
     /// single `enable` does (`route_power`). Encoder-only and unused axes are skipped.
-    /// Groups keep their state: an engine-mastered drive powers its axis only ticks later, so
-    /// `group_enable` follows once the members are enabled (docs/decisions.md, "Axis groups").
+    /// Then every Disabled group whose members are all enabled and at rest is enabled
+    /// (Standby), as `group_enable` would; this comes after the last point of refusal, so the
+    /// groups need no checkpoint. A member on an engine-mastered drive is powered ticks later:
+    /// the groups are enabled again once the drives' walks have ended
+    /// ([`Engine::enable_groups_once_powered`]; docs/decisions.md, "Group safety").
     fn enable_everything(&mut self) -> Result<Reply, EngineError> {
         let checkpoint = self.checkpoint(Scope::AxesAndDrives);
         for axis in 0..self.axes.len() {
@@ -224,13 +228,35 @@ impl Engine {
             }
         }
         self.commit(checkpoint);
+        self.with_groups(|groups, env| groups.enable_all(env));
+        self.groups_await_power = self.drives_powering_up();
         Ok(Reply::Done)
+    }
+
+    /// Some engine-mastered drive is walking to Operation enabled.
+    fn drives_powering_up(&self) -> bool {
+        self.slaves
+            .iter()
+            .any(|s| s.power == Some(PowerTarget::OperationEnabled))
+    }
+
+    /// The end of an `enable_all` whose engine-mastered drives powered their axes ticks later
+    /// (after stage 4, while `groups_await_power`): once no drive walks to Operation enabled,
+    /// every Disabled group whose members are all enabled is enabled. A disable in between
+    /// leaves its member's group Disabled.
+    pub(super) fn enable_groups_once_powered(&mut self) {
+        if self.drives_powering_up() {
+            return;
+        }
+        self.groups_await_power = false;
+        self.with_groups(|groups, env| groups.enable_all(env));
     }
 
     /// HIMC `DisableAll` (digest 004 §2.7, §6.1 TV5): every axis disabled, queues and plans
     /// cleared; engine-mastered drives go through `route_power`.
     /// Every group is disabled (its path dropped) too.
     fn disable_everything(&mut self) {
+        self.groups_await_power = false;
         self.with_groups(|groups, env| groups.disable_all(env));
         for axis in 0..self.axes.len() {
             // `disable` never refuses.
@@ -250,6 +276,7 @@ impl Engine {
     /// dropped.
     /// Every enabled group goes to ErrorStop (`emergency_stop`) too.
     fn emergency_stop_everything(&mut self) {
+        self.groups_await_power = false;
         self.with_groups(|groups, env| groups.emergency_stop_all(env));
         for axis in 0..self.axes.len() {
             if !self.axes.get(axis).is_some_and(Axis::can_move) {
@@ -279,8 +306,9 @@ impl Engine {
     /// is gone (engine-mastered drives in Fault are walked out of it, as by `reset`). Not all or
     /// none: each axis clears what it can, and the first axis whose cause is still present is
     /// the error.
-    /// Then every group in ErrorStop whose members are all enabled and at rest goes back to
-    /// Standby; the others stay (their members' errors are the ones reported).
+    /// Then every group in ErrorStop is reset as by `group_reset`: Standby when its members are
+    /// all enabled and at rest, Disabled when they are all disabled (after
+    /// `emergency_stop_all`); the others stay (their members' errors are the ones reported).
     fn reset_everything(&mut self) -> Result<Reply, EngineError> {
         let mut first_error = None;
         for axis in 0..self.axes.len() {
@@ -349,7 +377,8 @@ impl Engine {
                 Some(self.slaves.clone()),
             ),
         };
-        let groups = matches!(scope, Scope::Machine).then(|| self.groups.clone());
+        let groups =
+            matches!(scope, Scope::Machine).then(|| (self.groups.clone(), self.groups_await_power));
         Checkpoint {
             axes,
             groups,
@@ -365,8 +394,9 @@ impl Engine {
                 *slot = axis;
             }
         }
-        if let Some(groups) = checkpoint.groups {
+        if let Some((groups, await_power)) = checkpoint.groups {
             self.groups = groups;
+            self.groups_await_power = await_power;
         }
         if let Some(io) = checkpoint.io {
             self.io = io;

@@ -112,6 +112,9 @@ pub struct Engine {
     drive_commands: Vec<Command>,
     /// The axis groups (issue 11): stage 2 runs them before the other planners.
     groups: Groups,
+    /// `enable_all` left engine-mastered drives walking to Operation enabled: once no drive
+    /// walks there any more, the groups are enabled as `enable_all` enables them.
+    groups_await_power: bool,
     /// Stage 2's planners, in the order they were added.
     planners: Vec<Box<dyn MachinePlanner>>,
     /// The setpoints of the planner being run (reused; no allocation per tick).
@@ -166,6 +169,7 @@ impl Engine {
             axis_slave,
             drive_commands: Vec::new(),
             groups: Groups::new(config.groups.clone()),
+            groups_await_power: false,
             planners: Vec::new(),
             feeds: Feeds::default(),
         })
@@ -527,6 +531,9 @@ impl Engine {
         self.run_planners();
         self.step_axes();
         self.step_drives();
+        if self.groups_await_power {
+            self.enable_groups_once_powered();
+        }
     }
 
     /// Add a machine-level planner to stage 2 (see [`MachinePlanner`]). Planners run in the

@@ -115,6 +115,9 @@ impl Groups {
             queue: GroupQueue::new(capacity),
             origin: [0.0; MAX_AXES],
             defaults: DEFAULT_PATH_LIMITS,
+            fault_deceleration: None,
+            fault_stop: None,
+            smallest_acceleration: false,
             override_factor: 1.0,
             feeding: false,
             running: None,
@@ -224,10 +227,12 @@ impl Group {
             }
             GroupCommand::Continue(_) => self.resume(),
             GroupCommand::EmergencyStop(_) => {
+                // An e-stop of each member plus the group in ErrorStop; a disabled group stays
+                // Disabled (as with `emergency_stop_all`), its members e-stopped all the same.
                 if self.state != GroupState::Disabled {
                     self.fault(env, GroupFault::EmergencyStop);
-                    self.stop_members_fast(env);
                 }
+                self.emergency_stop_members(env);
                 Ok(Reply::Done)
             }
             GroupCommand::SetOverride(c) => {
@@ -287,18 +292,25 @@ impl Group {
                             }
                         })?;
                     }
-                    GroupParameter::CornerAcceleration
-                    | GroupParameter::ArcAcceleration
-                    | GroupParameter::ChordError => {
+                    GroupParameter::FaultDeceleration => {
+                        self.fault_deceleration = off_or_positive(c.value)?;
+                    }
+                    GroupParameter::SmallestAxisAcceleration => {
                         let value = finite("value", c.value)?;
-                        if value < 0.0 {
+                        if value != 0.0 && value != 1.0 {
                             return Err(EngineError::InvalidArgument {
                                 name: "value",
                                 value,
-                                reason: "must be 0 (off) or a positive number",
+                                reason: "must be 0 (off) or 1 (on)",
                             });
                         }
-                        let setting = (value > 0.0).then_some(value);
+                        self.smallest_acceleration = value == 1.0;
+                        self.push_axis_limits(env.axes);
+                    }
+                    GroupParameter::CornerAcceleration
+                    | GroupParameter::ArcAcceleration
+                    | GroupParameter::ChordError => {
+                        let setting = off_or_positive(c.value)?;
                         let mut limits = self.planner.lookahead_limits();
                         match c.name {
                             GroupParameter::CornerAcceleration => {
@@ -337,7 +349,7 @@ impl Group {
     }
 
     /// Disabled → Standby when every member is enabled and at rest (PLCopen MC_GroupEnable).
-    fn enable(&mut self, env: &Env) -> Result<Reply, EngineError> {
+    pub(super) fn enable(&mut self, env: &Env) -> Result<Reply, EngineError> {
         match self.state {
             GroupState::Disabled => {}
             GroupState::ErrorStop => {
@@ -363,19 +375,20 @@ impl Group {
     }
 
     /// ErrorStop → Standby once every member is enabled and at rest (HIMC ResetGroup: "only
-    /// after all errors are cleared"); other states: nothing to do.
-    fn reset(&mut self, env: &Env) -> Result<Reply, EngineError> {
+    /// after all errors are cleared"), or → Disabled when every member is disabled without a
+    /// fault ([`Group::reset_target`]); other states: nothing to do.
+    pub(super) fn reset(&mut self, env: &Env) -> Result<Reply, EngineError> {
         if self.state != GroupState::ErrorStop {
             return Ok(Reply::Done);
         }
-        if let Some((axis, state)) = self.member_not_ready(env.axes) {
-            return Err(EngineError::GroupCauseStillPresent {
+        let target = self.reset_target(env.axes).map_err(|(axis, state)| {
+            EngineError::GroupCauseStillPresent {
                 group: self.id,
                 axis,
                 state,
-            });
-        }
-        self.state = GroupState::Standby;
+            }
+        })?;
+        self.state = target;
         self.fault = None;
         self.last_error = None;
         Ok(Reply::Done)
@@ -549,6 +562,19 @@ impl Group {
         }
         Ok(Item::AxisMove(c))
     }
+}
+
+/// A group parameter that is 0 (off, None) or a positive number.
+fn off_or_positive(value: f64) -> Result<Option<f64>, EngineError> {
+    let value = finite("value", value)?;
+    if value < 0.0 {
+        return Err(EngineError::InvalidArgument {
+            name: "value",
+            value,
+            reason: "must be 0 (off) or a positive number",
+        });
+    }
+    Ok((value > 0.0).then_some(value))
 }
 
 /// Seconds as whole ticks (rounded; ≥ 0, at most 1e9 s).

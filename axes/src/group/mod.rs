@@ -82,6 +82,13 @@ pub struct Group {
     origin: Point,
     /// Path limits of motions that give none (`group_set_parameter`).
     defaults: PathLimits,
+    /// HMC's path stop after a member's trouble (`fault_deceleration`); None: the path is
+    /// dropped (NMC, HIMC).
+    fault_deceleration: Option<f64>,
+    /// In ErrorStop, the path still decelerating by HMC's rule: which members have left it.
+    fault_stop: Option<[bool; MAX_AXES]>,
+    /// Every member limited to the smallest acceleration of the members (CPU 226H).
+    smallest_acceleration: bool,
     override_factor: f64,
     /// The members were fed last tick (they are in SynchronizedMotion).
     feeding: bool,
@@ -301,6 +308,18 @@ impl Groups {
         }
     }
 
+    /// Machine-wide `enable_all`, after the axes: every Disabled group whose members are all
+    /// enabled and at rest goes to Standby (`group_enable`'s rule); a group in ErrorStop waits
+    /// for a reset.
+    pub(crate) fn enable_all(&mut self, env: &Env) {
+        for g in &mut self.groups {
+            if g.state == GroupState::Disabled {
+                // A group with a member not ready stays Disabled: not an error of enable_all.
+                let _ = g.enable(env);
+            }
+        }
+    }
+
     /// Machine-wide `disable_all`: every group is disabled, its path dropped.
     pub(crate) fn disable_all(&mut self, env: &mut Env) {
         for g in &mut self.groups {
@@ -320,15 +339,12 @@ impl Groups {
         }
     }
 
-    /// Machine-wide `reset_all`: every group in ErrorStop whose members are all enabled and at
-    /// rest goes back to Standby; the others stay in ErrorStop.
+    /// Machine-wide `reset_all`, after the axes: each group in ErrorStop is reset as by
+    /// `group_reset` (Standby, or Disabled when its members are all disabled); one whose cause
+    /// remains stays in ErrorStop (its members' errors are the ones reported).
     pub(crate) fn reset_all(&mut self, env: &mut Env) {
         for g in &mut self.groups {
-            if g.state == GroupState::ErrorStop && g.member_not_ready(env.axes).is_none() {
-                g.state = GroupState::Standby;
-                g.fault = None;
-                g.last_error = None;
-            }
+            let _ = g.reset(env);
         }
     }
 

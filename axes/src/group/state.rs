@@ -10,6 +10,7 @@
 //!                       │ at rest ──▶ Standby        Halted ◀──halt──────────────┘
 //!                                                    │ continue ──▶ Moving
 //! any enabled state ──member fault / refusal / e-stop──▶ ErrorStop ──reset (causes gone)──▶ Standby
+//!                                     (every member disabled, no fault: reset ──▶ Disabled)
 //! ```
 
 use super::Group;
@@ -53,6 +54,26 @@ impl Group {
                 .map_or(AxisState::Disabled, Axis::state);
             (state != AxisState::Standstill).then_some((a, state))
         })
+    }
+
+    /// Where a reset takes the group from ErrorStop once the causes are gone: Standby when
+    /// every member is enabled and at rest; Disabled when every member is disabled without a
+    /// fault (as an axis's reset leaves a disabled axis Disabled, PLCopen MC_Reset; after
+    /// `emergency_stop_all` has disabled them); else the first member not ready, with its state.
+    pub(super) fn reset_target(&self, axes: &[Axis]) -> Result<GroupState, (AxisIndex, AxisState)> {
+        let state = |a: AxisIndex| {
+            axes.get(a as usize)
+                .map_or(AxisState::Disabled, Axis::state)
+        };
+        let all_disabled = self
+            .members
+            .iter()
+            .all(|&a| state(a) == AxisState::Disabled);
+        match self.member_not_ready(axes) {
+            None => Ok(GroupState::Standby),
+            Some(_) if all_disabled => Ok(GroupState::Disabled),
+            Some(first) => Err(first),
+        }
     }
 
     /// A member's trouble while the group is enabled: in ErrorStop, disabled, a latched fault,

@@ -2,13 +2,14 @@
 //! the ways a path ends: done, dropped, or faulted.
 
 use path::planner::{Motion, PathEvent, PathState, PlannerError};
+use path::MAX_AXES;
 
 use super::queue::{Entry, Item, Wait};
 use super::{axis_limits, Env, Group};
 use crate::axis::{Feed, MotionAction, MotionSubmission, Overrides};
 use crate::command::{CommandId, CommandKind, CommandState, EngineError, ErrorKind, StopMode};
 use crate::profile::MotionState;
-use crate::status::{GroupFault, GroupState};
+use crate::status::{AxisState, GroupFault, GroupState};
 
 impl Group {
     /// One tick. Reads the members as the previous tick left them, the digital inputs (waits)
@@ -23,12 +24,22 @@ impl Group {
     ///    take it first), Moving/Stopping → Standby;
     /// 6. else the planner steps, its events are acted on, and every member is fed.
     pub(super) fn step(&mut self, env: &mut Env) {
-        if matches!(self.state, GroupState::Disabled | GroupState::ErrorStop) {
-            return;
+        match self.state {
+            GroupState::Disabled => return,
+            GroupState::ErrorStop => {
+                self.step_fault_stop(env);
+                return;
+            }
+            _ => {}
         }
         self.refresh_limits(env.axes);
         if let Some(fault) = self.member_fault(env.axes) {
-            self.fault(env, fault);
+            if self.stops_along_path() {
+                self.begin_fault_stop(env, fault);
+                self.step_fault_stop(env);
+            } else {
+                self.fault(env, fault);
+            }
             return;
         }
         self.check_wait(env);
@@ -47,14 +58,18 @@ impl Group {
             self.on_event(env, event);
         }
         self.events = events;
-        if let Err((axis, error)) = self.feed(env, &state) {
-            self.fault(
-                env,
-                GroupFault::Member {
-                    axis,
-                    error: error.kind(),
-                },
-            );
+        if let Err((k, axis, error)) = self.feed(env, &state) {
+            let cause = GroupFault::Member {
+                axis,
+                error: error.kind(),
+            };
+            if self.stops_along_path() {
+                self.begin_fault_stop(env, cause);
+                // This tick's point for the members after the one that refused it.
+                self.feed_on_path(env, &state, k + 1);
+            } else {
+                self.fault(env, cause);
+            }
             return;
         }
         self.feeding = true;
@@ -78,9 +93,26 @@ impl Group {
             return;
         }
         self.params_version = version;
-        for (k, &a) in self.members.iter().enumerate() {
-            if let Some(axis) = axes.get(a as usize) {
-                self.planner.set_axis_limits(k, axis_limits(axis));
+        self.push_axis_limits(axes);
+    }
+
+    /// Give the planner each member's own limits, every acceleration the smallest of them with
+    /// `smallest_axis_acceleration` (CPU 226H, digest 003 §2.0 tip 3).
+    pub(super) fn push_axis_limits(&mut self, axes: &[crate::axis::Axis]) {
+        let member = |a: &u16| axes.get(usize::from(*a)).map(axis_limits);
+        let smallest = self.smallest_acceleration.then(|| {
+            self.members
+                .iter()
+                .filter_map(member)
+                .map(|l| l.acceleration)
+                .fold(f64::INFINITY, f64::min)
+        });
+        for (k, a) in self.members.iter().enumerate() {
+            if let Some(mut limits) = member(a) {
+                if let Some(acceleration) = smallest {
+                    limits.acceleration = acceleration;
+                }
+                self.planner.set_axis_limits(k, limits);
             }
         }
     }
@@ -97,42 +129,137 @@ impl Group {
     }
 
     /// Stop feeding the members: each ramps to rest with its own `decel` (a member at rest
-    /// simply stands) and is free of the feed.
+    /// simply stands) and is free of the feed. Ends a fault stop along the path too.
     pub(super) fn release(&mut self, env: &mut Env) {
         self.feeding = false;
+        self.fault_stop = None;
         for &a in &self.members {
-            let (mut ctx, axes) = env.context();
-            if let Some(axis) = axes.get_mut(a as usize) {
-                // Release never fails: it only ends a feed.
-                let _ = axis.feed(&mut ctx, Feed::Release);
-            }
+            release_member(env, a);
         }
     }
 
     /// Feed every member this tick's point of the path (axis = group coordinate + origin).
-    fn feed(&mut self, env: &mut Env, state: &PathState) -> Result<(), (u16, EngineError)> {
+    fn feed(&mut self, env: &mut Env, state: &PathState) -> Result<(), (usize, u16, EngineError)> {
         for (k, &a) in self.members.iter().enumerate() {
-            let (Some(p), Some(v), Some(acc), Some(o)) = (
-                state.position.get(k),
-                state.velocity.get(k),
-                state.acceleration.get(k),
-                self.origin.get(k),
-            ) else {
-                continue;
-            };
-            let (mut ctx, axes) = env.context();
-            let Some(axis) = axes.get_mut(a as usize) else {
-                continue;
-            };
-            let setpoint = MotionState {
-                p: p + o,
-                v: *v,
-                a: *acc,
-            };
-            axis.feed(&mut ctx, Feed::Follow(setpoint))
-                .map_err(|e| (a, e))?;
+            self.feed_member(env, state, k, a).map_err(|e| (k, a, e))?;
         }
         Ok(())
+    }
+
+    /// Feed member `a` (group coordinate `k`) this tick's point of the path.
+    fn feed_member(
+        &self,
+        env: &mut Env,
+        state: &PathState,
+        k: usize,
+        a: u16,
+    ) -> Result<(), EngineError> {
+        let (Some(p), Some(v), Some(acc), Some(o)) = (
+            state.position.get(k),
+            state.velocity.get(k),
+            state.acceleration.get(k),
+            self.origin.get(k),
+        ) else {
+            return Ok(());
+        };
+        let (mut ctx, axes) = env.context();
+        let Some(axis) = axes.get_mut(a as usize) else {
+            return Ok(());
+        };
+        let setpoint = MotionState {
+            p: p + o,
+            v: *v,
+            a: *acc,
+        };
+        axis.feed(&mut ctx, Feed::Follow(setpoint))
+    }
+
+    /// HMC's rule applies to a member's trouble (see [`Group::begin_fault_stop`]):
+    /// `fault_deceleration` is set and the path moves.
+    fn stops_along_path(&self) -> bool {
+        self.fault_deceleration.is_some()
+            && self.feeding
+            && self.planner.state().path_velocity > 0.0
+    }
+
+    /// A member in trouble stops the whole group and puts it in ErrorStop (issue 11 item 3).
+    /// By default (NMC; HIMC §3.6: "the group drops out of sync") the path is dropped at once
+    /// ([`Group::fault`]). With `fault_deceleration` set, HMC's rule (digest 000 §4.3, §6.1
+    /// (b)/(c), §9 item 12: the whole interpolation is cancelled): the path decelerates to rest
+    /// with max(group deceleration, fault_deceleration), the members still on it stay on it,
+    /// and the member in trouble, which has left the path, stops on its own
+    /// (docs/decisions.md, "Group safety").
+    fn begin_fault_stop(&mut self, env: &mut Env, cause: GroupFault) {
+        let fast = self.fault_deceleration.unwrap_or(0.0);
+        let kind = self.enter_error_stop(cause);
+        self.end_commands(env, CommandState::Error(kind));
+        self.planner.resume();
+        self.planner.stop(self.defaults.deceleration.max(fast));
+        let mut left = [false; MAX_AXES];
+        if let GroupFault::Member { axis, .. } = cause {
+            let k = self.members.iter().position(|&a| a == axis);
+            if let Some(flag) = k.and_then(|k| left.get_mut(k)) {
+                *flag = true;
+                release_member(env, axis);
+            }
+        }
+        self.fault_stop = Some(left);
+    }
+
+    /// One tick of HMC's fault stop (see [`Group::begin_fault_stop`]): the path decelerates and
+    /// feeds the members still on it; a member that leaves it (its own limit, fault or stop)
+    /// is let go; at rest every member is let go.
+    fn step_fault_stop(&mut self, env: &mut Env) {
+        let Some(mut left) = self.fault_stop else {
+            return;
+        };
+        for (k, &a) in self.members.iter().enumerate() {
+            let on_path = env
+                .axes
+                .get(a as usize)
+                .is_some_and(|x| x.state() == AxisState::SynchronizedMotion);
+            if let (false, Some(flag @ false)) = (on_path, left.get_mut(k)) {
+                *flag = true;
+                release_member(env, a);
+            }
+        }
+        self.fault_stop = Some(left);
+        let everyone_left = left.iter().take(self.members.len()).all(|&l| l);
+        // At rest: done, even where the stop ended at a buffered wait, which holds the planner
+        // (its queue is not dropped there, and the wait is never released).
+        let at_rest = self.planner.state().path_velocity == 0.0;
+        if self.planner.is_idle() || at_rest || everyone_left {
+            let mut events = std::mem::take(&mut self.events);
+            events.clear();
+            self.planner.abort(&mut events);
+            self.events = events;
+            self.release(env);
+            return;
+        }
+        // The commands were ended when the trouble came: the planner's events are not acted on.
+        let mut events = std::mem::take(&mut self.events);
+        events.clear();
+        let state = *self.planner.step(&mut events);
+        events.clear();
+        self.events = events;
+        self.feed_on_path(env, &state, 0);
+    }
+
+    /// Feed this tick's point to the members from coordinate `from` on that are still on the
+    /// path of a fault stop; one that refuses it leaves the path and is let go.
+    fn feed_on_path(&mut self, env: &mut Env, state: &PathState, from: usize) {
+        let Some(mut left) = self.fault_stop else {
+            return;
+        };
+        for (k, &a) in self.members.iter().enumerate().skip(from) {
+            if left.get(k) == Some(&false) && self.feed_member(env, state, k, a).is_err() {
+                if let Some(flag) = left.get_mut(k) {
+                    *flag = true;
+                }
+                release_member(env, a);
+            }
+        }
+        self.fault_stop = Some(left);
     }
 
     fn on_event(&mut self, env: &mut Env, event: PathEvent) {
@@ -357,6 +484,13 @@ impl Group {
         events.clear();
         self.planner.abort(&mut events);
         self.events = events;
+        self.end_commands(env, running_state);
+        self.release(env);
+    }
+
+    /// End every command the group holds: `running` (and a wait in progress) with
+    /// `running_state`, the rest aborted.
+    fn end_commands(&mut self, env: &mut Env, running_state: CommandState) {
         if let Some(id) = self.running.take() {
             if self.queue.take(id).is_some() {
                 env.ledger.finish(id, running_state);
@@ -371,31 +505,47 @@ impl Group {
         if let Some(p) = self.pending.take() {
             env.ledger.finish(p.id, CommandState::Aborted);
         }
-        self.release(env);
     }
 
     /// The whole group stops and goes to ErrorStop with `cause` (issue 11 item 3). The path is
     /// dropped at once and each member ramps down with its own `decel` (no longer coordinated:
     /// one member already left the path). docs/decisions.md, "Axis groups".
     pub(super) fn fault(&mut self, env: &mut Env, cause: GroupFault) {
+        let kind = self.enter_error_stop(cause);
+        self.drop_all(env, CommandState::Error(kind));
+    }
+
+    /// ErrorStop with `cause` kept until a reset; the error kind the group's commands end with.
+    fn enter_error_stop(&mut self, cause: GroupFault) -> ErrorKind {
         let kind = match cause {
             GroupFault::Member { error, .. } => error,
             GroupFault::EmergencyStop | GroupFault::WaitTimeout { .. } => ErrorKind::Fault,
         };
-        self.drop_all(env, CommandState::Error(kind));
         self.state = GroupState::ErrorStop;
         self.fault = Some(cause);
         self.last_error = Some(kind);
+        kind
     }
 
-    /// The members' fast stop of an emergency stop (HIMC EStop): each decelerates with its
-    /// `fast_decel`.
-    pub(super) fn stop_members_fast(&mut self, env: &mut Env) {
+    /// The members' part of `group_emergency_stop`: each member gets the single-axis emergency
+    /// stop (`stop` with mode `emergency`: `fast_decel`, ESTOP latched until the axis is reset,
+    /// NMC MtEstp, digest 001 TV19), so the group's reset waits for the members' resets.
+    pub(super) fn emergency_stop_members(&mut self, env: &mut Env) {
         for &a in &self.members {
             let (mut ctx, axes) = env.context();
             if let Some(axis) = axes.get_mut(a as usize) {
-                let _ = axis.stop(&mut ctx, StopMode::Abrupt, None);
+                // A stop without a deceleration never refuses.
+                let _ = axis.stop(&mut ctx, StopMode::Emergency, None);
             }
         }
+    }
+}
+
+/// Let member `a` go of the feed: it ramps to rest with its own `decel` (release never
+/// fails: it only ends a feed).
+fn release_member(env: &mut Env, a: u16) {
+    let (mut ctx, axes) = env.context();
+    if let Some(axis) = axes.get_mut(a as usize) {
+        let _ = axis.feed(&mut ctx, Feed::Release);
     }
 }

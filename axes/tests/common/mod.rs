@@ -9,6 +9,7 @@ use axes::command::{
     TransitionMode,
 };
 use axes::config::{AxisConfig, HomeSwitchConfig, SwitchConfig};
+use axes::status::{GroupState, GroupStatus};
 use axes::{Engine, EngineConfig, EngineError, ParamId, Snapshot};
 
 /// A stepper axis in mm: 1000 pulses/mm, finite travel, limits at ±500 mm, a home cam on
@@ -259,4 +260,78 @@ pub fn group_arc(
         transition: TransitionMode::None,
         user_segment: None,
     }
+}
+
+/// A linear axis without switches, no following-error check, and `params` (the vendor vectors'
+/// axes: their own limits set far above the path's, or to the manual's).
+pub fn free_linear_axis(units: f64, params: &[(ParamId, f64)]) -> AxisConfig {
+    let mut a = AxisConfig::default();
+    for (p, v) in [
+        (ParamId::AxisType, 10.0),
+        (ParamId::Units, units),
+        (ParamId::RepMode, 0.0),
+        (ParamId::FeLimit, 0.0),
+    ]
+    .iter()
+    .chain(params)
+    {
+        a.params.insert(*p, *v);
+    }
+    a
+}
+
+/// Step until the first group is in Standby again (at most `max_s`), calling `each` with the
+/// engine and that group's status every tick.
+pub fn run_path(e: &mut Engine, max_s: f64, mut each: impl FnMut(&Engine, &GroupStatus)) {
+    let n = (max_s / e.period()).round() as u64;
+    for _ in 0..n {
+        e.step();
+        let g = e.snapshot().groups[0];
+        each(e, &g);
+        if g.state == GroupState::Standby {
+            return;
+        }
+    }
+    panic!(
+        "path not done after {max_s} s: {:?}",
+        e.snapshot().groups[0]
+    );
+}
+
+/// The distance from `p` to the nearest of the points `seen` (x, y).
+pub fn nearest(seen: &[(f64, f64)], p: (f64, f64)) -> f64 {
+    seen.iter()
+        .map(|(x, y)| (x - p.0).hypot(y - p.1))
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// The angle swept about `center` along the points `seen` after `start`, unwrapped, in degrees
+/// (counter-clockwise positive).
+pub fn swept_degrees(seen: &[(f64, f64)], center: (f64, f64), start: (f64, f64)) -> f64 {
+    let pi = std::f64::consts::PI;
+    let angle = |(x, y): (f64, f64)| (y - center.1).atan2(x - center.0);
+    let mut last = angle(start);
+    let mut total = 0.0;
+    for &p in seen {
+        let now = angle(p);
+        total += (now - last + pi).rem_euclid(2.0 * pi) - pi;
+        last = now;
+    }
+    total.to_degrees()
+}
+
+/// A machine of `axes`, axis 1 behind a CiA 402 drive whose power the engine masters
+/// (1000 increments per unit).
+pub fn engine_with_mastered_drive(axes: Vec<AxisConfig>) -> Engine {
+    Engine::new(&EngineConfig {
+        axes,
+        drives: vec![axes::cia402::DriveConfig {
+            axis: 1,
+            master: axes::cia402::DriveMaster::Engine,
+            increments_per_unit: 1000.0,
+            ..axes::cia402::DriveConfig::default()
+        }],
+        ..EngineConfig::default()
+    })
+    .expect("valid test machine")
 }
