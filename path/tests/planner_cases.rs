@@ -5,7 +5,7 @@
 mod common;
 
 use common::*;
-use path::geometry::{Arc, Segment, Turn};
+use path::geometry::{norm, sub, Arc, Segment, Turn};
 use path::planner::{Join, MarkerKind, PathEvent, PathPlanner, PlannerConfig, Transition};
 
 fn square_config() -> PlannerConfig {
@@ -754,4 +754,90 @@ fn dense_short_lines_start_a_bounded_number_of_motions_per_step() {
     assert!(max_visits <= 64, "{max_visits}");
     // Length per period: 0.05 mm / 1 ms = 50 mm/s.
     assert!(top <= 50.0 + 1e-9 && top > 45.0, "{top}");
+}
+
+/// Corners between lines and arcs, arcs and lines, and two arcs (issue 11 item 4): rounded
+/// within the corner distance or deviation, passed well above the corner rule's speed
+/// (A·T/|Δt| = 0.7 mm/s here), within every axis's limits.
+#[test]
+fn corners_with_arcs_are_blended_within_the_tolerance_without_stopping() {
+    let segments = [
+        line(p(&[0.0, 0.0]), p(&[20.0, 0.0]), 2),
+        arc(
+            p(&[20.0, 0.0]),
+            p(&[30.0, -10.0]),
+            p(&[30.0, 0.0]),
+            Turn::Ccw,
+            2,
+        ),
+        line(p(&[30.0, -10.0]), p(&[30.0, -30.0]), 2),
+        arc(
+            p(&[30.0, -30.0]),
+            p(&[20.0, -40.0]),
+            p(&[30.0, -40.0]),
+            Turn::Ccw,
+            2,
+        ),
+        arc(
+            p(&[20.0, -40.0]),
+            p(&[10.0, -50.0]),
+            p(&[20.0, -50.0]),
+            Turn::Ccw,
+            2,
+        ),
+    ];
+    let corners = [
+        p(&[20.0, 0.0]),
+        p(&[30.0, -10.0]),
+        p(&[30.0, -30.0]),
+        p(&[20.0, -40.0]),
+    ];
+    for tr in [
+        Transition::CornerDistance(2.0),
+        Transition::CornerDeviation(0.5),
+    ] {
+        let tol = match tr {
+            Transition::CornerDistance(x) | Transition::CornerDeviation(x) => x,
+            Transition::None => 0.0,
+        };
+        let cfg = square_config();
+        let mut pl = PathPlanner::new(cfg.clone(), p(&[0.0, 0.0])).unwrap();
+        for (i, s) in segments.iter().enumerate() {
+            let m = motion(
+                s.clone(),
+                limits(80.0, 800.0, f64::INFINITY),
+                Join::BlendingLow,
+                tr,
+                i as u64,
+            );
+            pl.push_motion(m).unwrap();
+        }
+        let (states, _) = run(&mut pl, 100_000);
+        assert_eq!(states.last().unwrap().position, p(&[10.0, -50.0]));
+        let worst = states
+            .iter()
+            .map(|s| distance_to_path(&s.position, &segments))
+            .fold(0.0, f64::max);
+        assert!(worst <= tol + 1e-9, "{tr:?}: {worst}");
+        for c in &corners {
+            let near: Vec<_> = states
+                .iter()
+                .filter(|s| close(&s.position, c, tol + 0.5))
+                .collect();
+            // The path leaves the corner point (a blend), and does not crawl past it.
+            let closest = near
+                .iter()
+                .map(|s| norm(&sub(&s.position, c)))
+                .fold(f64::INFINITY, f64::min);
+            assert!(closest > 0.01 * tol, "{tr:?} corner {c:?}: {closest}");
+            let slowest = near
+                .iter()
+                .map(|s| s.path_velocity)
+                .fold(f64::INFINITY, f64::min);
+            assert!(slowest > 5.0, "{tr:?} corner {c:?}: {slowest}");
+        }
+        let pk = peaks(&states, &cfg);
+        assert!(pk.a_fd <= 1.0 && pk.v_fd <= 1.0, "{} {}", pk.a_fd, pk.v_fd);
+        assert!(pk.a_reported <= 1.0 + 1e-12);
+    }
 }

@@ -1,7 +1,7 @@
 //! Appending a motion: its path limits, its junction with the motion before it, and the
 //! corner blend that may replace that junction (issue 11 item 4).
 
-use super::blend::corner_arc;
+use super::blend::corner_curve;
 use super::junction::{corner_cap, mode_velocity};
 use super::limits::motion_limits;
 use super::queue::{Entry, QueuedMotion};
@@ -89,7 +89,7 @@ impl PathPlanner {
             self.queue.push_back(Entry::Motion(Box::new(second)));
             return pi;
         }
-        // Transition::None, or corners with arcs (documented): the corner rule.
+        // Transition::None (or a blend that did not fit): the corner rule.
         let mut before_end = [0.0; crate::MAX_AXES];
         if let Some(Entry::Motion(prev)) = self.queue.get_mut(pi) {
             let before = prev.segment.end_tangent();
@@ -112,11 +112,12 @@ impl PathPlanner {
         pi
     }
 
-    /// Round the corner between the motion at queue index `pi` and `new` (both lines) with a
-    /// tangent arc: trims the previous line in place and returns the arc and the trimmed new
-    /// line. `None` when there is no corner geometry to make, or the path is already past
-    /// where the arc would begin, or too fast to enter it (HIMC TV 55, digest 004 §6.4: a
-    /// motion blends only if the next is queued before it ends; then the corner rule applies).
+    /// Round the corner between the motion at queue index `pi` and `new` (any segments; see
+    /// `blend::corner_curve`): trims the previous motion in place and returns the blend and the
+    /// trimmed new motion. `None` when there is no corner geometry to make, or the path is
+    /// already past where the blend would begin, or too fast to enter it (HIMC TV 55, digest
+    /// 004 §6.4: a motion blends only if the next is queued before it ends; then the corner
+    /// rule applies).
     fn blend(
         &mut self,
         pi: usize,
@@ -130,10 +131,7 @@ impl PathPlanner {
         let Some(Entry::Motion(prev)) = self.queue.get(pi) else {
             return None;
         };
-        let (Segment::Line(first), Segment::Line(second)) = (&prev.segment, &new.segment) else {
-            return None;
-        };
-        let (tangent, arc) = corner_arc(first, second, transition, dims)?;
+        let rounded = corner_curve(&prev.segment, &new.segment, transition, dims)?;
         let join = new.join;
         let programmed = PathLimits {
             velocity: mode_velocity(join, prev.programmed.velocity, new.programmed.velocity),
@@ -149,7 +147,7 @@ impl PathPlanner {
         };
         let rules = self.lookahead_limits;
         let mut arc = queued(
-            Segment::Arc(arc),
+            rounded.blend,
             programmed,
             join,
             new.tag,
@@ -159,10 +157,18 @@ impl PathPlanner {
         );
         arc.reports_done = false;
         arc.end_cap = f64::INFINITY;
-        let rest = new.segment.trimmed(tangent, new.length);
-        let mut rest = queued(rest, new.programmed, join, new.tag, axes, period, &rules);
+        let mut rest = queued(
+            rounded.tail,
+            new.programmed,
+            join,
+            new.tag,
+            axes,
+            period,
+            &rules,
+        );
         rest.reports_start = false;
-        let shortened = prev.length - tangent;
+        let segment = rounded.head;
+        let shortened = segment.length();
         if let Some(e) = executing {
             // The path must be able to enter the arc from where it is now.
             let l = &prev.limits;
@@ -174,7 +180,6 @@ impl PathPlanner {
                 return None;
             }
         }
-        let segment = prev.segment.trimmed(0.0, shortened);
         let prev_programmed = prev.programmed;
         if let Some(Entry::Motion(prev)) = self.queue.get_mut(pi) {
             prev.limits = motion_limits(&segment, &prev_programmed, axes, period, &rules);
