@@ -841,3 +841,92 @@ fn corners_with_arcs_are_blended_within_the_tolerance_without_stopping() {
         assert!(pk.a_reported <= 1.0 + 1e-12);
     }
 }
+
+/// Issue 11 defect: at a corner without geometry (`Transition::None`, a blending join) the
+/// finite-difference acceleration of an axis reached 2× its limit (the velocity step of the
+/// corner rule on top of the motions' own acceleration). Now within 1×.
+#[test]
+fn a_corner_without_geometry_keeps_the_finite_difference_acceleration_within_the_limit() {
+    for (turn, jerk) in [(90.0f64, f64::INFINITY), (30.0, f64::INFINITY), (60.0, 1e5)] {
+        let cfg = square_config();
+        let (s, c) = turn.to_radians().sin_cos();
+        let corner = p(&[10.0, 0.0]);
+        let end = p(&[10.0 + 10.0 * c, 10.0 * s]);
+        let mut pl = PathPlanner::new(cfg.clone(), p(&[0.0, 0.0])).unwrap();
+        for (i, (a, b)) in [(p(&[0.0, 0.0]), corner), (corner, end)].iter().enumerate() {
+            let m = motion(
+                line(*a, *b, 2),
+                limits(80.0, 800.0, jerk),
+                Join::BlendingHigh,
+                Transition::None,
+                i as u64,
+            );
+            pl.push_motion(m).unwrap();
+        }
+        let (states, _) = run(&mut pl, 100_000);
+        assert_eq!(states.last().unwrap().position, end);
+        // The corner is passed moving (a velocity step), not at rest.
+        let at_corner = states
+            .iter()
+            .filter(|s| close(&s.position, &corner, 0.05))
+            .map(|s| s.path_velocity)
+            .fold(0.0, f64::max);
+        assert!(at_corner > 0.0);
+        let pk = peaks(&states, &cfg);
+        assert!(pk.a_fd <= 1.0, "turn {turn}: FD a {}× the limit", pk.a_fd);
+        assert!(pk.a_reported <= 1.0 + 1e-12);
+    }
+}
+
+/// Issue 11 defect: where a line runs into a tangent arc the centripetal acceleration steps
+/// by v²/r in one tick, an unbounded jerk. Now the junction speed keeps the step within one
+/// period of each axis's jerk (v²·|Δκ_k| ≤ J_k·T): the finite-difference jerk stays within
+/// 2·J_k (the step plus the path's own).
+#[test]
+fn a_curvature_step_keeps_the_jerk_bounded() {
+    let jerk = 2e4;
+    let cfg = PlannerConfig::uniform(2, axis(100.0, 1000.0, jerk), 1e-3);
+    let segments = [
+        line(p(&[0.0, 0.0]), p(&[30.0, 0.0]), 2),
+        // Tangent: the circle of radius 5 about (30, 5), a half turn.
+        arc(
+            p(&[30.0, 0.0]),
+            p(&[30.0, 10.0]),
+            p(&[30.0, 5.0]),
+            Turn::Ccw,
+            2,
+        ),
+        line(p(&[30.0, 10.0]), p(&[0.0, 10.0]), 2),
+    ];
+    let mut pl = PathPlanner::new(cfg.clone(), p(&[0.0, 0.0])).unwrap();
+    for (i, s) in segments.iter().enumerate() {
+        let m = motion(
+            s.clone(),
+            limits(100.0, 1000.0, 1e4),
+            Join::BlendingLow,
+            Transition::None,
+            i as u64,
+        );
+        pl.push_motion(m).unwrap();
+    }
+    let (states, _) = run(&mut pl, 100_000);
+    assert_eq!(states.last().unwrap().position, p(&[0.0, 10.0]));
+    let t = cfg.period;
+    let mut worst: f64 = 0.0;
+    for k in 0..2 {
+        for w in states.windows(4) {
+            let j = (w[3].position[k] - 3.0 * w[2].position[k] + 3.0 * w[1].position[k]
+                - w[0].position[k])
+                / (t * t * t);
+            worst = worst.max(j.abs() / jerk);
+        }
+    }
+    assert!(worst <= 2.0, "FD jerk {worst}× the limit");
+    // Not by stopping: the junctions are passed moving.
+    let slowest_inside = states
+        .iter()
+        .filter(|s| s.tag.is_some() && s.position[0] > 20.0)
+        .map(|s| s.path_velocity)
+        .fold(f64::INFINITY, f64::min);
+    assert!(slowest_inside > 1.0, "{slowest_inside}");
+}
