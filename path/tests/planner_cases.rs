@@ -6,10 +6,27 @@ mod common;
 
 use common::*;
 use path::geometry::{norm, sub, Arc, Segment, Turn};
-use path::planner::{Join, MarkerKind, PathEvent, PathPlanner, PlannerConfig, Transition};
+use path::planner::{
+    Join, MarkerKind, PathEvent, PathPlanner, PathState, PlannerConfig, Transition,
+};
 
 fn square_config() -> PlannerConfig {
     PlannerConfig::uniform(2, axis(100.0, 1000.0, f64::INFINITY), 1e-3)
+}
+
+/// The lowest path speed among `states`.
+fn slowest(states: &[&PathState]) -> f64 {
+    states
+        .iter()
+        .map(|s| s.path_velocity)
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Every axis within its velocity and acceleration limits (finite differences and reported).
+fn assert_within_limits(states: &[PathState], cfg: &PlannerConfig) {
+    let pk = peaks(states, cfg);
+    assert!(pk.a_fd <= 1.0 && pk.v_fd <= 1.0, "{} {}", pk.a_fd, pk.v_fd);
+    assert!(pk.a_reported <= 1.0 + 1e-12);
 }
 
 #[test]
@@ -321,15 +338,10 @@ fn a_square_with_corner_distance_stays_within_it_and_never_stops_at_a_corner() {
                 .iter()
                 .filter(|s| (s.position[0] - c[0]).hypot(s.position[1] - c[1]) < d.min(10.0) + 0.5)
                 .collect();
-            let slowest = near
-                .iter()
-                .map(|s| s.path_velocity)
-                .fold(f64::INFINITY, f64::min);
+            let slowest = slowest(&near);
             assert!(slowest > 1.0, "corner {c:?}: {slowest}");
         }
-        let pk = peaks(&states, &cfg);
-        assert!(pk.a_fd <= 1.0 && pk.v_fd <= 1.0, "{} {}", pk.a_fd, pk.v_fd);
-        assert!(pk.a_reported <= 1.0 + 1e-12);
+        assert_within_limits(&states, &cfg);
     }
 }
 
@@ -830,15 +842,10 @@ fn corners_with_arcs_are_blended_within_the_tolerance_without_stopping() {
                 .map(|s| norm(&sub(&s.position, c)))
                 .fold(f64::INFINITY, f64::min);
             assert!(closest > 0.01 * tol, "{tr:?} corner {c:?}: {closest}");
-            let slowest = near
-                .iter()
-                .map(|s| s.path_velocity)
-                .fold(f64::INFINITY, f64::min);
+            let slowest = slowest(&near);
             assert!(slowest > 5.0, "{tr:?} corner {c:?}: {slowest}");
         }
-        let pk = peaks(&states, &cfg);
-        assert!(pk.a_fd <= 1.0 && pk.v_fd <= 1.0, "{} {}", pk.a_fd, pk.v_fd);
-        assert!(pk.a_reported <= 1.0 + 1e-12);
+        assert_within_limits(&states, &cfg);
     }
 }
 
