@@ -298,3 +298,40 @@ fn when_a_curves_rows_are_built_changes_no_sample() {
     let r = forward.sample(len / 3.0).p;
     assert!((q[0] - r[0] - 5.0).abs() < 1e-9 && (q[1] - r[1] + 2.0).abs() < 1e-9);
 }
+
+/// The planner's corner blend (issue 11 item 4): a quintic that leaves one segment and joins
+/// the next with their tangents and curvatures (G2), inside the hull of its control points.
+#[test]
+fn a_corner_blend_matches_both_ends_to_the_curvature_and_stays_in_its_hull() {
+    use path::geometry::{blend_control_points, PathPoint};
+    let from = PathPoint {
+        p: p(&[-1.0, 0.0]),
+        t: p(&[1.0, 0.0]),
+        k: p(&[0.0, 0.0]),
+    };
+    // A point of the circle of radius 5 about (0, 5), 90° turned: tangent (0, 1), curvature
+    // toward the centre.
+    let to = PathPoint {
+        p: p(&[0.0, 1.0]),
+        t: p(&[0.0, 1.0]),
+        k: p(&[-0.2, 0.0]),
+    };
+    let seg = Curve::blend(&from, &to, 2).unwrap();
+    assert_eq!(curve(&seg).unwrap().kind(), CurveKind::Blend);
+    check_curve(&seg, &from.p, &to.p);
+    let (a, b) = (seg.sample(0.0), seg.sample(seg.length()));
+    assert!(norm(&sub(&a.t, &from.t)) < 1e-9 && norm(&sub(&b.t, &to.t)) < 1e-9);
+    assert!(norm(&sub(&a.k, &from.k)) < 1e-6 && norm(&sub(&b.k, &to.k)) < 1e-6);
+    let hull = blend_control_points(&from, &to);
+    let corner = p(&[0.0, 0.0]);
+    let reach = hull
+        .iter()
+        .map(|q| norm(&sub(q, &corner)))
+        .fold(0.0, f64::max);
+    for i in 0..=100 {
+        let q = seg.sample(seg.length() * f64::from(i) / 100.0).p;
+        assert!(norm(&sub(&q, &corner)) <= reach + 1e-12);
+    }
+    // Coincident points: refused.
+    assert!(Curve::blend(&from, &from, 2).is_err());
+}

@@ -5,11 +5,28 @@
 mod common;
 
 use common::*;
-use path::geometry::{Arc, Segment, Turn};
-use path::planner::{Join, MarkerKind, PathEvent, PathPlanner, PlannerConfig, Transition};
+use path::geometry::{norm, sub, Arc, Segment, Turn};
+use path::planner::{
+    Join, MarkerKind, PathEvent, PathPlanner, PathState, PlannerConfig, Transition,
+};
 
 fn square_config() -> PlannerConfig {
     PlannerConfig::uniform(2, axis(100.0, 1000.0, f64::INFINITY), 1e-3)
+}
+
+/// The lowest path speed among `states`.
+fn slowest(states: &[&PathState]) -> f64 {
+    states
+        .iter()
+        .map(|s| s.path_velocity)
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Every axis within its velocity and acceleration limits (finite differences and reported).
+fn assert_within_limits(states: &[PathState], cfg: &PlannerConfig) {
+    let pk = peaks(states, cfg);
+    assert!(pk.a_fd <= 1.0 && pk.v_fd <= 1.0, "{} {}", pk.a_fd, pk.v_fd);
+    assert!(pk.a_reported <= 1.0 + 1e-12);
 }
 
 #[test]
@@ -321,15 +338,10 @@ fn a_square_with_corner_distance_stays_within_it_and_never_stops_at_a_corner() {
                 .iter()
                 .filter(|s| (s.position[0] - c[0]).hypot(s.position[1] - c[1]) < d.min(10.0) + 0.5)
                 .collect();
-            let slowest = near
-                .iter()
-                .map(|s| s.path_velocity)
-                .fold(f64::INFINITY, f64::min);
+            let slowest = slowest(&near);
             assert!(slowest > 1.0, "corner {c:?}: {slowest}");
         }
-        let pk = peaks(&states, &cfg);
-        assert!(pk.a_fd <= 1.0 && pk.v_fd <= 1.0, "{} {}", pk.a_fd, pk.v_fd);
-        assert!(pk.a_reported <= 1.0 + 1e-12);
+        assert_within_limits(&states, &cfg);
     }
 }
 
@@ -754,4 +766,174 @@ fn dense_short_lines_start_a_bounded_number_of_motions_per_step() {
     assert!(max_visits <= 64, "{max_visits}");
     // Length per period: 0.05 mm / 1 ms = 50 mm/s.
     assert!(top <= 50.0 + 1e-9 && top > 45.0, "{top}");
+}
+
+/// Corners between lines and arcs, arcs and lines, and two arcs (issue 11 item 4): rounded
+/// within the corner distance or deviation, passed well above the corner rule's speed
+/// (A·T/|Δt| = 0.7 mm/s here), within every axis's limits.
+#[test]
+fn corners_with_arcs_are_blended_within_the_tolerance_without_stopping() {
+    let segments = [
+        line(p(&[0.0, 0.0]), p(&[20.0, 0.0]), 2),
+        arc(
+            p(&[20.0, 0.0]),
+            p(&[30.0, -10.0]),
+            p(&[30.0, 0.0]),
+            Turn::Ccw,
+            2,
+        ),
+        line(p(&[30.0, -10.0]), p(&[30.0, -30.0]), 2),
+        arc(
+            p(&[30.0, -30.0]),
+            p(&[20.0, -40.0]),
+            p(&[30.0, -40.0]),
+            Turn::Ccw,
+            2,
+        ),
+        arc(
+            p(&[20.0, -40.0]),
+            p(&[10.0, -50.0]),
+            p(&[20.0, -50.0]),
+            Turn::Ccw,
+            2,
+        ),
+    ];
+    let corners = [
+        p(&[20.0, 0.0]),
+        p(&[30.0, -10.0]),
+        p(&[30.0, -30.0]),
+        p(&[20.0, -40.0]),
+    ];
+    for tr in [
+        Transition::CornerDistance(2.0),
+        Transition::CornerDeviation(0.5),
+    ] {
+        let tol = match tr {
+            Transition::CornerDistance(x) | Transition::CornerDeviation(x) => x,
+            Transition::None => 0.0,
+        };
+        let cfg = square_config();
+        let mut pl = PathPlanner::new(cfg.clone(), p(&[0.0, 0.0])).unwrap();
+        for (i, s) in segments.iter().enumerate() {
+            let m = motion(
+                s.clone(),
+                limits(80.0, 800.0, f64::INFINITY),
+                Join::BlendingLow,
+                tr,
+                i as u64,
+            );
+            pl.push_motion(m).unwrap();
+        }
+        let (states, _) = run(&mut pl, 100_000);
+        assert_eq!(states.last().unwrap().position, p(&[10.0, -50.0]));
+        let worst = states
+            .iter()
+            .map(|s| distance_to_path(&s.position, &segments))
+            .fold(0.0, f64::max);
+        assert!(worst <= tol + 1e-9, "{tr:?}: {worst}");
+        for c in &corners {
+            let near: Vec<_> = states
+                .iter()
+                .filter(|s| close(&s.position, c, tol + 0.5))
+                .collect();
+            // The path leaves the corner point (a blend), and does not crawl past it.
+            let closest = near
+                .iter()
+                .map(|s| norm(&sub(&s.position, c)))
+                .fold(f64::INFINITY, f64::min);
+            assert!(closest > 0.01 * tol, "{tr:?} corner {c:?}: {closest}");
+            let slowest = slowest(&near);
+            assert!(slowest > 5.0, "{tr:?} corner {c:?}: {slowest}");
+        }
+        assert_within_limits(&states, &cfg);
+    }
+}
+
+/// Issue 11 defect: at a corner without geometry (`Transition::None`, a blending join) the
+/// finite-difference acceleration of an axis reached 2× its limit (the velocity step of the
+/// corner rule on top of the motions' own acceleration). Now within 1×.
+#[test]
+fn a_corner_without_geometry_keeps_the_finite_difference_acceleration_within_the_limit() {
+    for (turn, jerk) in [(90.0f64, f64::INFINITY), (30.0, f64::INFINITY), (60.0, 1e5)] {
+        let cfg = square_config();
+        let (s, c) = turn.to_radians().sin_cos();
+        let corner = p(&[10.0, 0.0]);
+        let end = p(&[10.0 + 10.0 * c, 10.0 * s]);
+        let mut pl = PathPlanner::new(cfg.clone(), p(&[0.0, 0.0])).unwrap();
+        for (i, (a, b)) in [(p(&[0.0, 0.0]), corner), (corner, end)].iter().enumerate() {
+            let m = motion(
+                line(*a, *b, 2),
+                limits(80.0, 800.0, jerk),
+                Join::BlendingHigh,
+                Transition::None,
+                i as u64,
+            );
+            pl.push_motion(m).unwrap();
+        }
+        let (states, _) = run(&mut pl, 100_000);
+        assert_eq!(states.last().unwrap().position, end);
+        // The corner is passed moving (a velocity step), not at rest.
+        let at_corner = states
+            .iter()
+            .filter(|s| close(&s.position, &corner, 0.05))
+            .map(|s| s.path_velocity)
+            .fold(0.0, f64::max);
+        assert!(at_corner > 0.0);
+        let pk = peaks(&states, &cfg);
+        assert!(pk.a_fd <= 1.0, "turn {turn}: FD a {}× the limit", pk.a_fd);
+        assert!(pk.a_reported <= 1.0 + 1e-12);
+    }
+}
+
+/// Issue 11 defect: where a line runs into a tangent arc the centripetal acceleration steps
+/// by v²/r in one tick, an unbounded jerk. Now the junction speed keeps the step within one
+/// period of each axis's jerk (v²·|Δκ_k| ≤ J_k·T): the finite-difference jerk stays within
+/// 2·J_k (the step plus the path's own).
+#[test]
+fn a_curvature_step_keeps_the_jerk_bounded() {
+    let jerk = 2e4;
+    let cfg = PlannerConfig::uniform(2, axis(100.0, 1000.0, jerk), 1e-3);
+    let segments = [
+        line(p(&[0.0, 0.0]), p(&[30.0, 0.0]), 2),
+        // Tangent: the circle of radius 5 about (30, 5), a half turn.
+        arc(
+            p(&[30.0, 0.0]),
+            p(&[30.0, 10.0]),
+            p(&[30.0, 5.0]),
+            Turn::Ccw,
+            2,
+        ),
+        line(p(&[30.0, 10.0]), p(&[0.0, 10.0]), 2),
+    ];
+    let mut pl = PathPlanner::new(cfg.clone(), p(&[0.0, 0.0])).unwrap();
+    for (i, s) in segments.iter().enumerate() {
+        let m = motion(
+            s.clone(),
+            limits(100.0, 1000.0, 1e4),
+            Join::BlendingLow,
+            Transition::None,
+            i as u64,
+        );
+        pl.push_motion(m).unwrap();
+    }
+    let (states, _) = run(&mut pl, 100_000);
+    assert_eq!(states.last().unwrap().position, p(&[0.0, 10.0]));
+    let t = cfg.period;
+    let mut worst: f64 = 0.0;
+    for k in 0..2 {
+        for w in states.windows(4) {
+            let j = (w[3].position[k] - 3.0 * w[2].position[k] + 3.0 * w[1].position[k]
+                - w[0].position[k])
+                / (t * t * t);
+            worst = worst.max(j.abs() / jerk);
+        }
+    }
+    assert!(worst <= 2.0, "FD jerk {worst}× the limit");
+    // Not by stopping: the junctions are passed moving.
+    let slowest_inside = states
+        .iter()
+        .filter(|s| s.tag.is_some() && s.position[0] > 20.0)
+        .map(|s| s.path_velocity)
+        .fold(f64::INFINITY, f64::min);
+    assert!(slowest_inside > 1.0, "{slowest_inside}");
 }

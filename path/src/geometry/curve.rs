@@ -31,11 +31,12 @@ use crate::{Point, MAX_AXES};
 /// Most points of one spline (HMC: `uiSplineNum` 1 to 1000 nodes after the start).
 pub const MAX_SPLINE_POINTS: usize = 1001;
 
-/// Table intervals per spline span (one piece), and per eighth of an ellipse (one piece of
-/// eight).
+/// Table intervals per spline span (one piece), per eighth of an ellipse (one piece of
+/// eight), and for a corner blend (one piece).
 const STEPS_PER_SPAN: usize = 4;
 const ELLIPSE_PIECES: usize = 8;
 const STEPS_PER_ELLIPSE_PIECE: usize = 8;
+const BLEND_STEPS: usize = 8;
 /// cos 30°: the most the tangent may turn between two bound evaluations.
 const SHARPEST_STEP_COS: f64 = 0.866;
 /// Extra evaluations per table interval when bounding the tangent and curvature.
@@ -58,6 +59,8 @@ enum Shape {
         major: Point,
         minor: Point,
     },
+    /// `p(u) = Σ c[i]·uⁱ`, u from 0 to 1: a corner blend (see [`Curve::blend`]).
+    Quintic { coefficients: Box<[Point; 6]> },
 }
 
 /// Position and the first two derivatives with respect to the parameter.
@@ -112,6 +115,17 @@ impl Shape {
                 }
                 e
             }
+            Shape::Quintic { coefficients: c } => {
+                let mut e = Eval::ZERO;
+                for a in 0..MAX_AXES {
+                    let (c0, c1, c2, c3, c4, c5) =
+                        (c[0][a], c[1][a], c[2][a], c[3][a], c[4][a], c[5][a]);
+                    e.p[a] = c0 + u * (c1 + u * (c2 + u * (c3 + u * (c4 + u * c5))));
+                    e.d1[a] = c1 + u * (2.0 * c2 + u * (3.0 * c3 + u * (4.0 * c4 + u * 5.0 * c5)));
+                    e.d2[a] = 2.0 * c2 + u * (6.0 * c3 + u * (12.0 * c4 + u * 20.0 * c5));
+                }
+                e
+            }
         }
     }
 
@@ -135,7 +149,7 @@ impl Shape {
                 }
                 sum.sqrt()
             }
-            Shape::Ellipse { .. } => norm(&self.eval(u, span).d1),
+            Shape::Ellipse { .. } | Shape::Quintic { .. } => norm(&self.eval(u, span).d1),
         }
     }
 
@@ -166,6 +180,16 @@ impl Shape {
                 center: t.apply(center),
                 major: t.apply_vector(major),
                 minor: t.apply_vector(minor),
+            },
+            Shape::Quintic { coefficients: c } => Shape::Quintic {
+                coefficients: Box::new([
+                    t.apply(&c[0]),
+                    t.apply_vector(&c[1]),
+                    t.apply_vector(&c[2]),
+                    t.apply_vector(&c[3]),
+                    t.apply_vector(&c[4]),
+                    t.apply_vector(&c[5]),
+                ]),
             },
         }
     }
@@ -261,6 +285,8 @@ fn step_bounds(u0: f64, u1: f64, steps: usize, k: usize) -> (f64, f64) {
 pub enum CurveKind {
     Spline,
     Ellipse,
+    /// A corner blend the planner made between two segments ([`Curve::blend`]).
+    Blend,
 }
 
 /// A curve sampled by path length (see the module doc). A trimmed curve shares its table.
@@ -693,6 +719,51 @@ impl Curve {
         )))
     }
 
+    /// The corner blend from `from` to `to` (each a point with its unit tangent and curvature
+    /// vector): the quintic `p(u)`, u ∈ [0, 1], with `p(0) = from.p`, `p'(0) = λ·from.t`,
+    /// `p''(0) = λ²·from.k` and the same at `u = 1` with `to`, `λ` the chord length. So the
+    /// blend joins both segments with the same tangent and the same curvature (G2): no
+    /// velocity and no centripetal-acceleration step at its ends (docs/decisions.md, "Blends
+    /// between any segments"). It lies inside the convex hull of [`blend_control_points`].
+    /// Refused (as any curve) when it would have a cusp.
+    #[allow(clippy::needless_range_loop)]
+    pub fn blend(from: &PathPoint, to: &PathPoint, dims: usize) -> Result<Segment, GeometryError> {
+        check_dims(dims)?;
+        check_finite("blend start", &from.p)?;
+        check_finite("blend end", &to.p)?;
+        let chord = norm(&sub(&to.p, &from.p));
+        if chord.is_nan() || chord <= POINT_TOLERANCE {
+            return Err(GeometryError::Invalid("a blend needs two distinct points"));
+        }
+        let (v0, a0) = (scale(&from.t, chord), scale(&from.k, chord * chord));
+        let (v1, a1) = (scale(&to.t, chord), scale(&to.k, chord * chord));
+        let mut c = [[0.0; MAX_AXES]; 6];
+        for k in 0..MAX_AXES {
+            // The quintic Hermite: c0..c2 from the start, c3..c5 so that the end matches.
+            let d = to.p[k] - from.p[k] - v0[k] - 0.5 * a0[k];
+            let e = v1[k] - v0[k] - a0[k];
+            let f = a1[k] - a0[k];
+            c[0][k] = from.p[k];
+            c[1][k] = v0[k];
+            c[2][k] = 0.5 * a0[k];
+            c[3][k] = 10.0 * d - 4.0 * e + 0.5 * f;
+            c[4][k] = -15.0 * d + 7.0 * e - f;
+            c[5][k] = 6.0 * d - 3.0 * e + 0.5 * f;
+        }
+        let table = build_table(
+            Shape::Quintic {
+                coefficients: Box::new(c),
+            },
+            std::iter::once((0.0, 1.0, BLEND_STEPS, 0)),
+        )?;
+        Ok(Segment::Curve(Curve::whole(
+            table,
+            CurveKind::Blend,
+            to.p,
+            dims,
+        )))
+    }
+
     fn whole(table: Table, kind: CurveKind, end: Point, dims: usize) -> Curve {
         let length = table.pieces.last().map_or(0.0, |p| p.s0 + p.length);
         Curve {
@@ -856,6 +927,26 @@ impl Curve {
             ..self.clone()
         }
     }
+}
+
+/// The Bézier control points of [`Curve::blend`]`(from, to)`: the blend lies in their convex
+/// hull, so within `max |B_i − q|` of any point `q` (the planner's deviation bound).
+// Six arrays indexed by the same axis: an index loop reads best.
+#[allow(clippy::needless_range_loop)]
+pub fn blend_control_points(from: &PathPoint, to: &PathPoint) -> [Point; 6] {
+    let chord = norm(&sub(&to.p, &from.p));
+    let mut b = [[0.0; MAX_AXES]; 6];
+    for k in 0..MAX_AXES {
+        let (v0, a0) = (chord * from.t[k], chord * chord * from.k[k]);
+        let (v1, a1) = (chord * to.t[k], chord * chord * to.k[k]);
+        b[0][k] = from.p[k];
+        b[1][k] = from.p[k] + v0 / 5.0;
+        b[2][k] = from.p[k] + 2.0 * v0 / 5.0 + a0 / 20.0;
+        b[3][k] = to.p[k] - 2.0 * v1 / 5.0 + a1 / 20.0;
+        b[4][k] = to.p[k] - v1 / 5.0;
+        b[5][k] = to.p[k];
+    }
+    b
 }
 
 /// Whether every point lies on the line from the first to the last, in order along it, within

@@ -388,7 +388,9 @@ impl PathPlanner {
         let st = &mut self.state;
         st.velocity = [0.0; MAX_AXES];
         st.acceleration = [0.0; MAX_AXES];
-        match (self.exec, self.queue.front()) {
+        // By reference: an `Execution` holds a whole profile (hundreds of bytes), and this
+        // runs every tick.
+        match (self.exec.as_ref(), self.queue.front()) {
             (Some(e), Some(Entry::Motion(m))) => {
                 let pt = m.segment.sample(e.s);
                 st.position = pt.p;
@@ -415,7 +417,7 @@ impl PathPlanner {
     /// Report a halt or stop that has brought the path to rest; a stop then drops the queue.
     fn check_at_rest(&mut self, events: &mut Vec<PathEvent>) {
         let Some(halt) = self.halt else { return };
-        let resting = match self.exec {
+        let resting = match &self.exec {
             None => self.carry <= 0.0,
             Some(e) => e.v <= 0.0 && e.a == 0.0,
         };

@@ -609,7 +609,7 @@ impl PathPlanner {
                 Entry::Marker { .. } => 0.0,
             })
             .sum();
-        total - self.exec.map_or(0.0, |e| e.s)
+        total - self.exec.as_ref().map_or(0.0, |e| e.s)
     }
 
     /// Motions started during the last step (bounded by [`MAX_STARTS_PER_STEP`]).

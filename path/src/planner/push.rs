@@ -1,8 +1,8 @@
 //! Appending a motion: its path limits, its junction with the motion before it, and the
 //! corner blend that may replace that junction (issue 11 item 4).
 
-use super::blend::corner_arc;
-use super::junction::{corner_cap, mode_velocity};
+use super::blend::corner_curve;
+use super::junction::{corner_rule, curvature_cap, mode_velocity, with_acceleration_share};
 use super::limits::motion_limits;
 use super::queue::{Entry, QueuedMotion};
 use super::reach::{lowest_end, reach, settle};
@@ -34,7 +34,20 @@ fn queued(
         reports_start: true,
         entry_factor: 1.0,
         reports_done: true,
+        acceleration_share: 1.0,
     }
+}
+
+/// `m`'s path limits again (its segment changed, or its share of the axes' acceleration).
+fn relimit(m: &mut QueuedMotion, axes: &[AxisLimits], period: f64, rules: &LookaheadLimits) {
+    let shared;
+    let axes = if m.acceleration_share < 1.0 {
+        shared = with_acceleration_share(axes, m.acceleration_share);
+        shared.get(..axes.len()).unwrap_or(&[])
+    } else {
+        axes
+    };
+    m.limits = motion_limits(&m.segment, &m.programmed, axes, period, rules);
 }
 
 /// The highest velocity at which the path may enter `first` and still stop by the end of
@@ -89,34 +102,51 @@ impl PathPlanner {
             self.queue.push_back(Entry::Motion(Box::new(second)));
             return pi;
         }
-        // Transition::None, or corners with arcs (documented): the corner rule.
-        let mut before_end = [0.0; crate::MAX_AXES];
+        // Transition::None (or a blend that did not fit): the corner rule, and the curvature
+        // rule where the curvature steps.
+        let rules = self.lookahead_limits;
+        let mut new = new;
+        let after = new.segment.sample(0.0);
+        let mut before = after;
+        let mut share = 1.0;
         if let Some(Entry::Motion(prev)) = self.queue.get_mut(pi) {
-            let before = prev.segment.end_tangent();
-            before_end = before;
-            let after = new.segment.start_tangent();
-            prev.end_cap = corner_cap(&before, &after, axes, period);
-            if let Some(a) = self.lookahead_limits.corner_acceleration {
-                let step = crate::geometry::norm(&crate::geometry::sub(&before, &after));
+            before = prev.segment.sample(prev.length);
+            let v_limit = prev.limits.velocity_cap.min(new.limits.velocity_cap);
+            let (cap, motions) = corner_rule(&before.t, &after.t, axes, period, v_limit);
+            share = motions;
+            prev.end_cap = cap.min(curvature_cap(&before.k, &after.k, axes, period));
+            if let Some(a) = rules.corner_acceleration {
+                let step = crate::geometry::norm(&crate::geometry::sub(&before.t, &after.t));
                 if step > 0.0 {
                     prev.end_cap = prev.end_cap.min(a * period / step);
                 }
             }
+            // A velocity step: both motions leave it part of the axes' acceleration.
+            if share < prev.acceleration_share {
+                prev.acceleration_share = share;
+                relimit(prev, axes, period, &rules);
+            }
         }
-        let mut new = new;
+        if share < 1.0 {
+            new.acceleration_share = share;
+            relimit(&mut new, axes, period, &rules);
+            if pi == 0 && self.exec.is_some() {
+                self.replan_pending = true;
+            }
+        }
         if let Some(angles) = self.corner_angles {
-            new.entry_factor =
-                angles.factor(direction_change(&before_end, &new.segment.start_tangent()));
+            new.entry_factor = angles.factor(direction_change(&before.t, &after.t));
         }
         self.queue.push_back(Entry::Motion(Box::new(new)));
         pi
     }
 
-    /// Round the corner between the motion at queue index `pi` and `new` (both lines) with a
-    /// tangent arc: trims the previous line in place and returns the arc and the trimmed new
-    /// line. `None` when there is no corner geometry to make, or the path is already past
-    /// where the arc would begin, or too fast to enter it (HIMC TV 55, digest 004 §6.4: a
-    /// motion blends only if the next is queued before it ends; then the corner rule applies).
+    /// Round the corner between the motion at queue index `pi` and `new` (any segments; see
+    /// `blend::corner_curve`): trims the previous motion in place and returns the blend and the
+    /// trimmed new motion. `None` when there is no corner geometry to make, or the path is
+    /// already past where the blend would begin, or too fast to enter it (HIMC TV 55, digest
+    /// 004 §6.4: a motion blends only if the next is queued before it ends; then the corner
+    /// rule applies).
     fn blend(
         &mut self,
         pi: usize,
@@ -130,10 +160,7 @@ impl PathPlanner {
         let Some(Entry::Motion(prev)) = self.queue.get(pi) else {
             return None;
         };
-        let (Segment::Line(first), Segment::Line(second)) = (&prev.segment, &new.segment) else {
-            return None;
-        };
-        let (tangent, arc) = corner_arc(first, second, transition, dims)?;
+        let rounded = corner_curve(&prev.segment, &new.segment, transition, dims)?;
         let join = new.join;
         let programmed = PathLimits {
             velocity: mode_velocity(join, prev.programmed.velocity, new.programmed.velocity),
@@ -149,7 +176,7 @@ impl PathPlanner {
         };
         let rules = self.lookahead_limits;
         let mut arc = queued(
-            Segment::Arc(arc),
+            rounded.blend,
             programmed,
             join,
             new.tag,
@@ -158,29 +185,40 @@ impl PathPlanner {
             &rules,
         );
         arc.reports_done = false;
-        arc.end_cap = f64::INFINITY;
-        let rest = new.segment.trimmed(tangent, new.length);
-        let mut rest = queued(rest, new.programmed, join, new.tag, axes, period, &rules);
+        let mut rest = queued(
+            rounded.tail,
+            new.programmed,
+            join,
+            new.tag,
+            axes,
+            period,
+            &rules,
+        );
         rest.reports_start = false;
-        let shortened = prev.length - tangent;
+        let segment = rounded.head;
+        let shortened = segment.length();
+        // Where the curvature steps (a corner arc's ends), the curvature rule.
+        let (arc_start, arc_end) = (arc.segment.sample(0.0), arc.segment.sample(arc.length));
+        arc.end_cap = curvature_cap(&arc_end.k, &rest.segment.sample(0.0).k, axes, period);
+        let head_end = segment.sample(shortened);
+        let head_cap = curvature_cap(&head_end.k, &arc_start.k, axes, period);
         if let Some(e) = executing {
             // The path must be able to enter the arc from where it is now.
             let l = &prev.limits;
             let (v1, s1) = settle(e.v, e.a, l.jerk);
             let room = shortened - e.s - s1;
             if room < 0.0
-                || lowest_end(v1, room, l.deceleration, l.jerk) > entry_velocity(&arc, &rest)
+                || lowest_end(v1, room, l.deceleration, l.jerk)
+                    > entry_velocity(&arc, &rest).min(head_cap)
             {
                 return None;
             }
         }
-        let segment = prev.segment.trimmed(0.0, shortened);
-        let prev_programmed = prev.programmed;
         if let Some(Entry::Motion(prev)) = self.queue.get_mut(pi) {
-            prev.limits = motion_limits(&segment, &prev_programmed, axes, period, &rules);
             prev.length = segment.length();
             prev.segment = segment;
-            prev.end_cap = f64::INFINITY;
+            relimit(prev, axes, period, &rules);
+            prev.end_cap = head_cap;
         }
         if executing.is_some() {
             self.replan_pending = true;

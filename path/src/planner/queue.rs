@@ -31,6 +31,9 @@ pub(super) struct QueuedMotion {
     /// The corner-angle factor on the velocity of the junction into it (1: none).
     pub entry_factor: f64,
     pub reports_done: bool,
+    /// The share of the axes' acceleration its limits were planned with: below 1 beside a
+    /// corner that steps the velocity (`junction::CORNER_MOTION_SHARE`).
+    pub acceleration_share: f64,
 }
 
 impl QueuedMotion {

@@ -153,3 +153,44 @@ pub fn rotate(x: f64, y: f64, angle: f64) -> (f64, f64) {
 pub fn close(a: &Point, b: &Point, tol: f64) -> bool {
     norm(&sub(a, b)) <= tol
 }
+
+/// An upper bound on the distance from `q` to `segment` (exact for a line; for an arc or
+/// helix, the distance to the point at the angle of `q`'s projection on its plane, or to its
+/// nearer end): 0 for a point on the segment.
+pub fn distance_to_segment(q: &Point, segment: &Segment) -> f64 {
+    match segment {
+        Segment::Line(l) => distance_to_polyline(q, &[l.start(), l.end()]),
+        Segment::Arc(a) => {
+            let (u, v) = a.basis();
+            let c = a.center();
+            let w = sub(q, &c);
+            let x: f64 = w.iter().zip(&u).map(|(a, b)| a * b).sum();
+            let y: f64 = w.iter().zip(&v).map(|(a, b)| a * b).sum();
+            let at = |theta: f64| {
+                let (s, co) = theta.sin_cos();
+                let h = a.helix();
+                let mut pt = [0.0; MAX_AXES];
+                for k in 0..MAX_AXES {
+                    pt[k] = c[k] + a.radius() * (co * u[k] + s * v[k]) + theta / a.sweep() * h[k];
+                }
+                norm(&sub(q, &pt))
+            };
+            let theta = y.atan2(x).rem_euclid(std::f64::consts::TAU);
+            let ends = norm(&sub(q, &segment.start())).min(norm(&sub(q, &a.end())));
+            if theta <= a.sweep() {
+                at(theta).min(ends)
+            } else {
+                ends
+            }
+        }
+        Segment::Curve(_) => norm(&sub(q, &segment.start())).min(norm(&sub(q, &segment.end()))),
+    }
+}
+
+/// An upper bound on the distance from `q` to the path made of `segments`.
+pub fn distance_to_path(q: &Point, segments: &[Segment]) -> f64 {
+    segments
+        .iter()
+        .map(|s| distance_to_segment(q, s))
+        .fold(f64::INFINITY, f64::min)
+}
