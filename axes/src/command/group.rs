@@ -24,6 +24,13 @@ pub struct GroupCreate {
     /// Segments the look-ahead plans over (default: the `[groups]` config, 64).
     #[serde(default)]
     pub lookahead: Option<u32>,
+    /// HMC's result axis (合轴, digest 000 §4.3): an axis outside the group (usually a
+    /// virtual one) whose position grows by the path length the group travels and whose
+    /// `speed`, `accel`, `decel` and `jerk` are the path limits of motions that give none. It
+    /// is bound to the group like a member (IN_GROUP, no single-axis motion; its fault stops
+    /// the group).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub result_axis: Option<AxisIndex>,
 }
 
 /// Dissolve a group (HIMC UngrpAllAxes); its axes are free again. Refused while it moves.
@@ -109,6 +116,12 @@ pub struct MoveLinearAbsolute {
     /// A number the status reports while this motion runs (NMC CrdGetUserSegNo).
     #[serde(default)]
     pub user_segment: Option<u32>,
+    /// Group coordinates (indices into the group's `axes`, as `plane`) that move in
+    /// proportion but do not count in the path length: velocity, acceleration, deceleration,
+    /// jerk and the result axis's travel are measured over the other coordinates (HMC MoveND
+    /// independent axes; HMC_MoveHelical modes 4/5/7 count the arc plane only).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub independent: Vec<usize>,
 }
 
 /// Move along a straight line by a distance from where the previous motion ends
@@ -132,6 +145,12 @@ pub struct MoveLinearRelative {
     pub transition: TransitionMode,
     #[serde(default)]
     pub user_segment: Option<u32>,
+    /// Group coordinates (indices into the group's `axes`, as `plane`) that move in
+    /// proportion but do not count in the path length: velocity, acceleration, deceleration,
+    /// jerk and the result axis's travel are measured over the other coordinates (HMC MoveND
+    /// independent axes; HMC_MoveHelical modes 4/5/7 count the arc plane only).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub independent: Vec<usize>,
 }
 
 /// What `aux_point` (and `radius`) of a circular move mean (PLCopen MC_CircMode).
@@ -193,6 +212,12 @@ pub struct MoveCircularAbsolute {
     pub transition: TransitionMode,
     #[serde(default)]
     pub user_segment: Option<u32>,
+    /// Group coordinates (indices into the group's `axes`, as `plane`) that move in
+    /// proportion but do not count in the path length: velocity, acceleration, deceleration,
+    /// jerk and the result axis's travel are measured over the other coordinates (HMC MoveND
+    /// independent axes; HMC_MoveHelical modes 4/5/7 count the arc plane only).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub independent: Vec<usize>,
 }
 
 /// [`MoveCircularAbsolute`] with `aux_point` and `end_point` relative to the arc's start
@@ -230,6 +255,12 @@ pub struct MoveCircularRelative {
     pub transition: TransitionMode,
     #[serde(default)]
     pub user_segment: Option<u32>,
+    /// Group coordinates (indices into the group's `axes`, as `plane`) that move in
+    /// proportion but do not count in the path length: velocity, acceleration, deceleration,
+    /// jerk and the result axis's travel are measured over the other coordinates (HMC MoveND
+    /// independent axes; HMC_MoveHelical modes 4/5/7 count the arc plane only).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub independent: Vec<usize>,
 }
 
 /// Decelerate to rest along the path and drop the queue (MC_GroupStop). `deceleration`

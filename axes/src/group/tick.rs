@@ -100,7 +100,7 @@ impl Group {
     /// simply stands) and is free of the feed.
     pub(super) fn release(&mut self, env: &mut Env) {
         self.feeding = false;
-        for &a in &self.members {
+        for a in self.bound_axes() {
             let (mut ctx, axes) = env.context();
             if let Some(axis) = axes.get_mut(a as usize) {
                 // Release never fails: it only ends a feed.
@@ -132,7 +132,38 @@ impl Group {
             axis.feed(&mut ctx, Feed::Follow(setpoint))
                 .map_err(|e| (a, e))?;
         }
-        Ok(())
+        self.feed_result_axis(env, state)
+    }
+
+    /// Feed the result axis its start plus the counted path length travelled, and the path
+    /// velocity and acceleration over the counted coordinates (digest 000 §4.3: "the result
+    /// axis's EndPos grows by the path length"). The travel of one tick counts at the ratio of
+    /// the motion executing at its end: where a motion starts mid-tick after one with another
+    /// ratio, the error is at most one tick's travel times the difference of the two ratios.
+    fn feed_result_axis(
+        &mut self,
+        env: &mut Env,
+        state: &PathState,
+    ) -> Result<(), (u16, EngineError)> {
+        let ratio = self.length_ratio;
+        let Some(r) = &mut self.result else {
+            return Ok(());
+        };
+        r.position += (state.travelled - r.travelled) * ratio;
+        r.travelled = state.travelled;
+        let setpoint = MotionState {
+            p: r.position,
+            v: state.path_velocity * ratio,
+            a: state.path_acceleration * ratio,
+        };
+        let a = r.axis;
+        let (mut ctx, axes) = env.context();
+        match axes.get_mut(a as usize) {
+            Some(axis) => axis
+                .feed(&mut ctx, Feed::Follow(setpoint))
+                .map_err(|e| (a, e)),
+            None => Ok(()),
+        }
     }
 
     fn on_event(&mut self, env: &mut Env, event: PathEvent) {
@@ -142,11 +173,16 @@ impl Group {
                 self.running = Some(id);
                 self.segment += 1;
                 if let Some(Entry {
-                    item: Item::Motion { user_segment },
+                    item:
+                        Item::Motion {
+                            user_segment,
+                            length_ratio,
+                        },
                     ..
                 }) = self.queue.get(id)
                 {
                     self.user_segment = *user_segment;
+                    self.length_ratio = *length_ratio;
                 }
             }
             PathEvent::Done { tag } => {
@@ -296,11 +332,11 @@ impl Group {
         self.refresh_limits(env.axes);
         self.sync_position(env)?;
         let start = self.planner.queue_end();
-        let segment = request.segment(self.id, start, self.dims())?;
+        let (segment, length_ratio) = request.segment(self.id, start, self.dims())?;
         self.planner
             .push_motion(Motion {
                 segment,
-                limits: request.limits,
+                limits: request.limits_along_path(length_ratio),
                 join: request.join,
                 transition: request.transition,
                 tag: u64::from(id),
@@ -310,6 +346,7 @@ impl Group {
             id,
             item: Item::Motion {
                 user_segment: request.user_segment,
+                length_ratio,
             },
         });
         Ok(())
@@ -322,6 +359,13 @@ impl Group {
             self.planner
                 .reset_position(here)
                 .map_err(|e| self.planner_error(e))?;
+            let travelled = self.planner.state().travelled;
+            if let Some(r) = &mut self.result {
+                if let Some(axis) = env.axes.get(r.axis as usize) {
+                    r.position = axis.commanded().p;
+                }
+                r.travelled = travelled;
+            }
         }
         Ok(())
     }
@@ -380,7 +424,7 @@ impl Group {
     /// The members' fast stop of an emergency stop (HIMC EStop): each decelerates with its
     /// `fast_decel`.
     pub(super) fn stop_members_fast(&mut self, env: &mut Env) {
-        for &a in &self.members {
+        for a in self.bound_axes() {
             let (mut ctx, axes) = env.context();
             if let Some(axis) = axes.get_mut(a as usize) {
                 let _ = axis.stop(&mut ctx, StopMode::Abrupt, None);

@@ -212,6 +212,7 @@ pub fn with_group(mut e: Engine, members: &[u16]) -> Engine {
             axes: members.to_vec(),
             queue_capacity: None,
             lookahead: None,
+            result_axis: None,
         }),
     );
     ok(&mut e, Command::from(GroupEnable { group: 1 }));
@@ -230,6 +231,7 @@ pub fn group_line(group: u16, position: &[f64]) -> MoveLinearAbsolute {
         buffer_mode: GroupBufferMode::Buffered,
         transition: TransitionMode::None,
         user_segment: None,
+        independent: Vec::new(),
     }
 }
 
@@ -258,5 +260,6 @@ pub fn group_arc(
         buffer_mode: GroupBufferMode::Buffered,
         transition: TransitionMode::None,
         user_segment: None,
+        independent: Vec::new(),
     }
 }
