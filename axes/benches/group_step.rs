@@ -88,7 +88,7 @@ impl Group {
                     buffer_mode: GroupBufferMode::BlendingLow,
                     transition: TransitionMode::CornerDistance(5.0),
                     user_segment: None,
-                    independent: Vec::new(),
+                    independent: Default::default(),
                 }))
                 .expect("move_linear_absolute");
             self.next += 1;

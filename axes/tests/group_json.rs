@@ -5,12 +5,12 @@
 #![allow(clippy::unwrap_used)]
 
 use axes::command::{
-    ArcDirection, CircleMode, Command, GroupAxisMove, GroupBufferMode, GroupContinue, GroupCreate,
-    GroupDelete, GroupDisable, GroupDwell, GroupEmergencyStop, GroupEnable, GroupHalt,
-    GroupParameter, GroupReset, GroupSetOrigin, GroupSetOutput, GroupSetOverride,
-    GroupSetParameter, GroupStop, GroupWaitInput, GroupWaitPosition, MoveCircularAbsolute,
-    MoveCircularRelative, MoveEllipse, MoveLinearAbsolute, MoveLinearRelative, MoveSpline,
-    TransitionMode,
+    ArcDirection, CircleMode, Command, CoordinateSet, GroupAxisMove, GroupBufferMode,
+    GroupContinue, GroupCreate, GroupDelete, GroupDisable, GroupDwell, GroupEmergencyStop,
+    GroupEnable, GroupHalt, GroupParameter, GroupReset, GroupSetOrigin, GroupSetOutput,
+    GroupSetOverride, GroupSetParameter, GroupStop, GroupWaitInput, GroupWaitPosition,
+    MoveCircularAbsolute, MoveCircularRelative, MoveEllipse, MoveLinearAbsolute,
+    MoveLinearRelative, MoveSpline, TransitionMode,
 };
 
 fn full() -> Vec<(Command, &'static str)> {
@@ -52,7 +52,7 @@ fn full() -> Vec<(Command, &'static str)> {
                 buffer_mode: GroupBufferMode::BlendingLow,
                 transition: TransitionMode::CornerDistance(1.5),
                 user_segment: Some(7),
-                independent: Vec::new(),
+                independent: Default::default(),
             }),
             r#"{"type":"move_linear_absolute","group":1,"position":[10.0,-2.5],"velocity":50.0,"acceleration":500.0,"deceleration":600.0,"jerk":0.0,"buffer_mode":"blending_low","transition":{"corner_distance":1.5},"user_segment":7}"#,
         ),
@@ -67,7 +67,7 @@ fn full() -> Vec<(Command, &'static str)> {
                 buffer_mode: GroupBufferMode::Aborting,
                 transition: TransitionMode::CornerDeviation(0.01),
                 user_segment: None,
-                independent: vec![2],
+                independent: CoordinateSet::from_indices(&[2]).unwrap(),
             }),
             r#"{"type":"move_linear_relative","group":1,"distance":[1.0,2.0,3.0],"velocity":5.0,"acceleration":null,"deceleration":null,"jerk":1000000.0,"buffer_mode":"aborting","transition":{"corner_deviation":0.01},"user_segment":null,"independent":[2]}"#,
         ),
@@ -89,7 +89,7 @@ fn full() -> Vec<(Command, &'static str)> {
                 buffer_mode: GroupBufferMode::BlendingPrevious,
                 transition: TransitionMode::None,
                 user_segment: Some(3),
-                independent: Vec::new(),
+                independent: Default::default(),
             }),
             r#"{"type":"move_circular_absolute","group":1,"mode":"radius","aux_point":[],"radius":-10.0,"end_point":[20.0,0.0],"direction":"cw","plane":[0,1],"normal":null,"turns":0,"velocity":20.0,"acceleration":200.0,"deceleration":200.0,"jerk":null,"buffer_mode":"blending_previous","transition":"none","user_segment":3}"#,
         ),
@@ -111,7 +111,7 @@ fn full() -> Vec<(Command, &'static str)> {
                 buffer_mode: GroupBufferMode::BlendingHigh,
                 transition: TransitionMode::None,
                 user_segment: None,
-                independent: Vec::new(),
+                independent: Default::default(),
             }),
             r#"{"type":"move_circular_relative","group":2,"mode":"border","aux_point":[5.0,5.0,0.0],"radius":null,"end_point":[10.0,0.0,1.0],"direction":"ccw","plane":null,"normal":[0.0,0.0,1.0],"turns":4,"velocity":null,"acceleration":null,"deceleration":null,"jerk":null,"buffer_mode":"blending_high","transition":"none","user_segment":null}"#,
         ),
@@ -272,7 +272,7 @@ fn a_motion_with_only_its_required_fields_is_buffered_without_transition() {
             buffer_mode: GroupBufferMode::Buffered,
             transition: TransitionMode::None,
             user_segment: None,
-            independent: Vec::new(),
+            independent: Default::default(),
         })
     );
     let c: Command = serde_json::from_str(

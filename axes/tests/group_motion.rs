@@ -315,7 +315,7 @@ fn extra_axes_ride_along_an_arc_in_proportion() {
             buffer_mode: GroupBufferMode::Buffered,
             transition: TransitionMode::None,
             user_segment: None,
-            independent: Vec::new(),
+            independent: Default::default(),
         },
     );
     for _ in 0..10_000 {
@@ -718,7 +718,7 @@ fn relative_moves_chain_from_the_queue_end_and_the_origin_offsets_group_coordina
                 buffer_mode: GroupBufferMode::Buffered,
                 transition: TransitionMode::None,
                 user_segment: Some(42),
-                independent: Vec::new(),
+                independent: Default::default(),
             },
         );
     }

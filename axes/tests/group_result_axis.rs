@@ -8,9 +8,9 @@ mod common;
 use std::f64::consts::TAU;
 
 use axes::command::{
-    ArcDirection, CircleMode, Command, CommandState, Enable, ErrorKind, GroupBufferMode,
-    GroupCreate, GroupDelete, GroupEnable, MoveAbsolute, MoveCircularRelative, MoveLinearAbsolute,
-    MoveLinearRelative, MoveSpline, SetParameter, TransitionMode,
+    ArcDirection, CircleMode, Command, CommandState, CoordinateSet, Enable, ErrorKind,
+    GroupBufferMode, GroupCreate, GroupDelete, GroupEnable, MoveAbsolute, MoveCircularRelative,
+    MoveLinearAbsolute, MoveLinearRelative, MoveSpline, SetParameter, TransitionMode,
 };
 use axes::config::AxisConfig;
 use axes::status::{GroupFault, GroupState, GroupStatus};
@@ -84,7 +84,7 @@ fn line(distance: &[f64]) -> MoveLinearRelative {
         buffer_mode: GroupBufferMode::Buffered,
         transition: TransitionMode::None,
         user_segment: None,
-        independent: Vec::new(),
+        independent: Default::default(),
     }
 }
 
@@ -108,8 +108,12 @@ fn arc(center: &[f64], end: &[f64], direction: ArcDirection) -> MoveCircularRela
         buffer_mode: GroupBufferMode::Buffered,
         transition: TransitionMode::None,
         user_segment: None,
-        independent: Vec::new(),
+        independent: Default::default(),
     }
+}
+
+fn coords(indices: &[usize]) -> CoordinateSet {
+    CoordinateSet::from_indices(indices).unwrap()
 }
 
 fn send(e: &mut Engine, c: impl Into<Command>) -> u32 {
@@ -228,7 +232,7 @@ fn tv15_triangle_contour_result_axis_300_700_1200_then_the_absolute_version() {
                 buffer_mode: GroupBufferMode::Buffered,
                 transition: TransitionMode::None,
                 user_segment: None,
-                independent: Vec::new(),
+                independent: Default::default(),
             },
         );
         run_path(&mut e, 10.0, |_| {});
@@ -278,7 +282,7 @@ fn tv17_move_nd_independent_axes_ride_in_proportion_and_do_not_count() {
     send(
         &mut e,
         MoveLinearRelative {
-            independent: vec![3, 4],
+            independent: coords(&[3, 4]),
             ..line(&[10000.0, 20000.0, 30000.0, 180.0, 120.0])
         },
     );
@@ -343,7 +347,11 @@ fn tv18_slot_contour_result_axis_4000_plus_two_pi_1000() {
 /// XY arc), else modes 0/1/3 (the XYZ length).
 fn helix(plane_only: bool) -> MoveCircularRelative {
     MoveCircularRelative {
-        independent: if plane_only { vec![2] } else { Vec::new() },
+        independent: if plane_only {
+            coords(&[2])
+        } else {
+            coords(&[])
+        },
         ..arc(&[50.0, 0.0, 0.0], &[0.0, 0.0, 500.0], ArcDirection::Cw)
     }
 }
@@ -536,7 +544,7 @@ fn bad_independent_coordinates_are_refused_with_the_reason() {
     let cases: Vec<(Command, &str)> = vec![
         (
             MoveLinearRelative {
-                independent: vec![3],
+                independent: coords(&[3]),
                 ..line(&[1.0, 2.0, 3.0])
             }
             .into(),
@@ -544,7 +552,7 @@ fn bad_independent_coordinates_are_refused_with_the_reason() {
         ),
         (
             MoveLinearRelative {
-                independent: vec![0, 1, 2],
+                independent: coords(&[0, 1, 2]),
                 ..line(&[1.0, 2.0, 3.0])
             }
             .into(),
@@ -552,7 +560,7 @@ fn bad_independent_coordinates_are_refused_with_the_reason() {
         ),
         (
             MoveLinearRelative {
-                independent: vec![0],
+                independent: coords(&[0]),
                 ..line(&[5.0, 0.0, 0.0])
             }
             .into(),
@@ -560,7 +568,7 @@ fn bad_independent_coordinates_are_refused_with_the_reason() {
         ),
         (
             MoveCircularRelative {
-                independent: vec![1],
+                independent: coords(&[1]),
                 ..arc(&[50.0, 0.0, 0.0], &[100.0, 0.0, 10.0], ArcDirection::Cw)
             }
             .into(),
@@ -582,6 +590,16 @@ fn bad_independent_coordinates_are_refused_with_the_reason() {
     )
     .unwrap_err();
     assert!(err.to_string().contains("unknown field `independent`"));
+    // A group has at most 9 coordinates: index 9 is refused when the command is read.
+    let err = serde_json::from_str::<Command>(
+        r#"{"type":"move_linear_relative","group":1,"distance":[1,2,3],"independent":[2,9]}"#,
+    )
+    .unwrap_err();
+    assert!(
+        err.to_string()
+            .contains("group coordinates are indices 0 to 8 into the group's axes, not [2, 9]"),
+        "{err}"
+    );
     let _ = MoveSpline {
         group: 1,
         points: vec![],

@@ -7,8 +7,8 @@ use path::planner::{Join, PathLimits, Transition};
 use path::{Point, MAX_AXES};
 
 use crate::command::{
-    bounded, nonnegative, positive, ArcDirection, CircleMode, CommandId, EngineError,
-    GroupBufferMode, GroupId, MoveCircularAbsolute, MoveCircularRelative, MoveEllipse,
+    bounded, nonnegative, positive, ArcDirection, CircleMode, CommandId, CoordinateSet,
+    EngineError, GroupBufferMode, GroupId, MoveCircularAbsolute, MoveCircularRelative, MoveEllipse,
     MoveLinearAbsolute, MoveLinearRelative, MoveSpline, TransitionMode,
 };
 
@@ -72,11 +72,11 @@ pub(super) const ALL_COUNTED: Counted = [true; MAX_AXES];
 /// coordinates do not count: each index names a coordinate, and one at least must count.
 pub(super) fn counted_coordinates(
     group: GroupId,
-    independent: &[usize],
+    independent: CoordinateSet,
     dims: usize,
 ) -> Result<Counted, EngineError> {
     let mut counted = ALL_COUNTED;
-    for &k in independent {
+    for k in independent.iter() {
         match counted.get_mut(k).filter(|_| k < dims) {
             Some(c) => *c = false,
             None => {
@@ -312,7 +312,7 @@ pub(super) fn linear_absolute(
 ) -> Result<PathRequest, EngineError> {
     let point = coordinates(group, "position", &c.position, dims)?;
     let mode = (c.buffer_mode, c.transition, c.user_segment);
-    let counted = counted_coordinates(group, &c.independent, dims)?;
+    let counted = counted_coordinates(group, c.independent, dims)?;
     linear(point, false, kinematics!(c), mode, counted, defaults)
 }
 
@@ -324,7 +324,7 @@ pub(super) fn linear_relative(
 ) -> Result<PathRequest, EngineError> {
     let point = coordinates(group, "distance", &c.distance, dims)?;
     let mode = (c.buffer_mode, c.transition, c.user_segment);
-    let counted = counted_coordinates(group, &c.independent, dims)?;
+    let counted = counted_coordinates(group, c.independent, dims)?;
     linear(point, true, kinematics!(c), mode, counted, defaults)
 }
 
@@ -363,7 +363,7 @@ pub(super) struct CircularFields<'a> {
     pub buffer_mode: GroupBufferMode,
     pub transition: TransitionMode,
     pub user_segment: Option<u32>,
-    pub independent: &'a [usize],
+    pub independent: CoordinateSet,
     pub relative: bool,
 }
 
@@ -385,7 +385,7 @@ macro_rules! circular_fields {
                     buffer_mode: c.buffer_mode,
                     transition: c.transition,
                     user_segment: c.user_segment,
-                    independent: &c.independent,
+                    independent: c.independent,
                     relative: $relative,
                 }
             }

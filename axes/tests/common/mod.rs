@@ -231,7 +231,7 @@ pub fn group_line(group: u16, position: &[f64]) -> MoveLinearAbsolute {
         buffer_mode: GroupBufferMode::Buffered,
         transition: TransitionMode::None,
         user_segment: None,
-        independent: Vec::new(),
+        independent: Default::default(),
     }
 }
 
@@ -260,6 +260,6 @@ pub fn group_arc(
         buffer_mode: GroupBufferMode::Buffered,
         transition: TransitionMode::None,
         user_segment: None,
-        independent: Vec::new(),
+        independent: Default::default(),
     }
 }
