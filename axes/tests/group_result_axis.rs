@@ -8,9 +8,9 @@ mod common;
 use std::f64::consts::TAU;
 
 use axes::command::{
-    ArcDirection, CircleMode, Command, CommandState, CoordinateSet, Enable, ErrorKind,
-    GroupBufferMode, GroupCreate, GroupDelete, GroupEnable, MoveAbsolute, MoveCircularRelative,
-    MoveLinearAbsolute, MoveLinearRelative, MoveSpline, SetParameter, TransitionMode,
+    ArcDirection, Command, CommandState, CoordinateSet, Enable, ErrorKind, GroupBufferMode,
+    GroupCreate, GroupDelete, GroupEnable, MoveAbsolute, MoveCircularAbsolute, MoveLinearRelative,
+    SetParameter, TransitionMode,
 };
 use axes::config::AxisConfig;
 use axes::status::{GroupFault, GroupState, GroupStatus};
@@ -88,28 +88,10 @@ fn line(distance: &[f64]) -> MoveLinearRelative {
     }
 }
 
-/// HMC_MoveCircle modes 1/3 (and HMC_MoveHelical 1/3/5/7): `center` and `end` relative to
-/// the start.
-fn arc(center: &[f64], end: &[f64], direction: ArcDirection) -> MoveCircularRelative {
-    MoveCircularRelative {
-        group: 1,
-        mode: CircleMode::Center,
-        aux_point: center.to_vec(),
-        radius: None,
-        end_point: end.to_vec(),
-        direction,
-        plane: None,
-        normal: None,
-        turns: 0,
-        velocity: None,
-        acceleration: None,
-        deceleration: None,
-        jerk: None,
-        buffer_mode: GroupBufferMode::Buffered,
-        transition: TransitionMode::None,
-        user_segment: None,
-        independent: Default::default(),
-    }
+/// HMC_MoveCircle modes 1/3 (and HMC_MoveHelical 1/3/5/7) by centre and end, absolute here
+/// (HMC's are relative to the start).
+fn arc(center: &[f64], end: &[f64], direction: ArcDirection) -> MoveCircularAbsolute {
+    common::group_arc(1, center, end, direction)
 }
 
 fn coords(indices: &[usize]) -> CoordinateSet {
@@ -220,21 +202,7 @@ fn tv15_triangle_contour_result_axis_300_700_1200_then_the_absolute_version() {
         ([300.0, 400.0], 1900.0),
         ([0.0, 0.0], 2400.0),
     ] {
-        let id = send(
-            &mut e,
-            MoveLinearAbsolute {
-                group: 1,
-                position: p.to_vec(),
-                velocity: None,
-                acceleration: None,
-                deceleration: None,
-                jerk: None,
-                buffer_mode: GroupBufferMode::Buffered,
-                transition: TransitionMode::None,
-                user_segment: None,
-                independent: Default::default(),
-            },
-        );
+        let id = send(&mut e, common::group_line(1, &p));
         run_path(&mut e, 10.0, |_| {});
         assert_eq!(state_of(&mut e, id), CommandState::Done);
         assert!(close(pos(&e, 10), expected, 1e-6), "{}", pos(&e, 10));
@@ -325,13 +293,10 @@ fn tv18_slot_contour_result_axis_4000_plus_two_pi_1000() {
     send(&mut e, line(&[2000.0, 0.0]));
     send(
         &mut e,
-        arc(&[0.0, -1000.0], &[0.0, -2000.0], ArcDirection::Cw),
+        arc(&[2000.0, -1000.0], &[2000.0, -2000.0], ArcDirection::Cw),
     );
     send(&mut e, line(&[-2000.0, 0.0]));
-    send(
-        &mut e,
-        arc(&[0.0, 1000.0], &[0.0, 2000.0], ArcDirection::Cw),
-    );
+    send(&mut e, arc(&[0.0, -1000.0], &[0.0, 0.0], ArcDirection::Cw));
     let mut max_x: f64 = 0.0;
     run_path(&mut e, 30.0, |e| max_x = max_x.max(pos(e, 0)));
     let expected = 4000.0 + TAU * 1000.0;
@@ -343,16 +308,17 @@ fn tv18_slot_contour_result_axis_4000_plus_two_pi_1000() {
 }
 
 /// HMC_MoveHelical(0, 1, 2, 3, mode, 0, 0, 50, 0, 500): a clockwise full circle of radius 50
-/// about (50, 0) while Z climbs 500; `plane_only` is modes 4/5/7 (the result axis counts the
-/// XY arc), else modes 0/1/3 (the XYZ length).
-fn helix(plane_only: bool) -> MoveCircularRelative {
-    MoveCircularRelative {
+/// about (50, 0) while Z climbs 500 (to 500 × `call`); `plane_only` is modes 4/5/7 (the result
+/// axis counts the XY arc), else modes 0/1/3 (the XYZ length).
+fn helix(plane_only: bool, call: u32) -> MoveCircularAbsolute {
+    let z = 500.0 * f64::from(call);
+    MoveCircularAbsolute {
         independent: if plane_only {
             coords(&[2])
         } else {
             coords(&[])
         },
-        ..arc(&[50.0, 0.0, 0.0], &[0.0, 0.0, 500.0], ArcDirection::Cw)
+        ..arc(&[50.0, 0.0, z - 500.0], &[0.0, 0.0, z], ArcDirection::Cw)
     }
 }
 
@@ -373,7 +339,7 @@ fn tv19_helix_mode_7_counts_the_arc_only_314_159_per_call() {
     let mut peak: f64 = 0.0;
     let mut peak_z: f64 = 0.0;
     for call in 1..=2 {
-        send(&mut e, helix(true));
+        send(&mut e, helix(true, call));
         run_path(&mut e, 10.0, |e| {
             peak = peak.max(vel(e, 0));
             peak_z = peak_z.max(vel(e, 3));
@@ -402,7 +368,7 @@ fn tv19_helix_mode_7_counts_the_arc_only_314_159_per_call() {
 #[test]
 fn helix_modes_0_1_3_count_the_xyz_length() {
     let mut e = machine(4, &[1, 2, 3], 0);
-    send(&mut e, helix(false));
+    send(&mut e, helix(false, 1));
     run_path(&mut e, 10.0, |_| {});
     let length = (TAU * 50.0).hypot(500.0);
     assert!(
@@ -541,40 +507,33 @@ fn a_result_axis_that_is_a_member_in_another_group_or_unknown_is_refused() {
 #[test]
 fn bad_independent_coordinates_are_refused_with_the_reason() {
     let mut e = machine(4, &[1, 2, 3], 0);
-    let cases: Vec<(Command, &str)> = vec![
+    let lines: [(&[f64], &[usize], &str); 3] = [
+        (&[1.0, 2.0, 3.0], &[3], "not one of the group's 3"),
         (
-            MoveLinearRelative {
-                independent: coords(&[3]),
-                ..line(&[1.0, 2.0, 3.0])
-            }
-            .into(),
-            "not one of the group's 3",
-        ),
-        (
-            MoveLinearRelative {
-                independent: coords(&[0, 1, 2]),
-                ..line(&[1.0, 2.0, 3.0])
-            }
-            .into(),
+            &[1.0, 2.0, 3.0],
+            &[0, 1, 2],
             "every coordinate is independent",
         ),
-        (
-            MoveLinearRelative {
-                independent: coords(&[0]),
-                ..line(&[5.0, 0.0, 0.0])
-            }
-            .into(),
-            "do not move",
-        ),
-        (
-            MoveCircularRelative {
-                independent: coords(&[1]),
-                ..arc(&[50.0, 0.0, 0.0], &[100.0, 0.0, 10.0], ArcDirection::Cw)
-            }
-            .into(),
-            "plane has counted and independent",
-        ),
+        (&[5.0, 0.0, 0.0], &[0], "do not move"),
     ];
+    let mut cases: Vec<(Command, &str)> = lines
+        .iter()
+        .map(|&(distance, independent, why)| {
+            let c = MoveLinearRelative {
+                independent: coords(independent),
+                ..line(distance)
+            };
+            (c.into(), why)
+        })
+        .collect();
+    cases.push((
+        MoveCircularAbsolute {
+            independent: coords(&[1]),
+            ..arc(&[50.0, 0.0, 0.0], &[100.0, 0.0, 10.0], ArcDirection::Cw)
+        }
+        .into(),
+        "plane has counted and independent",
+    ));
     for (c, why) in cases {
         let err = refused(&mut e, c.clone());
         assert!(
@@ -600,18 +559,6 @@ fn bad_independent_coordinates_are_refused_with_the_reason() {
             .contains("group coordinates are indices 0 to 8 into the group's axes, not [2, 9]"),
         "{err}"
     );
-    let _ = MoveSpline {
-        group: 1,
-        points: vec![],
-        relative: false,
-        velocity: None,
-        acceleration: None,
-        deceleration: None,
-        jerk: None,
-        buffer_mode: GroupBufferMode::Buffered,
-        transition: TransitionMode::None,
-        user_segment: None,
-    };
 }
 
 #[test]

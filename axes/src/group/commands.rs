@@ -60,33 +60,21 @@ impl Groups {
                 c.axes.len()
             )));
         }
-        let count = env.axes.len() as u32;
         for (k, &a) in c.axes.iter().enumerate() {
-            let axis = env.axes.get(a as usize).ok_or(EngineError::InvalidAxis {
-                axis: u32::from(a),
-                count,
-            })?;
+            check_joins(env, group, a, "axis")?;
             if c.axes.get(..k).is_some_and(|before| before.contains(&a)) {
                 return Err(invalid(format!("axis {a} is listed twice")));
             }
-            if let Some(other) = axis.group() {
-                return Err(invalid(format!("axis {a} is already in group {other}")));
-            }
-            let state = axis.state();
-            if !matches!(
-                state,
-                AxisState::Disabled | AxisState::Standstill | AxisState::ErrorStop
-            ) {
-                return Err(EngineError::GroupMember {
-                    group,
-                    axis: a,
-                    state,
-                    action: "join a group while it moves",
-                });
-            }
         }
         if let Some(r) = c.result_axis {
-            check_result_axis(env, group, &c.axes, r)?;
+            // HMC's result axis (合轴, digest 000 §4.3) measures the members' path: another axis.
+            if c.axes.contains(&r) {
+                return Err(invalid(format!(
+                    "axis {r} is a member: the result axis is another axis, which travels the \
+                     path length"
+                )));
+            }
+            check_joins(env, group, r, "result axis")?;
         }
         let capacity = c.queue_capacity.unwrap_or(self.config.queue_capacity);
         if !(1..=MAX_GROUP_QUEUE).contains(&capacity) {
@@ -563,29 +551,18 @@ impl Group {
     }
 }
 
-/// A group's result axis (HMC 合轴, digest 000 §4.3) must exist, be none of the group's
-/// members (it measures their path) and belong to no other group, and be enabled-or-not but
-/// not moving, as a member joining.
-fn check_result_axis(
-    env: &Env,
-    group: GroupId,
-    members: &[AxisIndex],
-    a: AxisIndex,
-) -> Result<(), EngineError> {
+/// An axis (a member, or the result axis: its `role`) may join `group`: it exists, belongs to
+/// no group and is not moving.
+fn check_joins(env: &Env, group: GroupId, a: AxisIndex, role: &str) -> Result<(), EngineError> {
     let axis = env.axes.get(a as usize).ok_or(EngineError::InvalidAxis {
         axis: u32::from(a),
         count: env.axes.len() as u32,
     })?;
-    let invalid = |reason: String| EngineError::InvalidGroup { group, reason };
-    if members.contains(&a) {
-        return Err(invalid(format!(
-            "axis {a} is a member: the result axis is another axis, which travels the path length"
-        )));
-    }
     if let Some(other) = axis.group() {
-        return Err(invalid(format!(
-            "result axis {a} is already in group {other}"
-        )));
+        return Err(EngineError::InvalidGroup {
+            group,
+            reason: format!("{role} {a} is already in group {other}"),
+        });
     }
     let state = axis.state();
     if !matches!(
@@ -596,7 +573,7 @@ fn check_result_axis(
             group,
             axis: a,
             state,
-            action: "become a result axis while it moves",
+            action: "join a group while it moves",
         });
     }
     Ok(())
