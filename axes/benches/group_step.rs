@@ -51,6 +51,7 @@ impl Group {
                 axes: (0..AXES as u16).collect(),
                 queue_capacity: None,
                 lookahead: None,
+                result_axis: None,
             }))
             .expect("group_create");
         engine
@@ -87,6 +88,7 @@ impl Group {
                     buffer_mode: GroupBufferMode::BlendingLow,
                     transition: TransitionMode::CornerDistance(5.0),
                     user_segment: None,
+                    independent: Default::default(),
                 }))
                 .expect("move_linear_absolute");
             self.next += 1;

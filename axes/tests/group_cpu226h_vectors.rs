@@ -67,6 +67,7 @@ fn line_r(a: f64, b: f64, max_speed: f64, acceleration: Option<f64>) -> MoveLine
         buffer_mode: GroupBufferMode::Buffered,
         transition: TransitionMode::None,
         user_segment: None,
+        independent: Default::default(),
     }
 }
 
@@ -131,6 +132,7 @@ fn circle_r(end: [f64; 2], radius: f64, cw: bool) -> MoveCircularRelative {
         buffer_mode: GroupBufferMode::Buffered,
         transition: TransitionMode::None,
         user_segment: None,
+        independent: Default::default(),
     }
 }
 

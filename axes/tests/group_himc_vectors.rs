@@ -270,6 +270,7 @@ fn create(group: u16, axes: &[u16], queue_capacity: Option<u32>) -> Command {
         axes: axes.to_vec(),
         queue_capacity,
         lookahead: None,
+        result_axis: None,
     })
 }
 

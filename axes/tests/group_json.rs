@@ -5,12 +5,12 @@
 #![allow(clippy::unwrap_used)]
 
 use axes::command::{
-    ArcDirection, CircleMode, Command, GroupAxisMove, GroupBufferMode, GroupContinue, GroupCreate,
-    GroupDelete, GroupDisable, GroupDwell, GroupEmergencyStop, GroupEnable, GroupHalt,
-    GroupParameter, GroupReset, GroupSetOrigin, GroupSetOutput, GroupSetOverride,
-    GroupSetParameter, GroupStop, GroupWaitInput, GroupWaitPosition, MoveCircularAbsolute,
-    MoveCircularRelative, MoveEllipse, MoveLinearAbsolute, MoveLinearRelative, MoveSpline,
-    TransitionMode,
+    ArcDirection, CircleMode, Command, CoordinateSet, GroupAxisMove, GroupBufferMode,
+    GroupContinue, GroupCreate, GroupDelete, GroupDisable, GroupDwell, GroupEmergencyStop,
+    GroupEnable, GroupHalt, GroupParameter, GroupReset, GroupSetOrigin, GroupSetOutput,
+    GroupSetOverride, GroupSetParameter, GroupStop, GroupWaitInput, GroupWaitPosition,
+    MoveCircularAbsolute, MoveCircularRelative, MoveEllipse, MoveLinearAbsolute,
+    MoveLinearRelative, MoveSpline, TransitionMode,
 };
 
 fn full() -> Vec<(Command, &'static str)> {
@@ -21,8 +21,9 @@ fn full() -> Vec<(Command, &'static str)> {
                 axes: vec![0, 2, 1],
                 queue_capacity: Some(1024),
                 lookahead: Some(128),
+                result_axis: Some(3),
             }),
-            r#"{"type":"group_create","group":1,"axes":[0,2,1],"queue_capacity":1024,"lookahead":128}"#,
+            r#"{"type":"group_create","group":1,"axes":[0,2,1],"queue_capacity":1024,"lookahead":128,"result_axis":3}"#,
         ),
         (
             Command::from(GroupDelete { group: 2 }),
@@ -51,6 +52,7 @@ fn full() -> Vec<(Command, &'static str)> {
                 buffer_mode: GroupBufferMode::BlendingLow,
                 transition: TransitionMode::CornerDistance(1.5),
                 user_segment: Some(7),
+                independent: Default::default(),
             }),
             r#"{"type":"move_linear_absolute","group":1,"position":[10.0,-2.5],"velocity":50.0,"acceleration":500.0,"deceleration":600.0,"jerk":0.0,"buffer_mode":"blending_low","transition":{"corner_distance":1.5},"user_segment":7}"#,
         ),
@@ -65,8 +67,9 @@ fn full() -> Vec<(Command, &'static str)> {
                 buffer_mode: GroupBufferMode::Aborting,
                 transition: TransitionMode::CornerDeviation(0.01),
                 user_segment: None,
+                independent: CoordinateSet::from_indices(&[2]).unwrap(),
             }),
-            r#"{"type":"move_linear_relative","group":1,"distance":[1.0,2.0,3.0],"velocity":5.0,"acceleration":null,"deceleration":null,"jerk":1000000.0,"buffer_mode":"aborting","transition":{"corner_deviation":0.01},"user_segment":null}"#,
+            r#"{"type":"move_linear_relative","group":1,"distance":[1.0,2.0,3.0],"velocity":5.0,"acceleration":null,"deceleration":null,"jerk":1000000.0,"buffer_mode":"aborting","transition":{"corner_deviation":0.01},"user_segment":null,"independent":[2]}"#,
         ),
         (
             Command::from(MoveCircularAbsolute {
@@ -86,6 +89,7 @@ fn full() -> Vec<(Command, &'static str)> {
                 buffer_mode: GroupBufferMode::BlendingPrevious,
                 transition: TransitionMode::None,
                 user_segment: Some(3),
+                independent: Default::default(),
             }),
             r#"{"type":"move_circular_absolute","group":1,"mode":"radius","aux_point":[],"radius":-10.0,"end_point":[20.0,0.0],"direction":"cw","plane":[0,1],"normal":null,"turns":0,"velocity":20.0,"acceleration":200.0,"deceleration":200.0,"jerk":null,"buffer_mode":"blending_previous","transition":"none","user_segment":3}"#,
         ),
@@ -107,6 +111,7 @@ fn full() -> Vec<(Command, &'static str)> {
                 buffer_mode: GroupBufferMode::BlendingHigh,
                 transition: TransitionMode::None,
                 user_segment: None,
+                independent: Default::default(),
             }),
             r#"{"type":"move_circular_relative","group":2,"mode":"border","aux_point":[5.0,5.0,0.0],"radius":null,"end_point":[10.0,0.0,1.0],"direction":"ccw","plane":null,"normal":[0.0,0.0,1.0],"turns":4,"velocity":null,"acceleration":null,"deceleration":null,"jerk":null,"buffer_mode":"blending_high","transition":"none","user_segment":null}"#,
         ),
@@ -267,6 +272,7 @@ fn a_motion_with_only_its_required_fields_is_buffered_without_transition() {
             buffer_mode: GroupBufferMode::Buffered,
             transition: TransitionMode::None,
             user_segment: None,
+            independent: Default::default(),
         })
     );
     let c: Command = serde_json::from_str(
@@ -289,6 +295,7 @@ fn a_motion_with_only_its_required_fields_is_buffered_without_transition() {
             axes: vec![0],
             queue_capacity: None,
             lookahead: None,
+            result_axis: None,
         })
     );
 }
@@ -298,7 +305,7 @@ fn group_serde_errors_name_the_field() {
     for (json, message) in [
         (
             r#"{"type":"move_linear_absolute","group":1,"positon":[1]}"#,
-            "unknown field `positon`, expected one of `group`, `position`, `velocity`, `acceleration`, `deceleration`, `jerk`, `buffer_mode`, `transition`, `user_segment`",
+            "unknown field `positon`, expected one of `group`, `position`, `velocity`, `acceleration`, `deceleration`, `jerk`, `buffer_mode`, `transition`, `user_segment`, `independent`",
         ),
         (
             r#"{"type":"move_linear_absolute","group":1,"position":[1],"buffer_mode":"blend"}"#,

@@ -36,6 +36,7 @@ fn create(group: u16, axes: &[u16]) -> Command {
         axes: axes.to_vec(),
         queue_capacity: None,
         lookahead: None,
+        result_axis: None,
     })
 }
 
@@ -133,6 +134,7 @@ fn group_definitions_that_cannot_be_are_refused_with_the_reason() {
                 axes: vec![5],
                 queue_capacity: capacity,
                 lookahead,
+                result_axis: None,
             }),
         );
         assert_eq!(err.kind(), ErrorKind::InvalidArgument, "{err}");
@@ -379,6 +381,7 @@ fn bad_motion_input_is_refused_with_a_typed_error_and_nothing_is_queued() {
                 buffer_mode: Default::default(),
                 transition: TransitionMode::None,
                 user_segment: None,
+                independent: Default::default(),
             }),
             ErrorKind::InvalidGroup,
             "group 7 does not exist",

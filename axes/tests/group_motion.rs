@@ -315,6 +315,7 @@ fn extra_axes_ride_along_an_arc_in_proportion() {
             buffer_mode: GroupBufferMode::Buffered,
             transition: TransitionMode::None,
             user_segment: None,
+            independent: Default::default(),
         },
     );
     for _ in 0..10_000 {
@@ -765,6 +766,7 @@ fn the_queue_bound_holds_motions_and_buffered_commands_together() {
             axes: vec![0, 1],
             queue_capacity: Some(3),
             lookahead: None,
+            result_axis: None,
         }),
     );
     ok(&mut e, Command::from(GroupEnable { group: 1 }));
@@ -836,6 +838,7 @@ fn relative_moves_chain_from_the_queue_end_and_the_origin_offsets_group_coordina
                 buffer_mode: GroupBufferMode::Buffered,
                 transition: TransitionMode::None,
                 user_segment: Some(42),
+                independent: Default::default(),
             },
         );
     }

@@ -74,7 +74,7 @@ proptest! {
         for a in 0..3 {
             ok(&mut e, Command::from(Enable { axis: a }));
         }
-        ok(&mut e, Command::from(GroupCreate { group: 1, axes: vec![0, 1, 2], queue_capacity: None, lookahead: None }));
+        ok(&mut e, Command::from(GroupCreate { group: 1, axes: vec![0, 1, 2], queue_capacity: None, lookahead: None, result_axis: None }));
         ok(&mut e, Command::from(GroupEnable { group: 1 }));
         let (buffer_mode, transition) = if blend {
             (GroupBufferMode::BlendingLow, TransitionMode::CornerDistance(corner))
@@ -91,6 +91,7 @@ proptest! {
                         group: 1, position: p.to_vec(), velocity: Some(150.0),
                         acceleration: Some(4000.0), deceleration: Some(4000.0), jerk: Some(0.0),
                         buffer_mode, transition, user_segment: None,
+                        independent: Default::default(),
                     })
                 }
                 Step::Arc { center, angle, dz } => {
@@ -106,6 +107,7 @@ proptest! {
                         plane: None, normal: None, turns: 0, velocity: Some(150.0),
                         acceleration: Some(4000.0), deceleration: Some(4000.0), jerk: Some(0.0),
                         buffer_mode, transition, user_segment: None,
+                        independent: Default::default(),
                     })
                 }
             };

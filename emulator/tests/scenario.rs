@@ -312,6 +312,7 @@ fn the_shipped_scenarios_pass() {
         "issue-example.toml",
         "inline-machine.toml",
         "coordinated-motion.toml",
+        "hmc-result-axis.toml",
     ] {
         let out = mcemu(&["scenario", &fixture(name)]);
         assert!(out.status.success(), "{name}: {}", stderr(&out));

@@ -10,6 +10,53 @@
 use serde::{Deserialize, Serialize};
 
 use super::{command_from, AxisIndex, GroupId};
+use crate::types::MAX_GROUP_AXES;
+
+/// A set of group coordinates (indices 0–8 into a group's `axes`, as `plane`); in JSON a list
+/// of indices, `[3, 4]`. A bit set, so that the motion commands stay small (a command is moved
+/// by value through the servo queue).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct CoordinateSet(u16);
+
+impl CoordinateSet {
+    /// The set of `indices`; `None` if one is not below 9 (a group has at most 9 coordinates).
+    pub fn from_indices(indices: &[usize]) -> Option<CoordinateSet> {
+        indices.iter().try_fold(CoordinateSet(0), |set, &k| {
+            (k < MAX_GROUP_AXES).then_some(CoordinateSet(set.0 | 1 << k))
+        })
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.0 == 0
+    }
+
+    pub fn contains(&self, k: usize) -> bool {
+        k < MAX_GROUP_AXES && self.0 & (1 << k) != 0
+    }
+
+    /// The indices, ascending.
+    pub fn iter(self) -> impl Iterator<Item = usize> {
+        (0..MAX_GROUP_AXES).filter(move |&k| self.contains(k))
+    }
+}
+
+impl Serialize for CoordinateSet {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.collect_seq(self.iter())
+    }
+}
+
+impl<'de> Deserialize<'de> for CoordinateSet {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let indices = Vec::<usize>::deserialize(deserializer)?;
+        CoordinateSet::from_indices(&indices).ok_or_else(|| {
+            serde::de::Error::custom(format!(
+                "group coordinates are indices 0 to {} into the group's axes, not {indices:?}",
+                MAX_GROUP_AXES - 1
+            ))
+        })
+    }
+}
 
 /// Make a group of 1–9 axes (PLCopen MC_AddAxisToGroup ×n; HIMC SetupGroup without the enable;
 /// NMC CrdSetMtSys). The group starts Disabled.
@@ -24,6 +71,13 @@ pub struct GroupCreate {
     /// Segments the look-ahead plans over (default: the `[groups]` config, 64).
     #[serde(default)]
     pub lookahead: Option<u32>,
+    /// HMC's result axis (合轴, digest 000 §4.3): an axis outside the group (usually a
+    /// virtual one) whose position grows by the path length the group travels and whose
+    /// `speed`, `accel`, `decel` and `jerk` are the path limits of motions that give none. It
+    /// is bound to the group like a member (IN_GROUP, no single-axis motion; its fault stops
+    /// the group).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub result_axis: Option<AxisIndex>,
 }
 
 /// Dissolve a group (HIMC UngrpAllAxes); its axes are free again. Refused while it moves.
@@ -109,6 +163,12 @@ pub struct MoveLinearAbsolute {
     /// A number the status reports while this motion runs (NMC CrdGetUserSegNo).
     #[serde(default)]
     pub user_segment: Option<u32>,
+    /// Group coordinates (indices into the group's `axes`, as `plane`) that move in
+    /// proportion but do not count in the path length: velocity, acceleration, deceleration,
+    /// jerk and the result axis's travel are measured over the other coordinates (HMC MoveND
+    /// independent axes; HMC_MoveHelical modes 4/5/7 count the arc plane only).
+    #[serde(default, skip_serializing_if = "CoordinateSet::is_empty")]
+    pub independent: CoordinateSet,
 }
 
 /// Move along a straight line by a distance from where the previous motion ends
@@ -132,6 +192,12 @@ pub struct MoveLinearRelative {
     pub transition: TransitionMode,
     #[serde(default)]
     pub user_segment: Option<u32>,
+    /// Group coordinates (indices into the group's `axes`, as `plane`) that move in
+    /// proportion but do not count in the path length: velocity, acceleration, deceleration,
+    /// jerk and the result axis's travel are measured over the other coordinates (HMC MoveND
+    /// independent axes; HMC_MoveHelical modes 4/5/7 count the arc plane only).
+    #[serde(default, skip_serializing_if = "CoordinateSet::is_empty")]
+    pub independent: CoordinateSet,
 }
 
 /// What `aux_point` (and `radius`) of a circular move mean (PLCopen MC_CircMode).
@@ -193,6 +259,12 @@ pub struct MoveCircularAbsolute {
     pub transition: TransitionMode,
     #[serde(default)]
     pub user_segment: Option<u32>,
+    /// Group coordinates (indices into the group's `axes`, as `plane`) that move in
+    /// proportion but do not count in the path length: velocity, acceleration, deceleration,
+    /// jerk and the result axis's travel are measured over the other coordinates (HMC MoveND
+    /// independent axes; HMC_MoveHelical modes 4/5/7 count the arc plane only).
+    #[serde(default, skip_serializing_if = "CoordinateSet::is_empty")]
+    pub independent: CoordinateSet,
 }
 
 /// [`MoveCircularAbsolute`] with `aux_point` and `end_point` relative to the arc's start
@@ -230,6 +302,12 @@ pub struct MoveCircularRelative {
     pub transition: TransitionMode,
     #[serde(default)]
     pub user_segment: Option<u32>,
+    /// Group coordinates (indices into the group's `axes`, as `plane`) that move in
+    /// proportion but do not count in the path length: velocity, acceleration, deceleration,
+    /// jerk and the result axis's travel are measured over the other coordinates (HMC MoveND
+    /// independent axes; HMC_MoveHelical modes 4/5/7 count the arc plane only).
+    #[serde(default, skip_serializing_if = "CoordinateSet::is_empty")]
+    pub independent: CoordinateSet,
 }
 
 /// Decelerate to rest along the path and drop the queue (MC_GroupStop). `deceleration`

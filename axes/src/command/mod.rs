@@ -97,12 +97,12 @@ pub use axis::{
     SetParameter, SetPosition, Stop, StreamSetpoint,
 };
 pub use group::{
-    ArcDirection, CircleMode, GroupAxisMove, GroupBufferMode, GroupCommand, GroupContinue,
-    GroupCreate, GroupDelete, GroupDisable, GroupDwell, GroupEmergencyStop, GroupEnable, GroupHalt,
-    GroupParameter, GroupReset, GroupSetOrigin, GroupSetOutput, GroupSetOverride,
-    GroupSetParameter, GroupStop, GroupWaitInput, GroupWaitPosition, MoveCircularAbsolute,
-    MoveCircularRelative, MoveEllipse, MoveLinearAbsolute, MoveLinearRelative, MoveSpline,
-    TransitionMode,
+    ArcDirection, CircleMode, CoordinateSet, GroupAxisMove, GroupBufferMode, GroupCommand,
+    GroupContinue, GroupCreate, GroupDelete, GroupDisable, GroupDwell, GroupEmergencyStop,
+    GroupEnable, GroupHalt, GroupParameter, GroupReset, GroupSetOrigin, GroupSetOutput,
+    GroupSetOverride, GroupSetParameter, GroupStop, GroupWaitInput, GroupWaitPosition,
+    MoveCircularAbsolute, MoveCircularRelative, MoveEllipse, MoveLinearAbsolute,
+    MoveLinearRelative, MoveSpline, TransitionMode,
 };
 pub use io::{
     ForceAnalogInput, ForceDigitalInput, IoCommand, WriteAnalogOutput, WriteDigitalOutput,

@@ -6,10 +6,10 @@ use path::MAX_AXES;
 
 use super::queue::{Entry, GroupQueue, Item};
 use super::segment::{self, CircularFields, PathRequest, PendingMotion};
-use super::{planner_config, Env, Group, Groups, DEFAULT_PATH_LIMITS};
+use super::{planner_config, Env, Group, Groups, ResultAxis, DEFAULT_PATH_LIMITS};
 use crate::command::{
-    bounded, finite, nonnegative, positive, CommandState, EngineError, GroupAxisMove, GroupCommand,
-    GroupCreate, GroupDwell, GroupId, GroupParameter, GroupSetOutput, GroupWaitInput,
+    bounded, finite, nonnegative, positive, AxisIndex, CommandState, EngineError, GroupAxisMove,
+    GroupCommand, GroupCreate, GroupDwell, GroupId, GroupParameter, GroupSetOutput, GroupWaitInput,
     GroupWaitPosition, Reply,
 };
 use crate::config::MAX_GROUP_QUEUE;
@@ -60,30 +60,21 @@ impl Groups {
                 c.axes.len()
             )));
         }
-        let count = env.axes.len() as u32;
         for (k, &a) in c.axes.iter().enumerate() {
-            let axis = env.axes.get(a as usize).ok_or(EngineError::InvalidAxis {
-                axis: u32::from(a),
-                count,
-            })?;
+            check_joins(env, group, a, "axis")?;
             if c.axes.get(..k).is_some_and(|before| before.contains(&a)) {
                 return Err(invalid(format!("axis {a} is listed twice")));
             }
-            if let Some(other) = axis.group() {
-                return Err(invalid(format!("axis {a} is already in group {other}")));
+        }
+        if let Some(r) = c.result_axis {
+            // HMC's result axis (合轴, digest 000 §4.3) measures the members' path: another axis.
+            if c.axes.contains(&r) {
+                return Err(invalid(format!(
+                    "axis {r} is a member: the result axis is another axis, which travels the \
+                     path length"
+                )));
             }
-            let state = axis.state();
-            if !matches!(
-                state,
-                AxisState::Disabled | AxisState::Standstill | AxisState::ErrorStop
-            ) {
-                return Err(EngineError::GroupMember {
-                    group,
-                    axis: a,
-                    state,
-                    action: "join a group while it moves",
-                });
-            }
+            check_joins(env, group, r, "result axis")?;
         }
         let capacity = c.queue_capacity.unwrap_or(self.config.queue_capacity);
         if !(1..=MAX_GROUP_QUEUE).contains(&capacity) {
@@ -105,6 +96,12 @@ impl Groups {
         let mut g = Group {
             id: group,
             members: c.axes,
+            result: c.result_axis.map(|axis| ResultAxis {
+                axis,
+                position: 0.0,
+                travelled: 0.0,
+            }),
+            length_ratio: 1.0,
             state: GroupState::Disabled,
             planner: PathPlanner::new(config, [0.0; MAX_AXES]).map_err(|e| {
                 EngineError::InvalidPath {
@@ -136,7 +133,7 @@ impl Groups {
             .filter_map(|&a| env.axes.get(a as usize))
             .map(|a| a.params_version())
             .sum();
-        for &a in &g.members {
+        for a in g.bound_axes() {
             if let Some(axis) = env.axes.get_mut(a as usize) {
                 axis.set_group(Some(group));
             }
@@ -157,7 +154,7 @@ impl Groups {
             "be deleted while its path runs",
         )?;
         g.drop_all(env, CommandState::Aborted);
-        for &a in &g.members {
+        for a in g.bound_axes() {
             if let Some(axis) = env.axes.get_mut(a as usize) {
                 axis.set_group(None);
             }
@@ -169,6 +166,7 @@ impl Groups {
 
 impl Group {
     fn apply(&mut self, env: &mut Env, command: GroupCommand) -> Result<Reply, EngineError> {
+        let defaults = self.motion_defaults(env.axes);
         match command {
             GroupCommand::Create(_) | GroupCommand::Delete(_) => Ok(Reply::Done),
             GroupCommand::Enable(_) => self.enable(env),
@@ -181,40 +179,40 @@ impl Group {
             GroupCommand::Reset(_) => self.reset(env),
             GroupCommand::MoveLinearAbsolute(c) => {
                 self.require_accepts_motion()?;
-                let r = segment::linear_absolute(self.id, self.dims(), &c, &self.defaults)?;
+                let r = segment::linear_absolute(self.id, self.dims(), &c, &defaults)?;
                 self.submit(env, r)
             }
             GroupCommand::MoveLinearRelative(c) => {
                 self.require_accepts_motion()?;
-                let r = segment::linear_relative(self.id, self.dims(), &c, &self.defaults)?;
+                let r = segment::linear_relative(self.id, self.dims(), &c, &defaults)?;
                 self.submit(env, r)
             }
             GroupCommand::MoveCircularAbsolute(c) => {
                 self.require_accepts_motion()?;
                 let f = CircularFields::from(&c);
-                let r = segment::circular(self.id, self.dims(), f, &self.defaults)?;
+                let r = segment::circular(self.id, self.dims(), f, &defaults)?;
                 self.submit(env, r)
             }
             GroupCommand::MoveSpline(c) => {
                 self.require_accepts_motion()?;
-                let r = segment::spline(self.id, self.dims(), &c, &self.defaults)?;
+                let r = segment::spline(self.id, self.dims(), &c, &defaults)?;
                 self.submit(env, r)
             }
             GroupCommand::MoveEllipse(c) => {
                 self.require_accepts_motion()?;
-                let r = segment::ellipse(self.id, self.dims(), &c, &self.defaults)?;
+                let r = segment::ellipse(self.id, self.dims(), &c, &defaults)?;
                 self.submit(env, r)
             }
             GroupCommand::MoveCircularRelative(c) => {
                 self.require_accepts_motion()?;
                 let f = CircularFields::from(&c);
-                let r = segment::circular(self.id, self.dims(), f, &self.defaults)?;
+                let r = segment::circular(self.id, self.dims(), f, &defaults)?;
                 self.submit(env, r)
             }
             GroupCommand::Stop(c) => {
                 let decel = match c.deceleration {
                     Some(d) => positive("deceleration", d)?,
-                    None => self.defaults.deceleration,
+                    None => defaults.deceleration,
                 };
                 self.stop(env, decel)
             }
@@ -411,7 +409,7 @@ impl Group {
         if request.aborting && !self.is_idle() {
             let id = env.ledger.allocate();
             // The new motion runs once the path is at rest: the group is Moving again.
-            self.stop_path(env, self.defaults.deceleration);
+            self.stop_path(env, self.motion_defaults(env.axes).deceleration);
             if self.state == GroupState::Halted {
                 self.state = GroupState::Moving;
             }
@@ -421,9 +419,10 @@ impl Group {
         self.check_room()?;
         // Build the segment before taking an id: a refused motion uses none.
         self.sync_position(env)?;
-        let segment = request.segment(self.id, self.planner.queue_end(), self.dims())?;
+        let (segment, length_ratio) =
+            request.segment(self.id, self.planner.queue_end(), self.dims())?;
         let id = env.ledger.allocate();
-        self.enqueue_segment(env, id, segment, &request)?;
+        self.enqueue_segment(env, id, segment, length_ratio, &request)?;
         if self.state == GroupState::Standby {
             self.state = GroupState::Moving;
         }
@@ -475,14 +474,16 @@ impl Group {
             env.ledger.finish(p.id, CommandState::Aborted);
         }
         self.planner.resume();
-        self.planner.stop(deceleration);
+        // A deceleration over the counted coordinates, as the motion's limits are.
+        self.planner.stop(deceleration / self.length_ratio);
     }
 
     /// `group_halt`: decelerate along the path, keep the queue (HIMC HaltGroup).
     fn halt(&mut self, deceleration: Option<f64>) -> Result<Reply, EngineError> {
         match self.state {
             GroupState::Moving => {
-                self.planner.halt(deceleration);
+                self.planner
+                    .halt(deceleration.map(|d| d / self.length_ratio));
                 self.state = GroupState::Halted;
                 Ok(Reply::Done)
             }
@@ -575,6 +576,34 @@ fn off_or_positive(value: f64) -> Result<Option<f64>, EngineError> {
         });
     }
     Ok((value > 0.0).then_some(value))
+}
+
+/// An axis (a member, or the result axis: its `role`) may join `group`: it exists, belongs to
+/// no group and is not moving.
+fn check_joins(env: &Env, group: GroupId, a: AxisIndex, role: &str) -> Result<(), EngineError> {
+    let axis = env.axes.get(a as usize).ok_or(EngineError::InvalidAxis {
+        axis: u32::from(a),
+        count: env.axes.len() as u32,
+    })?;
+    if let Some(other) = axis.group() {
+        return Err(EngineError::InvalidGroup {
+            group,
+            reason: format!("{role} {a} is already in group {other}"),
+        });
+    }
+    let state = axis.state();
+    if !matches!(
+        state,
+        AxisState::Disabled | AxisState::Standstill | AxisState::ErrorStop
+    ) {
+        return Err(EngineError::GroupMember {
+            group,
+            axis: a,
+            state,
+            action: "join a group while it moves",
+        });
+    }
+    Ok(())
 }
 
 /// Seconds as whole ticks (rounded; ≥ 0, at most 1e9 s).

@@ -71,11 +71,28 @@ pub const DEFAULT_PATH_LIMITS: PathLimits = PathLimits {
     jerk: 100_000.0,
 };
 
+/// HMC's result axis (合轴, digest 000 §4.3) of a group: an axis outside the group that the
+/// group feeds the path length it travels (over each motion's counted coordinates) and whose
+/// own limits are the path limits of motions that give none.
+#[derive(Clone, Debug)]
+struct ResultAxis {
+    axis: AxisIndex,
+    /// The commanded position fed last: its position when the path started from rest plus
+    /// the counted path length travelled since.
+    position: f64,
+    /// The planner's `travelled` when `position` was last brought up to date.
+    travelled: f64,
+}
+
 /// One group. See the module doc.
 #[derive(Clone, Debug)]
 pub struct Group {
     id: GroupId,
     members: Vec<AxisIndex>,
+    result: Option<ResultAxis>,
+    /// Counted path length per path length of the motion being executed (1: every
+    /// coordinate counts; see `segment::length_ratio`).
+    length_ratio: f64,
     state: GroupState,
     planner: PathPlanner,
     queue: GroupQueue,
@@ -86,7 +103,7 @@ pub struct Group {
     /// dropped (NMC, HIMC).
     fault_deceleration: Option<f64>,
     /// In ErrorStop, the path still decelerating by HMC's rule: which members have left it.
-    fault_stop: Option<[bool; MAX_AXES]>,
+    fault_stop: Option<[bool; tick::FAULT_STOP_SLOTS]>,
     /// Every member limited to the smallest acceleration of the members (CPU 226H).
     smallest_acceleration: bool,
     override_factor: f64,
@@ -115,6 +132,39 @@ impl Group {
 
     pub fn members(&self) -> &[AxisIndex] {
         &self.members
+    }
+
+    /// The result axis, if the group has one.
+    pub fn result_axis(&self) -> Option<AxisIndex> {
+        self.result.as_ref().map(|r| r.axis)
+    }
+
+    /// The axes bound to the group: the members, then the result axis. Each is IN_GROUP, in
+    /// SynchronizedMotion while the group feeds it, and its trouble stops the whole group.
+    fn bound_axes(&self) -> impl Iterator<Item = AxisIndex> + '_ {
+        self.members.iter().copied().chain(self.result_axis())
+    }
+
+    /// The path limits of a motion that gives none: the result axis's `speed`, `accel`,
+    /// `decel` and `jerk` (jerk only in S-curve mode) when the group has one (HMC, digest 000
+    /// §4.3), else the group parameters. A result-axis value that is not positive falls back
+    /// to the group parameter.
+    fn motion_defaults(&self, axes: &[Axis]) -> PathLimits {
+        let Some(axis) = self.result_axis().and_then(|a| axes.get(a as usize)) else {
+            return self.defaults;
+        };
+        let p = axis.params();
+        let or_default = |v: f64, d: f64| if v > 0.0 && v.is_finite() { v } else { d };
+        PathLimits {
+            velocity: or_default(p.get(ParamId::Speed), self.defaults.velocity),
+            acceleration: or_default(p.get(ParamId::Accel), self.defaults.acceleration),
+            deceleration: or_default(p.get(ParamId::Decel), self.defaults.deceleration),
+            jerk: if p.flag(ParamId::JerkMode) {
+                or_default(p.get(ParamId::Jerk), self.defaults.jerk)
+            } else {
+                f64::INFINITY
+            },
+        }
     }
 
     pub fn state(&self) -> GroupState {
@@ -176,6 +226,7 @@ impl Group {
         GroupStatus {
             group: self.id,
             state: self.state,
+            result_axis: self.result_axis(),
             axis_count: self.members.len() as u8,
             members,
             coordinates: self.current_position(axes),

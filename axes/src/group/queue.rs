@@ -9,8 +9,12 @@ use crate::command::{AxisIndex, CommandId, GroupAxisMove};
 /// A buffered non-motion command, or a motion.
 #[derive(Clone, Debug, PartialEq)]
 pub(super) enum Item {
-    /// A path motion; `user_segment` is reported while it runs.
-    Motion { user_segment: u32 },
+    /// A path motion; `user_segment` is reported while it runs; `length_ratio` is its counted
+    /// length per path length (`segment::length_ratio`).
+    Motion {
+        user_segment: u32,
+        length_ratio: f64,
+    },
     /// Set a digital output as the path passes (NMC CrdBufDO).
     SetOutput { channel: u16, value: bool },
     /// Stand for a number of ticks (NMC CrdBufDelay).

@@ -7,8 +7,8 @@ use path::planner::{Join, PathLimits, Transition};
 use path::{Point, MAX_AXES};
 
 use crate::command::{
-    bounded, nonnegative, positive, ArcDirection, CircleMode, CommandId, EngineError,
-    GroupBufferMode, GroupId, MoveCircularAbsolute, MoveCircularRelative, MoveEllipse,
+    bounded, nonnegative, positive, ArcDirection, CircleMode, CommandId, CoordinateSet,
+    EngineError, GroupBufferMode, GroupId, MoveCircularAbsolute, MoveCircularRelative, MoveEllipse,
     MoveLinearAbsolute, MoveLinearRelative, MoveSpline, TransitionMode,
 };
 
@@ -54,6 +54,121 @@ pub(super) struct PathRequest {
     pub transition: Transition,
     pub aborting: bool,
     pub user_segment: u32,
+    /// The group coordinates that count in the path length (all but the motion's
+    /// `independent` ones).
+    pub counted: Counted,
+}
+
+/// Which group coordinates count in a motion's path length: its velocity, acceleration,
+/// deceleration and jerk are measured over them, and the result axis travels their length
+/// (HMC MoveND: `ucLineNum` path axes and `ucSelfNum` independent axes; HMC_MoveHelical modes
+/// 4/5/7: the arc plane only; digest 000 §4.3, TV 17, TV 19).
+pub(super) type Counted = [bool; MAX_AXES];
+
+/// Every coordinate counts (no independent coordinates).
+pub(super) const ALL_COUNTED: Counted = [true; MAX_AXES];
+
+/// The counted coordinates of a motion of a group of `dims` axes whose `independent` group
+/// coordinates do not count: each index names a coordinate, and one at least must count.
+pub(super) fn counted_coordinates(
+    group: GroupId,
+    independent: CoordinateSet,
+    dims: usize,
+) -> Result<Counted, EngineError> {
+    let mut counted = ALL_COUNTED;
+    for k in independent.iter() {
+        match counted.get_mut(k).filter(|_| k < dims) {
+            Some(c) => *c = false,
+            None => {
+                return Err(EngineError::InvalidPath {
+                    group,
+                    reason: format!("independent coordinate {k} is not one of the group's {dims}"),
+                })
+            }
+        }
+    }
+    if counted.iter().take(dims).all(|c| !c) {
+        return Err(EngineError::InvalidPath {
+            group,
+            reason: "every coordinate is independent: none is left to measure the path by".into(),
+        });
+    }
+    Ok(counted)
+}
+
+/// Largest component, relative to the radius, that an arc's plane may have on coordinates on
+/// the other side of the counted/independent split and still be taken as lying on one side.
+const PLANE_SPLIT_TOLERANCE: f64 = 1e-9;
+
+/// The share of `segment`'s length that its `counted` coordinates make: counted length /
+/// length, in (0, 1]. Exact along the whole segment for lines and for arcs whose plane lies
+/// within the counted coordinates or within the independent ones (both grow in proportion to
+/// the path length); an arc whose plane straddles the split, and splines and ellipses with
+/// independent coordinates, are refused (their counted length is not proportional).
+pub(super) fn length_ratio(
+    group: GroupId,
+    segment: &Segment,
+    counted: &Counted,
+) -> Result<f64, EngineError> {
+    let dims = segment.dims();
+    if counted.iter().take(dims).all(|&c| c) {
+        return Ok(1.0);
+    }
+    let invalid = |reason: &str| EngineError::InvalidPath {
+        group,
+        reason: reason.to_string(),
+    };
+    let length = segment.length();
+    if length <= 0.0 {
+        return Ok(1.0);
+    }
+    // The part of a vector on the counted coordinates.
+    let counted_norm = |v: &Point| -> f64 {
+        v.iter()
+            .zip(counted)
+            .filter(|(_, &c)| c)
+            .map(|(x, _)| x * x)
+            .sum::<f64>()
+            .sqrt()
+    };
+    let part = match segment {
+        Segment::Line(l) => {
+            let mut d = l.end();
+            for (x, s) in d.iter_mut().zip(&l.start()) {
+                *x -= s;
+            }
+            counted_norm(&d)
+        }
+        Segment::Arc(a) => {
+            let (u, v) = a.basis();
+            let (u_in, v_in) = (counted_norm(&u), counted_norm(&v));
+            let circle = a.radius() * a.sweep();
+            let in_plane =
+                if u_in >= 1.0 - PLANE_SPLIT_TOLERANCE && v_in >= 1.0 - PLANE_SPLIT_TOLERANCE {
+                    circle
+                } else if u_in <= PLANE_SPLIT_TOLERANCE && v_in <= PLANE_SPLIT_TOLERANCE {
+                    0.0
+                } else {
+                    return Err(invalid(
+                        "the arc's plane has counted and independent coordinates: give both or \
+                     neither of its plane coordinates as independent",
+                    ));
+                };
+            in_plane.hypot(counted_norm(&a.helix()))
+        }
+        Segment::Curve(_) => {
+            return Err(invalid(
+                "independent coordinates are taken on lines and circular arcs only",
+            ))
+        }
+    };
+    let ratio = part / length;
+    if !(ratio > 0.0 && ratio.is_finite()) {
+        return Err(invalid(
+            "the counted coordinates do not move: the path length would be 0",
+        ));
+    }
+    Ok(ratio.min(1.0))
 }
 
 /// An aborting motion accepted while the path was moving: it starts when the path is at rest.
@@ -174,6 +289,7 @@ fn request(
     mode: GroupBufferMode,
     transition: TransitionMode,
     user_segment: Option<u32>,
+    counted: Counted,
     defaults: &PathLimits,
 ) -> Result<PathRequest, EngineError> {
     let (join, aborting) = join_of(mode);
@@ -184,6 +300,7 @@ fn request(
         transition: transition_of(transition)?,
         aborting,
         user_segment: user_segment.unwrap_or(0),
+        counted,
     })
 }
 
@@ -195,7 +312,8 @@ pub(super) fn linear_absolute(
 ) -> Result<PathRequest, EngineError> {
     let point = coordinates(group, "position", &c.position, dims)?;
     let mode = (c.buffer_mode, c.transition, c.user_segment);
-    linear(point, false, kinematics!(c), mode, defaults)
+    let counted = counted_coordinates(group, c.independent, dims)?;
+    linear(point, false, kinematics!(c), mode, counted, defaults)
 }
 
 pub(super) fn linear_relative(
@@ -206,7 +324,8 @@ pub(super) fn linear_relative(
 ) -> Result<PathRequest, EngineError> {
     let point = coordinates(group, "distance", &c.distance, dims)?;
     let mode = (c.buffer_mode, c.transition, c.user_segment);
-    linear(point, true, kinematics!(c), mode, defaults)
+    let counted = counted_coordinates(group, c.independent, dims)?;
+    linear(point, true, kinematics!(c), mode, counted, defaults)
 }
 
 /// A line to `point` (from the start when `relative`), with its buffer mode, transition and
@@ -216,6 +335,7 @@ fn linear(
     relative: bool,
     k: Kinematics,
     (buffer_mode, transition, user_segment): (GroupBufferMode, TransitionMode, Option<u32>),
+    counted: Counted,
     defaults: &PathLimits,
 ) -> Result<PathRequest, EngineError> {
     request(
@@ -224,6 +344,7 @@ fn linear(
         buffer_mode,
         transition,
         user_segment,
+        counted,
         defaults,
     )
 }
@@ -242,6 +363,7 @@ pub(super) struct CircularFields<'a> {
     pub buffer_mode: GroupBufferMode,
     pub transition: TransitionMode,
     pub user_segment: Option<u32>,
+    pub independent: CoordinateSet,
     pub relative: bool,
 }
 
@@ -263,6 +385,7 @@ macro_rules! circular_fields {
                     buffer_mode: c.buffer_mode,
                     transition: c.transition,
                     user_segment: c.user_segment,
+                    independent: c.independent,
                     relative: $relative,
                 }
             }
@@ -298,6 +421,7 @@ pub(super) fn circular(
         (_, None) => None,
     };
     let (i, j) = plane_of(group, c.plane, dims)?;
+    let counted = counted_coordinates(group, c.independent, dims)?;
     let normal = match c.normal {
         None => None,
         Some(n) => {
@@ -351,6 +475,7 @@ pub(super) fn circular(
         c.buffer_mode,
         c.transition,
         c.user_segment,
+        counted,
         defaults,
     )
 }
@@ -409,6 +534,7 @@ pub(super) fn spline(
         c.buffer_mode,
         c.transition,
         c.user_segment,
+        ALL_COUNTED,
         defaults,
     )
 }
@@ -436,19 +562,35 @@ pub(super) fn ellipse(
         c.buffer_mode,
         c.transition,
         c.user_segment,
+        ALL_COUNTED,
         defaults,
     )
 }
 
 impl PathRequest {
-    /// The segment from `start`; the geometry's refusals (centre not equidistant, radius below
-    /// half the chord, coincident points …) become `InvalidPath` with the geometry's reason.
+    /// The path limits the planner gets for a motion whose counted length is `length_ratio` of
+    /// its path length: the motion's limits hold over the counted coordinates, so along the
+    /// whole path they are larger by 1 / ratio (HMC MoveND: `Speed(i) = L(i)/D · Speed`, D over
+    /// the path axes only). The members' own limits still cap the path.
+    pub fn limits_along_path(&self, length_ratio: f64) -> PathLimits {
+        let l = &self.limits;
+        PathLimits {
+            velocity: l.velocity / length_ratio,
+            acceleration: l.acceleration / length_ratio,
+            deceleration: l.deceleration / length_ratio,
+            jerk: l.jerk / length_ratio,
+        }
+    }
+
+    /// The segment from `start` and its counted length per path length ([`length_ratio`]);
+    /// the geometry's refusals (centre not equidistant, radius below half the chord,
+    /// coincident points …) become `InvalidPath` with the geometry's reason.
     pub fn segment(
         &self,
         group: GroupId,
         start: Point,
         dims: usize,
-    ) -> Result<Segment, EngineError> {
+    ) -> Result<(Segment, f64), EngineError> {
         let offset = |p: &Point, relative: bool| -> Point {
             if relative {
                 let mut out = *p;
@@ -514,9 +656,11 @@ impl PathRequest {
                 dims,
             ),
         };
-        built.map_err(|e| EngineError::InvalidPath {
+        let segment = built.map_err(|e| EngineError::InvalidPath {
             group,
             reason: e.to_string(),
-        })
+        })?;
+        let ratio = length_ratio(group, &segment, &self.counted)?;
+        Ok((segment, ratio))
     }
 }

@@ -45,10 +45,11 @@ impl Group {
         )
     }
 
-    /// The first member that is not enabled and at rest (Standstill), with its state: enable
-    /// and reset need every member there (HIMC: "only after all errors are cleared").
+    /// The first member (or the result axis) that is not enabled and at rest (Standstill), with
+    /// its state: enable and reset need every one there (HIMC: "only after all errors are
+    /// cleared").
     pub(super) fn member_not_ready(&self, axes: &[Axis]) -> Option<(AxisIndex, AxisState)> {
-        self.members.iter().find_map(|&a| {
+        self.bound_axes().find_map(|a| {
             let state = axes
                 .get(a as usize)
                 .map_or(AxisState::Disabled, Axis::state);
@@ -78,9 +79,10 @@ impl Group {
 
     /// A member's trouble while the group is enabled: in ErrorStop, disabled, a latched fault,
     /// or (while the group feeds it) no longer in SynchronizedMotion (a limit stop, a
-    /// single-axis stop). Any of these stops the whole group (issue 11 item 3).
+    /// single-axis stop). Any of these stops the whole group (issue 11 item 3); the result
+    /// axis's too (digest 000 §6.1 (b): the whole interpolation is cancelled).
     pub(super) fn member_fault(&self, axes: &[Axis]) -> Option<GroupFault> {
-        for &a in &self.members {
+        for a in self.bound_axes() {
             let Some(axis) = axes.get(a as usize) else {
                 continue;
             };

@@ -11,6 +11,11 @@ use crate::command::{CommandId, CommandKind, CommandState, EngineError, ErrorKin
 use crate::profile::MotionState;
 use crate::status::{AxisState, GroupFault, GroupState};
 
+/// The fault stop's slot of the result axis, after the members' (at most [`MAX_AXES`]).
+pub(super) const RESULT_SLOT: usize = MAX_AXES;
+/// Slots of a fault stop: the members and the result axis.
+pub(super) const FAULT_STOP_SLOTS: usize = MAX_AXES + 1;
+
 impl Group {
     /// One tick. Reads the members as the previous tick left them, the digital inputs (waits)
     /// and the members' parameter versions; writes the members' feeds for this tick, buffered
@@ -133,17 +138,50 @@ impl Group {
     pub(super) fn release(&mut self, env: &mut Env) {
         self.feeding = false;
         self.fault_stop = None;
-        for &a in &self.members {
+        for a in self.bound_axes() {
             release_member(env, a);
         }
     }
 
-    /// Feed every member this tick's point of the path (axis = group coordinate + origin).
+    /// Feed every member this tick's point of the path (axis = group coordinate + origin), then
+    /// the result axis. A refusal names the slot (member coordinate, or [`RESULT_SLOT`]).
     fn feed(&mut self, env: &mut Env, state: &PathState) -> Result<(), (usize, u16, EngineError)> {
         for (k, &a) in self.members.iter().enumerate() {
             self.feed_member(env, state, k, a).map_err(|e| (k, a, e))?;
         }
-        Ok(())
+        self.feed_result_axis(env, state)
+            .map_err(|(a, e)| (RESULT_SLOT, a, e))
+    }
+
+    /// Feed the result axis its start plus the counted path length travelled, and the path
+    /// velocity and acceleration over the counted coordinates (digest 000 §4.3: "the result
+    /// axis's EndPos grows by the path length"). The travel of one tick counts at the ratio of
+    /// the motion executing at its end: where a motion starts mid-tick after one with another
+    /// ratio, the error is at most one tick's travel times the difference of the two ratios.
+    fn feed_result_axis(
+        &mut self,
+        env: &mut Env,
+        state: &PathState,
+    ) -> Result<(), (u16, EngineError)> {
+        let ratio = self.length_ratio;
+        let Some(r) = &mut self.result else {
+            return Ok(());
+        };
+        r.position += (state.travelled - r.travelled) * ratio;
+        r.travelled = state.travelled;
+        let setpoint = MotionState {
+            p: r.position,
+            v: state.path_velocity * ratio,
+            a: state.path_acceleration * ratio,
+        };
+        let a = r.axis;
+        let (mut ctx, axes) = env.context();
+        match axes.get_mut(a as usize) {
+            Some(axis) => axis
+                .feed(&mut ctx, Feed::Follow(setpoint))
+                .map_err(|e| (a, e)),
+            None => Ok(()),
+        }
     }
 
     /// Feed member `a` (group coordinate `k`) this tick's point of the path.
@@ -195,9 +233,10 @@ impl Group {
         self.end_commands(env, CommandState::Error(kind));
         self.planner.resume();
         self.planner.stop(self.defaults.deceleration.max(fast));
-        let mut left = [false; MAX_AXES];
+        let mut left = [false; FAULT_STOP_SLOTS];
         if let GroupFault::Member { axis, .. } = cause {
             let k = self.members.iter().position(|&a| a == axis);
+            let k = k.or((self.result_axis() == Some(axis)).then_some(RESULT_SLOT));
             if let Some(flag) = k.and_then(|k| left.get_mut(k)) {
                 *flag = true;
                 release_member(env, axis);
@@ -213,7 +252,8 @@ impl Group {
         let Some(mut left) = self.fault_stop else {
             return;
         };
-        for (k, &a) in self.members.iter().enumerate() {
+        let result = self.result_axis().map(|a| (RESULT_SLOT, a));
+        for (k, a) in self.members.iter().copied().enumerate().chain(result) {
             let on_path = env
                 .axes
                 .get(a as usize)
@@ -259,6 +299,13 @@ impl Group {
                 release_member(env, a);
             }
         }
+        // The result axis follows the path's deceleration too (digest 000 §6.1 (b)).
+        if from <= RESULT_SLOT && !left[RESULT_SLOT] {
+            if let Err((a, _)) = self.feed_result_axis(env, state) {
+                left[RESULT_SLOT] = true;
+                release_member(env, a);
+            }
+        }
         self.fault_stop = Some(left);
     }
 
@@ -269,11 +316,16 @@ impl Group {
                 self.running = Some(id);
                 self.segment += 1;
                 if let Some(Entry {
-                    item: Item::Motion { user_segment },
+                    item:
+                        Item::Motion {
+                            user_segment,
+                            length_ratio,
+                        },
                     ..
                 }) = self.queue.get(id)
                 {
                     self.user_segment = *user_segment;
+                    self.length_ratio = *length_ratio;
                 }
             }
             PathEvent::Done { tag } => {
@@ -421,24 +473,26 @@ impl Group {
         request: &super::segment::PathRequest,
     ) -> Result<(), EngineError> {
         self.sync_position(env)?;
-        let segment = request.segment(self.id, self.planner.queue_end(), self.dims())?;
-        self.enqueue_segment(env, id, segment, request)
+        let start = self.planner.queue_end();
+        let (segment, length_ratio) = request.segment(self.id, start, self.dims())?;
+        self.enqueue_segment(env, id, segment, length_ratio, request)
     }
 
-    /// [`Group::enqueue`] of a segment built from the queue's end already (a spline's is the
-    /// costly part of accepting it: built once).
+    /// [`Group::enqueue`] of a segment (and its counted length share) built from the queue's
+    /// end already (a spline's is the costly part of accepting it: built once).
     pub(super) fn enqueue_segment(
         &mut self,
         env: &Env,
         id: CommandId,
         segment: path::geometry::Segment,
+        length_ratio: f64,
         request: &super::segment::PathRequest,
     ) -> Result<(), EngineError> {
         self.refresh_limits(env.axes);
         self.planner
             .push_motion(Motion {
                 segment,
-                limits: request.limits,
+                limits: request.limits_along_path(length_ratio),
                 join: request.join,
                 transition: request.transition,
                 tag: u64::from(id),
@@ -448,6 +502,7 @@ impl Group {
             id,
             item: Item::Motion {
                 user_segment: request.user_segment,
+                length_ratio,
             },
         });
         Ok(())
@@ -460,6 +515,13 @@ impl Group {
             self.planner
                 .reset_position(here)
                 .map_err(|e| self.planner_error(e))?;
+            let travelled = self.planner.state().travelled;
+            if let Some(r) = &mut self.result {
+                if let Some(axis) = env.axes.get(r.axis as usize) {
+                    r.position = axis.commanded().p;
+                }
+                r.travelled = travelled;
+            }
         }
         Ok(())
     }
@@ -527,11 +589,12 @@ impl Group {
         kind
     }
 
-    /// The members' part of `group_emergency_stop`: each member gets the single-axis emergency
-    /// stop (`stop` with mode `emergency`: `fast_decel`, ESTOP latched until the axis is reset,
-    /// NMC MtEstp, digest 001 TV19), so the group's reset waits for the members' resets.
+    /// The members' (and the result axis's) part of `group_emergency_stop`: each gets the
+    /// single-axis emergency stop (`stop` with mode `emergency`: `fast_decel`, ESTOP latched
+    /// until the axis is reset, NMC MtEstp, digest 001 TV19), so the group's reset waits for
+    /// their resets.
     pub(super) fn emergency_stop_members(&mut self, env: &mut Env) {
-        for &a in &self.members {
+        for a in self.bound_axes() {
             let (mut ctx, axes) = env.context();
             if let Some(axis) = axes.get_mut(a as usize) {
                 // A stop without a deceleration never refuses.

@@ -82,6 +82,8 @@ pub enum GroupFault {
 pub struct GroupStatus {
     pub group: GroupId,
     pub state: GroupState,
+    /// HMC's result axis (digest 000 §4.3), if the group has one.
+    pub result_axis: Option<AxisIndex>,
     /// Number of member axes, 1–9.
     pub axis_count: u8,
     /// Member axes in group-coordinate order (the first `axis_count`).

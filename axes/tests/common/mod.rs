@@ -213,6 +213,7 @@ pub fn with_group(mut e: Engine, members: &[u16]) -> Engine {
             axes: members.to_vec(),
             queue_capacity: None,
             lookahead: None,
+            result_axis: None,
         }),
     );
     ok(&mut e, Command::from(GroupEnable { group: 1 }));
@@ -231,6 +232,7 @@ pub fn group_line(group: u16, position: &[f64]) -> MoveLinearAbsolute {
         buffer_mode: GroupBufferMode::Buffered,
         transition: TransitionMode::None,
         user_segment: None,
+        independent: Default::default(),
     }
 }
 
@@ -259,6 +261,7 @@ pub fn group_arc(
         buffer_mode: GroupBufferMode::Buffered,
         transition: TransitionMode::None,
         user_segment: None,
+        independent: Default::default(),
     }
 }
 

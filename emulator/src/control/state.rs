@@ -111,6 +111,8 @@ pub struct GroupView<'a> {
     pub state: GroupState,
     /// Member axes in group-coordinate order.
     pub axes: &'a [u16],
+    /// HMC's result axis (digest 000 §4.3), if the group has one.
+    pub result_axis: Option<u16>,
     /// Commanded path position in group coordinates (member position − origin).
     pub position: &'a [f64],
     pub origin: &'a [f64],
@@ -137,6 +139,7 @@ impl<'a> GroupView<'a> {
             group: g.group,
             state: g.state,
             axes: g.axes(),
+            result_axis: g.result_axis,
             position: g.position(),
             origin: g.origin.get(..n).unwrap_or(&g.origin),
             path_velocity: g.path_velocity,
