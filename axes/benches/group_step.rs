@@ -87,6 +87,7 @@ impl Group {
                     buffer_mode: GroupBufferMode::BlendingLow,
                     transition: TransitionMode::CornerDistance(5.0),
                     user_segment: None,
+                    coordinate_system: None,
                 }))
                 .expect("move_linear_absolute");
             self.next += 1;

@@ -315,6 +315,7 @@ fn extra_axes_ride_along_an_arc_in_proportion() {
             buffer_mode: GroupBufferMode::Buffered,
             transition: TransitionMode::None,
             user_segment: None,
+            coordinate_system: None,
         },
     );
     for _ in 0..10_000 {
@@ -716,6 +717,7 @@ fn relative_moves_chain_from_the_queue_end_and_the_origin_offsets_group_coordina
                 buffer_mode: GroupBufferMode::Buffered,
                 transition: TransitionMode::None,
                 user_segment: Some(42),
+                coordinate_system: None,
             },
         );
     }
@@ -945,6 +947,7 @@ fn spline(points: Vec<Vec<f64>>, velocity: Option<f64>) -> MoveSpline {
         buffer_mode: GroupBufferMode::Buffered,
         transition: TransitionMode::None,
         user_segment: None,
+        coordinate_system: None,
     }
 }
 
@@ -964,6 +967,7 @@ fn ellipse(center: Vec<f64>, ratio: f64) -> MoveEllipse {
         buffer_mode: GroupBufferMode::Buffered,
         transition: TransitionMode::None,
         user_segment: None,
+        coordinate_system: None,
     }
 }
 

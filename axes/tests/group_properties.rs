@@ -91,6 +91,7 @@ proptest! {
                         group: 1, position: p.to_vec(), velocity: Some(150.0),
                         acceleration: Some(4000.0), deceleration: Some(4000.0), jerk: Some(0.0),
                         buffer_mode, transition, user_segment: None,
+                        coordinate_system: None,
                     })
                 }
                 Step::Arc { center, angle, dz } => {
@@ -106,6 +107,7 @@ proptest! {
                         plane: None, normal: None, turns: 0, velocity: Some(150.0),
                         acceleration: Some(4000.0), deceleration: Some(4000.0), jerk: Some(0.0),
                         buffer_mode, transition, user_segment: None,
+                        coordinate_system: None,
                     })
                 }
             };

@@ -9,7 +9,11 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{command_from, AxisIndex, GroupId};
+use super::{
+    command_from, AxisIndex, CoordinateSystem, GroupDeleteTransform, GroupId,
+    GroupSetCoordinateSystem, GroupSetCoordinateTransform, GroupSetRotaryTransform,
+    GroupSetXyzaTransform, MoveProtectionDisable, MoveProtectionEnable,
+};
 
 /// Make a group of 1–9 axes (PLCopen MC_AddAxisToGroup ×n; HIMC SetupGroup without the enable;
 /// NMC CrdSetMtSys). The group starts Disabled.
@@ -109,6 +113,10 @@ pub struct MoveLinearAbsolute {
     /// A number the status reports while this motion runs (NMC CrdGetUserSegNo).
     #[serde(default)]
     pub user_segment: Option<u32>,
+    /// The coordinate system the positions are given in (default: the group's, which is
+    /// `mcs` until `group_set_coordinate_system`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub coordinate_system: Option<CoordinateSystem>,
 }
 
 /// Move along a straight line by a distance from where the previous motion ends
@@ -132,6 +140,10 @@ pub struct MoveLinearRelative {
     pub transition: TransitionMode,
     #[serde(default)]
     pub user_segment: Option<u32>,
+    /// The coordinate system the positions are given in (default: the group's, which is
+    /// `mcs` until `group_set_coordinate_system`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub coordinate_system: Option<CoordinateSystem>,
 }
 
 /// What `aux_point` (and `radius`) of a circular move mean (PLCopen MC_CircMode).
@@ -193,6 +205,10 @@ pub struct MoveCircularAbsolute {
     pub transition: TransitionMode,
     #[serde(default)]
     pub user_segment: Option<u32>,
+    /// The coordinate system the positions are given in (default: the group's, which is
+    /// `mcs` until `group_set_coordinate_system`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub coordinate_system: Option<CoordinateSystem>,
 }
 
 /// [`MoveCircularAbsolute`] with `aux_point` and `end_point` relative to the arc's start
@@ -230,6 +246,10 @@ pub struct MoveCircularRelative {
     pub transition: TransitionMode,
     #[serde(default)]
     pub user_segment: Option<u32>,
+    /// The coordinate system the positions are given in (default: the group's, which is
+    /// `mcs` until `group_set_coordinate_system`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub coordinate_system: Option<CoordinateSystem>,
 }
 
 /// Decelerate to rest along the path and drop the queue (MC_GroupStop). `deceleration`
@@ -404,6 +424,10 @@ pub struct MoveSpline {
     pub transition: TransitionMode,
     #[serde(default)]
     pub user_segment: Option<u32>,
+    /// The coordinate system the positions are given in (default: the group's, which is
+    /// `mcs` until `group_set_coordinate_system`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub coordinate_system: Option<CoordinateSystem>,
 }
 
 /// A full ellipse from where the previous motion ends, around `center`, back to the start (NMC
@@ -436,6 +460,10 @@ pub struct MoveEllipse {
     pub transition: TransitionMode,
     #[serde(default)]
     pub user_segment: Option<u32>,
+    /// The coordinate system the positions are given in (default: the group's, which is
+    /// `mcs` until `group_set_coordinate_system`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub coordinate_system: Option<CoordinateSystem>,
 }
 
 /// A command on one axis group.
@@ -464,12 +492,20 @@ pub enum GroupCommand {
     AxisMove(GroupAxisMove),
     MoveSpline(MoveSpline),
     MoveEllipse(MoveEllipse),
+    SetCoordinateTransform(GroupSetCoordinateTransform),
+    SetCoordinateSystem(GroupSetCoordinateSystem),
+    SetRotaryTransform(GroupSetRotaryTransform),
+    SetXyzaTransform(GroupSetXyzaTransform),
+    DeleteTransform(GroupDeleteTransform),
+    /// Between two groups.
+    ProtectionEnable(MoveProtectionEnable),
+    ProtectionDisable(MoveProtectionDisable),
 }
 
 impl GroupCommand {
-    /// The group the command addresses.
-    pub fn group(&self) -> GroupId {
-        match self {
+    /// The group the command addresses; `None` for the commands between two groups.
+    pub fn group(&self) -> Option<GroupId> {
+        Some(match self {
             GroupCommand::Create(c) => c.group,
             GroupCommand::Delete(c) => c.group,
             GroupCommand::Enable(c) => c.group,
@@ -493,7 +529,13 @@ impl GroupCommand {
             GroupCommand::AxisMove(c) => c.group,
             GroupCommand::MoveSpline(c) => c.group,
             GroupCommand::MoveEllipse(c) => c.group,
-        }
+            GroupCommand::SetCoordinateTransform(c) => c.group,
+            GroupCommand::SetCoordinateSystem(c) => c.group,
+            GroupCommand::SetRotaryTransform(c) => c.group,
+            GroupCommand::SetXyzaTransform(c) => c.group,
+            GroupCommand::DeleteTransform(c) => c.group,
+            GroupCommand::ProtectionEnable(_) | GroupCommand::ProtectionDisable(_) => return None,
+        })
     }
 }
 
@@ -521,4 +563,11 @@ command_from!(GroupCommand, Group, [
     GroupAxisMove => AxisMove,
     MoveSpline => MoveSpline,
     MoveEllipse => MoveEllipse,
+    GroupSetCoordinateTransform => SetCoordinateTransform,
+    GroupSetCoordinateSystem => SetCoordinateSystem,
+    GroupSetRotaryTransform => SetRotaryTransform,
+    GroupSetXyzaTransform => SetXyzaTransform,
+    GroupDeleteTransform => DeleteTransform,
+    MoveProtectionEnable => ProtectionEnable,
+    MoveProtectionDisable => ProtectionDisable,
 ]);

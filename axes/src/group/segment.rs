@@ -6,6 +6,7 @@ use path::geometry::{Arc, Curve, Line, Segment, Turn};
 use path::planner::{Join, PathLimits, Transition};
 use path::{Point, MAX_AXES};
 
+use super::frames::FrameMap;
 use crate::command::{
     bounded, nonnegative, positive, ArcDirection, CircleMode, CommandId, EngineError,
     GroupBufferMode, GroupId, MoveCircularAbsolute, MoveCircularRelative, MoveEllipse,
@@ -54,6 +55,8 @@ pub(super) struct PathRequest {
     pub transition: Transition,
     pub aborting: bool,
     pub user_segment: u32,
+    /// The positions' coordinate system, resolved when the command was accepted.
+    pub frame: FrameMap,
 }
 
 /// An aborting motion accepted while the path was moving: it starts when the path is at rest.
@@ -184,6 +187,7 @@ fn request(
         transition: transition_of(transition)?,
         aborting,
         user_segment: user_segment.unwrap_or(0),
+        frame: FrameMap::default(),
     })
 }
 
@@ -439,9 +443,24 @@ pub(super) fn ellipse(
 }
 
 impl PathRequest {
-    /// The segment from `start`; the geometry's refusals (centre not equidistant, radius below
-    /// half the chord, coincident points …) become `InvalidPath` with the geometry's reason.
+    /// The segment from `start` (group coordinates): built in the command's coordinate system
+    /// from `start` seen there, then taken to group coordinates ([`FrameMap::segment_to_machine`]).
+    /// The geometry's refusals (centre not equidistant, radius below half the chord,
+    /// coincident points …) become `InvalidPath` with the geometry's reason.
     pub fn segment(
+        &self,
+        group: GroupId,
+        machine_start: Point,
+        dims: usize,
+    ) -> Result<Segment, EngineError> {
+        let start = self.frame.point_from_machine(&machine_start);
+        let built = self.segment_in_frame(group, start, dims)?;
+        self.frame
+            .segment_to_machine(group, machine_start, built, dims)
+    }
+
+    /// The segment from `start`, all in the command's coordinate system.
+    fn segment_in_frame(
         &self,
         group: GroupId,
         start: Point,

@@ -230,6 +230,7 @@ pub fn group_line(group: u16, position: &[f64]) -> MoveLinearAbsolute {
         buffer_mode: GroupBufferMode::Buffered,
         transition: TransitionMode::None,
         user_segment: None,
+        coordinate_system: None,
     }
 }
 
@@ -258,5 +259,6 @@ pub fn group_arc(
         buffer_mode: GroupBufferMode::Buffered,
         transition: TransitionMode::None,
         user_segment: None,
+        coordinate_system: None,
     }
 }
