@@ -55,6 +55,21 @@ fn line_in(group: u16, position: &[f64], system: Option<&str>) -> MoveLinearAbso
     }
 }
 
+fn relative(distance: &[f64]) -> axes::command::MoveLinearRelative {
+    axes::command::MoveLinearRelative {
+        group: 1,
+        distance: distance.to_vec(),
+        velocity: None,
+        acceleration: None,
+        deceleration: None,
+        jerk: None,
+        buffer_mode: Default::default(),
+        transition: Default::default(),
+        user_segment: None,
+        coordinate_system: None,
+    }
+}
+
 fn group(e: &Engine, id: u16) -> GroupStatus {
     e.group_status(id).unwrap()
 }
@@ -120,6 +135,17 @@ fn a_move_names_its_own_system_and_the_default_stays_machine_coordinates() {
     assert!((pos(&e, 0) - 5.0).abs() < 1e-9, "x {}", pos(&e, 0));
     assert!((pos(&e, 1) - 5.0).abs() < 1e-9, "y {}", pos(&e, 1));
     assert_eq!(group(&e, 1).coordinate_system, CoordinateSystem::MCS);
+    // A relative move's distance is turned with the frame: (10, 0) in WCS3 is (0, 10).
+    ok(
+        &mut e,
+        Command::from(axes::command::MoveLinearRelative {
+            coordinate_system: Some(cs("wcs3")),
+            ..relative(&[10.0, 0.0])
+        }),
+    );
+    run_all(&mut e, 5.0, |_| {});
+    assert!((pos(&e, 0) - 5.0).abs() < 1e-9, "x {}", pos(&e, 0));
+    assert!((pos(&e, 1) - 15.0).abs() < 1e-9, "y {}", pos(&e, 1));
     // The chain: OFFSET ∘ WCS3 ∘ PCS.
     set_pose(&mut e, "offset", [1.0, 2.0, 0.0, 0.0, 0.0, 0.0]);
     set_pose(&mut e, "pcs", [10.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
@@ -407,6 +433,18 @@ fn mode_1_the_stop_group_retreats_and_the_other_finishes_its_move() {
         pos(&e, 1)
     );
     assert_eq!(group(&e, 2).interference, InterferenceStatus::Clear);
+    // With group 2 already waiting at its safe position, group 1 halts short of it and stays
+    // halted (its queue kept) rather than creeping on.
+    ok(&mut e, Command::from(line_in(1, &[200.0], None)));
+    for _ in 0..3000 {
+        e.step();
+        assert!(distance(&e) >= 20.0, "closed to {}", distance(&e));
+    }
+    let g = group(&e, 1);
+    assert_eq!(g.state, GroupState::Halted);
+    assert_eq!(g.queue_used, 1);
+    assert_eq!(g.interference, InterferenceStatus::Interference);
+    assert!((pos(&e, 1) - 80.0).abs() < 1e-9);
 }
 
 #[test]

@@ -44,6 +44,8 @@ pub(crate) struct Protection {
     retreat: Option<CommandId>,
     /// The other group was halted by the protection (retreat mode).
     halted_other: bool,
+    /// A retreat ran to its end since the other group was halted: it may go on.
+    retreat_done: bool,
     /// Acting, or an action not yet finished: reported as interference.
     latched: bool,
     distance: f64,
@@ -142,6 +144,7 @@ impl Groups {
             retreat_pending: false,
             retreat: None,
             halted_other: false,
+            retreat_done: false,
             latched: false,
             distance: origin_distance,
         };
@@ -169,6 +172,9 @@ impl Groups {
     /// A deleted group's protections go with it.
     pub(super) fn forget_protections(&mut self, group: GroupId) {
         self.protections.retain(|p| !p.groups.contains(&group));
+        for g in &mut self.groups {
+            g.interference = (InterferenceStatus::NotEnabled, 0.0);
+        }
     }
 
     fn index_of(&self, id: GroupId) -> Option<usize> {
@@ -248,6 +254,7 @@ impl Groups {
                             if g.state == GroupState::Moving {
                                 let _ = g.halt(Some(g.defaults.deceleration));
                                 p.halted_other = true;
+                                p.retreat_done = false;
                             }
                         }
                     }
@@ -284,15 +291,21 @@ impl Groups {
         if let Some(id) = p.retreat {
             match self.groups.get(s) {
                 Some(g) if g.queued_state(id).is_some() => busy = true,
-                _ => p.retreat = None,
+                _ => {
+                    p.retreat = None;
+                    p.retreat_done = true;
+                }
             }
         }
-        if p.halted_other && !p.retreat_pending && p.retreat.is_none() {
+        // The other group goes on only after a retreat made room; with the stop group already
+        // waiting at its safe position it stays halted (a `group_continue` is the user's).
+        if p.halted_other && !p.retreat_pending && p.retreat.is_none() && p.retreat_done {
             busy = true;
             if let Some(g) = self.groups.get_mut(o) {
                 let _ = g.resume();
             }
             p.halted_other = false;
+            p.retreat_done = false;
         }
         busy || p.halted_other
     }
