@@ -485,6 +485,16 @@ fn bad_frames_and_protections_are_typed_errors_and_change_nothing() {
             pose: [0.0; 6],
         }),
     );
+    for frame in ["wcs16", "mcs", "rotary"] {
+        undefined(
+            &mut e,
+            Command::from(GroupSetCoordinateTransform {
+                group: 1,
+                frame: cs(frame),
+                pose: [0.0; 6],
+            }),
+        );
+    }
     // A pitch on a 2-axis group would move the path into Z.
     ok(&mut e, pose([0.0, 0.0, 0.0, 0.0, 30.0, 0.0]));
     undefined(&mut e, Command::from(line_in(1, &[1.0, 1.0], Some("pcs"))));

@@ -127,6 +127,28 @@ pub(super) struct GroupFrames {
     selected: CoordinateSystem,
 }
 
+/// The one link a selection names (`"offset"`, `"wcsN"`, `"pcs"`), if it names one.
+fn link_of(frame: CoordinateSystem) -> Option<Frame> {
+    match frame {
+        CoordinateSystem::Chain {
+            offset: true,
+            wcs: None,
+            pcs: false,
+        } => Some(Frame::Offset),
+        CoordinateSystem::Chain {
+            offset: false,
+            wcs: Some(n),
+            pcs: false,
+        } => Some(Frame::Wcs(n)),
+        CoordinateSystem::Chain {
+            offset: false,
+            wcs: None,
+            pcs: true,
+        } => Some(Frame::Pcs),
+        _ => None,
+    }
+}
+
 fn undefined(group: GroupId, system: CoordinateSystem, reason: &'static str) -> EngineError {
     EngineError::UndefinedCoordinateSystem {
         group,
@@ -163,30 +185,15 @@ impl GroupFrames {
         for v in pose {
             bounded("pose", v)?;
         }
-        let link = match frame {
-            CoordinateSystem::Chain {
-                offset: true,
-                wcs: None,
-                pcs: false,
-            } => Frame::Offset,
-            CoordinateSystem::Chain {
-                offset: false,
-                wcs: Some(n),
-                pcs: false,
-            } if (1..=WCS_COUNT).contains(&usize::from(n)) => Frame::Wcs(n),
-            CoordinateSystem::Chain {
-                offset: false,
-                wcs: None,
-                pcs: true,
-            } => Frame::Pcs,
-            other => {
-                return Err(undefined(
+        let link = link_of(frame)
+            .filter(|l| !matches!(l, Frame::Wcs(n) if !(1..=WCS_COUNT).contains(&usize::from(*n))))
+            .ok_or_else(|| {
+                undefined(
                     group,
-                    other,
+                    frame,
                     "is not one link: a transform is set on offset, wcs1 to wcs15 or pcs",
-                ))
-            }
-        };
+                )
+            })?;
         self.chain
             .set(link, pose)
             .map_err(|e| EngineError::InvalidPath {
@@ -198,24 +205,7 @@ impl GroupFrames {
     /// The pose a link was set to (HIMC GetGrpCoordTrans, TV 57); `None` for a selection that
     /// is not one link.
     pub fn link_pose(&self, frame: CoordinateSystem) -> Option<[f64; 6]> {
-        let link = match frame {
-            CoordinateSystem::Chain {
-                offset: true,
-                wcs: None,
-                pcs: false,
-            } => Frame::Offset,
-            CoordinateSystem::Chain {
-                offset: false,
-                wcs: Some(n),
-                pcs: false,
-            } => Frame::Wcs(n),
-            CoordinateSystem::Chain {
-                offset: false,
-                wcs: None,
-                pcs: true,
-            } => Frame::Pcs,
-            _ => return None,
-        };
+        let link = link_of(frame)?;
         self.chain.pose(link).ok()
     }
 
