@@ -89,6 +89,7 @@ impl Group {
                     transition: TransitionMode::CornerDistance(5.0),
                     user_segment: None,
                     independent: Default::default(),
+                    coordinate_system: None,
                 }))
                 .expect("move_linear_absolute");
             self.next += 1;

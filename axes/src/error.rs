@@ -107,6 +107,17 @@ pub enum EngineError {
     GroupQueueFull { group: GroupId, capacity: u32 },
     #[error("group {group}: {reason}")]
     InvalidPath { group: GroupId, reason: String },
+    /// A selection of a system the group does not have (a WCS outside 1–15, an NMC transform
+    /// not set), or a link that cannot be set that way (HIMC eERR_CRD_CMD_COORD_SYS_UNKNOWN).
+    #[error("group {group}: coordinate system `{system}` {reason}")]
+    UndefinedCoordinateSystem {
+        group: GroupId,
+        system: String,
+        reason: &'static str,
+    },
+    /// A move protection that cannot be set up as given (NMC `SetMvProtect`).
+    #[error("move protection {protection}: {reason}")]
+    InvalidProtection { protection: u16, reason: String },
 }
 
 impl EngineError {
@@ -156,7 +167,9 @@ impl EngineError {
             EngineError::GroupCauseStillPresent { .. } => ErrorKind::CauseStillPresent,
             EngineError::AxisInGroup { .. } => ErrorKind::InvalidState,
             EngineError::GroupQueueFull { .. } => ErrorKind::QueueFull,
-            EngineError::InvalidPath { .. } => ErrorKind::InvalidArgument,
+            EngineError::InvalidPath { .. }
+            | EngineError::UndefinedCoordinateSystem { .. }
+            | EngineError::InvalidProtection { .. } => ErrorKind::InvalidArgument,
         }
     }
 }

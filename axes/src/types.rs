@@ -117,3 +117,121 @@ impl ErrorKind {
         }
     }
 }
+
+/// The coordinate system a group's positions are given in (issue 11 item 1).
+///
+/// JSON: a string. `"mcs"` (machine coordinates, the default); HIMC's frame links joined by
+/// `|` as `coord_sys` combines them (digest 004 §2.7 Table 8.1.2.1, §8.3.21): `"pcs"`,
+/// `"wcs1|pcs"`, `"offset|wcs2|pcs"`; or an NMC transform once set (digest 001 §2.10):
+/// `"rotary"` (`CrdSetTransRotate`), `"xyza"` (`CrdSetTransXYZA`). A WCS number is parsed as any
+/// `u8`; the engine refuses one outside 1–15 as an undefined system (a typed error, not a JSON
+/// one).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(try_from = "String", into = "String")]
+pub enum CoordinateSystem {
+    /// HIMC's chain: the links a position goes through to reach the MCS; none is the MCS.
+    Chain {
+        offset: bool,
+        wcs: Option<u8>,
+        pcs: bool,
+    },
+    /// NMC `CrdSetTransRotate`: the workpiece on a rotary table.
+    Rotary,
+    /// NMC `CrdSetTransXYZA`: the tool on a rotary A axis.
+    Xyza,
+}
+
+impl Default for CoordinateSystem {
+    fn default() -> Self {
+        CoordinateSystem::MCS
+    }
+}
+
+impl CoordinateSystem {
+    /// `CS_MCS`: machine coordinates.
+    pub const MCS: CoordinateSystem = CoordinateSystem::Chain {
+        offset: false,
+        wcs: None,
+        pcs: false,
+    };
+
+    pub fn is_machine(self) -> bool {
+        self == CoordinateSystem::MCS
+    }
+}
+
+impl std::fmt::Display for CoordinateSystem {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            CoordinateSystem::Rotary => f.write_str("rotary"),
+            CoordinateSystem::Xyza => f.write_str("xyza"),
+            CoordinateSystem::Chain { offset, wcs, pcs } => {
+                let mut parts = Vec::new();
+                if offset {
+                    parts.push("offset".to_string());
+                }
+                if let Some(n) = wcs {
+                    parts.push(format!("wcs{n}"));
+                }
+                if pcs {
+                    parts.push("pcs".to_string());
+                }
+                if parts.is_empty() {
+                    f.write_str("mcs")
+                } else {
+                    f.write_str(&parts.join("|"))
+                }
+            }
+        }
+    }
+}
+
+impl std::str::FromStr for CoordinateSystem {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "mcs" => return Ok(CoordinateSystem::MCS),
+            "rotary" => return Ok(CoordinateSystem::Rotary),
+            "xyza" => return Ok(CoordinateSystem::Xyza),
+            _ => {}
+        }
+        let (mut offset, mut wcs, mut pcs) = (false, None, false);
+        let bad = || {
+            format!(
+                "coordinate system `{s}`: expected \"mcs\", \"rotary\", \"xyza\" or links \
+                 \"offset\", \"wcs1\"…\"wcs15\", \"pcs\" joined by '|' (each once)"
+            )
+        };
+        for part in s.split('|') {
+            match part.trim() {
+                "offset" if !offset => offset = true,
+                "pcs" if !pcs => pcs = true,
+                w => {
+                    let n = w
+                        .strip_prefix("wcs")
+                        .and_then(|n| n.parse::<u8>().ok())
+                        .ok_or_else(bad)?;
+                    if wcs.replace(n).is_some() {
+                        return Err(bad());
+                    }
+                }
+            }
+        }
+        Ok(CoordinateSystem::Chain { offset, wcs, pcs })
+    }
+}
+
+impl TryFrom<String> for CoordinateSystem {
+    type Error = String;
+
+    fn try_from(s: String) -> Result<Self, String> {
+        s.parse()
+    }
+}
+
+impl From<CoordinateSystem> for String {
+    fn from(c: CoordinateSystem) -> String {
+        c.to_string()
+    }
+}

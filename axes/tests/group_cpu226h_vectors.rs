@@ -68,6 +68,7 @@ fn line_r(a: f64, b: f64, max_speed: f64, acceleration: Option<f64>) -> MoveLine
         transition: TransitionMode::None,
         user_segment: None,
         independent: Default::default(),
+        coordinate_system: None,
     }
 }
 
@@ -133,6 +134,7 @@ fn circle_r(end: [f64; 2], radius: f64, cw: bool) -> MoveCircularRelative {
         transition: TransitionMode::None,
         user_segment: None,
         independent: Default::default(),
+        coordinate_system: None,
     }
 }
 

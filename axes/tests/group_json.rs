@@ -12,6 +12,11 @@ use axes::command::{
     MoveCircularAbsolute, MoveCircularRelative, MoveEllipse, MoveLinearAbsolute,
     MoveLinearRelative, MoveSpline, TransitionMode,
 };
+use axes::command::{
+    CoordinateSystem, GroupDeleteTransform, GroupSetCoordinateSystem, GroupSetCoordinateTransform,
+    GroupSetRotaryTransform, GroupSetXyzaTransform, MoveProtectionDisable, MoveProtectionEnable,
+    ProtectionMode,
+};
 
 fn full() -> Vec<(Command, &'static str)> {
     vec![
@@ -53,8 +58,9 @@ fn full() -> Vec<(Command, &'static str)> {
                 transition: TransitionMode::CornerDistance(1.5),
                 user_segment: Some(7),
                 independent: Default::default(),
+                coordinate_system: Some("offset|wcs2|pcs".parse().unwrap()),
             }),
-            r#"{"type":"move_linear_absolute","group":1,"position":[10.0,-2.5],"velocity":50.0,"acceleration":500.0,"deceleration":600.0,"jerk":0.0,"buffer_mode":"blending_low","transition":{"corner_distance":1.5},"user_segment":7}"#,
+            r#"{"type":"move_linear_absolute","group":1,"position":[10.0,-2.5],"velocity":50.0,"acceleration":500.0,"deceleration":600.0,"jerk":0.0,"buffer_mode":"blending_low","transition":{"corner_distance":1.5},"user_segment":7,"coordinate_system":"offset|wcs2|pcs"}"#,
         ),
         (
             Command::from(MoveLinearRelative {
@@ -68,6 +74,7 @@ fn full() -> Vec<(Command, &'static str)> {
                 transition: TransitionMode::CornerDeviation(0.01),
                 user_segment: None,
                 independent: CoordinateSet::from_indices(&[2]).unwrap(),
+                coordinate_system: None,
             }),
             r#"{"type":"move_linear_relative","group":1,"distance":[1.0,2.0,3.0],"velocity":5.0,"acceleration":null,"deceleration":null,"jerk":1000000.0,"buffer_mode":"aborting","transition":{"corner_deviation":0.01},"user_segment":null,"independent":[2]}"#,
         ),
@@ -90,6 +97,7 @@ fn full() -> Vec<(Command, &'static str)> {
                 transition: TransitionMode::None,
                 user_segment: Some(3),
                 independent: Default::default(),
+                coordinate_system: None,
             }),
             r#"{"type":"move_circular_absolute","group":1,"mode":"radius","aux_point":[],"radius":-10.0,"end_point":[20.0,0.0],"direction":"cw","plane":[0,1],"normal":null,"turns":0,"velocity":20.0,"acceleration":200.0,"deceleration":200.0,"jerk":null,"buffer_mode":"blending_previous","transition":"none","user_segment":3}"#,
         ),
@@ -112,6 +120,7 @@ fn full() -> Vec<(Command, &'static str)> {
                 transition: TransitionMode::None,
                 user_segment: None,
                 independent: Default::default(),
+                coordinate_system: None,
             }),
             r#"{"type":"move_circular_relative","group":2,"mode":"border","aux_point":[5.0,5.0,0.0],"radius":null,"end_point":[10.0,0.0,1.0],"direction":"ccw","plane":null,"normal":[0.0,0.0,1.0],"turns":4,"velocity":null,"acceleration":null,"deceleration":null,"jerk":null,"buffer_mode":"blending_high","transition":"none","user_segment":null}"#,
         ),
@@ -217,6 +226,7 @@ fn full() -> Vec<(Command, &'static str)> {
                 buffer_mode: GroupBufferMode::BlendingNext,
                 transition: TransitionMode::None,
                 user_segment: Some(4),
+                coordinate_system: None,
             }),
             r#"{"type":"move_spline","group":1,"points":[[1.0,2.0],[3.0,-1.5]],"relative":true,"velocity":20.0,"acceleration":null,"deceleration":100.0,"jerk":null,"buffer_mode":"blending_next","transition":"none","user_segment":4}"#,
         ),
@@ -235,8 +245,66 @@ fn full() -> Vec<(Command, &'static str)> {
                 buffer_mode: GroupBufferMode::Buffered,
                 transition: TransitionMode::None,
                 user_segment: None,
+                coordinate_system: None,
             }),
             r#"{"type":"move_ellipse","group":2,"center":[-5.0,0.0],"ratio":0.5,"direction":"cw","plane":[0,1],"relative":true,"velocity":null,"acceleration":50.0,"deceleration":null,"jerk":0.0,"buffer_mode":"buffered","transition":"none","user_segment":null}"#,
+        ),
+        (
+            Command::from(GroupSetCoordinateTransform {
+                group: 1,
+                frame: "wcs15".parse().unwrap(),
+                pose: [400.0, 200.0, 0.0, 0.0, 0.0, 45.0],
+            }),
+            r#"{"type":"group_set_coordinate_transform","group":1,"frame":"wcs15","pose":[400.0,200.0,0.0,0.0,0.0,45.0]}"#,
+        ),
+        (
+            Command::from(GroupSetCoordinateSystem {
+                group: 1,
+                coordinate_system: CoordinateSystem::Xyza,
+            }),
+            r#"{"type":"group_set_coordinate_system","group":1,"coordinate_system":"xyza"}"#,
+        ),
+        (
+            Command::from(GroupSetRotaryTransform {
+                group: 1,
+                rotary_axis: 3,
+                rad_per_unit: 0.5,
+                center: [0.0, 15.0],
+                plane: Some([1, 2]),
+            }),
+            r#"{"type":"group_set_rotary_transform","group":1,"rotary_axis":3,"rad_per_unit":0.5,"center":[0.0,15.0],"plane":[1,2]}"#,
+        ),
+        (
+            Command::from(GroupSetXyzaTransform {
+                group: 1,
+                rad_per_unit: 0.25,
+                tool: [-1.5, 2.0],
+            }),
+            r#"{"type":"group_set_xyza_transform","group":1,"rad_per_unit":0.25,"tool":[-1.5,2.0]}"#,
+        ),
+        (
+            Command::from(GroupDeleteTransform { group: 1 }),
+            r#"{"type":"group_delete_transform","group":1}"#,
+        ),
+        (
+            Command::from(MoveProtectionEnable {
+                protection: 0,
+                groups: [1, 2],
+                axes: [0, 1],
+                move_direction: [1, -1],
+                origin_distance: 100.0,
+                protection_distance: 20.0,
+                mode: ProtectionMode::Retreat,
+                stop_group: Some(2),
+                safe_wait_position: Some(80.0),
+                retreat_velocity: Some(50.0),
+                retreat_acceleration: Some(500.0),
+            }),
+            r#"{"type":"move_protection_enable","protection":0,"groups":[1,2],"axes":[0,1],"move_direction":[1,-1],"origin_distance":100.0,"protection_distance":20.0,"mode":"retreat","stop_group":2,"safe_wait_position":80.0,"retreat_velocity":50.0,"retreat_acceleration":500.0}"#,
+        ),
+        (
+            Command::from(MoveProtectionDisable { protection: 0 }),
+            r#"{"type":"move_protection_disable","protection":0}"#,
         ),
     ]
 }
@@ -244,7 +312,7 @@ fn full() -> Vec<(Command, &'static str)> {
 #[test]
 fn every_group_command_serializes_to_its_pinned_json_and_back() {
     let cases = full();
-    assert_eq!(cases.len(), 23, "one case per group command");
+    assert_eq!(cases.len(), 30, "one case per group command");
     for (command, json) in cases {
         assert_eq!(serde_json::to_string(&command).unwrap(), json);
         assert_eq!(
@@ -273,6 +341,7 @@ fn a_motion_with_only_its_required_fields_is_buffered_without_transition() {
             transition: TransitionMode::None,
             user_segment: None,
             independent: Default::default(),
+            coordinate_system: None,
         })
     );
     let c: Command = serde_json::from_str(
@@ -305,7 +374,7 @@ fn group_serde_errors_name_the_field() {
     for (json, message) in [
         (
             r#"{"type":"move_linear_absolute","group":1,"positon":[1]}"#,
-            "unknown field `positon`, expected one of `group`, `position`, `velocity`, `acceleration`, `deceleration`, `jerk`, `buffer_mode`, `transition`, `user_segment`, `independent`",
+            "unknown field `positon`, expected one of `group`, `position`, `velocity`, `acceleration`, `deceleration`, `jerk`, `buffer_mode`, `transition`, `user_segment`, `independent`, `coordinate_system`",
         ),
         (
             r#"{"type":"move_linear_absolute","group":1,"position":[1],"buffer_mode":"blend"}"#,
@@ -351,4 +420,55 @@ fn the_safety_and_acceleration_parameters_have_their_pinned_names() {
         assert_eq!(serde_json::to_string(&c).unwrap(), json);
         assert_eq!(serde_json::from_str::<Command>(json).unwrap(), c);
     }
+}
+
+#[test]
+fn frames_and_protections_read_back_with_their_defaults() {
+    let c: Command = serde_json::from_str(
+        r#"{"type":"move_protection_enable","protection":0,"groups":[1,2],"axes":[0,0],"move_direction":[1,-1],"origin_distance":100,"protection_distance":20}"#,
+    )
+    .unwrap();
+    let Command::Group(axes::command::GroupCommand::ProtectionEnable(p)) = c else {
+        panic!("{c:?}");
+    };
+    assert_eq!(p.mode, ProtectionMode::BothStop);
+    assert_eq!((p.stop_group, p.safe_wait_position), (None, None));
+    let c: Command = serde_json::from_str(
+        r#"{"type":"move_linear_relative","group":1,"distance":[1],"coordinate_system":"mcs"}"#,
+    )
+    .unwrap();
+    let Command::Group(axes::command::GroupCommand::MoveLinearRelative(m)) = c else {
+        panic!("{c:?}");
+    };
+    assert_eq!(m.coordinate_system, Some(CoordinateSystem::MCS));
+    for (text, system) in [
+        (
+            "pcs",
+            CoordinateSystem::Chain {
+                offset: false,
+                wcs: None,
+                pcs: true,
+            },
+        ),
+        (
+            "wcs1|pcs",
+            CoordinateSystem::Chain {
+                offset: false,
+                wcs: Some(1),
+                pcs: true,
+            },
+        ),
+        ("rotary", CoordinateSystem::Rotary),
+    ] {
+        assert_eq!(text.parse::<CoordinateSystem>().unwrap(), system);
+        assert_eq!(system.to_string(), text);
+    }
+    let err = serde_json::from_str::<Command>(
+        r#"{"type":"group_set_coordinate_system","group":1,"coordinate_system":"world"}"#,
+    )
+    .unwrap_err();
+    assert!(
+        err.to_string().contains("coordinate system `world`"),
+        "{err}"
+    );
 }

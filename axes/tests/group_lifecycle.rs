@@ -382,6 +382,7 @@ fn bad_motion_input_is_refused_with_a_typed_error_and_nothing_is_queued() {
                 transition: TransitionMode::None,
                 user_segment: None,
                 independent: Default::default(),
+                coordinate_system: None,
             }),
             ErrorKind::InvalidGroup,
             "group 7 does not exist",

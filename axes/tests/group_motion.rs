@@ -316,6 +316,7 @@ fn extra_axes_ride_along_an_arc_in_proportion() {
             transition: TransitionMode::None,
             user_segment: None,
             independent: Default::default(),
+            coordinate_system: None,
         },
     );
     for _ in 0..10_000 {
@@ -839,6 +840,7 @@ fn relative_moves_chain_from_the_queue_end_and_the_origin_offsets_group_coordina
                 transition: TransitionMode::None,
                 user_segment: Some(42),
                 independent: Default::default(),
+                coordinate_system: None,
             },
         );
     }
@@ -1068,6 +1070,7 @@ fn spline(points: Vec<Vec<f64>>, velocity: Option<f64>) -> MoveSpline {
         buffer_mode: GroupBufferMode::Buffered,
         transition: TransitionMode::None,
         user_segment: None,
+        coordinate_system: None,
     }
 }
 
@@ -1087,6 +1090,7 @@ fn ellipse(center: Vec<f64>, ratio: f64) -> MoveEllipse {
         buffer_mode: GroupBufferMode::Buffered,
         transition: TransitionMode::None,
         user_segment: None,
+        coordinate_system: None,
     }
 }
 

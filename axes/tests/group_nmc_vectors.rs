@@ -50,6 +50,7 @@ fn line(seg: u32, pos: &[f64], vel: f64, acc: f64) -> MoveLinearAbsolute {
         deceleration: Some(acc * P_PER_MS2),
         jerk: Some(0.0),
         user_segment: Some(seg),
+        coordinate_system: None,
         ..common::group_line(1, pos)
     }
 }
@@ -62,6 +63,7 @@ fn arc(seg: u32, end: &[f64], center: &[f64], dir: ArcDirection) -> MoveCircular
         deceleration: Some(1.0 * P_PER_MS2),
         jerk: Some(0.0),
         user_segment: Some(seg),
+        coordinate_system: None,
         ..common::group_arc(1, center, end, dir)
     }
 }

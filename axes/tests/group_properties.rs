@@ -92,6 +92,7 @@ proptest! {
                         acceleration: Some(4000.0), deceleration: Some(4000.0), jerk: Some(0.0),
                         buffer_mode, transition, user_segment: None,
                         independent: Default::default(),
+                        coordinate_system: None,
                     })
                 }
                 Step::Arc { center, angle, dz } => {
@@ -108,6 +109,7 @@ proptest! {
                         acceleration: Some(4000.0), deceleration: Some(4000.0), jerk: Some(0.0),
                         buffer_mode, transition, user_segment: None,
                         independent: Default::default(),
+                        coordinate_system: None,
                     })
                 }
             };

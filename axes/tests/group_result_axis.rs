@@ -85,6 +85,7 @@ fn line(distance: &[f64]) -> MoveLinearRelative {
         transition: TransitionMode::None,
         user_segment: None,
         independent: Default::default(),
+        coordinate_system: None,
     }
 }
 

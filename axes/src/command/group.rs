@@ -9,7 +9,6 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{command_from, AxisIndex, GroupId};
 use crate::types::MAX_GROUP_AXES;
 
 /// A set of group coordinates (indices 0–8 into a group's `axes`, as `plane`); in JSON a list
@@ -57,6 +56,11 @@ impl<'de> Deserialize<'de> for CoordinateSet {
         })
     }
 }
+use super::{
+    command_from, AxisIndex, CoordinateSystem, GroupDeleteTransform, GroupId,
+    GroupSetCoordinateSystem, GroupSetCoordinateTransform, GroupSetRotaryTransform,
+    GroupSetXyzaTransform, MoveProtectionDisable, MoveProtectionEnable,
+};
 
 /// Make a group of 1–9 axes (PLCopen MC_AddAxisToGroup ×n; HIMC SetupGroup without the enable;
 /// NMC CrdSetMtSys). The group starts Disabled.
@@ -169,6 +173,10 @@ pub struct MoveLinearAbsolute {
     /// independent axes; HMC_MoveHelical modes 4/5/7 count the arc plane only).
     #[serde(default, skip_serializing_if = "CoordinateSet::is_empty")]
     pub independent: CoordinateSet,
+    /// The coordinate system the positions are given in (default: the group's, which is
+    /// `mcs` until `group_set_coordinate_system`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub coordinate_system: Option<CoordinateSystem>,
 }
 
 /// Move along a straight line by a distance from where the previous motion ends
@@ -198,6 +206,10 @@ pub struct MoveLinearRelative {
     /// independent axes; HMC_MoveHelical modes 4/5/7 count the arc plane only).
     #[serde(default, skip_serializing_if = "CoordinateSet::is_empty")]
     pub independent: CoordinateSet,
+    /// The coordinate system the positions are given in (default: the group's, which is
+    /// `mcs` until `group_set_coordinate_system`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub coordinate_system: Option<CoordinateSystem>,
 }
 
 /// What `aux_point` (and `radius`) of a circular move mean (PLCopen MC_CircMode).
@@ -265,6 +277,10 @@ pub struct MoveCircularAbsolute {
     /// independent axes; HMC_MoveHelical modes 4/5/7 count the arc plane only).
     #[serde(default, skip_serializing_if = "CoordinateSet::is_empty")]
     pub independent: CoordinateSet,
+    /// The coordinate system the positions are given in (default: the group's, which is
+    /// `mcs` until `group_set_coordinate_system`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub coordinate_system: Option<CoordinateSystem>,
 }
 
 /// [`MoveCircularAbsolute`] with `aux_point` and `end_point` relative to the arc's start
@@ -308,6 +324,10 @@ pub struct MoveCircularRelative {
     /// independent axes; HMC_MoveHelical modes 4/5/7 count the arc plane only).
     #[serde(default, skip_serializing_if = "CoordinateSet::is_empty")]
     pub independent: CoordinateSet,
+    /// The coordinate system the positions are given in (default: the group's, which is
+    /// `mcs` until `group_set_coordinate_system`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub coordinate_system: Option<CoordinateSystem>,
 }
 
 /// Decelerate to rest along the path and drop the queue (MC_GroupStop). `deceleration`
@@ -491,6 +511,10 @@ pub struct MoveSpline {
     pub transition: TransitionMode,
     #[serde(default)]
     pub user_segment: Option<u32>,
+    /// The coordinate system the positions are given in (default: the group's, which is
+    /// `mcs` until `group_set_coordinate_system`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub coordinate_system: Option<CoordinateSystem>,
 }
 
 /// A full ellipse from where the previous motion ends, around `center`, back to the start (NMC
@@ -523,6 +547,10 @@ pub struct MoveEllipse {
     pub transition: TransitionMode,
     #[serde(default)]
     pub user_segment: Option<u32>,
+    /// The coordinate system the positions are given in (default: the group's, which is
+    /// `mcs` until `group_set_coordinate_system`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub coordinate_system: Option<CoordinateSystem>,
 }
 
 /// A command on one axis group.
@@ -551,12 +579,20 @@ pub enum GroupCommand {
     AxisMove(GroupAxisMove),
     MoveSpline(MoveSpline),
     MoveEllipse(MoveEllipse),
+    SetCoordinateTransform(GroupSetCoordinateTransform),
+    SetCoordinateSystem(GroupSetCoordinateSystem),
+    SetRotaryTransform(GroupSetRotaryTransform),
+    SetXyzaTransform(GroupSetXyzaTransform),
+    DeleteTransform(GroupDeleteTransform),
+    /// Between two groups.
+    ProtectionEnable(MoveProtectionEnable),
+    ProtectionDisable(MoveProtectionDisable),
 }
 
 impl GroupCommand {
-    /// The group the command addresses.
-    pub fn group(&self) -> GroupId {
-        match self {
+    /// The group the command addresses; `None` for the commands between two groups.
+    pub fn group(&self) -> Option<GroupId> {
+        Some(match self {
             GroupCommand::Create(c) => c.group,
             GroupCommand::Delete(c) => c.group,
             GroupCommand::Enable(c) => c.group,
@@ -580,7 +616,13 @@ impl GroupCommand {
             GroupCommand::AxisMove(c) => c.group,
             GroupCommand::MoveSpline(c) => c.group,
             GroupCommand::MoveEllipse(c) => c.group,
-        }
+            GroupCommand::SetCoordinateTransform(c) => c.group,
+            GroupCommand::SetCoordinateSystem(c) => c.group,
+            GroupCommand::SetRotaryTransform(c) => c.group,
+            GroupCommand::SetXyzaTransform(c) => c.group,
+            GroupCommand::DeleteTransform(c) => c.group,
+            GroupCommand::ProtectionEnable(_) | GroupCommand::ProtectionDisable(_) => return None,
+        })
     }
 }
 
@@ -608,4 +650,11 @@ command_from!(GroupCommand, Group, [
     GroupAxisMove => AxisMove,
     MoveSpline => MoveSpline,
     MoveEllipse => MoveEllipse,
+    GroupSetCoordinateTransform => SetCoordinateTransform,
+    GroupSetCoordinateSystem => SetCoordinateSystem,
+    GroupSetRotaryTransform => SetRotaryTransform,
+    GroupSetXyzaTransform => SetXyzaTransform,
+    GroupDeleteTransform => DeleteTransform,
+    MoveProtectionEnable => ProtectionEnable,
+    MoveProtectionDisable => ProtectionDisable,
 ]);

@@ -11,7 +11,9 @@ use crate::od::Value;
 // Defined below `command` in the module chain (docs/architecture.md) and re-exported here, so
 // that `axes::command::EngineError` and friends keep their paths.
 pub use crate::error::EngineError;
-pub use crate::types::{AxisIndex, CommandId, CommandKind, Direction, ErrorKind, GroupId};
+pub use crate::types::{
+    AxisIndex, CommandId, CommandKind, CoordinateSystem, Direction, ErrorKind, GroupId,
+};
 
 /// PLCopen buffer mode of a motion command (ARCHITECTURE §3.5).
 ///
@@ -86,6 +88,7 @@ pub enum AxisInput {
 
 mod axis;
 mod group;
+mod group_frames;
 mod io;
 mod machine;
 mod slave;
@@ -103,6 +106,11 @@ pub use group::{
     GroupSetOverride, GroupSetParameter, GroupStop, GroupWaitInput, GroupWaitPosition,
     MoveCircularAbsolute, MoveCircularRelative, MoveEllipse, MoveLinearAbsolute,
     MoveLinearRelative, MoveSpline, TransitionMode,
+};
+pub use group_frames::{
+    GroupDeleteTransform, GroupSetCoordinateSystem, GroupSetCoordinateTransform,
+    GroupSetRotaryTransform, GroupSetXyzaTransform, MoveProtectionDisable, MoveProtectionEnable,
+    ProtectionMode,
 };
 pub use io::{
     ForceAnalogInput, ForceDigitalInput, IoCommand, WriteAnalogOutput, WriteDigitalOutput,

@@ -19,6 +19,10 @@ use super::{
     MoveCircularAbsolute, MoveCircularRelative, MoveEllipse, MoveLinearAbsolute,
     MoveLinearRelative, MoveSpline,
 };
+use super::{
+    GroupDeleteTransform, GroupSetCoordinateSystem, GroupSetCoordinateTransform,
+    GroupSetRotaryTransform, GroupSetXyzaTransform, MoveProtectionDisable, MoveProtectionEnable,
+};
 
 /// Named `Command` like the type it stands for: serde writes this name in "expected internally
 /// tagged enum Command" (a `rename` does not change that message).
@@ -83,6 +87,13 @@ pub(super) enum Command {
     GroupAxisMove(GroupAxisMove),
     MoveSpline(MoveSpline),
     MoveEllipse(MoveEllipse),
+    GroupSetCoordinateTransform(GroupSetCoordinateTransform),
+    GroupSetCoordinateSystem(GroupSetCoordinateSystem),
+    GroupSetRotaryTransform(GroupSetRotaryTransform),
+    GroupSetXyzaTransform(GroupSetXyzaTransform),
+    GroupDeleteTransform(GroupDeleteTransform),
+    MoveProtectionEnable(MoveProtectionEnable),
+    MoveProtectionDisable(MoveProtectionDisable),
 }
 
 impl From<Command> for super::Command {
@@ -155,6 +166,27 @@ impl From<Command> for super::Command {
             Command::GroupAxisMove(c) => super::Command::Group(GroupCommand::AxisMove(c)),
             Command::MoveSpline(c) => super::Command::Group(GroupCommand::MoveSpline(c)),
             Command::MoveEllipse(c) => super::Command::Group(GroupCommand::MoveEllipse(c)),
+            Command::GroupSetCoordinateTransform(c) => {
+                super::Command::Group(GroupCommand::SetCoordinateTransform(c))
+            }
+            Command::GroupSetCoordinateSystem(c) => {
+                super::Command::Group(GroupCommand::SetCoordinateSystem(c))
+            }
+            Command::GroupSetRotaryTransform(c) => {
+                super::Command::Group(GroupCommand::SetRotaryTransform(c))
+            }
+            Command::GroupSetXyzaTransform(c) => {
+                super::Command::Group(GroupCommand::SetXyzaTransform(c))
+            }
+            Command::GroupDeleteTransform(c) => {
+                super::Command::Group(GroupCommand::DeleteTransform(c))
+            }
+            Command::MoveProtectionEnable(c) => {
+                super::Command::Group(GroupCommand::ProtectionEnable(c))
+            }
+            Command::MoveProtectionDisable(c) => {
+                super::Command::Group(GroupCommand::ProtectionDisable(c))
+            }
         }
     }
 }
@@ -229,6 +261,27 @@ impl From<super::Command> for Command {
             super::Command::Group(GroupCommand::AxisMove(c)) => Command::GroupAxisMove(c),
             super::Command::Group(GroupCommand::MoveSpline(c)) => Command::MoveSpline(c),
             super::Command::Group(GroupCommand::MoveEllipse(c)) => Command::MoveEllipse(c),
+            super::Command::Group(GroupCommand::SetCoordinateTransform(c)) => {
+                Command::GroupSetCoordinateTransform(c)
+            }
+            super::Command::Group(GroupCommand::SetCoordinateSystem(c)) => {
+                Command::GroupSetCoordinateSystem(c)
+            }
+            super::Command::Group(GroupCommand::SetRotaryTransform(c)) => {
+                Command::GroupSetRotaryTransform(c)
+            }
+            super::Command::Group(GroupCommand::SetXyzaTransform(c)) => {
+                Command::GroupSetXyzaTransform(c)
+            }
+            super::Command::Group(GroupCommand::DeleteTransform(c)) => {
+                Command::GroupDeleteTransform(c)
+            }
+            super::Command::Group(GroupCommand::ProtectionEnable(c)) => {
+                Command::MoveProtectionEnable(c)
+            }
+            super::Command::Group(GroupCommand::ProtectionDisable(c)) => {
+                Command::MoveProtectionDisable(c)
+            }
             super::Command::Coupling(c) => match c {},
         }
     }

@@ -4,17 +4,18 @@
 use path::planner::{CornerAngles, MarkerKind, PathPlanner};
 use path::MAX_AXES;
 
+use super::frames::FrameMap;
 use super::queue::{Entry, GroupQueue, Item};
 use super::segment::{self, CircularFields, PathRequest, PendingMotion};
-use super::{planner_config, Env, Group, Groups, ResultAxis, DEFAULT_PATH_LIMITS};
+use super::{planner_config, Env, Group, GroupFrames, Groups, ResultAxis, DEFAULT_PATH_LIMITS};
 use crate::command::{
-    bounded, finite, nonnegative, positive, AxisIndex, CommandState, EngineError, GroupAxisMove,
-    GroupCommand, GroupCreate, GroupDwell, GroupId, GroupParameter, GroupSetOutput, GroupWaitInput,
-    GroupWaitPosition, Reply,
+    bounded, finite, nonnegative, positive, AxisIndex, CommandState, CoordinateSystem, EngineError,
+    GroupAxisMove, GroupCommand, GroupCreate, GroupDwell, GroupId, GroupParameter, GroupSetOutput,
+    GroupWaitInput, GroupWaitPosition, Reply,
 };
 use crate::config::MAX_GROUP_QUEUE;
 use crate::param::ParamId;
-use crate::status::{AxisState, GroupFault, GroupState};
+use crate::status::{AxisState, GroupFault, GroupState, InterferenceStatus};
 
 /// The path velocity override is below this (NMC CrdSetOverride: (0, 10), TV 51).
 pub const MAX_OVERRIDE: f64 = 10.0;
@@ -29,8 +30,13 @@ impl Groups {
         let id = command.group();
         match command {
             GroupCommand::Create(c) => self.create(env, c),
-            GroupCommand::Delete(_) => self.delete(env, id),
+            GroupCommand::Delete(c) => self.delete(env, c.group),
+            GroupCommand::ProtectionEnable(c) => self.enable_protection(c),
+            GroupCommand::ProtectionDisable(c) => self.disable_protection(c.protection),
             other => {
+                let Some(id) = id else {
+                    return Ok(Reply::Done);
+                };
                 let g = self.get_mut(id)?;
                 let result = g.apply(env, other);
                 if let Err(e) = &result {
@@ -111,6 +117,7 @@ impl Groups {
             })?,
             queue: GroupQueue::new(capacity),
             origin: [0.0; MAX_AXES],
+            frames: GroupFrames::default(),
             defaults: DEFAULT_PATH_LIMITS,
             fault_deceleration: None,
             fault_stop: None,
@@ -126,6 +133,7 @@ impl Groups {
             fault: None,
             params_version: 0,
             events: Vec::new(),
+            interference: (InterferenceStatus::NotEnabled, 0.0),
         };
         g.params_version = g
             .members
@@ -160,6 +168,7 @@ impl Groups {
             }
         }
         self.groups.retain(|x| x.id != group);
+        self.forget_protections(group);
         Ok(Reply::Done)
     }
 }
@@ -168,7 +177,31 @@ impl Group {
     fn apply(&mut self, env: &mut Env, command: GroupCommand) -> Result<Reply, EngineError> {
         let defaults = self.motion_defaults(env.axes);
         match command {
-            GroupCommand::Create(_) | GroupCommand::Delete(_) => Ok(Reply::Done),
+            GroupCommand::Create(_)
+            | GroupCommand::Delete(_)
+            | GroupCommand::ProtectionEnable(_)
+            | GroupCommand::ProtectionDisable(_) => Ok(Reply::Done),
+            GroupCommand::SetCoordinateTransform(c) => {
+                self.frames.set_link(self.id, c.frame, c.pose)?;
+                Ok(Reply::Done)
+            }
+            GroupCommand::SetCoordinateSystem(c) => {
+                self.frames
+                    .select(self.id, c.coordinate_system, self.dims(), env.axes)?;
+                Ok(Reply::Done)
+            }
+            GroupCommand::SetRotaryTransform(c) => {
+                self.frames.set_rotary(&c, &self.members, env.axes)?;
+                Ok(Reply::Done)
+            }
+            GroupCommand::SetXyzaTransform(c) => {
+                self.frames.set_xyza(&c, self.dims())?;
+                Ok(Reply::Done)
+            }
+            GroupCommand::DeleteTransform(_) => {
+                self.frames.delete_nmc();
+                Ok(Reply::Done)
+            }
             GroupCommand::Enable(_) => self.enable(env),
             GroupCommand::Disable(_) => {
                 self.drop_all(env, CommandState::Aborted);
@@ -179,34 +212,40 @@ impl Group {
             GroupCommand::Reset(_) => self.reset(env),
             GroupCommand::MoveLinearAbsolute(c) => {
                 self.require_accepts_motion()?;
-                let r = segment::linear_absolute(self.id, self.dims(), &c, &defaults)?;
+                let mut r = segment::linear_absolute(self.id, self.dims(), &c, &defaults)?;
+                r.frame = self.frame_map(env, c.coordinate_system)?;
                 self.submit(env, r)
             }
             GroupCommand::MoveLinearRelative(c) => {
                 self.require_accepts_motion()?;
-                let r = segment::linear_relative(self.id, self.dims(), &c, &defaults)?;
+                let mut r = segment::linear_relative(self.id, self.dims(), &c, &defaults)?;
+                r.frame = self.frame_map(env, c.coordinate_system)?;
                 self.submit(env, r)
             }
             GroupCommand::MoveCircularAbsolute(c) => {
                 self.require_accepts_motion()?;
                 let f = CircularFields::from(&c);
-                let r = segment::circular(self.id, self.dims(), f, &defaults)?;
+                let mut r = segment::circular(self.id, self.dims(), f, &defaults)?;
+                r.frame = self.frame_map(env, c.coordinate_system)?;
                 self.submit(env, r)
             }
             GroupCommand::MoveSpline(c) => {
                 self.require_accepts_motion()?;
-                let r = segment::spline(self.id, self.dims(), &c, &defaults)?;
+                let mut r = segment::spline(self.id, self.dims(), &c, &defaults)?;
+                r.frame = self.frame_map(env, c.coordinate_system)?;
                 self.submit(env, r)
             }
             GroupCommand::MoveEllipse(c) => {
                 self.require_accepts_motion()?;
-                let r = segment::ellipse(self.id, self.dims(), &c, &defaults)?;
+                let mut r = segment::ellipse(self.id, self.dims(), &c, &defaults)?;
+                r.frame = self.frame_map(env, c.coordinate_system)?;
                 self.submit(env, r)
             }
             GroupCommand::MoveCircularRelative(c) => {
                 self.require_accepts_motion()?;
                 let f = CircularFields::from(&c);
-                let r = segment::circular(self.id, self.dims(), f, &defaults)?;
+                let mut r = segment::circular(self.id, self.dims(), f, &defaults)?;
+                r.frame = self.frame_map(env, c.coordinate_system)?;
                 self.submit(env, r)
             }
             GroupCommand::Stop(c) => {
@@ -392,6 +431,23 @@ impl Group {
         Ok(Reply::Done)
     }
 
+    /// The frame map of a move accepted now, in `system` (else the group's selection). The
+    /// rotary table's position is where its last queued `group_axis_move` leaves it, else its
+    /// commanded position (docs/decisions.md, "Group frames").
+    fn frame_map(
+        &self,
+        env: &Env,
+        system: Option<CoordinateSystem>,
+    ) -> Result<FrameMap, EngineError> {
+        let system = system.unwrap_or(self.frames.selected());
+        let table = self
+            .frames
+            .table_axis()
+            .and_then(|axis| self.queue.last_axis_move(axis));
+        self.frames
+            .resolve(self.id, system, self.dims(), env.axes, table)
+    }
+
     fn check_room(&self) -> Result<(), EngineError> {
         if self.queued() >= self.queue.capacity() as usize {
             Err(EngineError::GroupQueueFull {
@@ -405,7 +461,11 @@ impl Group {
 
     /// Queue a checked motion, or (aborting while the path runs) stop the path and start it
     /// at rest.
-    fn submit(&mut self, env: &mut Env, request: PathRequest) -> Result<Reply, EngineError> {
+    pub(super) fn submit(
+        &mut self,
+        env: &mut Env,
+        request: PathRequest,
+    ) -> Result<Reply, EngineError> {
         if request.aborting && !self.is_idle() {
             let id = env.ledger.allocate();
             // The new motion runs once the path is at rest: the group is Moving again.
@@ -450,7 +510,7 @@ impl Group {
     }
 
     /// `group_stop`: decelerate along the path and drop the queue (MC_GroupStop).
-    fn stop(&mut self, env: &mut Env, deceleration: f64) -> Result<Reply, EngineError> {
+    pub(super) fn stop(&mut self, env: &mut Env, deceleration: f64) -> Result<Reply, EngineError> {
         match self.state {
             GroupState::Disabled | GroupState::ErrorStop | GroupState::Standby => {
                 return Ok(Reply::Done)
@@ -479,7 +539,7 @@ impl Group {
     }
 
     /// `group_halt`: decelerate along the path, keep the queue (HIMC HaltGroup).
-    fn halt(&mut self, deceleration: Option<f64>) -> Result<Reply, EngineError> {
+    pub(super) fn halt(&mut self, deceleration: Option<f64>) -> Result<Reply, EngineError> {
         match self.state {
             GroupState::Moving => {
                 self.planner
@@ -499,7 +559,7 @@ impl Group {
     }
 
     /// `group_continue` after a halt.
-    fn resume(&mut self) -> Result<Reply, EngineError> {
+    pub(super) fn resume(&mut self) -> Result<Reply, EngineError> {
         match self.state {
             GroupState::Halted => {
                 self.planner.resume();

@@ -23,14 +23,19 @@ use crate::axis::{Axis, Context, Ledger};
 use crate::command::{AxisIndex, CommandId, CommandState, EngineError, GroupId};
 use crate::config::GroupsConfig;
 use crate::param::ParamId;
-use crate::status::{AxisFlags, AxisStatus, GroupFault, GroupState, GroupStatus};
+use crate::status::{
+    AxisFlags, AxisStatus, GroupFault, GroupState, GroupStatus, InterferenceStatus,
+};
 
 mod commands;
+mod frames;
+mod protection;
 mod queue;
 mod segment;
 mod state;
 mod tick;
 
+use frames::GroupFrames;
 use queue::{GroupQueue, Wait};
 use segment::PendingMotion;
 
@@ -97,6 +102,8 @@ pub struct Group {
     planner: PathPlanner,
     queue: GroupQueue,
     origin: Point,
+    /// HIMC's frame chain, NMC's transform and the selected coordinate system.
+    frames: GroupFrames,
     /// Path limits of motions that give none (`group_set_parameter`).
     defaults: PathLimits,
     /// HMC's path stop after a member's trouble (`fault_deceleration`); None: the path is
@@ -123,6 +130,8 @@ pub struct Group {
     params_version: u64,
     /// The planner's events of one step (reused).
     events: Vec<path::planner::PathEvent>,
+    /// The move protection's view of this group, written by [`Groups::step`].
+    interference: (InterferenceStatus, f64),
 }
 
 impl Group {
@@ -186,6 +195,15 @@ impl Group {
         self.user_segment
     }
 
+    /// The pose a frame link was set to, exactly (HIMC GetGrpCoordTrans, digest 004 TV 57);
+    /// `None` for a selection that is not one link (`offset`, `wcs1`…`wcs15`, `pcs`).
+    pub fn coordinate_transform(
+        &self,
+        frame: crate::command::CoordinateSystem,
+    ) -> Option<[f64; 6]> {
+        self.frames.link_pose(frame)
+    }
+
     /// Number of group coordinates.
     fn dims(&self) -> usize {
         self.members.len()
@@ -223,14 +241,24 @@ impl Group {
         let idle = self.planner.is_idle() && self.waiting.is_none() && self.pending.is_none();
         let all_in_position = self.members.iter().all(|&a| in_position(a));
         let used = self.queued() as u32;
+        let coordinates = self.current_position(axes);
         GroupStatus {
             group: self.id,
             state: self.state,
             result_axis: self.result_axis(),
             axis_count: self.members.len() as u8,
             members,
-            coordinates: self.current_position(axes),
+            coordinates,
             origin: self.origin,
+            coordinate_system: self.frames.selected(),
+            frame_position: self.frames.position_in_selected(
+                self.id,
+                &coordinates,
+                self.dims(),
+                axes,
+            ),
+            interference: self.interference.0,
+            interference_distance: self.interference.1,
             path_velocity: st.path_velocity,
             path_acceleration: st.path_acceleration,
             current_command: self.running.or(self.waiting.as_ref().map(|w| w.id)),
@@ -313,6 +341,8 @@ pub struct Groups {
     config: GroupsConfig,
     /// Sorted by group number (deterministic order, no hash map).
     groups: Vec<Group>,
+    /// Move protections between two groups, sorted by number.
+    protections: Vec<protection::Protection>,
 }
 
 impl Groups {
@@ -320,6 +350,7 @@ impl Groups {
         Groups {
             config,
             groups: Vec::new(),
+            protections: Vec::new(),
         }
     }
 
@@ -340,6 +371,7 @@ impl Groups {
 
     /// Stage 2, first part: every group in group-number order. See [`Group::step`].
     pub(crate) fn step(&mut self, env: &mut Env) {
+        self.guard(env);
         for g in &mut self.groups {
             g.step(env);
         }

@@ -91,6 +91,14 @@ impl GroupQueue {
         self.entries.remove(i)
     }
 
+    /// The position the last queued `group_axis_move` of `axis` goes to.
+    pub fn last_axis_move(&self, axis: AxisIndex) -> Option<f64> {
+        self.entries.iter().rev().find_map(|e| match &e.item {
+            Item::AxisMove(m) if m.axis == axis => Some(m.position),
+            _ => None,
+        })
+    }
+
     /// Remove everything, oldest first.
     pub fn drain(&mut self) -> impl Iterator<Item = Entry> + '_ {
         self.entries.drain(..)

@@ -6,6 +6,7 @@ use path::geometry::{Arc, Curve, Line, Segment, Turn};
 use path::planner::{Join, PathLimits, Transition};
 use path::{Point, MAX_AXES};
 
+use super::frames::FrameMap;
 use crate::command::{
     bounded, nonnegative, positive, ArcDirection, CircleMode, CommandId, CoordinateSet,
     EngineError, GroupBufferMode, GroupId, MoveCircularAbsolute, MoveCircularRelative, MoveEllipse,
@@ -54,6 +55,8 @@ pub(super) struct PathRequest {
     pub transition: Transition,
     pub aborting: bool,
     pub user_segment: u32,
+    /// The positions' coordinate system, resolved when the command was accepted.
+    pub frame: FrameMap,
     /// The group coordinates that count in the path length (all but the motion's
     /// `independent` ones).
     pub counted: Counted,
@@ -301,6 +304,7 @@ fn request(
         aborting,
         user_segment: user_segment.unwrap_or(0),
         counted,
+        frame: FrameMap::default(),
     })
 }
 
@@ -582,15 +586,33 @@ impl PathRequest {
         }
     }
 
-    /// The segment from `start` and its counted length per path length ([`length_ratio`]);
-    /// the geometry's refusals (centre not equidistant, radius below half the chord,
+    /// The segment from `start` (group coordinates) and its counted length per path length
+    /// ([`length_ratio`]): built in the command's coordinate system from `start` seen there,
+    /// then taken to group coordinates ([`FrameMap::segment_to_machine`]). The geometry's
+    /// refusals (centre not equidistant, radius below half the chord,
     /// coincident points …) become `InvalidPath` with the geometry's reason.
     pub fn segment(
         &self,
         group: GroupId,
-        start: Point,
+        machine_start: Point,
         dims: usize,
     ) -> Result<(Segment, f64), EngineError> {
+        let start = self.frame.point_from_machine(&machine_start);
+        let built = self.segment_in_frame(group, start, dims)?;
+        let segment = self
+            .frame
+            .segment_to_machine(group, machine_start, built, dims)?;
+        let ratio = length_ratio(group, &segment, &self.counted)?;
+        Ok((segment, ratio))
+    }
+
+    /// The segment from `start`, all in the command's coordinate system.
+    fn segment_in_frame(
+        &self,
+        group: GroupId,
+        start: Point,
+        dims: usize,
+    ) -> Result<Segment, EngineError> {
         let offset = |p: &Point, relative: bool| -> Point {
             if relative {
                 let mut out = *p;
@@ -656,11 +678,9 @@ impl PathRequest {
                 dims,
             ),
         };
-        let segment = built.map_err(|e| EngineError::InvalidPath {
+        built.map_err(|e| EngineError::InvalidPath {
             group,
             reason: e.to_string(),
-        })?;
-        let ratio = length_ratio(group, &segment, &self.counted)?;
-        Ok((segment, ratio))
+        })
     }
 }

@@ -4,7 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::types::{AxisIndex, CommandId, ErrorKind, GroupId, MAX_GROUP_AXES};
+use crate::types::{AxisIndex, CommandId, CoordinateSystem, ErrorKind, GroupId, MAX_GROUP_AXES};
 
 /// PLCopen Part 4 group state (HIMC §3.1: Disabled, Standby, Moving, Halted?, Stopping,
 /// ErrorStop).
@@ -75,6 +75,21 @@ pub enum GroupFault {
     WaitTimeout { command: CommandId },
 }
 
+/// A move protection between two groups, as each of them reports it (NMC
+/// `NMC_GetMvProtectSts`: 0 not enabled, 1 no interference, 2 interference).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum InterferenceStatus {
+    /// The group is in no move protection.
+    #[default]
+    NotEnabled,
+    /// Guarded; the groups are apart.
+    Clear,
+    /// The protection is stopping a group (or retreating one) because the distance would fall
+    /// below the protection distance.
+    Interference,
+}
+
 /// One group after a tick. `Copy` (fixed arrays of [`MAX_GROUP_AXES`]) so that refreshing a
 /// snapshot does not allocate; [`GroupStatus::axes`] and [`GroupStatus::position`] give the
 /// slices of its members.
@@ -93,6 +108,14 @@ pub struct GroupStatus {
     pub coordinates: [f64; MAX_GROUP_AXES],
     /// The origin offset of each coordinate.
     pub origin: [f64; MAX_GROUP_AXES],
+    /// The coordinate system of moves that name none (`group_set_coordinate_system`).
+    pub coordinate_system: CoordinateSystem,
+    /// `coordinates` in that system (HIMC GetGrpPoseCmd).
+    pub frame_position: [f64; MAX_GROUP_AXES],
+    /// The move protection the group is in (the first, by protection number).
+    pub interference: InterferenceStatus,
+    /// Its current distance between the two protected axes (0 when not enabled).
+    pub interference_distance: f64,
     /// Commanded velocity and acceleration along the path.
     pub path_velocity: f64,
     pub path_acceleration: f64,
@@ -126,6 +149,13 @@ impl GroupStatus {
         self.members
             .get(..usize::from(self.axis_count))
             .unwrap_or(&self.members)
+    }
+
+    /// The commanded position in the selected coordinate system, one coordinate per member.
+    pub fn frame_position(&self) -> &[f64] {
+        self.frame_position
+            .get(..usize::from(self.axis_count))
+            .unwrap_or(&self.frame_position)
     }
 
     /// The commanded path position, one coordinate per member.

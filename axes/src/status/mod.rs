@@ -10,7 +10,7 @@ use crate::types::{CommandId, CommandKind, ErrorKind};
 
 mod group;
 mod snapshot;
-pub use group::{GroupFault, GroupState, GroupStatus};
+pub use group::{GroupFault, GroupState, GroupStatus, InterferenceStatus};
 pub use snapshot::Snapshot;
 
 /// PLCopen axis state.

@@ -233,6 +233,7 @@ pub fn group_line(group: u16, position: &[f64]) -> MoveLinearAbsolute {
         transition: TransitionMode::None,
         user_segment: None,
         independent: Default::default(),
+        coordinate_system: None,
     }
 }
 
@@ -262,6 +263,7 @@ pub fn group_arc(
         transition: TransitionMode::None,
         user_segment: None,
         independent: Default::default(),
+        coordinate_system: None,
     }
 }
 

@@ -2,10 +2,11 @@
 //! API (docs/decisions.md "Control API"); axis fields are named as the trace CSV columns.
 
 use axes::command::CommandId;
-use axes::command::{Direction, ErrorKind};
+use axes::command::{CoordinateSystem, Direction, ErrorKind};
 use axes::runtime::RuntimeStats;
 use axes::status::{
-    AxisState, AxisStatus, CommandRef, DriveStatus, GroupFault, GroupState, GroupStatus, IoImage,
+    AxisState, AxisStatus, CommandRef, DriveStatus, GroupFault, GroupState, GroupStatus,
+    InterferenceStatus, IoImage,
 };
 use axum::extract::State;
 use axum::Json;
@@ -116,6 +117,13 @@ pub struct GroupView<'a> {
     /// Commanded path position in group coordinates (member position − origin).
     pub position: &'a [f64],
     pub origin: &'a [f64],
+    /// The coordinate system of moves that name none (`group_set_coordinate_system`).
+    pub coordinate_system: CoordinateSystem,
+    /// `position` in that system.
+    pub frame_position: &'a [f64],
+    /// The group's move protection: `not_enabled`, `clear` or `interference`.
+    pub interference: InterferenceStatus,
+    pub interference_distance: f64,
     pub path_velocity: f64,
     pub path_acceleration: f64,
     pub current_command: Option<CommandId>,
@@ -142,6 +150,10 @@ impl<'a> GroupView<'a> {
             result_axis: g.result_axis,
             position: g.position(),
             origin: g.origin.get(..n).unwrap_or(&g.origin),
+            coordinate_system: g.coordinate_system,
+            frame_position: g.frame_position(),
+            interference: g.interference,
+            interference_distance: g.interference_distance,
             path_velocity: g.path_velocity,
             path_acceleration: g.path_acceleration,
             current_command: g.current_command,
