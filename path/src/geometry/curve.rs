@@ -395,6 +395,8 @@ struct Bounds {
     spacing: f64,
     previous_tangent: Option<Point>,
     sharp: bool,
+    /// The curvature at each evaluation of the piece being visited (a buffer).
+    kappa: Vec<f64>,
 }
 
 impl Bounds {
@@ -406,29 +408,26 @@ impl Bounds {
             spacing: 0.0,
             previous_tangent: None,
             sharp: false,
+            kappa: Vec::new(),
         }
     }
 
-    /// [`BOUND_SUBSTEPS`] evaluations over the step `[u0, u1]` (both ends included), and each
-    /// curvature peak among them searched for between its neighbours: the peaks of a tight
-    /// turn are narrower than the evaluations' spacing.
-    fn visit_step(&mut self, shape: &Shape, u0: f64, u1: f64, span: usize) {
-        let du = (u1 - u0) / BOUND_SUBSTEPS as f64;
-        let at = |k: usize| {
-            if k == BOUND_SUBSTEPS {
-                u1
-            } else {
-                u0 + du * k as f64
-            }
-        };
+    /// [`BOUND_SUBSTEPS`] evaluations per step over the piece `[u0, u1]` of `steps` steps
+    /// (both ends included), and each curvature peak among them searched for between its
+    /// neighbours: the peaks of a tight turn are narrower than the evaluations' spacing.
+    fn visit_piece(&mut self, shape: &Shape, (u0, u1): (f64, f64), steps: usize, span: usize) {
+        let n = steps * BOUND_SUBSTEPS;
+        let du = (u1 - u0) / n as f64;
+        let at = |k: usize| if k == n { u1 } else { u0 + du * k as f64 };
         let mut fastest: f64 = 0.0;
-        let mut kappa = [0.0; BOUND_SUBSTEPS + 1];
-        for (k, out) in kappa.iter_mut().enumerate() {
+        let mut kappa = std::mem::take(&mut self.kappa);
+        kappa.clear();
+        for k in 0..=n {
             let e = shape.eval(at(k), span);
             let speed = norm(&e.d1);
             fastest = fastest.max(speed);
-            *out = norm(&curvature(&e));
-            if k == BOUND_SUBSTEPS {
+            kappa.push(norm(&curvature(&e)));
+            if k == n {
                 break;
             }
             self.min_speed = self.min_speed.min(speed);
@@ -448,19 +447,19 @@ impl Bounds {
                 self.previous_tangent = Some(t);
             }
         }
-        for k in 0..=BOUND_SUBSTEPS {
-            let here = kappa[k];
-            let left = k.checked_sub(1).map_or(0.0, |j| kappa[j]);
-            let right = kappa.get(k + 1).copied().unwrap_or(0.0);
+        for (k, &here) in kappa.iter().enumerate() {
+            let left = k.checked_sub(1).and_then(|j| kappa.get(j)).copied();
+            let right = kappa.get(k + 1).copied();
             self.max_curvature = self.max_curvature.max(here);
-            if here >= left && here >= right && here.is_finite() {
-                let (a, b) = (at(k.saturating_sub(1)), at((k + 1).min(BOUND_SUBSTEPS)));
-                let peak = curvature_peak(shape, span, a, b);
-                self.max_curvature = self.max_curvature.max(peak);
+            let peak = left.is_none_or(|l| here >= l) && right.is_none_or(|r| here >= r);
+            if peak && here.is_finite() {
+                let (a, b) = (at(k.saturating_sub(1)), at((k + 1).min(n)));
+                self.max_curvature = self.max_curvature.max(curvature_peak(shape, span, a, b));
             }
         }
+        self.kappa = kappa;
         // Between two evaluations the curve runs at most Δu × the speed there; the fastest
-        // evaluation of the step, with a margin for the speed between them.
+        // evaluation of the piece, with a margin for the speed between them.
         self.spacing = self.spacing.max(1.25 * fastest * du);
     }
 }
@@ -530,11 +529,14 @@ fn build_table(
     let mut last = None;
     for (u0, u1, steps, span) in pieces {
         first_u.get_or_insert(u0);
-        for k in 0..steps {
-            let (a, b) = step_bounds(u0, u1, steps, k);
-            bounds.visit_step(&shape, a, b, span);
-        }
-        let length = arc_length(&shape, u0, u1, span);
+        bounds.visit_piece(&shape, (u0, u1), steps, span);
+        // Step by step, as the rows will be: shorter intervals converge in fewer halvings.
+        let length = (0..steps)
+            .map(|k| {
+                let (a, b) = step_bounds(u0, u1, steps, k);
+                arc_length(&shape, a, b, span)
+            })
+            .sum::<f64>();
         built.push(Piece {
             s0: s,
             length,
