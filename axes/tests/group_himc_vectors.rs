@@ -13,7 +13,7 @@ mod common;
 
 use axes::command::{
     ArcDirection, CircleMode, Command, ErrorKind, GroupBufferMode, GroupCreate, GroupEnable,
-    GroupParameter, GroupSetParameter, MoveCircularAbsolute, MoveLinearAbsolute,
+    GroupParameter, GroupSetParameter, MoveCircularAbsolute, MoveCircularAngle, MoveLinearAbsolute,
 };
 use axes::config::AxisConfig;
 use axes::status::{GroupState, GroupStatus};
@@ -394,10 +394,71 @@ fn tv55_a_stadium_blends_at_p1_and_p2_and_stops_at_p3_after_waiting_in_position(
     assert_eq!(group(&e).position(), &[0.0, 0.0, 0.0]);
 }
 
+/// ArcAngle2D (`move_circular_angle`).
+fn arc_angle(center: [f64; 2], degrees: f64) -> MoveCircularAngle {
+    MoveCircularAngle {
+        group: 1,
+        center: center.to_vec(),
+        angle: degrees,
+        plane: None,
+        relative: false,
+        velocity: Some(100.0),
+        acceleration: None,
+        deceleration: None,
+        jerk: None,
+        buffer_mode: GroupBufferMode::Buffered,
+        transition: Default::default(),
+        user_segment: None,
+        coordinate_system: None,
+    }
+}
+
+#[test]
+fn tv44_arc_angle_2d_45_degrees_ends_at_10_minus_4_142136() {
+    // ArcAngle2D(0, 10, 10, 45) from (0, 0): radius 10√2, counter-clockwise (> 0) by 45°.
+    let mut e = machine(2, &[0, 1]);
+    send(&mut e, arc_angle([10.0, 10.0], 45.0));
+    let seen = trace_xy(&mut e, 10.0);
+    let end = group(&e).position().to_vec();
+    let expected = [10.0, 10.0 - 10.0 * 2f64.sqrt()];
+    assert!(
+        (end[0] - expected[0]).abs() < 1e-9 && (end[1] - expected[1]).abs() < 1e-9,
+        "{end:?}"
+    );
+    // On the circle all the way, and counter-clockwise: through the point 22.5° along.
+    let r = 10.0 * 2f64.sqrt();
+    assert!(seen
+        .iter()
+        .all(|(x, y)| ((x - 10.0).hypot(y - 10.0) - r).abs() < 1e-6));
+    let a = (-135.0f64 + 22.5).to_radians();
+    assert!(nearest(&seen, (10.0 + r * a.cos(), 10.0 + r * a.sin())) < PASSES);
+    // Negative: clockwise, from −135° to −180°; beyond 360°: more than a turn.
+    let mut e = machine(2, &[0, 1]);
+    send(&mut e, arc_angle([10.0, 10.0], -45.0));
+    trace_xy(&mut e, 10.0);
+    let end = group(&e).position().to_vec();
+    assert!(
+        (end[0] - (10.0 - r)).abs() < 1e-9 && (end[1] - 10.0).abs() < 1e-9,
+        "{end:?}"
+    );
+    let mut e = machine(2, &[0, 1]);
+    send(&mut e, arc_angle([10.0, 10.0], 405.0));
+    let mut swept = Vec::new();
+    run_path(&mut e, 20.0, |_, g| {
+        swept.push((g.position()[0], g.position()[1]))
+    });
+    assert!((swept_degrees(&swept, (10.0, 10.0), (0.0, 0.0)) - 405.0).abs() < 0.5);
+    // An angle of 0, or not a number: refused with the reason, nothing queued.
+    let mut e = machine(2, &[0, 1]);
+    for bad in [0.0, f64::NAN, 2e6] {
+        let err = refused(&mut e, Command::from(arc_angle([10.0, 10.0], bad)));
+        assert_eq!(err.kind(), ErrorKind::InvalidArgument, "{bad}: {err}");
+        assert!(err.to_string().contains("angle"), "{bad}: {err}");
+    }
+    assert_eq!(group(&e).queue_used, 0);
+}
+
 // Not at the engine level (no capability; see the session's report):
-// - TV 44 ArcAngle2D: the circular commands take a centre and an end point, not a centre and
-//   an angle (the front-end would compute the end point).
 // - TV 47's bounds velocity ≤ 5000 mm/s and smoothing ≤ 500 ms, TV 49 SetGrpAngMotionProfile
 //   (no orientation profile), TV 54 JogGroup (no group jog).
-// - TV 56–57 SetGrpCoordTrans: groups have a translation origin only; the PCS rotation chain
-//   is in `path::frames` but no group command uses it.
+// - TV 56–57 SetGrpCoordTrans: in `axes/tests/group_frames.rs`.

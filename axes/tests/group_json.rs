@@ -9,7 +9,7 @@ use axes::command::{
     GroupContinue, GroupCreate, GroupDelete, GroupDisable, GroupDwell, GroupEmergencyStop,
     GroupEnable, GroupHalt, GroupParameter, GroupReset, GroupSetOrigin, GroupSetOutput,
     GroupSetOverride, GroupSetParameter, GroupStop, GroupWaitInput, GroupWaitPosition,
-    MoveCircularAbsolute, MoveCircularRelative, MoveEllipse, MoveLinearAbsolute,
+    MoveCircularAbsolute, MoveCircularAngle, MoveCircularRelative, MoveEllipse, MoveLinearAbsolute,
     MoveLinearRelative, MoveSpline, TransitionMode,
 };
 use axes::command::{
@@ -250,6 +250,24 @@ fn full() -> Vec<(Command, &'static str)> {
             r#"{"type":"move_ellipse","group":2,"center":[-5.0,0.0],"ratio":0.5,"direction":"cw","plane":[0,1],"relative":true,"velocity":null,"acceleration":50.0,"deceleration":null,"jerk":0.0,"buffer_mode":"buffered","transition":"none","user_segment":null}"#,
         ),
         (
+            Command::from(MoveCircularAngle {
+                group: 1,
+                center: vec![10.0, 10.0],
+                angle: -45.0,
+                plane: None,
+                relative: false,
+                velocity: Some(100.0),
+                acceleration: None,
+                deceleration: None,
+                jerk: None,
+                buffer_mode: GroupBufferMode::Aborting,
+                transition: TransitionMode::None,
+                user_segment: Some(3),
+                coordinate_system: None,
+            }),
+            r#"{"type":"move_circular_angle","group":1,"center":[10.0,10.0],"angle":-45.0,"plane":null,"relative":false,"velocity":100.0,"acceleration":null,"deceleration":null,"jerk":null,"buffer_mode":"aborting","transition":"none","user_segment":3}"#,
+        ),
+        (
             Command::from(GroupSetCoordinateTransform {
                 group: 1,
                 frame: "wcs15".parse().unwrap(),
@@ -312,7 +330,7 @@ fn full() -> Vec<(Command, &'static str)> {
 #[test]
 fn every_group_command_serializes_to_its_pinned_json_and_back() {
     let cases = full();
-    assert_eq!(cases.len(), 30, "one case per group command");
+    assert_eq!(cases.len(), 31, "one case per group command");
     for (command, json) in cases {
         assert_eq!(serde_json::to_string(&command).unwrap(), json);
         assert_eq!(

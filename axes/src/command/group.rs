@@ -553,6 +553,41 @@ pub struct MoveEllipse {
     pub coordinate_system: Option<CoordinateSystem>,
 }
 
+/// An arc from where the previous motion ends, about `center`, through `angle` degrees
+/// (HIMC `ArcAngle2D`, digest 004 §8.2.16: > 0 counter-clockwise, < 0 clockwise, beyond ±360°
+/// more than one turn), in the plane of group coordinates `plane` (default `[0, 1]`).
+/// `relative`: `center` is relative to the start.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MoveCircularAngle {
+    pub group: GroupId,
+    pub center: Vec<f64>,
+    /// Degrees, signed.
+    pub angle: f64,
+    #[serde(default)]
+    pub plane: Option<[usize; 2]>,
+    #[serde(default)]
+    pub relative: bool,
+    #[serde(default)]
+    pub velocity: Option<f64>,
+    #[serde(default)]
+    pub acceleration: Option<f64>,
+    #[serde(default)]
+    pub deceleration: Option<f64>,
+    #[serde(default)]
+    pub jerk: Option<f64>,
+    #[serde(default)]
+    pub buffer_mode: GroupBufferMode,
+    #[serde(default)]
+    pub transition: TransitionMode,
+    #[serde(default)]
+    pub user_segment: Option<u32>,
+    /// The coordinate system the positions are given in (default: the group's, which is
+    /// `mcs` until `group_set_coordinate_system`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub coordinate_system: Option<CoordinateSystem>,
+}
+
 /// A command on one axis group.
 #[derive(Clone, Debug, PartialEq)]
 pub enum GroupCommand {
@@ -579,6 +614,7 @@ pub enum GroupCommand {
     AxisMove(GroupAxisMove),
     MoveSpline(MoveSpline),
     MoveEllipse(MoveEllipse),
+    MoveCircularAngle(MoveCircularAngle),
     SetCoordinateTransform(GroupSetCoordinateTransform),
     SetCoordinateSystem(GroupSetCoordinateSystem),
     SetRotaryTransform(GroupSetRotaryTransform),
@@ -616,6 +652,7 @@ impl GroupCommand {
             GroupCommand::AxisMove(c) => c.group,
             GroupCommand::MoveSpline(c) => c.group,
             GroupCommand::MoveEllipse(c) => c.group,
+            GroupCommand::MoveCircularAngle(c) => c.group,
             GroupCommand::SetCoordinateTransform(c) => c.group,
             GroupCommand::SetCoordinateSystem(c) => c.group,
             GroupCommand::SetRotaryTransform(c) => c.group,
@@ -650,6 +687,7 @@ command_from!(GroupCommand, Group, [
     GroupAxisMove => AxisMove,
     MoveSpline => MoveSpline,
     MoveEllipse => MoveEllipse,
+    MoveCircularAngle => MoveCircularAngle,
     GroupSetCoordinateTransform => SetCoordinateTransform,
     GroupSetCoordinateSystem => SetCoordinateSystem,
     GroupSetRotaryTransform => SetRotaryTransform,

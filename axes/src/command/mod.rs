@@ -104,7 +104,7 @@ pub use group::{
     GroupContinue, GroupCreate, GroupDelete, GroupDisable, GroupDwell, GroupEmergencyStop,
     GroupEnable, GroupHalt, GroupParameter, GroupReset, GroupSetOrigin, GroupSetOutput,
     GroupSetOverride, GroupSetParameter, GroupStop, GroupWaitInput, GroupWaitPosition,
-    MoveCircularAbsolute, MoveCircularRelative, MoveEllipse, MoveLinearAbsolute,
+    MoveCircularAbsolute, MoveCircularAngle, MoveCircularRelative, MoveEllipse, MoveLinearAbsolute,
     MoveLinearRelative, MoveSpline, TransitionMode,
 };
 pub use group_frames::{

@@ -16,7 +16,7 @@ use super::{
     GroupAxisMove, GroupCommand, GroupContinue, GroupCreate, GroupDelete, GroupDisable, GroupDwell,
     GroupEmergencyStop, GroupEnable, GroupHalt, GroupReset, GroupSetOrigin, GroupSetOutput,
     GroupSetOverride, GroupSetParameter, GroupStop, GroupWaitInput, GroupWaitPosition,
-    MoveCircularAbsolute, MoveCircularRelative, MoveEllipse, MoveLinearAbsolute,
+    MoveCircularAbsolute, MoveCircularAngle, MoveCircularRelative, MoveEllipse, MoveLinearAbsolute,
     MoveLinearRelative, MoveSpline,
 };
 use super::{
@@ -94,6 +94,7 @@ pub(super) enum Command {
     GroupDeleteTransform(GroupDeleteTransform),
     MoveProtectionEnable(MoveProtectionEnable),
     MoveProtectionDisable(MoveProtectionDisable),
+    MoveCircularAngle(MoveCircularAngle),
 }
 
 impl From<Command> for super::Command {
@@ -166,6 +167,9 @@ impl From<Command> for super::Command {
             Command::GroupAxisMove(c) => super::Command::Group(GroupCommand::AxisMove(c)),
             Command::MoveSpline(c) => super::Command::Group(GroupCommand::MoveSpline(c)),
             Command::MoveEllipse(c) => super::Command::Group(GroupCommand::MoveEllipse(c)),
+            Command::MoveCircularAngle(c) => {
+                super::Command::Group(GroupCommand::MoveCircularAngle(c))
+            }
             Command::GroupSetCoordinateTransform(c) => {
                 super::Command::Group(GroupCommand::SetCoordinateTransform(c))
             }
@@ -261,6 +265,9 @@ impl From<super::Command> for Command {
             super::Command::Group(GroupCommand::AxisMove(c)) => Command::GroupAxisMove(c),
             super::Command::Group(GroupCommand::MoveSpline(c)) => Command::MoveSpline(c),
             super::Command::Group(GroupCommand::MoveEllipse(c)) => Command::MoveEllipse(c),
+            super::Command::Group(GroupCommand::MoveCircularAngle(c)) => {
+                Command::MoveCircularAngle(c)
+            }
             super::Command::Group(GroupCommand::SetCoordinateTransform(c)) => {
                 Command::GroupSetCoordinateTransform(c)
             }

@@ -235,6 +235,12 @@ impl Group {
                 r.frame = self.frame_map(env, c.coordinate_system)?;
                 self.submit(env, r)
             }
+            GroupCommand::MoveCircularAngle(c) => {
+                self.require_accepts_motion()?;
+                let mut r = segment::circular_angle(self.id, self.dims(), &c, &defaults)?;
+                r.frame = self.frame_map(env, c.coordinate_system)?;
+                self.submit(env, r)
+            }
             GroupCommand::MoveEllipse(c) => {
                 self.require_accepts_motion()?;
                 let mut r = segment::ellipse(self.id, self.dims(), &c, &defaults)?;

@@ -8,9 +8,10 @@ use path::{Point, MAX_AXES};
 
 use super::frames::FrameMap;
 use crate::command::{
-    bounded, nonnegative, positive, ArcDirection, CircleMode, CommandId, CoordinateSet,
-    EngineError, GroupBufferMode, GroupId, MoveCircularAbsolute, MoveCircularRelative, MoveEllipse,
-    MoveLinearAbsolute, MoveLinearRelative, MoveSpline, TransitionMode,
+    bounded, finite, nonnegative, positive, ArcDirection, CircleMode, CommandId, CoordinateSet,
+    EngineError, GroupBufferMode, GroupId, MoveCircularAbsolute, MoveCircularAngle,
+    MoveCircularRelative, MoveEllipse, MoveLinearAbsolute, MoveLinearRelative, MoveSpline,
+    TransitionMode,
 };
 
 /// Where a motion goes, in group coordinates (checked, `dims` components used).
@@ -34,6 +35,13 @@ pub(super) enum Geometry {
     /// Through `points` after the start (HMC MoveSplineND).
     Spline {
         points: Vec<Point>,
+        relative: bool,
+    },
+    /// An arc about `center` through `angle` radians (HIMC ArcAngle2D).
+    CenterAngle {
+        center: Point,
+        angle: f64,
+        plane: (usize, usize),
         relative: bool,
     },
     /// A full ellipse around `center` (NMC CrdEllipse).
@@ -571,6 +579,43 @@ pub(super) fn ellipse(
     )
 }
 
+pub(super) fn circular_angle(
+    group: GroupId,
+    dims: usize,
+    c: &MoveCircularAngle,
+    defaults: &PathLimits,
+) -> Result<PathRequest, EngineError> {
+    let center = coordinates(group, "center", &c.center, dims)?;
+    let (i, j) = plane_of(group, c.plane, dims)?;
+    let degrees = finite("angle", c.angle)?;
+    // HIMC gives no bound; a million degrees (2 778 turns) keeps the path length finite and
+    // sane.
+    if degrees.abs() > MAX_ANGLE_DEGREES {
+        return Err(EngineError::InvalidArgument {
+            name: "angle",
+            value: degrees,
+            reason: "must be within ±1e6 degrees",
+        });
+    }
+    request(
+        Geometry::CenterAngle {
+            center,
+            angle: degrees.to_radians(),
+            plane: (i, j),
+            relative: c.relative,
+        },
+        kinematics!(c),
+        c.buffer_mode,
+        c.transition,
+        c.user_segment,
+        ALL_COUNTED,
+        defaults,
+    )
+}
+
+/// Largest |angle| of `move_circular_angle`, in degrees.
+const MAX_ANGLE_DEGREES: f64 = 1e6;
+
 impl PathRequest {
     /// The path limits the planner gets for a motion whose counted length is `length_ratio` of
     /// its path length: the motion's limits hold over the counted coordinates, so along the
@@ -663,6 +708,13 @@ impl PathRequest {
                 nodes.extend(points.iter().map(|p| offset(p, *relative)));
                 Curve::spline(&nodes, dims)
             }
+            Geometry::CenterAngle {
+                center,
+                angle,
+                plane,
+                relative,
+            } => Arc::from_center_angle(start, offset(center, *relative), *angle, *plane, dims)
+                .map(Segment::Arc),
             Geometry::Ellipse {
                 center,
                 ratio,

@@ -549,6 +549,7 @@ fn check_command_refs(steps: &[Step]) -> Result<(), (String, String)> {
                             | GroupCommand::MoveCircularRelative(_)
                             | GroupCommand::MoveSpline(_)
                             | GroupCommand::MoveEllipse(_)
+                            | GroupCommand::MoveCircularAngle(_)
                             | GroupCommand::SetOutput(_)
                             | GroupCommand::Dwell(_)
                             | GroupCommand::WaitInput(_)
