@@ -27,52 +27,43 @@ const HTTP_TIMEOUT: Duration = Duration::from_secs(60);
 /// already, `cargo nextest run -p mcemu-tests` may not have.) Checked once per process.
 pub fn mcemu_bin() -> PathBuf {
     static BIN: OnceLock<PathBuf> = OnceLock::new();
-    BIN.get_or_init(|| {
-        if let Some(bin) = std::env::var_os("MCEMU_BIN") {
-            let bin = PathBuf::from(bin);
-            assert!(bin.is_file(), "MCEMU_BIN={} is not a file", bin.display());
-            return bin;
-        }
-        let profile_dir = profile_dir();
-        let bin = profile_dir.join("mcemu");
-        let built = modified(&bin);
-        let newest_source = newest_source();
-        if built.is_none_or(|b| newest_source.is_some_and(|s| s > b)) {
-            build_mcemu(&profile_dir);
-        }
-        assert!(bin.is_file(), "{} was not built", bin.display());
-        bin
-    })
-    .clone()
+    BIN.get_or_init(|| mcemu_in("MCEMU_BIN", profile_dir()))
+        .clone()
 }
 
 /// The optimised `mcemu` binary: `$MCEMU_RELEASE_BIN` if set, else `<target>/release/mcemu`,
-/// brought up to date first with `cargo build --release -p mcemu --bin mcemu` (a no-op when it
-/// is). For tests whose figures depend on the servo thread keeping up with the wall clock where
+/// built first with `cargo build --release -p mcemu --bin mcemu` when it is missing or older than
+/// a source, as [`mcemu_bin`]. For tests whose figures depend on the servo thread keeping up with the wall clock where
 /// a debug build cannot: under the vcan VM's TCG a debug tick takes longer than the 1 ms period
 /// (`./scripts/test` builds it before the tests, so this only checks). Checked once per process.
 pub fn mcemu_release_bin() -> PathBuf {
     static BIN: OnceLock<PathBuf> = OnceLock::new();
     BIN.get_or_init(|| {
-        if let Some(bin) = std::env::var_os("MCEMU_RELEASE_BIN") {
-            let bin = PathBuf::from(bin);
-            assert!(
-                bin.is_file(),
-                "MCEMU_RELEASE_BIN={} is not a file",
-                bin.display()
-            );
-            return bin;
-        }
-        let release_dir = profile_dir()
+        let target = profile_dir()
             .parent()
             .expect("the profile directory lies in the target directory")
             .join("release");
-        build_mcemu(&release_dir);
-        let bin = release_dir.join("mcemu");
-        assert!(bin.is_file(), "{} was not built", bin.display());
-        bin
+        mcemu_in("MCEMU_RELEASE_BIN", target)
     })
     .clone()
+}
+
+/// `$env_var` if set, else `mcemu` in `profile_dir`, built first when it is missing or older
+/// than a source it is built from.
+fn mcemu_in(env_var: &str, profile_dir: PathBuf) -> PathBuf {
+    if let Some(bin) = std::env::var_os(env_var) {
+        let bin = PathBuf::from(bin);
+        assert!(bin.is_file(), "{env_var}={} is not a file", bin.display());
+        return bin;
+    }
+    let bin = profile_dir.join("mcemu");
+    let built = modified(&bin);
+    let newest_source = newest_source();
+    if built.is_none_or(|b| newest_source.is_some_and(|s| s > b)) {
+        build_mcemu(&profile_dir);
+    }
+    assert!(bin.is_file(), "{} was not built", bin.display());
+    bin
 }
 
 fn modified(path: &Path) -> Option<SystemTime> {

@@ -238,7 +238,7 @@ impl Group {
         for (out, &a) in members.iter_mut().zip(&self.members) {
             *out = a;
         }
-        let idle = self.planner.is_idle() && self.waiting.is_none() && self.pending.is_none();
+        let idle = self.is_idle();
         let all_in_position = self.members.iter().all(|&a| in_position(a));
         let used = self.queued() as u32;
         let coordinates = self.current_position(axes);
