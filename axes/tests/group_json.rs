@@ -13,9 +13,9 @@ use axes::command::{
     MoveLinearRelative, MoveSpline, TransitionMode,
 };
 use axes::command::{
-    CoordinateSystem, GroupDeleteTransform, GroupSetCoordinateSystem, GroupSetCoordinateTransform,
-    GroupSetRotaryTransform, GroupSetXyzaTransform, MoveProtectionDisable, MoveProtectionEnable,
-    ProtectionMode,
+    CoordinateSystem, GroupDeleteTransform, GroupJog, GroupJogAxis, GroupSetCoordinateSystem,
+    GroupSetCoordinateTransform, GroupSetRotaryTransform, GroupSetXyzaTransform,
+    MoveProtectionDisable, MoveProtectionEnable, ProtectionMode,
 };
 
 fn full() -> Vec<(Command, &'static str)> {
@@ -324,13 +324,30 @@ fn full() -> Vec<(Command, &'static str)> {
             Command::from(MoveProtectionDisable { protection: 0 }),
             r#"{"type":"move_protection_disable","protection":0}"#,
         ),
+        (
+            Command::from(GroupJog {
+                group: 1,
+                coordinate: 2,
+                velocity: -12.5,
+                coordinate_system: Some(CoordinateSystem::MCS),
+            }),
+            r#"{"type":"group_jog","group":1,"coordinate":2,"velocity":-12.5,"coordinate_system":"mcs"}"#,
+        ),
+        (
+            Command::from(GroupJogAxis {
+                group: 1,
+                member: 4,
+                velocity: 30.0,
+            }),
+            r#"{"type":"group_jog_axis","group":1,"member":4,"velocity":30.0}"#,
+        ),
     ]
 }
 
 #[test]
 fn every_group_command_serializes_to_its_pinned_json_and_back() {
     let cases = full();
-    assert_eq!(cases.len(), 31, "one case per group command");
+    assert_eq!(cases.len(), 33, "one case per group command");
     for (command, json) in cases {
         assert_eq!(serde_json::to_string(&command).unwrap(), json);
         assert_eq!(

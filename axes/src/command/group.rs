@@ -61,6 +61,7 @@ use super::{
     GroupSetCoordinateSystem, GroupSetCoordinateTransform, GroupSetRotaryTransform,
     GroupSetXyzaTransform, MoveProtectionDisable, MoveProtectionEnable,
 };
+use super::{GroupJog, GroupJogAxis};
 
 /// Make a group of 1–9 axes (PLCopen MC_AddAxisToGroup ×n; HIMC SetupGroup without the enable;
 /// NMC CrdSetMtSys). The group starts Disabled.
@@ -620,6 +621,8 @@ pub enum GroupCommand {
     SetRotaryTransform(GroupSetRotaryTransform),
     SetXyzaTransform(GroupSetXyzaTransform),
     DeleteTransform(GroupDeleteTransform),
+    Jog(GroupJog),
+    JogAxis(GroupJogAxis),
     /// Between two groups.
     ProtectionEnable(MoveProtectionEnable),
     ProtectionDisable(MoveProtectionDisable),
@@ -658,6 +661,8 @@ impl GroupCommand {
             GroupCommand::SetRotaryTransform(c) => c.group,
             GroupCommand::SetXyzaTransform(c) => c.group,
             GroupCommand::DeleteTransform(c) => c.group,
+            GroupCommand::Jog(c) => c.group,
+            GroupCommand::JogAxis(c) => c.group,
             GroupCommand::ProtectionEnable(_) | GroupCommand::ProtectionDisable(_) => return None,
         })
     }
@@ -693,6 +698,8 @@ command_from!(GroupCommand, Group, [
     GroupSetRotaryTransform => SetRotaryTransform,
     GroupSetXyzaTransform => SetXyzaTransform,
     GroupDeleteTransform => DeleteTransform,
+    GroupJog => Jog,
+    GroupJogAxis => JogAxis,
     MoveProtectionEnable => ProtectionEnable,
     MoveProtectionDisable => ProtectionDisable,
 ]);

@@ -129,6 +129,7 @@ impl Groups {
             user_segment: 0,
             waiting: None,
             pending: None,
+            jog: None,
             last_error: None,
             fault: None,
             params_version: 0,
@@ -202,6 +203,15 @@ impl Group {
                 self.frames.delete_nmc();
                 Ok(Reply::Done)
             }
+            GroupCommand::Jog(c) => {
+                let direction =
+                    self.coordinate_direction(env, c.coordinate, c.coordinate_system)?;
+                self.jog(env, direction, c.velocity)
+            }
+            GroupCommand::JogAxis(c) => {
+                let direction = self.unit(c.member, "member")?;
+                self.jog(env, direction, c.velocity)
+            }
             GroupCommand::Enable(_) => self.enable(env),
             GroupCommand::Disable(_) => {
                 self.drop_all(env, CommandState::Aborted);
@@ -266,7 +276,7 @@ impl Group {
                     Some(d) => Some(positive("deceleration", d)?),
                     None => None,
                 };
-                self.halt(decel)
+                self.halt(decel, defaults.deceleration)
             }
             GroupCommand::Continue(_) => self.resume(),
             GroupCommand::EmergencyStop(_) => {
@@ -289,6 +299,7 @@ impl Group {
                 }
                 self.override_factor = f;
                 self.planner.set_override(f);
+                self.override_jog();
                 Ok(Reply::Done)
             }
             GroupCommand::SetOrigin(c) => {
@@ -440,7 +451,7 @@ impl Group {
     /// The frame map of a move accepted now, in `system` (else the group's selection). The
     /// rotary table's position is where its last queued `group_axis_move` leaves it, else its
     /// commanded position (docs/decisions.md, "Group frames").
-    fn frame_map(
+    pub(super) fn frame_map(
         &self,
         env: &Env,
         system: Option<CoordinateSystem>,
@@ -523,6 +534,9 @@ impl Group {
             }
             GroupState::Moving | GroupState::Halted | GroupState::Stopping => {}
         }
+        if self.stop_jog(deceleration) {
+            return Ok(Reply::Done);
+        }
         self.stop_path(env, deceleration);
         self.state = GroupState::Stopping;
         Ok(Reply::Done)
@@ -545,7 +559,15 @@ impl Group {
     }
 
     /// `group_halt`: decelerate along the path, keep the queue (HIMC HaltGroup).
-    pub(super) fn halt(&mut self, deceleration: Option<f64>) -> Result<Reply, EngineError> {
+    /// A jog has no path to keep: a halt stops it (docs/decisions.md, "Group jog").
+    pub(super) fn halt(
+        &mut self,
+        deceleration: Option<f64>,
+        defaults: f64,
+    ) -> Result<Reply, EngineError> {
+        if self.state == GroupState::Moving && self.stop_jog(deceleration.unwrap_or(defaults)) {
+            return Ok(Reply::Done);
+        }
         match self.state {
             GroupState::Moving => {
                 self.planner

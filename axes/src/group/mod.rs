@@ -29,6 +29,7 @@ use crate::status::{
 
 mod commands;
 mod frames;
+mod jog;
 mod protection;
 mod queue;
 mod segment;
@@ -124,6 +125,8 @@ pub struct Group {
     waiting: Option<Wait>,
     /// An aborting motion waiting for the path to come to rest.
     pending: Option<PendingMotion>,
+    /// A jog in progress (the planner is idle meanwhile).
+    jog: Option<jog::Jog>,
     last_error: Option<crate::command::ErrorKind>,
     fault: Option<GroupFault>,
     /// Sum of the members' parameter versions when their limits were last given to the planner.
@@ -180,9 +183,21 @@ impl Group {
         self.state
     }
 
-    /// Commanded velocity along the path.
+    /// Commanded velocity along the path; during a jog, the signed velocity along the jog
+    /// coordinate.
     pub fn path_velocity(&self) -> f64 {
-        self.planner.state().path_velocity
+        self.path_motion().0
+    }
+
+    /// Path velocity and acceleration: the planner's, or a jog's along its coordinate.
+    fn path_motion(&self) -> (f64, f64) {
+        match &self.jog {
+            Some(jog) => (jog.velocity(), jog.acceleration()),
+            None => {
+                let st = self.planner.state();
+                (st.path_velocity, st.path_acceleration)
+            }
+        }
     }
 
     /// Ordinal of the motion being executed (counted from 1 since the group was created).
@@ -233,7 +248,7 @@ impl Group {
     /// The status record, with `in_position(axis)` for each member (a snapshot passes the
     /// records it has just assembled).
     fn status_with(&self, axes: &[Axis], in_position: impl Fn(AxisIndex) -> bool) -> GroupStatus {
-        let st = self.planner.state();
+        let (path_velocity, path_acceleration) = self.path_motion();
         let mut members = [0; MAX_AXES];
         for (out, &a) in members.iter_mut().zip(&self.members) {
             *out = a;
@@ -259,9 +274,12 @@ impl Group {
             ),
             interference: self.interference.0,
             interference_distance: self.interference.1,
-            path_velocity: st.path_velocity,
-            path_acceleration: st.path_acceleration,
-            current_command: self.running.or(self.waiting.as_ref().map(|w| w.id)),
+            path_velocity,
+            path_acceleration,
+            current_command: self
+                .running
+                .or(self.waiting.as_ref().map(|w| w.id))
+                .or(self.jog.as_ref().map(|j| j.id)),
             segment: self.segment,
             user_segment: self.user_segment,
             queue_used: used,
@@ -281,7 +299,10 @@ impl Group {
 
     /// State of a command still owned by this group.
     fn queued_state(&self, id: CommandId) -> Option<CommandState> {
-        if self.running == Some(id) || self.waiting.as_ref().is_some_and(|w| w.id == id) {
+        if self.running == Some(id)
+            || self.waiting.as_ref().is_some_and(|w| w.id == id)
+            || self.jog.as_ref().is_some_and(|j| j.id == id)
+        {
             return Some(CommandState::Running);
         }
         if self.queue.contains(id) || self.pending.as_ref().is_some_and(|p| p.id == id) {

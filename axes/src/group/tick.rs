@@ -51,6 +51,10 @@ impl Group {
         if self.state == GroupState::ErrorStop {
             return;
         }
+        if self.jog.is_some() {
+            self.step_jog(env);
+            return;
+        }
         self.start_pending(env);
         if self.is_idle() {
             self.settle(env);
@@ -82,7 +86,10 @@ impl Group {
 
     /// Nothing queued, waited for or pending, and the path at rest.
     pub(super) fn is_idle(&self) -> bool {
-        self.planner.is_idle() && self.waiting.is_none() && self.pending.is_none()
+        self.planner.is_idle()
+            && self.waiting.is_none()
+            && self.pending.is_none()
+            && self.jog.is_none()
     }
 
     /// Give the planner the members' limits again when one of their parameters changed (each
@@ -566,6 +573,9 @@ impl Group {
         }
         if let Some(p) = self.pending.take() {
             env.ledger.finish(p.id, CommandState::Aborted);
+        }
+        if let Some(jog) = self.jog.take() {
+            env.ledger.finish(jog.id, running_state);
         }
     }
 
