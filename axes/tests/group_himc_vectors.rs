@@ -271,6 +271,7 @@ fn create(group: u16, axes: &[u16], queue_capacity: Option<u32>) -> Command {
         queue_capacity,
         lookahead: None,
         result_axis: None,
+        orientation: Default::default(),
     })
 }
 

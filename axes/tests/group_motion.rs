@@ -768,6 +768,7 @@ fn the_queue_bound_holds_motions_and_buffered_commands_together() {
             queue_capacity: Some(3),
             lookahead: None,
             result_axis: None,
+            orientation: Default::default(),
         }),
     );
     ok(&mut e, Command::from(GroupEnable { group: 1 }));

@@ -69,6 +69,7 @@ fn create(group: u16, members: &[u16], result_axis: Option<u16>) -> GroupCreate 
         queue_capacity: None,
         lookahead: None,
         result_axis,
+        orientation: Default::default(),
     }
 }
 

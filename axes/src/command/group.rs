@@ -83,6 +83,12 @@ pub struct GroupCreate {
     /// the group).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub result_axis: Option<AxisIndex>,
+    /// Group coordinates that are orientation angles (HIMC's A, B, C: `[3, 4, 5]`, digest 004
+    /// §8.3.7): a line's change of them is limited by the group's angular profile
+    /// (`angular_velocity` …) while the other coordinates keep the linear one; the move takes
+    /// the longer of the two. Default none: every coordinate is linear.
+    #[serde(default, skip_serializing_if = "CoordinateSet::is_empty")]
+    pub orientation: CoordinateSet,
 }
 
 /// Dissolve a group (HIMC UngrpAllAxes); its axes are free again. Refused while it moves.
@@ -414,6 +420,14 @@ pub enum GroupParameter {
     /// 003 §2.0 tip 3: a two-axis instruction accelerates its long axis at the smaller of the
     /// two axes' max accel, TV-15); 0: each member its own (the default).
     SmallestAxisAcceleration,
+    /// The angular profile of the group's `orientation` coordinates (HIMC
+    /// SetGrpAngMotionProfile, digest 004 §8.3.7; defaults 360 deg/s, 1800 deg/s² up and down,
+    /// jerk 36 000 deg/s³ from the 50 ms smoothing time).
+    AngularVelocity,
+    AngularAcceleration,
+    AngularDeceleration,
+    /// 0 = trapezoid.
+    AngularJerk,
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

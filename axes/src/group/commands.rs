@@ -7,7 +7,10 @@ use path::MAX_AXES;
 use super::frames::FrameMap;
 use super::queue::{Entry, GroupQueue, Item};
 use super::segment::{self, CircularFields, PathRequest, PendingMotion};
-use super::{planner_config, Env, Group, GroupFrames, Groups, ResultAxis, DEFAULT_PATH_LIMITS};
+use super::{
+    planner_config, Env, Group, GroupFrames, Groups, ResultAxis, DEFAULT_ANGULAR_LIMITS,
+    DEFAULT_PATH_LIMITS,
+};
 use crate::command::{
     bounded, finite, nonnegative, positive, AxisIndex, CommandState, CoordinateSystem, EngineError,
     GroupAxisMove, GroupCommand, GroupCreate, GroupDwell, GroupId, GroupParameter, GroupSetOutput,
@@ -82,6 +85,12 @@ impl Groups {
             }
             check_joins(env, group, r, "result axis")?;
         }
+        if let Some(k) = c.orientation.iter().find(|&k| k >= c.axes.len()) {
+            return Err(invalid(format!(
+                "orientation coordinate {k} is not one of the group's {}",
+                c.axes.len()
+            )));
+        }
         let capacity = c.queue_capacity.unwrap_or(self.config.queue_capacity);
         if !(1..=MAX_GROUP_QUEUE).contains(&capacity) {
             return Err(EngineError::InvalidArgument {
@@ -119,6 +128,8 @@ impl Groups {
             origin: [0.0; MAX_AXES],
             frames: GroupFrames::default(),
             defaults: DEFAULT_PATH_LIMITS,
+            orientation: c.orientation,
+            angular: DEFAULT_ANGULAR_LIMITS,
             fault_deceleration: None,
             fault_stop: None,
             smallest_acceleration: false,
@@ -327,6 +338,18 @@ impl Group {
                         d.deceleration = positive("deceleration", c.value)?
                     }
                     GroupParameter::Jerk => d.jerk = segment::jerk_value(c.value)?,
+                    GroupParameter::AngularVelocity => {
+                        self.angular.velocity = positive("value", bounded("value", c.value)?)?
+                    }
+                    GroupParameter::AngularAcceleration => {
+                        self.angular.acceleration = positive("value", c.value)?
+                    }
+                    GroupParameter::AngularDeceleration => {
+                        self.angular.deceleration = positive("value", c.value)?
+                    }
+                    GroupParameter::AngularJerk => {
+                        self.angular.jerk = segment::jerk_value(c.value)?
+                    }
                     GroupParameter::CornerSlowAngle | GroupParameter::CornerStopAngle => {
                         let value = finite("value", c.value)?;
                         let mut angles = self
@@ -481,8 +504,9 @@ impl Group {
     pub(super) fn submit(
         &mut self,
         env: &mut Env,
-        request: PathRequest,
+        mut request: PathRequest,
     ) -> Result<Reply, EngineError> {
+        request.angular = self.angular_profile();
         if request.aborting && !self.is_idle() {
             let id = env.ledger.allocate();
             // The new motion runs once the path is at rest: the group is Moving again.
@@ -496,10 +520,9 @@ impl Group {
         self.check_room()?;
         // Build the segment before taking an id: a refused motion uses none.
         self.sync_position(env)?;
-        let (segment, length_ratio) =
-            request.segment(self.id, self.planner.queue_end(), self.dims())?;
+        let (segment, share) = request.segment(self.id, self.planner.queue_end(), self.dims())?;
         let id = env.ledger.allocate();
-        self.enqueue_segment(env, id, segment, length_ratio, &request)?;
+        self.enqueue_segment(env, id, segment, share, &request)?;
         if self.state == GroupState::Standby {
             self.state = GroupState::Moving;
         }

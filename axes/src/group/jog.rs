@@ -224,10 +224,21 @@ impl Group {
     }
 
     /// The limits along a jog `direction`: the group's acceleration, deceleration and jerk
-    /// (the result axis's with one, as for motions), each cut so that no member exceeds its
+    /// (the result axis's with one, as for motions; the angular profile's for a jog that only
+    /// turns orientation coordinates, HIMC A, B, C), each cut so that no member exceeds its
     /// own limit; the velocity is only the members' bound.
     fn jog_limits(&self, env: &Env, direction: &Point) -> Limits {
-        let group: PathLimits = self.motion_defaults(env.axes);
+        let turns_only = !self.orientation.is_empty()
+            && direction
+                .iter()
+                .take(self.dims())
+                .enumerate()
+                .all(|(k, d)| *d == 0.0 || self.orientation.contains(k));
+        let group: PathLimits = if turns_only {
+            self.angular
+        } else {
+            self.motion_defaults(env.axes)
+        };
         let own = self.planner.config().axes;
         let member = |k: usize, f: fn(&AxisLimits) -> f64| own.get(k).map_or(f64::INFINITY, f);
         let dims = self.dims();

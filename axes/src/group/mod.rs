@@ -77,6 +77,16 @@ pub const DEFAULT_PATH_LIMITS: PathLimits = PathLimits {
     jerk: 100_000.0,
 };
 
+/// HIMC SetGrpAngMotionProfile defaults (digest 004 §8.3.7, TV 49): 360 deg/s, 1800 deg/s² up
+/// and down, the 50 ms smoothing time read as a jerk time (1800 / 0.05), as for the linear
+/// profile.
+pub const DEFAULT_ANGULAR_LIMITS: PathLimits = PathLimits {
+    velocity: 360.0,
+    acceleration: 1800.0,
+    deceleration: 1800.0,
+    jerk: 36_000.0,
+};
+
 /// HMC's result axis (合轴, digest 000 §4.3) of a group: an axis outside the group that the
 /// group feeds the path length it travels (over each motion's counted coordinates) and whose
 /// own limits are the path limits of motions that give none.
@@ -107,6 +117,10 @@ pub struct Group {
     frames: GroupFrames,
     /// Path limits of motions that give none (`group_set_parameter`).
     defaults: PathLimits,
+    /// The orientation coordinates (HIMC A, B, C) and their angular profile (HIMC
+    /// SetGrpAngMotionProfile); no coordinate: every one is linear.
+    orientation: crate::command::CoordinateSet,
+    angular: PathLimits,
     /// HMC's path stop after a member's trouble (`fault_deceleration`); None: the path is
     /// dropped (NMC, HIMC).
     fault_deceleration: Option<f64>,
@@ -177,6 +191,24 @@ impl Group {
                 f64::INFINITY
             },
         }
+    }
+
+    /// The angular profile a motion of this group is held to, if it has orientation
+    /// coordinates.
+    fn angular_profile(&self) -> Option<segment::AngularProfile> {
+        if self.orientation.is_empty() {
+            return None;
+        }
+        let mut coordinates = [false; MAX_AXES];
+        for k in self.orientation.iter() {
+            if let Some(c) = coordinates.get_mut(k) {
+                *c = true;
+            }
+        }
+        Some(segment::AngularProfile {
+            coordinates,
+            limits: self.angular,
+        })
     }
 
     pub fn state(&self) -> GroupState {

@@ -481,8 +481,8 @@ impl Group {
     ) -> Result<(), EngineError> {
         self.sync_position(env)?;
         let start = self.planner.queue_end();
-        let (segment, length_ratio) = request.segment(self.id, start, self.dims())?;
-        self.enqueue_segment(env, id, segment, length_ratio, request)
+        let (segment, share) = request.segment(self.id, start, self.dims())?;
+        self.enqueue_segment(env, id, segment, share, request)
     }
 
     /// [`Group::enqueue`] of a segment (and its counted length share) built from the queue's
@@ -492,14 +492,14 @@ impl Group {
         env: &Env,
         id: CommandId,
         segment: path::geometry::Segment,
-        length_ratio: f64,
+        share: super::segment::Share,
         request: &super::segment::PathRequest,
     ) -> Result<(), EngineError> {
         self.refresh_limits(env.axes);
         self.planner
             .push_motion(Motion {
                 segment,
-                limits: request.limits_along_path(length_ratio),
+                limits: share.limits,
                 join: request.join,
                 transition: request.transition,
                 tag: u64::from(id),
@@ -509,7 +509,7 @@ impl Group {
             id,
             item: Item::Motion {
                 user_segment: request.user_segment,
-                length_ratio,
+                length_ratio: share.ratio,
             },
         });
         Ok(())

@@ -214,6 +214,7 @@ pub fn with_group(mut e: Engine, members: &[u16]) -> Engine {
             queue_capacity: None,
             lookahead: None,
             result_axis: None,
+            orientation: Default::default(),
         }),
     );
     ok(&mut e, Command::from(GroupEnable { group: 1 }));
