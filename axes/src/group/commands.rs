@@ -117,6 +117,7 @@ impl Groups {
                 travelled: 0.0,
             }),
             length_ratio: 1.0,
+            speed_basis: None,
             state: GroupState::Disabled,
             planner: PathPlanner::new(config, [0.0; MAX_AXES]).map_err(|e| {
                 EngineError::InvalidPath {
@@ -309,7 +310,7 @@ impl Group {
                     });
                 }
                 self.override_factor = f;
-                self.planner.set_override(f);
+                self.follow_live_speed(env.axes);
                 self.override_jog();
                 Ok(Reply::Done)
             }

@@ -109,6 +109,8 @@ pub struct Group {
     /// Counted path length per path length of the motion being executed (1: every
     /// coordinate counts; see `segment::length_ratio`).
     length_ratio: f64,
+    /// The result axis's `speed` the running motion's velocity was taken from, if it was.
+    speed_basis: Option<f64>,
     state: GroupState,
     planner: PathPlanner,
     queue: GroupQueue,
@@ -209,6 +211,28 @@ impl Group {
             coordinates,
             limits: self.angular,
         })
+    }
+
+    /// The result axis's `speed`, if the group has a result axis and it is a positive number.
+    fn result_speed(&self, axes: &[Axis]) -> Option<f64> {
+        let axis = axes.get(self.result_axis()? as usize)?;
+        let speed = axis.params().get(ParamId::Speed);
+        (speed > 0.0 && speed.is_finite()).then_some(speed)
+    }
+
+    /// The planner's override: the group's, times the live change of the result axis's `speed`
+    /// since the running motion took its velocity from it (HMC: the result axis's Speed is
+    /// editable live, digest 000 §4.3, TV 3 for a single axis). Changes only when one of them
+    /// does; the planner then re-plans the running motion from where it is.
+    fn follow_live_speed(&mut self, axes: &[Axis]) {
+        let live = match (self.speed_basis, self.result_speed(axes)) {
+            (Some(basis), Some(now)) => now / basis,
+            _ => 1.0,
+        };
+        let factor = (self.override_factor * live).min(commands::MAX_OVERRIDE);
+        if factor != self.planner.override_factor() {
+            self.planner.set_override(factor);
+        }
     }
 
     pub fn state(&self) -> GroupState {

@@ -71,6 +71,8 @@ pub(super) struct PathRequest {
     /// The group's orientation coordinates and their angular profile (HIMC
     /// SetGrpAngMotionProfile), set by the group when it takes the motion.
     pub angular: Option<AngularProfile>,
+    /// The motion gives its own velocity (else the group's default, live with a result axis).
+    pub velocity_given: bool,
 }
 
 /// HIMC's angular TCP profile (digest 004 §8.3.7): the orientation coordinates of a group
@@ -344,6 +346,7 @@ fn request(
     Ok(PathRequest {
         geometry,
         limits: path_limits(&k, defaults)?,
+        velocity_given: k.velocity.is_some(),
         join,
         transition: transition_of(transition)?,
         aborting,

@@ -60,6 +60,7 @@ impl Group {
             self.settle(env);
             return;
         }
+        self.follow_live_speed(env.axes);
         let mut events = std::mem::take(&mut self.events);
         events.clear();
         let state = *self.planner.step(&mut events);
@@ -327,12 +328,14 @@ impl Group {
                         Item::Motion {
                             user_segment,
                             length_ratio,
+                            speed_basis,
                         },
                     ..
                 }) = self.queue.get(id)
                 {
                     self.user_segment = *user_segment;
                     self.length_ratio = *length_ratio;
+                    self.speed_basis = *speed_basis;
                 }
             }
             PathEvent::Done { tag } => {
@@ -496,6 +499,11 @@ impl Group {
         request: &super::segment::PathRequest,
     ) -> Result<(), EngineError> {
         self.refresh_limits(env.axes);
+        let speed_basis = if request.velocity_given {
+            None
+        } else {
+            self.result_speed(env.axes)
+        };
         self.planner
             .push_motion(Motion {
                 segment,
@@ -510,6 +518,7 @@ impl Group {
             item: Item::Motion {
                 user_segment: request.user_segment,
                 length_ratio: share.ratio,
+                speed_basis,
             },
         });
         Ok(())
