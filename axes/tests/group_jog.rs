@@ -157,6 +157,21 @@ fn group_stop_with_a_deceleration_and_a_halt_end_a_jog() {
     let p = e.axis_status(0).unwrap().cmd_pos;
     assert!((p - at_stop - 2.0).abs() < 1e-6, "{}", p - at_stop);
 
+    // A stop faster than the member allows is cut to its own 1000 mm/s²: 20² / 2000 = 0.2 mm.
+    ok(&mut e, jog_axis(0, 20.0));
+    steps(&mut e, 0.5);
+    let at_stop = e.axis_status(0).unwrap().cmd_pos;
+    ok(
+        &mut e,
+        Command::from(GroupStop {
+            group: 1,
+            deceleration: Some(1e6),
+        }),
+    );
+    run_to_standby(&mut e, 1.0);
+    let p = e.axis_status(0).unwrap().cmd_pos;
+    assert!((p - at_stop - 0.2).abs() < 1e-6, "{}", p - at_stop);
+
     // A halt has no path to keep: it stops the jog (the group's deceleration).
     let id = id_of(ok(&mut e, jog_axis(1, -20.0)));
     steps(&mut e, 0.5);

@@ -30,6 +30,9 @@ pub(super) struct Jog {
     direction: Point,
     /// Limits along `s` (see [`Group::jog_limits`]).
     limits: Limits,
+    /// The largest acceleration along `s` the members allow (a stop's deceleration is cut
+    /// to it).
+    members_acceleration: f64,
     /// The commanded signed velocity, before the override.
     velocity: f64,
     profile: Profile,
@@ -170,7 +173,7 @@ impl Group {
                 })
             }
         }
-        let limits = self.jog_limits(env, &direction);
+        let (limits, members_acceleration) = self.jog_limits(env, &direction);
         let previous = self.jog.take();
         let mut next = match &previous {
             // The same direction: the velocity changes by a ramp from the present state.
@@ -194,6 +197,7 @@ impl Group {
                 origin: self.current_position(env.axes),
                 direction,
                 limits,
+                members_acceleration,
                 velocity: 0.0,
                 profile: Profile::hold(0.0),
                 t: 0.0,
@@ -203,6 +207,7 @@ impl Group {
             },
         };
         next.limits = limits;
+        next.members_acceleration = members_acceleration;
         next.velocity = velocity;
         next.ending = (velocity == 0.0).then_some(CommandState::Done);
         if let Err(reason) = next.replan(velocity * self.override_factor, limits) {
@@ -226,8 +231,9 @@ impl Group {
     /// The limits along a jog `direction`: the group's acceleration, deceleration and jerk
     /// (the result axis's with one, as for motions; the angular profile's for a jog that only
     /// turns orientation coordinates, HIMC A, B, C), each cut so that no member exceeds its
-    /// own limit; the velocity is only the members' bound.
-    fn jog_limits(&self, env: &Env, direction: &Point) -> Limits {
+    /// own limit; the velocity is only the members' bound. Also the members' own bound on the
+    /// acceleration.
+    fn jog_limits(&self, env: &Env, direction: &Point) -> (Limits, f64) {
         let turns_only = !self.orientation.is_empty()
             && direction
                 .iter()
@@ -243,14 +249,15 @@ impl Group {
         let member = |k: usize, f: fn(&AxisLimits) -> f64| own.get(k).map_or(f64::INFINITY, f);
         let dims = self.dims();
         let acceleration = |g: f64| along(direction, dims, g, |k| member(k, |l| l.acceleration));
-        Limits {
+        let limits = Limits {
             velocity: along(direction, dims, f64::INFINITY, |k| {
                 member(k, |l| l.velocity)
             }),
             acceleration: acceleration(group.acceleration),
             deceleration: acceleration(group.deceleration),
             jerk: along(direction, dims, group.jerk, |k| member(k, |l| l.jerk)),
-        }
+        };
+        (limits, acceleration(f64::INFINITY))
     }
 
     /// Ramp the running jog to rest with `deceleration` (along the jog coordinate, cut to the
@@ -260,7 +267,7 @@ impl Group {
             return false;
         };
         let limits = Limits {
-            deceleration: deceleration.min(jog.limits.acceleration.max(jog.limits.deceleration)),
+            deceleration: deceleration.min(jog.members_acceleration),
             ..jog.limits
         };
         jog.ending = Some(CommandState::Aborted);
