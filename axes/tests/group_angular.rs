@@ -13,19 +13,12 @@ use axes::command::{
 };
 use axes::config::AxisConfig;
 use axes::status::{GroupState, GroupStatus};
-use axes::{Engine, EngineConfig, EngineError, ParamId};
+use axes::{Engine, EngineConfig, EngineError};
 use common::{ok, refused};
 
 /// A fast mm (or degree) axis: its own limits never bind here.
 fn fast_axis() -> AxisConfig {
-    common::free_linear_axis(
-        1000.0,
-        &[
-            (ParamId::Speed, 1e5),
-            (ParamId::Accel, 1e7),
-            (ParamId::Decel, 1e7),
-        ],
-    )
+    common::fast_mm_axis(1e5, 1e7)
 }
 
 /// Six enabled axes, group 1 of them all with orientation coordinates 3, 4, 5 (HIMC's A, B,
@@ -59,14 +52,7 @@ fn machine(s_curve: bool) -> Engine {
 }
 
 fn set(e: &mut Engine, name: GroupParameter, value: f64) {
-    ok(
-        e,
-        Command::from(GroupSetParameter {
-            group: 1,
-            name,
-            value,
-        }),
-    );
+    common::group_parameter(e, name, value);
 }
 
 fn group(e: &Engine) -> GroupStatus {

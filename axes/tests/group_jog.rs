@@ -9,7 +9,7 @@ mod common;
 use axes::command::{
     Command, CommandState, CoordinateSystem, ErrorKind, GroupDisable, GroupHalt, GroupJog,
     GroupJogAxis, GroupParameter, GroupSetCoordinateSystem, GroupSetCoordinateTransform,
-    GroupSetOverride, GroupSetParameter, GroupStop,
+    GroupSetOverride, GroupStop,
 };
 use axes::status::{GroupFault, GroupState, GroupStatus};
 use axes::{AxisState, Engine, EngineError, ParamId};
@@ -32,14 +32,7 @@ fn machine(n: u16) -> Engine {
         (GroupParameter::Deceleration, DEC),
         (GroupParameter::Jerk, 0.0),
     ] {
-        ok(
-            &mut e,
-            Command::from(GroupSetParameter {
-                group: 1,
-                name,
-                value,
-            }),
-        );
+        common::group_parameter(&mut e, name, value);
     }
     e
 }
@@ -115,24 +108,31 @@ fn a_jog_ramps_up_with_the_group_acceleration_and_holds_its_velocity() {
     );
 }
 
+/// Jog `member` at `velocity` for 0.5 s, send `stop`, run to Standby: the distance travelled
+/// after the stop, and the jog's id.
+fn travel_after(e: &mut Engine, member: usize, velocity: f64, stop: Command) -> (f64, u32) {
+    let id = id_of(ok(e, jog_axis(member, velocity)));
+    steps(e, 0.5);
+    let at_stop = e.axis_status(member).unwrap().cmd_pos;
+    ok(e, stop);
+    assert_eq!(group(e).state, GroupState::Stopping);
+    run_to_standby(e, 1.0);
+    (e.axis_status(member).unwrap().cmd_pos - at_stop, id)
+}
+
+fn stop(deceleration: Option<f64>) -> Command {
+    Command::from(GroupStop {
+        group: 1,
+        deceleration,
+    })
+}
+
 #[test]
 fn group_stop_ends_a_jog_with_the_deceleration() {
     let mut e = machine(2);
-    let id = id_of(ok(&mut e, jog_axis(0, 20.0)));
-    steps(&mut e, 0.5);
-    let at_stop = e.axis_status(0).unwrap().cmd_pos;
-    ok(
-        &mut e,
-        Command::from(GroupStop {
-            group: 1,
-            deceleration: None,
-        }),
-    );
-    assert_eq!(group(&e).state, GroupState::Stopping);
-    run_to_standby(&mut e, 1.0);
+    let (travel, id) = travel_after(&mut e, 0, 20.0, stop(None));
     // 20 mm/s to rest at 250 mm/s²: 20² / (2·250) = 0.8 mm.
-    let p = e.axis_status(0).unwrap().cmd_pos;
-    assert!((p - at_stop - 0.8).abs() < 1e-6, "{}", p - at_stop);
+    assert!((travel - 0.8).abs() < 1e-6, "{travel}");
     assert_eq!(state_of(&mut e, id), CommandState::Aborted);
     steps(&mut e, 0.01);
     assert_eq!(e.axis_status(0).unwrap().state, AxisState::Standstill);
@@ -142,51 +142,19 @@ fn group_stop_ends_a_jog_with_the_deceleration() {
 #[test]
 fn group_stop_with_a_deceleration_and_a_halt_end_a_jog() {
     let mut e = machine(2);
-    ok(&mut e, jog_axis(0, 20.0));
-    steps(&mut e, 0.5);
-    let at_stop = e.axis_status(0).unwrap().cmd_pos;
-    ok(
-        &mut e,
-        Command::from(GroupStop {
-            group: 1,
-            deceleration: Some(100.0),
-        }),
-    );
-    run_to_standby(&mut e, 1.0);
     // 20² / (2·100) = 2 mm.
-    let p = e.axis_status(0).unwrap().cmd_pos;
-    assert!((p - at_stop - 2.0).abs() < 1e-6, "{}", p - at_stop);
-
+    let (travel, _) = travel_after(&mut e, 0, 20.0, stop(Some(100.0)));
+    assert!((travel - 2.0).abs() < 1e-6, "{travel}");
     // A stop faster than the member allows is cut to its own 1000 mm/s²: 20² / 2000 = 0.2 mm.
-    ok(&mut e, jog_axis(0, 20.0));
-    steps(&mut e, 0.5);
-    let at_stop = e.axis_status(0).unwrap().cmd_pos;
-    ok(
-        &mut e,
-        Command::from(GroupStop {
-            group: 1,
-            deceleration: Some(1e6),
-        }),
-    );
-    run_to_standby(&mut e, 1.0);
-    let p = e.axis_status(0).unwrap().cmd_pos;
-    assert!((p - at_stop - 0.2).abs() < 1e-6, "{}", p - at_stop);
-
+    let (travel, _) = travel_after(&mut e, 0, 20.0, stop(Some(1e6)));
+    assert!((travel - 0.2).abs() < 1e-6, "{travel}");
     // A halt has no path to keep: it stops the jog (the group's deceleration).
-    let id = id_of(ok(&mut e, jog_axis(1, -20.0)));
-    steps(&mut e, 0.5);
-    let at_halt = e.axis_status(1).unwrap().cmd_pos;
-    ok(
-        &mut e,
-        Command::from(GroupHalt {
-            group: 1,
-            deceleration: None,
-        }),
-    );
-    assert_eq!(group(&e).state, GroupState::Stopping);
-    run_to_standby(&mut e, 1.0);
-    let p = e.axis_status(1).unwrap().cmd_pos;
-    assert!((at_halt - p - 0.8).abs() < 1e-6, "{}", at_halt - p);
+    let halt = Command::from(GroupHalt {
+        group: 1,
+        deceleration: None,
+    });
+    let (travel, id) = travel_after(&mut e, 1, -20.0, halt);
+    assert!((travel + 0.8).abs() < 1e-6, "{travel}");
     assert_eq!(state_of(&mut e, id), CommandState::Aborted);
 }
 
@@ -304,13 +272,7 @@ fn a_jog_in_a_rotated_wcs_moves_the_machine_along_that_direction() {
     assert!(x.abs() < 1e-9, "{x}");
     // 10·0.5 − 10²/(2·500) = 4.9 mm.
     assert!((y - 4.9).abs() < 1e-6, "{y}");
-    ok(
-        &mut e,
-        Command::from(GroupStop {
-            group: 1,
-            deceleration: None,
-        }),
-    );
+    ok(&mut e, stop(None));
     run_to_standby(&mut e, 1.0);
     // The same coordinate in the MCS (HIMC JogGroup's system) moves machine X.
     ok(&mut e, jog(0, -10.0, Some("mcs")));

@@ -1001,14 +1001,7 @@ fn machine_wide_stop_drops_the_path_and_emergency_stop_puts_the_group_in_error_s
 fn circle_peak(parameters: &[(GroupParameter, f64)]) -> f64 {
     let mut e = machine(2, &[0, 1]);
     for &(name, value) in parameters {
-        ok(
-            &mut e,
-            Command::from(GroupSetParameter {
-                group: 1,
-                name,
-                value,
-            }),
-        );
+        common::group_parameter(&mut e, name, value);
     }
     send(&mut e, line(&[10.0, 0.0]));
     run_to_standby(&mut e, 10.0);

@@ -13,8 +13,8 @@ use path::geometry::{Line, Segment};
 use path::planner::{AxisLimits, PathLimits};
 use path::{Point, MAX_AXES};
 
+use super::tick::follow;
 use super::{Env, Group};
-use crate::axis::Feed;
 use crate::command::{bounded, CommandId, CommandState, CoordinateSystem, EngineError, Reply};
 use crate::profile::{Goal, Limits, MotionState, Options, Profile};
 use crate::status::{GroupFault, GroupState};
@@ -353,11 +353,7 @@ impl Group {
                 v: s.v * d,
                 a: s.a * d,
             };
-            let (mut ctx, axes) = env.context();
-            if let Some(axis) = axes.get_mut(a as usize) {
-                axis.feed(&mut ctx, Feed::Follow(setpoint))
-                    .map_err(|e| (a, e))?;
-            }
+            follow(env, a, setpoint)?;
         }
         // HMC's result axis (digest 000 §4.3) grows by the length travelled, whichever way.
         let Some(r) = &mut self.result else {
@@ -370,13 +366,6 @@ impl Group {
             v: s.v.abs(),
             a: s.a * sign,
         };
-        let a = r.axis;
-        let (mut ctx, axes) = env.context();
-        match axes.get_mut(a as usize) {
-            Some(axis) => axis
-                .feed(&mut ctx, Feed::Follow(setpoint))
-                .map_err(|e| (a, e)),
-            None => Ok(()),
-        }
+        follow(env, r.axis, setpoint)
     }
 }

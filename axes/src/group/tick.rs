@@ -182,14 +182,7 @@ impl Group {
             v: state.path_velocity * ratio,
             a: state.path_acceleration * ratio,
         };
-        let a = r.axis;
-        let (mut ctx, axes) = env.context();
-        match axes.get_mut(a as usize) {
-            Some(axis) => axis
-                .feed(&mut ctx, Feed::Follow(setpoint))
-                .map_err(|e| (a, e)),
-            None => Ok(()),
-        }
+        follow(env, r.axis, setpoint)
     }
 
     /// Feed member `a` (group coordinate `k`) this tick's point of the path.
@@ -620,6 +613,21 @@ impl Group {
                 let _ = axis.stop(&mut ctx, StopMode::Emergency, None);
             }
         }
+    }
+}
+
+/// Feed axis `a` (a member or the result axis) `setpoint`; a refusal names the axis.
+pub(super) fn follow(
+    env: &mut Env,
+    a: u16,
+    setpoint: MotionState,
+) -> Result<(), (u16, EngineError)> {
+    let (mut ctx, axes) = env.context();
+    match axes.get_mut(a as usize) {
+        Some(axis) => axis
+            .feed(&mut ctx, Feed::Follow(setpoint))
+            .map_err(|e| (a, e)),
+        None => Ok(()),
     }
 }
 
