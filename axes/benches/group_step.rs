@@ -52,6 +52,7 @@ impl Group {
                 queue_capacity: None,
                 lookahead: None,
                 result_axis: None,
+                orientation: Default::default(),
             }))
             .expect("group_create");
         engine

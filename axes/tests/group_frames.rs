@@ -341,6 +341,7 @@ fn rail() -> Engine {
             queue_capacity: None,
             lookahead: None,
             result_axis: None,
+            orientation: Default::default(),
         }),
     );
     ok(&mut e, Command::from(GroupEnable { group: 2 }));

@@ -17,18 +17,11 @@ use axes::command::{
 };
 use axes::config::AxisConfig;
 use axes::status::{GroupState, GroupStatus};
-use axes::{AxisFlags, Engine, EngineConfig, EngineError, ParamId};
+use axes::{AxisFlags, Engine, EngineConfig, EngineError};
 use common::{id_of, nearest, ok, refused, run_path, swept_degrees};
 
 fn mm_axis() -> AxisConfig {
-    common::free_linear_axis(
-        1000.0,
-        &[
-            (ParamId::Speed, 1e4),
-            (ParamId::Accel, 1e6),
-            (ParamId::Decel, 1e6),
-        ],
-    )
+    common::fast_mm_axis(1e4, 1e6)
 }
 
 /// `n` mm axes, enabled, no group.
@@ -271,6 +264,7 @@ fn create(group: u16, axes: &[u16], queue_capacity: Option<u32>) -> Command {
         queue_capacity,
         lookahead: None,
         result_axis: None,
+        orientation: Default::default(),
     })
 }
 

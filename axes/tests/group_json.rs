@@ -13,9 +13,9 @@ use axes::command::{
     MoveLinearRelative, MoveSpline, TransitionMode,
 };
 use axes::command::{
-    CoordinateSystem, GroupDeleteTransform, GroupSetCoordinateSystem, GroupSetCoordinateTransform,
-    GroupSetRotaryTransform, GroupSetXyzaTransform, MoveProtectionDisable, MoveProtectionEnable,
-    ProtectionMode,
+    CoordinateSystem, GroupDeleteTransform, GroupJog, GroupJogAxis, GroupSetCoordinateSystem,
+    GroupSetCoordinateTransform, GroupSetRotaryTransform, GroupSetXyzaTransform,
+    MoveProtectionDisable, MoveProtectionEnable, ProtectionMode,
 };
 
 fn full() -> Vec<(Command, &'static str)> {
@@ -27,8 +27,9 @@ fn full() -> Vec<(Command, &'static str)> {
                 queue_capacity: Some(1024),
                 lookahead: Some(128),
                 result_axis: Some(3),
+                orientation: CoordinateSet::from_indices(&[1, 2]).unwrap(),
             }),
-            r#"{"type":"group_create","group":1,"axes":[0,2,1],"queue_capacity":1024,"lookahead":128,"result_axis":3}"#,
+            r#"{"type":"group_create","group":1,"axes":[0,2,1],"queue_capacity":1024,"lookahead":128,"result_axis":3,"orientation":[1,2]}"#,
         ),
         (
             Command::from(GroupDelete { group: 2 }),
@@ -324,13 +325,30 @@ fn full() -> Vec<(Command, &'static str)> {
             Command::from(MoveProtectionDisable { protection: 0 }),
             r#"{"type":"move_protection_disable","protection":0}"#,
         ),
+        (
+            Command::from(GroupJog {
+                group: 1,
+                coordinate: 2,
+                velocity: -12.5,
+                coordinate_system: Some(CoordinateSystem::MCS),
+            }),
+            r#"{"type":"group_jog","group":1,"coordinate":2,"velocity":-12.5,"coordinate_system":"mcs"}"#,
+        ),
+        (
+            Command::from(GroupJogAxis {
+                group: 1,
+                member: 4,
+                velocity: 30.0,
+            }),
+            r#"{"type":"group_jog_axis","group":1,"member":4,"velocity":30.0}"#,
+        ),
     ]
 }
 
 #[test]
 fn every_group_command_serializes_to_its_pinned_json_and_back() {
     let cases = full();
-    assert_eq!(cases.len(), 31, "one case per group command");
+    assert_eq!(cases.len(), 33, "one case per group command");
     for (command, json) in cases {
         assert_eq!(serde_json::to_string(&command).unwrap(), json);
         assert_eq!(
@@ -383,6 +401,7 @@ fn a_motion_with_only_its_required_fields_is_buffered_without_transition() {
             queue_capacity: None,
             lookahead: None,
             result_axis: None,
+            orientation: Default::default(),
         })
     );
 }
@@ -417,9 +436,10 @@ fn group_serde_errors_name_the_field() {
 }
 
 /// The vendor rules added as group parameters (docs/decisions.md, "Group safety"): HMC's stop
-/// along the path after a member's trouble, CPU 226H's smallest acceleration.
+/// along the path after a member's trouble, CPU 226H's smallest acceleration, HIMC's angular
+/// profile.
 #[test]
-fn the_safety_and_acceleration_parameters_have_their_pinned_names() {
+fn the_safety_acceleration_and_angular_parameters_have_their_pinned_names() {
     for (name, json) in [
         (
             GroupParameter::FaultDeceleration,
@@ -428,6 +448,22 @@ fn the_safety_and_acceleration_parameters_have_their_pinned_names() {
         (
             GroupParameter::SmallestAxisAcceleration,
             r#"{"type":"group_set_parameter","group":1,"name":"smallest_axis_acceleration","value":1.0}"#,
+        ),
+        (
+            GroupParameter::AngularVelocity,
+            r#"{"type":"group_set_parameter","group":1,"name":"angular_velocity","value":1.0}"#,
+        ),
+        (
+            GroupParameter::AngularAcceleration,
+            r#"{"type":"group_set_parameter","group":1,"name":"angular_acceleration","value":1.0}"#,
+        ),
+        (
+            GroupParameter::AngularDeceleration,
+            r#"{"type":"group_set_parameter","group":1,"name":"angular_deceleration","value":1.0}"#,
+        ),
+        (
+            GroupParameter::AngularJerk,
+            r#"{"type":"group_set_parameter","group":1,"name":"angular_jerk","value":1.0}"#,
         ),
     ] {
         let c = Command::from(GroupSetParameter {

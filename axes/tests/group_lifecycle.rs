@@ -37,6 +37,7 @@ fn create(group: u16, axes: &[u16]) -> Command {
         queue_capacity: None,
         lookahead: None,
         result_axis: None,
+        orientation: Default::default(),
     })
 }
 
@@ -135,6 +136,7 @@ fn group_definitions_that_cannot_be_are_refused_with_the_reason() {
                 queue_capacity: capacity,
                 lookahead,
                 result_axis: None,
+                orientation: Default::default(),
             }),
         );
         assert_eq!(err.kind(), ErrorKind::InvalidArgument, "{err}");

@@ -768,6 +768,7 @@ fn the_queue_bound_holds_motions_and_buffered_commands_together() {
             queue_capacity: Some(3),
             lookahead: None,
             result_axis: None,
+            orientation: Default::default(),
         }),
     );
     ok(&mut e, Command::from(GroupEnable { group: 1 }));
@@ -1000,14 +1001,7 @@ fn machine_wide_stop_drops_the_path_and_emergency_stop_puts_the_group_in_error_s
 fn circle_peak(parameters: &[(GroupParameter, f64)]) -> f64 {
     let mut e = machine(2, &[0, 1]);
     for &(name, value) in parameters {
-        ok(
-            &mut e,
-            Command::from(GroupSetParameter {
-                group: 1,
-                name,
-                value,
-            }),
-        );
+        common::group_parameter(&mut e, name, value);
     }
     send(&mut e, line(&[10.0, 0.0]));
     run_to_standby(&mut e, 10.0);

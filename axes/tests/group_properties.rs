@@ -74,7 +74,7 @@ proptest! {
         for a in 0..3 {
             ok(&mut e, Command::from(Enable { axis: a }));
         }
-        ok(&mut e, Command::from(GroupCreate { group: 1, axes: vec![0, 1, 2], queue_capacity: None, lookahead: None, result_axis: None }));
+        ok(&mut e, Command::from(GroupCreate { group: 1, axes: vec![0, 1, 2], queue_capacity: None, lookahead: None, result_axis: None, orientation: Default::default() }));
         ok(&mut e, Command::from(GroupEnable { group: 1 }));
         let (buffer_mode, transition) = if blend {
             (GroupBufferMode::BlendingLow, TransitionMode::CornerDistance(corner))

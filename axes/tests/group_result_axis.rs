@@ -69,6 +69,7 @@ fn create(group: u16, members: &[u16], result_axis: Option<u16>) -> GroupCreate 
         queue_capacity: None,
         lookahead: None,
         result_axis,
+        orientation: Default::default(),
     }
 }
 
@@ -605,4 +606,67 @@ fn a_result_axis_at_its_soft_limit_stops_the_whole_group_in_error_stop() {
         "{}",
         pos(&e, 0)
     );
+}
+
+/// HMC's result axis Speed is editable live (digest 000 §4.3; the single-axis case is TV 3):
+/// Speed 1000, Accel = Decel = 1000, a 3000-unit line; at t = 2 s (position 1500) Speed := 500.
+/// The path decelerates to 500 (0.5 s, 375 units), cruises (2 s, 1000 units) and stops (0.5 s,
+/// 125 units): done at t = 5 s at 3000.
+#[test]
+fn a_live_speed_change_of_the_result_axis_changes_the_path_speed() {
+    let axes = vec![
+        virtual_axis(1e7, 1e9),
+        virtual_axis(1e7, 1e9),
+        virtual_axis(1000.0, 1000.0),
+    ];
+    let mut e = Engine::new(&EngineConfig {
+        axes,
+        ..EngineConfig::default()
+    })
+    .unwrap();
+    for axis in 0..3 {
+        ok(&mut e, Command::from(Enable { axis }));
+    }
+    ok(&mut e, Command::from(create(1, &[0, 1], Some(2))));
+    ok(&mut e, Command::from(GroupEnable { group: 1 }));
+    let id = send(&mut e, line(&[3000.0, 0.0]));
+    let period = e.period();
+    for _ in 0..(2.0 / period).round() as u64 {
+        e.step();
+    }
+    assert!(close(pos(&e, 0), 1500.0, 1e-6), "{}", pos(&e, 0));
+    assert!(close(group(&e).path_velocity, 1000.0, 1e-9));
+    ok(
+        &mut e,
+        Command::from(SetParameter {
+            axis: 2,
+            name: ParamId::Speed,
+            value: 500.0,
+            lenient: false,
+        }),
+    );
+    let mut cruise = 0;
+    let ticks = run_path(&mut e, 10.0, |e| {
+        if close(group(e).path_velocity, 500.0, 1e-9) {
+            cruise += 1;
+        }
+    });
+    // About 2 s at the new speed.
+    assert!(close(cruise as f64 * period, 2.0, 3.0 * period), "{cruise}");
+    let t = 2.0 + ticks as f64 * period;
+    assert!(close(t, 5.0, 3.0 * period), "{t}");
+    assert!(close(pos(&e, 0), 3000.0, 1e-9));
+    assert!(close(pos(&e, 2), 3000.0, 1e-6), "{}", pos(&e, 2));
+    assert_eq!(state_of(&mut e, id), CommandState::Done);
+    // A motion that gives its own velocity keeps it.
+    let own = MoveLinearRelative {
+        velocity: Some(800.0),
+        ..line(&[-800.0, 0.0])
+    };
+    send(&mut e, own);
+    let mut fastest: f64 = 0.0;
+    run_path(&mut e, 10.0, |e| {
+        fastest = fastest.max(group(e).path_velocity)
+    });
+    assert!(close(fastest, 800.0, 1e-9), "{fastest}");
 }

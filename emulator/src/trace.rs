@@ -1,7 +1,8 @@
 //! Traces: one CSV row per tick per axis, the columns named exactly as below (scenarios write
 //! them with `--trace`, the control API serves them at `GET /api/v1/trace`). An axis in a group
 //! carries its group's columns (`group`, `path_velocity`, `segment`, `user_segment`: the same
-//! values on every member's row); they are empty for a free axis.
+//! values on every member's row, and on the row of an HMC result axis, which is bound to the
+//! group like a member); they are empty for a free axis.
 //!
 //! Numbers are written in their shortest round-trip form (`zmij`, `itoa`): a reader that parses
 //! them gets back the exact f64 the engine had. Integral floats drop the `.0` (`100`, not
@@ -309,6 +310,47 @@ mod tests {
             String::from_utf8(member).unwrap(),
             "0,1,disabled,0,0,0,0,0,0,0,0,0,0,0,0,,2,12.5,3,40\n"
         );
+    }
+
+    /// HMC's result axis is bound to its group: its row carries the group's columns as the
+    /// members' rows do.
+    #[test]
+    fn a_result_axis_row_has_its_groups_columns() {
+        use axes::command::{Command, Enable, GroupCreate, GroupEnable, MoveLinearAbsolute};
+        use axes::config::AxisConfig;
+        let mut e = Engine::new(&axes::EngineConfig {
+            axes: vec![AxisConfig::default(); 4],
+            ..axes::EngineConfig::default()
+        })
+        .unwrap();
+        for axis in 0..3 {
+            e.apply(Command::from(Enable { axis })).unwrap();
+        }
+        let create = GroupCreate {
+            group: 1,
+            axes: vec![0, 1],
+            queue_capacity: None,
+            lookahead: None,
+            result_axis: Some(2),
+            orientation: Default::default(),
+        };
+        e.apply(Command::from(create)).unwrap();
+        e.apply(Command::from(GroupEnable { group: 1 })).unwrap();
+        let line: MoveLinearAbsolute =
+            serde_json::from_str(r#"{"group":1,"position":[300,400],"user_segment":7}"#).unwrap();
+        e.apply(Command::from(line)).unwrap();
+        for _ in 0..10 {
+            e.step();
+        }
+        let member = GroupColumns::of(&e, 0).unwrap();
+        let result = GroupColumns::of(&e, 2).unwrap();
+        assert_eq!(result, member);
+        assert_eq!(
+            (result.group, result.segment, result.user_segment),
+            (1, 1, 7)
+        );
+        assert!(result.path_velocity > 0.0);
+        assert_eq!(GroupColumns::of(&e, 3), None);
     }
 
     #[test]

@@ -61,6 +61,7 @@ use super::{
     GroupSetCoordinateSystem, GroupSetCoordinateTransform, GroupSetRotaryTransform,
     GroupSetXyzaTransform, MoveProtectionDisable, MoveProtectionEnable,
 };
+use super::{GroupJog, GroupJogAxis};
 
 /// Make a group of 1–9 axes (PLCopen MC_AddAxisToGroup ×n; HIMC SetupGroup without the enable;
 /// NMC CrdSetMtSys). The group starts Disabled.
@@ -82,6 +83,12 @@ pub struct GroupCreate {
     /// the group).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub result_axis: Option<AxisIndex>,
+    /// Group coordinates that are orientation angles (HIMC's A, B, C: `[3, 4, 5]`, digest 004
+    /// §8.3.7): a line's change of them is limited by the group's angular profile
+    /// (`angular_velocity` …) while the other coordinates keep the linear one; the move takes
+    /// the longer of the two. Default none: every coordinate is linear.
+    #[serde(default, skip_serializing_if = "CoordinateSet::is_empty")]
+    pub orientation: CoordinateSet,
 }
 
 /// Dissolve a group (HIMC UngrpAllAxes); its axes are free again. Refused while it moves.
@@ -413,6 +420,14 @@ pub enum GroupParameter {
     /// 003 §2.0 tip 3: a two-axis instruction accelerates its long axis at the smaller of the
     /// two axes' max accel, TV-15); 0: each member its own (the default).
     SmallestAxisAcceleration,
+    /// The angular profile of the group's `orientation` coordinates (HIMC
+    /// SetGrpAngMotionProfile, digest 004 §8.3.7; defaults 360 deg/s, 1800 deg/s² up and down,
+    /// jerk 36 000 deg/s³ from the 50 ms smoothing time).
+    AngularVelocity,
+    AngularAcceleration,
+    AngularDeceleration,
+    /// 0 = trapezoid.
+    AngularJerk,
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -620,6 +635,8 @@ pub enum GroupCommand {
     SetRotaryTransform(GroupSetRotaryTransform),
     SetXyzaTransform(GroupSetXyzaTransform),
     DeleteTransform(GroupDeleteTransform),
+    Jog(GroupJog),
+    JogAxis(GroupJogAxis),
     /// Between two groups.
     ProtectionEnable(MoveProtectionEnable),
     ProtectionDisable(MoveProtectionDisable),
@@ -658,6 +675,8 @@ impl GroupCommand {
             GroupCommand::SetRotaryTransform(c) => c.group,
             GroupCommand::SetXyzaTransform(c) => c.group,
             GroupCommand::DeleteTransform(c) => c.group,
+            GroupCommand::Jog(c) => c.group,
+            GroupCommand::JogAxis(c) => c.group,
             GroupCommand::ProtectionEnable(_) | GroupCommand::ProtectionDisable(_) => return None,
         })
     }
@@ -693,6 +712,8 @@ command_from!(GroupCommand, Group, [
     GroupSetRotaryTransform => SetRotaryTransform,
     GroupSetXyzaTransform => SetXyzaTransform,
     GroupDeleteTransform => DeleteTransform,
+    GroupJog => Jog,
+    GroupJogAxis => JogAxis,
     MoveProtectionEnable => ProtectionEnable,
     MoveProtectionDisable => ProtectionDisable,
 ]);

@@ -89,6 +89,7 @@ pub enum AxisInput {
 mod axis;
 mod group;
 mod group_frames;
+mod group_jog;
 mod io;
 mod machine;
 mod slave;
@@ -112,6 +113,7 @@ pub use group_frames::{
     GroupSetRotaryTransform, GroupSetXyzaTransform, MoveProtectionDisable, MoveProtectionEnable,
     ProtectionMode,
 };
+pub use group_jog::{GroupJog, GroupJogAxis};
 pub use io::{
     ForceAnalogInput, ForceDigitalInput, IoCommand, WriteAnalogOutput, WriteDigitalOutput,
 };

@@ -23,6 +23,7 @@ use super::{
     GroupDeleteTransform, GroupSetCoordinateSystem, GroupSetCoordinateTransform,
     GroupSetRotaryTransform, GroupSetXyzaTransform, MoveProtectionDisable, MoveProtectionEnable,
 };
+use super::{GroupJog, GroupJogAxis};
 
 /// Named `Command` like the type it stands for: serde writes this name in "expected internally
 /// tagged enum Command" (a `rename` does not change that message).
@@ -95,6 +96,8 @@ pub(super) enum Command {
     MoveProtectionEnable(MoveProtectionEnable),
     MoveProtectionDisable(MoveProtectionDisable),
     MoveCircularAngle(MoveCircularAngle),
+    GroupJog(GroupJog),
+    GroupJogAxis(GroupJogAxis),
 }
 
 impl From<Command> for super::Command {
@@ -191,6 +194,8 @@ impl From<Command> for super::Command {
             Command::MoveProtectionDisable(c) => {
                 super::Command::Group(GroupCommand::ProtectionDisable(c))
             }
+            Command::GroupJog(c) => super::Command::Group(GroupCommand::Jog(c)),
+            Command::GroupJogAxis(c) => super::Command::Group(GroupCommand::JogAxis(c)),
         }
     }
 }
@@ -289,6 +294,8 @@ impl From<super::Command> for Command {
             super::Command::Group(GroupCommand::ProtectionDisable(c)) => {
                 Command::MoveProtectionDisable(c)
             }
+            super::Command::Group(GroupCommand::Jog(c)) => Command::GroupJog(c),
+            super::Command::Group(GroupCommand::JogAxis(c)) => Command::GroupJogAxis(c),
             super::Command::Coupling(c) => match c {},
         }
     }

@@ -7,7 +7,10 @@ use path::MAX_AXES;
 use super::frames::FrameMap;
 use super::queue::{Entry, GroupQueue, Item};
 use super::segment::{self, CircularFields, PathRequest, PendingMotion};
-use super::{planner_config, Env, Group, GroupFrames, Groups, ResultAxis, DEFAULT_PATH_LIMITS};
+use super::{
+    planner_config, Env, Group, GroupFrames, Groups, ResultAxis, DEFAULT_ANGULAR_LIMITS,
+    DEFAULT_PATH_LIMITS,
+};
 use crate::command::{
     bounded, finite, nonnegative, positive, AxisIndex, CommandState, CoordinateSystem, EngineError,
     GroupAxisMove, GroupCommand, GroupCreate, GroupDwell, GroupId, GroupParameter, GroupSetOutput,
@@ -82,6 +85,12 @@ impl Groups {
             }
             check_joins(env, group, r, "result axis")?;
         }
+        if let Some(k) = c.orientation.iter().find(|&k| k >= c.axes.len()) {
+            return Err(invalid(format!(
+                "orientation coordinate {k} is not one of the group's {}",
+                c.axes.len()
+            )));
+        }
         let capacity = c.queue_capacity.unwrap_or(self.config.queue_capacity);
         if !(1..=MAX_GROUP_QUEUE).contains(&capacity) {
             return Err(EngineError::InvalidArgument {
@@ -108,6 +117,7 @@ impl Groups {
                 travelled: 0.0,
             }),
             length_ratio: 1.0,
+            speed_basis: None,
             state: GroupState::Disabled,
             planner: PathPlanner::new(config, [0.0; MAX_AXES]).map_err(|e| {
                 EngineError::InvalidPath {
@@ -119,6 +129,8 @@ impl Groups {
             origin: [0.0; MAX_AXES],
             frames: GroupFrames::default(),
             defaults: DEFAULT_PATH_LIMITS,
+            orientation: c.orientation,
+            angular: DEFAULT_ANGULAR_LIMITS,
             fault_deceleration: None,
             fault_stop: None,
             smallest_acceleration: false,
@@ -129,6 +141,7 @@ impl Groups {
             user_segment: 0,
             waiting: None,
             pending: None,
+            jog: None,
             last_error: None,
             fault: None,
             params_version: 0,
@@ -202,6 +215,15 @@ impl Group {
                 self.frames.delete_nmc();
                 Ok(Reply::Done)
             }
+            GroupCommand::Jog(c) => {
+                let direction =
+                    self.coordinate_direction(env, c.coordinate, c.coordinate_system)?;
+                self.jog(env, direction, c.velocity)
+            }
+            GroupCommand::JogAxis(c) => {
+                let direction = self.unit(c.member, "member")?;
+                self.jog(env, direction, c.velocity)
+            }
             GroupCommand::Enable(_) => self.enable(env),
             GroupCommand::Disable(_) => {
                 self.drop_all(env, CommandState::Aborted);
@@ -266,7 +288,7 @@ impl Group {
                     Some(d) => Some(positive("deceleration", d)?),
                     None => None,
                 };
-                self.halt(decel)
+                self.halt(decel, defaults.deceleration)
             }
             GroupCommand::Continue(_) => self.resume(),
             GroupCommand::EmergencyStop(_) => {
@@ -288,7 +310,8 @@ impl Group {
                     });
                 }
                 self.override_factor = f;
-                self.planner.set_override(f);
+                self.follow_live_speed(env.axes);
+                self.override_jog();
                 Ok(Reply::Done)
             }
             GroupCommand::SetOrigin(c) => {
@@ -316,6 +339,18 @@ impl Group {
                         d.deceleration = positive("deceleration", c.value)?
                     }
                     GroupParameter::Jerk => d.jerk = segment::jerk_value(c.value)?,
+                    GroupParameter::AngularVelocity => {
+                        self.angular.velocity = positive("value", bounded("value", c.value)?)?
+                    }
+                    GroupParameter::AngularAcceleration => {
+                        self.angular.acceleration = positive("value", c.value)?
+                    }
+                    GroupParameter::AngularDeceleration => {
+                        self.angular.deceleration = positive("value", c.value)?
+                    }
+                    GroupParameter::AngularJerk => {
+                        self.angular.jerk = segment::jerk_value(c.value)?
+                    }
                     GroupParameter::CornerSlowAngle | GroupParameter::CornerStopAngle => {
                         let value = finite("value", c.value)?;
                         let mut angles = self
@@ -440,7 +475,7 @@ impl Group {
     /// The frame map of a move accepted now, in `system` (else the group's selection). The
     /// rotary table's position is where its last queued `group_axis_move` leaves it, else its
     /// commanded position (docs/decisions.md, "Group frames").
-    fn frame_map(
+    pub(super) fn frame_map(
         &self,
         env: &Env,
         system: Option<CoordinateSystem>,
@@ -470,8 +505,9 @@ impl Group {
     pub(super) fn submit(
         &mut self,
         env: &mut Env,
-        request: PathRequest,
+        mut request: PathRequest,
     ) -> Result<Reply, EngineError> {
+        request.angular = self.angular_profile();
         if request.aborting && !self.is_idle() {
             let id = env.ledger.allocate();
             // The new motion runs once the path is at rest: the group is Moving again.
@@ -485,10 +521,9 @@ impl Group {
         self.check_room()?;
         // Build the segment before taking an id: a refused motion uses none.
         self.sync_position(env)?;
-        let (segment, length_ratio) =
-            request.segment(self.id, self.planner.queue_end(), self.dims())?;
+        let (segment, share) = request.segment(self.id, self.planner.queue_end(), self.dims())?;
         let id = env.ledger.allocate();
-        self.enqueue_segment(env, id, segment, length_ratio, &request)?;
+        self.enqueue_segment(env, id, segment, share, &request)?;
         if self.state == GroupState::Standby {
             self.state = GroupState::Moving;
         }
@@ -523,6 +558,9 @@ impl Group {
             }
             GroupState::Moving | GroupState::Halted | GroupState::Stopping => {}
         }
+        if self.stop_jog(deceleration) {
+            return Ok(Reply::Done);
+        }
         self.stop_path(env, deceleration);
         self.state = GroupState::Stopping;
         Ok(Reply::Done)
@@ -545,7 +583,15 @@ impl Group {
     }
 
     /// `group_halt`: decelerate along the path, keep the queue (HIMC HaltGroup).
-    pub(super) fn halt(&mut self, deceleration: Option<f64>) -> Result<Reply, EngineError> {
+    /// A jog has no path to keep: a halt stops it (docs/decisions.md, "Group jog").
+    pub(super) fn halt(
+        &mut self,
+        deceleration: Option<f64>,
+        defaults: f64,
+    ) -> Result<Reply, EngineError> {
+        if self.state == GroupState::Moving && self.stop_jog(deceleration.unwrap_or(defaults)) {
+            return Ok(Reply::Done);
+        }
         match self.state {
             GroupState::Moving => {
                 self.planner

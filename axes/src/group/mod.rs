@@ -29,6 +29,7 @@ use crate::status::{
 
 mod commands;
 mod frames;
+mod jog;
 mod protection;
 mod queue;
 mod segment;
@@ -76,6 +77,16 @@ pub const DEFAULT_PATH_LIMITS: PathLimits = PathLimits {
     jerk: 100_000.0,
 };
 
+/// HIMC SetGrpAngMotionProfile defaults (digest 004 §8.3.7, TV 49): 360 deg/s, 1800 deg/s² up
+/// and down, the 50 ms smoothing time read as a jerk time (1800 / 0.05), as for the linear
+/// profile.
+pub const DEFAULT_ANGULAR_LIMITS: PathLimits = PathLimits {
+    velocity: 360.0,
+    acceleration: 1800.0,
+    deceleration: 1800.0,
+    jerk: 36_000.0,
+};
+
 /// HMC's result axis (合轴, digest 000 §4.3) of a group: an axis outside the group that the
 /// group feeds the path length it travels (over each motion's counted coordinates) and whose
 /// own limits are the path limits of motions that give none.
@@ -98,6 +109,8 @@ pub struct Group {
     /// Counted path length per path length of the motion being executed (1: every
     /// coordinate counts; see `segment::length_ratio`).
     length_ratio: f64,
+    /// The result axis's `speed` the running motion's velocity was taken from, if it was.
+    speed_basis: Option<f64>,
     state: GroupState,
     planner: PathPlanner,
     queue: GroupQueue,
@@ -106,6 +119,10 @@ pub struct Group {
     frames: GroupFrames,
     /// Path limits of motions that give none (`group_set_parameter`).
     defaults: PathLimits,
+    /// The orientation coordinates (HIMC A, B, C) and their angular profile (HIMC
+    /// SetGrpAngMotionProfile); no coordinate: every one is linear.
+    orientation: crate::command::CoordinateSet,
+    angular: PathLimits,
     /// HMC's path stop after a member's trouble (`fault_deceleration`); None: the path is
     /// dropped (NMC, HIMC).
     fault_deceleration: Option<f64>,
@@ -124,6 +141,8 @@ pub struct Group {
     waiting: Option<Wait>,
     /// An aborting motion waiting for the path to come to rest.
     pending: Option<PendingMotion>,
+    /// A jog in progress (the planner is idle meanwhile).
+    jog: Option<jog::Jog>,
     last_error: Option<crate::command::ErrorKind>,
     fault: Option<GroupFault>,
     /// Sum of the members' parameter versions when their limits were last given to the planner.
@@ -176,13 +195,65 @@ impl Group {
         }
     }
 
+    /// The angular profile a motion of this group is held to, if it has orientation
+    /// coordinates.
+    fn angular_profile(&self) -> Option<segment::AngularProfile> {
+        if self.orientation.is_empty() {
+            return None;
+        }
+        let mut coordinates = [false; MAX_AXES];
+        for k in self.orientation.iter() {
+            if let Some(c) = coordinates.get_mut(k) {
+                *c = true;
+            }
+        }
+        Some(segment::AngularProfile {
+            coordinates,
+            limits: self.angular,
+        })
+    }
+
+    /// The result axis's `speed`, if the group has a result axis and it is a positive number.
+    fn result_speed(&self, axes: &[Axis]) -> Option<f64> {
+        let axis = axes.get(self.result_axis()? as usize)?;
+        let speed = axis.params().get(ParamId::Speed);
+        (speed > 0.0 && speed.is_finite()).then_some(speed)
+    }
+
+    /// The planner's override: the group's, times the live change of the result axis's `speed`
+    /// since the running motion took its velocity from it (HMC: the result axis's Speed is
+    /// editable live, digest 000 §4.3, TV 3 for a single axis). Changes only when one of them
+    /// does; the planner then re-plans the running motion from where it is.
+    fn follow_live_speed(&mut self, axes: &[Axis]) {
+        let live = match (self.speed_basis, self.result_speed(axes)) {
+            (Some(basis), Some(now)) => now / basis,
+            _ => 1.0,
+        };
+        let factor = (self.override_factor * live).min(commands::MAX_OVERRIDE);
+        if factor != self.planner.override_factor() {
+            self.planner.set_override(factor);
+        }
+    }
+
     pub fn state(&self) -> GroupState {
         self.state
     }
 
-    /// Commanded velocity along the path.
+    /// Commanded velocity along the path; during a jog, the signed velocity along the jog
+    /// coordinate.
     pub fn path_velocity(&self) -> f64 {
-        self.planner.state().path_velocity
+        self.path_motion().0
+    }
+
+    /// Path velocity and acceleration: the planner's, or a jog's along its coordinate.
+    fn path_motion(&self) -> (f64, f64) {
+        match &self.jog {
+            Some(jog) => (jog.velocity(), jog.acceleration()),
+            None => {
+                let st = self.planner.state();
+                (st.path_velocity, st.path_acceleration)
+            }
+        }
     }
 
     /// Ordinal of the motion being executed (counted from 1 since the group was created).
@@ -233,7 +304,7 @@ impl Group {
     /// The status record, with `in_position(axis)` for each member (a snapshot passes the
     /// records it has just assembled).
     fn status_with(&self, axes: &[Axis], in_position: impl Fn(AxisIndex) -> bool) -> GroupStatus {
-        let st = self.planner.state();
+        let (path_velocity, path_acceleration) = self.path_motion();
         let mut members = [0; MAX_AXES];
         for (out, &a) in members.iter_mut().zip(&self.members) {
             *out = a;
@@ -259,9 +330,12 @@ impl Group {
             ),
             interference: self.interference.0,
             interference_distance: self.interference.1,
-            path_velocity: st.path_velocity,
-            path_acceleration: st.path_acceleration,
-            current_command: self.running.or(self.waiting.as_ref().map(|w| w.id)),
+            path_velocity,
+            path_acceleration,
+            current_command: self
+                .running
+                .or(self.waiting.as_ref().map(|w| w.id))
+                .or(self.jog.as_ref().map(|j| j.id)),
             segment: self.segment,
             user_segment: self.user_segment,
             queue_used: used,
@@ -281,7 +355,10 @@ impl Group {
 
     /// State of a command still owned by this group.
     fn queued_state(&self, id: CommandId) -> Option<CommandState> {
-        if self.running == Some(id) || self.waiting.as_ref().is_some_and(|w| w.id == id) {
+        if self.running == Some(id)
+            || self.waiting.as_ref().is_some_and(|w| w.id == id)
+            || self.jog.as_ref().is_some_and(|j| j.id == id)
+        {
             return Some(CommandState::Running);
         }
         if self.queue.contains(id) || self.pending.as_ref().is_some_and(|p| p.id == id) {

@@ -252,7 +252,8 @@ impl Groups {
                     if closing[o] > 0.0 {
                         if let Some(g) = self.groups.get_mut(index[o]) {
                             if g.state == GroupState::Moving {
-                                let _ = g.halt(Some(g.defaults.deceleration));
+                                let _ =
+                                    g.halt(Some(g.defaults.deceleration), g.defaults.deceleration);
                                 p.halted_other = true;
                                 p.retreat_done = false;
                             }

@@ -14,6 +14,9 @@ pub(super) enum Item {
     Motion {
         user_segment: u32,
         length_ratio: f64,
+        /// The result axis's `speed` this motion's velocity was taken from (none given, HMC):
+        /// a live change of it changes the path speed (digest 000 §4.3).
+        speed_basis: Option<f64>,
     },
     /// Set a digital output as the path passes (NMC CrdBufDO).
     SetOutput { channel: u16, value: bool },

@@ -68,6 +68,28 @@ pub(super) struct PathRequest {
     /// The group coordinates that count in the path length (all but the motion's
     /// `independent` ones).
     pub counted: Counted,
+    /// The group's orientation coordinates and their angular profile (HIMC
+    /// SetGrpAngMotionProfile), set by the group when it takes the motion.
+    pub angular: Option<AngularProfile>,
+    /// The motion gives its own velocity (else the group's default, live with a result axis).
+    pub velocity_given: bool,
+}
+
+/// HIMC's angular TCP profile (digest 004 §8.3.7): the orientation coordinates of a group
+/// (A, B, C) and the limits their change is held to.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct AngularProfile {
+    pub coordinates: Counted,
+    pub limits: PathLimits,
+}
+
+/// What a motion's segment gives the planner and the group: the counted share of its length
+/// (the result axis's travel, stops over the counted coordinates) and its limits along the
+/// path.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Share {
+    pub ratio: f64,
+    pub limits: PathLimits,
 }
 
 /// Which group coordinates count in a motion's path length: its velocity, acceleration,
@@ -121,8 +143,26 @@ pub(super) fn length_ratio(
     segment: &Segment,
     counted: &Counted,
 ) -> Result<f64, EngineError> {
+    let ratio = counted_share(group, segment, counted)?;
+    if !(ratio > 0.0 && ratio.is_finite()) {
+        return Err(EngineError::InvalidPath {
+            group,
+            reason: "the counted coordinates do not move: the path length would be 0".into(),
+        });
+    }
+    Ok(ratio)
+}
+
+/// [`length_ratio`], 0 allowed (the counted coordinates stand still). Where every other
+/// coordinate stands still the whole length counts, whatever the segment.
+fn counted_share(group: GroupId, segment: &Segment, counted: &Counted) -> Result<f64, EngineError> {
     let dims = segment.dims();
-    if counted.iter().take(dims).all(|&c| c) {
+    let others_still = counted
+        .iter()
+        .take(dims)
+        .enumerate()
+        .all(|(k, &c)| c || segment.max_tangent(k) == 0.0);
+    if others_still {
         return Ok(1.0);
     }
     let invalid = |reason: &str| EngineError::InvalidPath {
@@ -169,17 +209,16 @@ pub(super) fn length_ratio(
         }
         Segment::Curve(_) => {
             return Err(invalid(
-                "independent coordinates are taken on lines and circular arcs only",
+                "independent and orientation coordinates move on lines and circular arcs only",
             ))
         }
     };
     let ratio = part / length;
-    if !(ratio > 0.0 && ratio.is_finite()) {
-        return Err(invalid(
-            "the counted coordinates do not move: the path length would be 0",
-        ));
-    }
-    Ok(ratio.min(1.0))
+    Ok(if ratio.is_finite() {
+        ratio.min(1.0)
+    } else {
+        0.0
+    })
 }
 
 /// An aborting motion accepted while the path was moving: it starts when the path is at rest.
@@ -307,11 +346,13 @@ fn request(
     Ok(PathRequest {
         geometry,
         limits: path_limits(&k, defaults)?,
+        velocity_given: k.velocity.is_some(),
         join,
         transition: transition_of(transition)?,
         aborting,
         user_segment: user_segment.unwrap_or(0),
         counted,
+        angular: None,
         frame: FrameMap::default(),
     })
 }
@@ -613,6 +654,26 @@ pub(super) fn circular_angle(
     )
 }
 
+/// `limits` over coordinates that make `ratio` of the path length, along the whole path.
+fn along_path(limits: &PathLimits, ratio: f64) -> PathLimits {
+    PathLimits {
+        velocity: limits.velocity / ratio,
+        acceleration: limits.acceleration / ratio,
+        deceleration: limits.deceleration / ratio,
+        jerk: limits.jerk / ratio,
+    }
+}
+
+/// The smaller of each limit.
+fn smaller(a: &PathLimits, b: &PathLimits) -> PathLimits {
+    PathLimits {
+        velocity: a.velocity.min(b.velocity),
+        acceleration: a.acceleration.min(b.acceleration),
+        deceleration: a.deceleration.min(b.deceleration),
+        jerk: a.jerk.min(b.jerk),
+    }
+}
+
 /// Largest |angle| of `move_circular_angle`, in degrees.
 const MAX_ANGLE_DEGREES: f64 = 1e6;
 
@@ -622,13 +683,7 @@ impl PathRequest {
     /// whole path they are larger by 1 / ratio (HMC MoveND: `Speed(i) = L(i)/D · Speed`, D over
     /// the path axes only). The members' own limits still cap the path.
     pub fn limits_along_path(&self, length_ratio: f64) -> PathLimits {
-        let l = &self.limits;
-        PathLimits {
-            velocity: l.velocity / length_ratio,
-            acceleration: l.acceleration / length_ratio,
-            deceleration: l.deceleration / length_ratio,
-            jerk: l.jerk / length_ratio,
-        }
+        along_path(&self.limits, length_ratio)
     }
 
     /// The segment from `start` (group coordinates) and its counted length per path length
@@ -641,14 +696,62 @@ impl PathRequest {
         group: GroupId,
         machine_start: Point,
         dims: usize,
-    ) -> Result<(Segment, f64), EngineError> {
+    ) -> Result<(Segment, Share), EngineError> {
         let start = self.frame.point_from_machine(&machine_start);
         let built = self.segment_in_frame(group, start, dims)?;
         let segment = self
             .frame
             .segment_to_machine(group, machine_start, built, dims)?;
-        let ratio = length_ratio(group, &segment, &self.counted)?;
-        Ok((segment, ratio))
+        let share = self.share(group, &segment)?;
+        Ok((segment, share))
+    }
+
+    /// The counted share of `segment` and its limits along the path. With an angular profile
+    /// (HIMC, digest 004 §8.3.7) the linear limits hold over the counted coordinates that are
+    /// not orientation, the angular ones over the orientation coordinates, and the path takes
+    /// the smaller of each limit, so neither profile is exceeded: the move lasts at least as
+    /// long as the longer of the two, exactly as long where one binds every limit; a move that
+    /// only turns runs on the angular profile alone (docs/decisions.md, "Group jog and angular
+    /// profile").
+    fn share(&self, group: GroupId, segment: &Segment) -> Result<Share, EngineError> {
+        let Some(angular) = &self.angular else {
+            let ratio = length_ratio(group, segment, &self.counted)?;
+            return Ok(Share {
+                ratio,
+                limits: self.limits_along_path(ratio),
+            });
+        };
+        let mut linear_coordinates = self.counted;
+        let mut angular_coordinates = self.counted;
+        for ((l, a), &o) in linear_coordinates
+            .iter_mut()
+            .zip(angular_coordinates.iter_mut())
+            .zip(&angular.coordinates)
+        {
+            *l &= !o;
+            *a &= o;
+        }
+        let linear = counted_share(group, segment, &linear_coordinates)?;
+        let turning = counted_share(group, segment, &angular_coordinates)?;
+        let limits = match (linear > 0.0, turning > 0.0) {
+            (true, true) => smaller(
+                &self.limits_along_path(linear),
+                &along_path(&angular.limits, turning),
+            ),
+            (true, false) => self.limits_along_path(linear),
+            (false, true) => along_path(&angular.limits, turning),
+            (false, false) => {
+                return Err(EngineError::InvalidPath {
+                    group,
+                    reason: "the counted coordinates do not move: the path length would be 0"
+                        .into(),
+                })
+            }
+        };
+        Ok(Share {
+            ratio: if linear > 0.0 { linear } else { turning },
+            limits,
+        })
     }
 
     /// The segment from `start`, all in the command's coordinate system.

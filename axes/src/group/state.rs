@@ -39,6 +39,15 @@ impl Group {
     /// Motion and buffered commands are queued in Standby, Moving and Halted (PLCopen: a
     /// disabled, stopping or faulted group takes no motion).
     pub(super) fn require_accepts_motion(&self) -> Result<(), EngineError> {
+        if self.jog.is_some() {
+            // A jog is not a path: it is stopped before a program runs (docs/decisions.md,
+            // "Group jog").
+            return Err(EngineError::GroupState {
+                group: self.id,
+                state: self.state,
+                action: "take path motion while it jogs (stop the jog first)",
+            });
+        }
         self.require(
             &[GroupState::Standby, GroupState::Moving, GroupState::Halted],
             "take motion",

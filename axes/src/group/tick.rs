@@ -51,11 +51,16 @@ impl Group {
         if self.state == GroupState::ErrorStop {
             return;
         }
+        if self.jog.is_some() {
+            self.step_jog(env);
+            return;
+        }
         self.start_pending(env);
         if self.is_idle() {
             self.settle(env);
             return;
         }
+        self.follow_live_speed(env.axes);
         let mut events = std::mem::take(&mut self.events);
         events.clear();
         let state = *self.planner.step(&mut events);
@@ -82,7 +87,10 @@ impl Group {
 
     /// Nothing queued, waited for or pending, and the path at rest.
     pub(super) fn is_idle(&self) -> bool {
-        self.planner.is_idle() && self.waiting.is_none() && self.pending.is_none()
+        self.planner.is_idle()
+            && self.waiting.is_none()
+            && self.pending.is_none()
+            && self.jog.is_none()
     }
 
     /// Give the planner the members' limits again when one of their parameters changed (each
@@ -174,14 +182,7 @@ impl Group {
             v: state.path_velocity * ratio,
             a: state.path_acceleration * ratio,
         };
-        let a = r.axis;
-        let (mut ctx, axes) = env.context();
-        match axes.get_mut(a as usize) {
-            Some(axis) => axis
-                .feed(&mut ctx, Feed::Follow(setpoint))
-                .map_err(|e| (a, e)),
-            None => Ok(()),
-        }
+        follow(env, r.axis, setpoint)
     }
 
     /// Feed member `a` (group coordinate `k`) this tick's point of the path.
@@ -320,12 +321,14 @@ impl Group {
                         Item::Motion {
                             user_segment,
                             length_ratio,
+                            speed_basis,
                         },
                     ..
                 }) = self.queue.get(id)
                 {
                     self.user_segment = *user_segment;
                     self.length_ratio = *length_ratio;
+                    self.speed_basis = *speed_basis;
                 }
             }
             PathEvent::Done { tag } => {
@@ -474,8 +477,8 @@ impl Group {
     ) -> Result<(), EngineError> {
         self.sync_position(env)?;
         let start = self.planner.queue_end();
-        let (segment, length_ratio) = request.segment(self.id, start, self.dims())?;
-        self.enqueue_segment(env, id, segment, length_ratio, request)
+        let (segment, share) = request.segment(self.id, start, self.dims())?;
+        self.enqueue_segment(env, id, segment, share, request)
     }
 
     /// [`Group::enqueue`] of a segment (and its counted length share) built from the queue's
@@ -485,14 +488,19 @@ impl Group {
         env: &Env,
         id: CommandId,
         segment: path::geometry::Segment,
-        length_ratio: f64,
+        share: super::segment::Share,
         request: &super::segment::PathRequest,
     ) -> Result<(), EngineError> {
         self.refresh_limits(env.axes);
+        let speed_basis = if request.velocity_given {
+            None
+        } else {
+            self.result_speed(env.axes)
+        };
         self.planner
             .push_motion(Motion {
                 segment,
-                limits: request.limits_along_path(length_ratio),
+                limits: share.limits,
                 join: request.join,
                 transition: request.transition,
                 tag: u64::from(id),
@@ -502,7 +510,8 @@ impl Group {
             id,
             item: Item::Motion {
                 user_segment: request.user_segment,
-                length_ratio,
+                length_ratio: share.ratio,
+                speed_basis,
             },
         });
         Ok(())
@@ -567,6 +576,9 @@ impl Group {
         if let Some(p) = self.pending.take() {
             env.ledger.finish(p.id, CommandState::Aborted);
         }
+        if let Some(jog) = self.jog.take() {
+            env.ledger.finish(jog.id, running_state);
+        }
     }
 
     /// The whole group stops and goes to ErrorStop with `cause` (issue 11 item 3). The path is
@@ -601,6 +613,21 @@ impl Group {
                 let _ = axis.stop(&mut ctx, StopMode::Emergency, None);
             }
         }
+    }
+}
+
+/// Feed axis `a` (a member or the result axis) `setpoint`; a refusal names the axis.
+pub(super) fn follow(
+    env: &mut Env,
+    a: u16,
+    setpoint: MotionState,
+) -> Result<(), (u16, EngineError)> {
+    let (mut ctx, axes) = env.context();
+    match axes.get_mut(a as usize) {
+        Some(axis) => axis
+            .feed(&mut ctx, Feed::Follow(setpoint))
+            .map_err(|e| (a, e)),
+        None => Ok(()),
     }
 }
 

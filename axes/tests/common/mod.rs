@@ -4,9 +4,9 @@
 
 use axes::command::{
     ArcDirection, AxisInput, CircleMode, Command, CommandState, Enable, ForceInput,
-    GetCommandState, GetParameter, GroupBufferMode, GroupCreate, GroupEnable, MoveAbsolute,
-    MoveCircularAbsolute, MoveLinearAbsolute, MoveRelative, MoveVelocity, Reply, SetParameter,
-    TransitionMode,
+    GetCommandState, GetParameter, GroupBufferMode, GroupCreate, GroupEnable, GroupParameter,
+    GroupSetParameter, MoveAbsolute, MoveCircularAbsolute, MoveLinearAbsolute, MoveRelative,
+    MoveVelocity, Reply, SetParameter, TransitionMode,
 };
 use axes::config::{AxisConfig, HomeSwitchConfig, SwitchConfig};
 use axes::status::{GroupState, GroupStatus};
@@ -214,10 +214,36 @@ pub fn with_group(mut e: Engine, members: &[u16]) -> Engine {
             queue_capacity: None,
             lookahead: None,
             result_axis: None,
+            orientation: Default::default(),
         }),
     );
     ok(&mut e, Command::from(GroupEnable { group: 1 }));
     e
+}
+
+/// Set group parameter `name` of group 1.
+pub fn group_parameter(e: &mut Engine, name: GroupParameter, value: f64) {
+    ok(
+        e,
+        Command::from(GroupSetParameter {
+            group: 1,
+            name,
+            value,
+        }),
+    );
+}
+
+/// A free mm axis (no switches, no following-error check) whose own limits (`speed`, `accel`
+/// and `decel` = `accel`) are far above the path's in the group tests.
+pub fn fast_mm_axis(speed: f64, accel: f64) -> AxisConfig {
+    free_linear_axis(
+        1000.0,
+        &[
+            (ParamId::Speed, speed),
+            (ParamId::Accel, accel),
+            (ParamId::Decel, accel),
+        ],
+    )
 }
 
 /// A buffered straight group motion to `position`, the group's own limits, no transition.

@@ -555,6 +555,8 @@ fn check_command_refs(steps: &[Step]) -> Result<(), (String, String)> {
                             | GroupCommand::WaitInput(_)
                             | GroupCommand::WaitPosition(_)
                             | GroupCommand::AxisMove(_)
+                            | GroupCommand::Jog(_)
+                            | GroupCommand::JogAxis(_)
                     )
             ) {
                 return Err((

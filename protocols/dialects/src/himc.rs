@@ -1,9 +1,11 @@
 //! HIWIN HIMC (digest 004): the `Is*` axis predicates, the 0xCCNNVVVV axis error codes, and the
-//! HMPL units (mm or deg, ms).
+//! HMPL units (mm or deg, ms); [`group`]: the group motion profiles' ranges and errors.
 
 use axes::command::{EngineError, ErrorKind};
 use axes::param::{ParamId, Unit};
 use axes::{AxisFlags, AxisState, AxisStatus};
+
+pub mod group;
 
 /// An axis status function of HMPL chapter 5.4, `int Is…(int axis_id)` (digest 004 §2.4 "5.4
 /// Axis status").
