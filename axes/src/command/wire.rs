@@ -20,6 +20,9 @@ use super::{
     MoveLinearRelative, MoveSpline,
 };
 use super::{
+    CamIn, CamOut, CamTableDefine, CouplingCommand, GearIn, GearOut, GearSetRatio,
+};
+use super::{
     GroupDeleteTransform, GroupSetCoordinateSystem, GroupSetCoordinateTransform,
     GroupSetRotaryTransform, GroupSetXyzaTransform, MoveProtectionDisable, MoveProtectionEnable,
 };
@@ -95,6 +98,13 @@ pub(super) enum Command {
     MoveProtectionEnable(MoveProtectionEnable),
     MoveProtectionDisable(MoveProtectionDisable),
     MoveCircularAngle(MoveCircularAngle),
+    // Issue 12, couplings.
+    GearIn(GearIn),
+    GearSetRatio(GearSetRatio),
+    GearOut(GearOut),
+    CamTable(CamTableDefine),
+    CamIn(CamIn),
+    CamOut(CamOut),
 }
 
 impl From<Command> for super::Command {
@@ -191,6 +201,12 @@ impl From<Command> for super::Command {
             Command::MoveProtectionDisable(c) => {
                 super::Command::Group(GroupCommand::ProtectionDisable(c))
             }
+            Command::GearIn(c) => super::Command::Coupling(CouplingCommand::GearIn(c)),
+            Command::GearSetRatio(c) => super::Command::Coupling(CouplingCommand::GearSetRatio(c)),
+            Command::GearOut(c) => super::Command::Coupling(CouplingCommand::GearOut(c)),
+            Command::CamTable(c) => super::Command::Coupling(CouplingCommand::CamTable(c)),
+            Command::CamIn(c) => super::Command::Coupling(CouplingCommand::CamIn(c)),
+            Command::CamOut(c) => super::Command::Coupling(CouplingCommand::CamOut(c)),
         }
     }
 }
@@ -289,7 +305,12 @@ impl From<super::Command> for Command {
             super::Command::Group(GroupCommand::ProtectionDisable(c)) => {
                 Command::MoveProtectionDisable(c)
             }
-            super::Command::Coupling(c) => match c {},
+            super::Command::Coupling(CouplingCommand::GearIn(c)) => Command::GearIn(c),
+            super::Command::Coupling(CouplingCommand::GearSetRatio(c)) => Command::GearSetRatio(c),
+            super::Command::Coupling(CouplingCommand::GearOut(c)) => Command::GearOut(c),
+            super::Command::Coupling(CouplingCommand::CamTable(c)) => Command::CamTable(c),
+            super::Command::Coupling(CouplingCommand::CamIn(c)) => Command::CamIn(c),
+            super::Command::Coupling(CouplingCommand::CamOut(c)) => Command::CamOut(c),
         }
     }
 }

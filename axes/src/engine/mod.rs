@@ -12,6 +12,7 @@ use crate::command::{
     WriteAnalogOutput, WriteDigitalOutput, WriteObject,
 };
 use crate::config::{ConfigError, EngineConfig, InputBinding};
+use crate::coupling::{Couplings, Env as CouplingEnv};
 use crate::group::{Env as GroupEnv, Groups};
 use crate::homing::HomingSpec;
 use crate::od::Value;
@@ -115,6 +116,8 @@ pub struct Engine {
     /// `enable_all` left engine-mastered drives walking to Operation enabled: once no drive
     /// walks there any more, the groups are enabled as `enable_all` enables them.
     groups_await_power: bool,
+    /// Gears and cams (issue 12): stage 3 steps masters before their slaves.
+    couplings: Couplings,
     /// Stage 2's planners, in the order they were added.
     planners: Vec<Box<dyn MachinePlanner>>,
     /// The setpoints of the planner being run (reused; no allocation per tick).
@@ -170,6 +173,7 @@ impl Engine {
             drive_commands: Vec::new(),
             groups: Groups::new(config.groups.clone()),
             groups_await_power: false,
+            couplings: Couplings::default(),
             planners: Vec::new(),
             feeds: Feeds::default(),
         })
@@ -275,9 +279,34 @@ impl Engine {
         self.groups.get(id).map(|g| g.status(&self.axes))
     }
 
-    /// Issue 12's coupling commands arrive here; there are none yet.
+    /// A gear or cam command (issue 12), applied to the coupling registry with the axes and
+    /// the inputs it may need.
     fn apply_coupling_command(&mut self, command: CouplingCommand) -> Result<Reply, EngineError> {
-        match command {}
+        let Engine {
+            axes,
+            io,
+            ledger,
+            tick,
+            period,
+            couplings,
+            ..
+        } = self;
+        let mut ctx = Context {
+            tick: *tick,
+            di: &io.image.di,
+            ledger,
+        };
+        let mut env = CouplingEnv {
+            axes,
+            ctx: &mut ctx,
+            period: *period,
+        };
+        couplings.apply(&mut env, command)
+    }
+
+    /// The gears and cams.
+    pub fn couplings(&self) -> &Couplings {
+        &self.couplings
     }
 
     /// Power commands on an axis whose drive the engine masters go through the drive's state
@@ -588,15 +617,43 @@ impl Engine {
     /// Stage 3, the axes. Reads the digital inputs (stage 1) and each axis's own state and
     /// source; writes each axis's command, output, plant, encoder, switches, supervision and
     /// command progress for this tick, and the ledger of finished commands.
+    ///
+    /// With couplings (issue 12) the axes step in the couplings' order instead, masters before
+    /// their slaves, and each slave is fed from its master just before it steps: a slave
+    /// follows its master's state of this same tick (`crate::coupling`).
     fn step_axes(&mut self) {
+        let Engine {
+            axes,
+            io,
+            ledger,
+            tick,
+            period,
+            couplings,
+            ..
+        } = self;
         let mut ctx = Context {
-            tick: self.tick,
-            di: &self.io.image.di,
-            ledger: &mut self.ledger,
+            tick: *tick,
+            di: &io.image.di,
+            ledger,
         };
-        for axis in &mut self.axes {
-            axis.step(&mut ctx);
+        if couplings.is_empty() {
+            for axis in axes.iter_mut() {
+                axis.step(&mut ctx);
+            }
+            return;
         }
+        for i in 0..couplings.order().len() {
+            let Some(&(index, slot)) = couplings.order().get(i) else {
+                break;
+            };
+            if let Some(slot) = slot {
+                couplings.drive_slave(slot, axes, &mut ctx, *period);
+            }
+            if let Some(axis) = axes.get_mut(index as usize) {
+                axis.step(&mut ctx);
+            }
+        }
+        couplings.sweep(axes.len());
     }
 
     /// Stage 4, drives and fieldbus. Each drive reads its axis's status after stage 3 and the
@@ -700,6 +757,7 @@ impl Engine {
         }
         self.groups
             .status_into(&self.axes, &snapshot.axes, &mut snapshot.groups);
+        self.couplings.status_into(&mut snapshot.couplings);
         if snapshot.io_version != self.io.version {
             snapshot.io.clone_from(&self.io.image);
             snapshot.io_version = self.io.version;
