@@ -444,12 +444,20 @@ impl Couplings {
         }
     }
 
-    /// After stage 3: drop the couplings that ended this tick (rare: no work otherwise).
-    pub(crate) fn sweep(&mut self, axes: usize) {
-        if self.list.iter().any(|c| c.ended) {
-            self.list.retain(|c| !c.ended);
-            self.reorder(axes);
+    /// After stage 3: drop the couplings that ended this tick and let their slaves go (a
+    /// slave still fed ramps down with its `decel`; one that ended at rest simply stops being
+    /// fed). Rare: no work otherwise.
+    pub(crate) fn sweep(&mut self, axes: &mut [Axis], ctx: &mut Context) {
+        if !self.list.iter().any(|c| c.ended) {
+            return;
         }
+        for c in self.list.iter().filter(|c| c.ended) {
+            if let Some(axis) = axes.get_mut(c.slave as usize) {
+                let _ = axis.feed(ctx, Feed::Release);
+            }
+        }
+        self.list.retain(|c| !c.ended);
+        self.reorder(axes.len());
     }
 
     /// The couplings' records, by slave.

@@ -653,7 +653,7 @@ impl Engine {
                 axis.step(&mut ctx);
             }
         }
-        couplings.sweep(axes.len());
+        couplings.sweep(axes, &mut ctx);
     }
 
     /// Stage 4, drives and fieldbus. Each drive reads its axis's status after stage 3 and the
