@@ -51,6 +51,7 @@ pub struct GearOut {
 }
 
 /// How a cam table is interpolated between its points.
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum CamInterpolation {
@@ -66,6 +67,7 @@ pub enum CamInterpolation {
 
 /// How the slave's velocity (its ratio to the master's) runs through an NMC Follow segment
 /// (NMC_MtFollowPushData `type`, the PT rules with master travel for time).
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum FollowSegment {
@@ -81,10 +83,13 @@ pub enum FollowSegment {
 }
 
 /// One point of a cam table: master position → slave position.
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CamPoint {
+    /// Master position (the table's coordinate).
     pub master: f64,
+    /// Slave position at that master position.
     pub slave: f64,
     /// With `follow` interpolation: the segment that ends at this point.
     #[serde(default, skip_serializing_if = "is_normal")]
@@ -98,10 +103,13 @@ fn is_normal(s: &FollowSegment) -> bool {
 /// Define (or replace) cam table `table`: at least 2 points, master positions strictly
 /// increasing. A table a running cam uses cannot be replaced (HMC: "arrays must not be modified
 /// while the cam runs"). JSON `type`: `cam_table`.
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CamTableDefine {
+    /// The table's number, as `cam_in` names it.
     pub table: u16,
+    /// At least 2 points, master positions strictly increasing (at most 4096).
     pub points: Vec<CamPoint>,
     #[serde(default)]
     pub interpolation: CamInterpolation,

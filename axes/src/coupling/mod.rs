@@ -54,6 +54,30 @@ struct Coupling {
 }
 
 impl Coupling {
+    fn status(&self) -> CouplingStatus {
+        let (kind, ratio, table, table_index, cycle) = match &self.law {
+            Law::Gear(g) => (CouplingKind::Gear, g.ratio(), None, 0, 0),
+            Law::Cam(cam) => (
+                CouplingKind::Cam,
+                0.0,
+                Some(cam.table_id),
+                cam.span(),
+                cam.cycle(),
+            ),
+        };
+        CouplingStatus {
+            slave: self.slave,
+            master: self.master,
+            kind,
+            master_source: self.source,
+            phase: self.phase(),
+            ratio,
+            table,
+            table_index,
+            cycle,
+        }
+    }
+
     fn phase(&self) -> CouplingPhase {
         match &self.law {
             Law::Gear(g) => g.phase(),
@@ -274,7 +298,8 @@ impl Couplings {
         Ok(Reply::Done)
     }
 
-    fn define_table(&mut self, c: CamTableDefine) -> Result<Reply, EngineError> {
+    /// Define (or replace) a cam table: `cam_table`, and the config's `[[cam_tables]]`.
+    pub(crate) fn define_table(&mut self, c: CamTableDefine) -> Result<Reply, EngineError> {
         if let Some(user) = self
             .list
             .iter()
@@ -463,36 +488,12 @@ impl Couplings {
     /// The couplings' records, by slave.
     pub fn status_into(&self, out: &mut Vec<CouplingStatus>) {
         out.clear();
-        out.extend(self.list.iter().map(|c| {
-            let (kind, ratio, table, table_index, cycle) = match &c.law {
-                Law::Gear(g) => (CouplingKind::Gear, g.ratio(), None, 0, 0),
-                Law::Cam(cam) => (
-                    CouplingKind::Cam,
-                    0.0,
-                    Some(cam.table_id),
-                    cam.span(),
-                    cam.cycle(),
-                ),
-            };
-            CouplingStatus {
-                slave: c.slave,
-                master: c.master,
-                kind,
-                master_source: c.source,
-                phase: c.phase(),
-                ratio,
-                table,
-                table_index,
-                cycle,
-            }
-        }));
+        out.extend(self.list.iter().map(Coupling::status));
     }
 
     /// The coupling record of `slave`, if it is one.
     pub fn status_of(&self, slave: AxisIndex) -> Option<CouplingStatus> {
-        let mut v = Vec::with_capacity(self.list.len());
-        self.status_into(&mut v);
-        v.into_iter().find(|s| s.slave == slave)
+        self.find(slave).map(Coupling::status)
     }
 }
 

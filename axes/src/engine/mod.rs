@@ -150,6 +150,18 @@ impl Engine {
                 controlword: 0,
             });
         }
+        let mut couplings = Couplings::default();
+        for (i, table) in config.cam_tables.iter().enumerate() {
+            if config.cam_tables.iter().take(i).any(|t| t.table == table.table) {
+                return Err(ConfigError::new(
+                    format!("cam_tables[{i}].table"),
+                    format!("table {} is defined twice", table.table),
+                ));
+            }
+            couplings
+                .define_table(table.clone())
+                .map_err(|e| ConfigError::new(format!("cam_tables[{i}]"), e.to_string()))?;
+        }
         let io = &config.io;
         Ok(Engine {
             period: config.period,
@@ -173,7 +185,7 @@ impl Engine {
             drive_commands: Vec::new(),
             groups: Groups::new(config.groups.clone()),
             groups_await_power: false,
-            couplings: Couplings::default(),
+            couplings,
             planners: Vec::new(),
             feeds: Feeds::default(),
         })
