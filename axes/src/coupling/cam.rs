@@ -55,8 +55,9 @@ pub struct Cam {
     slave_origin: f64,
     /// The period the master is in (0 = the first).
     cycle: i64,
-    /// The table span the master is in (HMC_GetCamMasterPosIndex).
-    span: u32,
+    /// The table span the master is in (HMC_GetCamMasterPosIndex); where the next sample's
+    /// search starts.
+    span: usize,
 }
 
 impl Cam {
@@ -91,7 +92,7 @@ impl Cam {
     }
 
     pub fn span(&self) -> u32 {
-        self.span
+        u32::try_from(self.span).unwrap_or(u32::MAX)
     }
 
     pub fn phase(&self) -> CouplingPhase {
@@ -133,7 +134,7 @@ impl Cam {
         self.phase = CouplingPhase::InSync;
         self.slave_origin = 0.0;
         let x = self.coordinate(master);
-        let (y, _, _) = self.value(x);
+        let y = self.value(x);
         self.slave_origin = if self.slave_absolute {
             0.0
         } else {
@@ -163,24 +164,17 @@ impl Cam {
         }
     }
 
-    /// The table's value at x with the periods added, its slope dY/dx and curvature, and
-    /// the period index.
-    fn value(&self, x: f64) -> (f64, f64, f64) {
+    /// The table's value at x, with the periods' rise added on a periodic cam (the same sums
+    /// as [`Cam::step`]).
+    fn value(&self, x: f64) -> f64 {
         let (x0, x1) = self.table.master_range();
         if !self.periodic {
-            let s = self.table.sample(x);
-            return (s.y, s.dy, s.ddy);
+            return self.table.sample(x).y;
         }
         let (y0, y1) = self.table.slave_range();
         let period = x1 - x0;
         let k = ((x - x0) / period).floor();
-        let s = self.table.sample(x - k * period);
-        (s.y + k * (y1 - y0), s.dy, s.ddy)
-    }
-
-    fn period_of(&self, x: f64) -> i64 {
-        let (x0, x1) = self.table.master_range();
-        ((x - x0) / (x1 - x0)).floor() as i64
+        self.table.sample(x - k * period).y + k * (y1 - y0)
     }
 
     /// The slave position for table value `y`.
@@ -195,34 +189,34 @@ impl Cam {
         }
         let x = self.coordinate(master.p);
         let (x0, x1) = self.table.master_range();
+        let (y0, y1) = self.table.slave_range();
         let at_rest = |p: f64| MotionState { p, v: 0.0, a: 0.0 };
-        if !self.periodic && (x < x0 || x > x1) {
+        let (k, wrapped) = if self.periodic {
+            let period = x1 - x0;
+            let k = ((x - x0) / period).floor();
+            (k, x - k * period)
+        } else if x < x0 || x > x1 {
             // HMC single cam: leaving the table cancels the cam; the slave stands at the end.
-            let (y, _, _) = self.value(x.clamp(x0, x1));
-            return CamStep::End(at_rest(self.slave_at(y)));
-        }
+            let s = self.table.sample(x.clamp(x0, x1));
+            return CamStep::End(at_rest(self.slave_at(s.y)));
+        } else {
+            (0.0, x)
+        };
         if self.periodic {
-            self.cycle = self.period_of(x);
+            self.cycle = k as i64;
             if self.loop_count > 0 && self.cycle >= i64::from(self.loop_count) {
                 // NMC loop count / HMC CancelREPCam: end exactly at the last period's end.
-                let (y0, y1) = self.table.slave_range();
                 let y = y0 + f64::from(self.loop_count) * (y1 - y0);
                 return CamStep::End(at_rest(self.slave_at(y)));
             }
         }
-        let (y, dy, ddy) = self.value(x);
-        let wrapped = if self.periodic {
-            x - self.cycle as f64 * (x1 - x0)
-        } else {
-            x
-        };
-        self.span = u32::try_from(self.table.span_of(wrapped)).unwrap_or(u32::MAX);
+        let s = self.table.sample_from(wrapped, &mut self.span);
         let xv = master.v / self.master_scaling;
         let xa = master.a / self.master_scaling;
         CamStep::Follow(MotionState {
-            p: self.slave_at(y),
-            v: self.slave_scaling * dy * xv,
-            a: self.slave_scaling * (ddy * xv * xv + dy * xa),
+            p: self.slave_at(s.y + k * (y1 - y0)),
+            v: self.slave_scaling * s.dy * xv,
+            a: self.slave_scaling * (s.ddy * xv * xv + s.dy * xa),
         })
     }
 

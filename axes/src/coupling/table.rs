@@ -114,7 +114,23 @@ impl CamTable {
 
     /// The table at `x`, clamped to its master range.
     pub fn sample(&self, x: f64) -> CamSample {
-        let i = self.span_of(x);
+        self.sample_span(self.span_of(x), x)
+    }
+
+    /// [`CamTable::sample`] starting from the span of the last sample (`span`, updated): O(1)
+    /// while the master stays in it, a binary search when it leaves.
+    pub fn sample_from(&self, x: f64, span: &mut usize) -> CamSample {
+        let inside = match (self.xs.get(*span), self.xs.get(*span + 1)) {
+            (Some(&a), Some(&b)) => a <= x && x < b,
+            _ => false,
+        };
+        if !inside {
+            *span = self.span_of(x);
+        }
+        self.sample_span(*span, x)
+    }
+
+    fn sample_span(&self, i: usize, x: f64) -> CamSample {
         let (Some(&x0), Some(&x1), Some(&y0), Some(&y1), Some(&(m0, m1))) = (
             self.xs.get(i),
             self.xs.get(i + 1),
