@@ -46,6 +46,8 @@ pub struct Cam {
     master_offset: f64,
     slave_offset: f64,
     master_scaling: f64,
+    /// 1 / master_scaling: table units per master unit, for the velocities.
+    per_master_unit: f64,
     slave_scaling: f64,
     start: CamStart,
     phase: CouplingPhase,
@@ -73,6 +75,7 @@ impl Cam {
             master_offset: c.master_offset,
             slave_offset: c.slave_offset,
             master_scaling: c.master_scaling,
+            per_master_unit: 1.0 / c.master_scaling,
             slave_scaling: c.slave_scaling,
             start,
             phase: CouplingPhase::Waiting,
@@ -211,8 +214,8 @@ impl Cam {
             }
         }
         let s = self.table.sample_from(wrapped, &mut self.span);
-        let xv = master.v / self.master_scaling;
-        let xa = master.a / self.master_scaling;
+        let xv = master.v * self.per_master_unit;
+        let xa = master.a * self.per_master_unit;
         CamStep::Follow(MotionState {
             p: self.slave_at(s.y + k * (y1 - y0)),
             v: self.slave_scaling * s.dy * xv,

@@ -15,9 +15,48 @@ pub const MAX_CAM_POINTS: usize = 4096;
 #[derive(Clone, Debug, PartialEq)]
 pub struct CamTable {
     xs: Vec<f64>,
-    ys: Vec<f64>,
-    /// Per span i (from point i to i + 1): the slopes dy/dx at its start and end.
-    slopes: Vec<(f64, f64)>,
+    /// The first and last slave values.
+    y_ends: (f64, f64),
+    /// Per span i (from point i to i + 1), its polynomial.
+    pieces: Vec<Piece>,
+}
+
+/// One span as y = y0 + c1·t + c2·t² + c3·t³, t = (x − x0) / h: the Hermite piece from its end
+/// values and slopes, in a form that keeps t = 0 exact and a straight piece (equal chord
+/// slopes) straight to rounding (c2 = c3 = 0). Computed once; a sample is a few multiplies.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Piece {
+    x0: f64,
+    inv_h: f64,
+    y0: f64,
+    c1: f64,
+    c2: f64,
+    c3: f64,
+}
+
+impl Piece {
+    fn new(x0: f64, x1: f64, y0: f64, y1: f64, m0: f64, m1: f64) -> Piece {
+        let h = x1 - x0;
+        let d = y1 - y0;
+        Piece {
+            x0,
+            inv_h: 1.0 / h,
+            y0,
+            c1: h * m0,
+            c2: 3.0 * d - h * (2.0 * m0 + m1),
+            c3: h * (m0 + m1) - 2.0 * d,
+        }
+    }
+
+    fn sample(&self, x: f64) -> CamSample {
+        let t = ((x - self.x0) * self.inv_h).clamp(0.0, 1.0);
+        let (c1, c2, c3) = (self.c1, self.c2, self.c3);
+        CamSample {
+            y: self.y0 + t * (c1 + t * (c2 + t * c3)),
+            dy: (c1 + t * (2.0 * c2 + t * 3.0 * c3)) * self.inv_h,
+            ddy: (2.0 * c2 + 6.0 * c3 * t) * self.inv_h * self.inv_h,
+        }
+    }
 }
 
 /// The table's value and its first two derivatives at one master coordinate.
@@ -84,7 +123,16 @@ impl CamTable {
             CamInterpolation::Cubic => spline_slopes(&xs, &chords),
             CamInterpolation::Follow => follow_slopes(points, &chords),
         };
-        Ok(CamTable { xs, ys, slopes })
+        let pieces = slopes
+            .iter()
+            .enumerate()
+            .map(|(i, &(m0, m1))| Piece::new(xs[i], xs[i + 1], ys[i], ys[i + 1], m0, m1))
+            .collect();
+        Ok(CamTable {
+            y_ends: (first(&ys), last(&ys)),
+            xs,
+            pieces,
+        })
     }
 
     /// The first and last master coordinates.
@@ -94,7 +142,7 @@ impl CamTable {
 
     /// The first and last slave values.
     pub fn slave_range(&self) -> (f64, f64) {
-        (first(&self.ys), last(&self.ys))
+        self.y_ends
     }
 
     /// Number of points.
@@ -109,7 +157,9 @@ impl CamTable {
     /// The span that holds `x` (clamped to the table): the last point at or before it.
     pub fn span_of(&self, x: f64) -> usize {
         let after = self.xs.partition_point(|&p| p <= x);
-        after.saturating_sub(1).min(self.slopes.len().saturating_sub(1))
+        after
+            .saturating_sub(1)
+            .min(self.pieces.len().saturating_sub(1))
     }
 
     /// The table at `x`, clamped to its master range.
@@ -131,22 +181,14 @@ impl CamTable {
     }
 
     fn sample_span(&self, i: usize, x: f64) -> CamSample {
-        let (Some(&x0), Some(&x1), Some(&y0), Some(&y1), Some(&(m0, m1))) = (
-            self.xs.get(i),
-            self.xs.get(i + 1),
-            self.ys.get(i),
-            self.ys.get(i + 1),
-            self.slopes.get(i),
-        ) else {
-            return CamSample {
-                y: first(&self.ys),
+        match self.pieces.get(i) {
+            Some(piece) => piece.sample(x),
+            None => CamSample {
+                y: self.y_ends.0,
                 dy: 0.0,
                 ddy: 0.0,
-            };
-        };
-        let h = x1 - x0;
-        let t = ((x - x0) / h).clamp(0.0, 1.0);
-        hermite(t, h, y0, y1, m0, m1)
+            },
+        }
     }
 }
 
@@ -156,21 +198,6 @@ fn first(v: &[f64]) -> f64 {
 
 fn last(v: &[f64]) -> f64 {
     v.last().copied().unwrap_or(0.0)
-}
-
-/// The cubic Hermite piece on [0, h] (t = x/h) from y0 with slope m0 to y1 with slope m1: its
-/// value and derivatives in x. At t = 0 it is exactly y0.
-fn hermite(t: f64, h: f64, y0: f64, y1: f64, m0: f64, m1: f64) -> CamSample {
-    let d = y1 - y0;
-    // y = y0 + c1·t + c2·t² + c3·t³ in t; the polynomial form keeps t = 0 exact and a straight
-    // piece (m0 = m1 = d/h) exact to rounding: c2 = c3 = 0.
-    let c1 = h * m0;
-    let c2 = 3.0 * d - h * (2.0 * m0 + m1);
-    let c3 = h * (m0 + m1) - 2.0 * d;
-    let y = y0 + t * (c1 + t * (c2 + t * c3));
-    let dy = (c1 + t * (2.0 * c2 + t * 3.0 * c3)) / h;
-    let ddy = (2.0 * c2 + 6.0 * c3 * t) / (h * h);
-    CamSample { y, dy, ddy }
 }
 
 /// Slopes of the natural cubic spline through the points (second derivative 0 at both ends),
