@@ -12,8 +12,8 @@
 use std::hint::black_box;
 use std::time::Instant;
 
-use axes::command::{CamIn, CamInterpolation, CamPoint, CamTableDefine, FollowSegment, GearIn};
 use axes::command::MasterSource;
+use axes::command::{CamIn, CamInterpolation, CamPoint, CamTableDefine, FollowSegment, GearIn};
 use axes::{Command, Engine};
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 

@@ -173,7 +173,10 @@ fn s_follow_starts_when_the_master_passes_50000_and_repeats_every_60000_tv59() {
     }
     assert!(k > 5, "{k}");
     let c = e.snapshot().couplings[0];
-    assert_eq!((c.kind, c.phase), (CouplingKind::Cam, CouplingPhase::InSync));
+    assert_eq!(
+        (c.kind, c.phase),
+        (CouplingKind::Cam, CouplingPhase::InSync)
+    );
     assert!(c.cycle >= 5);
     assert_eq!(
         e.axis_status(1).unwrap().state,
@@ -390,7 +393,12 @@ fn bad_tables_and_cams_are_refused_naming_what_is_wrong() {
         refused(&mut e, Command::from(cam(0, 1, 9))),
         EngineError::UnknownCamTable { table: 9 }
     );
-    table(&mut e, 0, &[(0.0, 0.0), (1.0, 1.0)], CamInterpolation::Linear);
+    table(
+        &mut e,
+        0,
+        &[(0.0, 0.0), (1.0, 1.0)],
+        CamInterpolation::Linear,
+    );
     assert_eq!(
         refused(&mut e, Command::from(cam(1, 1, 0))),
         EngineError::CoupledToItself { axis: 1 }

@@ -114,7 +114,10 @@ fn s_gear_the_slave_makes_four_fifths_less_half_the_clutch_tv58() {
     assert_eq!(c.phase, CouplingPhase::Engaging);
     ok(&mut e, move_rel(1, 10_000.0));
     e.step();
-    assert_eq!(e.axis_status(0).unwrap().state, AxisState::SynchronizedMotion);
+    assert_eq!(
+        e.axis_status(0).unwrap().state,
+        AxisState::SynchronizedMotion
+    );
     settle(&mut e, 10.0);
     // 0.8 × 10000 − 0.8 × 2000 / 2 (the ratio ramps linearly over the clutch).
     assert!((cmd(&e, 0) - 7200.0).abs() < 1e-6, "{}", cmd(&e, 0));
@@ -242,7 +245,11 @@ fn a_ratio_change_applies_from_where_the_slave_is() {
     assert_eq!(e.snapshot().couplings[0].ratio, -1.5);
     ok(&mut e, move_rel(0, 100.0));
     settle(&mut e, 5.0);
-    assert!((cmd(&e, 1) - (100.0 - 150.0)).abs() < 1e-9, "{}", cmd(&e, 1));
+    assert!(
+        (cmd(&e, 1) - (100.0 - 150.0)).abs() < 1e-9,
+        "{}",
+        cmd(&e, 1)
+    );
 }
 
 #[test]
@@ -316,7 +323,10 @@ fn bad_gears_are_refused_naming_what_is_wrong_and_disturb_nothing() {
     ok(&mut e, Command::from(gear(0, 1, 1.0, 1.0)));
     let before = e.snapshot();
     let cases: Vec<(GearIn, EngineError)> = vec![
-        (gear(2, 2, 1.0, 1.0), EngineError::CoupledToItself { axis: 2 }),
+        (
+            gear(2, 2, 1.0, 1.0),
+            EngineError::CoupledToItself { axis: 2 },
+        ),
         (
             gear(2, 1, 1.0, 1.0),
             EngineError::AlreadyCoupled { axis: 1, master: 0 },
@@ -346,7 +356,10 @@ fn bad_gears_are_refused_naming_what_is_wrong_and_disturb_nothing() {
     }
     assert!(matches!(
         refused(&mut e, Command::from(gear(0, 2, f64::NAN, 1.0))),
-        EngineError::InvalidArgument { name: "numerator", .. }
+        EngineError::InvalidArgument {
+            name: "numerator",
+            ..
+        }
     ));
     assert!(matches!(
         refused(

@@ -151,7 +151,9 @@ fn coupling_serde_errors_name_the_field() {
             "unknown variant `quintic`, expected one of `linear`, `cubic`, `follow`",
         ),
     ] {
-        let e = serde_json::from_str::<Command>(json).unwrap_err().to_string();
+        let e = serde_json::from_str::<Command>(json)
+            .unwrap_err()
+            .to_string();
         assert!(e.starts_with(message), "{json}: {e}");
     }
 }

@@ -12,7 +12,8 @@ use crate::od::Value;
 // that `axes::command::EngineError` and friends keep their paths.
 pub use crate::error::EngineError;
 pub use crate::types::{
-    AxisIndex, CommandId, CommandKind, CoordinateSystem, Direction, ErrorKind, GroupId, MasterSource,
+    AxisIndex, CommandId, CommandKind, CoordinateSystem, Direction, ErrorKind, GroupId,
+    MasterSource,
 };
 
 /// PLCopen buffer mode of a motion command (ARCHITECTURE §3.5).

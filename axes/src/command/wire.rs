@@ -12,15 +12,13 @@ use super::{
     SlaveCommand, Stop, StopAll, StopAxes, StreamSetpoint, WriteAnalogOutput, WriteDigitalOutput,
     WriteObject,
 };
+use super::{CamIn, CamOut, CamTableDefine, CouplingCommand, GearIn, GearOut, GearSetRatio};
 use super::{
     GroupAxisMove, GroupCommand, GroupContinue, GroupCreate, GroupDelete, GroupDisable, GroupDwell,
     GroupEmergencyStop, GroupEnable, GroupHalt, GroupReset, GroupSetOrigin, GroupSetOutput,
     GroupSetOverride, GroupSetParameter, GroupStop, GroupWaitInput, GroupWaitPosition,
     MoveCircularAbsolute, MoveCircularAngle, MoveCircularRelative, MoveEllipse, MoveLinearAbsolute,
     MoveLinearRelative, MoveSpline,
-};
-use super::{
-    CamIn, CamOut, CamTableDefine, CouplingCommand, GearIn, GearOut, GearSetRatio,
 };
 use super::{
     GroupDeleteTransform, GroupSetCoordinateSystem, GroupSetCoordinateTransform,

@@ -45,8 +45,7 @@ pub struct Cam {
     slave_absolute: bool,
     master_offset: f64,
     slave_offset: f64,
-    master_scaling: f64,
-    /// 1 / master_scaling: table units per master unit, for the velocities.
+    /// 1 / master_scaling: table units per master unit.
     per_master_unit: f64,
     slave_scaling: f64,
     start: CamStart,
@@ -74,7 +73,6 @@ impl Cam {
             slave_absolute: c.slave_absolute,
             master_offset: c.master_offset,
             slave_offset: c.slave_offset,
-            master_scaling: c.master_scaling,
             per_master_unit: 1.0 / c.master_scaling,
             slave_scaling: c.slave_scaling,
             start,
@@ -159,7 +157,7 @@ impl Cam {
         } else {
             self.master_origin
         };
-        let x = (m - base - self.master_offset) / self.master_scaling;
+        let x = (m - base - self.master_offset) * self.per_master_unit;
         if self.master_absolute {
             x
         } else {

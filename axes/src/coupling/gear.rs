@@ -168,11 +168,7 @@ impl Gear {
                     self.master_anchor = m.p;
                     self.phase = CouplingPhase::InSync;
                 }
-                MotionState {
-                    p,
-                    v,
-                    a: step / dt,
-                }
+                MotionState { p, v, a: step / dt }
             }
             _ => self.in_gear(m),
         };

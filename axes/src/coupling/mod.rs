@@ -265,7 +265,9 @@ impl Couplings {
                     reason: "give a start position or a start input, not both",
                 })
             }
-            (Some(p), None) => CamStart::MasterPosition(bounded("start_position", p)?, c.start_direction),
+            (Some(p), None) => {
+                CamStart::MasterPosition(bounded("start_position", p)?, c.start_direction)
+            }
             (None, Some(ch)) => {
                 let count = env.ctx.di.len() as u16;
                 if usize::from(ch) >= env.ctx.di.len() {
@@ -407,8 +409,9 @@ impl Couplings {
             }
             d
         };
-        let mut order: Vec<(usize, AxisIndex)> =
-            (0..axes).map(|i| (depth(i as AxisIndex), i as AxisIndex)).collect();
+        let mut order: Vec<(usize, AxisIndex)> = (0..axes)
+            .map(|i| (depth(i as AxisIndex), i as AxisIndex))
+            .collect();
         order.sort_unstable();
         let slots: Vec<(AxisIndex, Option<usize>)> = order
             .into_iter()

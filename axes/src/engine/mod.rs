@@ -152,7 +152,12 @@ impl Engine {
         }
         let mut couplings = Couplings::default();
         for (i, table) in config.cam_tables.iter().enumerate() {
-            if config.cam_tables.iter().take(i).any(|t| t.table == table.table) {
+            if config
+                .cam_tables
+                .iter()
+                .take(i)
+                .any(|t| t.table == table.table)
+            {
                 return Err(ConfigError::new(
                     format!("cam_tables[{i}].table"),
                     format!("table {} is defined twice", table.table),

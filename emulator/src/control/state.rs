@@ -5,8 +5,8 @@ use axes::command::CommandId;
 use axes::command::{CoordinateSystem, Direction, ErrorKind};
 use axes::runtime::RuntimeStats;
 use axes::status::{
-    AxisState, AxisStatus, CommandRef, CouplingStatus, DriveStatus, GroupFault, GroupState, GroupStatus,
-    InterferenceStatus, IoImage,
+    AxisState, AxisStatus, CommandRef, CouplingStatus, DriveStatus, GroupFault, GroupState,
+    GroupStatus, InterferenceStatus, IoImage,
 };
 use axum::extract::State;
 use axum::Json;
