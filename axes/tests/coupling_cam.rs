@@ -7,38 +7,17 @@
 mod common;
 
 use axes::command::{
-    CamIn, CamInterpolation, CamOut, CamPoint, CamTableDefine, Command, Direction, Enable,
-    EngineError, FollowSegment, ForceDigitalInput, MasterSource, MoveRelative, MoveVelocity,
+    CamIn, CamInterpolation, CamOut, CamPoint, CamTableDefine, Command, Direction, EngineError,
+    FollowSegment, ForceDigitalInput, MasterSource,
 };
-use axes::config::AxisConfig;
 use axes::coupling::table::CamTable;
 use axes::status::{CouplingKind, CouplingPhase};
-use axes::{AxisFlags, AxisState, Engine, EngineConfig, ParamId};
-use common::{ok, refused};
+use axes::{AxisFlags, AxisState, Engine};
+use common::{jog_of, move_rel_of, ok, refused};
 use proptest::prelude::*;
 
-fn axis() -> AxisConfig {
-    common::free_linear_axis(
-        1.0,
-        &[
-            (ParamId::AxisType, 0.0),
-            (ParamId::Speed, 10_000.0),
-            (ParamId::Accel, 1e7),
-            (ParamId::Decel, 1e7),
-        ],
-    )
-}
-
 fn machine(n: usize) -> Engine {
-    let mut e = Engine::new(&EngineConfig {
-        axes: vec![axis(); n],
-        ..EngineConfig::default()
-    })
-    .unwrap();
-    for axis in 0..n as u16 {
-        ok(&mut e, Command::from(Enable { axis }));
-    }
-    e
+    common::enabled_machine(common::virtual_pulse_axis(), n)
 }
 
 fn points(p: &[(f64, f64)]) -> Vec<CamPoint> {
@@ -82,36 +61,13 @@ fn cam(master: u16, slave: u16, table: u16) -> CamIn {
     }
 }
 
-fn move_rel(axis: u16, distance: f64) -> Command {
-    Command::from(MoveRelative {
-        axis,
-        distance,
-        velocity: None,
-        acceleration: None,
-        deceleration: None,
-        jerk: None,
-        buffer_mode: Default::default(),
-    })
-}
-
-fn jog(axis: u16, velocity: f64) -> Command {
-    Command::from(MoveVelocity {
-        axis,
-        velocity,
-        acceleration: None,
-        deceleration: None,
-        jerk: None,
-        buffer_mode: Default::default(),
-    })
-}
-
 fn cmd(e: &Engine, axis: usize) -> f64 {
     e.axis_status(axis).unwrap().cmd_pos
 }
 
 /// Move the master (axis 0) by `d` and let it stop.
 fn master_by(e: &mut Engine, d: f64) {
-    ok(e, move_rel(0, d));
+    ok(e, move_rel_of(0, d));
     for _ in 0..5000 {
         e.step();
         if !e.axis_status(0).unwrap().flags.contains(AxisFlags::MOVING) {
@@ -154,7 +110,7 @@ fn s_follow_starts_when_the_master_passes_50000_and_repeats_every_60000_tv59() {
     assert_eq!(e.snapshot().couplings[0].phase, CouplingPhase::Waiting);
     assert!(e.axis_status(1).unwrap().flags.contains(AxisFlags::COUPLED));
     // 50 pulses per 1 ms tick, as MtMoveJog(…, 50, …).
-    ok(&mut e, jog(0, 50_000.0));
+    ok(&mut e, jog_of(0, 50_000.0));
     let mut k = 1;
     for _ in 0..10_000 {
         e.step();
@@ -358,11 +314,11 @@ fn cam_out_frees_the_slave() {
     );
     ok(&mut e, Command::from(cam(0, 1, 0)));
     assert_eq!(
-        refused(&mut e, move_rel(1, 1.0)),
+        refused(&mut e, move_rel_of(1, 1.0)),
         EngineError::AxisCoupled { axis: 1, master: 0 }
     );
     ok(&mut e, Command::from(CamOut { slave: 1 }));
-    ok(&mut e, move_rel(1, 1.0));
+    ok(&mut e, move_rel_of(1, 1.0));
 }
 
 #[test]
@@ -470,7 +426,7 @@ proptest! {
         table(&mut e, 0, &p, interpolation);
         ok(&mut e, Command::from(CamIn { periodic, ..cam(0, 1, 0) }));
         for d in moves {
-            ok(&mut e, move_rel(0, d));
+            ok(&mut e, move_rel_of(0, d));
             for _ in 0..2000 {
                 e.step();
                 if e.snapshot().couplings.is_empty() {

@@ -7,40 +7,16 @@
 mod common;
 
 use axes::command::{
-    Command, Direction, Disable, Enable, EngineError, GearIn, GearOut, GearSetRatio, MasterSource,
-    MoveAbsolute, MoveRelative, MoveVelocity,
+    Command, Direction, Disable, EngineError, GearIn, GearOut, GearSetRatio, MasterSource,
+    MoveAbsolute,
 };
-use axes::config::AxisConfig;
 use axes::status::{CouplingKind, CouplingPhase};
-use axes::{AxisFlags, AxisState, Engine, EngineConfig, ParamId};
-use common::{ok, refused, run};
+use axes::{AxisFlags, AxisState, Engine};
+use common::{move_rel_of, ok, refused, run};
 use proptest::prelude::*;
 
-/// A virtual axis in pulses (1 unit = 1 pulse): actual = commanded exactly, fast limits.
-fn axis() -> AxisConfig {
-    common::free_linear_axis(
-        1.0,
-        &[
-            (ParamId::AxisType, 0.0),
-            (ParamId::Speed, 10_000.0),
-            (ParamId::Accel, 1e7),
-            (ParamId::Decel, 1e6),
-            (ParamId::FastDecel, 1e7),
-        ],
-    )
-}
-
-/// `n` enabled axes.
 fn machine(n: usize) -> Engine {
-    let mut e = Engine::new(&EngineConfig {
-        axes: vec![axis(); n],
-        ..EngineConfig::default()
-    })
-    .unwrap();
-    for axis in 0..n as u16 {
-        ok(&mut e, Command::from(Enable { axis }));
-    }
-    e
+    common::enabled_machine(common::virtual_pulse_axis(), n)
 }
 
 fn gear(master: u16, slave: u16, numerator: f64, denominator: f64) -> GearIn {
@@ -54,18 +30,6 @@ fn gear(master: u16, slave: u16, numerator: f64, denominator: f64) -> GearIn {
         acceleration: None,
         direction: None,
     }
-}
-
-fn move_rel(axis: u16, distance: f64) -> Command {
-    Command::from(MoveRelative {
-        axis,
-        distance,
-        velocity: None,
-        acceleration: None,
-        deceleration: None,
-        jerk: None,
-        buffer_mode: Default::default(),
-    })
 }
 
 fn move_abs(axis: u16, position: f64) -> Command {
@@ -112,7 +76,7 @@ fn s_gear_the_slave_makes_four_fifths_less_half_the_clutch_tv58() {
     let c = e.snapshot().couplings[0];
     assert_eq!((c.slave, c.master, c.kind), (0, 1, CouplingKind::Gear));
     assert_eq!(c.phase, CouplingPhase::Engaging);
-    ok(&mut e, move_rel(1, 10_000.0));
+    ok(&mut e, move_rel_of(1, 10_000.0));
     e.step();
     assert_eq!(
         e.axis_status(0).unwrap().state,
@@ -137,7 +101,7 @@ fn the_slave_follows_the_master_of_the_same_tick_down_a_chain() {
     let mut e = machine(3);
     ok(&mut e, Command::from(gear(2, 1, 3.0, 2.0)));
     ok(&mut e, Command::from(gear(1, 0, -1.0, 4.0)));
-    ok(&mut e, move_rel(2, 500.0));
+    ok(&mut e, move_rel_of(2, 500.0));
     for _ in 0..400 {
         e.step();
         let m = cmd(&e, 2);
@@ -180,7 +144,7 @@ fn hmc_gear_inversion_follows_the_masters_actual_position_tv21() {
             ..gear(0, 10, -1.0, 1.0)
         }),
     );
-    ok(&mut e, move_rel(0, 1000.0));
+    ok(&mut e, move_rel_of(0, 1000.0));
     settle(&mut e, 5.0);
     assert!((cmd(&e, 10) + 1000.0).abs() < 1e-9, "{}", cmd(&e, 10));
 }
@@ -190,17 +154,7 @@ fn an_acceleration_clutch_catches_up_then_locks_the_ratio() {
     // PLCopen MC_GearIn: the slave accelerates to ratio × master velocity, InGear once the
     // velocities match; from there slave travel = ratio × master travel.
     let mut e = machine(2);
-    ok(
-        &mut e,
-        Command::from(MoveVelocity {
-            axis: 0,
-            velocity: 1000.0,
-            acceleration: None,
-            deceleration: None,
-            jerk: None,
-            buffer_mode: Default::default(),
-        }),
-    );
+    ok(&mut e, common::jog_of(0, 1000.0));
     run(&mut e, 0.1);
     ok(
         &mut e,
@@ -232,7 +186,7 @@ fn a_ratio_change_applies_from_where_the_slave_is() {
     // HMC_SetGearRatio: the new ratio acts on the master travel from now on.
     let mut e = machine(2);
     ok(&mut e, Command::from(gear(0, 1, 1.0, 1.0)));
-    ok(&mut e, move_rel(0, 100.0));
+    ok(&mut e, move_rel_of(0, 100.0));
     settle(&mut e, 5.0);
     ok(
         &mut e,
@@ -243,7 +197,7 @@ fn a_ratio_change_applies_from_where_the_slave_is() {
         }),
     );
     assert_eq!(e.snapshot().couplings[0].ratio, -1.5);
-    ok(&mut e, move_rel(0, 100.0));
+    ok(&mut e, move_rel_of(0, 100.0));
     settle(&mut e, 5.0);
     assert!(
         (cmd(&e, 1) - (100.0 - 150.0)).abs() < 1e-9,
@@ -264,7 +218,7 @@ fn the_direction_filter_follows_one_direction_of_the_master_only() {
         }),
     );
     for d in [100.0, -50.0, 50.0] {
-        ok(&mut e, move_rel(0, d));
+        ok(&mut e, move_rel_of(0, d));
         settle(&mut e, 5.0);
     }
     assert!((cmd(&e, 1) - 150.0).abs() < 1e-9, "{}", cmd(&e, 1));
@@ -274,17 +228,7 @@ fn the_direction_filter_follows_one_direction_of_the_master_only() {
 fn gear_out_lets_the_slave_run_down_with_its_own_deceleration() {
     let mut e = machine(2);
     ok(&mut e, Command::from(gear(0, 1, 1.0, 1.0)));
-    ok(
-        &mut e,
-        Command::from(MoveVelocity {
-            axis: 0,
-            velocity: 1000.0,
-            acceleration: None,
-            deceleration: None,
-            jerk: None,
-            buffer_mode: Default::default(),
-        }),
-    );
+    ok(&mut e, common::jog_of(0, 1000.0));
     run(&mut e, 0.1);
     ok(&mut e, Command::from(GearOut { slave: 1 }));
     let s = e.snapshot();
@@ -298,18 +242,18 @@ fn gear_out_lets_the_slave_run_down_with_its_own_deceleration() {
     run(&mut e, 0.01);
     assert_eq!(e.axis_status(1).unwrap().state, AxisState::Standstill);
     // Free again: single-axis motion is taken.
-    ok(&mut e, move_rel(1, 10.0));
+    ok(&mut e, move_rel_of(1, 10.0));
 }
 
 #[test]
 fn a_coupled_slave_refuses_single_axis_motion_and_a_disabled_one_is_decoupled() {
     let mut e = machine(2);
     ok(&mut e, Command::from(gear(0, 1, 1.0, 1.0)));
-    let err = refused(&mut e, move_rel(1, 10.0));
+    let err = refused(&mut e, move_rel_of(1, 10.0));
     assert_eq!(err, EngineError::AxisCoupled { axis: 1, master: 0 });
     e.step();
     ok(&mut e, Command::from(Disable { axis: 1 }));
-    ok(&mut e, move_rel(0, 10.0));
+    ok(&mut e, move_rel_of(0, 10.0));
     e.step();
     let s = e.snapshot();
     assert!(s.couplings.is_empty(), "{:?}", s.couplings);
@@ -410,7 +354,7 @@ fn geared_run(
     );
     let mut seen = Vec::new();
     for &d in moves {
-        ok(&mut e, move_rel(0, d));
+        ok(&mut e, move_rel_of(0, d));
         for _ in 0..3000 {
             e.step();
             seen.push((cmd(&e, 0), cmd(&e, 1)));

@@ -224,20 +224,13 @@ impl Couplings {
             (None, Some(a)) => Clutch::Acceleration(positive("acceleration", a)?),
             (None, None) => Clutch::Immediate,
         };
-        let master = axis_ref(env.axes, c.master)?;
-        let m = read_master(master, c.master_source, 0.0, env.period).p;
-        let slave = axis_ref(env.axes, c.slave)?.commanded();
+        let (m, slave) = positions(env, c.master, c.slave, c.master_source)?;
         let gear = Gear::new(numerator, denominator, clutch, c.direction, m, slave);
         self.insert(
             env,
-            Coupling {
-                slave: c.slave,
-                master: c.master,
-                source: c.master_source,
-                law: Law::Gear(gear),
-                previous: m,
-                ended: false,
-            },
+            (c.master, c.slave, c.master_source),
+            Law::Gear(gear),
+            m,
         );
         Ok(Reply::Done)
     }
@@ -281,22 +274,10 @@ impl Couplings {
             }
             (None, None) => CamStart::Immediate,
         };
-        let master = axis_ref(env.axes, c.master)?;
-        let m = read_master(master, c.master_source, 0.0, env.period).p;
-        let slave = axis_ref(env.axes, c.slave)?.commanded();
+        let (m, slave) = positions(env, c.master, c.slave, c.master_source)?;
         let mut cam = Cam::new(c, table, start);
         cam.start_if_immediate(m, slave.p);
-        self.insert(
-            env,
-            Coupling {
-                slave: c.slave,
-                master: c.master,
-                source: c.master_source,
-                law: Law::Cam(cam),
-                previous: m,
-                ended: false,
-            },
-        );
+        self.insert(env, (c.master, c.slave, c.master_source), Law::Cam(cam), m);
         Ok(Reply::Done)
     }
 
@@ -323,7 +304,22 @@ impl Couplings {
         Ok(Reply::Done)
     }
 
-    fn insert(&mut self, env: &mut Env, coupling: Coupling) {
+    /// Add the coupling of `slave` to `master` (by `source`, whose value is `m` now).
+    fn insert(
+        &mut self,
+        env: &mut Env,
+        (master, slave, source): (AxisIndex, AxisIndex, MasterSource),
+        law: Law,
+        m: f64,
+    ) {
+        let coupling = Coupling {
+            slave,
+            master,
+            source,
+            law,
+            previous: m,
+            ended: false,
+        };
         if let Some(axis) = env.axes.get_mut(coupling.slave as usize) {
             axis.set_coupled(
                 Some(coupling.master),
@@ -498,6 +494,18 @@ impl Couplings {
     pub fn status_of(&self, slave: AxisIndex) -> Option<CouplingStatus> {
         self.find(slave).map(Coupling::status)
     }
+}
+
+/// The master's value (by `source`) and the slave's commanded state, as a new coupling starts
+/// from them.
+fn positions(
+    env: &Env,
+    master: AxisIndex,
+    slave: AxisIndex,
+    source: MasterSource,
+) -> Result<(f64, MotionState), EngineError> {
+    let m = read_master(axis_ref(env.axes, master)?, source, 0.0, env.period).p;
+    Ok((m, axis_ref(env.axes, slave)?.commanded()))
 }
 
 /// numerator / denominator of a gear: finite, within bounds, denominator ≠ 0.
