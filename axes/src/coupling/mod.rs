@@ -2,7 +2,7 @@
 //!
 //! Zero lag. The couplings do not run as stage-2 planners (those see the axes as the last tick
 //! left them, so a slave would follow its master one servo period late). Instead stage 3 steps
-//! the axes in [`Couplings::order`]: every master before its slaves, the uncoupled axes in
+//! the axes in the couplings' order: every master before its slaves, the uncoupled axes in
 //! index order. Just before a slave steps, its coupling reads the master *as this tick left
 //! it* (commanded, actual or encoder position) and feeds the slave its setpoint, which the
 //! slave then runs through its own smoothing, output stage, plant and supervision like any fed
@@ -135,11 +135,6 @@ fn axis_ref(axes: &[Axis], index: AxisIndex) -> Result<&Axis, EngineError> {
 impl Couplings {
     pub fn is_empty(&self) -> bool {
         self.list.is_empty()
-    }
-
-    /// Stage 3's order (see the module doc); empty when nothing is coupled.
-    pub(crate) fn order(&self) -> &[(AxisIndex, Option<usize>)] {
-        &self.order
     }
 
     /// A cam table by number.
@@ -419,15 +414,36 @@ impl Couplings {
         self.order = slots;
     }
 
+    /// Stage 3: every axis steps, in index order without couplings, else in the couplings' order
+    /// with each slave fed from its master just before it steps; then the couplings that ended
+    /// are dropped.
+    pub(crate) fn step_axes(&mut self, env: &mut Env) {
+        let Env {
+            axes, ctx, period, ..
+        } = env;
+        if self.list.is_empty() {
+            for axis in axes.iter_mut() {
+                axis.step(ctx);
+            }
+            return;
+        }
+        for i in 0..self.order.len() {
+            let Some(&(index, slot)) = self.order.get(i) else {
+                break;
+            };
+            if let Some(slot) = slot {
+                self.drive_slave(slot, axes, ctx, *period);
+            }
+            if let Some(axis) = axes.get_mut(index as usize) {
+                axis.step(ctx);
+            }
+        }
+        self.sweep(axes, ctx);
+    }
+
     /// Stage 3, just before slave `slot`'s axis steps: read its master as this tick left it
     /// and feed the slave. A refused setpoint ends the coupling.
-    pub(crate) fn drive_slave(
-        &mut self,
-        slot: usize,
-        axes: &mut [Axis],
-        ctx: &mut Context,
-        period: f64,
-    ) {
+    fn drive_slave(&mut self, slot: usize, axes: &mut [Axis], ctx: &mut Context, period: f64) {
         let Some(c) = self.list.get_mut(slot) else {
             return;
         };
@@ -471,7 +487,7 @@ impl Couplings {
     /// After stage 3: drop the couplings that ended this tick and let their slaves go (a
     /// slave still fed ramps down with its `decel`; one that ended at rest simply stops being
     /// fed). Rare: no work otherwise.
-    pub(crate) fn sweep(&mut self, axes: &mut [Axis], ctx: &mut Context) {
+    fn sweep(&mut self, axes: &mut [Axis], ctx: &mut Context) {
         if !self.list.iter().any(|c| c.ended) {
             return;
         }

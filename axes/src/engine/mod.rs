@@ -231,8 +231,8 @@ impl Engine {
     /// Apply one command at the current tick. Each family goes to its own function: the axis
     /// family to the axis (through its drive first, for power commands on an engine-mastered
     /// drive), I/O to the I/O image, slave commands to a drive's dictionary, machine commands
-    /// to the whole machine. Group and coupling commands will go to their planner stages
-    /// (issues 11 and 12).
+    /// to the whole machine, group commands to the group registry (issue 11), coupling
+    /// commands to the coupling registry (issue 12).
     pub fn apply(&mut self, command: Command) -> Result<Reply, EngineError> {
         match command {
             Command::Axis(c) => self.apply_axis_command(c),
@@ -299,6 +299,12 @@ impl Engine {
     /// A gear or cam command (issue 12), applied to the coupling registry with the axes and
     /// the inputs it may need.
     fn apply_coupling_command(&mut self, command: CouplingCommand) -> Result<Reply, EngineError> {
+        self.with_couplings(|couplings, env| couplings.apply(env, command))
+    }
+
+    /// Lend the coupling registry what a coupling command or stage 3 touches: the axes, the
+    /// digital inputs and the ledger.
+    fn with_couplings<R>(&mut self, f: impl FnOnce(&mut Couplings, &mut CouplingEnv) -> R) -> R {
         let Engine {
             axes,
             io,
@@ -318,7 +324,7 @@ impl Engine {
             ctx: &mut ctx,
             period: *period,
         };
-        couplings.apply(&mut env, command)
+        f(couplings, &mut env)
     }
 
     /// The gears and cams.
@@ -563,8 +569,9 @@ impl Engine {
     ///
     /// 1. `read_inputs`: the I/O image's inputs from last tick's sensors;
     /// 2. `run_planners`: the axis groups (issue 11), in group-number order, then the other
-    ///    machine-level planners (couplings, issue 12), feed their axes this tick's setpoints;
-    /// 3. `step_axes`: every axis, in index order;
+    ///    machine-level planners, feed their axes this tick's setpoints;
+    /// 3. `step_axes`: every axis, in index order, or with couplings (issue 12) masters before
+    ///    their slaves, each slave fed from its master's state of this tick;
     /// 4. `step_drives`: the CiA 402 drives see their axes and answer with commands;
     /// 5. outputs and status: no per-tick work. Outputs change only by command, and status is
     ///    assembled when it is read ([`Engine::snapshot_into`], [`Engine::axis_status`]).
@@ -593,7 +600,7 @@ impl Engine {
     /// this tick's setpoint; a refusal or a member in trouble stops the whole group. They also
     /// write the buffered digital outputs, start buffered single-axis moves and finish their
     /// commands in the ledger. Then every registered planner reads the axes as the previous
-    /// tick left them (so a coupling's slave lags its master by one tick) and writes setpoints;
+    /// tick left them and writes setpoints;
     /// each setpoint becomes its axis's command source for this tick, or goes back to the
     /// planner as a refusal.
     fn run_planners(&mut self) {
@@ -639,38 +646,7 @@ impl Engine {
     /// their slaves, and each slave is fed from its master just before it steps: a slave
     /// follows its master's state of this same tick (`crate::coupling`).
     fn step_axes(&mut self) {
-        let Engine {
-            axes,
-            io,
-            ledger,
-            tick,
-            period,
-            couplings,
-            ..
-        } = self;
-        let mut ctx = Context {
-            tick: *tick,
-            di: &io.image.di,
-            ledger,
-        };
-        if couplings.is_empty() {
-            for axis in axes.iter_mut() {
-                axis.step(&mut ctx);
-            }
-            return;
-        }
-        for i in 0..couplings.order().len() {
-            let Some(&(index, slot)) = couplings.order().get(i) else {
-                break;
-            };
-            if let Some(slot) = slot {
-                couplings.drive_slave(slot, axes, &mut ctx, *period);
-            }
-            if let Some(axis) = axes.get_mut(index as usize) {
-                axis.step(&mut ctx);
-            }
-        }
-        couplings.sweep(axes, &mut ctx);
+        self.with_couplings(|couplings, env| couplings.step_axes(env));
     }
 
     /// Stage 4, drives and fieldbus. Each drive reads its axis's status after stage 3 and the
