@@ -34,6 +34,10 @@ pub struct EngineConfig {
     /// Axis groups (issue 11): how many, and the defaults of `group_create`.
     #[serde(default)]
     pub groups: GroupsConfig,
+    /// Cam tables defined at start, as `cam_table` commands would define them (issue 12).
+    /// Checked when the engine is built (`Engine::new`).
+    #[serde(default)]
+    pub cam_tables: Vec<crate::command::CamTableDefine>,
 }
 
 fn default_period() -> f64 {
@@ -49,6 +53,7 @@ impl Default for EngineConfig {
             io: IoConfig::default(),
             drives: Vec::new(),
             groups: GroupsConfig::default(),
+            cam_tables: Vec::new(),
         }
     }
 }

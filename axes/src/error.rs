@@ -118,6 +118,28 @@ pub enum EngineError {
     /// A move protection that cannot be set up as given (NMC `SetMvProtect`).
     #[error("move protection {protection}: {reason}")]
     InvalidProtection { protection: u16, reason: String },
+    /// A coupling whose slave would be its own master (issue 12).
+    #[error("axis {axis} cannot be its own master")]
+    CoupledToItself { axis: AxisIndex },
+    /// `gear_in`/`cam_in` on a slave that already follows a master.
+    #[error("axis {axis} is already coupled to master axis {master}")]
+    AlreadyCoupled { axis: AxisIndex, master: AxisIndex },
+    /// Single-axis motion (or a group) for a coupled slave.
+    #[error("axis {axis} is coupled to master axis {master}: it takes no single-axis motion")]
+    AxisCoupled { axis: AxisIndex, master: AxisIndex },
+    /// The master already follows the slave, directly or through other couplings.
+    #[error("coupling axis {slave} to master axis {master} closes a loop in the master chain")]
+    CouplingLoop { slave: AxisIndex, master: AxisIndex },
+    /// `gear_out`, `cam_out` or `gear_set_ratio` on an axis that is not such a slave.
+    #[error("axis {axis} is not {what}")]
+    NotCoupled { axis: AxisIndex, what: &'static str },
+    #[error("cam table {table} does not exist")]
+    UnknownCamTable { table: u16 },
+    #[error("cam table {table}: {reason}")]
+    InvalidCamTable { table: u16, reason: String },
+    /// HMC: "arrays must not be modified while the cam runs".
+    #[error("cam table {table} is in use by the cam of axis {slave}")]
+    CamTableInUse { table: u16, slave: AxisIndex },
 }
 
 impl EngineError {
@@ -170,6 +192,14 @@ impl EngineError {
             EngineError::InvalidPath { .. }
             | EngineError::UndefinedCoordinateSystem { .. }
             | EngineError::InvalidProtection { .. } => ErrorKind::InvalidArgument,
+            EngineError::CoupledToItself { .. }
+            | EngineError::CouplingLoop { .. }
+            | EngineError::UnknownCamTable { .. }
+            | EngineError::InvalidCamTable { .. } => ErrorKind::InvalidArgument,
+            EngineError::AlreadyCoupled { .. }
+            | EngineError::AxisCoupled { .. }
+            | EngineError::NotCoupled { .. }
+            | EngineError::CamTableInUse { .. } => ErrorKind::InvalidState,
         }
     }
 }

@@ -9,6 +9,7 @@ pub mod axis;
 pub mod cia402;
 pub mod command;
 pub mod config;
+pub mod coupling;
 pub mod engine;
 pub mod error;
 pub mod group;

@@ -41,6 +41,21 @@ impl CommandKind {
     }
 }
 
+/// Which value of the master a slave follows (NMC master types 1–3, digest 001 §2.16).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MasterSource {
+    /// The master's planned (commanded) position: NMC type 1, HIMC GearIn.
+    #[default]
+    Commanded,
+    /// The master's actual position from its feedback: NMC type 2, HMC (ΔDposS = ΔMposM ·
+    /// ratio, digest 000 §4.3).
+    Actual,
+    /// The master's encoder reading (counts in user units, without `set_position`'s offset):
+    /// NMC type 3, an encoder input such as an encoder-only axis.
+    Encoder,
+}
+
 /// Direction of travel or of a limit.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]

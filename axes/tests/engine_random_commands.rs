@@ -18,6 +18,10 @@ use axes::command::{
     SetParameter, SetPosition, Setpoint, Stop, StopAll, StopAxes, StopMode, StreamSetpoint,
     TogetherMove, WriteAnalogOutput, WriteDigitalOutput, WriteObject,
 };
+use axes::command::{
+    CamIn, CamInterpolation, CamOut, CamPoint, CamTableDefine, Direction, FollowSegment, GearIn,
+    GearOut, GearSetRatio, MasterSource,
+};
 use axes::homing::HomingQuirks;
 use axes::od::Value;
 use axes::{Engine, EngineConfig, ParamId};
@@ -388,6 +392,119 @@ fn command() -> BoxedStrategy<Command> {
         4 => group(control),
         3 => group(io),
         2 => machine_command(),
+        2 => coupling_command(),
+    ]
+    .boxed()
+}
+
+/// Gears and cams (issue 12) with hostile numbers, tables and axes.
+fn coupling_command() -> BoxedStrategy<Command> {
+    let source = || {
+        prop_oneof![
+            Just(MasterSource::Commanded),
+            Just(MasterSource::Actual),
+            Just(MasterSource::Encoder),
+        ]
+    };
+    let direction = || {
+        prop_oneof![
+            Just(None),
+            Just(Some(Direction::Positive)),
+            Just(Some(Direction::Negative))
+        ]
+    };
+    prop_oneof![
+        (
+            axis(),
+            axis(),
+            number(),
+            number(),
+            source(),
+            opt_number(),
+            opt_number(),
+            direction()
+        )
+            .prop_map(|(master, slave, n, d, source, clutch, acc, direction)| {
+                Command::from(GearIn {
+                    master,
+                    slave,
+                    numerator: n,
+                    denominator: d,
+                    master_source: source,
+                    clutch_distance: clutch,
+                    acceleration: acc,
+                    direction,
+                })
+            }),
+        (axis(), number(), number()).prop_map(|(slave, numerator, denominator)| {
+            Command::from(GearSetRatio {
+                slave,
+                numerator,
+                denominator,
+            })
+        }),
+        axis().prop_map(|slave| Command::from(GearOut { slave })),
+        axis().prop_map(|slave| Command::from(CamOut { slave })),
+        (
+            0..3u16,
+            prop::collection::vec((number(), number()), 0..6),
+            0..3u8
+        )
+            .prop_map(|(table, p, k)| {
+                Command::from(CamTableDefine {
+                    table,
+                    points: p
+                        .into_iter()
+                        .map(|(master, slave)| CamPoint {
+                            master,
+                            slave,
+                            segment: FollowSegment::Normal,
+                        })
+                        .collect(),
+                    interpolation: [
+                        CamInterpolation::Linear,
+                        CamInterpolation::Cubic,
+                        CamInterpolation::Follow,
+                    ][k as usize],
+                })
+            }),
+        (
+            (axis(), axis(), 0..3u16, source(), any::<bool>(), 0..3u32),
+            (
+                any::<bool>(),
+                any::<bool>(),
+                number(),
+                number(),
+                number(),
+                number()
+            ),
+            (opt_number(), direction(), prop::option::of(0..80u16)),
+        )
+            .prop_map(
+                |(
+                    (master, slave, table, source, periodic, loop_count),
+                    (ma, sa, mo, so, ms, ss),
+                    (sp, sd, si),
+                )| {
+                    Command::from(CamIn {
+                        master,
+                        slave,
+                        table,
+                        master_source: source,
+                        periodic,
+                        loop_count,
+                        master_absolute: ma,
+                        slave_absolute: sa,
+                        master_offset: mo,
+                        slave_offset: so,
+                        master_scaling: ms,
+                        slave_scaling: ss,
+                        start_position: sp,
+                        start_direction: sd,
+                        start_input: si,
+                    })
+                }
+            ),
     ]
     .boxed()
 }

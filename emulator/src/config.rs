@@ -42,6 +42,11 @@ pub struct Config {
     /// Axis groups (coordinated motion): how many may exist and the defaults of `group_create`.
     #[serde(default)]
     pub groups: GroupsConfig,
+    /// Cam tables defined at start (`[[cam_tables]]`), as the `cam_table` command defines
+    /// them: `table` number, `points` (`{ master, slave }`, at least 2, master strictly
+    /// increasing) and `interpolation` (`linear`, `cubic` or `follow`).
+    #[serde(default)]
+    pub cam_tables: Vec<axes::command::CamTableDefine>,
     /// The front-ends, one section each.
     #[serde(default)]
     pub frontends: FrontendsConfig,
@@ -344,6 +349,7 @@ impl Config {
             io: self.io.clone(),
             drives: self.drives.clone(),
             groups: self.groups.clone(),
+            cam_tables: self.cam_tables.clone(),
         }
     }
 

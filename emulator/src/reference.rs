@@ -127,6 +127,11 @@ fn field_orders() -> BTreeMap<&'static str, Vec<&'static str>> {
         ("InputBinding", field_order::<InputBinding>()),
         ("DriveConfig", field_order::<DriveConfig>()),
         ("GroupsConfig", field_order::<GroupsConfig>()),
+        (
+            "CamTableDefine",
+            field_order::<axes::command::CamTableDefine>(),
+        ),
+        ("CamPoint", field_order::<axes::command::CamPoint>()),
         ("FrontendsConfig", field_order::<FrontendsConfig>()),
         ("ControlConfig", field_order::<ControlConfig>()),
         ("PlannedFrontend", field_order::<PlannedFrontend>()),

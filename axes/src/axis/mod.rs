@@ -191,6 +191,10 @@ pub struct Axis {
     // Commands.
     /// The group the axis belongs to (issue 11): single-axis motion is refused while set.
     group: Option<GroupId>,
+    /// The master of the coupling (issue 12) whose slave this axis is, and whether it is in
+    /// sync: single-axis motion is refused while set.
+    coupled: Option<AxisIndex>,
+    in_sync: bool,
     fifo: Fifo,
     activity: Activity,
     halted: bool,
@@ -268,6 +272,8 @@ impl Axis {
             encoder_pos: 0.0,
             rate: 1.0 / period,
             group: None,
+            coupled: None,
+            in_sync: false,
             fifo: Fifo::new(config.fifo_depth.unwrap_or(DEFAULT_FIFO_DEPTH)),
             activity: Activity::Idle,
             halted: false,
@@ -352,6 +358,29 @@ impl Axis {
     /// with its members.
     pub(crate) fn set_group(&mut self, group: Option<GroupId>) {
         self.group = group;
+    }
+
+    /// The master of the coupling this axis is the slave of, if any.
+    pub fn coupled_master(&self) -> Option<AxisIndex> {
+        self.coupled
+    }
+
+    /// Become a slave of `master` (`Some`), in sync or not, or stop being one (`None`); the
+    /// engine's coupling registry keeps this in step with its couplings.
+    pub(crate) fn set_coupled(&mut self, master: Option<AxisIndex>, in_sync: bool) {
+        self.coupled = master;
+        self.in_sync = in_sync && master.is_some();
+    }
+
+    /// The actual velocity (user units/s).
+    pub fn actual_velocity(&self) -> f64 {
+        self.act_vel
+    }
+
+    /// The encoder's reading in user units, without the `set_position` offset (NMC gear
+    /// master type 3).
+    pub fn encoder_position(&self) -> f64 {
+        self.encoder_pos
     }
 
     /// The latched faults (cleared by `reset`).
@@ -953,6 +982,8 @@ impl Axis {
         flags.put(AxisFlags::QUEUE_FULL, self.fifo.is_full());
         flags.put(AxisFlags::ACCELERATING, self.cmd.v * self.cmd.a > 0.0);
         flags.put(AxisFlags::IN_GROUP, self.group.is_some());
+        flags.put(AxisFlags::COUPLED, self.coupled.is_some());
+        flags.put(AxisFlags::IN_SYNC, self.in_sync);
         let next = self
             .fifo
             .get(usize::from(current.is_some()))

@@ -13,6 +13,7 @@ use crate::od::Value;
 pub use crate::error::EngineError;
 pub use crate::types::{
     AxisIndex, CommandId, CommandKind, CoordinateSystem, Direction, ErrorKind, GroupId,
+    MasterSource,
 };
 
 /// PLCopen buffer mode of a motion command (ARCHITECTURE §3.5).
@@ -87,6 +88,7 @@ pub enum AxisInput {
 }
 
 mod axis;
+mod coupling;
 mod group;
 mod group_frames;
 mod group_jog;
@@ -99,6 +101,10 @@ pub use axis::{
     AxisCommand, Cancel, Disable, Enable, ForceInput, GetParameter, Halt, Home,
     InjectFollowingError, ModifyTarget, MoveAbsolute, MoveRelative, MoveVelocity, Reset, Resume,
     SetParameter, SetPosition, Stop, StreamSetpoint,
+};
+pub use coupling::{
+    CamIn, CamInterpolation, CamOut, CamPoint, CamTableDefine, CouplingCommand, FollowSegment,
+    GearIn, GearOut, GearSetRatio,
 };
 pub use group::{
     ArcDirection, CircleMode, CoordinateSet, GroupAxisMove, GroupBufferMode, GroupCommand,
@@ -154,17 +160,12 @@ pub enum Command {
     Machine(MachineCommand),
 }
 
-/// Commands that couple a slave axis to a master (gear, cam). None yet: issue 12 adds them here,
-/// routed like [`GroupCommand`] to its planner stage.
-#[derive(Clone, Debug, PartialEq)]
-pub enum CouplingCommand {}
-
 impl Command {
     /// The axis the command addresses, if it addresses one.
     pub fn axis(&self) -> Option<AxisIndex> {
         match self {
             Command::Axis(c) => Some(c.axis()),
-            Command::Coupling(c) => match *c {},
+            Command::Coupling(c) => c.axis(),
             Command::Group(_) | Command::Io(_) | Command::Slave(_) | Command::Machine(_) => None,
         }
     }
@@ -194,8 +195,6 @@ macro_rules! command_from {
     };
 }
 pub(crate) use command_from;
-
-command_from!(CouplingCommand, Coupling, []);
 
 /// One cycle's setpoint from an external master.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]

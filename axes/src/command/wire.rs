@@ -12,6 +12,7 @@ use super::{
     SlaveCommand, Stop, StopAll, StopAxes, StreamSetpoint, WriteAnalogOutput, WriteDigitalOutput,
     WriteObject,
 };
+use super::{CamIn, CamOut, CamTableDefine, CouplingCommand, GearIn, GearOut, GearSetRatio};
 use super::{
     GroupAxisMove, GroupCommand, GroupContinue, GroupCreate, GroupDelete, GroupDisable, GroupDwell,
     GroupEmergencyStop, GroupEnable, GroupHalt, GroupReset, GroupSetOrigin, GroupSetOutput,
@@ -98,6 +99,13 @@ pub(super) enum Command {
     MoveCircularAngle(MoveCircularAngle),
     GroupJog(GroupJog),
     GroupJogAxis(GroupJogAxis),
+    // Issue 12, couplings.
+    GearIn(GearIn),
+    GearSetRatio(GearSetRatio),
+    GearOut(GearOut),
+    CamTable(CamTableDefine),
+    CamIn(CamIn),
+    CamOut(CamOut),
 }
 
 impl From<Command> for super::Command {
@@ -196,6 +204,12 @@ impl From<Command> for super::Command {
             }
             Command::GroupJog(c) => super::Command::Group(GroupCommand::Jog(c)),
             Command::GroupJogAxis(c) => super::Command::Group(GroupCommand::JogAxis(c)),
+            Command::GearIn(c) => super::Command::Coupling(CouplingCommand::GearIn(c)),
+            Command::GearSetRatio(c) => super::Command::Coupling(CouplingCommand::GearSetRatio(c)),
+            Command::GearOut(c) => super::Command::Coupling(CouplingCommand::GearOut(c)),
+            Command::CamTable(c) => super::Command::Coupling(CouplingCommand::CamTable(c)),
+            Command::CamIn(c) => super::Command::Coupling(CouplingCommand::CamIn(c)),
+            Command::CamOut(c) => super::Command::Coupling(CouplingCommand::CamOut(c)),
         }
     }
 }
@@ -296,7 +310,12 @@ impl From<super::Command> for Command {
             }
             super::Command::Group(GroupCommand::Jog(c)) => Command::GroupJog(c),
             super::Command::Group(GroupCommand::JogAxis(c)) => Command::GroupJogAxis(c),
-            super::Command::Coupling(c) => match c {},
+            super::Command::Coupling(CouplingCommand::GearIn(c)) => Command::GearIn(c),
+            super::Command::Coupling(CouplingCommand::GearSetRatio(c)) => Command::GearSetRatio(c),
+            super::Command::Coupling(CouplingCommand::GearOut(c)) => Command::GearOut(c),
+            super::Command::Coupling(CouplingCommand::CamTable(c)) => Command::CamTable(c),
+            super::Command::Coupling(CouplingCommand::CamIn(c)) => Command::CamIn(c),
+            super::Command::Coupling(CouplingCommand::CamOut(c)) => Command::CamOut(c),
         }
     }
 }

@@ -17,20 +17,22 @@ use crate::command::{
     EngineError, GetCommandState, MachineCommand, MoveTogether, Reply, Reset, Stop, StopAll,
     StopAxes, StopMode, TogetherMove,
 };
+use crate::coupling::Couplings;
 use crate::group::Groups;
 
 /// Commands one atomic batch ([`Engine::apply_batch`]) may carry: it is applied inside one
 /// servo period, so its size bounds the work done there.
 pub const MAX_ATOMIC_COMMANDS: usize = 1024;
 
-/// What a command may change, saved before it is applied (see the module doc). Couplings
-/// (issue 12) add their state here when their commands join atomic batches.
+/// What a command may change, saved before it is applied (see the module doc).
 struct Checkpoint {
     /// Copies of the axes the command may change, by index.
     axes: Vec<(usize, Axis)>,
     /// The axis groups and whether they wait for drives to power up (a whole-machine
     /// checkpoint: a batch may carry group commands).
     groups: Option<(Groups, bool)>,
+    /// The gears and cams (issue 12), with the groups: a batch may carry coupling commands.
+    couplings: Option<Couplings>,
     io: Option<Io>,
     slaves: Option<Vec<Slave>>,
     ledger: LedgerMark,
@@ -379,9 +381,11 @@ impl Engine {
         };
         let groups =
             matches!(scope, Scope::Machine).then(|| (self.groups.clone(), self.groups_await_power));
+        let couplings = matches!(scope, Scope::Machine).then(|| self.couplings.clone());
         Checkpoint {
             axes,
             groups,
+            couplings,
             io,
             slaves,
             ledger: self.ledger.checkpoint(),
@@ -397,6 +401,9 @@ impl Engine {
         if let Some((groups, await_power)) = checkpoint.groups {
             self.groups = groups;
             self.groups_await_power = await_power;
+        }
+        if let Some(couplings) = checkpoint.couplings {
+            self.couplings = couplings;
         }
         if let Some(io) = checkpoint.io {
             self.io = io;

@@ -12,6 +12,7 @@ use crate::command::{
     WriteAnalogOutput, WriteDigitalOutput, WriteObject,
 };
 use crate::config::{ConfigError, EngineConfig, InputBinding};
+use crate::coupling::{Couplings, Env as CouplingEnv};
 use crate::group::{Env as GroupEnv, Groups};
 use crate::homing::HomingSpec;
 use crate::od::Value;
@@ -115,6 +116,8 @@ pub struct Engine {
     /// `enable_all` left engine-mastered drives walking to Operation enabled: once no drive
     /// walks there any more, the groups are enabled as `enable_all` enables them.
     groups_await_power: bool,
+    /// Gears and cams (issue 12): stage 3 steps masters before their slaves.
+    couplings: Couplings,
     /// Stage 2's planners, in the order they were added.
     planners: Vec<Box<dyn MachinePlanner>>,
     /// The setpoints of the planner being run (reused; no allocation per tick).
@@ -147,6 +150,23 @@ impl Engine {
                 controlword: 0,
             });
         }
+        let mut couplings = Couplings::default();
+        for (i, table) in config.cam_tables.iter().enumerate() {
+            if config
+                .cam_tables
+                .iter()
+                .take(i)
+                .any(|t| t.table == table.table)
+            {
+                return Err(ConfigError::new(
+                    format!("cam_tables[{i}].table"),
+                    format!("table {} is defined twice", table.table),
+                ));
+            }
+            couplings
+                .define_table(table.clone())
+                .map_err(|e| ConfigError::new(format!("cam_tables[{i}]"), e.to_string()))?;
+        }
         let io = &config.io;
         Ok(Engine {
             period: config.period,
@@ -170,6 +190,7 @@ impl Engine {
             drive_commands: Vec::new(),
             groups: Groups::new(config.groups.clone()),
             groups_await_power: false,
+            couplings,
             planners: Vec::new(),
             feeds: Feeds::default(),
         })
@@ -210,8 +231,8 @@ impl Engine {
     /// Apply one command at the current tick. Each family goes to its own function: the axis
     /// family to the axis (through its drive first, for power commands on an engine-mastered
     /// drive), I/O to the I/O image, slave commands to a drive's dictionary, machine commands
-    /// to the whole machine. Group and coupling commands will go to their planner stages
-    /// (issues 11 and 12).
+    /// to the whole machine, group commands to the group registry (issue 11), coupling
+    /// commands to the coupling registry (issue 12).
     pub fn apply(&mut self, command: Command) -> Result<Reply, EngineError> {
         match command {
             Command::Axis(c) => self.apply_axis_command(c),
@@ -275,9 +296,40 @@ impl Engine {
         self.groups.get(id).map(|g| g.status(&self.axes))
     }
 
-    /// Issue 12's coupling commands arrive here; there are none yet.
+    /// A gear or cam command (issue 12), applied to the coupling registry with the axes and
+    /// the inputs it may need.
     fn apply_coupling_command(&mut self, command: CouplingCommand) -> Result<Reply, EngineError> {
-        match command {}
+        self.with_couplings(|couplings, env| couplings.apply(env, command))
+    }
+
+    /// Lend the coupling registry what a coupling command or stage 3 touches: the axes, the
+    /// digital inputs and the ledger.
+    fn with_couplings<R>(&mut self, f: impl FnOnce(&mut Couplings, &mut CouplingEnv) -> R) -> R {
+        let Engine {
+            axes,
+            io,
+            ledger,
+            tick,
+            period,
+            couplings,
+            ..
+        } = self;
+        let mut ctx = Context {
+            tick: *tick,
+            di: &io.image.di,
+            ledger,
+        };
+        let mut env = CouplingEnv {
+            axes,
+            ctx: &mut ctx,
+            period: *period,
+        };
+        f(couplings, &mut env)
+    }
+
+    /// The gears and cams.
+    pub fn couplings(&self) -> &Couplings {
+        &self.couplings
     }
 
     /// Power commands on an axis whose drive the engine masters go through the drive's state
@@ -517,8 +569,9 @@ impl Engine {
     ///
     /// 1. `read_inputs`: the I/O image's inputs from last tick's sensors;
     /// 2. `run_planners`: the axis groups (issue 11), in group-number order, then the other
-    ///    machine-level planners (couplings, issue 12), feed their axes this tick's setpoints;
-    /// 3. `step_axes`: every axis, in index order;
+    ///    machine-level planners, feed their axes this tick's setpoints;
+    /// 3. `step_axes`: every axis, in index order, or with couplings (issue 12) masters before
+    ///    their slaves, each slave fed from its master's state of this tick;
     /// 4. `step_drives`: the CiA 402 drives see their axes and answer with commands;
     /// 5. outputs and status: no per-tick work. Outputs change only by command, and status is
     ///    assembled when it is read ([`Engine::snapshot_into`], [`Engine::axis_status`]).
@@ -547,7 +600,7 @@ impl Engine {
     /// this tick's setpoint; a refusal or a member in trouble stops the whole group. They also
     /// write the buffered digital outputs, start buffered single-axis moves and finish their
     /// commands in the ledger. Then every registered planner reads the axes as the previous
-    /// tick left them (so a coupling's slave lags its master by one tick) and writes setpoints;
+    /// tick left them and writes setpoints;
     /// each setpoint becomes its axis's command source for this tick, or goes back to the
     /// planner as a refusal.
     fn run_planners(&mut self) {
@@ -588,15 +641,12 @@ impl Engine {
     /// Stage 3, the axes. Reads the digital inputs (stage 1) and each axis's own state and
     /// source; writes each axis's command, output, plant, encoder, switches, supervision and
     /// command progress for this tick, and the ledger of finished commands.
+    ///
+    /// With couplings (issue 12) the axes step in the couplings' order instead, masters before
+    /// their slaves, and each slave is fed from its master just before it steps: a slave
+    /// follows its master's state of this same tick (`crate::coupling`).
     fn step_axes(&mut self) {
-        let mut ctx = Context {
-            tick: self.tick,
-            di: &self.io.image.di,
-            ledger: &mut self.ledger,
-        };
-        for axis in &mut self.axes {
-            axis.step(&mut ctx);
-        }
+        self.with_couplings(|couplings, env| couplings.step_axes(env));
     }
 
     /// Stage 4, drives and fieldbus. Each drive reads its axis's status after stage 3 and the
@@ -700,6 +750,7 @@ impl Engine {
         }
         self.groups
             .status_into(&self.axes, &snapshot.axes, &mut snapshot.groups);
+        self.couplings.status_into(&mut snapshot.couplings);
         if snapshot.io_version != self.io.version {
             snapshot.io.clone_from(&self.io.image);
             snapshot.io_version = self.io.version;

@@ -1,5 +1,6 @@
 //! Machine-level planners: stage 2 of [`super::Engine::step`], the slot where groups (issue 11)
-//! and couplings (issue 12) feed their axes.
+//! and other planners feed their axes. Gears and cams (issue 12) are not planners: they run
+//! inside stage 3 so that a slave follows its master without lag (`crate::coupling`).
 //!
 //! A planner owns no axis. Each tick, before the axes step, it reads the axes as the previous
 //! tick left them and writes a setpoint (position, velocity, acceleration in the axis's user
@@ -7,7 +8,7 @@
 //! one tick and runs it through its own smoothing, output stage, plant and supervision like any
 //! other source: soft and hard limits, following error and faults still stop it.
 //!
-//! Timing, for couplings: a planner sees every axis's state *of the previous tick* (stage 2 runs
+//! Timing: a planner sees every axis's state *of the previous tick* (stage 2 runs
 //! before stage 3), so a slave geared to a master's actual or commanded position follows it one
 //! servo period late, whatever the axis order. A planner that drives both master and slave (a
 //! group, a cam whose master is a virtual axis it feeds itself) computes both setpoints of the

@@ -703,6 +703,9 @@ fn check_joins(env: &Env, group: GroupId, a: AxisIndex, role: &str) -> Result<()
             reason: format!("{role} {a} is already in group {other}"),
         });
     }
+    if let Some(master) = axis.coupled_master() {
+        return Err(EngineError::AxisCoupled { axis: a, master });
+    }
     let state = axis.state();
     if !matches!(
         state,

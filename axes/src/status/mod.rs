@@ -8,8 +8,10 @@ use serde::{Deserialize, Serialize};
 
 use crate::types::{CommandId, CommandKind, ErrorKind};
 
+mod coupling;
 mod group;
 mod snapshot;
+pub use coupling::{CouplingKind, CouplingPhase, CouplingStatus};
 pub use group::{GroupFault, GroupState, GroupStatus, InterferenceStatus};
 pub use snapshot::Snapshot;
 
@@ -90,6 +92,11 @@ bitflags::bitflags! {
         const BOTH_LIMITS = 1 << 23;
         /// Accelerating (|v| increasing) — HIMC IsAcc.
         const ACCELERATING = 1 << 24;
+        /// The slave of a gear or cam (HIMC IsGearSlave): single-axis motion is refused.
+        const COUPLED = 1 << 25;
+        /// A coupled slave past its clutch or start, following exactly (HIMC IsInGear,
+        /// PLCopen InGear/InSync).
+        const IN_SYNC = 1 << 26;
     }
 }
 
@@ -131,7 +138,7 @@ impl AxisFlags {
 
 /// Every axis flag and its snake_case name, in bit order: the names the control API, traces and
 /// register maps use. A fixed table, so that renaming a constant cannot silently change them.
-pub const FLAG_NAMES: [(AxisFlags, &str); 25] = [
+pub const FLAG_NAMES: [(AxisFlags, &str); 27] = [
     (AxisFlags::ENABLED, "enabled"),
     (AxisFlags::MOVING, "moving"),
     (AxisFlags::IN_POSITION, "in_position"),
@@ -157,6 +164,8 @@ pub const FLAG_NAMES: [(AxisFlags, &str); 25] = [
     (AxisFlags::SW_LIMIT_CONFIG, "sw_limit_config"),
     (AxisFlags::BOTH_LIMITS, "both_limits"),
     (AxisFlags::ACCELERATING, "accelerating"),
+    (AxisFlags::COUPLED, "coupled"),
+    (AxisFlags::IN_SYNC, "in_sync"),
 ];
 
 /// The names of the flags set in `flags`, in bit order.

@@ -4,7 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{AxisStatus, DriveStatus, GroupStatus, IoImage};
+use super::{AxisStatus, CouplingStatus, DriveStatus, GroupStatus, IoImage};
 use crate::param::ParamSet;
 
 /// The machine's state after a tick: what front-ends read without waiting for the servo thread.
@@ -18,6 +18,9 @@ pub struct Snapshot {
     /// The axis groups (issue 11), by group number.
     #[serde(default)]
     pub groups: Vec<GroupStatus>,
+    /// The couplings (issue 12: gear, cam), by slave axis.
+    #[serde(default)]
+    pub couplings: Vec<CouplingStatus>,
     pub io: IoImage,
     /// Changes whenever the I/O image changes: readers (and the snapshot refresh) can skip
     /// comparing images that did not change.

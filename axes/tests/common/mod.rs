@@ -366,3 +366,52 @@ pub fn engine_with_mastered_drive(axes: Vec<AxisConfig>) -> Engine {
     })
     .expect("valid test machine")
 }
+
+/// A virtual axis in pulses (1 unit = 1 pulse): actual = commanded exactly, limits far above
+/// any move's (gear and cam tests).
+pub fn virtual_pulse_axis() -> AxisConfig {
+    free_linear_axis(
+        1.0,
+        &[
+            (ParamId::AxisType, 0.0),
+            (ParamId::Speed, 10_000.0),
+            (ParamId::Accel, 1e7),
+            (ParamId::Decel, 1e6),
+            (ParamId::FastDecel, 1e7),
+        ],
+    )
+}
+
+/// `n` copies of `axis`, all enabled.
+pub fn enabled_machine(axis: AxisConfig, n: usize) -> Engine {
+    let mut e = engine_with(vec![axis; n]);
+    for axis in 0..n as u16 {
+        ok(&mut e, Command::from(Enable { axis }));
+    }
+    e
+}
+
+/// `move_relative` of `axis`, aborting, with the axis's own limits.
+pub fn move_rel_of(axis: u16, distance: f64) -> Command {
+    Command::from(MoveRelative {
+        axis,
+        distance,
+        velocity: None,
+        acceleration: None,
+        deceleration: None,
+        jerk: None,
+        buffer_mode: Default::default(),
+    })
+}
+
+/// `move_velocity` of `axis`, aborting, with the axis's own limits.
+pub fn jog_of(axis: u16, velocity: f64) -> Command {
+    Command::from(MoveVelocity {
+        axis,
+        velocity,
+        acceleration: None,
+        deceleration: None,
+        jerk: None,
+        buffer_mode: Default::default(),
+    })
+}

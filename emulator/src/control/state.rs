@@ -5,8 +5,8 @@ use axes::command::CommandId;
 use axes::command::{CoordinateSystem, Direction, ErrorKind};
 use axes::runtime::RuntimeStats;
 use axes::status::{
-    AxisState, AxisStatus, CommandRef, DriveStatus, GroupFault, GroupState, GroupStatus,
-    InterferenceStatus, IoImage,
+    AxisState, AxisStatus, CommandRef, CouplingStatus, DriveStatus, GroupFault, GroupState,
+    GroupStatus, InterferenceStatus, IoImage,
 };
 use axum::extract::State;
 use axum::Json;
@@ -29,6 +29,8 @@ pub struct StateView<'a> {
     pub axes: Vec<AxisView<'a>>,
     /// The axis groups (coordinated motion), by group number.
     pub groups: Vec<GroupView<'a>>,
+    /// The gears and cams (issue 12), by slave axis: master, kind, phase, ratio, table.
+    pub couplings: &'a [CouplingStatus],
     pub io: IoView<'a>,
     pub drives: Vec<DriveView>,
     /// The servo runtime's counters and lateness histogram (`axes::runtime::RuntimeStats`).
@@ -236,6 +238,7 @@ pub async fn get_state(State(state): State<ControlState>) -> axum::response::Res
             .map(|(i, s)| AxisView::new(i, machine.axis_name(i), s))
             .collect(),
         groups: snapshot.groups.iter().map(GroupView::new).collect(),
+        couplings: &snapshot.couplings,
         io: IoView::from(&snapshot.io),
         drives: snapshot
             .drives

@@ -4,7 +4,7 @@
 use std::fmt::Write as _;
 
 use axes::command::{CommandState, ErrorKind};
-use axes::status::{GroupState, GroupStatus};
+use axes::status::{CouplingPhase, CouplingStatus, GroupState, GroupStatus};
 use axes::{AxisFlags, AxisState, AxisStatus};
 use serde::de::IntoDeserializer;
 use serde::Deserialize;
@@ -30,6 +30,8 @@ pub(super) enum Check {
     NotFlags(AxisFlags),
     /// The axis's last error (`None`: no error).
     Error(Option<ErrorKind>),
+    /// The phase of the coupling whose slave the axis is (`None`: it is no slave).
+    Coupling(Option<CouplingPhase>),
     /// The state of the command the step with this index issued.
     CommandState {
         step: usize,
@@ -235,6 +237,21 @@ impl Expectation {
             };
             checks.push(Check::Error(kind));
         }
+        if let Some(name) = &spec.coupling {
+            let phase = match name.as_str() {
+                "none" => None,
+                "waiting" => Some(CouplingPhase::Waiting),
+                "engaging" => Some(CouplingPhase::Engaging),
+                "in_sync" => Some(CouplingPhase::InSync),
+                other => {
+                    return Err((
+                        "coupling",
+                        format!("unknown phase `{other}`: one of none, waiting, engaging, in_sync"),
+                    ))
+                }
+            };
+            checks.push(Check::Coupling(phase));
+        }
         let axis_checks = !checks.is_empty();
         if axis_checks && spec.axis.is_none() {
             return Err(("axis", "missing: these conditions are about an axis".into()));
@@ -243,7 +260,7 @@ impl Expectation {
             return Err((
                 "axis",
                 "no condition on it: give state, position, velocity, command_position, \
-                 command_velocity, following_error, flags, not_flags or error"
+                 command_velocity, following_error, flags, not_flags, error or coupling"
                     .into(),
             ));
         }
@@ -346,6 +363,8 @@ fn group_checks(spec: &ExpectSpec) -> Result<Vec<Check>, SpecError> {
 pub(super) struct Seen<'a> {
     pub axis: Option<&'a AxisStatus>,
     pub group: Option<&'a GroupStatus>,
+    /// The coupling whose slave the expectation's axis is, if any.
+    pub coupling: Option<&'a CouplingStatus>,
     pub di: &'a [bool],
     pub do_: &'a [bool],
     /// The state of the command step `k` issued: `Err` says why there is none.
@@ -397,6 +416,19 @@ impl Expectation {
                     want.map_or("none", |e| e.name()),
                     s.last_error.map_or("none", |e| e.name())
                 ),
+                (Check::Coupling(want), Some(_)) => {
+                    let got = seen.coupling.map(|c| c.phase);
+                    if got == *want {
+                        continue;
+                    }
+                    let name = |p: Option<CouplingPhase>| p.map_or("none", CouplingPhase::name);
+                    write!(
+                        msg,
+                        "axis {axis} coupling: expected {}, saw {}",
+                        name(*want),
+                        name(got)
+                    )
+                }
                 (Check::CommandState { step, state }, _) => match (seen.command_state)(*step) {
                     Ok(got) if state.matches(got) => continue,
                     Ok(got) => write!(
@@ -552,6 +584,60 @@ mod tests {
     }
 
     #[test]
+    fn a_coupling_phase_is_an_axis_condition_and_says_what_it_saw() {
+        let err = |s: ExpectSpec| Expectation::from_spec(s).unwrap_err();
+        assert_eq!(
+            err(ExpectSpec {
+                axis: Some(1),
+                coupling: Some("geared".into()),
+                ..spec()
+            })
+            .0,
+            "coupling"
+        );
+        assert_eq!(
+            err(ExpectSpec {
+                coupling: Some("in_sync".into()),
+                ..spec()
+            })
+            .0,
+            "axis"
+        );
+        let e = Expectation::from_spec(ExpectSpec {
+            axis: Some(1),
+            coupling: Some("in_sync".into()),
+            ..spec()
+        })
+        .unwrap();
+        let none = |_: usize| Err("unused".to_string());
+        let status = AxisStatus::default();
+        let engaging = CouplingStatus {
+            phase: CouplingPhase::Engaging,
+            ..CouplingStatus::default()
+        };
+        let seen = Seen {
+            axis: Some(&status),
+            group: None,
+            coupling: Some(&engaging),
+            di: &[],
+            do_: &[],
+            command_state: &none,
+        };
+        assert_eq!(
+            e.failures(&seen),
+            ["axis 1 coupling: expected in_sync, saw engaging"]
+        );
+        let free = Seen {
+            coupling: None,
+            ..seen
+        };
+        assert_eq!(
+            e.failures(&free),
+            ["axis 1 coupling: expected in_sync, saw none"]
+        );
+    }
+
+    #[test]
     fn command_states_parse() {
         assert_eq!(
             ExpectedState::parse("error:limit_reached").unwrap(),
@@ -590,6 +676,7 @@ mod tests {
         let seen = Seen {
             axis: Some(&status),
             group: None,
+            coupling: None,
             di: &[false, false],
             do_: &[],
             command_state: &none,
@@ -641,6 +728,7 @@ mod tests {
         let seen = Seen {
             axis: None,
             group: Some(&g),
+            coupling: None,
             di: &[],
             do_: &[],
             command_state: &none,

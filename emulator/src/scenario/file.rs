@@ -89,6 +89,10 @@ pub(super) struct ExpectSpec {
     /// Name of the axis's last error; `""` = none.
     #[serde(default)]
     pub error: Option<String>,
+    /// The phase of the gear or cam whose slave the axis is: `waiting`, `engaging`, `in_sync`,
+    /// or `none` when it is no slave (issue 12).
+    #[serde(default)]
+    pub coupling: Option<String>,
     /// With `command_state`: the step whose command is meant.
     #[serde(default)]
     pub step: Option<usize>,

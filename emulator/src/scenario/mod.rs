@@ -649,9 +649,11 @@ impl Run<'_> {
                 };
                 let status = e.axis.and_then(|a| engine.axis_status(a as usize));
                 let group = e.group.and_then(|id| engine.group_status(id));
+                let coupling = e.axis.and_then(|a| engine.couplings().status_of(a));
                 let seen = Seen {
                     axis: status.as_ref(),
                     group: group.as_ref(),
+                    coupling: coupling.as_ref(),
                     di: &engine.io().di,
                     do_: &engine.io().do_,
                     command_state: &command_state,

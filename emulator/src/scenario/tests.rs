@@ -235,3 +235,62 @@ fn the_trace_has_a_row_per_axis_per_tick_from_tick_0() {
     assert!(lines[1].starts_with("0,0,standstill,"), "{}", lines[1]);
     assert!(lines[11].starts_with("0.01,0,standstill,"), "{}", lines[11]);
 }
+
+#[test]
+fn a_gear_and_a_config_cam_table_run_and_are_checked_by_expect() {
+    // The README's "Gear, cam and streams" example on two steppers, plus a cam on a table from
+    // `[[cam_tables]]`.
+    let axis = "[[axes]]\n[axes.params]\naxis_type = \"stepper\"\nunits = 1000\nrep_mode = \"finite\"\nspeed = 100\naccel = 1000\ndecel = 1000\n";
+    let text = format!(
+        r#"
+end = 3.0
+[[step]]
+at = 0
+command = {{ type = "enable", axis = 0 }}
+[[step]]
+at = 0
+command = {{ type = "enable", axis = 1 }}
+[[step]]
+at = 0
+command = {{ type = "enable", axis = 2 }}
+[[step]]
+at = 0
+command = {{ type = "gear_in", master = 0, slave = 1, numerator = -1, denominator = 2, clutch_distance = 10 }}
+[[step]]
+at = 0
+command = {{ type = "cam_in", master = 0, slave = 2, table = 4 }}
+[[step]]
+at = 0
+command = {{ type = "move_absolute", axis = 0, position = 100, velocity = 50 }}
+[[step]]
+at = 0.05
+expect = {{ axis = 1, coupling = "engaging", flags = ["coupled"], not_flags = ["in_sync"] }}
+[[step]]
+at = 2.9
+expect = {{ axis = 1, coupling = "in_sync", command_position = -47.5, tolerance = 1e-9, flags = ["coupled", "in_sync"] }}
+[[step]]
+at = 2.9
+expect = {{ axis = 2, coupling = "in_sync", command_position = 25.0, tolerance = 1e-9 }}
+[[step]]
+at = 2.9
+expect = {{ axis = 0, coupling = "none" }}
+[[step]]
+at = 2.9
+command = {{ type = "gear_out", slave = 1 }}
+[[step]]
+at = 2.95
+expect = {{ axis = 1, coupling = "none", not_flags = ["coupled"] }}
+
+[machine]
+period = 0.001
+{axis}{axis}{axis}
+[[cam_tables]]
+table = 4
+points = [{{ master = 0, slave = 0 }}, {{ master = 200, slave = 50 }}]
+"#
+    );
+    let s = parse(&text).unwrap();
+    let r = s.run(None).unwrap();
+    assert_eq!(r.expectations, 5);
+    assert!(r.failures.is_empty(), "{:#?}", r.failures);
+}

@@ -109,11 +109,35 @@ impl Axis {
                 group,
             });
         }
+        if let Some(master) = self.coupled {
+            return Err(EngineError::AxisCoupled {
+                axis: self.index,
+                master,
+            });
+        }
         if matches!(self.source, Source::Fed(_)) && matches!(self.activity, Activity::Streaming) {
             Err(self.invalid_state("take single-axis motion while a machine planner feeds it"))
         } else {
             Ok(())
         }
+    }
+
+    /// Whether the axis may become a coupling's slave now: it can move (enabled, no fault),
+    /// belongs to no group and follows no other master.
+    pub(crate) fn check_can_couple(&self) -> Result<(), EngineError> {
+        if let Some(master) = self.coupled {
+            return Err(EngineError::AlreadyCoupled {
+                axis: self.index,
+                master,
+            });
+        }
+        if let Some(group) = self.group {
+            return Err(EngineError::AxisInGroup {
+                axis: self.index,
+                group,
+            });
+        }
+        self.check_can_move()
     }
 
     /// Make `source` the axis's command source if the axis may move `toward` (the sign is the

@@ -1,0 +1,539 @@
+//! Couplings (issue 12 items 1–2): gears and cams that make a slave axis follow a master.
+//!
+//! Zero lag. The couplings do not run as stage-2 planners (those see the axes as the last tick
+//! left them, so a slave would follow its master one servo period late). Instead stage 3 steps
+//! the axes in the couplings' order: every master before its slaves, the uncoupled axes in
+//! index order. Just before a slave steps, its coupling reads the master *as this tick left
+//! it* (commanded, actual or encoder position) and feeds the slave its setpoint, which the
+//! slave then runs through its own smoothing, output stage, plant and supervision like any fed
+//! setpoint. The order is computed when a coupling is made or ends, never per tick; a coupling
+//! whose master follows its slave (directly or down a chain) is refused (`CouplingLoop`).
+//!
+//! A slave that refuses its setpoint (fault, disable, stop, a limit) is decoupled: it keeps
+//! doing what the refusal left it doing. A master's fault does not decouple: the master's stop
+//! ramp is followed by the slave, so the two stay in ratio (decisions.md, issue 12 gear).
+
+mod cam;
+mod gear;
+pub mod table;
+
+use std::collections::BTreeMap;
+use std::sync::Arc;
+
+use crate::axis::{Axis, Context, Feed};
+use crate::command::{
+    bounded, positive, AxisIndex, CamIn, CamTableDefine, CouplingCommand, EngineError, GearIn,
+    MasterSource, Reply,
+};
+use crate::profile::MotionState;
+use crate::status::{CouplingKind, CouplingPhase, CouplingStatus};
+pub use cam::{Cam, CamStart, CamStep};
+pub use gear::{Clutch, Gear};
+pub use table::CamTable;
+
+/// Most cam tables defined at once.
+pub const MAX_CAM_TABLES: usize = 256;
+
+#[derive(Clone, Debug)]
+enum Law {
+    Gear(Gear),
+    Cam(Cam),
+}
+
+/// One slave and what it follows.
+#[derive(Clone, Debug)]
+struct Coupling {
+    slave: AxisIndex,
+    master: AxisIndex,
+    source: MasterSource,
+    law: Law,
+    /// The master's position (per `source`) of the last tick.
+    previous: f64,
+    /// Set when the coupling ended this tick; removed after the axes have stepped.
+    ended: bool,
+}
+
+impl Coupling {
+    fn status(&self) -> CouplingStatus {
+        let (kind, ratio, table, table_index, cycle) = match &self.law {
+            Law::Gear(g) => (CouplingKind::Gear, g.ratio(), None, 0, 0),
+            Law::Cam(cam) => (
+                CouplingKind::Cam,
+                0.0,
+                Some(cam.table_id),
+                cam.span(),
+                cam.cycle(),
+            ),
+        };
+        CouplingStatus {
+            slave: self.slave,
+            master: self.master,
+            kind,
+            master_source: self.source,
+            phase: self.phase(),
+            ratio,
+            table,
+            table_index,
+            cycle,
+        }
+    }
+
+    fn phase(&self) -> CouplingPhase {
+        match &self.law {
+            Law::Gear(g) => g.phase(),
+            Law::Cam(c) => c.phase(),
+        }
+    }
+}
+
+/// The couplings and the cam tables. Cloned whole by atomic batches' checkpoints (the tables
+/// are shared).
+#[derive(Clone, Debug, Default)]
+pub struct Couplings {
+    /// By slave axis.
+    list: Vec<Coupling>,
+    tables: BTreeMap<u16, Arc<CamTable>>,
+    /// Stage 3's order: each axis and the index in `list` of the coupling it is the slave of.
+    /// Empty when there is no coupling (then the axes step in index order).
+    order: Vec<(AxisIndex, Option<usize>)>,
+}
+
+/// What a coupling command may touch.
+pub(crate) struct Env<'a, 'b> {
+    pub axes: &'a mut [Axis],
+    pub ctx: &'a mut Context<'b>,
+    pub period: f64,
+}
+
+/// The master's value a coupling follows, this tick.
+fn read_master(axis: &Axis, source: MasterSource, previous: f64, period: f64) -> MotionState {
+    match source {
+        MasterSource::Commanded => axis.commanded(),
+        MasterSource::Actual => MotionState {
+            p: axis.actual_position(),
+            v: axis.actual_velocity(),
+            a: 0.0,
+        },
+        MasterSource::Encoder => {
+            let p = axis.encoder_position();
+            MotionState {
+                p,
+                v: (p - previous) / period,
+                a: 0.0,
+            }
+        }
+    }
+}
+
+fn axis_ref(axes: &[Axis], index: AxisIndex) -> Result<&Axis, EngineError> {
+    axes.get(index as usize).ok_or(EngineError::InvalidAxis {
+        axis: u32::from(index),
+        count: axes.len() as u32,
+    })
+}
+
+impl Couplings {
+    pub fn is_empty(&self) -> bool {
+        self.list.is_empty()
+    }
+
+    /// A cam table by number.
+    pub fn table(&self, id: u16) -> Option<&CamTable> {
+        self.tables.get(&id).map(|t| t.as_ref())
+    }
+
+    /// Apply a coupling command.
+    pub(crate) fn apply(
+        &mut self,
+        env: &mut Env,
+        command: CouplingCommand,
+    ) -> Result<Reply, EngineError> {
+        match command {
+            CouplingCommand::GearIn(c) => self.gear_in(env, &c),
+            CouplingCommand::GearSetRatio(c) => {
+                let ratio = check_ratio(c.numerator, c.denominator)?;
+                let gear = self.gear_mut(c.slave)?;
+                gear.set_ratio(ratio.0, ratio.1);
+                Ok(Reply::Done)
+            }
+            CouplingCommand::GearOut(c) => self.decouple(env, c.slave, CouplingKind::Gear),
+            CouplingCommand::CamTable(c) => self.define_table(c),
+            CouplingCommand::CamIn(c) => self.cam_in(env, &c),
+            CouplingCommand::CamOut(c) => self.decouple(env, c.slave, CouplingKind::Cam),
+        }
+    }
+
+    /// Check a new coupling of `slave` to `master`: both exist, they differ, the slave may be
+    /// coupled and the master does not follow the slave down its chain.
+    fn check_new(
+        &self,
+        axes: &[Axis],
+        master: AxisIndex,
+        slave: AxisIndex,
+    ) -> Result<(), EngineError> {
+        let s = axis_ref(axes, slave)?;
+        axis_ref(axes, master)?;
+        if master == slave {
+            return Err(EngineError::CoupledToItself { axis: slave });
+        }
+        s.check_can_couple()?;
+        // Walk up from the master: each axis has at most one master, so the walk ends within
+        // as many steps as there are couplings.
+        let mut up = Some(master);
+        for _ in 0..=self.list.len() {
+            let Some(a) = up else { break };
+            if a == slave {
+                return Err(EngineError::CouplingLoop { slave, master });
+            }
+            up = self.find(a).map(|c| c.master);
+        }
+        Ok(())
+    }
+
+    fn gear_in(&mut self, env: &mut Env, c: &GearIn) -> Result<Reply, EngineError> {
+        self.check_new(env.axes, c.master, c.slave)?;
+        let (numerator, denominator) = check_ratio(c.numerator, c.denominator)?;
+        let clutch = match (c.clutch_distance, c.acceleration) {
+            (Some(_), Some(_)) => {
+                return Err(EngineError::InvalidArgument {
+                    name: "clutch_distance",
+                    value: c.clutch_distance.unwrap_or(0.0),
+                    reason: "give a clutch distance or an acceleration, not both",
+                })
+            }
+            (Some(d), None) => {
+                let d = bounded("clutch_distance", d)?;
+                if d > 0.0 {
+                    Clutch::Distance(d)
+                } else if d == 0.0 {
+                    // NMC: "0 表示没有离合区".
+                    Clutch::Immediate
+                } else {
+                    return Err(EngineError::InvalidArgument {
+                        name: "clutch_distance",
+                        value: d,
+                        reason: "must be ≥ 0",
+                    });
+                }
+            }
+            (None, Some(a)) => Clutch::Acceleration(positive("acceleration", a)?),
+            (None, None) => Clutch::Immediate,
+        };
+        let (m, slave) = positions(env, c.master, c.slave, c.master_source)?;
+        let gear = Gear::new(numerator, denominator, clutch, c.direction, m, slave);
+        self.insert(
+            env,
+            (c.master, c.slave, c.master_source),
+            Law::Gear(gear),
+            m,
+        );
+        Ok(Reply::Done)
+    }
+
+    fn cam_in(&mut self, env: &mut Env, c: &CamIn) -> Result<Reply, EngineError> {
+        self.check_new(env.axes, c.master, c.slave)?;
+        let table = self
+            .tables
+            .get(&c.table)
+            .cloned()
+            .ok_or(EngineError::UnknownCamTable { table: c.table })?;
+        for (name, v) in [
+            ("master_offset", c.master_offset),
+            ("slave_offset", c.slave_offset),
+            ("slave_scaling", c.slave_scaling),
+        ] {
+            bounded(name, v)?;
+        }
+        positive("master_scaling", c.master_scaling)?;
+        let start = match (c.start_position, c.start_input) {
+            (Some(_), Some(_)) => {
+                return Err(EngineError::InvalidArgument {
+                    name: "start_position",
+                    value: c.start_position.unwrap_or(0.0),
+                    reason: "give a start position or a start input, not both",
+                })
+            }
+            (Some(p), None) => {
+                CamStart::MasterPosition(bounded("start_position", p)?, c.start_direction)
+            }
+            (None, Some(ch)) => {
+                let count = env.ctx.di.len() as u16;
+                if usize::from(ch) >= env.ctx.di.len() {
+                    return Err(EngineError::InvalidChannel {
+                        kind: "digital inputs",
+                        channel: ch,
+                        count,
+                    });
+                }
+                CamStart::Input(ch)
+            }
+            (None, None) => CamStart::Immediate,
+        };
+        let (m, slave) = positions(env, c.master, c.slave, c.master_source)?;
+        let mut cam = Cam::new(c, table, start);
+        cam.start_if_immediate(m, slave.p);
+        self.insert(env, (c.master, c.slave, c.master_source), Law::Cam(cam), m);
+        Ok(Reply::Done)
+    }
+
+    /// Define (or replace) a cam table: `cam_table`, and the config's `[[cam_tables]]`.
+    pub(crate) fn define_table(&mut self, c: CamTableDefine) -> Result<Reply, EngineError> {
+        if let Some(user) = self
+            .list
+            .iter()
+            .find(|k| matches!(&k.law, Law::Cam(cam) if cam.table_id == c.table))
+        {
+            return Err(EngineError::CamTableInUse {
+                table: c.table,
+                slave: user.slave,
+            });
+        }
+        if !self.tables.contains_key(&c.table) && self.tables.len() >= MAX_CAM_TABLES {
+            return Err(EngineError::InvalidCamTable {
+                table: c.table,
+                reason: format!("no room: at most {MAX_CAM_TABLES} tables"),
+            });
+        }
+        let table = CamTable::new(c.table, &c.points, c.interpolation)?;
+        self.tables.insert(c.table, Arc::new(table));
+        Ok(Reply::Done)
+    }
+
+    /// Add the coupling of `slave` to `master` (by `source`, whose value is `m` now).
+    fn insert(
+        &mut self,
+        env: &mut Env,
+        (master, slave, source): (AxisIndex, AxisIndex, MasterSource),
+        law: Law,
+        m: f64,
+    ) {
+        let coupling = Coupling {
+            slave,
+            master,
+            source,
+            law,
+            previous: m,
+            ended: false,
+        };
+        if let Some(axis) = env.axes.get_mut(coupling.slave as usize) {
+            axis.set_coupled(
+                Some(coupling.master),
+                coupling.phase() == CouplingPhase::InSync,
+            );
+        }
+        let at = self.list.partition_point(|c| c.slave < coupling.slave);
+        self.list.insert(at, coupling);
+        self.reorder(env.axes.len());
+    }
+
+    fn find(&self, slave: AxisIndex) -> Option<&Coupling> {
+        self.list
+            .binary_search_by_key(&slave, |c| c.slave)
+            .ok()
+            .and_then(|i| self.list.get(i))
+    }
+
+    fn gear_mut(&mut self, slave: AxisIndex) -> Result<&mut Gear, EngineError> {
+        let not = EngineError::NotCoupled {
+            axis: slave,
+            what: "the slave of a gear",
+        };
+        let i = self
+            .list
+            .binary_search_by_key(&slave, |c| c.slave)
+            .map_err(|_| not.clone())?;
+        match self.list.get_mut(i).map(|c| &mut c.law) {
+            Some(Law::Gear(g)) => Ok(g),
+            _ => Err(not),
+        }
+    }
+
+    /// `gear_out`/`cam_out`: the slave keeps its velocity and decelerates to rest with its
+    /// `decel` (PLCopen MC_GearOut: the slave continues with the velocity it has).
+    fn decouple(
+        &mut self,
+        env: &mut Env,
+        slave: AxisIndex,
+        kind: CouplingKind,
+    ) -> Result<Reply, EngineError> {
+        let what = match kind {
+            CouplingKind::Gear => "the slave of a gear",
+            CouplingKind::Cam => "the slave of a cam",
+        };
+        let i = self
+            .list
+            .binary_search_by_key(&slave, |c| c.slave)
+            .map_err(|_| EngineError::NotCoupled { axis: slave, what })?;
+        let matches = match self.list.get(i).map(|c| &c.law) {
+            Some(Law::Gear(_)) => kind == CouplingKind::Gear,
+            Some(Law::Cam(_)) => kind == CouplingKind::Cam,
+            None => false,
+        };
+        if !matches {
+            return Err(EngineError::NotCoupled { axis: slave, what });
+        }
+        self.list.remove(i);
+        if let Some(axis) = env.axes.get_mut(slave as usize) {
+            axis.set_coupled(None, false);
+            // Not fed (a cam that never started): nothing to release.
+            let _ = axis.feed(env.ctx, Feed::Release);
+        }
+        self.reorder(env.axes.len());
+        Ok(Reply::Done)
+    }
+
+    /// Recompute stage 3's order: masters before slaves (depth in the master chain, then
+    /// index). Loops were refused when the couplings were made, so depths are bounded.
+    fn reorder(&mut self, axes: usize) {
+        self.order.clear();
+        if self.list.is_empty() {
+            return;
+        }
+        let depth = |mut a: AxisIndex| {
+            let mut d = 0usize;
+            while let Some(c) = self.find(a) {
+                d += 1;
+                a = c.master;
+                if d > self.list.len() {
+                    break;
+                }
+            }
+            d
+        };
+        let mut order: Vec<(usize, AxisIndex)> = (0..axes)
+            .map(|i| (depth(i as AxisIndex), i as AxisIndex))
+            .collect();
+        order.sort_unstable();
+        let slots: Vec<(AxisIndex, Option<usize>)> = order
+            .into_iter()
+            .map(|(_, a)| {
+                let slot = self.list.binary_search_by_key(&a, |c| c.slave).ok();
+                (a, slot)
+            })
+            .collect();
+        self.order = slots;
+    }
+
+    /// Stage 3: every axis steps, in index order without couplings, else in the couplings' order
+    /// with each slave fed from its master just before it steps; then the couplings that ended
+    /// are dropped.
+    pub(crate) fn step_axes(&mut self, env: &mut Env) {
+        let Env {
+            axes, ctx, period, ..
+        } = env;
+        if self.list.is_empty() {
+            for axis in axes.iter_mut() {
+                axis.step(ctx);
+            }
+            return;
+        }
+        for i in 0..self.order.len() {
+            let Some(&(index, slot)) = self.order.get(i) else {
+                break;
+            };
+            if let Some(slot) = slot {
+                self.drive_slave(slot, axes, ctx, *period);
+            }
+            if let Some(axis) = axes.get_mut(index as usize) {
+                axis.step(ctx);
+            }
+        }
+        self.sweep(axes, ctx);
+    }
+
+    /// Stage 3, just before slave `slot`'s axis steps: read its master as this tick left it
+    /// and feed the slave. A refused setpoint ends the coupling.
+    fn drive_slave(&mut self, slot: usize, axes: &mut [Axis], ctx: &mut Context, period: f64) {
+        let Some(c) = self.list.get_mut(slot) else {
+            return;
+        };
+        let Some(master_axis) = axes.get(c.master as usize) else {
+            return;
+        };
+        let master = read_master(master_axis, c.source, c.previous, period);
+        let previous = std::mem::replace(&mut c.previous, master.p);
+        let Some(slave) = axes.get_mut(c.slave as usize) else {
+            return;
+        };
+        let (feed, end) = match &mut c.law {
+            Law::Gear(g) => (Some(g.step(master, previous, period)), false),
+            Law::Cam(cam) => {
+                let input = match cam.start_input() {
+                    Some(ch) => ctx.di.get(usize::from(ch)).copied().unwrap_or(false),
+                    None => false,
+                };
+                cam.check_start(previous, master.p, input, slave.commanded().p);
+                match cam.step(master) {
+                    CamStep::Wait => (None, false),
+                    CamStep::Follow(s) => (Some(s), false),
+                    CamStep::End(s) => (Some(s), true),
+                }
+            }
+        };
+        let in_sync = c.phase() == CouplingPhase::InSync;
+        let Some(setpoint) = feed else {
+            return;
+        };
+        if slave.feed(ctx, Feed::Follow(setpoint)).is_err() || end {
+            // Refused (fault, disable, stop, limit): decoupled, the slave keeps what the
+            // refusal left it doing. Ended: it stands at the end and is free from next tick.
+            c.ended = true;
+            slave.set_coupled(None, false);
+        } else {
+            slave.set_coupled(Some(c.master), in_sync);
+        }
+    }
+
+    /// After stage 3: drop the couplings that ended this tick and let their slaves go (a
+    /// slave still fed ramps down with its `decel`; one that ended at rest simply stops being
+    /// fed). Rare: no work otherwise.
+    fn sweep(&mut self, axes: &mut [Axis], ctx: &mut Context) {
+        if !self.list.iter().any(|c| c.ended) {
+            return;
+        }
+        for c in self.list.iter().filter(|c| c.ended) {
+            if let Some(axis) = axes.get_mut(c.slave as usize) {
+                let _ = axis.feed(ctx, Feed::Release);
+            }
+        }
+        self.list.retain(|c| !c.ended);
+        self.reorder(axes.len());
+    }
+
+    /// The couplings' records, by slave.
+    pub fn status_into(&self, out: &mut Vec<CouplingStatus>) {
+        out.clear();
+        out.extend(self.list.iter().map(Coupling::status));
+    }
+
+    /// The coupling record of `slave`, if it is one.
+    pub fn status_of(&self, slave: AxisIndex) -> Option<CouplingStatus> {
+        self.find(slave).map(Coupling::status)
+    }
+}
+
+/// The master's value (by `source`) and the slave's commanded state, as a new coupling starts
+/// from them.
+fn positions(
+    env: &Env,
+    master: AxisIndex,
+    slave: AxisIndex,
+    source: MasterSource,
+) -> Result<(f64, MotionState), EngineError> {
+    let m = read_master(axis_ref(env.axes, master)?, source, 0.0, env.period).p;
+    Ok((m, axis_ref(env.axes, slave)?.commanded()))
+}
+
+/// numerator / denominator of a gear: finite, within bounds, denominator ≠ 0.
+fn check_ratio(numerator: f64, denominator: f64) -> Result<(f64, f64), EngineError> {
+    let n = bounded("numerator", numerator)?;
+    let d = bounded("denominator", denominator)?;
+    if d == 0.0 {
+        return Err(EngineError::InvalidArgument {
+            name: "denominator",
+            value: d,
+            reason: "must not be zero",
+        });
+    }
+    Ok((n, d))
+}
