@@ -118,6 +118,14 @@ pub enum EngineError {
     /// A move protection that cannot be set up as given (NMC `SetMvProtect`).
     #[error("move protection {protection}: {reason}")]
     InvalidProtection { protection: u16, reason: String },
+    /// A capture or compare channel that cannot be set up as given (issue 12 items 4–5).
+    #[error("{trigger} channel {channel}: {reason}")]
+    InvalidTrigger {
+        /// `capture` or `compare`.
+        trigger: &'static str,
+        channel: u8,
+        reason: String,
+    },
 }
 
 impl EngineError {
@@ -169,7 +177,8 @@ impl EngineError {
             EngineError::GroupQueueFull { .. } => ErrorKind::QueueFull,
             EngineError::InvalidPath { .. }
             | EngineError::UndefinedCoordinateSystem { .. }
-            | EngineError::InvalidProtection { .. } => ErrorKind::InvalidArgument,
+            | EngineError::InvalidProtection { .. }
+            | EngineError::InvalidTrigger { .. } => ErrorKind::InvalidArgument,
         }
     }
 }

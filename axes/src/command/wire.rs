@@ -12,6 +12,7 @@ use super::{
     SlaveCommand, Stop, StopAll, StopAxes, StreamSetpoint, WriteAnalogOutput, WriteDigitalOutput,
     WriteObject,
 };
+use super::{CaptureArm, CaptureClear, CompareStart, CompareStop, TriggerCommand};
 use super::{
     GroupAxisMove, GroupCommand, GroupContinue, GroupCreate, GroupDelete, GroupDisable, GroupDwell,
     GroupEmergencyStop, GroupEnable, GroupHalt, GroupReset, GroupSetOrigin, GroupSetOutput,
@@ -95,6 +96,11 @@ pub(super) enum Command {
     MoveProtectionEnable(MoveProtectionEnable),
     MoveProtectionDisable(MoveProtectionDisable),
     MoveCircularAngle(MoveCircularAngle),
+    // Issue 12 items 4–5, capture and position compare.
+    CaptureArm(CaptureArm),
+    CaptureClear(CaptureClear),
+    CompareStart(CompareStart),
+    CompareStop(CompareStop),
 }
 
 impl From<Command> for super::Command {
@@ -191,6 +197,10 @@ impl From<Command> for super::Command {
             Command::MoveProtectionDisable(c) => {
                 super::Command::Group(GroupCommand::ProtectionDisable(c))
             }
+            Command::CaptureArm(c) => super::Command::Trigger(TriggerCommand::CaptureArm(c)),
+            Command::CaptureClear(c) => super::Command::Trigger(TriggerCommand::CaptureClear(c)),
+            Command::CompareStart(c) => super::Command::Trigger(TriggerCommand::CompareStart(c)),
+            Command::CompareStop(c) => super::Command::Trigger(TriggerCommand::CompareStop(c)),
         }
     }
 }
@@ -289,6 +299,10 @@ impl From<super::Command> for Command {
             super::Command::Group(GroupCommand::ProtectionDisable(c)) => {
                 Command::MoveProtectionDisable(c)
             }
+            super::Command::Trigger(TriggerCommand::CaptureArm(c)) => Command::CaptureArm(c),
+            super::Command::Trigger(TriggerCommand::CaptureClear(c)) => Command::CaptureClear(c),
+            super::Command::Trigger(TriggerCommand::CompareStart(c)) => Command::CompareStart(c),
+            super::Command::Trigger(TriggerCommand::CompareStop(c)) => Command::CompareStop(c),
             super::Command::Coupling(c) => match c {},
         }
     }

@@ -10,8 +10,13 @@ use crate::types::{CommandId, CommandKind, ErrorKind};
 
 mod group;
 mod snapshot;
+mod trigger;
 pub use group::{GroupFault, GroupState, GroupStatus, InterferenceStatus};
 pub use snapshot::Snapshot;
+pub use trigger::{
+    CaptureEdge, CaptureSource, CaptureState, CaptureStatus, CaptureWindow, CompareOutputMode,
+    CompareState, CompareStatus, Latch, PositionSource,
+};
 
 /// PLCopen axis state.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]

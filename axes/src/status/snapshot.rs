@@ -4,7 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{AxisStatus, DriveStatus, GroupStatus, IoImage};
+use super::{AxisStatus, CaptureStatus, CompareStatus, DriveStatus, GroupStatus, IoImage};
 use crate::param::ParamSet;
 
 /// The machine's state after a tick: what front-ends read without waiting for the servo thread.
@@ -18,6 +18,12 @@ pub struct Snapshot {
     /// The axis groups (issue 11), by group number.
     #[serde(default)]
     pub groups: Vec<GroupStatus>,
+    /// The armed (or done) capture channels (issue 12 item 4), by axis and channel.
+    #[serde(default)]
+    pub captures: Vec<CaptureStatus>,
+    /// The position-compare channels (issue 12 item 5), by channel.
+    #[serde(default)]
+    pub compares: Vec<CompareStatus>,
     pub io: IoImage,
     /// Changes whenever the I/O image changes: readers (and the snapshot refresh) can skip
     /// comparing images that did not change.
