@@ -136,7 +136,9 @@ fn tv60_di0_falls_at_1234_latches_1234_and_clear_resets_captset() {
     assert_eq!(latch.encoder_counts, 1234, "MtGetCaptPos");
     assert_eq!(latch.act_pos, 1234.0);
     assert!(!latch.rising);
-    assert!(common::status(&e).encoder_counts > 1234);
+    let status = common::status(&e);
+    assert!(status.encoder_counts > 1234);
+    assert_eq!((status.captures, status.capture_position), (1, 1234.0));
     // One shot: later edges do not latch.
     run(&mut e, 0.1);
     assert_eq!(capture(&e).count, 1);

@@ -102,6 +102,7 @@ fn hmc_vector_32_toggles_at_every_hundred_and_goes_idle_after_the_tenth() {
     }
     let c = compare(&e);
     assert_eq!((c.count, c.remaining, c.state), (10, 0, CompareState::Done));
+    assert_eq!(common::status(&e).compare_outputs, 10);
 }
 
 #[test]
@@ -488,4 +489,32 @@ proptest! {
         }
         prop_assert_eq!(fired, positions.len() as u32);
     }
+}
+
+#[test]
+fn an_atomic_batch_refused_late_leaves_no_channel_and_no_output() {
+    let mut e = machine(1000.0);
+    ok(
+        &mut e,
+        Command::from(axes::command::WriteDigitalOutput {
+            channel: 0,
+            value: true,
+        }),
+    );
+    let before = e.snapshot();
+    let err = e
+        .apply_batch(vec![
+            Command::from(list(&[1.0])),
+            Command::from(CompareStart {
+                output: 99,
+                ..list(&[1.0])
+            }),
+        ])
+        .unwrap_err();
+    assert!(matches!(err, EngineError::Item { index: 1, .. }), "{err}");
+    assert_eq!(
+        e.snapshot(),
+        before,
+        "the pulse channel's idle level is rolled back too"
+    );
 }

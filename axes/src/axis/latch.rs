@@ -23,6 +23,15 @@ pub(super) struct Sweep {
     pub before: Inputs,
 }
 
+/// The capture and compare channels' part of the axis's status (see `AxisStatus::captures`).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TriggerCounts {
+    /// Latches of the axis's channels; > 0 is NMC `BIT_AXIS_CAPTSET`.
+    pub captures: u32,
+    pub capture_position: f64,
+    pub compare_outputs: u32,
+}
+
 /// A change of one of the axis's signals during the last tick.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SignalEdge {
@@ -181,8 +190,8 @@ impl Axis {
         self.wrap(self.act_pos)
     }
 
-    /// NMC `BIT_AXIS_CAPTSET`: one of the axis's capture channels has latched.
-    pub(crate) fn set_capture_triggered(&mut self, on: bool) {
-        self.capture_triggered = on;
+    /// What the capture and compare channels on this axis report in its status.
+    pub(crate) fn set_trigger_counts(&mut self, counts: TriggerCounts) {
+        self.triggers = counts;
     }
 }

@@ -37,7 +37,7 @@ use crate::status::{AxisFlags, AxisState, AxisStatus, CommandRef};
 pub use commands::Feed;
 pub(crate) use commands::MotionSubmission;
 pub use fifo::{Fifo, Ledger, MotionAction, Overrides, Queued};
-pub use latch::SignalEdge;
+pub use latch::{SignalEdge, TriggerCounts};
 use setup::Setup;
 
 /// What the engine lends an axis for one tick or one command.
@@ -219,8 +219,8 @@ pub struct Axis {
     target_pos: f64,
     /// The last tick as a hardware latch saw it (capture, position compare).
     sweep: latch::Sweep,
-    /// One of the axis's capture channels has latched (NMC `BIT_AXIS_CAPTSET`).
-    capture_triggered: bool,
+    /// What the capture and compare channels on this axis report in its status.
+    triggers: latch::TriggerCounts,
 }
 
 impl Axis {
@@ -294,7 +294,7 @@ impl Axis {
             homing_phase: 0,
             target_pos: 0.0,
             sweep: latch::Sweep::default(),
-            capture_triggered: false,
+            triggers: latch::TriggerCounts::default(),
             params: Box::new(params),
         };
         if let Some(f) = axis.smoothing.as_mut() {
@@ -969,7 +969,7 @@ impl Axis {
         flags.put(AxisFlags::QUEUE_FULL, self.fifo.is_full());
         flags.put(AxisFlags::ACCELERATING, self.cmd.v * self.cmd.a > 0.0);
         flags.put(AxisFlags::IN_GROUP, self.group.is_some());
-        flags.put(AxisFlags::CAPTURE_TRIGGERED, self.capture_triggered);
+        flags.put(AxisFlags::CAPTURE_TRIGGERED, self.triggers.captures > 0);
         let next = self
             .fifo
             .get(usize::from(current.is_some()))
@@ -1020,6 +1020,9 @@ impl Axis {
             next_command: next,
             homing_phase: self.homing_phase,
             last_error: self.last_error,
+            captures: self.triggers.captures,
+            capture_position: self.triggers.capture_position,
+            compare_outputs: self.triggers.compare_outputs,
         };
     }
 }

@@ -18,6 +18,7 @@ use crate::command::{
     StopAxes, StopMode, TogetherMove,
 };
 use crate::group::Groups;
+use crate::trigger::Triggers;
 
 /// Commands one atomic batch ([`Engine::apply_batch`]) may carry: it is applied inside one
 /// servo period, so its size bounds the work done there.
@@ -31,6 +32,8 @@ struct Checkpoint {
     /// The axis groups and whether they wait for drives to power up (a whole-machine
     /// checkpoint: a batch may carry group commands).
     groups: Option<(Groups, bool)>,
+    /// The capture and compare channels (a whole-machine checkpoint: a batch may arm them).
+    triggers: Option<Triggers>,
     io: Option<Io>,
     slaves: Option<Vec<Slave>>,
     ledger: LedgerMark,
@@ -379,9 +382,11 @@ impl Engine {
         };
         let groups =
             matches!(scope, Scope::Machine).then(|| (self.groups.clone(), self.groups_await_power));
+        let triggers = matches!(scope, Scope::Machine).then(|| self.triggers.clone());
         Checkpoint {
             axes,
             groups,
+            triggers,
             io,
             slaves,
             ledger: self.ledger.checkpoint(),
@@ -397,6 +402,9 @@ impl Engine {
         if let Some((groups, await_power)) = checkpoint.groups {
             self.groups = groups;
             self.groups_await_power = await_power;
+        }
+        if let Some(triggers) = checkpoint.triggers {
+            self.triggers = triggers;
         }
         if let Some(io) = checkpoint.io {
             self.io = io;

@@ -148,7 +148,9 @@ impl Compare {
         }
     }
 
-    pub(super) fn step(&mut self, env: &mut Env) {
+    /// One tick; whether an output fired.
+    pub(super) fn step(&mut self, env: &mut Env) -> bool {
+        let count = self.status.count;
         if self.pulse_end.is_some_and(|t| env.tick >= t) {
             self.pulse_end = None;
             env.write_output(self.status.output, !self.level);
@@ -172,6 +174,7 @@ impl Compare {
         } else {
             CompareState::Running
         };
+        self.status.count != count
     }
 
     /// How many positions, from the next one on, the last tick's motion reached.

@@ -10,7 +10,7 @@
 mod capture;
 mod compare;
 
-use crate::axis::Axis;
+use crate::axis::{Axis, TriggerCounts};
 use crate::command::{EngineError, Reply, TriggerCommand};
 use crate::config::InputBinding;
 use crate::status::{CaptureStatus, CompareStatus};
@@ -90,13 +90,13 @@ impl Triggers {
                     }
                     Err(i) => self.captures.insert(i, capture),
                 }
-                self.refresh_flag(env, c.axis);
+                self.refresh_counts(env, c.axis);
             }
             TriggerCommand::CaptureClear(c) => {
                 env.axis(c.axis)?;
                 channel_in_range("capture", c.channel, CAPTURE_CHANNELS)?;
                 self.captures.retain(|k| k.key() != (c.axis, c.channel));
-                self.refresh_flag(env, c.axis);
+                self.refresh_counts(env, c.axis);
             }
             TriggerCommand::CompareStart(c) => {
                 let compare = Compare::start(env, &c)?;
@@ -115,18 +115,37 @@ impl Triggers {
     fn stop_compare(&mut self, env: &mut Env, channel: u8) {
         if let Some(i) = self.compares.iter().position(|k| k.channel() == channel) {
             let compare = self.compares.remove(i);
+            let axis = compare.status().axis;
             compare.stop(env);
+            self.refresh_counts(env, axis);
         }
     }
 
-    /// NMC `BIT_AXIS_CAPTSET`: set while any channel of `axis` holds a latch.
-    fn refresh_flag(&self, env: &mut Env, axis: AxisIndex) {
-        let on = self
-            .captures
+    /// What the axis's status shows of its channels: latches (> 0 is NMC `BIT_AXIS_CAPTSET`),
+    /// the newest latch's actual position, and the outputs its compare channels fired.
+    fn refresh_counts(&self, env: &mut Env, axis: AxisIndex) {
+        let mut counts = TriggerCounts::default();
+        let mut newest = None;
+        for c in self.captures.iter().map(Capture::status) {
+            if c.axis != axis {
+                continue;
+            }
+            counts.captures = counts.captures.saturating_add(c.count);
+            if let Some(l) = c.latches.last() {
+                if newest.is_none_or(|t| l.tick >= t) {
+                    newest = Some(l.tick);
+                    counts.capture_position = l.act_pos;
+                }
+            }
+        }
+        counts.compare_outputs = self
+            .compares
             .iter()
-            .any(|c| c.key().0 == axis && c.status().count > 0);
+            .map(Compare::status)
+            .filter(|c| c.axis == axis)
+            .fold(0u32, |n, c| n.saturating_add(c.count));
         if let Some(a) = env.axes.get_mut(axis as usize) {
-            a.set_capture_triggered(on);
+            a.set_trigger_counts(counts);
         }
     }
 
@@ -136,12 +155,17 @@ impl Triggers {
             let latched = self.captures.get_mut(i).is_some_and(|c| c.step(env));
             if latched {
                 if let Some(axis) = self.captures.get(i).map(|c| c.key().0) {
-                    self.refresh_flag(env, axis);
+                    self.refresh_counts(env, axis);
                 }
             }
         }
-        for c in &mut self.compares {
-            c.step(env);
+        for i in 0..self.compares.len() {
+            let fired = self.compares.get_mut(i).is_some_and(|c| c.step(env));
+            if fired {
+                if let Some(axis) = self.compares.get(i).map(|c| c.status().axis) {
+                    self.refresh_counts(env, axis);
+                }
+            }
         }
     }
 
@@ -155,7 +179,7 @@ impl Triggers {
                 .is_some_and(|c| c.input_changed(env, channel, level));
             if latched {
                 if let Some(axis) = self.captures.get(i).map(|c| c.key().0) {
-                    self.refresh_flag(env, axis);
+                    self.refresh_counts(env, axis);
                 }
             }
         }
