@@ -9,25 +9,31 @@ mod common;
 
 use axes::command::{
     CaptureArm, CaptureClear, CaptureEdge, CaptureSource, CaptureWindow, Command,
-    ForceDigitalInput, MoveAbsolute, MoveVelocity,
+    ForceDigitalInput, MoveTogether, MoveVelocity, TogetherMove,
 };
 use axes::config::{AxisConfig, AxisSignal, HomeSwitchConfig, InputBinding};
 use axes::status::{CaptureState, CaptureStatus};
 use axes::{AxisFlags, Engine, EngineConfig, EngineError, ParamId};
-use common::{free_linear_axis, ok, refused, run, run_until};
+use common::{free_linear_axis, ok, refused, refused_code, run, run_until};
 use proptest::prelude::*;
 
-/// An NMC-style axis in pulses (1 count per unit), `speed` pulses/s, a home cam on
-/// `[low, high]` (active low when `active_low`), its sensor wired to DI 0.
-fn machine(speed: f64, low: f64, high: f64, active_low: bool) -> Engine {
-    let mut axis = free_linear_axis(
-        1.0,
+/// An NMC-style axis in pulses (1 count per unit at `units` 1) at `speed` units/s, reached
+/// within microseconds.
+fn pulse_axis(units: f64, speed: f64) -> AxisConfig {
+    free_linear_axis(
+        units,
         &[
             (ParamId::Speed, speed),
-            (ParamId::Accel, 1e7),
-            (ParamId::Decel, 1e7),
+            (ParamId::Accel, 1e9),
+            (ParamId::Decel, 1e9),
         ],
-    );
+    )
+}
+
+/// A [`pulse_axis`] with a home cam on `[low, high]` (active low when `active_low`), its sensor
+/// wired to DI 0.
+fn machine(speed: f64, low: f64, high: f64, active_low: bool) -> Engine {
+    let mut axis = pulse_axis(1.0, speed);
     axis.switches.home = Some(HomeSwitchConfig {
         low,
         high,
@@ -81,32 +87,11 @@ fn captset(e: &Engine) -> bool {
 }
 
 fn jog(e: &mut Engine, velocity: f64) {
-    ok(
-        e,
-        Command::from(MoveVelocity {
-            axis: 0,
-            velocity,
-            acceleration: None,
-            deceleration: None,
-            jerk: None,
-            buffer_mode: Default::default(),
-        }),
-    );
+    ok(e, common::jog(velocity));
 }
 
 fn move_to(e: &mut Engine, position: f64) {
-    ok(
-        e,
-        Command::from(MoveAbsolute {
-            axis: 0,
-            position,
-            velocity: None,
-            acceleration: None,
-            deceleration: None,
-            jerk: None,
-            buffer_mode: Default::default(),
-        }),
-    );
+    ok(e, common::move_abs(position));
     run_until(e, 60.0, |s| {
         s.cmd_pos == position && !s.flags.contains(AxisFlags::MOVING)
     })
@@ -240,14 +225,7 @@ fn hmc_vector_31_window_states_and_an_edge_outside_the_window() {
     // HMC_CaptureConfig(0, rising, Z, axis 0, capture axis 0, inside, −100, 1000); Z every 500
     // counts from `offset`.
     let z_axis = |offset| {
-        let mut a = free_linear_axis(
-            1.0,
-            &[
-                (ParamId::Speed, 2000.0),
-                (ParamId::Accel, 1e7),
-                (ParamId::Decel, 1e7),
-            ],
-        );
+        let mut a = pulse_axis(1.0, 2000.0);
         a.encoder.counts_per_rev = 500;
         a.encoder.index_offset = offset;
         a
@@ -322,15 +300,8 @@ fn a_capture_on_another_axis_signal_interpolates_the_capture_axis() {
     // HMC captures one axis on another's Z: axis 1 moves at half axis 0's speed, so its
     // position at axis 0's index is half of it, interpolated inside the tick.
     let speed = 7_000.0;
-    let fast = free_linear_axis(
-        1.0,
-        &[
-            (ParamId::Speed, speed),
-            (ParamId::Accel, 1e9),
-            (ParamId::Decel, 1e9),
-            (ParamId::AxisType, 0.0),
-        ],
-    );
+    let mut fast = pulse_axis(1.0, speed);
+    fast.params.insert(ParamId::AxisType, 0.0);
     let mut slow = fast.clone();
     slow.params.insert(ParamId::Speed, speed / 2.0);
     let mut e = engine(vec![fast, slow], false);
@@ -338,19 +309,23 @@ fn a_capture_on_another_axis_signal_interpolates_the_capture_axis() {
     c.axis = 1;
     c.source_axis = Some(0);
     ok(&mut e, Command::from(c));
-    for (axis, v) in [(0, speed), (1, speed / 2.0)] {
-        ok(
-            &mut e,
-            Command::from(MoveVelocity {
-                axis,
-                velocity: v,
-                acceleration: None,
-                deceleration: None,
-                jerk: None,
-                buffer_mode: Default::default(),
-            }),
-        );
-    }
+    ok(
+        &mut e,
+        Command::from(MoveTogether {
+            moves: [(0, speed), (1, speed / 2.0)]
+                .map(|(axis, velocity)| {
+                    TogetherMove::MoveVelocity(MoveVelocity {
+                        axis,
+                        velocity,
+                        acceleration: None,
+                        deceleration: None,
+                        jerk: None,
+                        buffer_mode: Default::default(),
+                    })
+                })
+                .to_vec(),
+        }),
+    );
     run(&mut e, 2.0);
     let c = e.triggers().capture(1, 0).expect("armed").clone();
     assert_eq!(c.count, 1);
@@ -444,9 +419,7 @@ fn bad_capture_commands_are_typed_and_disturb_nothing() {
         ),
     ];
     for (c, code) in cases {
-        let err = refused(&mut e, Command::from(c));
-        let json = serde_json::to_value(&err).expect("json");
-        assert_eq!(json["code"], code, "{err}");
+        assert_eq!(refused_code(&mut e, Command::from(c)), code);
     }
     assert_eq!(e.snapshot(), before);
     // An unknown source is refused by the JSON itself.
@@ -484,14 +457,7 @@ proptest! {
         counts_per_unit in prop_oneof![Just(1.0), Just(1000.0)],
         virtual_axis in any::<bool>(),
     ) {
-        let mut axis = free_linear_axis(
-            counts_per_unit,
-            &[
-                (ParamId::Speed, speed / counts_per_unit),
-                (ParamId::Accel, 1e9),
-                (ParamId::Decel, 1e9),
-            ],
-        );
+        let mut axis = pulse_axis(counts_per_unit, speed / counts_per_unit);
         if virtual_axis {
             axis.params.insert(ParamId::AxisType, 0.0);
         }

@@ -7,14 +7,13 @@
 
 mod common;
 
-use axes::command::{
-    Command, CompareOutputMode, CompareStart, CompareStop, MoveAbsolute, MoveVelocity,
-    PositionSource,
-};
+use axes::command::{Command, CompareOutputMode, CompareStart, CompareStop, PositionSource};
 use axes::config::AxisConfig;
 use axes::status::{CompareState, CompareStatus};
 use axes::{Engine, EngineError, ParamId};
-use common::{engine_with, free_linear_axis, group_line, ok, refused, run, with_group};
+use common::{
+    engine_with, free_linear_axis, group_line, move_abs, ok, refused, refused_code, run, with_group,
+};
 use proptest::prelude::*;
 
 fn axis(speed: f64) -> AxisConfig {
@@ -58,21 +57,6 @@ fn compare(e: &Engine) -> CompareStatus {
     e.triggers().compare(0).expect("channel 0").clone()
 }
 
-fn move_to(e: &mut Engine, axis: u16, position: f64) {
-    ok(
-        e,
-        Command::from(MoveAbsolute {
-            axis,
-            position,
-            velocity: None,
-            acceleration: None,
-            deceleration: None,
-            jerk: None,
-            buffer_mode: Default::default(),
-        }),
-    );
-}
-
 /// Step `ticks` ticks, recording (commanded position of axis 0, outputs fired so far, DO 0).
 fn watch(e: &mut Engine, ticks: usize) -> Vec<(f64, u32, bool)> {
     (0..ticks)
@@ -93,7 +77,7 @@ fn hmc_vector_32_toggles_at_every_hundred_and_goes_idle_after_the_tenth() {
     c.mode = CompareOutputMode::Toggle;
     ok(&mut e, Command::from(c));
     assert_eq!(compare(&e).state, CompareState::Running, "state 0");
-    move_to(&mut e, 0, 1050.0);
+    ok(&mut e, move_abs(1050.0));
     let seen = watch(&mut e, 400);
     for k in 1..=10u32 {
         let (pos, _, level) = seen.iter().find(|(_, n, _)| *n == k).copied().unwrap();
@@ -111,17 +95,7 @@ fn a_pulse_shows_in_the_io_image_for_its_width_and_in_the_tick_it_fires() {
     let mut c = list(&[10.5]);
     c.pulse_width = 0.003;
     ok(&mut e, Command::from(c));
-    ok(
-        &mut e,
-        Command::from(MoveVelocity {
-            axis: 0,
-            velocity: 1000.0,
-            acceleration: None,
-            deceleration: None,
-            jerk: None,
-            buffer_mode: Default::default(),
-        }),
-    );
+    ok(&mut e, common::jog(1000.0));
     let seen = watch(&mut e, 30);
     let high: Vec<usize> = (0..seen.len()).filter(|&i| seen[i].2).collect();
     assert_eq!(high.len(), 3, "3 ms = 3 ticks");
@@ -146,7 +120,7 @@ fn himc_pt_trigger_grid_fires_every_interval_up_to_end_in_either_direction() {
     };
     ok(&mut e, Command::from(grid(10.0, 50.0)));
     assert_eq!(compare(&e).total, 5);
-    move_to(&mut e, 0, 100.0);
+    ok(&mut e, move_abs(100.0));
     let up = watch(&mut e, 200);
     let c = compare(&e);
     assert_eq!((c.count, c.state), (5, CompareState::Done));
@@ -157,7 +131,7 @@ fn himc_pt_trigger_grid_fires_every_interval_up_to_end_in_either_direction() {
     }
     // Reverse: start 50 > end 10 (SetPT_EndIndex reverse), moving down from 100.
     ok(&mut e, Command::from(grid(50.0, 10.0)));
-    move_to(&mut e, 0, 0.0);
+    ok(&mut e, move_abs(0.0));
     let down = watch(&mut e, 200);
     let (pos, _, _) = down.iter().find(|(_, n, _)| *n == 1).copied().unwrap();
     assert!(pos <= 50.0 && pos > 47.5, "{pos}");
@@ -170,7 +144,7 @@ fn positions_passed_in_one_tick_all_fire_and_the_minimum_interval_spaces_them() 
     let mut c = list(&[100.5, 101.0, 101.5]);
     c.mode = CompareOutputMode::Toggle;
     ok(&mut e, Command::from(c.clone()));
-    move_to(&mut e, 0, 200.0);
+    ok(&mut e, move_abs(200.0));
     let seen = watch(&mut e, 40);
     let first = seen.iter().position(|s| s.1 > 0).unwrap();
     assert_eq!(seen[first].1, 3, "all three in the tick that passes them");
@@ -178,7 +152,7 @@ fn positions_passed_in_one_tick_all_fire_and_the_minimum_interval_spaces_them() 
     let mut e = machine(10_000.0);
     c.min_interval = 0.002;
     ok(&mut e, Command::from(c));
-    move_to(&mut e, 0, 200.0);
+    ok(&mut e, move_abs(200.0));
     let seen = watch(&mut e, 40);
     let ticks: Vec<usize> = (1..=3)
         .map(|k| seen.iter().position(|s| s.1 >= k).unwrap())
@@ -296,7 +270,7 @@ fn compare_stop_ends_a_pulse_and_drops_the_channel() {
     let mut c = list(&[5.5]);
     c.pulse_width = 1.0;
     ok(&mut e, Command::from(c));
-    move_to(&mut e, 0, 20.0);
+    ok(&mut e, move_abs(20.0));
     run(&mut e, 0.05);
     assert!(e.snapshot().io.do_[0]);
     ok(&mut e, Command::from(CompareStop { channel: 0 }));
@@ -404,9 +378,7 @@ fn bad_compare_commands_are_typed_and_disturb_nothing() {
         ),
     ];
     for (c, code) in cases {
-        let err = refused(&mut e, Command::from(c));
-        let json = serde_json::to_value(&err).expect("json");
-        assert_eq!(json["code"], code, "{err}");
+        assert_eq!(refused_code(&mut e, Command::from(c)), code);
     }
     assert_eq!(e.snapshot(), before);
     let err = refused(&mut e, Command::from(CompareStop { channel: 9 }));
@@ -466,7 +438,7 @@ proptest! {
         let mut c = list(&positions);
         c.mode = CompareOutputMode::Toggle;
         ok(&mut e, Command::from(c));
-        move_to(&mut e, 0, end);
+        ok(&mut e, move_abs(end));
         let mut before = 0.0f64;
         let mut fired = 0u32;
         for _ in 0..200_000 {

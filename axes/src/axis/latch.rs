@@ -7,7 +7,6 @@
 use super::setup::Route;
 use super::{Axis, Inputs};
 use crate::config::AxisSignal;
-use crate::hw::switch::Edge;
 use crate::hw::AxisClass;
 use crate::status::{Latch, PositionSource};
 
@@ -53,6 +52,23 @@ impl SignalEdge {
     }
 }
 
+impl Inputs {
+    /// The level of `signal`: at the connector (`electrical`) or as the controller reads it.
+    fn level(&self, signal: AxisSignal, electrical: bool) -> bool {
+        match (signal, electrical) {
+            (AxisSignal::Home, true) => self.sensor_home,
+            (AxisSignal::Home, false) => self.home,
+            (AxisSignal::LimitPos, true) => self.sensor_limit_pos,
+            (AxisSignal::LimitPos, false) => self.limit_pos,
+            (AxisSignal::LimitNeg, true) => self.sensor_limit_neg,
+            (AxisSignal::LimitNeg, false) => self.limit_neg,
+            (AxisSignal::Index, _) => self.index,
+            (AxisSignal::DriveAlarm, true) => self.sensor_alarm,
+            (AxisSignal::DriveAlarm, false) => self.drive_alarm,
+        }
+    }
+}
+
 fn lerp(pair: [f64; 2], f: f64) -> f64 {
     pair[0] + (pair[1] - pair[0]) * f
 }
@@ -66,76 +82,51 @@ impl Axis {
     /// routed input changes when the command or the general input did, at the tick's start.
     pub(crate) fn signal_edge(&self, signal: AxisSignal, electrical: bool) -> Option<SignalEdge> {
         let (now, then, f, w) = (&self.inputs, &self.sweep.before, &self.forces, &self.setup);
-        let switch = |edge: Option<Edge>,
-                      forced: bool,
-                      route: Route,
-                      active_low: bool,
-                      invert: bool,
-                      levels: (bool, bool)| {
-            let own = !forced && (electrical || route == Route::Own);
-            if own {
-                edge.map(|e| SignalEdge {
-                    rising: Some(e.rising ^ active_low ^ (invert && !electrical)),
-                    fraction: self.fraction_at(e.position),
-                    motor: Some(e.position),
-                })
-            } else {
-                SignalEdge::level_change(levels.0, levels.1)
-            }
-        };
-        match signal {
-            AxisSignal::Home => switch(
+        // A switch: its exact edge, whether it is forced, its route, wiring and inversion.
+        let switch = match signal {
+            AxisSignal::Home => Some((
                 now.home_edge,
                 f.home.is_some(),
                 w.home,
                 self.home_active_low,
                 w.home_invert,
-                if electrical {
-                    (now.sensor_home, then.sensor_home)
-                } else {
-                    (now.home, then.home)
-                },
-            ),
-            AxisSignal::LimitPos => switch(
+            )),
+            AxisSignal::LimitPos => Some((
                 now.limit_pos_edge,
                 f.limit_pos.is_some(),
                 w.limit_pos,
                 self.limit_pos_active_low,
                 w.limit_pos_invert,
-                if electrical {
-                    (now.sensor_limit_pos, then.sensor_limit_pos)
-                } else {
-                    (now.limit_pos, then.limit_pos)
-                },
-            ),
-            AxisSignal::LimitNeg => switch(
+            )),
+            AxisSignal::LimitNeg => Some((
                 now.limit_neg_edge,
                 f.limit_neg.is_some(),
                 w.limit_neg,
                 self.limit_neg_active_low,
                 w.limit_neg_invert,
-                if electrical {
-                    (now.sensor_limit_neg, then.sensor_limit_neg)
-                } else {
-                    (now.limit_neg, then.limit_neg)
-                },
-            ),
-            AxisSignal::Index => match f.index {
-                None => now.index_at.map(|p| SignalEdge {
-                    rising: None,
-                    fraction: self.fraction_at(p),
-                    motor: Some(p),
-                }),
-                Some(_) => SignalEdge::level_change(now.index, then.index),
-            },
-            AxisSignal::DriveAlarm => {
-                if electrical {
-                    SignalEdge::level_change(now.sensor_alarm, then.sensor_alarm)
-                } else {
-                    SignalEdge::level_change(now.drive_alarm, then.drive_alarm)
-                }
+            )),
+            AxisSignal::Index | AxisSignal::DriveAlarm => None,
+        };
+        if let Some((edge, forced, route, active_low, invert)) = switch {
+            if !forced && (electrical || route == Route::Own) {
+                return edge.map(|e| SignalEdge {
+                    rising: Some(e.rising ^ active_low ^ (invert && !electrical)),
+                    fraction: self.fraction_at(e.position),
+                    motor: Some(e.position),
+                });
             }
         }
+        if signal == AxisSignal::Index && f.index.is_none() {
+            return now.index_at.map(|p| SignalEdge {
+                rising: None,
+                fraction: self.fraction_at(p),
+                motor: Some(p),
+            });
+        }
+        SignalEdge::level_change(
+            now.level(signal, electrical),
+            then.level(signal, electrical),
+        )
     }
 
     /// When in the last tick the motor was at `motor` (physical).
