@@ -495,3 +495,51 @@ proptest! {
         prop_assert!(latch.tick == e.tick());
     }
 }
+
+#[test]
+fn a_limit_switch_latches_where_the_motor_crosses_it() {
+    // NMC CAPT_IO_SRC_LMTP: the positive limit at 300.5, passed at 3.3 pulses a tick.
+    let mut axis = pulse_axis(1.0, 3333.0);
+    axis.switches.limit_pos = Some(axes::config::SwitchConfig {
+        position: 300.5,
+        active_low: false,
+        filter: 0,
+    });
+    let mut e = engine(vec![axis], false);
+    ok(
+        &mut e,
+        Command::from(arm(CaptureSource::LimitPos, CaptureEdge::Rising)),
+    );
+    jog(&mut e, 3333.0);
+    run(&mut e, 0.2);
+    let c = capture(&e);
+    assert_eq!(c.count, 1);
+    let latch = c.latches[0];
+    assert!(latch.rising);
+    assert!(
+        (latch.encoder_counts as f64 - 300.5).abs() <= 1.0,
+        "{latch:?}"
+    );
+    assert!(common::status(&e).flags.contains(AxisFlags::HW_LIMIT_POS));
+}
+
+#[test]
+fn a_forced_home_switch_edges_at_the_tick_boundary() {
+    let mut e = machine(1000.0, 1e9, 2e9, false);
+    ok(
+        &mut e,
+        Command::from(arm(CaptureSource::Home, CaptureEdge::Rising)),
+    );
+    jog(&mut e, 1000.0);
+    run(&mut e, 0.05);
+    let before = common::status(&e);
+    common::force(&mut e, axes::command::AxisInput::Home, Some(true));
+    e.step();
+    let latch = capture(&e).latches[0];
+    assert_eq!(latch.tick, e.tick());
+    assert_eq!(
+        latch.cmd_pos, before.cmd_pos,
+        "where the command found the axis"
+    );
+    assert!(common::status(&e).cmd_pos > before.cmd_pos);
+}
