@@ -140,6 +140,14 @@ pub enum EngineError {
     /// HMC: "arrays must not be modified while the cam runs".
     #[error("cam table {table} is in use by the cam of axis {slave}")]
     CamTableInUse { table: u16, slave: AxisIndex },
+    /// A capture or compare channel that cannot be set up as given (issue 12 items 4–5).
+    #[error("{trigger} channel {channel}: {reason}")]
+    InvalidTrigger {
+        /// `capture` or `compare`.
+        trigger: &'static str,
+        channel: u8,
+        reason: String,
+    },
 }
 
 impl EngineError {
@@ -200,6 +208,7 @@ impl EngineError {
             | EngineError::AxisCoupled { .. }
             | EngineError::NotCoupled { .. }
             | EngineError::CamTableInUse { .. } => ErrorKind::InvalidState,
+            EngineError::InvalidTrigger { .. } => ErrorKind::InvalidArgument,
         }
     }
 }

@@ -23,6 +23,7 @@ pub use profile;
 pub mod rng;
 pub mod runtime;
 pub mod status;
+pub mod trigger;
 pub mod types;
 
 pub use command::{AxisIndex, Command, CommandId, EngineError, Reply};

@@ -13,6 +13,10 @@ use axes::command::{
     SetPosition, Setpoint, Stop, StopAll, StopAxes, StopMode, StreamSetpoint, TogetherMove,
     WriteAnalogOutput, WriteDigitalOutput, WriteObject,
 };
+use axes::command::{
+    CaptureArm, CaptureClear, CaptureEdge, CaptureSource, CaptureWindow, CompareOutputMode,
+    CompareStart, CompareStop, PositionSource,
+};
 use axes::homing::{AfterHome, HomingQuirks, Latch};
 use axes::od::Value;
 use axes::ParamId;
@@ -280,6 +284,55 @@ fn full() -> Vec<(Command, &'static str)> {
             r#"{"type":"emergency_stop_all"}"#,
         ),
         (Command::from(ResetAll {}), r#"{"type":"reset_all"}"#),
+        (
+            Command::from(CaptureArm {
+                axis: 1,
+                channel: 2,
+                source: CaptureSource::Di,
+                input: Some(3),
+                source_axis: Some(0),
+                edge: CaptureEdge::Both,
+                repeat: 2,
+                continuous: true,
+                window: Some(CaptureWindow {
+                    low: -100.0,
+                    high: 1000.0,
+                    outside: true,
+                }),
+            }),
+            r#"{"type":"capture_arm","axis":1,"channel":2,"source":"di","input":3,"source_axis":0,"edge":"both","repeat":2,"continuous":true,"window":{"low":-100.0,"high":1000.0,"outside":true}}"#,
+        ),
+        (
+            Command::from(CaptureClear {
+                axis: 1,
+                channel: 2,
+            }),
+            r#"{"type":"capture_clear","axis":1,"channel":2}"#,
+        ),
+        (
+            Command::from(CompareStart {
+                channel: 1,
+                axis: 0,
+                axis_y: Some(1),
+                source: PositionSource::Actual,
+                positions: vec![],
+                start: None,
+                interval: None,
+                end: None,
+                points: vec![[100.0, 100.0], [200.0, 200.0]],
+                error_zone: 10.0,
+                output: 5,
+                mode: CompareOutputMode::Toggle,
+                level: false,
+                pulse_width: 0.002,
+                min_interval: 0.001,
+            }),
+            r#"{"type":"compare_start","channel":1,"axis":0,"axis_y":1,"source":"actual","points":[[100.0,100.0],[200.0,200.0]],"error_zone":10.0,"output":5,"mode":"toggle","level":false,"pulse_width":0.002,"min_interval":0.001}"#,
+        ),
+        (
+            Command::from(CompareStop { channel: 1 }),
+            r#"{"type":"compare_stop","channel":1}"#,
+        ),
     ]
 }
 
@@ -465,12 +518,61 @@ fn minimal() -> Vec<(&'static str, Command, &'static str)> {
             }),
             r#"{"type":"stop_all","mode":"abrupt","deceleration":null}"#,
         ),
+        (
+            r#"{"type":"capture_arm","axis":0,"source":"index"}"#,
+            Command::from(CaptureArm {
+                axis: 0,
+                channel: 0,
+                source: CaptureSource::Index,
+                input: None,
+                source_axis: None,
+                edge: CaptureEdge::Rising,
+                repeat: 1,
+                continuous: false,
+                window: None,
+            }),
+            r#"{"type":"capture_arm","axis":0,"channel":0,"source":"index","edge":"rising","repeat":1,"continuous":false}"#,
+        ),
+        (
+            r#"{"type":"capture_clear","axis":0}"#,
+            Command::from(CaptureClear {
+                axis: 0,
+                channel: 0,
+            }),
+            r#"{"type":"capture_clear","axis":0,"channel":0}"#,
+        ),
+        (
+            r#"{"type":"compare_start","axis":0,"start":10,"interval":10,"end":50,"output":0}"#,
+            Command::from(CompareStart {
+                channel: 0,
+                axis: 0,
+                axis_y: None,
+                source: PositionSource::Commanded,
+                positions: vec![],
+                start: Some(10.0),
+                interval: Some(10.0),
+                end: Some(50.0),
+                points: vec![],
+                error_zone: 0.0,
+                output: 0,
+                mode: CompareOutputMode::Pulse,
+                level: true,
+                pulse_width: 0.0,
+                min_interval: 0.0,
+            }),
+            r#"{"type":"compare_start","channel":0,"axis":0,"source":"commanded","start":10.0,"interval":10.0,"end":50.0,"error_zone":0.0,"output":0,"mode":"pulse","level":true,"pulse_width":0.0,"min_interval":0.0}"#,
+        ),
+        (
+            r#"{"type":"compare_stop"}"#,
+            Command::from(CompareStop { channel: 0 }),
+            r#"{"type":"compare_stop","channel":0}"#,
+        ),
     ]
 }
 
 /// Inputs whose error serde reports, and the text it reports today.
 const ERRORS: &[(&str, &str)] = &[
-    (r#"{"type":"teleport","axis":0}"#, "unknown variant `teleport`, expected one of `enable`, `disable`, `reset`, `move_absolute`, `move_relative`, `move_velocity`, `stop`, `halt`, `resume`, `home`, `set_position`, `set_parameter`, `get_parameter`, `modify_target`, `cancel`, `command_state`, `force_input`, `force_digital_input`, `force_analog_input`, `write_digital_output`, `write_analog_output`, `inject_following_error`, `setpoint`, `read_object`, `write_object`, `move_together`, `stop_axes`, `stop_all`, `enable_all`, `disable_all`, `emergency_stop_all`, `reset_all`, `group_create`, `group_delete`, `group_enable`, `group_disable`, `group_reset`, `move_linear_absolute`, `move_linear_relative`, `move_circular_absolute`, `move_circular_relative`, `group_stop`, `group_halt`, `group_continue`, `group_emergency_stop`, `group_set_override`, `group_set_origin`, `group_set_parameter`, `group_set_output`, `group_dwell`, `group_wait_input`, `group_wait_position`, `group_axis_move`, `move_spline`, `move_ellipse`, `group_set_coordinate_transform`, `group_set_coordinate_system`, `group_set_rotary_transform`, `group_set_xyza_transform`, `group_delete_transform`, `move_protection_enable`, `move_protection_disable`, `move_circular_angle`, `group_jog`, `group_jog_axis`, `gear_in`, `gear_set_ratio`, `gear_out`, `cam_table`, `cam_in`, `cam_out` at line 1 column 18"),
+    (r#"{"type":"teleport","axis":0}"#, "unknown variant `teleport`, expected one of `enable`, `disable`, `reset`, `move_absolute`, `move_relative`, `move_velocity`, `stop`, `halt`, `resume`, `home`, `set_position`, `set_parameter`, `get_parameter`, `modify_target`, `cancel`, `command_state`, `force_input`, `force_digital_input`, `force_analog_input`, `write_digital_output`, `write_analog_output`, `inject_following_error`, `setpoint`, `read_object`, `write_object`, `move_together`, `stop_axes`, `stop_all`, `enable_all`, `disable_all`, `emergency_stop_all`, `reset_all`, `group_create`, `group_delete`, `group_enable`, `group_disable`, `group_reset`, `move_linear_absolute`, `move_linear_relative`, `move_circular_absolute`, `move_circular_relative`, `group_stop`, `group_halt`, `group_continue`, `group_emergency_stop`, `group_set_override`, `group_set_origin`, `group_set_parameter`, `group_set_output`, `group_dwell`, `group_wait_input`, `group_wait_position`, `group_axis_move`, `move_spline`, `move_ellipse`, `group_set_coordinate_transform`, `group_set_coordinate_system`, `group_set_rotary_transform`, `group_set_xyza_transform`, `group_delete_transform`, `move_protection_enable`, `move_protection_disable`, `move_circular_angle`, `group_jog`, `group_jog_axis`, `gear_in`, `gear_set_ratio`, `gear_out`, `cam_table`, `cam_in`, `cam_out`, `capture_arm`, `capture_clear`, `compare_start`, `compare_stop` at line 1 column 18"),
     (r#"{"axis":0}"#, "missing field `type` at line 1 column 10"),
     (r#"{"type":"move_absolute","axis":0}"#, "missing field `position`"),
     (r#"{"type":"move_absolute","axis":0,"positon":10}"#, "unknown field `positon`, expected one of `axis`, `position`, `velocity`, `acceleration`, `deceleration`, `jerk`, `buffer_mode`"),
@@ -493,7 +595,7 @@ fn every_variant_serializes_to_its_pinned_json_and_back() {
     let cases = full();
     assert_eq!(
         cases.len(),
-        32,
+        36,
         "one case per variant but the group commands (group_json.rs)"
     );
     for (command, json) in cases {

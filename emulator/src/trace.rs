@@ -2,7 +2,9 @@
 //! them with `--trace`, the control API serves them at `GET /api/v1/trace`). An axis in a group
 //! carries its group's columns (`group`, `path_velocity`, `segment`, `user_segment`: the same
 //! values on every member's row, and on the row of an HMC result axis, which is bound to the
-//! group like a member); they are empty for a free axis.
+//! group like a member); they are empty for a free axis. The last three columns are the
+//! axis's capture and compare channels (issue 12 items 4–5): edges latched, the newest latch's
+//! actual position, outputs fired (a compare output shows in the row of the tick it fires).
 //!
 //! Numbers are written in their shortest round-trip form (`zmij`, `itoa`): a reader that parses
 //! them gets back the exact f64 the engine had. Integral floats drop the `.0` (`100`, not
@@ -14,7 +16,7 @@ use std::io::{self, Write};
 use axes::{AxisFlags, AxisStatus, Engine};
 
 /// The header row, in column order.
-pub const HEADER: &str = "time_s,axis,state,cmd_pos,cmd_vel,cmd_acc,act_pos,act_vel,following_error,pulses,encoder_counts,limit_pos,limit_neg,home_switch,homed,error,group,path_velocity,segment,user_segment";
+pub const HEADER: &str = "time_s,axis,state,cmd_pos,cmd_vel,cmd_acc,act_pos,act_vel,following_error,pulses,encoder_counts,limit_pos,limit_neg,home_switch,homed,error,group,path_velocity,segment,user_segment,captures,capture_position,compare_outputs";
 
 /// The group columns of a member axis's row (issue 11 item 7).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -117,6 +119,12 @@ fn format_fields(buf: &mut Vec<u8>, axis: usize, s: &AxisStatus, group: Option<&
         }
         None => buf.extend_from_slice(b",,,,"),
     }
+    buf.push(b',');
+    buf.extend_from_slice(ints.format(s.captures).as_bytes());
+    buf.push(b',');
+    push_f64(buf, &mut floats, s.capture_position);
+    buf.push(b',');
+    buf.extend_from_slice(ints.format(s.compare_outputs).as_bytes());
     buf.push(b'\n');
 }
 
@@ -272,7 +280,7 @@ mod tests {
         let line = row(&s, 0.035);
         assert_eq!(
             line,
-            "0.035,3,discrete_motion,0.30000000000000004,-1234.5,1e-7,100,-0,2.5e+20,-42,9223372036854775807,0,1,0,1,limit_reached,,,,\n"
+            "0.035,3,discrete_motion,0.30000000000000004,-1234.5,1e-7,100,-0,2.5e+20,-42,9223372036854775807,0,1,0,1,limit_reached,,,,,0,0,0\n"
         );
         assert_eq!(
             line.trim_end().split(',').count(),
@@ -297,7 +305,7 @@ mod tests {
         );
         assert!(floats[4].is_sign_negative());
         let idle = row(&AxisStatus::default(), 0.0);
-        assert_eq!(idle, "0,3,disabled,0,0,0,0,0,0,0,0,0,0,0,0,,,,,\n");
+        assert_eq!(idle, "0,3,disabled,0,0,0,0,0,0,0,0,0,0,0,0,,,,,,0,0,0\n");
         let mut member = Vec::new();
         let g = GroupColumns {
             group: 2,
@@ -308,7 +316,7 @@ mod tests {
         write_member_row(&mut member, 0.0, 1, &AxisStatus::default(), Some(&g)).unwrap();
         assert_eq!(
             String::from_utf8(member).unwrap(),
-            "0,1,disabled,0,0,0,0,0,0,0,0,0,0,0,0,,2,12.5,3,40\n"
+            "0,1,disabled,0,0,0,0,0,0,0,0,0,0,0,0,,2,12.5,3,40,0,0,0\n"
         );
     }
 

@@ -13,6 +13,7 @@
 
 mod commands;
 pub mod fifo;
+mod latch;
 mod setup;
 mod supervision;
 
@@ -36,6 +37,7 @@ use crate::status::{AxisFlags, AxisState, AxisStatus, CommandRef};
 pub use commands::Feed;
 pub(crate) use commands::MotionSubmission;
 pub use fifo::{Fifo, Ledger, MotionAction, Overrides, Queued};
+pub use latch::{SignalEdge, TriggerCounts};
 use setup::Setup;
 
 /// What the engine lends an axis for one tick or one command.
@@ -219,6 +221,10 @@ pub struct Axis {
     last_error: Option<ErrorKind>,
     homing_phase: u8,
     target_pos: f64,
+    /// The last tick as a hardware latch saw it (capture, position compare).
+    sweep: latch::Sweep,
+    /// What the capture and compare channels on this axis report in its status.
+    triggers: latch::TriggerCounts,
 }
 
 impl Axis {
@@ -293,6 +299,8 @@ impl Axis {
             last_error: None,
             homing_phase: 0,
             target_pos: 0.0,
+            sweep: latch::Sweep::default(),
+            triggers: latch::TriggerCounts::default(),
             params: Box::new(params),
         };
         if let Some(f) = axis.smoothing.as_mut() {
@@ -461,16 +469,24 @@ impl Axis {
 
         // 3–5. Output stage, plant, encoder.
         let motor_before = self.motor_position();
+        let act_before = self.act_pos;
         let encoder_tick = self.drive_motor();
         let motor_after = self.motor_position();
 
         // 6. Switches and inputs.
+        let inputs_before = self.inputs;
         self.refresh_inputs(motor_before, motor_after, ctx.di, encoder_tick);
 
         // Disabled: the command follows the actual position (PLCopen), so nothing jumps on enable.
         if !self.enabled {
             self.track_actual();
         }
+        self.sweep = latch::Sweep {
+            motor: [motor_before, motor_after],
+            cmd: [previous.p, self.cmd.p],
+            act: [act_before, self.act_pos],
+            before: inputs_before,
+        };
 
         // 7. Supervision.
         self.supervise(ctx);
@@ -984,6 +1000,7 @@ impl Axis {
         flags.put(AxisFlags::IN_GROUP, self.group.is_some());
         flags.put(AxisFlags::COUPLED, self.coupled.is_some());
         flags.put(AxisFlags::IN_SYNC, self.in_sync);
+        flags.put(AxisFlags::CAPTURE_TRIGGERED, self.triggers.captures > 0);
         let next = self
             .fifo
             .get(usize::from(current.is_some()))
@@ -1034,6 +1051,9 @@ impl Axis {
             next_command: next,
             homing_phase: self.homing_phase,
             last_error: self.last_error,
+            captures: self.triggers.captures,
+            capture_position: self.triggers.capture_position,
+            compare_outputs: self.triggers.compare_outputs,
         };
     }
 }

@@ -95,6 +95,7 @@ mod group_jog;
 mod io;
 mod machine;
 mod slave;
+mod trigger;
 mod wire;
 
 pub use axis::{
@@ -128,6 +129,10 @@ pub use machine::{
     ResetAll, StopAll, StopAxes, TogetherMove,
 };
 pub use slave::{ReadObject, SlaveCommand, WriteObject};
+pub use trigger::{
+    CaptureArm, CaptureClear, CaptureEdge, CaptureSource, CaptureWindow, CompareOutputMode,
+    CompareStart, CompareStop, PositionSource, TriggerCommand,
+};
 
 /// A command into the engine, by family: what it addresses decides which stage of the engine
 /// takes it ([`crate::Engine::apply`] dispatches on the family).
@@ -153,6 +158,8 @@ pub enum Command {
     Coupling(CouplingCommand),
     /// The machine's digital and analog I/O image.
     Io(IoCommand),
+    /// Capture channels and position-compare outputs (issue 12 items 4–5).
+    Trigger(TriggerCommand),
     /// The object dictionaries of the CiA 402 drives on the engine's fieldbus.
     Slave(SlaveCommand),
     /// Machine-wide: queries across all axes (command states), and commands on several or all
@@ -166,7 +173,14 @@ impl Command {
         match self {
             Command::Axis(c) => Some(c.axis()),
             Command::Coupling(c) => c.axis(),
-            Command::Group(_) | Command::Io(_) | Command::Slave(_) | Command::Machine(_) => None,
+            Command::Trigger(TriggerCommand::CaptureArm(c)) => Some(c.axis),
+            Command::Trigger(TriggerCommand::CaptureClear(c)) => Some(c.axis),
+            Command::Trigger(TriggerCommand::CompareStart(c)) => Some(c.axis),
+            Command::Trigger(TriggerCommand::CompareStop(_))
+            | Command::Group(_)
+            | Command::Io(_)
+            | Command::Slave(_)
+            | Command::Machine(_) => None,
         }
     }
 }

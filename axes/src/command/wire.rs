@@ -13,6 +13,7 @@ use super::{
     WriteObject,
 };
 use super::{CamIn, CamOut, CamTableDefine, CouplingCommand, GearIn, GearOut, GearSetRatio};
+use super::{CaptureArm, CaptureClear, CompareStart, CompareStop, TriggerCommand};
 use super::{
     GroupAxisMove, GroupCommand, GroupContinue, GroupCreate, GroupDelete, GroupDisable, GroupDwell,
     GroupEmergencyStop, GroupEnable, GroupHalt, GroupReset, GroupSetOrigin, GroupSetOutput,
@@ -106,6 +107,11 @@ pub(super) enum Command {
     CamTable(CamTableDefine),
     CamIn(CamIn),
     CamOut(CamOut),
+    // Issue 12 items 4–5, capture and position compare.
+    CaptureArm(CaptureArm),
+    CaptureClear(CaptureClear),
+    CompareStart(CompareStart),
+    CompareStop(CompareStop),
 }
 
 impl From<Command> for super::Command {
@@ -210,6 +216,10 @@ impl From<Command> for super::Command {
             Command::CamTable(c) => super::Command::Coupling(CouplingCommand::CamTable(c)),
             Command::CamIn(c) => super::Command::Coupling(CouplingCommand::CamIn(c)),
             Command::CamOut(c) => super::Command::Coupling(CouplingCommand::CamOut(c)),
+            Command::CaptureArm(c) => super::Command::Trigger(TriggerCommand::CaptureArm(c)),
+            Command::CaptureClear(c) => super::Command::Trigger(TriggerCommand::CaptureClear(c)),
+            Command::CompareStart(c) => super::Command::Trigger(TriggerCommand::CompareStart(c)),
+            Command::CompareStop(c) => super::Command::Trigger(TriggerCommand::CompareStop(c)),
         }
     }
 }
@@ -316,6 +326,10 @@ impl From<super::Command> for Command {
             super::Command::Coupling(CouplingCommand::CamTable(c)) => Command::CamTable(c),
             super::Command::Coupling(CouplingCommand::CamIn(c)) => Command::CamIn(c),
             super::Command::Coupling(CouplingCommand::CamOut(c)) => Command::CamOut(c),
+            super::Command::Trigger(TriggerCommand::CaptureArm(c)) => Command::CaptureArm(c),
+            super::Command::Trigger(TriggerCommand::CaptureClear(c)) => Command::CaptureClear(c),
+            super::Command::Trigger(TriggerCommand::CompareStart(c)) => Command::CompareStart(c),
+            super::Command::Trigger(TriggerCommand::CompareStop(c)) => Command::CompareStop(c),
         }
     }
 }

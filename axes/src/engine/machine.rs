@@ -19,6 +19,7 @@ use crate::command::{
 };
 use crate::coupling::Couplings;
 use crate::group::Groups;
+use crate::trigger::Triggers;
 
 /// Commands one atomic batch ([`Engine::apply_batch`]) may carry: it is applied inside one
 /// servo period, so its size bounds the work done there.
@@ -33,6 +34,8 @@ struct Checkpoint {
     groups: Option<(Groups, bool)>,
     /// The gears and cams (issue 12), with the groups: a batch may carry coupling commands.
     couplings: Option<Couplings>,
+    /// The capture and compare channels (a whole-machine checkpoint: a batch may arm them).
+    triggers: Option<Triggers>,
     io: Option<Io>,
     slaves: Option<Vec<Slave>>,
     ledger: LedgerMark,
@@ -382,10 +385,12 @@ impl Engine {
         let groups =
             matches!(scope, Scope::Machine).then(|| (self.groups.clone(), self.groups_await_power));
         let couplings = matches!(scope, Scope::Machine).then(|| self.couplings.clone());
+        let triggers = matches!(scope, Scope::Machine).then(|| self.triggers.clone());
         Checkpoint {
             axes,
             groups,
             couplings,
+            triggers,
             io,
             slaves,
             ledger: self.ledger.checkpoint(),
@@ -404,6 +409,9 @@ impl Engine {
         }
         if let Some(couplings) = checkpoint.couplings {
             self.couplings = couplings;
+        }
+        if let Some(triggers) = checkpoint.triggers {
+            self.triggers = triggers;
         }
         if let Some(io) = checkpoint.io {
             self.io = io;

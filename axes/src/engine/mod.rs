@@ -19,6 +19,7 @@ use crate::od::Value;
 use crate::param::ParamId;
 use crate::rng::Rng;
 use crate::status::{AxisStatus, DriveStatus, IoImage, Snapshot};
+use crate::trigger::{Env as TriggerEnv, Triggers};
 use std::sync::Arc;
 
 mod machine;
@@ -122,6 +123,8 @@ pub struct Engine {
     planners: Vec<Box<dyn MachinePlanner>>,
     /// The setpoints of the planner being run (reused; no allocation per tick).
     feeds: Feeds,
+    /// Capture channels and position-compare outputs (issue 12 items 4–5).
+    triggers: Triggers,
 }
 
 impl Engine {
@@ -193,6 +196,7 @@ impl Engine {
             couplings,
             planners: Vec::new(),
             feeds: Feeds::default(),
+            triggers: Triggers::default(),
         })
     }
 
@@ -239,6 +243,7 @@ impl Engine {
             Command::Group(c) => self.apply_group_command(c),
             Command::Coupling(c) => self.apply_coupling_command(c),
             Command::Io(c) => self.apply_io_command(c),
+            Command::Trigger(c) => self.with_triggers(|t, env| t.apply(env, c)),
             Command::Slave(c) => self.apply_slave_command(c),
             Command::Machine(c) => self.apply_machine_command(c),
         }
@@ -284,6 +289,38 @@ impl Engine {
             io.version += 1;
         }
         result
+    }
+
+    /// Lend the capture and compare channels what they may touch (the axes, the I/O image),
+    /// and bump the I/O version if an output changed.
+    fn with_triggers<R>(&mut self, f: impl FnOnce(&mut Triggers, &mut TriggerEnv) -> R) -> R {
+        let Engine {
+            axes,
+            io,
+            tick,
+            period,
+            triggers,
+            ..
+        } = self;
+        let mut env = TriggerEnv {
+            tick: *tick,
+            period: *period,
+            axes,
+            di_forced: &io.di_forced,
+            bindings: &io.bindings,
+            outputs: &mut io.image.do_,
+            outputs_changed: false,
+        };
+        let result = f(triggers, &mut env);
+        if env.outputs_changed {
+            io.version += 1;
+        }
+        result
+    }
+
+    /// The capture and compare channels.
+    pub fn triggers(&self) -> &Triggers {
+        &self.triggers
     }
 
     /// The axis groups.
@@ -508,12 +545,19 @@ impl Engine {
         }
     }
 
-    /// A command on the I/O image; it shows in the next snapshot.
+    /// A command on the I/O image; it shows in the next snapshot. A digital input changed by
+    /// command is an edge at the tick boundary for the captures watching it.
     fn apply_io_command(&mut self, command: IoCommand) -> Result<Reply, EngineError> {
         let io = &mut self.io;
         match command {
             IoCommand::ForceDigitalInput(ForceDigitalInput { channel, value }) => {
-                io.force_digital_input(channel, value)
+                let before = io.image.di.get(channel as usize).copied();
+                io.force_digital_input(channel, value)?;
+                let after = value.unwrap_or(false);
+                if before.is_some_and(|b| b != after) && self.triggers.watches_inputs() {
+                    self.with_triggers(|t, env| t.input_changed(env, channel, after));
+                }
+                Ok(())
             }
             IoCommand::ForceAnalogInput(ForceAnalogInput { channel, value }) => {
                 io.force_analog_input(channel, value)
@@ -571,7 +615,9 @@ impl Engine {
     /// 2. `run_planners`: the axis groups (issue 11), in group-number order, then the other
     ///    machine-level planners, feed their axes this tick's setpoints;
     /// 3. `step_axes`: every axis, in index order, or with couplings (issue 12) masters before
-    ///    their slaves, each slave fed from its master's state of this tick;
+    ///    their slaves, each slave fed from its master's state of this tick; then the capture
+    ///    channels latch this tick's edges and the compare channels fire their outputs (issue 12
+    ///    items 4–5);
     /// 4. `step_drives`: the CiA 402 drives see their axes and answer with commands;
     /// 5. outputs and status: no per-tick work. Outputs change only by command, and status is
     ///    assembled when it is read ([`Engine::snapshot_into`], [`Engine::axis_status`]).
@@ -583,6 +629,7 @@ impl Engine {
         self.read_inputs();
         self.run_planners();
         self.step_axes();
+        self.with_triggers(|t, env| t.step(env));
         self.step_drives();
         if self.groups_await_power {
             self.enable_groups_once_powered();
@@ -751,6 +798,8 @@ impl Engine {
         self.groups
             .status_into(&self.axes, &snapshot.axes, &mut snapshot.groups);
         self.couplings.status_into(&mut snapshot.couplings);
+        self.triggers
+            .status_into(&mut snapshot.captures, &mut snapshot.compares);
         if snapshot.io_version != self.io.version {
             snapshot.io.clone_from(&self.io.image);
             snapshot.io_version = self.io.version;

@@ -152,6 +152,22 @@ impl Encoder {
         tick
     }
 
+    /// The counter a hardware latch reads when the motor passes `position` (physical) during
+    /// this tick: that position's count less the counts missed while feedback was lost, or the
+    /// frozen counter while it is lost. No noise: noise is a sample's, not the edge's.
+    pub fn count_at(&self, position: f64) -> i64 {
+        if self.lost {
+            self.counts
+        } else {
+            self.counts_at(position).wrapping_sub(self.missed)
+        }
+    }
+
+    /// The position a count stands for (physical frame, user units).
+    pub fn position_of_count(&self, counts: i64) -> f64 {
+        self.position_of(counts)
+    }
+
     /// The counter the controller reads.
     pub fn counts(&self) -> i64 {
         self.counts

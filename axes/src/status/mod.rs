@@ -12,8 +12,13 @@ mod coupling;
 mod group;
 mod snapshot;
 pub use coupling::{CouplingKind, CouplingPhase, CouplingStatus};
+mod trigger;
 pub use group::{GroupFault, GroupState, GroupStatus, InterferenceStatus};
 pub use snapshot::Snapshot;
+pub use trigger::{
+    CaptureEdge, CaptureSource, CaptureState, CaptureStatus, CaptureWindow, CompareOutputMode,
+    CompareState, CompareStatus, Latch, PositionSource,
+};
 
 /// PLCopen axis state.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -238,6 +243,15 @@ pub struct AxisStatus {
     pub homing_phase: u8,
     /// The error that ended the last command or the last refused command, if any.
     pub last_error: Option<ErrorKind>,
+    /// Edges latched by the axis's capture channels since they were armed (issue 12 item 4).
+    #[serde(default)]
+    pub captures: u32,
+    /// The actual position of the newest of those latches (0 when none).
+    #[serde(default)]
+    pub capture_position: f64,
+    /// Outputs fired by the compare channels whose (first) axis this is (issue 12 item 5).
+    #[serde(default)]
+    pub compare_outputs: u32,
 }
 
 /// Digital and analog I/O images of the machine.

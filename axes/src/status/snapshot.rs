@@ -4,7 +4,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{AxisStatus, CouplingStatus, DriveStatus, GroupStatus, IoImage};
+use super::{
+    AxisStatus, CaptureStatus, CompareStatus, CouplingStatus, DriveStatus, GroupStatus, IoImage,
+};
 use crate::param::ParamSet;
 
 /// The machine's state after a tick: what front-ends read without waiting for the servo thread.
@@ -21,6 +23,12 @@ pub struct Snapshot {
     /// The couplings (issue 12: gear, cam), by slave axis.
     #[serde(default)]
     pub couplings: Vec<CouplingStatus>,
+    /// The armed (or done) capture channels (issue 12 item 4), by axis and channel.
+    #[serde(default)]
+    pub captures: Vec<CaptureStatus>,
+    /// The position-compare channels (issue 12 item 5), by channel.
+    #[serde(default)]
+    pub compares: Vec<CompareStatus>,
     pub io: IoImage,
     /// Changes whenever the I/O image changes: readers (and the snapshot refresh) can skip
     /// comparing images that did not change.

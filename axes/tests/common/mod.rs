@@ -79,6 +79,13 @@ pub fn refused(e: &mut Engine, c: Command) -> EngineError {
     }
 }
 
+/// The JSON `code` of the error `c` is refused with (`invalid_argument` …).
+pub fn refused_code(e: &mut Engine, c: Command) -> String {
+    let err = refused(e, c);
+    let json = serde_json::to_value(&err).expect("an error serializes");
+    json["code"].as_str().expect("a code").to_owned()
+}
+
 pub fn id_of(r: Reply) -> u32 {
     match r {
         Reply::Accepted { id } => id,

@@ -17,14 +17,14 @@ use super::error::ApiError;
 use crate::trace::GroupColumns;
 
 /// Default of `[frontends.control] trace_max_rows`: the row cap when a start request gives
-/// none, and the largest it may give — about 110 MB of buffer and about 130 MB of CSV at most.
+/// none, and the largest it may give — about 130 MB of buffer and about 140 MB of CSV at most.
 pub const MAX_TRACE_ROWS: usize = 1_000_000;
 
 /// Rows copied out of the buffer per lock while a trace is read, so a long read never holds
 /// the servo thread up for more than a few microseconds at a time.
 const READ_CHUNK: usize = 8192;
 
-/// One recorded axis at one tick: what a trace row needs, and no more (112 bytes).
+/// One recorded axis at one tick: what a trace row needs, and no more (128 bytes).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TraceRow {
     pub tick: u64,
@@ -40,6 +40,9 @@ pub struct TraceRow {
     pub following_error: f64,
     pub pulses: i64,
     pub encoder_counts: i64,
+    pub captures: u32,
+    pub capture_position: f64,
+    pub compare_outputs: u32,
     /// The group columns of a member axis.
     pub group: Option<GroupColumns>,
 }
@@ -60,6 +63,9 @@ impl TraceRow {
             following_error: s.following_error,
             pulses: s.pulses,
             encoder_counts: s.encoder_counts,
+            captures: s.captures,
+            capture_position: s.capture_position,
+            compare_outputs: s.compare_outputs,
             group,
         }
     }
@@ -79,6 +85,9 @@ impl TraceRow {
             following_error: self.following_error,
             pulses: self.pulses,
             encoder_counts: self.encoder_counts,
+            captures: self.captures,
+            capture_position: self.capture_position,
+            compare_outputs: self.compare_outputs,
             ..AxisStatus::default()
         }
     }
@@ -482,7 +491,7 @@ mod tests {
 
     #[test]
     fn rows_are_compact_and_round_trip_the_columns() {
-        assert!(std::mem::size_of::<TraceRow>() <= 112);
+        assert!(std::mem::size_of::<TraceRow>() <= 128);
         let s = AxisStatus {
             state: AxisState::DiscreteMotion,
             flags: AxisFlags::HOMED | AxisFlags::HW_LIMIT_NEG,

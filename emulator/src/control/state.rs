@@ -5,8 +5,8 @@ use axes::command::CommandId;
 use axes::command::{CoordinateSystem, Direction, ErrorKind};
 use axes::runtime::RuntimeStats;
 use axes::status::{
-    AxisState, AxisStatus, CommandRef, CouplingStatus, DriveStatus, GroupFault, GroupState,
-    GroupStatus, InterferenceStatus, IoImage,
+    AxisState, AxisStatus, CaptureStatus, CommandRef, CompareStatus, CouplingStatus, DriveStatus,
+    GroupFault, GroupState, GroupStatus, InterferenceStatus, IoImage,
 };
 use axum::extract::State;
 use axum::Json;
@@ -31,6 +31,10 @@ pub struct StateView<'a> {
     pub groups: Vec<GroupView<'a>>,
     /// The gears and cams (issue 12), by slave axis: master, kind, phase, ratio, table.
     pub couplings: &'a [CouplingStatus],
+    /// The armed (or done) capture channels, by axis and channel (`axes::status::CaptureStatus`).
+    pub captures: &'a [CaptureStatus],
+    /// The position-compare channels, by channel (`axes::status::CompareStatus`).
+    pub compares: &'a [CompareStatus],
     pub io: IoView<'a>,
     pub drives: Vec<DriveView>,
     /// The servo runtime's counters and lateness histogram (`axes::runtime::RuntimeStats`).
@@ -70,6 +74,11 @@ pub struct AxisView<'a> {
     pub next_command: Option<CommandRef>,
     pub homing_phase: u8,
     pub last_error: Option<ErrorKind>,
+    /// Edges latched by the axis's capture channels, the newest one's actual position.
+    pub captures: u32,
+    pub capture_position: f64,
+    /// Outputs fired by the compare channels on the axis.
+    pub compare_outputs: u32,
 }
 
 impl<'a> AxisView<'a> {
@@ -103,6 +112,9 @@ impl<'a> AxisView<'a> {
             next_command: s.next_command,
             homing_phase: s.homing_phase,
             last_error: s.last_error,
+            captures: s.captures,
+            capture_position: s.capture_position,
+            compare_outputs: s.compare_outputs,
         }
     }
 }
@@ -239,6 +251,8 @@ pub async fn get_state(State(state): State<ControlState>) -> axum::response::Res
             .collect(),
         groups: snapshot.groups.iter().map(GroupView::new).collect(),
         couplings: &snapshot.couplings,
+        captures: &snapshot.captures,
+        compares: &snapshot.compares,
         io: IoView::from(&snapshot.io),
         drives: snapshot
             .drives

@@ -59,6 +59,12 @@ pub(super) enum Quantity {
     CommandPosition,
     CommandVelocity,
     FollowingError,
+    /// Edges latched by the axis's capture channels (issue 12 item 4).
+    Captures,
+    /// The newest latch's actual position.
+    CapturePosition,
+    /// Outputs fired by the axis's compare channels (issue 12 item 5).
+    CompareOutputs,
 }
 
 impl Quantity {
@@ -69,6 +75,9 @@ impl Quantity {
             Quantity::CommandPosition => "command_position",
             Quantity::CommandVelocity => "command_velocity",
             Quantity::FollowingError => "following_error",
+            Quantity::Captures => "captures",
+            Quantity::CapturePosition => "capture_position",
+            Quantity::CompareOutputs => "compare_outputs",
         }
     }
 
@@ -79,6 +88,9 @@ impl Quantity {
             Quantity::CommandPosition => s.cmd_pos,
             Quantity::CommandVelocity => s.cmd_vel,
             Quantity::FollowingError => s.following_error,
+            Quantity::Captures => f64::from(s.captures),
+            Quantity::CapturePosition => s.capture_position,
+            Quantity::CompareOutputs => f64::from(s.compare_outputs),
         }
     }
 }
@@ -193,6 +205,9 @@ impl Expectation {
             (Quantity::CommandPosition, spec.command_position),
             (Quantity::CommandVelocity, spec.command_velocity),
             (Quantity::FollowingError, spec.following_error),
+            (Quantity::Captures, spec.captures),
+            (Quantity::CapturePosition, spec.capture_position),
+            (Quantity::CompareOutputs, spec.compare_outputs),
         ] {
             if let Some(v) = v {
                 if !v.is_finite() {
@@ -218,7 +233,8 @@ impl Expectation {
             return Err((
                 "tolerance",
                 "applies to position, velocity, command_position, command_velocity, \
-                 following_error or group_position, and none is given"
+                 following_error, captures, capture_position, compare_outputs or \
+                 group_position, and none is given"
                     .into(),
             ));
         }
@@ -260,7 +276,8 @@ impl Expectation {
             return Err((
                 "axis",
                 "no condition on it: give state, position, velocity, command_position, \
-                 command_velocity, following_error, flags, not_flags, error or coupling"
+                 command_velocity, following_error, captures, capture_position, \
+                 compare_outputs, flags, not_flags, error or coupling"
                     .into(),
             ));
         }

@@ -79,6 +79,15 @@ pub(super) struct ExpectSpec {
     pub command_velocity: Option<f64>,
     #[serde(default)]
     pub following_error: Option<f64>,
+    /// Edges latched by the axis's capture channels (`capture_arm`).
+    #[serde(default)]
+    pub captures: Option<f64>,
+    /// The actual position of the axis's newest latch.
+    #[serde(default)]
+    pub capture_position: Option<f64>,
+    /// Outputs fired by the compare channels on the axis (`compare_start`).
+    #[serde(default)]
+    pub compare_outputs: Option<f64>,
     /// Allowed |seen − expected| of the numbers above; 0 (exact) when absent.
     #[serde(default)]
     pub tolerance: Option<f64>,

@@ -7,6 +7,7 @@
 //! name for it (docs/decisions.md, "Dialects (issue 10, item 3)").
 
 use axes::command::EngineError;
+use axes::status::{CaptureState, CaptureStatus, CompareState, CompareStatus};
 use axes::AxisStatus;
 
 /// AxisStatus bit 0: following error over FELimit 10 consecutive times, latched (digest 000 §2.2
@@ -50,6 +51,26 @@ pub const WAIT_AXIS_IDLE_BAD_AXIS: u8 = 0x17;
 /// functions)"); an accepted command returns its command id instead.
 pub fn code_for(_e: &EngineError) -> u32 {
     PARAMETER_ERROR
+}
+
+/// `HMC_CaptureGetState` (digest 000 §4.4): 1 outside the window, 2 waiting for the signal, 3
+/// idle (done, or a channel never configured: `None`). 0, configuring, never shows: a
+/// configuration takes effect at once.
+pub fn capture_state(c: Option<&CaptureStatus>) -> u8 {
+    match c.map(|c| c.state) {
+        Some(CaptureState::OutsideWindow) => 1,
+        Some(CaptureState::Waiting) => 2,
+        Some(CaptureState::Done) | None => 3,
+    }
+}
+
+/// `HMC_GetSwitchState` / `HMC_GetNormalSwitchState` (digest 000 §4.4): 0 working, 3 idle (done
+/// or not configured).
+pub fn switch_state(c: Option<&CompareStatus>) -> u8 {
+    match c.map(|c| c.state) {
+        Some(CompareState::Running) => 0,
+        Some(CompareState::Done) | None => 3,
+    }
 }
 
 #[cfg(test)]
@@ -112,5 +133,36 @@ mod tests {
     fn every_refusal_is_the_parameter_error_code() {
         let e = EngineError::Unsupported { what: "x".into() };
         assert_eq!(code_for(&e), 0xFFFF_FFFF);
+    }
+
+    #[test]
+    fn capture_and_switch_states_follow_section_4_4() {
+        // Digest 000 §8 vector 31: outside the window 1, waiting 2, captured 3.
+        let mut c = CaptureStatus {
+            axis: 0,
+            channel: 0,
+            source: axes::status::CaptureSource::Index,
+            source_axis: 0,
+            input: None,
+            edge: Default::default(),
+            repeat: 1,
+            continuous: false,
+            window: None,
+            state: CaptureState::OutsideWindow,
+            count: 0,
+            latches: vec![],
+        };
+        assert_eq!(capture_state(Some(&c)), 1);
+        c.state = CaptureState::Waiting;
+        assert_eq!(capture_state(Some(&c)), 2);
+        c.state = CaptureState::Done;
+        assert_eq!(capture_state(Some(&c)), 3);
+        assert_eq!(capture_state(None), 3);
+        // Vector 32: 0 while active, 3 after the 10th target.
+        let mut s = CompareStatus::default();
+        assert_eq!(switch_state(Some(&s)), 0);
+        s.state = CompareState::Done;
+        assert_eq!(switch_state(Some(&s)), 3);
+        assert_eq!(switch_state(None), 3);
     }
 }

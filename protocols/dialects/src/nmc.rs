@@ -2,6 +2,7 @@
 //! library's units (pulse, pulse/ms, pulse/ms²).
 
 use axes::command::{EngineError, ErrorKind};
+use axes::status::{CaptureStatus, CompareState, CompareStatus};
 use axes::{AxisFlags, AxisState, AxisStatus};
 
 use crate::PulseScale;
@@ -77,6 +78,30 @@ pub fn axis_status(s: &AxisStatus, extra: AxisExtra) -> u16 {
         }
     }
     w
+}
+
+/// `NMC_MtGetAdvCaptPos`'s `captSts` (digest 001 §2.18): bit 0 the leading edge latched, bit 1
+/// the trailing edge (a channel armed on both edges with `repeat` 2; TV 61 reads 0x3).
+pub fn adv_capture_status(c: Option<&CaptureStatus>) -> i16 {
+    match c.map(|c| c.latches.len()) {
+        Some(0) | None => 0,
+        Some(1) => 0x1,
+        Some(_) => 0x3,
+    }
+}
+
+/// `NMC_Comp2DimensStatusEx` (digest 001 §3.16 `TComp2DimensSts`): `sts` 1 busy / 0 idle,
+/// `usedSpace` the points not yet output, `outCount` the outputs so far. A channel not started
+/// reads idle and empty.
+pub fn compare_status(c: Option<&CompareStatus>) -> (i16, i32, i32) {
+    match c {
+        Some(c) => (
+            i16::from(c.state == CompareState::Running),
+            i32::try_from(c.remaining).unwrap_or(i32::MAX),
+            i32::try_from(c.count).unwrap_or(i32::MAX),
+        ),
+        None => (0, 0, 0),
+    }
 }
 
 /// `RTN_CMD_SUCCESS` (digest 001 §1.2).
@@ -261,5 +286,43 @@ mod tests {
         // 0.1 pulse/ms² = 100 000 pulse/s² = 100 units/s².
         assert!((acceleration_to_engine(scale, 0.1) - 100.0).abs() < 1e-9);
         assert!((acceleration_from_engine(scale, 100.0) - 0.1).abs() < 1e-12);
+    }
+
+    #[test]
+    fn tv61_and_tv63_status_words() {
+        let latch = axes::status::Latch::default();
+        let mut c = CaptureStatus {
+            axis: 0,
+            channel: 0,
+            source: axes::status::CaptureSource::Di,
+            source_axis: 0,
+            input: Some(0),
+            edge: axes::status::CaptureEdge::Both,
+            repeat: 2,
+            continuous: false,
+            window: None,
+            state: axes::status::CaptureState::Waiting,
+            count: 1,
+            latches: vec![latch],
+        };
+        assert_eq!(adv_capture_status(Some(&c)), 0x1);
+        c.latches.push(latch);
+        assert_eq!(adv_capture_status(Some(&c)), 0x3);
+        assert_eq!(adv_capture_status(None), 0);
+        let done = CompareStatus {
+            state: CompareState::Done,
+            count: 100,
+            remaining: 0,
+            total: 100,
+            ..CompareStatus::default()
+        };
+        assert_eq!(compare_status(Some(&done)), (0, 0, 100));
+        let busy = CompareStatus {
+            state: CompareState::Running,
+            count: 40,
+            remaining: 60,
+            ..done
+        };
+        assert_eq!(compare_status(Some(&busy)), (1, 60, 40));
     }
 }
