@@ -12,7 +12,7 @@ use crate::od::Value;
 // that `axes::command::EngineError` and friends keep their paths.
 pub use crate::error::EngineError;
 pub use crate::types::{
-    AxisIndex, CommandId, CommandKind, CoordinateSystem, Direction, ErrorKind, GroupId,
+    AxisIndex, CommandId, CommandKind, CoordinateSystem, Direction, ErrorKind, GroupId, StreamMode,
 };
 
 /// PLCopen buffer mode of a motion command (ARCHITECTURE §3.5).
@@ -92,6 +92,7 @@ mod group_frames;
 mod io;
 mod machine;
 mod slave;
+mod stream;
 mod wire;
 
 pub use axis::{
@@ -120,6 +121,10 @@ pub use machine::{
     ResetAll, StopAll, StopAxes, TogetherMove,
 };
 pub use slave::{ReadObject, SlaveCommand, WriteObject};
+pub use stream::{
+    PtKind, PtPoint, PtPush, PvtMove, PvtPoint, PvtPush, StreamClear, StreamCommand, StreamConfig,
+    StreamStart, MAX_PUSH_POINTS, MAX_PVT_MOVE_POINTS,
+};
 
 /// A command into the engine, by family: what it addresses decides which stage of the engine
 /// takes it ([`crate::Engine::apply`] dispatches on the family).
@@ -150,6 +155,8 @@ pub enum Command {
     /// Machine-wide: queries across all axes (command states), and commands on several or all
     /// axes at once (start together, stop, enable, disable, emergency stop, reset all).
     Machine(MachineCommand),
+    /// PT and PVT streams per axis (issue 12 item 3: `pt_push`, `stream_start` …).
+    Stream(StreamCommand),
 }
 
 /// Commands that couple a slave axis to a master (gear, cam). None yet: issue 12 adds them here,
@@ -163,6 +170,7 @@ impl Command {
         match self {
             Command::Axis(c) => Some(c.axis()),
             Command::Coupling(c) => match *c {},
+            Command::Stream(c) => c.axis(),
             Command::Group(_) | Command::Io(_) | Command::Slave(_) | Command::Machine(_) => None,
         }
     }

@@ -23,6 +23,7 @@ use super::{
     GroupDeleteTransform, GroupSetCoordinateSystem, GroupSetCoordinateTransform,
     GroupSetRotaryTransform, GroupSetXyzaTransform, MoveProtectionDisable, MoveProtectionEnable,
 };
+use super::{PtPush, PvtMove, PvtPush, StreamClear, StreamCommand, StreamConfig, StreamStart};
 
 /// Named `Command` like the type it stands for: serde writes this name in "expected internally
 /// tagged enum Command" (a `rename` does not change that message).
@@ -95,6 +96,13 @@ pub(super) enum Command {
     MoveProtectionEnable(MoveProtectionEnable),
     MoveProtectionDisable(MoveProtectionDisable),
     MoveCircularAngle(MoveCircularAngle),
+    // Issue 12 item 3, PT/PVT streams.
+    StreamConfig(StreamConfig),
+    PtPush(PtPush),
+    PvtPush(PvtPush),
+    StreamClear(StreamClear),
+    StreamStart(StreamStart),
+    PvtMove(PvtMove),
 }
 
 impl From<Command> for super::Command {
@@ -191,6 +199,12 @@ impl From<Command> for super::Command {
             Command::MoveProtectionDisable(c) => {
                 super::Command::Group(GroupCommand::ProtectionDisable(c))
             }
+            Command::StreamConfig(c) => super::Command::Stream(StreamCommand::Config(c)),
+            Command::PtPush(c) => super::Command::Stream(StreamCommand::PtPush(c)),
+            Command::PvtPush(c) => super::Command::Stream(StreamCommand::PvtPush(c)),
+            Command::StreamClear(c) => super::Command::Stream(StreamCommand::Clear(c)),
+            Command::StreamStart(c) => super::Command::Stream(StreamCommand::Start(c)),
+            Command::PvtMove(c) => super::Command::Stream(StreamCommand::PvtMove(c)),
         }
     }
 }
@@ -289,6 +303,12 @@ impl From<super::Command> for Command {
             super::Command::Group(GroupCommand::ProtectionDisable(c)) => {
                 Command::MoveProtectionDisable(c)
             }
+            super::Command::Stream(StreamCommand::Config(c)) => Command::StreamConfig(c),
+            super::Command::Stream(StreamCommand::PtPush(c)) => Command::PtPush(c),
+            super::Command::Stream(StreamCommand::PvtPush(c)) => Command::PvtPush(c),
+            super::Command::Stream(StreamCommand::Clear(c)) => Command::StreamClear(c),
+            super::Command::Stream(StreamCommand::Start(c)) => Command::StreamStart(c),
+            super::Command::Stream(StreamCommand::PvtMove(c)) => Command::PvtMove(c),
             super::Command::Coupling(c) => match c {},
         }
     }

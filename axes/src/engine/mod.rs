@@ -22,6 +22,7 @@ use std::sync::Arc;
 
 mod machine;
 mod planner;
+mod streams;
 pub use crate::axis::Feed;
 pub use machine::MAX_ATOMIC_COMMANDS;
 pub use planner::{Feeds, MachinePlanner};
@@ -220,6 +221,7 @@ impl Engine {
             Command::Io(c) => self.apply_io_command(c),
             Command::Slave(c) => self.apply_slave_command(c),
             Command::Machine(c) => self.apply_machine_command(c),
+            Command::Stream(c) => self.apply_stream_command(c),
         }
     }
 

@@ -5,6 +5,7 @@
 mod motion;
 mod parameters;
 mod power;
+mod pvt;
 mod streams;
 
 pub use streams::Feed;

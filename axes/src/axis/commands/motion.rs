@@ -40,7 +40,7 @@ impl Axis {
             MotionAction::MoveVelocity { velocity } => {
                 bounded("velocity", *velocity)?;
             }
-            MotionAction::Home(_) => {}
+            MotionAction::Home(_) | MotionAction::Stream => {}
         }
         if self.halted && request.buffer_mode == BufferMode::Aborting {
             self.halted = false;
@@ -105,6 +105,7 @@ impl Axis {
             MotionAction::MoveRelative { distance } => *distance,
             MotionAction::MoveVelocity { velocity } => *velocity,
             MotionAction::Home(_) => 0.0,
+            MotionAction::Stream => self.stream.initial_direction(),
         };
         if delta > 0.0 {
             Some(Direction::Positive)
@@ -277,6 +278,10 @@ impl Axis {
                 self.progress_homing(ctx);
                 return Ok(());
             }
+            MotionAction::Stream => {
+                self.begin_stream(ctx.tick, q.id)?;
+                return Ok(());
+            }
         };
         self.plan(ctx.tick, planner_goal, limits)
             .map_err(plan_error)?;
@@ -294,6 +299,7 @@ impl Axis {
 
     /// End the running command (if any) and everything queued with `state`.
     pub(in crate::axis) fn abort_all(&mut self, ctx: &mut Context, state: CommandState) {
+        self.release_stream();
         for q in self.fifo.drain() {
             ctx.ledger.finish(q.id, state);
         }
@@ -307,6 +313,7 @@ impl Axis {
 
     /// End only the running command with `state`.
     pub(in crate::axis) fn end_running(&mut self, ctx: &mut Context, state: CommandState) {
+        self.release_stream();
         if let Activity::Running(run) = &self.activity {
             let id = run.id;
             if self.fifo.front().map(|q| q.id) == Some(id) {
@@ -375,6 +382,11 @@ impl Axis {
         match &self.activity {
             Activity::Running(run) if run.goal == RunGoal::Homing => {
                 let e = self.invalid_state("halt while homing");
+                return self.refuse(e);
+            }
+            Activity::Running(run) if run.goal == RunGoal::Stream => {
+                // A stream runs on its own clock: it cannot pause and resume.
+                let e = self.invalid_state("halt a PT/PVT stream (stop it instead)");
                 return self.refuse(e);
             }
             Activity::Running(_) => {}
@@ -596,6 +608,7 @@ impl Axis {
             Source::Profile { shift, .. } => *shift += delta,
             Source::External(Setpoint::Position { position }) => *position += delta,
             Source::Fed(state) => state.p += delta,
+            Source::Stream { base, .. } => *base += delta,
             _ => {}
         }
         if let Activity::Running(run) = &mut self.activity {
