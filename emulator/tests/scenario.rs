@@ -313,6 +313,7 @@ fn the_shipped_scenarios_pass() {
         "inline-machine.toml",
         "coordinated-motion.toml",
         "hmc-result-axis.toml",
+        "nmc-pt.toml",
     ] {
         let out = mcemu(&["scenario", &fixture(name)]);
         assert!(out.status.success(), "{name}: {}", stderr(&out));

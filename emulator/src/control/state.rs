@@ -6,7 +6,7 @@ use axes::command::{CoordinateSystem, Direction, ErrorKind};
 use axes::runtime::RuntimeStats;
 use axes::status::{
     AxisState, AxisStatus, CommandRef, DriveStatus, GroupFault, GroupState, GroupStatus,
-    InterferenceStatus, IoImage,
+    InterferenceStatus, IoImage, StreamStatus,
 };
 use axum::extract::State;
 use axum::Json;
@@ -68,6 +68,9 @@ pub struct AxisView<'a> {
     pub next_command: Option<CommandRef>,
     pub homing_phase: u8,
     pub last_error: Option<ErrorKind>,
+    /// The PT/PVT buffer and its run: mode, running, space, used, loop_count, loops_done,
+    /// underruns, time_ms.
+    pub stream: StreamStatus,
 }
 
 impl<'a> AxisView<'a> {
@@ -101,6 +104,7 @@ impl<'a> AxisView<'a> {
             next_command: s.next_command,
             homing_phase: s.homing_phase,
             last_error: s.last_error,
+            stream: s.stream,
         }
     }
 }

@@ -30,6 +30,9 @@ pub(super) enum Check {
     NotFlags(AxisFlags),
     /// The axis's last error (`None`: no error).
     Error(Option<ErrorKind>),
+    /// A count of the axis's PT/PVT stream (`stream_space`, `stream_used`, `stream_underruns`).
+    StreamCount(StreamCount, u32),
+    StreamRunning(bool),
     /// The state of the command the step with this index issued.
     CommandState {
         step: usize,
@@ -48,6 +51,32 @@ pub(super) enum Check {
     GroupPosition(Vec<f64>),
     GroupInPosition(bool),
     GroupUserSegment(u32),
+}
+
+/// The counts of an axis's PT/PVT stream an expectation can check.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum StreamCount {
+    Space,
+    Used,
+    Underruns,
+}
+
+impl StreamCount {
+    fn name(self) -> &'static str {
+        match self {
+            StreamCount::Space => "stream_space",
+            StreamCount::Used => "stream_used",
+            StreamCount::Underruns => "stream_underruns",
+        }
+    }
+
+    fn of(self, s: &AxisStatus) -> u32 {
+        match self {
+            StreamCount::Space => u32::from(s.stream.space),
+            StreamCount::Used => u32::from(s.stream.used),
+            StreamCount::Underruns => s.stream.underruns,
+        }
+    }
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -235,6 +264,18 @@ impl Expectation {
             };
             checks.push(Check::Error(kind));
         }
+        for (count, v) in [
+            (StreamCount::Space, spec.stream_space.map(u32::from)),
+            (StreamCount::Used, spec.stream_used.map(u32::from)),
+            (StreamCount::Underruns, spec.stream_underruns),
+        ] {
+            if let Some(v) = v {
+                checks.push(Check::StreamCount(count, v));
+            }
+        }
+        if let Some(v) = spec.stream_running {
+            checks.push(Check::StreamRunning(v));
+        }
         let axis_checks = !checks.is_empty();
         if axis_checks && spec.axis.is_none() {
             return Err(("axis", "missing: these conditions are about an axis".into()));
@@ -243,7 +284,8 @@ impl Expectation {
             return Err((
                 "axis",
                 "no condition on it: give state, position, velocity, command_position, \
-                 command_velocity, following_error, flags, not_flags or error"
+                 command_velocity, following_error, flags, not_flags, error, stream_space, \
+                 stream_used, stream_running or stream_underruns"
                     .into(),
             ));
         }
@@ -396,6 +438,17 @@ impl Expectation {
                     "axis {axis} error: expected {}, saw {}",
                     want.map_or("none", |e| e.name()),
                     s.last_error.map_or("none", |e| e.name())
+                ),
+                (Check::StreamCount(count, want), Some(s)) if count.of(s) != *want => write!(
+                    msg,
+                    "axis {axis} {}: expected {want}, saw {}",
+                    count.name(),
+                    count.of(s)
+                ),
+                (Check::StreamRunning(want), Some(s)) if s.stream.running != *want => write!(
+                    msg,
+                    "axis {axis} stream_running: expected {want}, saw {}",
+                    s.stream.running
                 ),
                 (Check::CommandState { step, state }, _) => match (seen.command_state)(*step) {
                     Ok(got) if state.matches(got) => continue,
