@@ -76,7 +76,11 @@ fn himc_tv20_move_pvt_passes_its_knots_and_ends_at_rest() {
         t = at;
         let s = status(&e);
         assert_eq!(s.cmd_pos, p, "position at {at} ms");
-        assert!((s.cmd_vel - v).abs() < 1e-9, "velocity at {at} ms: {}", s.cmd_vel);
+        assert!(
+            (s.cmd_vel - v).abs() < 1e-9,
+            "velocity at {at} ms: {}",
+            s.cmd_vel
+        );
     }
     let s = status(&e);
     assert_eq!(s.state, AxisState::Standstill);
@@ -212,7 +216,10 @@ fn a_static_pvt_buffer_loops_each_run_continuing_from_the_last() {
     assert_eq!((s.cmd_pos, s.cmd_vel), (15.0, 80.0));
     run(&mut e, 0.3);
     let s = status(&e);
-    assert_eq!((s.cmd_pos, s.cmd_vel, s.state), (30.0, 0.0, AxisState::Standstill));
+    assert_eq!(
+        (s.cmd_pos, s.cmd_vel, s.state),
+        (30.0, 0.0, AxisState::Standstill)
+    );
     assert_eq!(s.stream.loops_done, 3);
 }
 
