@@ -134,6 +134,17 @@ impl Axis {
     // ------------------------------------------------------------------ motion commands
 }
 
+/// The direction of a signed distance or velocity, none for 0.
+fn direction_of_travel(delta: f64) -> Option<Direction> {
+    if delta > 0.0 {
+        Some(Direction::Positive)
+    } else if delta < 0.0 {
+        Some(Direction::Negative)
+    } else {
+        None
+    }
+}
+
 /// A planner refusal as an engine error. Limits come from validated parameters and checked
 /// overrides, so this is reached only with extreme but finite values.
 fn plan_error(e: PlanError) -> EngineError {

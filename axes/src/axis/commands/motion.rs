@@ -107,13 +107,7 @@ impl Axis {
             MotionAction::Home(_) => 0.0,
             MotionAction::Stream => self.stream.initial_direction(),
         };
-        if delta > 0.0 {
-            Some(Direction::Positive)
-        } else if delta < 0.0 {
-            Some(Direction::Negative)
-        } else {
-            None
-        }
+        direction_of_travel(delta)
     }
 
     /// HIMC: a target beyond a soft limit is refused up front (`sw_limit_reject_targets`).
@@ -460,14 +454,7 @@ impl Axis {
                 } else {
                     self.unwrap_target(position, self.raw.p)
                 };
-                let direction = if target > self.raw.p {
-                    Some(Direction::Positive)
-                } else if target < self.raw.p {
-                    Some(Direction::Negative)
-                } else {
-                    None
-                };
-                if let Err(e) = self.admit(direction) {
+                if let Err(e) = self.admit(direction_of_travel(target - self.raw.p)) {
                     return self.refuse(e);
                 }
                 if let Activity::Running(run) = &mut self.activity {

@@ -210,13 +210,3 @@ impl Axis {
         Ok(())
     }
 }
-
-fn direction_of_travel(delta: f64) -> Option<Direction> {
-    if delta > 0.0 {
-        Some(Direction::Positive)
-    } else if delta < 0.0 {
-        Some(Direction::Negative)
-    } else {
-        None
-    }
-}
