@@ -73,25 +73,7 @@ impl Engine {
         index: AxisIndex,
         f: impl FnOnce(&mut Axis, &mut Context) -> Result<R, EngineError>,
     ) -> Result<R, EngineError> {
-        let Engine {
-            axes,
-            io,
-            ledger,
-            tick,
-            ..
-        } = self;
-        let count = axes.len() as u32;
-        let axis = axes
-            .get_mut(index as usize)
-            .ok_or(EngineError::InvalidAxis {
-                axis: u32::from(index),
-                count,
-            })?;
-        let mut ctx = Context {
-            tick: *tick,
-            di: &io.image.di,
-            ledger,
-        };
+        let (axis, mut ctx) = self.axis_with_context(index)?;
         f(axis, &mut ctx)
     }
 }
