@@ -550,3 +550,42 @@ fn a_stream_starts_only_at_rest() {
     assert_eq!(err.kind(), ErrorKind::InvalidState, "{err}");
     assert_eq!(status(&e).state, AxisState::ContinuousMotion);
 }
+
+#[test]
+fn a_stream_into_an_active_limit_is_refused_one_out_of_it_runs() {
+    let mut e = enabled(stepper_mm());
+    force(&mut e, axes::command::AxisInput::LimitPos, Some(true));
+    e.step();
+    ok(&mut e, push(0, &[(5.0, 100.0, PtKind::Stop)]));
+    let err = refused(&mut e, Command::from(StreamStart { axes: vec![0] }));
+    assert_eq!(err.kind(), ErrorKind::LimitActive, "{err}");
+    ok(&mut e, Command::from(StreamClear { axis: 0 }));
+    ok(&mut e, push(0, &[(-5.0, 100.0, PtKind::Stop)]));
+    start_ok(&mut e, &[0]);
+    run(&mut e, 0.2);
+    assert_eq!(status(&e).cmd_pos, -5.0);
+}
+
+#[test]
+fn an_aborting_move_or_a_disable_takes_over_from_a_running_stream() {
+    let mut e = pulse_machine(1);
+    ok(&mut e, push(0, &STATIC_POINTS));
+    let id = start_ok(&mut e, &[0])[0];
+    step_n(&mut e, 100);
+    ok(&mut e, move_abs(0.0));
+    assert_eq!(state_of(&mut e, id), CommandState::Aborted);
+    let s = status(&e);
+    assert_eq!(s.state, AxisState::DiscreteMotion);
+    assert_eq!((s.stream.running, s.stream.used), (false, 0));
+    // The move starts from the stream's state: no jump in position or velocity.
+    e.step();
+    let s = status(&e);
+    assert!((s.cmd_pos - 10_200.0).abs() < 1.0, "{}", s.cmd_pos);
+    ok(&mut e, push(0, &STATIC_POINTS));
+    run_until(&mut e, 20.0, |s| s.state == AxisState::Standstill).unwrap();
+    let id = start_ok(&mut e, &[0])[0];
+    step_n(&mut e, 10);
+    ok(&mut e, Command::from(axes::command::Disable { axis: 0 }));
+    assert_eq!(state_of(&mut e, id), CommandState::Aborted);
+    assert_eq!(status(&e).stream.used, 0);
+}

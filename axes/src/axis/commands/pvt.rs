@@ -87,6 +87,10 @@ impl Axis {
             let e = self.invalid_state("start a PT/PVT stream with no points");
             return self.refuse(e);
         }
+        // Not further into an active limit: the first segment's direction.
+        if let Err(e) = self.admit(direction_of_travel(self.stream.initial_direction())) {
+            return self.refuse(e);
+        }
         Ok(self.start_stream_command(ctx))
     }
 
@@ -160,10 +164,6 @@ impl Axis {
         }
         if !self.source_at_rest() {
             return Err(self.invalid_state("start a PT/PVT stream while moving"));
-        }
-        let direction = direction_of_travel(self.stream.initial_direction());
-        if !self.stream.is_empty() {
-            self.admit(direction)?;
         }
         Ok(())
     }
