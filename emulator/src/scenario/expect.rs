@@ -659,6 +659,39 @@ mod tests {
     }
 
     #[test]
+    fn stream_conditions_say_what_they_saw() {
+        let e = Expectation::from_spec(ExpectSpec {
+            axis: Some(1),
+            stream_space: Some(32),
+            stream_used: Some(0),
+            stream_running: Some(true),
+            stream_underruns: Some(0),
+            ..spec()
+        })
+        .unwrap();
+        assert_eq!(e.checks.len(), 4);
+        let mut status = AxisStatus::default();
+        status.stream.space = 29;
+        status.stream.used = 3;
+        let none = |_: usize| Err::<CommandState, String>("no".into());
+        let seen = Seen {
+            axis: Some(&status),
+            group: None,
+            di: &[],
+            do_: &[],
+            command_state: &none,
+        };
+        assert_eq!(
+            e.failures(&seen),
+            [
+                "axis 1 stream_space: expected 32, saw 29",
+                "axis 1 stream_used: expected 0, saw 3",
+                "axis 1 stream_running: expected true, saw false",
+            ]
+        );
+    }
+
+    #[test]
     fn group_conditions_need_a_group_and_say_what_they_saw() {
         let spec = ExpectSpec {
             group_state: Some("moving".into()),
