@@ -370,7 +370,7 @@ impl PvtStream {
             } else {
                 self.loop_count - 1
             };
-            let left = f64::from(last.saturating_sub(self.loops_done + 1));
+            let left = f64::from(last.saturating_sub(self.loops_done.saturating_add(1)));
             self.loops_done = self.loops_done.saturating_add(1 + behind.min(left) as u32);
         }
     }
@@ -467,4 +467,70 @@ fn check_segment(segment: &Segment, limits: StreamLimits) -> Result<(), StreamPo
         });
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::command::PtKind;
+
+    fn stream_of(mode: StreamMode, loop_count: u32, points: &[(f64, f64)]) -> PvtStream {
+        let mut s = PvtStream::default();
+        s.configure(mode, loop_count, None);
+        let points: Vec<_> = points
+            .iter()
+            .map(|&(position, time_ms)| PtPoint {
+                position,
+                time_ms,
+                kind: PtKind::Even,
+            })
+            .collect();
+        let segments = s
+            .pt_segments(0, &points, StreamLimits::default())
+            .expect("valid points");
+        s.append(segments);
+        s.start();
+        s
+    }
+
+    #[test]
+    fn whole_static_loops_inside_one_sample_are_skipped_at_once() {
+        // A 0.01 ms loop of +1: at 1 ms, 100 loops have run.
+        let mut s = stream_of(StreamMode::Static, 1000, &[(1.0, 0.01)]);
+        let k = s.sample(1.0).kinematics;
+        assert!((k.p - 100.0).abs() < 1e-6, "{}", k.p);
+        assert!((99..=101).contains(&s.loops_done), "{}", s.loops_done);
+        // Past the last loop: the end, 1000 runs of +1, still moving (an underrun).
+        let end = s.sample(100.0);
+        assert_eq!(end.kinematics.p, 1000.0);
+        assert_eq!(end.end, Some(StreamEnd::Underrun));
+        assert_eq!(s.loops_done, 1000);
+        // Endless: it goes on.
+        let mut s = stream_of(StreamMode::Static, 0, &[(1.0, 0.01)]);
+        assert!(s.sample(1e6).end.is_none());
+    }
+
+    #[test]
+    fn a_refresh_fifo_half_gives_its_room_back_once_all_its_points_have_run() {
+        let points: Vec<_> = (1..=32).map(|i| (f64::from(i), f64::from(i))).collect();
+        let mut s = stream_of(StreamMode::Refresh, 1, &points);
+        let more: Vec<_> = (33..=40)
+            .map(|i| PtPoint {
+                position: f64::from(i),
+                time_ms: f64::from(i),
+                kind: PtKind::Even,
+            })
+            .collect();
+        let segments = s.pt_segments(0, &more, StreamLimits::default()).unwrap();
+        s.append(segments);
+        assert_eq!((s.used(), s.space()), (40, 24));
+        s.sample(31.5);
+        assert_eq!(
+            (s.used(), s.space()),
+            (40, 24),
+            "31 of the first 32 have run"
+        );
+        s.sample(32.0);
+        assert_eq!((s.used(), s.space()), (8, 56));
+    }
 }
