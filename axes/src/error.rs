@@ -148,6 +148,39 @@ pub enum EngineError {
         channel: u8,
         reason: String,
     },
+    /// A PT/PVT push with more points than the axis's buffer has room for (NMC `MtPtGetSpace`).
+    #[error("axis {axis}: the PT/PVT buffer has room for {space} points, {count} pushed")]
+    StreamFull {
+        axis: AxisIndex,
+        space: u16,
+        count: u32,
+    },
+    /// A point of a PT/PVT push or move that cannot be run; none of the command's points was
+    /// taken.
+    #[error("axis {axis}: point {point}: {problem}")]
+    StreamPoint {
+        axis: AxisIndex,
+        /// Index in the command's `points`.
+        point: u32,
+        problem: StreamPointProblem,
+    },
+}
+
+/// What is wrong with one PT/PVT point ([`EngineError::StreamPoint`]). The HIMC dialect maps
+/// the last three to `eERR_AXIS_PVT_MOTION_INVALID_TIME`, `_VEL_LIMIT` and `_ACC_LIMIT`.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error, Serialize)]
+#[serde(tag = "problem", rename_all = "snake_case")]
+pub enum StreamPointProblem {
+    #[error("{name} = {value}: must be a finite number within ±1e12")]
+    NotFinite { name: &'static str, value: f64 },
+    #[error("a knot at time 0 must be the start itself: position 0, velocity 0")]
+    StartMismatch,
+    #[error("time {time_ms} ms is not after the point before it ({previous_ms} ms)")]
+    TimeNotIncreasing { time_ms: f64, previous_ms: f64 },
+    #[error("the segment to it reaches {velocity} units/s, beyond max_velocity {limit}")]
+    VelocityLimit { velocity: f64, limit: f64 },
+    #[error("the segment to it reaches {acceleration} units/s², beyond max_accel {limit}")]
+    AccelerationLimit { acceleration: f64, limit: f64 },
 }
 
 impl EngineError {
@@ -208,7 +241,10 @@ impl EngineError {
             | EngineError::AxisCoupled { .. }
             | EngineError::NotCoupled { .. }
             | EngineError::CamTableInUse { .. } => ErrorKind::InvalidState,
-            EngineError::InvalidTrigger { .. } => ErrorKind::InvalidArgument,
+            EngineError::InvalidTrigger { .. } | EngineError::StreamPoint { .. } => {
+                ErrorKind::InvalidArgument
+            }
+            EngineError::StreamFull { .. } => ErrorKind::QueueFull,
         }
     }
 }

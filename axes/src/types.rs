@@ -26,6 +26,8 @@ pub enum CommandKind {
     Home,
     /// A drive-driven or externally streamed setpoint (CSP/CSV/CST, HMC_SetDposSwitch).
     External,
+    /// A PT or PVT stream (NMC MtPtStartMtn / MtPvtStartMtn, HIMC MovePVT; issue 12 item 3).
+    Stream,
 }
 
 impl CommandKind {
@@ -37,6 +39,33 @@ impl CommandKind {
             CommandKind::MoveVelocity => 3,
             CommandKind::Home => 4,
             CommandKind::External => 5,
+            CommandKind::Stream => 6,
+        }
+    }
+}
+
+/// How an axis's PT/PVT buffer holds its points (NMC `MtPtSetStatic`, `TPvtPara.dataMode`,
+/// digest 001 §2.13–2.14).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StreamMode {
+    /// NMC 数据刷新 (the default): two FIFOs of 32 points; a FIFO's space comes back once all
+    /// its points have run, so a host refills the stream while it runs.
+    #[default]
+    Refresh,
+    /// NMC 数据驻存: one buffer of 32 points, kept after the run and replayed `loop_count`
+    /// times.
+    Static,
+    /// HIMC `MovePVT`: up to 50 points run once (set by `pvt_move`, not by `stream_config`).
+    Once,
+}
+
+impl StreamMode {
+    pub const fn name(self) -> &'static str {
+        match self {
+            StreamMode::Refresh => "refresh",
+            StreamMode::Static => "static",
+            StreamMode::Once => "once",
         }
     }
 }

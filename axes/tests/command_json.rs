@@ -15,7 +15,8 @@ use axes::command::{
 };
 use axes::command::{
     CaptureArm, CaptureClear, CaptureEdge, CaptureSource, CaptureWindow, CompareOutputMode,
-    CompareStart, CompareStop, PositionSource,
+    CompareStart, CompareStop, PositionSource, PtKind, PtPoint, PtPush, PvtMove, PvtPoint, PvtPush,
+    StreamClear, StreamConfig, StreamMode, StreamStart,
 };
 use axes::homing::{AfterHome, HomingQuirks, Latch};
 use axes::od::Value;
@@ -333,6 +334,56 @@ fn full() -> Vec<(Command, &'static str)> {
             Command::from(CompareStop { channel: 1 }),
             r#"{"type":"compare_stop","channel":1}"#,
         ),
+        (
+            Command::from(StreamConfig {
+                axis: 0,
+                mode: StreamMode::Static,
+                loop_count: 5,
+                stop_deceleration: Some(1000.0),
+            }),
+            r#"{"type":"stream_config","axis":0,"mode":"static","loop_count":5,"stop_deceleration":1000.0}"#,
+        ),
+        (
+            Command::from(PtPush {
+                axis: 0,
+                points: vec![PtPoint {
+                    position: 10000.0,
+                    time_ms: 100.0,
+                    kind: PtKind::Stop,
+                }],
+            }),
+            r#"{"type":"pt_push","axis":0,"points":[{"position":10000.0,"time_ms":100.0,"kind":"stop"}]}"#,
+        ),
+        (
+            Command::from(PvtPush {
+                axis: 1,
+                points: vec![PvtPoint {
+                    position: 1.5,
+                    velocity: -2.0,
+                    time_ms: 20.0,
+                }],
+            }),
+            r#"{"type":"pvt_push","axis":1,"points":[{"position":1.5,"velocity":-2.0,"time_ms":20.0}]}"#,
+        ),
+        (
+            Command::from(StreamClear { axis: 2 }),
+            r#"{"type":"stream_clear","axis":2}"#,
+        ),
+        (
+            Command::from(StreamStart { axes: vec![0, 1] }),
+            r#"{"type":"stream_start","axes":[0,1]}"#,
+        ),
+        (
+            Command::from(PvtMove {
+                axis: 0,
+                points: vec![PvtPoint {
+                    position: 153.333,
+                    velocity: 1000.0,
+                    time_ms: 2000.0,
+                }],
+            }),
+            r#"{"type":"pvt_move","axis":0,"points":[{"position":153.333,"velocity":1000.0,"time_ms":2000.0}]}"#,
+        ),
     ]
 }
 
@@ -567,12 +618,34 @@ fn minimal() -> Vec<(&'static str, Command, &'static str)> {
             Command::from(CompareStop { channel: 0 }),
             r#"{"type":"compare_stop","channel":0}"#,
         ),
+        (
+            r#"{"type":"stream_config","axis":0}"#,
+            Command::from(StreamConfig {
+                axis: 0,
+                mode: StreamMode::Refresh,
+                loop_count: 1,
+                stop_deceleration: None,
+            }),
+            r#"{"type":"stream_config","axis":0,"mode":"refresh","loop_count":1,"stop_deceleration":null}"#,
+        ),
+        (
+            r#"{"type":"pt_push","axis":0,"points":[{"position":1,"time_ms":2}]}"#,
+            Command::from(PtPush {
+                axis: 0,
+                points: vec![PtPoint {
+                    position: 1.0,
+                    time_ms: 2.0,
+                    kind: PtKind::Normal,
+                }],
+            }),
+            r#"{"type":"pt_push","axis":0,"points":[{"position":1.0,"time_ms":2.0,"kind":"normal"}]}"#,
+        ),
     ]
 }
 
 /// Inputs whose error serde reports, and the text it reports today.
 const ERRORS: &[(&str, &str)] = &[
-    (r#"{"type":"teleport","axis":0}"#, "unknown variant `teleport`, expected one of `enable`, `disable`, `reset`, `move_absolute`, `move_relative`, `move_velocity`, `stop`, `halt`, `resume`, `home`, `set_position`, `set_parameter`, `get_parameter`, `modify_target`, `cancel`, `command_state`, `force_input`, `force_digital_input`, `force_analog_input`, `write_digital_output`, `write_analog_output`, `inject_following_error`, `setpoint`, `read_object`, `write_object`, `move_together`, `stop_axes`, `stop_all`, `enable_all`, `disable_all`, `emergency_stop_all`, `reset_all`, `group_create`, `group_delete`, `group_enable`, `group_disable`, `group_reset`, `move_linear_absolute`, `move_linear_relative`, `move_circular_absolute`, `move_circular_relative`, `group_stop`, `group_halt`, `group_continue`, `group_emergency_stop`, `group_set_override`, `group_set_origin`, `group_set_parameter`, `group_set_output`, `group_dwell`, `group_wait_input`, `group_wait_position`, `group_axis_move`, `move_spline`, `move_ellipse`, `group_set_coordinate_transform`, `group_set_coordinate_system`, `group_set_rotary_transform`, `group_set_xyza_transform`, `group_delete_transform`, `move_protection_enable`, `move_protection_disable`, `move_circular_angle`, `group_jog`, `group_jog_axis`, `gear_in`, `gear_set_ratio`, `gear_out`, `cam_table`, `cam_in`, `cam_out`, `capture_arm`, `capture_clear`, `compare_start`, `compare_stop` at line 1 column 18"),
+    (r#"{"type":"teleport","axis":0}"#, "unknown variant `teleport`, expected one of `enable`, `disable`, `reset`, `move_absolute`, `move_relative`, `move_velocity`, `stop`, `halt`, `resume`, `home`, `set_position`, `set_parameter`, `get_parameter`, `modify_target`, `cancel`, `command_state`, `force_input`, `force_digital_input`, `force_analog_input`, `write_digital_output`, `write_analog_output`, `inject_following_error`, `setpoint`, `read_object`, `write_object`, `move_together`, `stop_axes`, `stop_all`, `enable_all`, `disable_all`, `emergency_stop_all`, `reset_all`, `group_create`, `group_delete`, `group_enable`, `group_disable`, `group_reset`, `move_linear_absolute`, `move_linear_relative`, `move_circular_absolute`, `move_circular_relative`, `group_stop`, `group_halt`, `group_continue`, `group_emergency_stop`, `group_set_override`, `group_set_origin`, `group_set_parameter`, `group_set_output`, `group_dwell`, `group_wait_input`, `group_wait_position`, `group_axis_move`, `move_spline`, `move_ellipse`, `group_set_coordinate_transform`, `group_set_coordinate_system`, `group_set_rotary_transform`, `group_set_xyza_transform`, `group_delete_transform`, `move_protection_enable`, `move_protection_disable`, `move_circular_angle`, `group_jog`, `group_jog_axis`, `gear_in`, `gear_set_ratio`, `gear_out`, `cam_table`, `cam_in`, `cam_out`, `capture_arm`, `capture_clear`, `compare_start`, `compare_stop`, `stream_config`, `pt_push`, `pvt_push`, `stream_clear`, `stream_start`, `pvt_move` at line 1 column 18"),
     (r#"{"axis":0}"#, "missing field `type` at line 1 column 10"),
     (r#"{"type":"move_absolute","axis":0}"#, "missing field `position`"),
     (r#"{"type":"move_absolute","axis":0,"positon":10}"#, "unknown field `positon`, expected one of `axis`, `position`, `velocity`, `acceleration`, `deceleration`, `jerk`, `buffer_mode`"),
@@ -588,6 +661,8 @@ const ERRORS: &[(&str, &str)] = &[
     (r#"{"type":"move_together","moves":[{"type":"stop","axis":0}]}"#, "unknown variant `stop`, expected one of `move_absolute`, `move_relative`, `move_velocity`"),
     (r#"{"type":"stop_all","mode":"abrupt","axes":[0]}"#, "unknown field `axes`, expected `mode` or `deceleration`"),
     (r#"{"type":"disable_all","axis":0}"#, "unknown field `axis`, there are no fields"),
+    (r#"{"type":"pt_push","axis":0,"points":[{"position":1,"time_ms":1,"kind":"fast"}]}"#, "unknown variant `fast`, expected one of `normal`, `stop`, `even`"),
+    (r#"{"type":"pvt_push","axis":0,"points":[{"position":1,"time_ms":1}]}"#, "missing field `velocity`"),
 ];
 
 #[test]
@@ -595,7 +670,7 @@ fn every_variant_serializes_to_its_pinned_json_and_back() {
     let cases = full();
     assert_eq!(
         cases.len(),
-        36,
+        42,
         "one case per variant but the group commands (group_json.rs)"
     );
     for (command, json) in cases {

@@ -314,6 +314,7 @@ fn the_shipped_scenarios_pass() {
         "coordinated-motion.toml",
         "hmc-result-axis.toml",
         "capture-compare.toml",
+        "nmc-pt.toml",
     ] {
         let out = mcemu(&["scenario", &fixture(name)]);
         assert!(out.status.success(), "{name}: {}", stderr(&out));

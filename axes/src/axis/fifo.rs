@@ -31,10 +31,18 @@ impl Overrides {
 /// What a queued command asks for.
 #[derive(Clone, Debug, PartialEq)]
 pub enum MotionAction {
-    MoveAbsolute { position: f64 },
-    MoveRelative { distance: f64 },
-    MoveVelocity { velocity: f64 },
+    MoveAbsolute {
+        position: f64,
+    },
+    MoveRelative {
+        distance: f64,
+    },
+    MoveVelocity {
+        velocity: f64,
+    },
     Home(HomingSpec),
+    /// Run the axis's PT/PVT stream (issue 12 item 3).
+    Stream,
 }
 
 #[derive(Clone, Debug, PartialEq)]

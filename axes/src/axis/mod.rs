@@ -14,7 +14,9 @@
 mod commands;
 pub mod fifo;
 mod latch;
+mod pvt;
 mod setup;
+mod stream_source;
 mod supervision;
 
 use crate::command::{
@@ -38,6 +40,7 @@ pub use commands::Feed;
 pub(crate) use commands::MotionSubmission;
 pub use fifo::{Fifo, Ledger, MotionAction, Overrides, Queued};
 pub use latch::{SignalEdge, TriggerCounts};
+use pvt::PvtStream;
 use setup::Setup;
 
 /// What the engine lends an axis for one tick or one command.
@@ -69,6 +72,9 @@ enum Source {
     /// This tick's commanded state from a machine-level planner (engine stage 2: a group, a
     /// coupling). Taken as is for one tick; a tick without a new feed stands at its position.
     Fed(MotionState),
+    /// The axis's PT/PVT stream (`Axis::stream`): `raw` at tick n = `base` + the stream at
+    /// (n − origin)·period.
+    Stream { origin: u64, base: f64 },
 }
 
 /// Why the axis decelerates to rest without a command owning the motion.
@@ -87,9 +93,15 @@ enum Ramp {
 /// The goal of the running command.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum RunGoal {
-    Position { target: f64 },
-    Velocity { velocity: f64 },
+    Position {
+        target: f64,
+    },
+    Velocity {
+        velocity: f64,
+    },
     Homing,
+    /// The PT/PVT stream runs to its last point.
+    Stream,
 }
 
 #[derive(Clone, Debug)]
@@ -198,6 +210,10 @@ pub struct Axis {
     coupled: Option<AxisIndex>,
     in_sync: bool,
     fifo: Fifo,
+    /// The PT/PVT buffer (issue 12 item 3), out of line: most axes never stream.
+    stream: Box<PvtStream>,
+    /// The stream ran dry while moving in this tick's sample (handled in `progress`).
+    stream_dry: bool,
     activity: Activity,
     halted: bool,
     /// The id returned for the last zero-length buffered move, reused by the next one (HMC §10.7).
@@ -281,6 +297,8 @@ impl Axis {
             coupled: None,
             in_sync: false,
             fifo: Fifo::new(config.fifo_depth.unwrap_or(DEFAULT_FIFO_DEPTH)),
+            stream: Box::default(),
+            stream_dry: false,
             activity: Activity::Idle,
             halted: false,
             zero_length_id: None,
@@ -558,6 +576,10 @@ impl Axis {
                     v: 0.0,
                     a: 0.0,
                 };
+            }
+            Source::Stream { origin, base } => {
+                let (origin, base) = (*origin, *base);
+                self.advance_stream(tick, origin, base);
             }
         }
     }
@@ -886,7 +908,7 @@ impl Axis {
                 end_velocity: 0.0,
             }),
             RunGoal::Velocity { velocity } => Some(Goal::Velocity { target: velocity }),
-            RunGoal::Homing => None,
+            RunGoal::Homing | RunGoal::Stream => None,
         }
     }
 
@@ -947,7 +969,7 @@ impl Axis {
             Activity::Running(run) => match run.goal {
                 RunGoal::Homing => AxisState::Homing,
                 RunGoal::Velocity { .. } => AxisState::ContinuousMotion,
-                RunGoal::Position { .. } => AxisState::DiscreteMotion,
+                RunGoal::Position { .. } | RunGoal::Stream => AxisState::DiscreteMotion,
             },
             Activity::Ramping(_) => AxisState::Stopping,
             Activity::Streaming => AxisState::SynchronizedMotion,
@@ -1054,6 +1076,7 @@ impl Axis {
             captures: self.triggers.captures,
             capture_position: self.triggers.capture_position,
             compare_outputs: self.triggers.compare_outputs,
+            stream: self.stream.status(),
         };
     }
 }

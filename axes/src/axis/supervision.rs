@@ -188,6 +188,7 @@ impl Axis {
     pub(super) fn progress(&mut self, ctx: &mut Context) {
         // Ask the current source: supervision may have replaced the one sampled this tick.
         let profile_done = self.source_done(ctx.tick);
+        let stream_dry = std::mem::take(&mut self.stream_dry);
         match &self.activity {
             Activity::Idle | Activity::Streaming => {}
             Activity::Ramping(ramp) => {
@@ -203,6 +204,7 @@ impl Axis {
             }
             Activity::Running(run) => match run.goal {
                 RunGoal::Homing => self.progress_homing(ctx),
+                RunGoal::Stream => self.progress_stream(ctx, stream_dry),
                 RunGoal::Velocity { .. } => {
                     if self.halted && profile_done {
                         self.source = Source::Hold;
@@ -346,7 +348,7 @@ impl Axis {
             Source::Profile {
                 profile, origin, ..
             } => tick.saturating_sub(*origin) as f64 * self.period >= profile.duration(),
-            Source::External(_) | Source::Fed(_) => false,
+            Source::External(_) | Source::Fed(_) | Source::Stream { .. } => false,
         }
     }
 

@@ -13,7 +13,7 @@ use crate::od::Value;
 pub use crate::error::EngineError;
 pub use crate::types::{
     AxisIndex, CommandId, CommandKind, CoordinateSystem, Direction, ErrorKind, GroupId,
-    MasterSource,
+    MasterSource, StreamMode,
 };
 
 /// PLCopen buffer mode of a motion command (ARCHITECTURE §3.5).
@@ -95,6 +95,7 @@ mod group_jog;
 mod io;
 mod machine;
 mod slave;
+mod stream;
 mod trigger;
 mod wire;
 
@@ -129,6 +130,10 @@ pub use machine::{
     ResetAll, StopAll, StopAxes, TogetherMove,
 };
 pub use slave::{ReadObject, SlaveCommand, WriteObject};
+pub use stream::{
+    PtKind, PtPoint, PtPush, PvtMove, PvtPoint, PvtPush, StreamClear, StreamCommand, StreamConfig,
+    StreamStart, MAX_PUSH_POINTS, MAX_PVT_MOVE_POINTS,
+};
 pub use trigger::{
     CaptureArm, CaptureClear, CaptureEdge, CaptureSource, CaptureWindow, CompareOutputMode,
     CompareStart, CompareStop, PositionSource, TriggerCommand,
@@ -165,6 +170,8 @@ pub enum Command {
     /// Machine-wide: queries across all axes (command states), and commands on several or all
     /// axes at once (start together, stop, enable, disable, emergency stop, reset all).
     Machine(MachineCommand),
+    /// PT and PVT streams per axis (issue 12 item 3: `pt_push`, `stream_start` …).
+    Stream(StreamCommand),
 }
 
 impl Command {
@@ -181,6 +188,7 @@ impl Command {
             | Command::Io(_)
             | Command::Slave(_)
             | Command::Machine(_) => None,
+            Command::Stream(c) => c.axis(),
         }
     }
 }

@@ -26,6 +26,7 @@ use super::{
     GroupSetRotaryTransform, GroupSetXyzaTransform, MoveProtectionDisable, MoveProtectionEnable,
 };
 use super::{GroupJog, GroupJogAxis};
+use super::{PtPush, PvtMove, PvtPush, StreamClear, StreamCommand, StreamConfig, StreamStart};
 
 /// Named `Command` like the type it stands for: serde writes this name in "expected internally
 /// tagged enum Command" (a `rename` does not change that message).
@@ -112,6 +113,13 @@ pub(super) enum Command {
     CaptureClear(CaptureClear),
     CompareStart(CompareStart),
     CompareStop(CompareStop),
+    // Issue 12 item 3, PT/PVT streams.
+    StreamConfig(StreamConfig),
+    PtPush(PtPush),
+    PvtPush(PvtPush),
+    StreamClear(StreamClear),
+    StreamStart(StreamStart),
+    PvtMove(PvtMove),
 }
 
 impl From<Command> for super::Command {
@@ -220,6 +228,12 @@ impl From<Command> for super::Command {
             Command::CaptureClear(c) => super::Command::Trigger(TriggerCommand::CaptureClear(c)),
             Command::CompareStart(c) => super::Command::Trigger(TriggerCommand::CompareStart(c)),
             Command::CompareStop(c) => super::Command::Trigger(TriggerCommand::CompareStop(c)),
+            Command::StreamConfig(c) => super::Command::Stream(StreamCommand::Config(c)),
+            Command::PtPush(c) => super::Command::Stream(StreamCommand::PtPush(c)),
+            Command::PvtPush(c) => super::Command::Stream(StreamCommand::PvtPush(c)),
+            Command::StreamClear(c) => super::Command::Stream(StreamCommand::Clear(c)),
+            Command::StreamStart(c) => super::Command::Stream(StreamCommand::Start(c)),
+            Command::PvtMove(c) => super::Command::Stream(StreamCommand::PvtMove(c)),
         }
     }
 }
@@ -330,6 +344,12 @@ impl From<super::Command> for Command {
             super::Command::Trigger(TriggerCommand::CaptureClear(c)) => Command::CaptureClear(c),
             super::Command::Trigger(TriggerCommand::CompareStart(c)) => Command::CompareStart(c),
             super::Command::Trigger(TriggerCommand::CompareStop(c)) => Command::CompareStop(c),
+            super::Command::Stream(StreamCommand::Config(c)) => Command::StreamConfig(c),
+            super::Command::Stream(StreamCommand::PtPush(c)) => Command::PtPush(c),
+            super::Command::Stream(StreamCommand::PvtPush(c)) => Command::PvtPush(c),
+            super::Command::Stream(StreamCommand::Clear(c)) => Command::StreamClear(c),
+            super::Command::Stream(StreamCommand::Start(c)) => Command::StreamStart(c),
+            super::Command::Stream(StreamCommand::PvtMove(c)) => Command::PvtMove(c),
         }
     }
 }

@@ -26,7 +26,7 @@ use crate::trigger::Triggers;
 pub const MAX_ATOMIC_COMMANDS: usize = 1024;
 
 /// What a command may change, saved before it is applied (see the module doc).
-struct Checkpoint {
+pub(super) struct Checkpoint {
     /// Copies of the axes the command may change, by index.
     axes: Vec<(usize, Axis)>,
     /// The axis groups and whether they wait for drives to power up (a whole-machine
@@ -42,7 +42,7 @@ struct Checkpoint {
 }
 
 /// Which state a [`Checkpoint`] saves.
-enum Scope<'a> {
+pub(super) enum Scope<'a> {
     /// These axes only (motion commands touch nothing else but the ledger).
     Axes(&'a [usize]),
     /// Every axis and the drives (power commands route through the drives).
@@ -330,7 +330,7 @@ impl Engine {
 
     /// The axes a list names, checked: each exists and appears once (CPU 226H TV-39: a second
     /// instruction on a busy axis is refused). Errors name the item.
-    fn distinct_axes(
+    pub(super) fn distinct_axes(
         &self,
         list: &'static str,
         axes: impl Iterator<Item = AxisIndex>,
@@ -366,7 +366,7 @@ impl Engine {
         Ok(out)
     }
 
-    fn checkpoint(&mut self, scope: Scope) -> Checkpoint {
+    pub(super) fn checkpoint(&mut self, scope: Scope) -> Checkpoint {
         let all = || 0..self.axes.len();
         let save = |indices: &mut dyn Iterator<Item = usize>| {
             indices
@@ -397,7 +397,7 @@ impl Engine {
         }
     }
 
-    fn rollback(&mut self, checkpoint: Checkpoint) {
+    pub(super) fn rollback(&mut self, checkpoint: Checkpoint) {
         for (index, axis) in checkpoint.axes {
             if let Some(slot) = self.axes.get_mut(index) {
                 *slot = axis;
@@ -422,7 +422,7 @@ impl Engine {
         self.ledger.rollback(checkpoint.ledger);
     }
 
-    fn commit(&mut self, checkpoint: Checkpoint) {
+    pub(super) fn commit(&mut self, checkpoint: Checkpoint) {
         self.ledger.commit(checkpoint.ledger);
     }
 }

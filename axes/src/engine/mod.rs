@@ -24,6 +24,7 @@ use std::sync::Arc;
 
 mod machine;
 mod planner;
+mod streams;
 pub use crate::axis::Feed;
 pub use machine::MAX_ATOMIC_COMMANDS;
 pub use planner::{Feeds, MachinePlanner};
@@ -246,6 +247,7 @@ impl Engine {
             Command::Trigger(c) => self.with_triggers(|t, env| t.apply(env, c)),
             Command::Slave(c) => self.apply_slave_command(c),
             Command::Machine(c) => self.apply_machine_command(c),
+            Command::Stream(c) => self.apply_stream_command(c),
         }
     }
 
@@ -400,26 +402,7 @@ impl Engine {
     /// A command for one axis, applied to the axis itself (no drive routing): the front-ends'
     /// commands after `route_power`, and the commands a drive emits.
     fn apply_to_axis(&mut self, command: AxisCommand) -> Result<Reply, EngineError> {
-        let Engine {
-            axes,
-            io,
-            ledger,
-            tick,
-            ..
-        } = self;
-        let mut ctx = Context {
-            tick: *tick,
-            di: &io.image.di,
-            ledger,
-        };
-        let count = axes.len() as u32;
-        let index = command.axis();
-        let axis = axes
-            .get_mut(index as usize)
-            .ok_or(EngineError::InvalidAxis {
-                axis: index as u32,
-                count,
-            })?;
+        let (axis, mut ctx) = self.axis_with_context(command.axis())?;
         match command {
             AxisCommand::Enable(_) => axis.enable(&mut ctx),
             AxisCommand::Disable(_) => axis.disable(&mut ctx),
@@ -543,6 +526,34 @@ impl Engine {
                 axis.setpoint(&mut ctx, setpoint)
             }
         }
+    }
+
+    /// One axis and the context a command for it needs (the tick, the digital inputs, the
+    /// ledger).
+    pub(super) fn axis_with_context(
+        &mut self,
+        index: AxisIndex,
+    ) -> Result<(&mut Axis, Context<'_>), EngineError> {
+        let Engine {
+            axes,
+            io,
+            ledger,
+            tick,
+            ..
+        } = self;
+        let count = axes.len() as u32;
+        let axis = axes
+            .get_mut(index as usize)
+            .ok_or(EngineError::InvalidAxis {
+                axis: u32::from(index),
+                count,
+            })?;
+        let ctx = Context {
+            tick: *tick,
+            di: &io.image.di,
+            ledger,
+        };
+        Ok((axis, ctx))
     }
 
     /// A command on the I/O image; it shows in the next snapshot. A digital input changed by

@@ -6,7 +6,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::types::{CommandId, CommandKind, ErrorKind};
+use crate::types::{CommandId, CommandKind, ErrorKind, StreamMode};
 
 mod coupling;
 mod group;
@@ -102,6 +102,8 @@ bitflags::bitflags! {
         /// A coupled slave past its clutch or start, following exactly (HIMC IsInGear,
         /// PLCopen InGear/InSync).
         const IN_SYNC = 1 << 26;
+        /// A PT/PVT stream ran out of points while moving (latched, issue 12 item 3).
+        const STREAM_UNDERRUN = 1 << 27;
     }
 }
 
@@ -129,7 +131,8 @@ impl AxisFlags {
         .union(AxisFlags::DRIVE_ALARM)
         .union(AxisFlags::ESTOP)
         .union(AxisFlags::ENCODER_LOSS)
-        .union(AxisFlags::HOMING_FAILED);
+        .union(AxisFlags::HOMING_FAILED)
+        .union(AxisFlags::STREAM_UNDERRUN);
 
     /// Flags that can be latched and must be cleared by `reset`.
     pub const LATCHABLE: AxisFlags = AxisFlags::ERROR_STOP_FAULTS
@@ -143,7 +146,7 @@ impl AxisFlags {
 
 /// Every axis flag and its snake_case name, in bit order: the names the control API, traces and
 /// register maps use. A fixed table, so that renaming a constant cannot silently change them.
-pub const FLAG_NAMES: [(AxisFlags, &str); 27] = [
+pub const FLAG_NAMES: [(AxisFlags, &str); 28] = [
     (AxisFlags::ENABLED, "enabled"),
     (AxisFlags::MOVING, "moving"),
     (AxisFlags::IN_POSITION, "in_position"),
@@ -171,6 +174,7 @@ pub const FLAG_NAMES: [(AxisFlags, &str); 27] = [
     (AxisFlags::ACCELERATING, "accelerating"),
     (AxisFlags::COUPLED, "coupled"),
     (AxisFlags::IN_SYNC, "in_sync"),
+    (AxisFlags::STREAM_UNDERRUN, "stream_underrun"),
 ];
 
 /// The names of the flags set in `flags`, in bit order.
@@ -252,6 +256,29 @@ pub struct AxisStatus {
     /// Outputs fired by the compare channels whose (first) axis this is (issue 12 item 5).
     #[serde(default)]
     pub compare_outputs: u32,
+    /// The axis's PT/PVT stream (issue 12 item 3).
+    #[serde(default)]
+    pub stream: StreamStatus,
+}
+
+/// An axis's PT/PVT buffer and run (NMC `MtPtGetSpace`, `MtPtGetStatic`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct StreamStatus {
+    pub mode: StreamMode,
+    /// The stream is running (the axis's command source).
+    pub running: bool,
+    /// Points the buffer can take now (NMC `pSpace`).
+    pub space: u16,
+    /// Points held (NMC `pUsed`): in refresh mode those of a FIFO half not yet run out count.
+    pub used: u16,
+    /// Static mode: runs asked for (0 = until stopped).
+    pub loop_count: u32,
+    /// Static mode: runs completed of the current start.
+    pub loops_done: u32,
+    /// Times a stream ran dry while moving (`STREAM_UNDERRUN`), since power-on.
+    pub underruns: u32,
+    /// Milliseconds since the running stream started (0 when none runs).
+    pub time_ms: f64,
 }
 
 /// Digital and analog I/O images of the machine.

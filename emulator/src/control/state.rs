@@ -6,7 +6,7 @@ use axes::command::{CoordinateSystem, Direction, ErrorKind};
 use axes::runtime::RuntimeStats;
 use axes::status::{
     AxisState, AxisStatus, CaptureStatus, CommandRef, CompareStatus, CouplingStatus, DriveStatus,
-    GroupFault, GroupState, GroupStatus, InterferenceStatus, IoImage,
+    GroupFault, GroupState, GroupStatus, InterferenceStatus, IoImage, StreamStatus,
 };
 use axum::extract::State;
 use axum::Json;
@@ -79,6 +79,9 @@ pub struct AxisView<'a> {
     pub capture_position: f64,
     /// Outputs fired by the compare channels on the axis.
     pub compare_outputs: u32,
+    /// The PT/PVT buffer and its run: mode, running, space, used, loop_count, loops_done,
+    /// underruns, time_ms.
+    pub stream: StreamStatus,
 }
 
 impl<'a> AxisView<'a> {
@@ -115,6 +118,7 @@ impl<'a> AxisView<'a> {
             captures: s.captures,
             capture_position: s.capture_position,
             compare_outputs: s.compare_outputs,
+            stream: s.stream,
         }
     }
 }

@@ -32,6 +32,9 @@ pub(super) enum Check {
     Error(Option<ErrorKind>),
     /// The phase of the coupling whose slave the axis is (`None`: it is no slave).
     Coupling(Option<CouplingPhase>),
+    /// A count of the axis's PT/PVT stream (`stream_space`, `stream_used`, `stream_underruns`).
+    StreamCount(StreamCount, u32),
+    StreamRunning(bool),
     /// The state of the command the step with this index issued.
     CommandState {
         step: usize,
@@ -50,6 +53,32 @@ pub(super) enum Check {
     GroupPosition(Vec<f64>),
     GroupInPosition(bool),
     GroupUserSegment(u32),
+}
+
+/// The counts of an axis's PT/PVT stream an expectation can check.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum StreamCount {
+    Space,
+    Used,
+    Underruns,
+}
+
+impl StreamCount {
+    fn name(self) -> &'static str {
+        match self {
+            StreamCount::Space => "stream_space",
+            StreamCount::Used => "stream_used",
+            StreamCount::Underruns => "stream_underruns",
+        }
+    }
+
+    fn of(self, s: &AxisStatus) -> u32 {
+        match self {
+            StreamCount::Space => u32::from(s.stream.space),
+            StreamCount::Used => u32::from(s.stream.used),
+            StreamCount::Underruns => s.stream.underruns,
+        }
+    }
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -268,6 +297,18 @@ impl Expectation {
             };
             checks.push(Check::Coupling(phase));
         }
+        for (count, v) in [
+            (StreamCount::Space, spec.stream_space.map(u32::from)),
+            (StreamCount::Used, spec.stream_used.map(u32::from)),
+            (StreamCount::Underruns, spec.stream_underruns),
+        ] {
+            if let Some(v) = v {
+                checks.push(Check::StreamCount(count, v));
+            }
+        }
+        if let Some(v) = spec.stream_running {
+            checks.push(Check::StreamRunning(v));
+        }
         let axis_checks = !checks.is_empty();
         if axis_checks && spec.axis.is_none() {
             return Err(("axis", "missing: these conditions are about an axis".into()));
@@ -277,7 +318,8 @@ impl Expectation {
                 "axis",
                 "no condition on it: give state, position, velocity, command_position, \
                  command_velocity, following_error, captures, capture_position, \
-                 compare_outputs, flags, not_flags, error or coupling"
+                 compare_outputs, flags, not_flags, error, coupling, stream_space, stream_used, \
+                 stream_running or stream_underruns"
                     .into(),
             ));
         }
@@ -446,6 +488,17 @@ impl Expectation {
                         name(got)
                     )
                 }
+                (Check::StreamCount(count, want), Some(s)) if count.of(s) != *want => write!(
+                    msg,
+                    "axis {axis} {}: expected {want}, saw {}",
+                    count.name(),
+                    count.of(s)
+                ),
+                (Check::StreamRunning(want), Some(s)) if s.stream.running != *want => write!(
+                    msg,
+                    "axis {axis} stream_running: expected {want}, saw {}",
+                    s.stream.running
+                ),
                 (Check::CommandState { step, state }, _) => match (seen.command_state)(*step) {
                     Ok(got) if state.matches(got) => continue,
                     Ok(got) => write!(
@@ -705,6 +758,40 @@ mod tests {
                 "axis 2 state: expected standstill, saw discrete_motion",
                 "axis 2 flags: expected homed set, missing homed (set: enabled)",
                 "di[1]: expected true, saw false",
+            ]
+        );
+    }
+
+    #[test]
+    fn stream_conditions_say_what_they_saw() {
+        let e = Expectation::from_spec(ExpectSpec {
+            axis: Some(1),
+            stream_space: Some(32),
+            stream_used: Some(0),
+            stream_running: Some(true),
+            stream_underruns: Some(0),
+            ..spec()
+        })
+        .unwrap();
+        assert_eq!(e.checks.len(), 4);
+        let mut status = AxisStatus::default();
+        status.stream.space = 29;
+        status.stream.used = 3;
+        let none = |_: usize| Err::<CommandState, String>("no".into());
+        let seen = Seen {
+            axis: Some(&status),
+            group: None,
+            di: &[],
+            do_: &[],
+            command_state: &none,
+            coupling: None,
+        };
+        assert_eq!(
+            e.failures(&seen),
+            [
+                "axis 1 stream_space: expected 32, saw 29",
+                "axis 1 stream_used: expected 0, saw 3",
+                "axis 1 stream_running: expected true, saw false",
             ]
         );
     }

@@ -114,6 +114,18 @@ pub(super) struct ExpectSpec {
     /// With `di` or `do`: the level.
     #[serde(default)]
     pub value: Option<bool>,
+    /// The axis's PT/PVT buffer: points it can take now (NMC `MtPtGetSpace` space).
+    #[serde(default)]
+    pub stream_space: Option<u16>,
+    /// Points it holds (NMC `MtPtGetSpace` used).
+    #[serde(default)]
+    pub stream_used: Option<u16>,
+    /// Its stream runs.
+    #[serde(default)]
+    pub stream_running: Option<bool>,
+    /// Times it ran dry while moving.
+    #[serde(default)]
+    pub stream_underruns: Option<u32>,
     /// An axis group (coordinated motion): the conditions below are about it.
     #[serde(default)]
     pub group: Option<u16>,

@@ -2,6 +2,7 @@
 //! HMPL units (mm or deg, ms); [`group`]: the group motion profiles' ranges and errors.
 
 use axes::command::{EngineError, ErrorKind};
+use axes::error::StreamPointProblem;
 use axes::param::{ParamId, Unit};
 use axes::{AxisFlags, AxisState, AxisStatus};
 
@@ -233,6 +234,20 @@ axis_errors! {
 /// shows for the last refused command (`fixtures/modbus/himc.toml`, digest 004 §5.2); `None`
 /// for refusals the HIMC has no code of its own for.
 pub fn code_for(e: &EngineError) -> Option<&'static AxisError> {
+    if let EngineError::StreamPoint { problem, .. } = e.innermost() {
+        // MovePVT's own codes (digest 004 §5.2.8).
+        let name = match problem {
+            StreamPointProblem::StartMismatch | StreamPointProblem::TimeNotIncreasing { .. } => {
+                Some("eERR_AXIS_PVT_MOTION_INVALID_TIME")
+            }
+            StreamPointProblem::VelocityLimit { .. } => Some("eERR_AXIS_PVT_MOTION_VEL_LIMIT"),
+            StreamPointProblem::AccelerationLimit { .. } => Some("eERR_AXIS_PVT_MOTION_ACC_LIMIT"),
+            StreamPointProblem::NotFinite { .. } => None,
+        };
+        if let Some(name) = name {
+            return AxisError::by_name(name);
+        }
+    }
     code_for_kind(e.kind())
 }
 
@@ -455,6 +470,45 @@ mod tests {
         assert_eq!(code_for_kind(ErrorKind::InvalidAxis), None);
         let e = EngineError::AxisDisabled { axis: 1 };
         assert_eq!(code_for(&e).map(|e| e.code(1)), Some(0x8301_0078));
+    }
+
+    #[test]
+    fn move_pvt_refusals_have_their_own_codes() {
+        let point = |problem| EngineError::StreamPoint {
+            axis: 0,
+            point: 2,
+            problem,
+        };
+        for (problem, value) in [
+            (
+                StreamPointProblem::VelocityLimit {
+                    velocity: 2.0,
+                    limit: 1.0,
+                },
+                0x08a2,
+            ),
+            (
+                StreamPointProblem::AccelerationLimit {
+                    acceleration: 2.0,
+                    limit: 1.0,
+                },
+                0x08ac,
+            ),
+            (
+                StreamPointProblem::TimeNotIncreasing {
+                    time_ms: 1.0,
+                    previous_ms: 2.0,
+                },
+                0x08b6,
+            ),
+        ] {
+            assert_eq!(code_for(&point(problem)).map(|e| e.value), Some(value));
+        }
+        let nan = point(StreamPointProblem::NotFinite {
+            name: "position",
+            value: f64::NAN,
+        });
+        assert_eq!(code_for(&nan).map(|e| e.value), Some(0x012c));
     }
 
     #[test]

@@ -5,6 +5,7 @@
 mod motion;
 mod parameters;
 mod power;
+mod pvt;
 mod streams;
 
 pub use streams::Feed;
@@ -131,6 +132,17 @@ impl Axis {
     }
 
     // ------------------------------------------------------------------ motion commands
+}
+
+/// The direction of a signed distance or velocity, none for 0.
+fn direction_of_travel(delta: f64) -> Option<Direction> {
+    if delta > 0.0 {
+        Some(Direction::Positive)
+    } else if delta < 0.0 {
+        Some(Direction::Negative)
+    } else {
+        None
+    }
 }
 
 /// A planner refusal as an engine error. Limits come from validated parameters and checked

@@ -40,7 +40,7 @@ impl Axis {
             MotionAction::MoveVelocity { velocity } => {
                 bounded("velocity", *velocity)?;
             }
-            MotionAction::Home(_) => {}
+            MotionAction::Home(_) | MotionAction::Stream => {}
         }
         if self.halted && request.buffer_mode == BufferMode::Aborting {
             self.halted = false;
@@ -105,14 +105,9 @@ impl Axis {
             MotionAction::MoveRelative { distance } => *distance,
             MotionAction::MoveVelocity { velocity } => *velocity,
             MotionAction::Home(_) => 0.0,
+            MotionAction::Stream => self.stream.initial_direction(),
         };
-        if delta > 0.0 {
-            Some(Direction::Positive)
-        } else if delta < 0.0 {
-            Some(Direction::Negative)
-        } else {
-            None
-        }
+        direction_of_travel(delta)
     }
 
     /// HIMC: a target beyond a soft limit is refused up front (`sw_limit_reject_targets`).
@@ -277,6 +272,10 @@ impl Axis {
                 self.progress_homing(ctx);
                 return Ok(());
             }
+            MotionAction::Stream => {
+                self.begin_stream(ctx.tick, q.id)?;
+                return Ok(());
+            }
         };
         self.plan(ctx.tick, planner_goal, limits)
             .map_err(plan_error)?;
@@ -294,6 +293,7 @@ impl Axis {
 
     /// End the running command (if any) and everything queued with `state`.
     pub(in crate::axis) fn abort_all(&mut self, ctx: &mut Context, state: CommandState) {
+        self.release_stream();
         for q in self.fifo.drain() {
             ctx.ledger.finish(q.id, state);
         }
@@ -307,6 +307,7 @@ impl Axis {
 
     /// End only the running command with `state`.
     pub(in crate::axis) fn end_running(&mut self, ctx: &mut Context, state: CommandState) {
+        self.release_stream();
         if let Activity::Running(run) = &self.activity {
             let id = run.id;
             if self.fifo.front().map(|q| q.id) == Some(id) {
@@ -375,6 +376,11 @@ impl Axis {
         match &self.activity {
             Activity::Running(run) if run.goal == RunGoal::Homing => {
                 let e = self.invalid_state("halt while homing");
+                return self.refuse(e);
+            }
+            Activity::Running(run) if run.goal == RunGoal::Stream => {
+                // A stream runs on its own clock: it cannot pause and resume.
+                let e = self.invalid_state("halt a PT/PVT stream (stop it instead)");
                 return self.refuse(e);
             }
             Activity::Running(_) => {}
@@ -448,14 +454,7 @@ impl Axis {
                 } else {
                     self.unwrap_target(position, self.raw.p)
                 };
-                let direction = if target > self.raw.p {
-                    Some(Direction::Positive)
-                } else if target < self.raw.p {
-                    Some(Direction::Negative)
-                } else {
-                    None
-                };
-                if let Err(e) = self.admit(direction) {
+                if let Err(e) = self.admit(direction_of_travel(target - self.raw.p)) {
                     return self.refuse(e);
                 }
                 if let Activity::Running(run) = &mut self.activity {
@@ -596,6 +595,7 @@ impl Axis {
             Source::Profile { shift, .. } => *shift += delta,
             Source::External(Setpoint::Position { position }) => *position += delta,
             Source::Fed(state) => state.p += delta,
+            Source::Stream { base, .. } => *base += delta,
             _ => {}
         }
         if let Activity::Running(run) = &mut self.activity {

@@ -151,14 +151,7 @@ impl Axis {
         if let Err(e) = self.check_can_move() {
             return self.refuse(e);
         }
-        let direction = if toward > 0.0 {
-            Some(Direction::Positive)
-        } else if toward < 0.0 {
-            Some(Direction::Negative)
-        } else {
-            None
-        };
-        if let Err(e) = self.admit(direction) {
+        if let Err(e) = self.admit(direction_of_travel(toward)) {
             return self.refuse(e);
         }
         if !matches!(self.activity, Activity::Streaming) {

@@ -1,0 +1,303 @@
+//! PT streams through the runtime (issue 12, performance): 8 axes each run a refresh-mode PT
+//! stream of 1 ms points (1 kHz) for 60 s of virtual time, the host refilling 32 points at a
+//! time through the `EngineHandle` whenever a FIFO half has run out. It must never underrun;
+//! the figure is the virtual clock's speed as a multiple of real time, beside a baseline run
+//! in the same process: the same 8 axes on plain long moves, advanced and read the same way.
+//!
+//! `cargo bench -p axes --bench stream_runtime`
+
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+mod common;
+
+use std::time::{Duration, Instant};
+
+use axes::command::{Command, PtKind, PtPoint, PtPush, StreamConfig, StreamMode, StreamStart};
+use axes::runtime::{ClockMode, EngineHandle, Runtime, RuntimeOptions};
+use axes::{AxisState, Engine};
+
+const AXES: usize = 8;
+const SIM_SECONDS: u64 = 60;
+/// Ticks advanced between two looks at the buffers: under the 32 ms a FIFO half lasts.
+const CHUNK: u64 = 16;
+const RUNS: usize = 3;
+const POINTS_PER_PUSH: usize = 32;
+
+/// The points of one axis: velocity V·sin(2πt / 1 s) (V a little different per axis), cut at
+/// every millisecond with positions from the trapezoid rule, so that NMC's NORMAL rule
+/// (v_end = 2·Δp/Δt − v_start) gives back the sine's velocities; a STOP point at the end.
+struct SineStream {
+    axis: u16,
+    k: u64,
+    last: u64,
+    pos: f64,
+    vel: f64,
+    amplitude: f64,
+}
+
+impl SineStream {
+    fn new(axis: u16, ms: u64) -> SineStream {
+        SineStream {
+            axis,
+            k: 0,
+            last: ms,
+            pos: 0.0,
+            vel: 0.0,
+            // mm/ms: 50–85 mm/s.
+            amplitude: 0.05 + 0.005 * f64::from(axis),
+        }
+    }
+
+    fn next_push(&mut self) -> Option<Command> {
+        if self.k >= self.last {
+            return None;
+        }
+        let mut points = Vec::with_capacity(POINTS_PER_PUSH);
+        while points.len() < POINTS_PER_PUSH && self.k < self.last {
+            self.k += 1;
+            let t = self.k as f64;
+            if self.k == self.last {
+                points.push(PtPoint {
+                    position: 0.0,
+                    time_ms: t,
+                    kind: PtKind::Stop,
+                });
+                break;
+            }
+            let v = self.amplitude * (2.0 * std::f64::consts::PI * t / 1000.0).sin();
+            self.pos += (v + self.vel) / 2.0;
+            self.vel = v;
+            points.push(PtPoint {
+                position: self.pos,
+                time_ms: t,
+                kind: PtKind::Normal,
+            });
+        }
+        Some(Command::from(PtPush {
+            axis: self.axis,
+            points,
+        }))
+    }
+}
+
+fn virtual_runtime(engine: Engine) -> (EngineHandle, axes::runtime::RuntimeGuard) {
+    Runtime::start(engine, RuntimeOptions::with_clock(ClockMode::Virtual)).unwrap()
+}
+
+/// How the host sends the refills of one look at the buffers.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Refill {
+    /// `call` each push, waiting out its round trip.
+    Call,
+    /// `submit` every push of the look, then wait for the replies together.
+    Pipelined,
+    /// One atomic `call_batch` of the look's pushes.
+    Batch,
+}
+
+/// The PT run: returns its wall time and the pushes made.
+fn pt_run(ticks: u64, refill: Refill) -> (Duration, u64) {
+    let (handle, guard) = virtual_runtime(common::engine(AXES));
+    let mut streams: Vec<_> = (0..AXES as u16)
+        .map(|axis| SineStream::new(axis, ticks))
+        .collect();
+    for axis in 0..AXES as u16 {
+        handle
+            .call(Command::from(axes::command::Enable { axis }))
+            .unwrap();
+        handle
+            .call(Command::from(StreamConfig {
+                axis,
+                mode: StreamMode::Refresh,
+                loop_count: 0,
+                stop_deceleration: None,
+            }))
+            .unwrap();
+    }
+    let start = Instant::now();
+    let mut pushes = 0;
+    // Fill both FIFO halves, then start every axis in the same tick.
+    for s in &mut streams {
+        for _ in 0..2 {
+            handle.call(s.next_push().unwrap()).unwrap();
+            pushes += 1;
+        }
+    }
+    handle
+        .call(Command::from(StreamStart {
+            axes: (0..AXES as u16).collect(),
+        }))
+        .unwrap();
+    let mut done = 0;
+    let mut pending = Vec::with_capacity(AXES);
+    while done < ticks + CHUNK {
+        handle.advance(CHUNK).unwrap();
+        done += CHUNK;
+        let snapshot = handle.snapshot();
+        let mut refills = Vec::with_capacity(AXES);
+        for (s, status) in streams.iter_mut().zip(&snapshot.axes) {
+            assert_eq!(status.stream.underruns, 0, "axis {} ran dry", s.axis);
+            if status.stream.space >= POINTS_PER_PUSH as u16 {
+                refills.extend(s.next_push());
+            }
+        }
+        pushes += refills.len() as u64;
+        match refill {
+            Refill::Call => {
+                for push in refills {
+                    handle.call(push).unwrap();
+                }
+            }
+            Refill::Pipelined => {
+                for push in refills {
+                    pending.push(handle.submit(push).unwrap());
+                }
+            }
+            Refill::Batch if refills.is_empty() => {}
+            Refill::Batch => {
+                handle.call_batch(refills).unwrap();
+            }
+        }
+        for reply in pending.drain(..) {
+            reply.wait().unwrap();
+        }
+    }
+    let elapsed = start.elapsed();
+    let snapshot = handle.snapshot();
+    for (axis, status) in snapshot.axes.iter().enumerate() {
+        assert_eq!(status.stream.underruns, 0, "axis {axis} ran dry");
+        assert_eq!(status.state, AxisState::Standstill, "axis {axis} finished");
+        assert!(status.cmd_pos.abs() < 1e-6, "axis {axis} back at its start");
+    }
+    guard.stop().unwrap();
+    (elapsed, pushes)
+}
+
+/// The baseline: the same axes on plain long moves, advanced and read in the same chunks.
+fn plain_run(ticks: u64) -> Duration {
+    let (handle, guard) = virtual_runtime(common::engine(AXES));
+    for command in common::motion_commands(AXES) {
+        handle.call(command).unwrap();
+    }
+    let start = Instant::now();
+    let mut done = 0;
+    while done < ticks + CHUNK {
+        handle.advance(CHUNK).unwrap();
+        done += CHUNK;
+        std::hint::black_box(handle.snapshot());
+    }
+    let elapsed = start.elapsed();
+    guard.stop().unwrap();
+    elapsed
+}
+
+/// The same PT streams on the engine alone, stepped on this thread (no runtime, no snapshots):
+/// the per-tick cost of sampling the streams, refills included.
+fn pt_bare(ticks: u64) -> Duration {
+    let mut e = common::engine(AXES);
+    let mut streams: Vec<_> = (0..AXES as u16)
+        .map(|axis| SineStream::new(axis, ticks))
+        .collect();
+    for axis in 0..AXES as u16 {
+        e.apply(Command::from(axes::command::Enable { axis }))
+            .unwrap();
+    }
+    for s in &mut streams {
+        for _ in 0..2 {
+            e.apply(s.next_push().unwrap()).unwrap();
+        }
+    }
+    e.apply(Command::from(StreamStart {
+        axes: (0..AXES as u16).collect(),
+    }))
+    .unwrap();
+    let start = Instant::now();
+    for tick in 1..=ticks + CHUNK {
+        e.step();
+        if tick % CHUNK == 0 {
+            for s in &mut streams {
+                let space = e.axis(usize::from(s.axis)).unwrap().status().stream.space;
+                if space >= POINTS_PER_PUSH as u16 {
+                    if let Some(push) = s.next_push() {
+                        e.apply(push).unwrap();
+                    }
+                }
+            }
+        }
+    }
+    let elapsed = start.elapsed();
+    assert!((0..AXES).all(|a| e.axis_status(a).unwrap().stream.underruns == 0));
+    elapsed
+}
+
+/// The baseline of [`pt_bare`]: plain moves stepped on this thread.
+fn plain_bare(ticks: u64) -> Duration {
+    let mut e = common::moving_engine(AXES);
+    let start = Instant::now();
+    for _ in 0..ticks + CHUNK {
+        e.step();
+    }
+    let elapsed = start.elapsed();
+    std::hint::black_box(&e);
+    elapsed
+}
+
+fn median(mut xs: Vec<Duration>) -> Duration {
+    xs.sort();
+    xs[xs.len() / 2]
+}
+
+fn main() {
+    let period = common::machine(1).period;
+    let ticks = (SIM_SECONDS as f64 / period).round() as u64;
+    println!(
+        "stream_runtime: {AXES} axes, {SIM_SECONDS} simulated s at {} ms through the runtime \
+         (virtual clock), advanced {CHUNK} ticks at a time; median of {RUNS} runs",
+        period * 1e3
+    );
+    let mut pushes = 0;
+    let mut pt_runs = Vec::new();
+    for refill in [Refill::Call, Refill::Pipelined, Refill::Batch] {
+        let wall = median(
+            (0..RUNS)
+                .map(|_| {
+                    let (elapsed, n) = pt_run(ticks, refill);
+                    pushes = n;
+                    elapsed
+                })
+                .collect(),
+        );
+        pt_runs.push((refill, wall));
+    }
+    let plain = median((0..RUNS).map(|_| plain_run(ticks)).collect());
+    let pt_engine = median((0..RUNS).map(|_| pt_bare(ticks)).collect());
+    let plain_engine = median((0..RUNS).map(|_| plain_bare(ticks)).collect());
+    let speed = |d: Duration| SIM_SECONDS as f64 / d.as_secs_f64();
+    println!("{:<44} {:>12} {:>14}", "", "wall", "× real time");
+    println!(
+        "{:<44} {:>12} {:>13.0}x",
+        "baseline: 8 axes on plain moves",
+        common::fmt_duration(plain),
+        speed(plain)
+    );
+    for (refill, pt) in pt_runs {
+        println!(
+            "{:<44} {:>12} {:>13.0}x  ({:.2} × the baseline's wall time)",
+            format!("PT streams, refills by {refill:?}"),
+            common::fmt_duration(pt),
+            speed(pt),
+            pt.as_secs_f64() / plain.as_secs_f64()
+        );
+    }
+    println!(
+        "{pushes} pushes of 32 points per run, 1 kHz points, no underrun (requirement: ≥ 1000x real time)"
+    );
+    println!(
+        "engine alone (step() on this thread): plain {} = {:.0}x, PT {} = {:.0}x; PT / plain {:.2}",
+        common::fmt_duration(plain_engine),
+        speed(plain_engine),
+        common::fmt_duration(pt_engine),
+        speed(pt_engine),
+        pt_engine.as_secs_f64() / plain_engine.as_secs_f64()
+    );
+}
