@@ -25,6 +25,8 @@ pub enum EngineError {
     },
     #[error("parameter `{name}` is read-only")]
     ReadOnlyParameter { name: &'static str },
+    #[error("axis {axis}: compensation: {reason}")]
+    InvalidCompensation { axis: u32, reason: String },
     #[error("{name} = {value}: {reason}")]
     InvalidArgument {
         name: &'static str,
@@ -145,6 +147,7 @@ impl EngineError {
             EngineError::InvalidParameter { .. } => ErrorKind::InvalidParameter,
             EngineError::ReadOnlyParameter { .. } => ErrorKind::ReadOnlyParameter,
             EngineError::InvalidArgument { .. } => ErrorKind::InvalidArgument,
+            EngineError::InvalidCompensation { .. } => ErrorKind::InvalidArgument,
             EngineError::AxisDisabled { .. } => ErrorKind::AxisDisabled,
             EngineError::AxisInError { .. } => ErrorKind::AxisInError,
             EngineError::LimitActive { .. } => ErrorKind::LimitActive,

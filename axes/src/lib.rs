@@ -8,6 +8,7 @@
 pub mod axis;
 pub mod cia402;
 pub mod command;
+pub mod compensation;
 pub mod config;
 pub mod engine;
 pub mod error;

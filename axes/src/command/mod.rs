@@ -87,6 +87,7 @@ pub enum AxisInput {
 }
 
 mod axis;
+mod compensation;
 mod group;
 mod group_frames;
 mod io;
@@ -98,6 +99,11 @@ pub use axis::{
     AxisCommand, Cancel, Disable, Enable, ForceInput, GetParameter, Halt, Home,
     InjectFollowingError, ModifyTarget, MoveAbsolute, MoveRelative, MoveVelocity, Reset, Resume,
     SetParameter, SetPosition, Stop, StreamSetpoint,
+};
+pub use compensation::{
+    BacklashDirection, CompensationBacklash, CompensationClear, CompensationCommand,
+    CompensationDisable, CompensationEnable, CompensationKind, CompensationLeadScrew,
+    CompensationReference, CompensationTable, ReferenceSource,
 };
 pub use group::{
     ArcDirection, CircleMode, CoordinateSet, GroupAxisMove, GroupBufferMode, GroupCommand,
@@ -143,6 +149,8 @@ pub enum Command {
     Group(GroupCommand),
     /// Axis couplings: gear and cam (issue 12: `gear_in` …).
     Coupling(CouplingCommand),
+    /// Corrections after the planner on one axis (issue 12 item 8: `compensation_set` …).
+    Compensation(CompensationCommand),
     /// The machine's digital and analog I/O image.
     Io(IoCommand),
     /// The object dictionaries of the CiA 402 drives on the engine's fieldbus.
@@ -162,6 +170,7 @@ impl Command {
     pub fn axis(&self) -> Option<AxisIndex> {
         match self {
             Command::Axis(c) => Some(c.axis()),
+            Command::Compensation(c) => Some(c.axis()),
             Command::Coupling(c) => match *c {},
             Command::Group(_) | Command::Io(_) | Command::Slave(_) | Command::Machine(_) => None,
         }

@@ -13,6 +13,10 @@ use super::{
     WriteObject,
 };
 use super::{
+    CompensationBacklash, CompensationClear, CompensationCommand, CompensationDisable,
+    CompensationEnable, CompensationLeadScrew, CompensationTable,
+};
+use super::{
     GroupAxisMove, GroupCommand, GroupContinue, GroupCreate, GroupDelete, GroupDisable, GroupDwell,
     GroupEmergencyStop, GroupEnable, GroupHalt, GroupReset, GroupSetOrigin, GroupSetOutput,
     GroupSetOverride, GroupSetParameter, GroupStop, GroupWaitInput, GroupWaitPosition,
@@ -95,6 +99,12 @@ pub(super) enum Command {
     MoveProtectionEnable(MoveProtectionEnable),
     MoveProtectionDisable(MoveProtectionDisable),
     MoveCircularAngle(MoveCircularAngle),
+    CompensationLeadScrew(CompensationLeadScrew),
+    CompensationBacklash(CompensationBacklash),
+    CompensationTable(CompensationTable),
+    CompensationEnable(CompensationEnable),
+    CompensationDisable(CompensationDisable),
+    CompensationClear(CompensationClear),
 }
 
 impl From<Command> for super::Command {
@@ -191,6 +201,12 @@ impl From<Command> for super::Command {
             Command::MoveProtectionDisable(c) => {
                 super::Command::Group(GroupCommand::ProtectionDisable(c))
             }
+            Command::CompensationLeadScrew(c) => super::Command::from(c),
+            Command::CompensationBacklash(c) => super::Command::from(c),
+            Command::CompensationTable(c) => super::Command::from(c),
+            Command::CompensationEnable(c) => super::Command::from(c),
+            Command::CompensationDisable(c) => super::Command::from(c),
+            Command::CompensationClear(c) => super::Command::from(c),
         }
     }
 }
@@ -290,6 +306,14 @@ impl From<super::Command> for Command {
                 Command::MoveProtectionDisable(c)
             }
             super::Command::Coupling(c) => match c {},
+            super::Command::Compensation(c) => match c {
+                CompensationCommand::LeadScrew(c) => Command::CompensationLeadScrew(c),
+                CompensationCommand::Backlash(c) => Command::CompensationBacklash(c),
+                CompensationCommand::Table(c) => Command::CompensationTable(c),
+                CompensationCommand::Enable(c) => Command::CompensationEnable(c),
+                CompensationCommand::Disable(c) => Command::CompensationDisable(c),
+                CompensationCommand::Clear(c) => Command::CompensationClear(c),
+            },
         }
     }
 }

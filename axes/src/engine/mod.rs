@@ -20,6 +20,7 @@ use crate::rng::Rng;
 use crate::status::{AxisStatus, DriveStatus, IoImage, Snapshot};
 use std::sync::Arc;
 
+mod compensation;
 mod machine;
 mod planner;
 pub use crate::axis::Feed;
@@ -217,6 +218,7 @@ impl Engine {
             Command::Axis(c) => self.apply_axis_command(c),
             Command::Group(c) => self.apply_group_command(c),
             Command::Coupling(c) => self.apply_coupling_command(c),
+            Command::Compensation(c) => self.apply_compensation_command(c),
             Command::Io(c) => self.apply_io_command(c),
             Command::Slave(c) => self.apply_slave_command(c),
             Command::Machine(c) => self.apply_machine_command(c),
@@ -529,6 +531,7 @@ impl Engine {
         self.tick += 1;
         self.read_inputs();
         self.run_planners();
+        self.gather_compensation_inputs();
         self.step_axes();
         self.step_drives();
         if self.groups_await_power {

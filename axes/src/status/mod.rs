@@ -229,6 +229,13 @@ pub struct AxisStatus {
     pub homing_phase: u8,
     /// The error that ended the last command or the last refused command, if any.
     pub last_error: Option<ErrorKind>,
+    /// The position sent to the drive: `cmd_pos` (planned) plus `compensation` (issue 12
+    /// item 8; NMC cmdPos vs axisPos, HIMC GetPosOut).
+    #[serde(default)]
+    pub output_pos: f64,
+    /// The correction compensation after the planner adds this tick (HIMC GetCompPos).
+    #[serde(default)]
+    pub compensation: f64,
 }
 
 /// Digital and analog I/O images of the machine.
