@@ -27,6 +27,8 @@ pub enum EngineError {
     ReadOnlyParameter { name: &'static str },
     #[error("axis {axis}: compensation: {reason}")]
     InvalidCompensation { axis: u32, reason: String },
+    #[error("sampler {sampler}: {reason}")]
+    InvalidSampling { sampler: u16, reason: String },
     #[error("{name} = {value}: {reason}")]
     InvalidArgument {
         name: &'static str,
@@ -148,6 +150,7 @@ impl EngineError {
             EngineError::ReadOnlyParameter { .. } => ErrorKind::ReadOnlyParameter,
             EngineError::InvalidArgument { .. } => ErrorKind::InvalidArgument,
             EngineError::InvalidCompensation { .. } => ErrorKind::InvalidArgument,
+            EngineError::InvalidSampling { .. } => ErrorKind::InvalidArgument,
             EngineError::AxisDisabled { .. } => ErrorKind::AxisDisabled,
             EngineError::AxisInError { .. } => ErrorKind::AxisInError,
             EngineError::LimitActive { .. } => ErrorKind::LimitActive,

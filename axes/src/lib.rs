@@ -22,6 +22,7 @@ pub mod param;
 pub use profile;
 pub mod rng;
 pub mod runtime;
+pub mod sampling;
 pub mod status;
 pub mod types;
 

@@ -470,7 +470,7 @@ fn minimal() -> Vec<(&'static str, Command, &'static str)> {
 
 /// Inputs whose error serde reports, and the text it reports today.
 const ERRORS: &[(&str, &str)] = &[
-    (r#"{"type":"teleport","axis":0}"#, "unknown variant `teleport`, expected one of `enable`, `disable`, `reset`, `move_absolute`, `move_relative`, `move_velocity`, `stop`, `halt`, `resume`, `home`, `set_position`, `set_parameter`, `get_parameter`, `modify_target`, `cancel`, `command_state`, `force_input`, `force_digital_input`, `force_analog_input`, `write_digital_output`, `write_analog_output`, `inject_following_error`, `setpoint`, `read_object`, `write_object`, `move_together`, `stop_axes`, `stop_all`, `enable_all`, `disable_all`, `emergency_stop_all`, `reset_all`, `group_create`, `group_delete`, `group_enable`, `group_disable`, `group_reset`, `move_linear_absolute`, `move_linear_relative`, `move_circular_absolute`, `move_circular_relative`, `group_stop`, `group_halt`, `group_continue`, `group_emergency_stop`, `group_set_override`, `group_set_origin`, `group_set_parameter`, `group_set_output`, `group_dwell`, `group_wait_input`, `group_wait_position`, `group_axis_move`, `move_spline`, `move_ellipse`, `group_set_coordinate_transform`, `group_set_coordinate_system`, `group_set_rotary_transform`, `group_set_xyza_transform`, `group_delete_transform`, `move_protection_enable`, `move_protection_disable`, `move_circular_angle`, `compensation_lead_screw`, `compensation_backlash`, `compensation_table`, `compensation_enable`, `compensation_disable`, `compensation_clear` at line 1 column 18"),
+    (r#"{"type":"teleport","axis":0}"#, "unknown variant `teleport`, expected one of `enable`, `disable`, `reset`, `move_absolute`, `move_relative`, `move_velocity`, `stop`, `halt`, `resume`, `home`, `set_position`, `set_parameter`, `get_parameter`, `modify_target`, `cancel`, `command_state`, `force_input`, `force_digital_input`, `force_analog_input`, `write_digital_output`, `write_analog_output`, `inject_following_error`, `setpoint`, `read_object`, `write_object`, `move_together`, `stop_axes`, `stop_all`, `enable_all`, `disable_all`, `emergency_stop_all`, `reset_all`, `group_create`, `group_delete`, `group_enable`, `group_disable`, `group_reset`, `move_linear_absolute`, `move_linear_relative`, `move_circular_absolute`, `move_circular_relative`, `group_stop`, `group_halt`, `group_continue`, `group_emergency_stop`, `group_set_override`, `group_set_origin`, `group_set_parameter`, `group_set_output`, `group_dwell`, `group_wait_input`, `group_wait_position`, `group_axis_move`, `move_spline`, `move_ellipse`, `group_set_coordinate_transform`, `group_set_coordinate_system`, `group_set_rotary_transform`, `group_set_xyza_transform`, `group_delete_transform`, `move_protection_enable`, `move_protection_disable`, `move_circular_angle`, `compensation_lead_screw`, `compensation_backlash`, `compensation_table`, `compensation_enable`, `compensation_disable`, `compensation_clear`, `sampling_configure`, `sampling_start`, `sampling_trigger`, `sampling_stop`, `sampling_read` at line 1 column 18"),
     (r#"{"axis":0}"#, "missing field `type` at line 1 column 10"),
     (r#"{"type":"move_absolute","axis":0}"#, "missing field `position`"),
     (r#"{"type":"move_absolute","axis":0,"positon":10}"#, "unknown field `positon`, expected one of `axis`, `position`, `velocity`, `acceleration`, `deceleration`, `jerk`, `buffer_mode`"),
@@ -636,4 +636,75 @@ fn compensation_commands_keep_their_json() {
     )
     .unwrap_err();
     assert!(e.to_string().starts_with("unknown field `negatve`"), "{e}");
+}
+
+#[test]
+fn sampling_commands_keep_their_json() {
+    use axes::command::{
+        SampledVariable, SamplingConfigure, SamplingRead, SamplingStart, SamplingStop,
+        SamplingTrigger, SamplingTriggerNow,
+    };
+    let cases = vec![
+        (
+            Command::from(SamplingConfigure {
+                sampler: 1,
+                variables: vec![
+                    SampledVariable::PlannedPosition { axis: 0 },
+                    SampledVariable::DigitalInput { channel: 3 },
+                ],
+                interval: 10,
+                points: 3000,
+                trigger: SamplingTrigger::Rising {
+                    variable: SampledVariable::ActualVelocity { axis: 2 },
+                    value: 5.0,
+                },
+            }),
+            r#"{"type":"sampling_configure","sampler":1,"variables":[{"kind":"planned_position","axis":0},{"kind":"digital_input","channel":3}],"interval":10,"points":3000,"trigger":{"kind":"rising","variable":{"kind":"actual_velocity","axis":2},"value":5.0}}"#,
+        ),
+        (
+            Command::from(SamplingStart { sampler: 0 }),
+            r#"{"type":"sampling_start","sampler":0}"#,
+        ),
+        (
+            Command::from(SamplingTriggerNow { sampler: 0 }),
+            r#"{"type":"sampling_trigger","sampler":0}"#,
+        ),
+        (
+            Command::from(SamplingStop { sampler: 0 }),
+            r#"{"type":"sampling_stop","sampler":0}"#,
+        ),
+        (
+            Command::from(SamplingRead {
+                sampler: 2,
+                from: 100,
+                count: Some(50),
+            }),
+            r#"{"type":"sampling_read","sampler":2,"from":100,"count":50}"#,
+        ),
+    ];
+    for (command, json) in cases {
+        assert_eq!(serde_json::to_string(&command).unwrap(), json);
+        assert_eq!(
+            serde_json::from_str::<Command>(json).unwrap(),
+            command,
+            "{json}"
+        );
+    }
+    let minimal: Command = serde_json::from_str(
+        r#"{"type":"sampling_configure","sampler":0,"points":2,"variables":[{"kind":"following_error","axis":0}]}"#,
+    )
+    .unwrap();
+    assert_eq!(
+        serde_json::to_string(&minimal).unwrap(),
+        r#"{"type":"sampling_configure","sampler":0,"variables":[{"kind":"following_error","axis":0}],"interval":1,"points":2,"trigger":{"kind":"immediate"}}"#
+    );
+    let e = serde_json::from_str::<Command>(
+        r#"{"type":"sampling_configure","sampler":0,"points":2,"variables":[{"kind":"torque","axis":0}]}"#,
+    )
+    .unwrap_err();
+    assert!(
+        e.to_string()
+            .starts_with("unknown variant `torque`, expected one of `planned_position`"),
+        "{e}"
+    );
 }

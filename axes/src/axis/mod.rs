@@ -14,6 +14,7 @@
 mod commands;
 mod compensation;
 pub mod fifo;
+mod sampling;
 mod setup;
 mod supervision;
 

@@ -92,6 +92,7 @@ mod group;
 mod group_frames;
 mod io;
 mod machine;
+mod sampling;
 mod slave;
 mod wire;
 
@@ -125,6 +126,11 @@ pub use machine::{
     DisableAll, EmergencyStopAll, EnableAll, GetCommandState, MachineCommand, MoveTogether,
     ResetAll, StopAll, StopAxes, TogetherMove,
 };
+pub use sampling::{
+    SampledVariable, SamplerId, SamplingCommand, SamplingConfigure, SamplingRead, SamplingStart,
+    SamplingStop, SamplingTrigger, SamplingTriggerNow, MAX_SAMPLED_VARIABLES, MAX_SAMPLERS,
+    MAX_SAMPLE_VALUES,
+};
 pub use slave::{ReadObject, SlaveCommand, WriteObject};
 
 /// A command into the engine, by family: what it addresses decides which stage of the engine
@@ -151,6 +157,8 @@ pub enum Command {
     Coupling(CouplingCommand),
     /// Corrections after the planner on one axis (issue 12 item 8: `compensation_set` …).
     Compensation(CompensationCommand),
+    /// Data sampling into bounded buffers (issue 12 item 9: `sampling_configure` …).
+    Sampling(SamplingCommand),
     /// The machine's digital and analog I/O image.
     Io(IoCommand),
     /// The object dictionaries of the CiA 402 drives on the engine's fieldbus.
@@ -172,7 +180,11 @@ impl Command {
             Command::Axis(c) => Some(c.axis()),
             Command::Compensation(c) => Some(c.axis()),
             Command::Coupling(c) => match *c {},
-            Command::Group(_) | Command::Io(_) | Command::Slave(_) | Command::Machine(_) => None,
+            Command::Sampling(_)
+            | Command::Group(_)
+            | Command::Io(_)
+            | Command::Slave(_)
+            | Command::Machine(_) => None,
         }
     }
 }
@@ -257,6 +269,14 @@ pub enum Reply {
     /// order of the moves.
     AcceptedAll {
         ids: Vec<CommandId>,
+    },
+    /// Recorded samples (`sampling_read`): `values` row by row, `variables` values per row,
+    /// the first row being sample `from`.
+    Samples {
+        sampler: u16,
+        from: u32,
+        variables: u32,
+        values: Vec<f64>,
     },
 }
 

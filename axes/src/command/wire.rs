@@ -27,6 +27,10 @@ use super::{
     GroupDeleteTransform, GroupSetCoordinateSystem, GroupSetCoordinateTransform,
     GroupSetRotaryTransform, GroupSetXyzaTransform, MoveProtectionDisable, MoveProtectionEnable,
 };
+use super::{
+    SamplingCommand, SamplingConfigure, SamplingRead, SamplingStart, SamplingStop,
+    SamplingTriggerNow,
+};
 
 /// Named `Command` like the type it stands for: serde writes this name in "expected internally
 /// tagged enum Command" (a `rename` does not change that message).
@@ -105,6 +109,11 @@ pub(super) enum Command {
     CompensationEnable(CompensationEnable),
     CompensationDisable(CompensationDisable),
     CompensationClear(CompensationClear),
+    SamplingConfigure(SamplingConfigure),
+    SamplingStart(SamplingStart),
+    SamplingTrigger(SamplingTriggerNow),
+    SamplingStop(SamplingStop),
+    SamplingRead(SamplingRead),
 }
 
 impl From<Command> for super::Command {
@@ -207,6 +216,11 @@ impl From<Command> for super::Command {
             Command::CompensationEnable(c) => super::Command::from(c),
             Command::CompensationDisable(c) => super::Command::from(c),
             Command::CompensationClear(c) => super::Command::from(c),
+            Command::SamplingConfigure(c) => super::Command::from(c),
+            Command::SamplingStart(c) => super::Command::from(c),
+            Command::SamplingTrigger(c) => super::Command::from(c),
+            Command::SamplingStop(c) => super::Command::from(c),
+            Command::SamplingRead(c) => super::Command::from(c),
         }
     }
 }
@@ -313,6 +327,13 @@ impl From<super::Command> for Command {
                 CompensationCommand::Enable(c) => Command::CompensationEnable(c),
                 CompensationCommand::Disable(c) => Command::CompensationDisable(c),
                 CompensationCommand::Clear(c) => Command::CompensationClear(c),
+            },
+            super::Command::Sampling(c) => match c {
+                SamplingCommand::Configure(c) => Command::SamplingConfigure(c),
+                SamplingCommand::Start(c) => Command::SamplingStart(c),
+                SamplingCommand::Trigger(c) => Command::SamplingTrigger(c),
+                SamplingCommand::Stop(c) => Command::SamplingStop(c),
+                SamplingCommand::Read(c) => Command::SamplingRead(c),
             },
         }
     }

@@ -17,12 +17,14 @@ use crate::homing::HomingSpec;
 use crate::od::Value;
 use crate::param::ParamId;
 use crate::rng::Rng;
+use crate::sampling::Samplers;
 use crate::status::{AxisStatus, DriveStatus, IoImage, Snapshot};
 use std::sync::Arc;
 
 mod compensation;
 mod machine;
 mod planner;
+mod sampling;
 pub use crate::axis::Feed;
 pub use machine::MAX_ATOMIC_COMMANDS;
 pub use planner::{Feeds, MachinePlanner};
@@ -120,6 +122,8 @@ pub struct Engine {
     planners: Vec<Box<dyn MachinePlanner>>,
     /// The setpoints of the planner being run (reused; no allocation per tick).
     feeds: Feeds,
+    /// Data sampling (issue 12 item 9): stage 5 records after the axes and drives.
+    samplers: Samplers,
 }
 
 impl Engine {
@@ -173,6 +177,7 @@ impl Engine {
             groups_await_power: false,
             planners: Vec::new(),
             feeds: Feeds::default(),
+            samplers: Samplers::default(),
         })
     }
 
@@ -219,6 +224,7 @@ impl Engine {
             Command::Group(c) => self.apply_group_command(c),
             Command::Coupling(c) => self.apply_coupling_command(c),
             Command::Compensation(c) => self.apply_compensation_command(c),
+            Command::Sampling(c) => self.apply_sampling_command(c),
             Command::Io(c) => self.apply_io_command(c),
             Command::Slave(c) => self.apply_slave_command(c),
             Command::Machine(c) => self.apply_machine_command(c),
@@ -537,6 +543,7 @@ impl Engine {
         if self.groups_await_power {
             self.enable_groups_once_powered();
         }
+        self.sample();
     }
 
     /// Add a machine-level planner to stage 2 (see [`MachinePlanner`]). Planners run in the
@@ -714,6 +721,7 @@ impl Engine {
             snapshot.params = Arc::new(self.axes.iter().map(|a| a.params().clone()).collect());
             snapshot.params_version = params_version;
         }
+        self.samplers.status_into(&mut snapshot.samplers);
         snapshot.drives.clear();
         snapshot
             .drives
