@@ -17,14 +17,14 @@ use super::error::ApiError;
 use crate::trace::GroupColumns;
 
 /// Default of `[frontends.control] trace_max_rows`: the row cap when a start request gives
-/// none, and the largest it may give — about 110 MB of buffer and about 130 MB of CSV at most.
+/// none, and the largest it may give — about 120 MB of buffer and about 135 MB of CSV at most.
 pub const MAX_TRACE_ROWS: usize = 1_000_000;
 
 /// Rows copied out of the buffer per lock while a trace is read, so a long read never holds
 /// the servo thread up for more than a few microseconds at a time.
 const READ_CHUNK: usize = 8192;
 
-/// One recorded axis at one tick: what a trace row needs, and no more (112 bytes).
+/// One recorded axis at one tick: what a trace row needs, and no more (120 bytes).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TraceRow {
     pub tick: u64,
@@ -40,6 +40,8 @@ pub struct TraceRow {
     pub following_error: f64,
     pub pulses: i64,
     pub encoder_counts: i64,
+    /// The output position is `cmd_pos + compensation` (as the status computes it).
+    pub compensation: f64,
     /// The group columns of a member axis.
     pub group: Option<GroupColumns>,
 }
@@ -60,6 +62,7 @@ impl TraceRow {
             following_error: s.following_error,
             pulses: s.pulses,
             encoder_counts: s.encoder_counts,
+            compensation: s.compensation,
             group,
         }
     }
@@ -79,6 +82,8 @@ impl TraceRow {
             following_error: self.following_error,
             pulses: self.pulses,
             encoder_counts: self.encoder_counts,
+            output_pos: self.cmd_pos + self.compensation,
+            compensation: self.compensation,
             ..AxisStatus::default()
         }
     }
@@ -482,12 +487,14 @@ mod tests {
 
     #[test]
     fn rows_are_compact_and_round_trip_the_columns() {
-        assert!(std::mem::size_of::<TraceRow>() <= 112);
+        assert!(std::mem::size_of::<TraceRow>() <= 120);
         let s = AxisStatus {
             state: AxisState::DiscreteMotion,
             flags: AxisFlags::HOMED | AxisFlags::HW_LIMIT_NEG,
             cmd_pos: 1.5,
             act_pos: 1.25,
+            output_pos: 1.75,
+            compensation: 0.25,
             pulses: -3,
             last_error: Some(ErrorKind::LimitReached),
             ..AxisStatus::default()

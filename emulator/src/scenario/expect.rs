@@ -57,6 +57,10 @@ pub(super) enum Quantity {
     CommandPosition,
     CommandVelocity,
     FollowingError,
+    /// The position sent to the drive (compensation included).
+    OutputPosition,
+    /// The correction of compensation after the planner.
+    Compensation,
 }
 
 impl Quantity {
@@ -67,6 +71,8 @@ impl Quantity {
             Quantity::CommandPosition => "command_position",
             Quantity::CommandVelocity => "command_velocity",
             Quantity::FollowingError => "following_error",
+            Quantity::OutputPosition => "output_position",
+            Quantity::Compensation => "compensation",
         }
     }
 
@@ -77,6 +83,8 @@ impl Quantity {
             Quantity::CommandPosition => s.cmd_pos,
             Quantity::CommandVelocity => s.cmd_vel,
             Quantity::FollowingError => s.following_error,
+            Quantity::OutputPosition => s.output_pos,
+            Quantity::Compensation => s.compensation,
         }
     }
 }
@@ -191,6 +199,8 @@ impl Expectation {
             (Quantity::CommandPosition, spec.command_position),
             (Quantity::CommandVelocity, spec.command_velocity),
             (Quantity::FollowingError, spec.following_error),
+            (Quantity::OutputPosition, spec.output_position),
+            (Quantity::Compensation, spec.compensation),
         ] {
             if let Some(v) = v {
                 if !v.is_finite() {
@@ -216,7 +226,7 @@ impl Expectation {
             return Err((
                 "tolerance",
                 "applies to position, velocity, command_position, command_velocity, \
-                 following_error or group_position, and none is given"
+                 following_error, output_position, compensation or group_position, and none is given"
                     .into(),
             ));
         }
@@ -243,7 +253,7 @@ impl Expectation {
             return Err((
                 "axis",
                 "no condition on it: give state, position, velocity, command_position, \
-                 command_velocity, following_error, flags, not_flags or error"
+                 command_velocity, following_error, output_position, compensation, flags, not_flags or error"
                     .into(),
             ));
         }

@@ -79,6 +79,12 @@ pub(super) struct ExpectSpec {
     pub command_velocity: Option<f64>,
     #[serde(default)]
     pub following_error: Option<f64>,
+    /// The position sent to the drive (`output_pos`: planned + compensation).
+    #[serde(default)]
+    pub output_position: Option<f64>,
+    /// The correction of compensation after the planner.
+    #[serde(default)]
+    pub compensation: Option<f64>,
     /// Allowed |seen − expected| of the numbers above; 0 (exact) when absent.
     #[serde(default)]
     pub tolerance: Option<f64>,
