@@ -526,9 +526,11 @@ impl Engine {
     /// 1. `read_inputs`: the I/O image's inputs from last tick's sensors;
     /// 2. `run_planners`: the axis groups (issue 11), in group-number order, then the other
     ///    machine-level planners (couplings, issue 12), feed their axes this tick's setpoints;
-    /// 3. `step_axes`: every axis, in index order;
+    /// 3. `step_axes`: every axis, in index order (compensation tables first read their
+    ///    reference axes as the previous tick left them: `gather_compensation_inputs`);
     /// 4. `step_drives`: the CiA 402 drives see their axes and answer with commands;
-    /// 5. outputs and status: no per-tick work. Outputs change only by command, and status is
+    /// 5. `sample`: armed and recording data samplers read the machine as the tick left it;
+    /// 6. outputs and status: no per-tick work. Outputs change only by command, and status is
     ///    assembled when it is read ([`Engine::snapshot_into`], [`Engine::axis_status`]).
     ///
     /// Commands ([`Engine::apply`]) arrive between steps and act on the state the last step
