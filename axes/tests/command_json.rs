@@ -606,14 +606,7 @@ fn compensation() -> Vec<(Command, &'static str)> {
 
 #[test]
 fn compensation_commands_keep_their_json() {
-    for (command, json) in compensation() {
-        assert_eq!(serde_json::to_string(&command).unwrap(), json);
-        assert_eq!(
-            serde_json::from_str::<Command>(json).unwrap(),
-            command,
-            "{json}"
-        );
-    }
+    assert_pinned(compensation());
     // Optional fields: `negative` is the positive table, `direction` positive, `enable` true,
     // a reference's `source` the planned position.
     let minimal: Command = serde_json::from_str(
@@ -682,14 +675,7 @@ fn sampling_commands_keep_their_json() {
             r#"{"type":"sampling_read","sampler":2,"from":100,"count":50}"#,
         ),
     ];
-    for (command, json) in cases {
-        assert_eq!(serde_json::to_string(&command).unwrap(), json);
-        assert_eq!(
-            serde_json::from_str::<Command>(json).unwrap(),
-            command,
-            "{json}"
-        );
-    }
+    assert_pinned(cases);
     let minimal: Command = serde_json::from_str(
         r#"{"type":"sampling_configure","sampler":0,"points":2,"variables":[{"kind":"following_error","axis":0}]}"#,
     )
@@ -707,4 +693,16 @@ fn sampling_commands_keep_their_json() {
             .starts_with("unknown variant `torque`, expected one of `planned_position`"),
         "{e}"
     );
+}
+
+/// Each command serializes to its JSON and the JSON reads back as the command.
+fn assert_pinned(cases: Vec<(Command, &'static str)>) {
+    for (command, json) in cases {
+        assert_eq!(serde_json::to_string(&command).unwrap(), json);
+        assert_eq!(
+            serde_json::from_str::<Command>(json).unwrap(),
+            command,
+            "{json}"
+        );
+    }
 }

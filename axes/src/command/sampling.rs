@@ -55,6 +55,21 @@ pub enum SampledVariable {
     },
 }
 
+impl SampledVariable {
+    /// The axis it reads, if it is an axis quantity.
+    pub fn axis(&self) -> Option<AxisIndex> {
+        match *self {
+            SampledVariable::PlannedPosition { axis }
+            | SampledVariable::PlannedVelocity { axis }
+            | SampledVariable::ActualPosition { axis }
+            | SampledVariable::ActualVelocity { axis }
+            | SampledVariable::FollowingError { axis }
+            | SampledVariable::OutputPosition { axis } => Some(axis),
+            SampledVariable::DigitalInput { .. } | SampledVariable::DigitalOutput { .. } => None,
+        }
+    }
+}
+
 /// When a started sampler begins to record.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]

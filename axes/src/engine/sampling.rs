@@ -55,22 +55,13 @@ impl Engine {
                     count: do_,
                 })
             }
-            SampledVariable::DigitalInput { .. } | SampledVariable::DigitalOutput { .. } => Ok(()),
-            SampledVariable::PlannedPosition { axis }
-            | SampledVariable::PlannedVelocity { axis }
-            | SampledVariable::ActualPosition { axis }
-            | SampledVariable::ActualVelocity { axis }
-            | SampledVariable::FollowingError { axis }
-            | SampledVariable::OutputPosition { axis } => {
-                if u32::from(axis) < axes {
-                    Ok(())
-                } else {
-                    Err(EngineError::InvalidAxis {
-                        axis: u32::from(axis),
-                        count: axes,
-                    })
-                }
-            }
+            _ => match v.axis() {
+                Some(axis) if u32::from(axis) >= axes => Err(EngineError::InvalidAxis {
+                    axis: u32::from(axis),
+                    count: axes,
+                }),
+                _ => Ok(()),
+            },
         })
     }
 
@@ -89,14 +80,10 @@ impl Engine {
         samplers.step(*tick, |v| match *v {
             SampledVariable::DigitalInput { channel } => bit(&io.image.di, channel),
             SampledVariable::DigitalOutput { channel } => bit(&io.image.do_, channel),
-            SampledVariable::PlannedPosition { axis }
-            | SampledVariable::PlannedVelocity { axis }
-            | SampledVariable::ActualPosition { axis }
-            | SampledVariable::ActualVelocity { axis }
-            | SampledVariable::FollowingError { axis }
-            | SampledVariable::OutputPosition { axis } => {
-                axes.get(axis as usize).map_or(0.0, |a| a.sampled(v))
-            }
+            _ => v
+                .axis()
+                .and_then(|axis| axes.get(axis as usize))
+                .map_or(0.0, |a| a.sampled(v)),
         });
     }
 }
