@@ -696,6 +696,7 @@ fn sampling_commands_keep_their_json() {
 }
 
 /// Each command serializes to its JSON and the JSON reads back as the command.
+#[allow(clippy::unwrap_used)] // a test helper: failing loudly is the point
 fn assert_pinned(cases: Vec<(Command, &'static str)>) {
     for (command, json) in cases {
         assert_eq!(serde_json::to_string(&command).unwrap(), json);
