@@ -25,6 +25,10 @@ pub enum EngineError {
     },
     #[error("parameter `{name}` is read-only")]
     ReadOnlyParameter { name: &'static str },
+    #[error("axis {axis}: compensation: {reason}")]
+    InvalidCompensation { axis: u32, reason: String },
+    #[error("sampler {sampler}: {reason}")]
+    InvalidSampling { sampler: u16, reason: String },
     #[error("{name} = {value}: {reason}")]
     InvalidArgument {
         name: &'static str,
@@ -208,6 +212,8 @@ impl EngineError {
             EngineError::InvalidParameter { .. } => ErrorKind::InvalidParameter,
             EngineError::ReadOnlyParameter { .. } => ErrorKind::ReadOnlyParameter,
             EngineError::InvalidArgument { .. } => ErrorKind::InvalidArgument,
+            EngineError::InvalidCompensation { .. } => ErrorKind::InvalidArgument,
+            EngineError::InvalidSampling { .. } => ErrorKind::InvalidArgument,
             EngineError::AxisDisabled { .. } => ErrorKind::AxisDisabled,
             EngineError::AxisInError { .. } => ErrorKind::AxisInError,
             EngineError::LimitActive { .. } => ErrorKind::LimitActive,

@@ -8,6 +8,7 @@
 pub mod axis;
 pub mod cia402;
 pub mod command;
+pub mod compensation;
 pub mod config;
 pub mod coupling;
 pub mod engine;
@@ -22,6 +23,7 @@ pub mod param;
 pub use profile;
 pub mod rng;
 pub mod runtime;
+pub mod sampling;
 pub mod status;
 pub mod trigger;
 pub mod types;

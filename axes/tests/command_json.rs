@@ -645,7 +645,7 @@ fn minimal() -> Vec<(&'static str, Command, &'static str)> {
 
 /// Inputs whose error serde reports, and the text it reports today.
 const ERRORS: &[(&str, &str)] = &[
-    (r#"{"type":"teleport","axis":0}"#, "unknown variant `teleport`, expected one of `enable`, `disable`, `reset`, `move_absolute`, `move_relative`, `move_velocity`, `stop`, `halt`, `resume`, `home`, `set_position`, `set_parameter`, `get_parameter`, `modify_target`, `cancel`, `command_state`, `force_input`, `force_digital_input`, `force_analog_input`, `write_digital_output`, `write_analog_output`, `inject_following_error`, `setpoint`, `read_object`, `write_object`, `move_together`, `stop_axes`, `stop_all`, `enable_all`, `disable_all`, `emergency_stop_all`, `reset_all`, `group_create`, `group_delete`, `group_enable`, `group_disable`, `group_reset`, `move_linear_absolute`, `move_linear_relative`, `move_circular_absolute`, `move_circular_relative`, `group_stop`, `group_halt`, `group_continue`, `group_emergency_stop`, `group_set_override`, `group_set_origin`, `group_set_parameter`, `group_set_output`, `group_dwell`, `group_wait_input`, `group_wait_position`, `group_axis_move`, `move_spline`, `move_ellipse`, `group_set_coordinate_transform`, `group_set_coordinate_system`, `group_set_rotary_transform`, `group_set_xyza_transform`, `group_delete_transform`, `move_protection_enable`, `move_protection_disable`, `move_circular_angle`, `group_jog`, `group_jog_axis`, `gear_in`, `gear_set_ratio`, `gear_out`, `cam_table`, `cam_in`, `cam_out`, `capture_arm`, `capture_clear`, `compare_start`, `compare_stop`, `stream_config`, `pt_push`, `pvt_push`, `stream_clear`, `stream_start`, `pvt_move` at line 1 column 18"),
+    (r#"{"type":"teleport","axis":0}"#, "unknown variant `teleport`, expected one of `enable`, `disable`, `reset`, `move_absolute`, `move_relative`, `move_velocity`, `stop`, `halt`, `resume`, `home`, `set_position`, `set_parameter`, `get_parameter`, `modify_target`, `cancel`, `command_state`, `force_input`, `force_digital_input`, `force_analog_input`, `write_digital_output`, `write_analog_output`, `inject_following_error`, `setpoint`, `read_object`, `write_object`, `move_together`, `stop_axes`, `stop_all`, `enable_all`, `disable_all`, `emergency_stop_all`, `reset_all`, `group_create`, `group_delete`, `group_enable`, `group_disable`, `group_reset`, `move_linear_absolute`, `move_linear_relative`, `move_circular_absolute`, `move_circular_relative`, `group_stop`, `group_halt`, `group_continue`, `group_emergency_stop`, `group_set_override`, `group_set_origin`, `group_set_parameter`, `group_set_output`, `group_dwell`, `group_wait_input`, `group_wait_position`, `group_axis_move`, `move_spline`, `move_ellipse`, `group_set_coordinate_transform`, `group_set_coordinate_system`, `group_set_rotary_transform`, `group_set_xyza_transform`, `group_delete_transform`, `move_protection_enable`, `move_protection_disable`, `move_circular_angle`, `group_jog`, `group_jog_axis`, `gear_in`, `gear_set_ratio`, `gear_out`, `cam_table`, `cam_in`, `cam_out`, `capture_arm`, `capture_clear`, `compare_start`, `compare_stop`, `stream_config`, `pt_push`, `pvt_push`, `stream_clear`, `stream_start`, `pvt_move`, `compensation_lead_screw`, `compensation_backlash`, `compensation_table`, `compensation_enable`, `compensation_disable`, `compensation_clear`, `sampling_configure`, `sampling_start`, `sampling_trigger`, `sampling_stop`, `sampling_read` at line 1 column 18"),
     (r#"{"axis":0}"#, "missing field `type` at line 1 column 10"),
     (r#"{"type":"move_absolute","axis":0}"#, "missing field `position`"),
     (r#"{"type":"move_absolute","axis":0,"positon":10}"#, "unknown field `positon`, expected one of `axis`, `position`, `velocity`, `acceleration`, `deceleration`, `jerk`, `buffer_mode`"),
@@ -714,5 +714,173 @@ fn serde_errors_keep_their_wording() {
     for (json, message) in ERRORS {
         let e = serde_json::from_str::<Command>(json).unwrap_err();
         assert_eq!(e.to_string(), *message, "{json}");
+    }
+}
+
+/// The compensation family (issue 12 item 8), with every field set, and its JSON.
+fn compensation() -> Vec<(Command, &'static str)> {
+    use axes::command::{
+        BacklashDirection, CompensationBacklash, CompensationClear, CompensationDisable,
+        CompensationEnable, CompensationLeadScrew, CompensationReference, CompensationTable,
+        ReferenceSource,
+    };
+    vec![
+        (
+            Command::from(CompensationLeadScrew {
+                axis: 0,
+                positions: vec![0.0, 10.0],
+                positive: vec![0.5, -0.5],
+                negative: Some(vec![0.25, 0.0]),
+                enable: false,
+            }),
+            r#"{"type":"compensation_lead_screw","axis":0,"positions":[0.0,10.0],"positive":[0.5,-0.5],"negative":[0.25,0.0],"enable":false}"#,
+        ),
+        (
+            Command::from(CompensationBacklash {
+                axis: 1,
+                amount: 1000.0,
+                step: 200.0,
+                direction: BacklashDirection::Negative,
+                enable: true,
+            }),
+            r#"{"type":"compensation_backlash","axis":1,"amount":1000.0,"step":200.0,"direction":"negative","enable":true}"#,
+        ),
+        (
+            Command::from(CompensationTable {
+                axis: 2,
+                references: vec![
+                    CompensationReference {
+                        axis: 0,
+                        source: ReferenceSource::Actual,
+                    },
+                    CompensationReference {
+                        axis: 1,
+                        source: ReferenceSource::Planned,
+                    },
+                ],
+                start: vec![0.0, 0.0],
+                step: vec![3.0, 4.0],
+                count: vec![2, 2],
+                values: vec![0.0, 1.0, 2.0, 3.0],
+                enable: true,
+            }),
+            r#"{"type":"compensation_table","axis":2,"references":[{"axis":0,"source":"actual"},{"axis":1,"source":"planned"}],"start":[0.0,0.0],"step":[3.0,4.0],"count":[2,2],"values":[0.0,1.0,2.0,3.0],"enable":true}"#,
+        ),
+        (
+            Command::from(CompensationEnable { axis: 3 }),
+            r#"{"type":"compensation_enable","axis":3}"#,
+        ),
+        (
+            Command::from(CompensationDisable { axis: 3 }),
+            r#"{"type":"compensation_disable","axis":3}"#,
+        ),
+        (
+            Command::from(CompensationClear { axis: 3 }),
+            r#"{"type":"compensation_clear","axis":3}"#,
+        ),
+    ]
+}
+
+#[test]
+fn compensation_commands_keep_their_json() {
+    assert_pinned(compensation());
+    // Optional fields: `negative` is the positive table, `direction` positive, `enable` true,
+    // a reference's `source` the planned position.
+    let minimal: Command = serde_json::from_str(
+        r#"{"type":"compensation_backlash","axis":0,"amount":1.0,"step":0.5}"#,
+    )
+    .unwrap();
+    assert_eq!(
+        serde_json::to_string(&minimal).unwrap(),
+        r#"{"type":"compensation_backlash","axis":0,"amount":1.0,"step":0.5,"direction":"positive","enable":true}"#
+    );
+    let table: Command = serde_json::from_str(
+        r#"{"type":"compensation_table","axis":0,"references":[{"axis":1}],"start":[0],"step":[1],"count":[2],"values":[0,1]}"#,
+    )
+    .unwrap();
+    assert!(serde_json::to_string(&table)
+        .unwrap()
+        .contains(r#""references":[{"axis":1,"source":"planned"}]"#));
+    let e = serde_json::from_str::<Command>(
+        r#"{"type":"compensation_lead_screw","axis":0,"positions":[0,1],"positive":[0,1],"negatve":[1,0]}"#,
+    )
+    .unwrap_err();
+    assert!(e.to_string().starts_with("unknown field `negatve`"), "{e}");
+}
+
+#[test]
+fn sampling_commands_keep_their_json() {
+    use axes::command::{
+        SampledVariable, SamplingConfigure, SamplingRead, SamplingStart, SamplingStop,
+        SamplingTrigger, SamplingTriggerNow,
+    };
+    let cases = vec![
+        (
+            Command::from(SamplingConfigure {
+                sampler: 1,
+                variables: vec![
+                    SampledVariable::PlannedPosition { axis: 0 },
+                    SampledVariable::DigitalInput { channel: 3 },
+                ],
+                interval: 10,
+                points: 3000,
+                trigger: SamplingTrigger::Rising {
+                    variable: SampledVariable::ActualVelocity { axis: 2 },
+                    value: 5.0,
+                },
+            }),
+            r#"{"type":"sampling_configure","sampler":1,"variables":[{"kind":"planned_position","axis":0},{"kind":"digital_input","channel":3}],"interval":10,"points":3000,"trigger":{"kind":"rising","variable":{"kind":"actual_velocity","axis":2},"value":5.0}}"#,
+        ),
+        (
+            Command::from(SamplingStart { sampler: 0 }),
+            r#"{"type":"sampling_start","sampler":0}"#,
+        ),
+        (
+            Command::from(SamplingTriggerNow { sampler: 0 }),
+            r#"{"type":"sampling_trigger","sampler":0}"#,
+        ),
+        (
+            Command::from(SamplingStop { sampler: 0 }),
+            r#"{"type":"sampling_stop","sampler":0}"#,
+        ),
+        (
+            Command::from(SamplingRead {
+                sampler: 2,
+                from: 100,
+                count: Some(50),
+            }),
+            r#"{"type":"sampling_read","sampler":2,"from":100,"count":50}"#,
+        ),
+    ];
+    assert_pinned(cases);
+    let minimal: Command = serde_json::from_str(
+        r#"{"type":"sampling_configure","sampler":0,"points":2,"variables":[{"kind":"following_error","axis":0}]}"#,
+    )
+    .unwrap();
+    assert_eq!(
+        serde_json::to_string(&minimal).unwrap(),
+        r#"{"type":"sampling_configure","sampler":0,"variables":[{"kind":"following_error","axis":0}],"interval":1,"points":2,"trigger":{"kind":"immediate"}}"#
+    );
+    let e = serde_json::from_str::<Command>(
+        r#"{"type":"sampling_configure","sampler":0,"points":2,"variables":[{"kind":"torque","axis":0}]}"#,
+    )
+    .unwrap_err();
+    assert!(
+        e.to_string()
+            .starts_with("unknown variant `torque`, expected one of `planned_position`"),
+        "{e}"
+    );
+}
+
+/// Each command serializes to its JSON and the JSON reads back as the command.
+#[allow(clippy::unwrap_used)] // a test helper: failing loudly is the point
+fn assert_pinned(cases: Vec<(Command, &'static str)>) {
+    for (command, json) in cases {
+        assert_eq!(serde_json::to_string(&command).unwrap(), json);
+        assert_eq!(
+            serde_json::from_str::<Command>(json).unwrap(),
+            command,
+            "{json}"
+        );
     }
 }

@@ -16,7 +16,7 @@ use std::io::{self, Write};
 use axes::{AxisFlags, AxisStatus, Engine};
 
 /// The header row, in column order.
-pub const HEADER: &str = "time_s,axis,state,cmd_pos,cmd_vel,cmd_acc,act_pos,act_vel,following_error,pulses,encoder_counts,limit_pos,limit_neg,home_switch,homed,error,group,path_velocity,segment,user_segment,captures,capture_position,compare_outputs";
+pub const HEADER: &str = "time_s,axis,state,cmd_pos,cmd_vel,cmd_acc,act_pos,act_vel,following_error,pulses,encoder_counts,limit_pos,limit_neg,home_switch,homed,error,group,path_velocity,segment,user_segment,captures,capture_position,compare_outputs,output_pos,compensation";
 
 /// The group columns of a member axis's row (issue 11 item 7).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -125,6 +125,11 @@ fn format_fields(buf: &mut Vec<u8>, axis: usize, s: &AxisStatus, group: Option<&
     push_f64(buf, &mut floats, s.capture_position);
     buf.push(b',');
     buf.extend_from_slice(ints.format(s.compare_outputs).as_bytes());
+    // Compensation after the planner (issue 12 item 8): what the drive receives, and why.
+    for v in [s.output_pos, s.compensation] {
+        buf.push(b',');
+        push_f64(buf, &mut floats, v);
+    }
     buf.push(b'\n');
 }
 
@@ -280,7 +285,8 @@ mod tests {
         let line = row(&s, 0.035);
         assert_eq!(
             line,
-            "0.035,3,discrete_motion,0.30000000000000004,-1234.5,1e-7,100,-0,2.5e+20,-42,9223372036854775807,0,1,0,1,limit_reached,,,,,0,0,0\n"
+            "0.035,3,discrete_motion,0.30000000000000004,-1234.5,1e-7,100,-0,2.5e+20,-42,9223372036854775807,0,1,0,1,limit_reached,,,,,0,0,0,0,0
+"
         );
         assert_eq!(
             line.trim_end().split(',').count(),
@@ -305,7 +311,11 @@ mod tests {
         );
         assert!(floats[4].is_sign_negative());
         let idle = row(&AxisStatus::default(), 0.0);
-        assert_eq!(idle, "0,3,disabled,0,0,0,0,0,0,0,0,0,0,0,0,,,,,,0,0,0\n");
+        assert_eq!(
+            idle,
+            "0,3,disabled,0,0,0,0,0,0,0,0,0,0,0,0,,,,,,0,0,0,0,0
+"
+        );
         let mut member = Vec::new();
         let g = GroupColumns {
             group: 2,
@@ -316,7 +326,8 @@ mod tests {
         write_member_row(&mut member, 0.0, 1, &AxisStatus::default(), Some(&g)).unwrap();
         assert_eq!(
             String::from_utf8(member).unwrap(),
-            "0,1,disabled,0,0,0,0,0,0,0,0,0,0,0,0,,2,12.5,3,40,0,0,0\n"
+            "0,1,disabled,0,0,0,0,0,0,0,0,0,0,0,0,,2,12.5,3,40,0,0,0,0,0
+"
         );
     }
 

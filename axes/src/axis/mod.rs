@@ -12,9 +12,11 @@
 //! command progress (completion, homing, next command) → status record.
 
 mod commands;
+mod compensation;
 pub mod fifo;
 mod latch;
 mod pvt;
+mod sampling;
 mod setup;
 mod stream_source;
 mod supervision;
@@ -23,6 +25,7 @@ use crate::command::{
     AxisIndex, CommandId, CommandKind, CommandState, Direction, ErrorKind, GroupId, Setpoint,
     StopMode,
 };
+use crate::compensation::Compensation;
 use crate::config::{AxisConfig, AxisSignal, PlantModel, DEFAULT_FIFO_DEPTH};
 use crate::homing::Homing;
 use crate::hw::encoder::EncoderTick;
@@ -195,6 +198,10 @@ pub struct Axis {
     /// Commanded state after smoothing: what the output stage follows.
     cmd: MotionState,
     smoothing: Option<MovingAverage>,
+    /// Compensation after the planner (issue 12 item 8), out of line: most axes have none.
+    compensation: Option<Box<Compensation>>,
+    /// This tick's correction: the drive receives `cmd.p + correction` (digest 001 §4.1).
+    correction: f64,
     act_pos: f64,
     act_vel: f64,
     /// The encoder's position after its last update (physical frame).
@@ -289,6 +296,8 @@ impl Axis {
             raw_jerk: 0.0,
             cmd: MotionState::default(),
             smoothing: smoothing.and_then(|n| MovingAverage::new(n).ok()),
+            compensation: None,
+            correction: 0.0,
             act_pos: 0.0,
             act_vel: 0.0,
             encoder_pos: 0.0,
@@ -485,6 +494,12 @@ impl Axis {
             self.cmd = self.raw;
         }
 
+        // 2b. Compensation after the planner: the planned position stays as it is, the output
+        // gets the correction (digest 001 §4.1, digest 004 §2.13).
+        if let Some(c) = self.compensation.as_deref_mut() {
+            self.correction = c.correction(self.index, self.cmd.p, self.cmd.v);
+        }
+
         // 3–5. Output stage, plant, encoder.
         let motor_before = self.motor_position();
         let act_before = self.act_pos;
@@ -586,7 +601,7 @@ impl Axis {
 
     /// Output stage, plant and encoder for the commanded position of this tick.
     fn drive_motor(&mut self) -> EncoderTick {
-        let motor_cmd = self.cmd.p - self.cmd_offset;
+        let motor_cmd = self.cmd.p + self.correction - self.cmd_offset;
         let enabled = self.enabled;
         match self.class {
             AxisClass::Virtual => {
@@ -597,7 +612,8 @@ impl Axis {
                 self.encoder_pos = self.encoder.position();
                 // HMC §2.3: a virtual axis has MPos = DPos exactly, without encoder quantisation.
                 let previous = self.act_pos;
-                self.act_pos = self.virtual_motor + self.act_offset + self.injected_fe_sign();
+                self.act_pos = self.virtual_motor + self.act_offset + self.injected_fe_sign()
+                    - self.correction;
                 self.act_vel = (self.act_pos - previous) * self.rate;
                 return tick;
             }
@@ -627,7 +643,10 @@ impl Axis {
         let tick = self.encoder.update(self.plant.position());
         self.encoder_pos = self.encoder.position();
         let previous = self.act_pos;
-        self.act_pos = self.encoder_pos + self.act_offset + self.injected_fe_sign();
+        // The actual position is the load's: the compensation the motor made up for is taken
+        // out again, so the following error compares like with like.
+        self.act_pos =
+            self.encoder_pos + self.act_offset + self.injected_fe_sign() - self.correction;
         self.act_vel = (self.act_pos - previous) * self.rate;
         tick
     }
@@ -661,7 +680,7 @@ impl Axis {
         let p = self.act_pos;
         self.raw = MotionState { p, v: 0.0, a: 0.0 };
         self.cmd = self.raw;
-        self.cmd_offset = p - self.motor_position();
+        self.cmd_offset = p + self.correction - self.motor_position();
         self.source = Source::Hold;
         if let Some(f) = self.smoothing.as_mut() {
             f.reset(p);
@@ -1077,6 +1096,8 @@ impl Axis {
             capture_position: self.triggers.capture_position,
             compare_outputs: self.triggers.compare_outputs,
             stream: self.stream.status(),
+            output_pos: cmd_pos + self.correction,
+            compensation: self.correction,
         };
     }
 }

@@ -88,12 +88,14 @@ pub enum AxisInput {
 }
 
 mod axis;
+mod compensation;
 mod coupling;
 mod group;
 mod group_frames;
 mod group_jog;
 mod io;
 mod machine;
+mod sampling;
 mod slave;
 mod stream;
 mod trigger;
@@ -103,6 +105,11 @@ pub use axis::{
     AxisCommand, Cancel, Disable, Enable, ForceInput, GetParameter, Halt, Home,
     InjectFollowingError, ModifyTarget, MoveAbsolute, MoveRelative, MoveVelocity, Reset, Resume,
     SetParameter, SetPosition, Stop, StreamSetpoint,
+};
+pub use compensation::{
+    BacklashDirection, CompensationBacklash, CompensationClear, CompensationCommand,
+    CompensationDisable, CompensationEnable, CompensationKind, CompensationLeadScrew,
+    CompensationReference, CompensationTable, ReferenceSource,
 };
 pub use coupling::{
     CamIn, CamInterpolation, CamOut, CamPoint, CamTableDefine, CouplingCommand, FollowSegment,
@@ -128,6 +135,11 @@ pub use io::{
 pub use machine::{
     DisableAll, EmergencyStopAll, EnableAll, GetCommandState, MachineCommand, MoveTogether,
     ResetAll, StopAll, StopAxes, TogetherMove,
+};
+pub use sampling::{
+    SampledVariable, SamplerId, SamplingCommand, SamplingConfigure, SamplingRead, SamplingStart,
+    SamplingStop, SamplingTrigger, SamplingTriggerNow, MAX_SAMPLED_VARIABLES, MAX_SAMPLERS,
+    MAX_SAMPLE_VALUES,
 };
 pub use slave::{ReadObject, SlaveCommand, WriteObject};
 pub use stream::{
@@ -161,6 +173,10 @@ pub enum Command {
     Group(GroupCommand),
     /// Axis couplings: gear and cam (issue 12: `gear_in` …).
     Coupling(CouplingCommand),
+    /// Corrections after the planner on one axis (issue 12 item 8: `compensation_set` …).
+    Compensation(CompensationCommand),
+    /// Data sampling into bounded buffers (issue 12 item 9: `sampling_configure` …).
+    Sampling(SamplingCommand),
     /// The machine's digital and analog I/O image.
     Io(IoCommand),
     /// Capture channels and position-compare outputs (issue 12 items 4–5).
@@ -183,7 +199,9 @@ impl Command {
             Command::Trigger(TriggerCommand::CaptureArm(c)) => Some(c.axis),
             Command::Trigger(TriggerCommand::CaptureClear(c)) => Some(c.axis),
             Command::Trigger(TriggerCommand::CompareStart(c)) => Some(c.axis),
+            Command::Compensation(c) => Some(c.axis()),
             Command::Trigger(TriggerCommand::CompareStop(_))
+            | Command::Sampling(_)
             | Command::Group(_)
             | Command::Io(_)
             | Command::Slave(_)
@@ -271,6 +289,14 @@ pub enum Reply {
     /// order of the moves.
     AcceptedAll {
         ids: Vec<CommandId>,
+    },
+    /// Recorded samples (`sampling_read`): `values` row by row, `variables` values per row,
+    /// the first row being sample `from`.
+    Samples {
+        sampler: u16,
+        from: u32,
+        variables: u32,
+        values: Vec<f64>,
     },
 }
 

@@ -15,6 +15,10 @@ use super::{
 use super::{CamIn, CamOut, CamTableDefine, CouplingCommand, GearIn, GearOut, GearSetRatio};
 use super::{CaptureArm, CaptureClear, CompareStart, CompareStop, TriggerCommand};
 use super::{
+    CompensationBacklash, CompensationClear, CompensationCommand, CompensationDisable,
+    CompensationEnable, CompensationLeadScrew, CompensationTable,
+};
+use super::{
     GroupAxisMove, GroupCommand, GroupContinue, GroupCreate, GroupDelete, GroupDisable, GroupDwell,
     GroupEmergencyStop, GroupEnable, GroupHalt, GroupReset, GroupSetOrigin, GroupSetOutput,
     GroupSetOverride, GroupSetParameter, GroupStop, GroupWaitInput, GroupWaitPosition,
@@ -27,6 +31,10 @@ use super::{
 };
 use super::{GroupJog, GroupJogAxis};
 use super::{PtPush, PvtMove, PvtPush, StreamClear, StreamCommand, StreamConfig, StreamStart};
+use super::{
+    SamplingCommand, SamplingConfigure, SamplingRead, SamplingStart, SamplingStop,
+    SamplingTriggerNow,
+};
 
 /// Named `Command` like the type it stands for: serde writes this name in "expected internally
 /// tagged enum Command" (a `rename` does not change that message).
@@ -120,6 +128,17 @@ pub(super) enum Command {
     StreamClear(StreamClear),
     StreamStart(StreamStart),
     PvtMove(PvtMove),
+    CompensationLeadScrew(CompensationLeadScrew),
+    CompensationBacklash(CompensationBacklash),
+    CompensationTable(CompensationTable),
+    CompensationEnable(CompensationEnable),
+    CompensationDisable(CompensationDisable),
+    CompensationClear(CompensationClear),
+    SamplingConfigure(SamplingConfigure),
+    SamplingStart(SamplingStart),
+    SamplingTrigger(SamplingTriggerNow),
+    SamplingStop(SamplingStop),
+    SamplingRead(SamplingRead),
 }
 
 impl From<Command> for super::Command {
@@ -234,6 +253,17 @@ impl From<Command> for super::Command {
             Command::StreamClear(c) => super::Command::Stream(StreamCommand::Clear(c)),
             Command::StreamStart(c) => super::Command::Stream(StreamCommand::Start(c)),
             Command::PvtMove(c) => super::Command::Stream(StreamCommand::PvtMove(c)),
+            Command::CompensationLeadScrew(c) => super::Command::from(c),
+            Command::CompensationBacklash(c) => super::Command::from(c),
+            Command::CompensationTable(c) => super::Command::from(c),
+            Command::CompensationEnable(c) => super::Command::from(c),
+            Command::CompensationDisable(c) => super::Command::from(c),
+            Command::CompensationClear(c) => super::Command::from(c),
+            Command::SamplingConfigure(c) => super::Command::from(c),
+            Command::SamplingStart(c) => super::Command::from(c),
+            Command::SamplingTrigger(c) => super::Command::from(c),
+            Command::SamplingStop(c) => super::Command::from(c),
+            Command::SamplingRead(c) => super::Command::from(c),
         }
     }
 }
@@ -350,6 +380,21 @@ impl From<super::Command> for Command {
             super::Command::Stream(StreamCommand::Clear(c)) => Command::StreamClear(c),
             super::Command::Stream(StreamCommand::Start(c)) => Command::StreamStart(c),
             super::Command::Stream(StreamCommand::PvtMove(c)) => Command::PvtMove(c),
+            super::Command::Compensation(c) => match c {
+                CompensationCommand::LeadScrew(c) => Command::CompensationLeadScrew(c),
+                CompensationCommand::Backlash(c) => Command::CompensationBacklash(c),
+                CompensationCommand::Table(c) => Command::CompensationTable(c),
+                CompensationCommand::Enable(c) => Command::CompensationEnable(c),
+                CompensationCommand::Disable(c) => Command::CompensationDisable(c),
+                CompensationCommand::Clear(c) => Command::CompensationClear(c),
+            },
+            super::Command::Sampling(c) => match c {
+                SamplingCommand::Configure(c) => Command::SamplingConfigure(c),
+                SamplingCommand::Start(c) => Command::SamplingStart(c),
+                SamplingCommand::Trigger(c) => Command::SamplingTrigger(c),
+                SamplingCommand::Stop(c) => Command::SamplingStop(c),
+                SamplingCommand::Read(c) => Command::SamplingRead(c),
+            },
         }
     }
 }

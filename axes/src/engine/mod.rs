@@ -18,12 +18,15 @@ use crate::homing::HomingSpec;
 use crate::od::Value;
 use crate::param::ParamId;
 use crate::rng::Rng;
+use crate::sampling::Samplers;
 use crate::status::{AxisStatus, DriveStatus, IoImage, Snapshot};
 use crate::trigger::{Env as TriggerEnv, Triggers};
 use std::sync::Arc;
 
+mod compensation;
 mod machine;
 mod planner;
+mod sampling;
 mod streams;
 pub use crate::axis::Feed;
 pub use machine::MAX_ATOMIC_COMMANDS;
@@ -126,6 +129,8 @@ pub struct Engine {
     feeds: Feeds,
     /// Capture channels and position-compare outputs (issue 12 items 4–5).
     triggers: Triggers,
+    /// Data sampling (issue 12 item 9): stage 5 records after the axes and drives.
+    samplers: Samplers,
 }
 
 impl Engine {
@@ -198,6 +203,7 @@ impl Engine {
             planners: Vec::new(),
             feeds: Feeds::default(),
             triggers: Triggers::default(),
+            samplers: Samplers::default(),
         })
     }
 
@@ -243,6 +249,8 @@ impl Engine {
             Command::Axis(c) => self.apply_axis_command(c),
             Command::Group(c) => self.apply_group_command(c),
             Command::Coupling(c) => self.apply_coupling_command(c),
+            Command::Compensation(c) => self.apply_compensation_command(c),
+            Command::Sampling(c) => self.apply_sampling_command(c),
             Command::Io(c) => self.apply_io_command(c),
             Command::Trigger(c) => self.with_triggers(|t, env| t.apply(env, c)),
             Command::Slave(c) => self.apply_slave_command(c),
@@ -626,11 +634,13 @@ impl Engine {
     /// 2. `run_planners`: the axis groups (issue 11), in group-number order, then the other
     ///    machine-level planners, feed their axes this tick's setpoints;
     /// 3. `step_axes`: every axis, in index order, or with couplings (issue 12) masters before
-    ///    their slaves, each slave fed from its master's state of this tick; then the capture
-    ///    channels latch this tick's edges and the compare channels fire their outputs (issue 12
-    ///    items 4–5);
+    ///    their slaves, each slave fed from its master's state of this tick (compensation tables
+    ///    first read their reference axes as the previous tick left them:
+    ///    `gather_compensation_inputs`); then the capture channels latch this tick's edges and
+    ///    the compare channels fire their outputs (issue 12 items 4–5);
     /// 4. `step_drives`: the CiA 402 drives see their axes and answer with commands;
-    /// 5. outputs and status: no per-tick work. Outputs change only by command, and status is
+    /// 5. `sample`: armed and recording data samplers read the machine as the tick left it;
+    /// 6. outputs and status: no per-tick work. Outputs change only by command, and status is
     ///    assembled when it is read ([`Engine::snapshot_into`], [`Engine::axis_status`]).
     ///
     /// Commands ([`Engine::apply`]) arrive between steps and act on the state the last step
@@ -639,12 +649,14 @@ impl Engine {
         self.tick += 1;
         self.read_inputs();
         self.run_planners();
+        self.gather_compensation_inputs();
         self.step_axes();
         self.with_triggers(|t, env| t.step(env));
         self.step_drives();
         if self.groups_await_power {
             self.enable_groups_once_powered();
         }
+        self.sample();
     }
 
     /// Add a machine-level planner to stage 2 (see [`MachinePlanner`]). Planners run in the
@@ -822,6 +834,7 @@ impl Engine {
             snapshot.params = Arc::new(self.axes.iter().map(|a| a.params().clone()).collect());
             snapshot.params_version = params_version;
         }
+        self.samplers.status_into(&mut snapshot.samplers);
         snapshot.drives.clear();
         snapshot
             .drives

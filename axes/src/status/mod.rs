@@ -259,6 +259,13 @@ pub struct AxisStatus {
     /// The axis's PT/PVT stream (issue 12 item 3).
     #[serde(default)]
     pub stream: StreamStatus,
+    /// The position sent to the drive: `cmd_pos` (planned) plus `compensation` (issue 12
+    /// item 8; NMC cmdPos vs axisPos, HIMC GetPosOut).
+    #[serde(default)]
+    pub output_pos: f64,
+    /// The correction compensation after the planner adds this tick (HIMC GetCompPos).
+    #[serde(default)]
+    pub compensation: f64,
 }
 
 /// An axis's PT/PVT buffer and run (NMC `MtPtGetSpace`, `MtPtGetStatic`).

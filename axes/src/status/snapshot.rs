@@ -8,6 +8,7 @@ use super::{
     AxisStatus, CaptureStatus, CompareStatus, CouplingStatus, DriveStatus, GroupStatus, IoImage,
 };
 use crate::param::ParamSet;
+use crate::sampling::SamplerStatus;
 
 /// The machine's state after a tick: what front-ends read without waiting for the servo thread.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -33,6 +34,10 @@ pub struct Snapshot {
     /// Changes whenever the I/O image changes: readers (and the snapshot refresh) can skip
     /// comparing images that did not change.
     pub io_version: u64,
+    /// The configured data samplers (issue 12 item 9); their data are read with
+    /// `sampling_read`.
+    #[serde(default)]
+    pub samplers: Vec<SamplerStatus>,
     /// The CiA 402 drives, by slave number.
     pub drives: Vec<DriveStatus>,
     /// Every axis's stored parameters, shared between snapshots until one changes, so that

@@ -17,14 +17,14 @@ use super::error::ApiError;
 use crate::trace::GroupColumns;
 
 /// Default of `[frontends.control] trace_max_rows`: the row cap when a start request gives
-/// none, and the largest it may give — about 130 MB of buffer and about 140 MB of CSV at most.
+/// none, and the largest it may give — about 140 MB of buffer and about 150 MB of CSV at most.
 pub const MAX_TRACE_ROWS: usize = 1_000_000;
 
 /// Rows copied out of the buffer per lock while a trace is read, so a long read never holds
 /// the servo thread up for more than a few microseconds at a time.
 const READ_CHUNK: usize = 8192;
 
-/// One recorded axis at one tick: what a trace row needs, and no more (128 bytes).
+/// One recorded axis at one tick: what a trace row needs, and no more (136 bytes).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TraceRow {
     pub tick: u64,
@@ -43,6 +43,8 @@ pub struct TraceRow {
     pub captures: u32,
     pub capture_position: f64,
     pub compare_outputs: u32,
+    /// The output position is `cmd_pos + compensation` (as the status computes it).
+    pub compensation: f64,
     /// The group columns of a member axis.
     pub group: Option<GroupColumns>,
 }
@@ -66,6 +68,7 @@ impl TraceRow {
             captures: s.captures,
             capture_position: s.capture_position,
             compare_outputs: s.compare_outputs,
+            compensation: s.compensation,
             group,
         }
     }
@@ -88,6 +91,8 @@ impl TraceRow {
             captures: self.captures,
             capture_position: self.capture_position,
             compare_outputs: self.compare_outputs,
+            output_pos: self.cmd_pos + self.compensation,
+            compensation: self.compensation,
             ..AxisStatus::default()
         }
     }
@@ -491,12 +496,14 @@ mod tests {
 
     #[test]
     fn rows_are_compact_and_round_trip_the_columns() {
-        assert!(std::mem::size_of::<TraceRow>() <= 128);
+        assert!(std::mem::size_of::<TraceRow>() <= 136);
         let s = AxisStatus {
             state: AxisState::DiscreteMotion,
             flags: AxisFlags::HOMED | AxisFlags::HW_LIMIT_NEG,
             cmd_pos: 1.5,
             act_pos: 1.25,
+            output_pos: 1.75,
+            compensation: 0.25,
             pulses: -3,
             last_error: Some(ErrorKind::LimitReached),
             ..AxisStatus::default()

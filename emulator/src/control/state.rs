@@ -4,6 +4,7 @@
 use axes::command::CommandId;
 use axes::command::{CoordinateSystem, Direction, ErrorKind};
 use axes::runtime::RuntimeStats;
+use axes::sampling::SamplerStatus;
 use axes::status::{
     AxisState, AxisStatus, CaptureStatus, CommandRef, CompareStatus, CouplingStatus, DriveStatus,
     GroupFault, GroupState, GroupStatus, InterferenceStatus, IoImage, StreamStatus,
@@ -37,6 +38,9 @@ pub struct StateView<'a> {
     pub compares: &'a [CompareStatus],
     pub io: IoView<'a>,
     pub drives: Vec<DriveView>,
+    /// The configured data samplers (`sampling_configure`); their data come from
+    /// `sampling_read`.
+    pub samplers: &'a [SamplerStatus],
     /// The servo runtime's counters and lateness histogram (`axes::runtime::RuntimeStats`).
     pub runtime: RuntimeStats,
     pub trace: TraceStatus,
@@ -60,6 +64,10 @@ pub struct AxisView<'a> {
     pub act_pos: f64,
     pub act_vel: f64,
     pub following_error: f64,
+    /// The position sent to the drive: `cmd_pos` + `compensation`.
+    pub output_pos: f64,
+    /// The correction of compensation after the planner (`compensation_*` commands).
+    pub compensation: f64,
     pub target_pos: f64,
     pub pulses: i64,
     pub pulses_last_tick: i32,
@@ -98,6 +106,8 @@ impl<'a> AxisView<'a> {
             act_pos: s.act_pos,
             act_vel: s.act_vel,
             following_error: s.following_error,
+            output_pos: s.output_pos,
+            compensation: s.compensation,
             target_pos: s.target_pos,
             pulses: s.pulses,
             pulses_last_tick: s.pulses_last_tick,
@@ -258,6 +268,7 @@ pub async fn get_state(State(state): State<ControlState>) -> axum::response::Res
         captures: &snapshot.captures,
         compares: &snapshot.compares,
         io: IoView::from(&snapshot.io),
+        samplers: &snapshot.samplers,
         drives: snapshot
             .drives
             .iter()

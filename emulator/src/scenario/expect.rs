@@ -94,6 +94,10 @@ pub(super) enum Quantity {
     CapturePosition,
     /// Outputs fired by the axis's compare channels (issue 12 item 5).
     CompareOutputs,
+    /// The position sent to the drive (compensation included).
+    OutputPosition,
+    /// The correction of compensation after the planner.
+    Compensation,
 }
 
 impl Quantity {
@@ -107,6 +111,8 @@ impl Quantity {
             Quantity::Captures => "captures",
             Quantity::CapturePosition => "capture_position",
             Quantity::CompareOutputs => "compare_outputs",
+            Quantity::OutputPosition => "output_position",
+            Quantity::Compensation => "compensation",
         }
     }
 
@@ -120,6 +126,8 @@ impl Quantity {
             Quantity::Captures => f64::from(s.captures),
             Quantity::CapturePosition => s.capture_position,
             Quantity::CompareOutputs => f64::from(s.compare_outputs),
+            Quantity::OutputPosition => s.output_pos,
+            Quantity::Compensation => s.compensation,
         }
     }
 }
@@ -237,6 +245,8 @@ impl Expectation {
             (Quantity::Captures, spec.captures),
             (Quantity::CapturePosition, spec.capture_position),
             (Quantity::CompareOutputs, spec.compare_outputs),
+            (Quantity::OutputPosition, spec.output_position),
+            (Quantity::Compensation, spec.compensation),
         ] {
             if let Some(v) = v {
                 if !v.is_finite() {
@@ -262,8 +272,8 @@ impl Expectation {
             return Err((
                 "tolerance",
                 "applies to position, velocity, command_position, command_velocity, \
-                 following_error, captures, capture_position, compare_outputs or \
-                 group_position, and none is given"
+                 following_error, captures, capture_position, compare_outputs, output_position, \
+                 compensation or group_position, and none is given"
                     .into(),
             ));
         }
@@ -318,8 +328,8 @@ impl Expectation {
                 "axis",
                 "no condition on it: give state, position, velocity, command_position, \
                  command_velocity, following_error, captures, capture_position, \
-                 compare_outputs, flags, not_flags, error, coupling, stream_space, stream_used, \
-                 stream_running or stream_underruns"
+                 compare_outputs, output_position, compensation, flags, not_flags, error, \
+                 coupling, stream_space, stream_used, stream_running or stream_underruns"
                     .into(),
             ));
         }

@@ -88,6 +88,12 @@ pub(super) struct ExpectSpec {
     /// Outputs fired by the compare channels on the axis (`compare_start`).
     #[serde(default)]
     pub compare_outputs: Option<f64>,
+    /// The position sent to the drive (`output_pos`: planned + compensation).
+    #[serde(default)]
+    pub output_position: Option<f64>,
+    /// The correction of compensation after the planner.
+    #[serde(default)]
+    pub compensation: Option<f64>,
     /// Allowed |seen − expected| of the numbers above; 0 (exact) when absent.
     #[serde(default)]
     pub tolerance: Option<f64>,

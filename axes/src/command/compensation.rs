@@ -1,0 +1,164 @@
+//! Compensation commands (issue 12 item 8): corrections added after the planner to what an
+//! axis sends to its drive (digest 001 §2.19 and §4.1, digest 004 §2.13).
+//!
+//! `compensation_lead_screw`, `compensation_backlash` and `compensation_table` each install
+//! one table of their kind on an axis (replacing that kind's previous table); the kinds add up. `compensation_enable` / `compensation_disable` switch all of the
+//! axis's tables on and off; `compensation_clear` removes them.
+
+use serde::{Deserialize, Serialize};
+
+use super::{command_from, AxisIndex};
+
+/// NMC lead-screw compensation (MtSetLeadScrewCompPara + MtEnableLeadScrew, S-LEADSCREW): a
+/// correction per planned position, one table while moving positive and one while moving
+/// negative, interpolated linearly, the end value held outside.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CompensationLeadScrew {
+    pub axis: AxisIndex,
+    /// Strictly increasing planned positions, at least 2.
+    pub positions: Vec<f64>,
+    /// Correction at each position while moving positive.
+    pub positive: Vec<f64>,
+    /// Correction at each position while moving negative; the positive table if absent.
+    #[serde(default)]
+    pub negative: Option<Vec<f64>>,
+    /// Switch the axis's compensation on at once (default); `false` only stores the table.
+    #[serde(default = "yes")]
+    pub enable: bool,
+}
+
+/// NMC backlash (MtSetBacklash, TV 72): while the planned motion goes in `direction`, an extra
+/// `amount` is added, reached at `step` per servo period; moving the other way takes it back at
+/// the same rate.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CompensationBacklash {
+    pub axis: AxisIndex,
+    /// User units, ≥ 0; 0 removes the backlash compensation.
+    pub amount: f64,
+    /// User units per servo period, > 0 (NMC compDelta: 1000 / 200 ⇒ 5 periods).
+    pub step: f64,
+    #[serde(default)]
+    pub direction: BacklashDirection,
+    #[serde(default = "yes")]
+    pub enable: bool,
+}
+
+/// A uniform 1/2/3-D grid: the correction of `axis` from the positions of 1–3 reference axes
+/// (HIMC SetupComp/SetupComp2D/SetupComp3D; NMC 2-D table, S-2DCOMP, one table per corrected
+/// axis). `values` lists the grid points with the first reference varying fastest.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CompensationTable {
+    pub axis: AxisIndex,
+    pub references: Vec<CompensationReference>,
+    /// Grid position of the first point, per reference.
+    pub start: Vec<f64>,
+    /// Grid spacing, per reference, > 0.
+    pub step: Vec<f64>,
+    /// Points per reference, ≥ 2.
+    pub count: Vec<u32>,
+    pub values: Vec<f64>,
+    #[serde(default = "yes")]
+    pub enable: bool,
+}
+
+fn yes() -> bool {
+    true
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CompensationKind {
+    LeadScrew,
+    Backlash,
+    Table,
+}
+
+/// NMC compDir: 0 positive, 1 negative.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BacklashDirection {
+    #[default]
+    Positive,
+    Negative,
+}
+
+/// A reference axis of a grid table and which of its positions is read (NMC
+/// `T2DCompensation.axisType`: 0 planned, 1 encoder).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CompensationReference {
+    pub axis: AxisIndex,
+    #[serde(default)]
+    pub source: ReferenceSource,
+}
+
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ReferenceSource {
+    /// The planned position (before compensation).
+    #[default]
+    Planned,
+    /// The actual (encoder) position.
+    Actual,
+}
+
+/// Switch the axis's compensation tables on (NMC MtEnableLeadScrew 1, HIMC EnableComp).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CompensationEnable {
+    pub axis: AxisIndex,
+}
+
+/// Switch them off; the correction steps back to 0 (NMC MtEnableLeadScrew 0).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CompensationDisable {
+    pub axis: AxisIndex,
+}
+
+/// Remove every table of the axis (HIMC DisableComp clears the setup).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CompensationClear {
+    pub axis: AxisIndex,
+}
+
+/// The compensation family.
+#[derive(Clone, Debug, PartialEq)]
+pub enum CompensationCommand {
+    LeadScrew(CompensationLeadScrew),
+    Backlash(CompensationBacklash),
+    Table(CompensationTable),
+    Enable(CompensationEnable),
+    Disable(CompensationDisable),
+    Clear(CompensationClear),
+}
+
+impl CompensationCommand {
+    pub fn axis(&self) -> AxisIndex {
+        match self {
+            CompensationCommand::LeadScrew(c) => c.axis,
+            CompensationCommand::Backlash(c) => c.axis,
+            CompensationCommand::Table(c) => c.axis,
+            CompensationCommand::Enable(c) => c.axis,
+            CompensationCommand::Disable(c) => c.axis,
+            CompensationCommand::Clear(c) => c.axis,
+        }
+    }
+}
+
+command_from!(
+    CompensationCommand,
+    Compensation,
+    [
+        CompensationLeadScrew => LeadScrew,
+        CompensationBacklash => Backlash,
+        CompensationTable => Table,
+        CompensationEnable => Enable,
+        CompensationDisable => Disable,
+        CompensationClear => Clear,
+    ]
+);
