@@ -8,11 +8,10 @@ mod common;
 
 use axes::command::{
     Command, Direction, Disable, EngineError, GearIn, GearOut, GearSetRatio, MasterSource,
-    MoveAbsolute,
 };
 use axes::status::{CouplingKind, CouplingPhase};
 use axes::{AxisFlags, AxisState, Engine};
-use common::{move_rel_of, ok, refused, run};
+use common::{move_abs_of, move_rel_of, ok, refused, run};
 use proptest::prelude::*;
 
 fn machine(n: usize) -> Engine {
@@ -30,18 +29,6 @@ fn gear(master: u16, slave: u16, numerator: f64, denominator: f64) -> GearIn {
         acceleration: None,
         direction: None,
     }
-}
-
-fn move_abs(axis: u16, position: f64) -> Command {
-    Command::from(MoveAbsolute {
-        axis,
-        position,
-        velocity: None,
-        acceleration: None,
-        deceleration: None,
-        jerk: None,
-        buffer_mode: Default::default(),
-    })
 }
 
 fn cmd(e: &Engine, axis: usize) -> f64 {
@@ -117,7 +104,7 @@ fn himc_gear_in_with_four_ratios_tv34() {
     for (slave, ratio) in [(1, 1.0), (2, 2.0), (3, 4.0), (4, -1.0)] {
         ok(&mut e, Command::from(gear(0, slave, ratio, 1.0)));
     }
-    ok(&mut e, move_abs(0, 100.0));
+    ok(&mut e, move_abs_of(0, 100.0));
     settle(&mut e, 5.0);
     for (axis, want) in [(1, 100.0), (2, 200.0), (3, 400.0), (4, -100.0)] {
         assert!((cmd(&e, axis) - want).abs() < 1e-9, "axis {axis}");

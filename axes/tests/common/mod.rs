@@ -131,15 +131,7 @@ pub fn force(e: &mut Engine, input: AxisInput, value: Option<bool>) {
 }
 
 pub fn move_abs(position: f64) -> Command {
-    Command::from(MoveAbsolute {
-        axis: 0,
-        position,
-        velocity: None,
-        acceleration: None,
-        deceleration: None,
-        jerk: None,
-        buffer_mode: Default::default(),
-    })
+    move_abs_of(0, position)
 }
 
 pub fn move_rel_buffered(distance: f64) -> Command {
@@ -396,6 +388,19 @@ pub fn enabled_machine(axis: AxisConfig, n: usize) -> Engine {
         ok(&mut e, Command::from(Enable { axis }));
     }
     e
+}
+
+/// `move_absolute` of `axis`, aborting, with the axis's own limits.
+pub fn move_abs_of(axis: u16, position: f64) -> Command {
+    Command::from(MoveAbsolute {
+        axis,
+        position,
+        velocity: None,
+        acceleration: None,
+        deceleration: None,
+        jerk: None,
+        buffer_mode: Default::default(),
+    })
 }
 
 /// `move_relative` of `axis`, aborting, with the axis's own limits.
