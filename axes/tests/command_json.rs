@@ -5,6 +5,8 @@
 //! `type`, a missing or an unknown field are pinned too: the control API and the scenario loader
 //! show them to users, and the control API reads the field name out of them.
 
+mod common;
+
 use axes::command::{
     AxisInput, BufferMode, Cancel, CancelScope, Command, Disable, DisableAll, EmergencyStopAll,
     Enable, EnableAll, ForceAnalogInput, ForceDigitalInput, ForceInput, GetCommandState,
@@ -21,6 +23,7 @@ use axes::command::{
 use axes::homing::{AfterHome, HomingQuirks, Latch};
 use axes::od::Value;
 use axes::ParamId;
+use common::assert_pinned;
 
 /// Every variant with all fields set to non-default values, and its JSON.
 fn full() -> Vec<(Command, &'static str)> {
@@ -673,14 +676,7 @@ fn every_variant_serializes_to_its_pinned_json_and_back() {
         42,
         "one case per variant but the group commands (group_json.rs)"
     );
-    for (command, json) in cases {
-        assert_eq!(serde_json::to_string(&command).unwrap(), json);
-        assert_eq!(
-            serde_json::from_str::<Command>(json).unwrap(),
-            command,
-            "{json}"
-        );
-    }
+    assert_pinned(cases);
 }
 
 #[test]
@@ -870,17 +866,4 @@ fn sampling_commands_keep_their_json() {
             .starts_with("unknown variant `torque`, expected one of `planned_position`"),
         "{e}"
     );
-}
-
-/// Each command serializes to its JSON and the JSON reads back as the command.
-#[allow(clippy::unwrap_used)] // a test helper: failing loudly is the point
-fn assert_pinned(cases: Vec<(Command, &'static str)>) {
-    for (command, json) in cases {
-        assert_eq!(serde_json::to_string(&command).unwrap(), json);
-        assert_eq!(
-            serde_json::from_str::<Command>(json).unwrap(),
-            command,
-            "{json}"
-        );
-    }
 }

@@ -4,6 +4,8 @@
 //! clutch, linear table, relative single cam started at once, scalings 1).
 #![allow(clippy::unwrap_used)]
 
+mod common;
+
 use axes::command::{
     CamIn, CamInterpolation, CamOut, CamPoint, CamTableDefine, Command, Direction, FollowSegment,
     GearIn, GearOut, GearSetRatio, MasterSource,
@@ -86,14 +88,7 @@ fn full() -> Vec<(Command, &'static str)> {
 fn every_coupling_command_serializes_to_its_pinned_json_and_back() {
     let cases = full();
     assert_eq!(cases.len(), 6, "one case per coupling command");
-    for (command, json) in cases {
-        assert_eq!(serde_json::to_string(&command).unwrap(), json);
-        assert_eq!(
-            serde_json::from_str::<Command>(json).unwrap(),
-            command,
-            "{json}"
-        );
-    }
+    common::assert_pinned(cases);
 }
 
 #[test]

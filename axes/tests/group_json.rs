@@ -4,6 +4,8 @@
 //! transition, centre mode, counter-clockwise …).
 #![allow(clippy::unwrap_used)]
 
+mod common;
+
 use axes::command::{
     ArcDirection, CircleMode, Command, CoordinateSet, GroupAxisMove, GroupBufferMode,
     GroupContinue, GroupCreate, GroupDelete, GroupDisable, GroupDwell, GroupEmergencyStop,
@@ -349,14 +351,7 @@ fn full() -> Vec<(Command, &'static str)> {
 fn every_group_command_serializes_to_its_pinned_json_and_back() {
     let cases = full();
     assert_eq!(cases.len(), 33, "one case per group command");
-    for (command, json) in cases {
-        assert_eq!(serde_json::to_string(&command).unwrap(), json);
-        assert_eq!(
-            serde_json::from_str::<Command>(json).unwrap(),
-            command,
-            "{json}"
-        );
-    }
+    common::assert_pinned(cases);
 }
 
 #[test]

@@ -427,3 +427,15 @@ pub fn jog_of(axis: u16, velocity: f64) -> Command {
         buffer_mode: Default::default(),
     })
 }
+
+/// Each command serializes to its pinned JSON, and that JSON reads back as the command.
+pub fn assert_pinned(cases: Vec<(Command, &'static str)>) {
+    for (command, json) in cases {
+        assert_eq!(serde_json::to_string(&command).unwrap(), json);
+        assert_eq!(
+            serde_json::from_str::<Command>(json).unwrap(),
+            command,
+            "{json}"
+        );
+    }
+}
