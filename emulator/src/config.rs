@@ -253,7 +253,20 @@ impl Config {
     /// Parse config text, apply `overrides` (`key.path=value`, as `mcemu run --set` takes them:
     /// the value is TOML, or a bare string), then check it. `file` names it in errors.
     pub fn parse_with(text: &str, file: &str, overrides: &[String]) -> Result<Config, ConfigError> {
-        if overrides.is_empty() {
+        Config::parse_for_run(text, file, false, overrides)
+    }
+
+    /// [`Config::parse_with`], and first, with `any_port`, every front-end's TCP `bind` moved to
+    /// port 0 on its host (`mcemu run --any-port`): each listener gets a free port and its
+    /// `listening:` line says which. Test harnesses start machines side by side this way without
+    /// knowing which front-ends a config has. `--set` still overrides a `bind` afterwards.
+    pub fn parse_for_run(
+        text: &str,
+        file: &str,
+        any_port: bool,
+        overrides: &[String],
+    ) -> Result<Config, ConfigError> {
+        if overrides.is_empty() && !any_port {
             return Config::parse(text, file);
         }
         let error = |key: &str, reason: String| ConfigError {
@@ -264,6 +277,9 @@ impl Config {
         let mut table: toml::Table = text
             .parse()
             .map_err(|e: toml::de::Error| error("", e.to_string().trim_end().to_string()))?;
+        if any_port {
+            bind_any_port(&mut table);
+        }
         for o in overrides {
             let (key, value) = o.split_once('=').ok_or_else(|| {
                 error(
@@ -299,7 +315,12 @@ impl Config {
             at.insert(last.to_string(), value);
         }
         let text = toml::to_string(&table).map_err(|e| error("", e.to_string()))?;
-        Config::parse(&text, &format!("{file} with --set"))
+        let with = match (any_port, overrides.is_empty()) {
+            (true, true) => "--any-port",
+            (true, false) => "--any-port and --set",
+            (false, _) => "--set",
+        };
+        Config::parse(&text, &format!("{file} with {with}"))
     }
 
     /// Parse and check config text; `file` names it in errors.
@@ -434,9 +455,45 @@ impl Config {
     }
 }
 
+/// Every `frontends.<name>.bind = "host:port"` becomes `"host:0"`. Values that are not a
+/// `host:port` string are left for the config check to report.
+fn bind_any_port(table: &mut toml::Table) {
+    let Some(frontends) = table.get_mut("frontends").and_then(|f| f.as_table_mut()) else {
+        return;
+    };
+    for (_, section) in frontends.iter_mut() {
+        let Some(bind) = section.as_table_mut().and_then(|s| s.get_mut("bind")) else {
+            continue;
+        };
+        if let Some((host, port)) = bind.as_str().and_then(|b| b.rsplit_once(':')) {
+            if port.parse::<u16>().is_ok() {
+                *bind = toml::Value::String(format!("{host}:0"));
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn any_port_moves_every_tcp_bind_to_port_0_and_set_still_wins() {
+        let text = "[machine]\nname = \"m\"\n[[axes]]\nname = \"x\"\n\
+            [frontends.control]\nbind = \"127.0.0.1:8700\"\n\
+            [frontends.modbus_tcp]\nbind = \"127.0.0.2:1502\"\n\
+            [frontends.modbus_rtu_over_tcp]\nbind = \"127.0.0.1:1503\"\n";
+        let set = ["frontends.modbus_rtu_over_tcp.bind=127.0.0.1:4711".to_string()];
+        let config = Config::parse_for_run(text, "m.toml", true, &set).unwrap();
+        let f = &config.frontends;
+        assert_eq!(f.control.bind.to_string(), "127.0.0.1:0");
+        let tcp = f.modbus_tcp.as_ref().map(|m| m.bind.to_string());
+        assert_eq!(tcp.as_deref(), Some("127.0.0.2:0"), "the host is kept");
+        let rtu = f.modbus_rtu_over_tcp.as_ref().map(|m| m.bind.to_string());
+        assert_eq!(rtu.as_deref(), Some("127.0.0.1:4711"), "--set wins");
+        let plain = Config::parse_for_run(text, "m.toml", false, &[]).unwrap();
+        assert_eq!(plain.frontends.control.bind.to_string(), "127.0.0.1:8700");
+    }
 
     #[test]
     fn the_embedded_default_machine_is_valid() {

@@ -40,6 +40,10 @@ enum Cmd {
         /// TOML (numbers, booleans, strings); repeat for more keys.
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
+        /// Bind every TCP listener of the config to a free port on its host (port 0); the
+        /// `listening:` lines say which. For test harnesses; `--set` still overrides a bind.
+        #[arg(long)]
+        any_port: bool,
     },
     /// Check config files without running them.
     Validate {
@@ -91,6 +95,7 @@ fn main() -> ExitCode {
             period,
             state_dir,
             set,
+            any_port,
         } => {
             let (loaded, file) = match &config {
                 Some(path) => (
@@ -101,12 +106,22 @@ fn main() -> ExitCode {
                             reason: format!("cannot read it: {e}"),
                         })
                         .and_then(|text| {
-                            Config::parse_with(&text, &path.display().to_string(), &set)
+                            Config::parse_for_run(
+                                &text,
+                                &path.display().to_string(),
+                                any_port,
+                                &set,
+                            )
                         }),
                     path.display().to_string(),
                 ),
                 None => (
-                    Config::parse_with(mcemu::config::DEFAULT_CONFIG, DEFAULT_CONFIG_NAME, &set),
+                    Config::parse_for_run(
+                        mcemu::config::DEFAULT_CONFIG,
+                        DEFAULT_CONFIG_NAME,
+                        any_port,
+                        &set,
+                    ),
                     DEFAULT_CONFIG_NAME.to_string(),
                 ),
             };
