@@ -23,6 +23,44 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 pub const DEFAULT_CONFIG: &str = include_str!("../../fixtures/default.toml");
 pub const DEFAULT_CONFIG_NAME: &str = "fixtures/default.toml (embedded)";
 
+/// The machines of `fixtures/`, embedded so that `mcemu run --machine NAME` needs no checkout
+/// (an installed binary, the Python package): (name, config text).
+pub const SHIPPED_MACHINES: &[(&str, &str)] = &[
+    ("default", DEFAULT_CONFIG),
+    ("cia402-can", include_str!("../../fixtures/cia402-can.toml")),
+    ("cpu226h", include_str!("../../fixtures/cpu226h.toml")),
+    (
+        "gaochuan-gcn",
+        include_str!("../../fixtures/gaochuan-gcn.toml"),
+    ),
+    ("himc", include_str!("../../fixtures/himc.toml")),
+    (
+        "hollysys-mc",
+        include_str!("../../fixtures/hollysys-mc.toml"),
+    ),
+];
+
+/// A shipped machine's config text and the name errors give it
+/// (`fixtures/himc.toml (embedded)`), or an error listing the shipped names.
+pub fn shipped_machine(name: &str) -> Result<(&'static str, String), ConfigError> {
+    SHIPPED_MACHINES
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|(n, text)| (*text, format!("fixtures/{n}.toml (embedded)")))
+        .ok_or_else(|| ConfigError {
+            file: "the command line".into(),
+            key: "--machine".into(),
+            reason: format!(
+                "`{name}` is not a shipped machine ({})",
+                SHIPPED_MACHINES
+                    .iter()
+                    .map(|(n, _)| *n)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        })
+}
+
 /// A machine config file. Every section is optional; unknown keys are errors.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
@@ -476,6 +514,23 @@ fn bind_any_port(table: &mut toml::Table) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn every_shipped_machine_is_valid_and_an_unknown_name_lists_them() {
+        for (name, text) in SHIPPED_MACHINES {
+            let file = format!("fixtures/{name}.toml");
+            if let Err(e) = Config::parse(text, &file) {
+                panic!("{e}");
+            }
+        }
+        let e = shipped_machine("gcn").unwrap_err();
+        assert_eq!(e.key, "--machine");
+        assert!(e.reason.contains("gaochuan-gcn, himc"), "{}", e.reason);
+        assert_eq!(
+            shipped_machine("himc").unwrap().1,
+            "fixtures/himc.toml (embedded)"
+        );
+    }
 
     #[test]
     fn any_port_moves_every_tcp_bind_to_port_0_and_set_still_wins() {

@@ -23,9 +23,14 @@ struct Cli {
 enum Cmd {
     /// Run a machine and serve its front-ends until SIGINT/SIGTERM.
     Run {
-        /// Machine config (TOML); without it, the embedded default machine.
+        /// Machine config (TOML); without it (and without --machine), the embedded default
+        /// machine.
         #[arg(long)]
         config: Option<PathBuf>,
+        /// A shipped machine by name, embedded in the binary: default, cia402-can, cpu226h,
+        /// gaochuan-gcn, himc, hollysys-mc (the files of `fixtures/`).
+        #[arg(long, conflicts_with = "config")]
+        machine: Option<String>,
         /// Override the config's clock: realtime, virtual or scaled:K.
         #[arg(long)]
         clock: Option<ClockSetting>,
@@ -91,40 +96,33 @@ fn main() -> ExitCode {
     match cli.command {
         Cmd::Run {
             config,
+            machine,
             clock,
             period,
             state_dir,
             set,
             any_port,
         } => {
-            let (loaded, file) = match &config {
-                Some(path) => (
-                    std::fs::read_to_string(path)
-                        .map_err(|e| mcemu::config::ConfigError {
-                            file: path.display().to_string(),
-                            key: String::new(),
-                            reason: format!("cannot read it: {e}"),
-                        })
-                        .and_then(|text| {
-                            Config::parse_for_run(
-                                &text,
-                                &path.display().to_string(),
-                                any_port,
-                                &set,
-                            )
-                        }),
-                    path.display().to_string(),
-                ),
-                None => (
-                    Config::parse_for_run(
-                        mcemu::config::DEFAULT_CONFIG,
-                        DEFAULT_CONFIG_NAME,
-                        any_port,
-                        &set,
-                    ),
+            let source = match (&config, &machine) {
+                (Some(path), _) => std::fs::read_to_string(path)
+                    .map(|text| (text, path.display().to_string()))
+                    .map_err(|e| mcemu::config::ConfigError {
+                        file: path.display().to_string(),
+                        key: String::new(),
+                        reason: format!("cannot read it: {e}"),
+                    }),
+                (None, Some(name)) => mcemu::config::shipped_machine(name)
+                    .map(|(text, file)| (text.to_string(), file)),
+                (None, None) => Ok((
+                    mcemu::config::DEFAULT_CONFIG.to_string(),
                     DEFAULT_CONFIG_NAME.to_string(),
-                ),
+                )),
             };
+            let (text, file) = match source {
+                Ok(s) => s,
+                Err(e) => return fail(&e),
+            };
+            let loaded = Config::parse_for_run(&text, &file, any_port, &set);
             let mut config = match loaded {
                 Ok(c) => c,
                 Err(e) => return fail(&e),
