@@ -3,22 +3,17 @@
 //! lines read, its control API at hand, stopped with SIGTERM or killed on drop.
 
 use std::collections::BTreeMap;
-use std::io::{BufRead, BufReader, Read};
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitStatus, Stdio};
-use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::{mpsc, Arc, Mutex, OnceLock};
+use std::sync::OnceLock;
 use std::thread;
 use std::time::{Duration, Instant, SystemTime};
 
 use serde_json::Value;
 
-use crate::{workspace_root, KillOnDrop, READY_TIMEOUT};
+use crate::{workspace_root, READY_TIMEOUT};
 
-/// How long `mcemu` may take to stop after SIGTERM.
-pub const STOP_TIMEOUT: Duration = Duration::from_secs(30);
-/// Bound of one control API request.
-const HTTP_TIMEOUT: Duration = Duration::from_secs(60);
+pub use mcemu_harness::STOP_TIMEOUT;
 
 /// The `mcemu` binary of this build: `$MCEMU_BIN` if set, else `mcemu` in the profile directory
 /// of the running test executable (`target/debug/`), built first with `cargo build -p mcemu
@@ -199,223 +194,79 @@ fn build_mcemu(profile_dir: &Path) {
 
 /// A directory under the system's temp directory, removed (with its contents) on drop.
 #[derive(Debug)]
-pub struct TempDir(PathBuf);
+pub struct TempDir(mcemu_harness::TempDir);
 
 impl TempDir {
     pub fn new(label: &str) -> TempDir {
-        static N: AtomicUsize = AtomicUsize::new(0);
-        let nanos = SystemTime::now()
-            .duration_since(SystemTime::UNIX_EPOCH)
-            .map_or(0, |d| d.subsec_nanos());
-        let path = std::env::temp_dir().join(format!(
-            "mcemu-tests-{label}-{}-{}-{nanos}",
-            std::process::id(),
-            N.fetch_add(1, Ordering::Relaxed)
-        ));
-        std::fs::create_dir_all(&path)
-            .unwrap_or_else(|e| panic!("cannot create {}: {e}", path.display()));
-        TempDir(path)
+        TempDir(
+            mcemu_harness::TempDir::new(&format!("tests-{label}"))
+                .unwrap_or_else(|e| panic!("{e}")),
+        )
     }
 
     pub fn path(&self) -> &Path {
-        &self.0
-    }
-}
-
-impl Drop for TempDir {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
+        self.0.path()
     }
 }
 
 /// How a stopped `mcemu` ended.
-#[derive(Debug)]
-pub struct McemuExit {
-    pub status: ExitStatus,
-    /// Every line it printed on stdout.
-    pub stdout: Vec<String>,
-    pub stderr: String,
-}
+pub type McemuExit = mcemu_harness::Exit;
 
-/// A running `mcemu run`, killed on drop.
+/// A running `mcemu run` (the users' harness, `mcemu_harness::Machine`, with this workspace's
+/// binary), killed on drop. Its helpers panic with the request and reply: a failed call fails
+/// the test that made it.
 pub struct Mcemu {
-    process: KillOnDrop,
+    machine: mcemu_harness::Machine,
     /// `listening:` lines in order: (protocol, address), e.g. ("modbus-tcp", "127.0.0.1:4711").
     pub listeners: Vec<(String, String)>,
     /// `http://127.0.0.1:PORT/api/v1`.
     pub api: String,
     /// The state directory it was given.
     pub state_dir: PathBuf,
-    agent: ureq::Agent,
-    stdout: Arc<Mutex<Vec<String>>>,
-    stdout_done: mpsc::Receiver<()>,
-    stderr: Arc<Mutex<Vec<u8>>>,
-    stderr_reader: Option<thread::JoinHandle<()>>,
-    _temp: Option<TempDir>,
 }
 
 impl std::fmt::Debug for Mcemu {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Mcemu")
-            .field("pid", &self.process.id())
-            .field("listeners", &self.listeners)
-            .field("api", &self.api)
-            .finish_non_exhaustive()
+        self.machine.fmt(f)
     }
 }
 
-/// The `[frontends.X]` sections a config has (a `--set X.bind=…` for a section it lacks would
-/// add an enabled front-end).
-fn has_section(config_text: &str, section: &str) -> bool {
-    let header = format!("[frontends.{section}]");
-    config_text
-        .lines()
-        .any(|l| l.trim_start().starts_with(&header))
-}
-
 impl Mcemu {
-    /// `mcemu run [--config CONFIG] ARGS…` with, before `args` (which may override them): the
-    /// control API, every TCP Modbus section and the socketcand server of the config on
-    /// `127.0.0.1:0`, and a fresh temporary `--state-dir` unless `args` has one. Returns once
-    /// the control API's `listening:` line (printed last, so every listener is up) has been
-    /// read; panics with what the process printed if it exits or stays silent first.
+    /// `mcemu run [--config CONFIG] ARGS…` on the realtime clock unless `args` says otherwise,
+    /// with every TCP listener of the config on a free port (`--any-port`; `args` may pin one
+    /// with `--set`) and a fresh temporary `--state-dir` unless `args` has one. Returns once the
+    /// control API's `listening:` line (printed last, so every listener is up) has been read;
+    /// panics with what the process printed if it exits or stays silent first.
     pub fn start(config: Option<&Path>, args: &[&str]) -> Mcemu {
-        let text = match config {
-            Some(path) => std::fs::read_to_string(path)
-                .unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display())),
-            // The embedded default machine is this file.
-            None => std::fs::read_to_string(workspace_root().join("fixtures/default.toml"))
-                .expect("fixtures/default.toml"),
-        };
-        let mut command = Command::new(mcemu_bin());
-        command.arg("run");
+        let mut options = mcemu_harness::Options::new(mcemu_bin())
+            .clock(None)
+            .ready_timeout(READY_TIMEOUT)
+            .args(args.iter().copied());
         if let Some(path) = config {
-            command.arg("--config").arg(path);
+            options = options.config(path);
         }
-        command.args(["--set", "frontends.control.bind=127.0.0.1:0"]);
-        for section in ["modbus_tcp", "modbus_rtu_over_tcp", "socketcand"] {
-            if has_section(&text, section) {
-                command.args(["--set", &format!("frontends.{section}.bind=127.0.0.1:0")]);
-            }
-        }
-        let mut temp = None;
-        let state_dir = match args.iter().position(|a| *a == "--state-dir") {
-            Some(i) => PathBuf::from(args.get(i + 1).expect("--state-dir DIR")),
-            None => {
-                let dir = TempDir::new("state");
-                let path = dir.path().to_path_buf();
-                command.arg("--state-dir").arg(&path);
-                temp = Some(dir);
-                path
-            }
-        };
-        command.args(args);
-        let what = format!("{command:?}");
-        let mut child = command
-            .stdin(Stdio::null())
-            .stdout(Stdio::piped())
-            .stderr(Stdio::piped())
-            .spawn()
-            .unwrap_or_else(|e| panic!("cannot start {what}: {e}"));
-        let out = child.stdout.take().expect("piped stdout");
-        let mut err = child.stderr.take().expect("piped stderr");
-        let process = KillOnDrop {
-            child,
-            stderr: None,
-        };
-        let stderr = Arc::new(Mutex::new(Vec::new()));
-        let stderr_sink = Arc::clone(&stderr);
-        let stderr_reader = thread::spawn(move || {
-            let mut buf = [0u8; 4096];
-            while let Ok(n) = err.read(&mut buf) {
-                if n == 0 {
-                    break;
-                }
-                if let Ok(mut s) = stderr_sink.lock() {
-                    s.extend_from_slice(&buf[..n]);
-                }
-            }
-        });
-        let stdout = Arc::new(Mutex::new(Vec::new()));
-        let stdout_sink = Arc::clone(&stdout);
-        let (line_tx, lines) = mpsc::channel::<String>();
-        let (done_tx, stdout_done) = mpsc::channel();
-        thread::spawn(move || {
-            for line in BufReader::new(out).lines().map_while(Result::ok) {
-                if let Ok(mut s) = stdout_sink.lock() {
-                    s.push(line.clone());
-                }
-                let _ = line_tx.send(line);
-            }
-            let _ = done_tx.send(());
-        });
-        let agent: ureq::Agent = ureq::Agent::config_builder()
-            .http_status_as_error(false)
-            .timeout_global(Some(HTTP_TIMEOUT))
-            .build()
-            .into();
-        let mut mcemu = Mcemu {
-            process,
-            listeners: Vec::new(),
-            api: String::new(),
-            state_dir,
-            agent,
-            stdout,
-            stdout_done,
-            stderr,
-            stderr_reader: Some(stderr_reader),
-            _temp: temp,
-        };
-        let deadline = Instant::now() + READY_TIMEOUT;
-        loop {
-            let left = deadline.saturating_duration_since(Instant::now());
-            match lines.recv_timeout(left) {
-                Ok(line) => {
-                    let Some(rest) = line.strip_prefix("listening: ") else {
-                        continue;
-                    };
-                    let (protocol, address) = rest
-                        .split_once(' ')
-                        .unwrap_or_else(|| panic!("malformed line `{line}`"));
-                    mcemu
-                        .listeners
-                        .push((protocol.to_string(), address.trim().to_string()));
-                    if protocol == "control" {
-                        mcemu.api = format!("http://{}/api/v1", address.trim());
-                        return mcemu;
-                    }
-                }
-                Err(e) => {
-                    let why = match e {
-                        mpsc::RecvTimeoutError::Timeout => {
-                            format!("printed no `listening: control` within {READY_TIMEOUT:?}")
-                        }
-                        mpsc::RecvTimeoutError::Disconnected => {
-                            format!("exited ({:?})", mcemu.process.try_wait())
-                        }
-                    };
-                    mcemu.process.kill();
-                    let _ = mcemu.stderr_reader.take().map(|h| h.join());
-                    panic!(
-                        "{what} {why}\n--- stdout\n{}\n--- stderr\n{}",
-                        mcemu.stdout_text(),
-                        mcemu.stderr_text()
-                    );
-                }
-            }
+        let machine = options.start().unwrap_or_else(|e| panic!("{e}"));
+        Mcemu {
+            listeners: machine.listeners.clone(),
+            api: machine.api.clone(),
+            state_dir: machine.state_dir.clone().unwrap_or_default(),
+            machine,
         }
     }
 
     pub fn pid(&self) -> u32 {
-        self.process.id()
+        self.machine.pid()
+    }
+
+    /// Whether it has exited, and how.
+    pub fn try_wait(&mut self) -> Option<ExitStatus> {
+        self.machine.try_wait()
     }
 
     /// The address of the `listening: PROTOCOL ADDRESS` line (a pty path for `modbus-rtu`).
     pub fn address(&self, protocol: &str) -> &str {
-        self.listeners
-            .iter()
-            .find(|(p, _)| p == protocol)
-            .map(|(_, a)| a.as_str())
+        self.machine
+            .address(protocol)
             .unwrap_or_else(|| panic!("no `listening: {protocol}` line in {:?}", self.listeners))
     }
 
@@ -435,53 +286,29 @@ impl Mcemu {
 
     /// Everything printed on stdout so far.
     pub fn stdout_text(&self) -> String {
-        self.stdout.lock().map(|s| s.join("\n")).unwrap_or_default()
+        self.machine.stdout_text()
     }
 
     /// Everything printed on stderr so far.
     pub fn stderr_text(&self) -> String {
-        self.stderr
-            .lock()
-            .map(|s| String::from_utf8_lossy(&s).into_owned())
-            .unwrap_or_default()
-    }
-
-    fn reply(
-        &self,
-        what: &str,
-        response: Result<ureq::http::Response<ureq::Body>, ureq::Error>,
-    ) -> (u16, Value) {
-        let mut response = response.unwrap_or_else(|e| panic!("{what}: {e}"));
-        let status = response.status().as_u16();
-        let body = response
-            .body_mut()
-            .with_config()
-            .limit(64 << 20)
-            .read_to_string()
-            .unwrap_or_else(|e| panic!("{what}: reading the body: {e}"));
-        let json = serde_json::from_str(&body)
-            .unwrap_or_else(|e| panic!("{what}: not JSON ({e}): {status} {body}"));
-        (status, json)
+        self.machine.stderr_text()
     }
 
     /// `GET /api/v1PATH`, which must answer 200; its JSON.
     pub fn get(&self, path: &str) -> Value {
-        let url = format!("{}{path}", self.api);
-        let (status, json) = self.reply(&format!("GET {url}"), self.agent.get(&url).call());
-        assert_eq!(status, 200, "GET {url}: {json}");
+        let (status, json) = self
+            .machine
+            .get_any(path)
+            .unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(status, 200, "GET {path}: {json}");
         json
     }
 
     /// `POST /api/v1PATH` with a JSON body: status and JSON reply.
     pub fn post(&self, path: &str, body: &Value) -> (u16, Value) {
-        let url = format!("{}{path}", self.api);
-        self.reply(
-            &format!("POST {url} {body}"),
-            self.agent
-                .post(&url)
-                .header("content-type", "application/json")
-                .send(body.to_string()),
-        )
+        self.machine
+            .post_any(path, body)
+            .unwrap_or_else(|e| panic!("{e}"))
     }
 
     /// `POST` that must answer 200; its JSON.
@@ -522,35 +349,8 @@ impl Mcemu {
     }
 
     /// SIGTERM, then wait (at most [`STOP_TIMEOUT`]) for the exit; everything it printed.
-    pub fn terminate(mut self) -> McemuExit {
-        let pid = self.pid().to_string();
-        let sent = Command::new("kill")
-            .args(["-TERM", &pid])
-            .status()
-            .expect("run kill");
-        assert!(sent.success(), "kill -TERM {pid} failed");
-        let deadline = Instant::now() + STOP_TIMEOUT;
-        let status = loop {
-            if let Some(status) = self.process.try_wait() {
-                break status;
-            }
-            if Instant::now() > deadline {
-                self.process.kill();
-                panic!(
-                    "mcemu did not stop within {STOP_TIMEOUT:?} of SIGTERM\n--- stderr\n{}",
-                    self.stderr_text()
-                );
-            }
-            thread::sleep(Duration::from_millis(10));
-        };
-        // Both pipes end with the process.
-        let _ = self.stdout_done.recv_timeout(Duration::from_secs(10));
-        let _ = self.stderr_reader.take().map(|h| h.join());
-        McemuExit {
-            status,
-            stdout: self.stdout.lock().map(|s| s.clone()).unwrap_or_default(),
-            stderr: self.stderr_text(),
-        }
+    pub fn terminate(self) -> McemuExit {
+        self.machine.terminate().unwrap_or_else(|e| panic!("{e}"))
     }
 }
 
