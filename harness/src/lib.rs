@@ -138,7 +138,10 @@ impl Options {
         if let Some(clock) = &self.clock {
             command.args(["--clock", clock]);
         }
-        let temp = match (&self.state_dir, self.args.iter().any(|a| a == "--state-dir")) {
+        let temp = match (
+            &self.state_dir,
+            self.args.iter().any(|a| a == "--state-dir"),
+        ) {
             (Some(dir), _) => {
                 command.arg("--state-dir").arg(dir);
                 None
@@ -308,8 +311,15 @@ impl std::error::Error for StartError {}
 /// `{"code", "message", …}` for engine refusals, `{"error", "detail", …}` for request errors).
 #[derive(Debug)]
 pub enum ApiError {
-    Transport { request: String, reason: String },
-    Reply { request: String, status: u16, body: Value },
+    Transport {
+        request: String,
+        reason: String,
+    },
+    Reply {
+        request: String,
+        status: u16,
+        body: Value,
+    },
 }
 
 impl ApiError {

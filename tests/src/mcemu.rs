@@ -296,10 +296,7 @@ impl Mcemu {
 
     /// `GET /api/v1PATH`, which must answer 200; its JSON.
     pub fn get(&self, path: &str) -> Value {
-        let (status, json) = self
-            .machine
-            .get_any(path)
-            .unwrap_or_else(|e| panic!("{e}"));
+        let (status, json) = self.machine.get_any(path).unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(status, 200, "GET {path}: {json}");
         json
     }
