@@ -87,7 +87,9 @@ pub const CONSTANTS: &[(&str, ConstantValue)] = &[
 /// The families `PREFIXn`: `HOME_METHOD_n` = n (CiA 402 method number, §20.3, 1 … 37),
 /// `CS_WCSn` (1 … 15), `HMPL_SLOT_n` (1 … 15), `HMPL_AXIS_n` (0 … 15).
 fn numbered(name: &str) -> Option<i64> {
-    let families: [(&str, std::ops::RangeInclusive<i64>, fn(i64) -> i64); 4] = [
+    /// A family: its prefix, the numbers it has, the value of number n.
+    type Family = (&'static str, std::ops::RangeInclusive<i64>, fn(i64) -> i64);
+    let families: [Family; 4] = [
         ("HOME_METHOD_", 1..=37, |n| n),
         ("CS_WCS", 1..=15, |n| n << CS_WCS_SHIFT),
         ("HMPL_SLOT_", 1..=15, |n| n << SLOT_SHIFT),
