@@ -275,8 +275,8 @@ fn has_section(config_text: &str, section: &str) -> bool {
 
 impl Mcemu {
     /// `mcemu run [--config CONFIG] ARGS…` with, before `args` (which may override them): the
-    /// control API, every TCP Modbus section and the socketcand server of the config on
-    /// `127.0.0.1:0`, and a fresh temporary `--state-dir` unless `args` has one. Returns once
+    /// control API, every TCP Modbus section, the socketcand server and the Native ASCII server
+    /// of the config on `127.0.0.1:0`, and a fresh temporary `--state-dir` unless `args` has one. Returns once
     /// the control API's `listening:` line (printed last, so every listener is up) has been
     /// read; panics with what the process printed if it exits or stays silent first.
     pub fn start(config: Option<&Path>, args: &[&str]) -> Mcemu {
@@ -293,7 +293,12 @@ impl Mcemu {
             command.arg("--config").arg(path);
         }
         command.args(["--set", "frontends.control.bind=127.0.0.1:0"]);
-        for section in ["modbus_tcp", "modbus_rtu_over_tcp", "socketcand"] {
+        for section in [
+            "modbus_tcp",
+            "modbus_rtu_over_tcp",
+            "socketcand",
+            "ascii_native",
+        ] {
             if has_section(&text, section) {
                 command.args(["--set", &format!("frontends.{section}.bind=127.0.0.1:0")]);
             }

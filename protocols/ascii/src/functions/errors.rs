@@ -34,11 +34,7 @@ fn axis_last(cx: &mut Ctx<'_>, args: &Args) -> Plan {
         Ok(a) => a,
         Err(c) => return Plan::Fail(c),
     };
-    let standing = if s.state == axes::AxisState::ErrorStop {
-        fault_code(axis, s.flags | s.latched)
-    } else {
-        None
-    };
+    let standing = fault_code(axis, s.flags | s.latched);
     let latched = cx.registers.axis_errors.get(&axis).copied();
     let engine = s
         .last_error

@@ -66,6 +66,13 @@ pub fn error_code(e: &EngineError, subject: Subject) -> u32 {
         E::UnknownParameter { .. } => HCV_ID_NOT_FOUND,
         E::ReadOnlyParameter { .. } => HCV_IS_READ_ONLY,
         E::Object { .. } => DATA_EXCEEDED,
+        // A target beyond a software limit (`sw_limit_reject_targets`, digest 004 §3.3).
+        E::InvalidArgument {
+            name: "position", ..
+        } if matches!(subject, Subject::Axis(_)) => match subject {
+            Subject::Axis(a) => axis(a, "eERR_AXIS_CMD_INVALID_POS"),
+            _ => invalid(subject),
+        },
         E::InvalidParameter { .. } | E::InvalidArgument { .. } => invalid(subject),
         E::Unsupported { .. } => match subject {
             Subject::System => HMPL_NOT_SUPPORTED,
@@ -177,6 +184,16 @@ mod tests {
         assert_eq!(error_code(&e, Subject::Axis(15)), 0x830f_0096);
         let e = EngineError::QueueFull { axis: 1, depth: 8 };
         assert_eq!(error_code(&e, Subject::System), 0x8301_001e);
+    }
+
+    #[test]
+    fn a_target_beyond_a_soft_limit_is_invalid_pos() {
+        let e = EngineError::InvalidArgument {
+            name: "position",
+            value: 20.0,
+            reason: "beyond a software limit",
+        };
+        assert_eq!(error_code(&e, Subject::Axis(2)), 0x8302_0136);
     }
 
     #[test]
