@@ -69,6 +69,11 @@ fn transcript_strings_math() {
 }
 
 #[test]
+fn transcript_groups() {
+    run_transcript(&himc(&[]), &transcripts(), "groups");
+}
+
+#[test]
 fn nc_with_cr_lf_and_crlf_line_ends() {
     let m = himc(&[]);
     let port = m.port("ascii-native");

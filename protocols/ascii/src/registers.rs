@@ -4,10 +4,11 @@
 
 use std::collections::BTreeMap;
 
+use mcemu_dialects::himc::group::ProfileValues;
 use mcemu_dialects::himc::{AXIS_CLASS, GROUP_CLASS};
 
 /// The controller's registers, shared by every Native ASCII client.
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Registers {
     /// `GetSystemLastErr` (§18.2).
     pub system_error: u32,
@@ -22,6 +23,10 @@ pub struct Registers {
     /// `SetHomedStatus` by axis (§20.9): overrides the engine's homed flag until the next
     /// homing.
     pub homed: BTreeMap<u16, bool>,
+    /// `AddAxisToGrp` by group: the members in the order added, {X, Y, Z, A, B, C} (§8.3.1).
+    pub group_members: BTreeMap<u16, Vec<u16>>,
+    /// `SetGrpMotionProfile` by group (absent: the defaults, TV 48).
+    pub group_profiles: BTreeMap<u16, ProfileValues>,
 }
 
 impl Registers {

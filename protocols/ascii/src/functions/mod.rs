@@ -13,6 +13,7 @@ use crate::table::{Args, Ctx, Function, Plan, Then};
 pub mod axis;
 pub mod errors;
 pub mod gpio;
+pub mod group;
 pub mod homing;
 pub mod math;
 pub mod settings;
@@ -29,6 +30,7 @@ pub fn all() -> impl Iterator<Item = &'static Function> {
         axis::ROWS,
         settings::ROWS,
         status::ROWS,
+        group::ROWS,
         gpio::ROWS,
         errors::ROWS,
         homing::ROWS,
