@@ -43,34 +43,29 @@ fn still_served(m: &Mcemu) {
     assert_eq!(other.call("GetAxisNum()"), "4");
 }
 
-#[test]
-fn transcript_system() {
-    run_transcript(&himc(&[]), &transcripts(), "system");
+/// One test per golden transcript `tests/ascii/NAME.in`, each on a fresh machine.
+macro_rules! transcripts {
+    ($($name:ident),* $(,)?) => {
+        $(
+            #[test]
+            fn $name() {
+                run_transcript(&himc(&[]), &transcripts(), stringify!($name));
+            }
+        )*
+    };
 }
 
-#[test]
-fn transcript_axis_motion() {
-    run_transcript(&himc(&[]), &transcripts(), "axis_motion");
-}
+mod transcript {
+    use super::*;
 
-#[test]
-fn transcript_axis_parameters() {
-    run_transcript(&himc(&[]), &transcripts(), "axis_parameters");
-}
-
-#[test]
-fn transcript_homing_gpio_errors() {
-    run_transcript(&himc(&[]), &transcripts(), "homing_gpio_errors");
-}
-
-#[test]
-fn transcript_strings_math() {
-    run_transcript(&himc(&[]), &transcripts(), "strings_math");
-}
-
-#[test]
-fn transcript_groups() {
-    run_transcript(&himc(&[]), &transcripts(), "groups");
+    transcripts!(
+        system,
+        axis_motion,
+        axis_parameters,
+        homing_gpio_errors,
+        strings_math,
+        groups
+    );
 }
 
 #[test]
