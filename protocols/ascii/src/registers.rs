@@ -27,6 +27,8 @@ pub struct Registers {
     pub group_members: BTreeMap<u16, Vec<u16>>,
     /// `SetGrpMotionProfile` by group (absent: the defaults, TV 48).
     pub group_profiles: BTreeMap<u16, ProfileValues>,
+    /// `SetGrpCoordSys` by group: the `CS_*` mask (absent: `CS_MCS`, 0).
+    pub group_coordinate_systems: BTreeMap<u16, i64>,
 }
 
 impl Registers {

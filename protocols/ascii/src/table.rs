@@ -21,9 +21,11 @@ pub enum Ty {
     Double,
     /// `char *` input: a string literal.
     Str,
-    /// `double *` of 6 elements (§8.3.30–33): `{a, b, c, d, e, f}`; an output array's
-    /// argument is not written (the values come back in the reply).
+    /// `double *` input of 6 elements (§8.3.31): `{a, b, c, d, e, f}`.
     Array6,
+    /// `double *` output of 6 elements (§8.3.30, 8.3.32–33): written as `{}` (or any array);
+    /// the values come back in the reply.
+    OutArray6,
 }
 
 /// A return type.
@@ -124,6 +126,7 @@ pub fn check_args(params: &[Ty], args: Vec<Arg>) -> Result<Args, ArgMismatch> {
                     )))
                 }
             },
+            (Ty::OutArray6, Arg::Array(_)) => Value::Array([0.0; 6]),
             (ty, arg) => {
                 return Err(ArgMismatch(format!(
                     "argument {}: {arg:?} is not {ty:?}",

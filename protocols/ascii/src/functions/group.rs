@@ -6,6 +6,7 @@
 
 use axes::status::{GroupState, GroupStatus};
 use axes::Command;
+use mcemu_dialects::himc::constants::coordinate_system_name;
 use mcemu_dialects::himc::group::{self as profile, Profile, ProfileValues};
 use mcemu_dialects::himc::group_errors::GroupErrorRow;
 use mcemu_dialects::himc::system::{HMPL_ARG_OUT_OF_RANGE, HMPL_INTERNAL_ERROR};
@@ -23,6 +24,9 @@ const MAX_GROUP_AXES: usize = 9;
 const G: &[Ty] = &[Ty::Int];
 const GDD: &[Ty] = &[Ty::Int, Ty::Double, Ty::Double];
 const GDDD: &[Ty] = &[Ty::Int, Ty::Double, Ty::Double, Ty::Double];
+/// `(group_id, coord_sys, double *out)`: `out` is written `{}`; the values come back in the
+/// reply.
+const POSE: &[Ty] = &[Ty::Int, Ty::Int, Ty::OutArray6];
 const GDDDD: &[Ty] = &[Ty::Int, Ty::Double, Ty::Double, Ty::Double, Ty::Double];
 
 fn group_id(args: &Args) -> Result<u16, u32> {
@@ -269,6 +273,80 @@ fn profile_get(cx: &mut Ctx<'_>, args: &Args, field: fn(&ProfileValues) -> f64) 
     }
 }
 
+/// §8.3.28: the feed override, 0 ~ 100 %.
+fn set_vel_scale(cx: &mut Ctx<'_>, args: &Args) -> Plan {
+    let group = match group_id(args) {
+        Ok(g) => g,
+        Err(c) => return Plan::Fail(c),
+    };
+    let scale = args.double(1);
+    if !(0.0..=100.0).contains(&scale) {
+        return Plan::Fail(group_error(group, "eERR_CRD_CMD_INVALID_VEL_SCALE"));
+    }
+    if status(cx, group).is_none() {
+        return Plan::Fail(group_error(group, "eERR_CRD_CMD_GRP_SIZE_EMPTY"));
+    }
+    engine(json!({"type": "group_set_override", "group": group, "factor": scale / 100.0}))
+}
+
+/// §8.3.21: the frame later moves are given in (`CS_MCS`, `CS_WCS1 | CS_PCS` …).
+fn set_coordinate_system(cx: &mut Ctx<'_>, args: &Args) -> Plan {
+    let group = match group_id(args) {
+        Ok(g) => g,
+        Err(c) => return Plan::Fail(c),
+    };
+    let mask = args.int(1);
+    let Some(name) = coordinate_system_name(mask) else {
+        return Plan::Fail(group_error(group, "eERR_CRD_CMD_COORD_SYS_UNKNOWN"));
+    };
+    if status(cx, group).is_none() {
+        return Plan::Fail(group_error(group, "eERR_CRD_CMD_GRP_SIZE_EMPTY"));
+    }
+    cx.registers.group_coordinate_systems.insert(group, mask);
+    engine(
+        json!({"type": "group_set_coordinate_system", "group": group, "coordinate_system": name}),
+    )
+}
+
+/// §8.3.32–33: the pose as six values {X, Y, Z, A, B, C} (coordinates beyond the group's
+/// axes are 0), in MCS or in the group's own coordinate system; the array reply.
+fn pose(cx: &mut Ctx<'_>, args: &Args, feedback: bool) -> Plan {
+    let group = match group_id(args) {
+        Ok(g) => g,
+        Err(c) => return Plan::Fail(c),
+    };
+    let Some(s) = status(cx, group) else {
+        return Plan::Fail(group_error(group, "eERR_CRD_CMD_GRP_SIZE_EMPTY"));
+    };
+    let mask = args.int(1);
+    let own = cx
+        .registers
+        .group_coordinate_systems
+        .get(&group)
+        .copied()
+        .unwrap_or(0);
+    let source: Vec<f64> = match (mask, feedback) {
+        (0, false) => s.coordinates.to_vec(),
+        (0, true) => s
+            .members
+            .iter()
+            .map(|&a| {
+                cx.snapshot
+                    .axes
+                    .get(usize::from(a))
+                    .map_or(0.0, |st| st.act_pos)
+            })
+            .collect(),
+        (m, false) if m == own => s.frame_position.to_vec(),
+        _ => return Plan::Fail(group_error(group, "eERR_CRD_CMD_COORD_SYS_UNKNOWN")),
+    };
+    let mut out = [0.0; 6];
+    for (i, v) in out.iter_mut().enumerate().take(usize::from(s.axis_count)) {
+        *v = source.get(i).copied().unwrap_or(0.0);
+    }
+    Plan::Done(Outcome::Array(0, out))
+}
+
 pub static ROWS: &[Function] = &[
     row("EnableGroup", "8.2.1", G, Ret::Int, Group, |cx, a| {
         simple(cx, a, "group_enable")
@@ -396,6 +474,66 @@ pub static ROWS: &[Function] = &[
             }
             Err(c) => Plan::Fail(c),
         },
+    ),
+    row(
+        "GetGrpCoordSys",
+        "8.3.20",
+        G,
+        Ret::Int,
+        Group,
+        |cx, a| match group_id(a) {
+            Ok(group) => {
+                let mask = cx.registers.group_coordinate_systems.get(&group).copied();
+                Plan::Done(Outcome::Int(i32::try_from(mask.unwrap_or(0)).unwrap_or(0)))
+            }
+            Err(c) => Plan::Fail(c),
+        },
+    ),
+    row(
+        "SetGrpCoordSys",
+        "8.3.21",
+        &[Ty::Int, Ty::Int],
+        Ret::Int,
+        Group,
+        set_coordinate_system,
+    ),
+    row(
+        "SetGrpVelScale",
+        "8.3.28",
+        &[Ty::Int, Ty::Double],
+        Ret::Int,
+        Group,
+        set_vel_scale,
+    ),
+    row(
+        "GetGrpVelScale",
+        "8.3.29",
+        G,
+        Ret::Double,
+        Group,
+        |cx, a| match group_id(a) {
+            Ok(group) => {
+                let factor = status(cx, group).map_or(1.0, |s| s.override_factor);
+                Plan::Done(Outcome::Double(factor * 100.0))
+            }
+            Err(c) => Plan::Fail(c),
+        },
+    ),
+    row(
+        "GetGrpPoseCmd",
+        "8.3.32",
+        POSE,
+        Ret::Array6,
+        Group,
+        |cx, a| pose(cx, a, false),
+    ),
+    row(
+        "GetGrpPoseFb",
+        "8.3.33",
+        POSE,
+        Ret::Array6,
+        Group,
+        |cx, a| pose(cx, a, true),
     ),
     row("IsGrpEnabled", "8.4.1", G, Ret::Int, Group, |cx, a| {
         group_bool(cx, a, |s| s.state != GroupState::Disabled)
