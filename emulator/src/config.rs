@@ -212,7 +212,7 @@ pub struct FrontendsConfig {
     /// NMC protocol on a local socket (PCIe card indices, `NMC_DevOpen`).
     pub nmc_local: Option<PlannedFrontend>,
     /// HIMC Native ASCII server (HMPL calls as text; the controller's port is 3999).
-    pub ascii_native: Option<PlannedFrontend>,
+    pub ascii_native: Option<mcemu_ascii::config::NativeConfig>,
     /// HIMC User ASCII server (declarative command patterns; the controller's port is 4000).
     pub ascii_user: Option<PlannedFrontend>,
 }
@@ -479,7 +479,6 @@ impl Config {
         for (name, section) in [
             ("nmc", &f.nmc),
             ("nmc_local", &f.nmc_local),
-            ("ascii_native", &f.ascii_native),
             ("ascii_user", &f.ascii_user),
         ] {
             if section.as_ref().is_some_and(|s| s.enabled) {

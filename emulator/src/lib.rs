@@ -1,6 +1,7 @@
 //! The `mcemu` binary's parts (ARCHITECTURE §6): the config file, running a machine with its
 //! front-ends, scenarios and traces, and the HTTP control API.
 
+pub mod ascii;
 pub mod canopen;
 pub mod config;
 pub mod control;

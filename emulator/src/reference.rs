@@ -135,6 +135,10 @@ fn field_orders() -> BTreeMap<&'static str, Vec<&'static str>> {
         ("FrontendsConfig", field_order::<FrontendsConfig>()),
         ("ControlConfig", field_order::<ControlConfig>()),
         ("PlannedFrontend", field_order::<PlannedFrontend>()),
+        (
+            "NativeConfig",
+            field_order::<mcemu_ascii::config::NativeConfig>(),
+        ),
         ("TcpConfig", field_order::<TcpConfig>()),
         ("RtuConfig", field_order::<RtuConfig>()),
         ("RtuOverTcpConfig", field_order::<RtuOverTcpConfig>()),

@@ -1,1 +1,24 @@
-//! HIMC Native ASCII (3999) and User ASCII (4000) front-ends (ARCHITECTURE §5). Filled by the ASCII issue.
+//! HIWIN HIMC Native ASCII front-end (issue 14, digest 004 §1.6, §7.1): HMPL calls as text
+//! lines, `MoveAbs(0, 100)` → `0`, over TCP (the controller's port 3999).
+//!
+//! Sans-IO core, in the order a line goes through it:
+//! - [`line`]: bytes → lines (CR, LF, CRLF; 512 characters; bounded memory);
+//! - [`parse`]: a line → a call (`Name(arg, …)`);
+//! - [`table`]: the function table's types; [`functions`]: its rows, one module per chapter;
+//! - [`native`]: a call → a reply, or engine commands and then a reply; errors latched in
+//!   [`registers`];
+//! - [`reply`]: return values as text.
+//!
+//! [`transport`] is the thin tokio server over it; [`config`] its config section; [`counters`]
+//! what `GET /api/v1/state` shows.
+
+pub mod config;
+pub mod counters;
+pub mod functions;
+pub mod line;
+pub mod native;
+pub mod parse;
+pub mod registers;
+pub mod reply;
+pub mod table;
+pub mod transport;

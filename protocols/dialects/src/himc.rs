@@ -6,7 +6,11 @@ use axes::error::StreamPointProblem;
 use axes::param::{ParamId, Unit};
 use axes::{AxisFlags, AxisState, AxisStatus};
 
+pub mod constants;
+pub mod engine_error;
 pub mod group;
+pub mod group_errors;
+pub mod system;
 
 /// An axis status function of HMPL chapter 5.4, `int Is…(int axis_id)` (digest 004 §2.4 "5.4
 /// Axis status").

@@ -1,0 +1,66 @@
+//! `mcemu run`'s HIMC Native ASCII front-end (`[frontends.ascii_native]`): bound and announced
+//! (`listening: ascii-native ADDR`), served by `mcemu_ascii::transport` over the engine, its
+//! counters in `GET /api/v1/state`.
+
+use std::sync::Arc;
+
+use mcemu_ascii::transport::{serve, Server};
+use serde_json::{Map, Value};
+use tokio::task::JoinSet;
+
+use crate::control::ApiError;
+use crate::frontend::{bind, handles, Frontend, FrontendContext, FrontendError, StartFuture};
+
+/// The running Native ASCII server.
+pub struct AsciiNativeFrontend {
+    server: Arc<Server>,
+}
+
+impl Frontend for AsciiNativeFrontend {
+    fn name(&self) -> &str {
+        "ascii_native"
+    }
+
+    fn inject(&self, _fault: Map<String, Value>) -> Result<Value, ApiError> {
+        Err(ApiError::InvalidBody {
+            detail: "ascii_native has no faults to inject".into(),
+            field: Some("frontend".into()),
+            line: 0,
+            column: 0,
+        })
+    }
+
+    fn state(&self) -> Value {
+        let counters =
+            serde_json::to_value(self.server.counters().snapshot()).unwrap_or(Value::Null);
+        serde_json::json!({ "name": "ascii_native", "counters": counters })
+    }
+}
+
+/// Bind, announce and serve `[frontends.ascii_native]` if enabled.
+pub fn start<'a>(cx: &'a FrontendContext<'a>, tasks: &'a mut JoinSet<()>) -> StartFuture<'a> {
+    Box::pin(async move {
+        let Some(config) = cx
+            .config
+            .frontends
+            .ascii_native
+            .as_ref()
+            .filter(|c| c.enabled)
+        else {
+            return Ok(Vec::new());
+        };
+        let listener = bind("ascii-native", config.bind)
+            .await
+            .map_err(|e| FrontendError::new("ascii_native", e))?;
+        let server = Server::new(config.clone(), cx.handle.clone());
+        let mut shutdown = cx.shutdown.clone();
+        let serving = Arc::clone(&server);
+        tasks.spawn(async move {
+            let stop = async move {
+                let _ = shutdown.wait_for(|stop| *stop).await;
+            };
+            serve(listener, serving, stop).await;
+        });
+        Ok(handles([Arc::new(AsciiNativeFrontend { server })]))
+    })
+}
