@@ -194,3 +194,29 @@ pub fn distance_to_path(q: &Point, segments: &[Segment]) -> f64 {
         .map(|s| distance_to_segment(q, s))
         .fold(f64::INFINITY, f64::min)
 }
+
+/// Largest ratio over all ticks and the axes with a jerk limit of |finite-difference jerk|
+/// (third differences of the positions) / J_k, less the rounding of four positions
+/// (≤ 8ε|x|/T³).
+pub fn jerk_peak(states: &[PathState], config: &PlannerConfig) -> f64 {
+    let t = config.period;
+    let mut worst: f64 = 0.0;
+    for k in 0..config.dims {
+        let lim = config.axes[k];
+        if !lim.jerk.is_finite() {
+            continue;
+        }
+        let scale = states
+            .iter()
+            .map(|s| s.position[k].abs())
+            .fold(1.0, f64::max);
+        let slack = 8.0 * f64::EPSILON * scale / (t * t * t);
+        for w in states.windows(4) {
+            let j = (w[3].position[k] - 3.0 * w[2].position[k] + 3.0 * w[1].position[k]
+                - w[0].position[k])
+                / (t * t * t);
+            worst = worst.max((j.abs() - slack).max(0.0) / lim.jerk);
+        }
+    }
+    worst
+}
