@@ -1065,6 +1065,7 @@ fn spline(points: Vec<Vec<f64>>, velocity: Option<f64>) -> MoveSpline {
         transition: TransitionMode::None,
         user_segment: None,
         coordinate_system: None,
+        independent: Default::default(),
     }
 }
 
