@@ -333,12 +333,16 @@ fn s_trans_xyza_keeps_the_tool_tip_on_the_programmed_point_when_a_turns() {
 /// Two one-axis groups on a common rail: group 1 is axis 0, group 2 is axis 1; the distance is
 /// 100 − x0 + x1 (group 1 closes moving +, group 2 moving −).
 fn rail() -> Engine {
-    let mut e = machine(2, &[0]);
+    with_group_2(machine(2, &[0]), 1)
+}
+
+/// `e` with group 2 made of axis `axis`, enabled.
+fn with_group_2(mut e: Engine, axis: u16) -> Engine {
     ok(
         &mut e,
         Command::from(GroupCreate {
             group: 2,
-            axes: vec![1],
+            axes: vec![axis],
             queue_capacity: None,
             lookahead: None,
             result_axis: None,
@@ -454,20 +458,7 @@ fn mode_1_the_stop_group_retreats_and_the_other_finishes_its_move() {
 /// Group 1 is (x, y) on axes 0 and 1, guarded on x; group 2 is axis 2: the distance is
 /// 100 − x + z.
 fn turning_rail() -> Engine {
-    let mut e = machine(3, &[0, 1]);
-    ok(
-        &mut e,
-        Command::from(GroupCreate {
-            group: 2,
-            axes: vec![2],
-            queue_capacity: None,
-            lookahead: None,
-            result_axis: None,
-            orientation: Default::default(),
-        }),
-    );
-    ok(&mut e, Command::from(GroupEnable { group: 2 }));
-    e
+    with_group_2(machine(3, &[0, 1]), 2)
 }
 
 /// Issue 11 item 1 defect: a path moving across (not toward) the other group, whose queued

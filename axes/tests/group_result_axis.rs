@@ -290,18 +290,8 @@ fn tv17_move_nd_independent_axes_ride_in_proportion_and_do_not_count() {
 /// A spline of group 1 through `points` (absolute) with `independent` coordinates.
 fn spline<const N: usize>(points: &[[f64; N]], independent: &[usize]) -> MoveSpline {
     MoveSpline {
-        group: 1,
-        points: points.iter().map(|p| p.to_vec()).collect(),
-        relative: false,
-        velocity: None,
-        acceleration: None,
-        deceleration: None,
-        jerk: None,
-        buffer_mode: GroupBufferMode::Buffered,
-        transition: TransitionMode::None,
-        user_segment: None,
-        coordinate_system: None,
         independent: coords(independent),
+        ..common::group_spline(1, points.iter().map(|p| p.to_vec()).collect())
     }
 }
 

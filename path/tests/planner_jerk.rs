@@ -5,7 +5,7 @@
 mod common;
 
 use common::*;
-use path::geometry::{Arc, Segment, Turn};
+use path::geometry::Turn;
 use path::planner::{Join, PathPlanner, PathState, PlannerConfig, Transition};
 
 /// Line → tangent half circle (r = 5) → line, blending, S-curves, axes J = 2e4.
@@ -42,53 +42,15 @@ fn line_half_circle_line(tr: Transition, path_jerk: f64) -> (Vec<PathState>, Pla
 fn linuxcnc_3773(jerk: f64, tr: Transition) -> (Vec<PathState>, PlannerConfig) {
     let cfg = PlannerConfig::uniform(3, axis(400.0, 1750.0, jerk), 1e-3);
     let mut pl = PathPlanner::new(cfg.clone(), p(&[0.0, 0.0, 0.0])).unwrap();
-    let (mut x, mut y) = (0.0, 0.0);
-    let mut heading: f64 = 0.0;
-    let mut seed = 0x2545_f491_4f6c_dd1du64;
-    let mut rnd = || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        (seed >> 11) as f64 / (1u64 << 53) as f64
-    };
-    for i in 0..200 {
-        let r = 3.8 + 0.4 * rnd();
-        let sweep = (20.0 + 70.0 * rnd()).to_radians();
-        let ccw = i % 2 == 0;
-        let side = if ccw { 1.0 } else { -1.0 };
-        let (nx, ny) = rotate(
-            heading.cos(),
-            heading.sin(),
-            side * std::f64::consts::FRAC_PI_2,
-        );
-        let (cx, cy) = (x + r * nx, y + r * ny);
-        let (ex, ey) = rotate(x - cx, y - cy, side * sweep);
-        let (ex, ey) = (cx + ex, cy + ey);
-        let z = 0.01 * i as f64;
-        let turn = if ccw { Turn::Ccw } else { Turn::Cw };
-        let seg = Segment::Arc(
-            Arc::from_center(
-                p(&[x, y, z]),
-                p(&[ex, ey, z + 0.01]),
-                p(&[cx, cy, z]),
-                (0, 1),
-                turn,
-                0,
-                3,
-            )
-            .unwrap(),
-        );
+    for (i, seg) in linuxcnc_3773_arcs().into_iter().enumerate() {
         let m = motion(
             seg,
             limits(2000.0, 20_000.0, jerk),
             Join::BlendingHigh,
             tr,
-            i,
+            i as u64,
         );
         pl.push_motion(m).unwrap();
-        x = ex;
-        y = ey;
-        heading += side * sweep;
     }
     let end = pl.queue_end();
     let (states, _) = run(&mut pl, 1_000_000);

@@ -181,6 +181,22 @@ mod tests {
         },
     ];
 
+    /// The full circle of radius 10 about the origin, from (10, 0).
+    fn full_circle_r10() -> Segment {
+        Segment::Arc(
+            Arc::from_center(
+                p(10.0, 0.0),
+                p(10.0, 0.0),
+                p(0.0, 0.0),
+                (0, 1),
+                Turn::Ccw,
+                0,
+                2,
+            )
+            .unwrap(),
+        )
+    }
+
     const FAST: PathLimits = PathLimits {
         velocity: 1e6,
         acceleration: 1e6,
@@ -205,18 +221,7 @@ mod tests {
 
     #[test]
     fn an_arc_splits_each_axis_budget_in_quadrature() {
-        let arc = Segment::Arc(
-            Arc::from_center(
-                p(10.0, 0.0),
-                p(10.0, 0.0),
-                p(0.0, 0.0),
-                (0, 1),
-                Turn::Ccw,
-                0,
-                2,
-            )
-            .unwrap(),
-        );
+        let arc = full_circle_r10();
         // Without jerk limits (the jerk rules are the next test's).
         let axes = [
             AxisLimits {
@@ -243,18 +248,7 @@ mod tests {
     #[test]
     fn an_arc_shares_each_axis_jerk_between_the_three_terms() {
         // r = 10: κ = 0.1, |x'''| = κ² = 0.01; J = 6000 on x, ∞ on y.
-        let arc = Segment::Arc(
-            Arc::from_center(
-                p(10.0, 0.0),
-                p(10.0, 0.0),
-                p(0.0, 0.0),
-                (0, 1),
-                Turn::Ccw,
-                0,
-                2,
-            )
-            .unwrap(),
-        );
+        let arc = full_circle_r10();
         let fast = [
             AxisLimits {
                 velocity: 1e6,

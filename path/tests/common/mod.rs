@@ -220,3 +220,51 @@ pub fn jerk_peak(states: &[PathState], config: &PlannerConfig) -> f64 {
     }
     worst
 }
+
+/// LinuxCNC issue #3773's path: 200 small arcs (R ≈ 4 mm, sweeps 20°–90°) joined tangentially,
+/// alternating counter-clockwise and clockwise, climbing 0.01 in z each (a fixed seed).
+pub fn linuxcnc_3773_arcs() -> Vec<Segment> {
+    let (mut x, mut y) = (0.0, 0.0);
+    let mut heading: f64 = 0.0;
+    let mut seed = 0x2545_f491_4f6c_dd1du64;
+    let mut rnd = || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut out = Vec::with_capacity(200);
+    for i in 0..200 {
+        let r = 3.8 + 0.4 * rnd();
+        let sweep = (20.0 + 70.0 * rnd()).to_radians();
+        let ccw = i % 2 == 0;
+        let side = if ccw { 1.0 } else { -1.0 };
+        // Centre on the left (CCW) or right (CW) of the heading: tangent junctions.
+        let (nx, ny) = rotate(
+            heading.cos(),
+            heading.sin(),
+            side * std::f64::consts::FRAC_PI_2,
+        );
+        let (cx, cy) = (x + r * nx, y + r * ny);
+        let (ex, ey) = rotate(x - cx, y - cy, side * sweep);
+        let (ex, ey) = (cx + ex, cy + ey);
+        let z = 0.01 * f64::from(i);
+        let turn = if ccw { Turn::Ccw } else { Turn::Cw };
+        out.push(Segment::Arc(
+            Arc::from_center(
+                p(&[x, y, z]),
+                p(&[ex, ey, z + 0.01]),
+                p(&[cx, cy, z]),
+                (0, 1),
+                turn,
+                0,
+                3,
+            )
+            .unwrap(),
+        ));
+        x = ex;
+        y = ey;
+        heading += side * sweep;
+    }
+    out
+}
