@@ -7,10 +7,11 @@
 mod common;
 
 use axes::command::{
-    ArcDirection, Command, CoordinateSystem, GroupAxisMove, GroupCreate, GroupDeleteTransform,
-    GroupEnable, GroupSetCoordinateSystem, GroupSetCoordinateTransform, GroupSetRotaryTransform,
-    GroupSetXyzaTransform, GroupWaitPosition, MoveCircularAbsolute, MoveLinearAbsolute,
-    MoveProtectionDisable, MoveProtectionEnable, ProtectionMode,
+    ArcDirection, Command, CoordinateSystem, GroupAxisMove, GroupBufferMode, GroupCreate,
+    GroupDeleteTransform, GroupEnable, GroupJog, GroupSetCoordinateSystem,
+    GroupSetCoordinateTransform, GroupSetRotaryTransform, GroupSetXyzaTransform, GroupWaitPosition,
+    MoveCircularAbsolute, MoveLinearAbsolute, MoveProtectionDisable, MoveProtectionEnable,
+    ProtectionMode, TransitionMode,
 };
 use axes::status::{GroupState, GroupStatus, InterferenceStatus};
 use axes::{Engine, EngineError};
@@ -332,12 +333,16 @@ fn s_trans_xyza_keeps_the_tool_tip_on_the_programmed_point_when_a_turns() {
 /// Two one-axis groups on a common rail: group 1 is axis 0, group 2 is axis 1; the distance is
 /// 100 − x0 + x1 (group 1 closes moving +, group 2 moving −).
 fn rail() -> Engine {
-    let mut e = machine(2, &[0]);
+    with_group_2(machine(2, &[0]), 1)
+}
+
+/// `e` with group 2 made of axis `axis`, enabled.
+fn with_group_2(mut e: Engine, axis: u16) -> Engine {
     ok(
         &mut e,
         Command::from(GroupCreate {
             group: 2,
-            axes: vec![1],
+            axes: vec![axis],
             queue_capacity: None,
             lookahead: None,
             result_axis: None,
@@ -448,6 +453,102 @@ fn mode_1_the_stop_group_retreats_and_the_other_finishes_its_move() {
     assert_eq!(g.queue_used, 1);
     assert_eq!(g.interference, InterferenceStatus::Interference);
     assert!((pos(&e, 1) - 80.0).abs() < 1e-9);
+}
+
+/// Group 1 is (x, y) on axes 0 and 1, guarded on x; group 2 is axis 2: the distance is
+/// 100 − x + z.
+fn turning_rail() -> Engine {
+    with_group_2(machine(3, &[0, 1]), 2)
+}
+
+/// Issue 11 item 1 defect: a path moving across (not toward) the other group, whose queued
+/// path turns toward it within its braking distance, counted no reserve until it turned,
+/// and then came closer than the protection distance by most of a braking distance. The
+/// guard now measures the reserve along the queued path itself.
+#[test]
+fn a_path_that_turns_toward_the_other_group_stops_before_coming_too_close() {
+    let mut e = turning_rail();
+    // x to 79 first: the distance is 21, 1 above the protection distance.
+    ok(&mut e, Command::from(line_in(1, &[79.0, 0.0], None)));
+    run_all(&mut e, 10.0, |_| {});
+    ok(&mut e, Command::from(protection(ProtectionMode::BothStop)));
+    // Across at full speed, then a rounded corner toward +x.
+    ok(
+        &mut e,
+        Command::from(MoveLinearAbsolute {
+            velocity: Some(100.0),
+            buffer_mode: GroupBufferMode::BlendingLow,
+            transition: TransitionMode::CornerDistance(5.0),
+            ..line_in(1, &[79.0, 60.0], None)
+        }),
+    );
+    ok(
+        &mut e,
+        Command::from(MoveLinearAbsolute {
+            velocity: Some(100.0),
+            buffer_mode: GroupBufferMode::BlendingLow,
+            ..line_in(1, &[150.0, 60.0], None)
+        }),
+    );
+    let mut closest = f64::INFINITY;
+    let mut saw_interference = false;
+    run_all(&mut e, 10.0, |e| {
+        closest = closest.min(100.0 - pos(e, 0) + pos(e, 2));
+        saw_interference |= group(e, 1).interference == InterferenceStatus::Interference;
+    });
+    assert!(saw_interference);
+    assert!(closest >= 20.0, "closed to {closest}");
+    // Stopped by the protection near its corner, not at the end of its path.
+    assert!(
+        pos(&e, 0) < 80.0 && pos(&e, 1) > 50.0,
+        "at {} {}",
+        pos(&e, 0),
+        pos(&e, 1)
+    );
+}
+
+/// Issue 11 item 1 defect: protections did not watch group jogs. A jog toward the other
+/// group now stops at the protection distance, and a jog away is free.
+#[test]
+fn a_jog_toward_the_other_group_stops_before_the_protection_distance() {
+    let mut e = rail();
+    ok(&mut e, Command::from(protection(ProtectionMode::BothStop)));
+    ok(
+        &mut e,
+        Command::from(GroupJog {
+            group: 1,
+            coordinate: 0,
+            velocity: 80.0,
+            coordinate_system: None,
+        }),
+    );
+    let mut closest = f64::INFINITY;
+    let mut saw_interference = false;
+    for _ in 0..5000 {
+        e.step();
+        closest = closest.min(distance(&e));
+        saw_interference |= group(&e, 1).interference == InterferenceStatus::Interference;
+    }
+    assert!(saw_interference);
+    assert!(closest >= 20.0, "closed to {closest}");
+    assert!(closest < 25.0, "stopped at {closest}");
+    assert_eq!(group(&e, 1).state, GroupState::Standby);
+    assert_eq!(e.axis_status(0).unwrap().cmd_vel, 0.0);
+    // Away is free: the jog runs.
+    ok(
+        &mut e,
+        Command::from(GroupJog {
+            group: 1,
+            coordinate: 0,
+            velocity: -80.0,
+            coordinate_system: None,
+        }),
+    );
+    for _ in 0..200 {
+        e.step();
+    }
+    assert_eq!(group(&e, 1).state, GroupState::Moving);
+    assert!(e.axis_status(0).unwrap().cmd_vel < 0.0);
 }
 
 #[test]

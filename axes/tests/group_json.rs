@@ -230,6 +230,7 @@ fn full() -> Vec<(Command, &'static str)> {
                 transition: TransitionMode::None,
                 user_segment: Some(4),
                 coordinate_system: None,
+                independent: Default::default(),
             }),
             r#"{"type":"move_spline","group":1,"points":[[1.0,2.0],[3.0,-1.5]],"relative":true,"velocity":20.0,"acceleration":null,"deceleration":100.0,"jerk":null,"buffer_mode":"blending_next","transition":"none","user_segment":4}"#,
         ),

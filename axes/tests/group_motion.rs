@@ -1054,17 +1054,8 @@ fn himc_look_ahead_parameters_cap_the_arc_speed_and_zero_turns_them_off() {
 /// A buffered spline of group 1 through `points` (absolute), group defaults but `velocity`.
 fn spline(points: Vec<Vec<f64>>, velocity: Option<f64>) -> MoveSpline {
     MoveSpline {
-        group: 1,
-        points,
-        relative: false,
         velocity,
-        acceleration: None,
-        deceleration: None,
-        jerk: None,
-        buffer_mode: GroupBufferMode::Buffered,
-        transition: TransitionMode::None,
-        user_segment: None,
-        coordinate_system: None,
+        ..common::group_spline(1, points)
     }
 }
 

@@ -10,7 +10,7 @@ use std::f64::consts::TAU;
 use axes::command::{
     ArcDirection, Command, CommandState, CoordinateSet, Enable, ErrorKind, GroupBufferMode,
     GroupCreate, GroupDelete, GroupEnable, MoveAbsolute, MoveCircularAbsolute, MoveLinearRelative,
-    SetParameter, TransitionMode,
+    MoveSpline, SetParameter, TransitionMode,
 };
 use axes::config::AxisConfig;
 use axes::status::{GroupFault, GroupState, GroupStatus};
@@ -287,6 +287,60 @@ fn tv17_move_nd_independent_axes_ride_in_proportion_and_do_not_count() {
     );
 }
 
+/// A spline of group 1 through `points` (absolute) with `independent` coordinates.
+fn spline<const N: usize>(points: &[[f64; N]], independent: &[usize]) -> MoveSpline {
+    MoveSpline {
+        independent: coords(independent),
+        ..common::group_spline(1, points.iter().map(|p| p.to_vec()).collect())
+    }
+}
+
+/// Issue 11 item 2: splines take independent coordinates as lines and arcs do (HMC
+/// MoveSplineND with independent axes, NMC D8): the spline goes through the points' counted
+/// coordinates, the independent ones ride from the start to the last point's values in
+/// proportion to the counted length, and only the counted length counts (the result axis).
+#[test]
+fn a_spline_s_independent_coordinates_ride_in_proportion_and_do_not_count() {
+    let mut e = machine(4, &[0, 1, 2], 3);
+    let points = [
+        [1000.0, 500.0, 7.0],
+        [2000.0, -500.0, -3.0],
+        [3000.0, 0.0, 40.0],
+    ];
+    // The counted length: the same spline in (x, y) alone.
+    let flat: Vec<path::Point> = std::iter::once([0.0, 0.0])
+        .chain(points.iter().map(|p| [p[0], p[1]]))
+        .map(|q| {
+            let mut out = [0.0; path::MAX_AXES];
+            out[..2].copy_from_slice(&q);
+            out
+        })
+        .collect();
+    let counted = path::geometry::Curve::spline(&flat, 2).unwrap().length();
+    send(&mut e, spline(&points, &[2]));
+    run_path(&mut e, 30.0, |e| {
+        // z is the same fraction of its way as the result axis of the counted length.
+        let progress = pos(e, 3) / counted;
+        assert!(
+            close(pos(e, 2), 40.0 * progress, 1e-6),
+            "z {} at {progress}",
+            pos(e, 2)
+        );
+    });
+    assert_eq!([pos(&e, 0), pos(&e, 1), pos(&e, 2)], [3000.0, 0.0, 40.0]);
+    assert!(
+        close(pos(&e, 3), counted, 1e-6),
+        "{} vs {counted}",
+        pos(&e, 3)
+    );
+    // Without independent coordinates, z is part of the shape and the length counts it.
+    let mut e = machine(4, &[0, 1, 2], 3);
+    send(&mut e, spline(&points, &[]));
+    run_path(&mut e, 30.0, |_| {});
+    assert_eq!([pos(&e, 0), pos(&e, 1), pos(&e, 2)], [3000.0, 0.0, 40.0]);
+    assert!(pos(&e, 3) > counted + 0.5, "{} vs {counted}", pos(&e, 3));
+}
+
 #[test]
 fn tv18_slot_contour_result_axis_4000_plus_two_pi_1000() {
     // HMC_Move2D(6,0,1,2000,0); HMC_MoveCircle(6,0,1,3,0,−2000,0,−1000);
@@ -545,12 +599,16 @@ fn bad_independent_coordinates_are_refused_with_the_reason() {
     }
     // Nothing was queued and no id used: the next motion runs alone.
     assert_eq!(group(&e).queue_used, 0);
-    // Splines have no independent coordinates.
-    let err = serde_json::from_str::<Command>(
-        r#"{"type":"move_spline","group":1,"points":[[1,2,3]],"independent":[2]}"#,
-    )
-    .unwrap_err();
-    assert!(err.to_string().contains("unknown field `independent`"));
+    // A spline whose counted coordinates do not move has no shape to measure by.
+    let err = refused(
+        &mut e,
+        spline(&[[0.0, 0.0, 5.0], [0.0, 0.0, 9.0]], &[2]).into(),
+    );
+    assert!(
+        matches!(&err, EngineError::InvalidPath { group: 1, .. }),
+        "{err:?}"
+    );
+    assert_eq!(group(&e).queue_used, 0);
     // A group has at most 9 coordinates: index 9 is refused when the command is read.
     let err = serde_json::from_str::<Command>(
         r#"{"type":"move_linear_relative","group":1,"distance":[1,2,3],"independent":[2,9]}"#,

@@ -335,3 +335,38 @@ fn a_corner_blend_matches_both_ends_to_the_curvature_and_stays_in_its_hull() {
     // Coincident points: refused.
     assert!(Curve::blend(&from, &from, 2).is_err());
 }
+
+/// Coordinates that move in proportion along a curve (NMC D8, HMC MoveND independent axes):
+/// a spline in (x, y) lifted by a rise on z and on a fourth axis passes the curve checks, its
+/// rise grows in proportion to the path length, and the shape keeps its share of the length.
+#[test]
+fn a_lifted_spline_moves_its_rise_in_proportion_to_the_length() {
+    let points = [
+        p(&[0.0, 0.0, 1.0, 2.0]),
+        p(&[10.0, 5.0, 1.0, 2.0]),
+        p(&[20.0, -5.0, 1.0, 2.0]),
+        p(&[30.0, 0.0, 1.0, 2.0]),
+    ];
+    let flat = Curve::spline(&points, 4).unwrap();
+    let flat = curve(&flat).unwrap().clone();
+    let rise = p(&[0.0, 0.0, 12.0, -5.0]);
+    let lifted = Segment::Curve(flat.lifted(&rise).unwrap());
+    let end = p(&[30.0, 0.0, 13.0, -3.0]);
+    check_curve(&lifted, &points[0], &end);
+    let stretch = (1.0 + (13.0f64 / flat.length()).powi(2)).sqrt();
+    assert!((lifted.length() - flat.length() * stretch).abs() < 1e-9);
+    for i in 0..=10 {
+        let s = lifted.length() * f64::from(i) / 10.0;
+        let q = lifted.sample(s).p;
+        let f = s / lifted.length();
+        assert!((q[2] - (1.0 + 12.0 * f)).abs() < 1e-9, "z at {s}");
+        assert!((q[3] - (2.0 - 5.0 * f)).abs() < 1e-9, "w at {s}");
+    }
+    let c = curve(&lifted).unwrap();
+    let counted = [true, true, false, false, true, true, true, true, true];
+    assert!((c.counted_share(&counted).unwrap() - 1.0 / stretch).abs() < 1e-12);
+    // The rise on a coordinate of the shape is refused; so is counting it.
+    assert!(flat.lifted(&p(&[1.0, 0.0, 0.0, 0.0])).is_err());
+    assert!(c.counted_share(&[true; 9]).is_none());
+    assert!(c.lifted(&rise).is_err());
+}

@@ -324,12 +324,19 @@ proptest! {
 proptest! {
     #![proptest_config(ProptestConfig { cases: 400, ..ProptestConfig::default() })]
 
-    /// The same with S-curves along the path and jerk-limited axes.
+    /// The same with S-curves along the path and jerk-limited axes: every axis's jerk (third
+    /// finite differences) within its limit too, through arcs, blends and corners without
+    /// geometry (the junction rule and the curve rules of the planner). Factor 1: the third
+    /// difference of a motion is a weighted mean of its jerk, and a junction's steps weigh at
+    /// most `Δv/T² + ¾·Δa/T`, which the junction rule keeps within the jerk the motions
+    /// beside it leave; only the rounding of four positions is discounted (`jerk_peak`).
     #[test]
     fn random_blended_paths_of_lines_and_arcs_with_s_curves_keep_the_limits(c in case(true, true, true)) {
         let o = simulate(&c, true);
         check(&o);
         check_tolerance(&o)?;
+        let j = jerk_peak(&o.states, &o.config);
+        prop_assert!(j <= 1.0 + 1e-9, "FD jerk {j}× the limit");
     }
 
     /// Overrides, halts and resumes at random ticks, S-curves or trapezoids, arcs, blends:
@@ -342,6 +349,18 @@ proptest! {
     ) {
         let o = simulate_with(&c, jerk, &actions);
         check(&o);
+    }
+
+    /// The same with S-curves and jerk-limited axes: every axis's jerk within its limit.
+    #[test]
+    fn random_overrides_and_halts_with_s_curves_keep_the_jerk_within_the_limits(
+        c in case(true, true, true),
+        actions in prop::collection::vec(action(), 0..6),
+    ) {
+        let o = simulate_with(&c, true, &actions);
+        check(&o);
+        let j = jerk_peak(&o.states, &o.config);
+        prop_assert!(j <= 1.0 + 1e-9, "FD jerk {j}× the limit");
     }
 
     /// S-curves on buffered line paths: every axis's jerk (third finite differences) within

@@ -510,6 +510,13 @@ pub struct GroupAxisMove {
 pub struct MoveSpline {
     pub group: GroupId,
     pub points: Vec<Vec<f64>>,
+    /// Group coordinates (indices) that are not part of the spline's shape: they move from
+    /// the start to the last point's values in proportion to the length along the spline
+    /// through the other coordinates, and do not count in the path length (HMC MoveSplineND
+    /// with independent axes, NMC D8; their values at the points before the last are not
+    /// used).
+    #[serde(default, skip_serializing_if = "CoordinateSet::is_empty")]
+    pub independent: CoordinateSet,
     #[serde(default)]
     pub relative: bool,
     #[serde(default)]

@@ -55,6 +55,23 @@ impl Jog {
         self.last.a
     }
 
+    /// Group coordinates per unit of the jog coordinate.
+    pub fn direction(&self) -> &Point {
+        &self.direction
+    }
+
+    /// The length along the jog coordinate a stop with `deceleration` issued now travels
+    /// before rest (`Group::stop_jog` cuts it to the members' own acceleration).
+    pub fn stopping_distance(&self, deceleration: f64) -> f64 {
+        let sign = if self.last.v < 0.0 { -1.0 } else { 1.0 };
+        path::planner::braking_distance(
+            self.last.v.abs(),
+            self.last.a * sign,
+            deceleration.min(self.members_acceleration),
+            self.limits.jerk,
+        )
+    }
+
     /// Plan from the state fed last to the signed velocity `target` with `limits`.
     fn replan(&mut self, target: f64, limits: Limits) -> Result<(), String> {
         let limits = Limits {

@@ -3,10 +3,11 @@
 //!
 //! Each tick, before the groups step, every protection looks at the two guarded coordinates
 //! as the last tick left them: the distance `origin − Σ dir_k·position_k`, and for each group
-//! that closes it (`dir_k·velocity_k > 0`) the path length it would still travel if stopped
-//! now (one period at its speed plus [`path::planner::PathPlanner::stopping_distance`]; an
-//! axis moves no farther than the path). If the distance less those lengths would fall below
-//! the protection distance, the protection acts:
+//! how much closer its guarded coordinate would still come if stopped now: along its queued
+//! path (not the tangent) over one period at its speed plus
+//! [`path::planner::PathPlanner::stopping_distance`], or along a jog's direction. If the
+//! distance less those reserves would fall below the protection distance, the protection
+//! acts:
 //!
 //! - `both_stop` (mode 0): both groups stop (`group_stop` with their deceleration);
 //! - `retreat` (mode 1, NMC's "laser" mode): the stop group stops and, at rest, its guarded
@@ -61,23 +62,40 @@ impl Protection {
     }
 }
 
-/// What one group shows the guard: its guarded coordinate, its velocity toward the other
-/// group, and the path length it needs to stop.
-fn guarded(g: &Group, env: &Env, axis: usize, direction: f64) -> (f64, f64, f64) {
+/// What one group shows the guard: its guarded coordinate, and how much closer to the other
+/// group a stop issued now would still bring that coordinate (its reserve, ≥ 0). For a path:
+/// one period at its speed plus [`path::planner::PathPlanner::stopping_distance`] of the
+/// queued path itself ([`path::planner::PathPlanner::advance_toward`]: a path that turns
+/// toward the other group within its braking distance counts, one that turns away does not).
+/// For a jog: the same length along its fixed direction, times the guarded coordinate's
+/// share of it when that share closes.
+fn guarded(g: &Group, env: &Env, axis: usize, direction: f64) -> (f64, f64) {
     let position = g
         .current_position(env.axes)
         .get(axis)
         .copied()
         .unwrap_or(0.0);
+    let deceleration = g.defaults.deceleration;
+    if let Some(jog) = &g.jog {
+        let v = jog.velocity();
+        let share = direction * jog.direction().get(axis).copied().unwrap_or(0.0) * v.signum();
+        if share <= 0.0 || v == 0.0 {
+            return (position, 0.0);
+        }
+        let length = v.abs() * env.period + jog.stopping_distance(deceleration);
+        return (position, share * length);
+    }
     let st = g.planner.state();
-    let closing = direction * st.velocity.get(axis).copied().unwrap_or(0.0);
     let v = st.path_velocity.abs();
-    let stopping = if v > 0.0 || st.path_acceleration > 0.0 {
-        v * env.period + g.planner.stopping_distance(g.defaults.deceleration)
-    } else {
-        0.0
-    };
-    (position, closing, stopping)
+    if v <= 0.0 && st.path_acceleration <= 0.0 {
+        return (position, 0.0);
+    }
+    let length = v * env.period + g.planner.stopping_distance(deceleration);
+    let mut unit = [0.0; path::MAX_AXES];
+    if let Some(u) = unit.get_mut(axis) {
+        *u = direction;
+    }
+    (position, g.planner.advance_toward(&unit, length))
 }
 
 impl Groups {
@@ -213,18 +231,14 @@ impl Groups {
         let index = [i0, i1];
         let mut position = [0.0; 2];
         let mut closing = [0.0; 2];
-        let mut stopping = [0.0; 2];
         for k in 0..2 {
             if let Some(g) = self.groups.get(index[k]) {
-                (position[k], closing[k], stopping[k]) = guarded(g, env, p.axes[k], p.direction[k]);
+                (position[k], closing[k]) = guarded(g, env, p.axes[k], p.direction[k]);
             }
         }
         p.distance =
             p.origin_distance - p.direction[0] * position[0] - p.direction[1] * position[1];
-        let need: f64 = (0..2)
-            .filter(|&k| closing[k] > 0.0)
-            .map(|k| stopping[k])
-            .sum();
+        let need: f64 = closing.iter().sum();
         let danger = need > 0.0 && p.distance - need < p.protection_distance;
         let mut acting = danger;
         match p.mode {

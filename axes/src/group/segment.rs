@@ -2,7 +2,7 @@
 //! `path::planner`). Everything a command carries is checked here, before anything is queued:
 //! coordinate counts, finite numbers, positive limits, and the geometry's own refusals.
 
-use path::geometry::{Arc, Curve, Line, Segment, Turn};
+use path::geometry::{add, Arc, Curve, GeometryError, Line, Segment, Turn};
 use path::planner::{Join, PathLimits, Transition};
 use path::{Point, MAX_AXES};
 
@@ -207,10 +207,14 @@ fn counted_share(group: GroupId, segment: &Segment, counted: &Counted) -> Result
                 };
             in_plane.hypot(counted_norm(&a.helix()))
         }
-        Segment::Curve(_) => {
-            return Err(invalid(
-                "independent and orientation coordinates move on lines and circular arcs only",
-            ))
+        Segment::Curve(c) => {
+            return c.counted_share(counted).ok_or_else(|| {
+                invalid(
+                    "a curve's shape must lie in its counted coordinates: independent and \
+                     orientation coordinates move along a curve only in proportion (a spline's \
+                     independent coordinates)",
+                )
+            })
         }
     };
     let ratio = part / length;
@@ -219,6 +223,43 @@ fn counted_share(group: GroupId, segment: &Segment, counted: &Counted) -> Result
     } else {
         0.0
     })
+}
+
+/// The spline through `nodes` whose coordinates that are not `counted` move in proportion
+/// along it: the shape goes through the nodes' counted coordinates (the others held at the
+/// start's), and the rest rise from the start to the last node's values in proportion to the
+/// length along the shape (`Curve::lifted`), as they would along a line or an arc (HMC
+/// MoveSplineND with independent axes, NMC D8).
+fn counted_spline(
+    nodes: &[Point],
+    counted: &Counted,
+    dims: usize,
+) -> Result<Segment, GeometryError> {
+    let independent = |k: usize| k < dims && !counted.get(k).copied().unwrap_or(true);
+    let (Some(first), Some(last)) = (nodes.first().copied(), nodes.last().copied()) else {
+        return Curve::spline(nodes, dims);
+    };
+    if !(0..dims).any(independent) {
+        return Curve::spline(nodes, dims);
+    }
+    let mut rise = [0.0; MAX_AXES];
+    let mut shape = nodes.to_vec();
+    for k in (0..dims).filter(|&k| independent(k)) {
+        if let (Some(r), Some(a), Some(b)) = (rise.get_mut(k), first.get(k), last.get(k)) {
+            *r = b - a;
+        }
+        for n in &mut shape {
+            if let (Some(x), Some(a)) = (n.get_mut(k), first.get(k)) {
+                *x = *a;
+            }
+        }
+    }
+    match Curve::spline(&shape, dims)? {
+        Segment::Curve(c) => c.lifted(&rise).map(Segment::Curve),
+        // Nodes on one line: the line with the rise is exactly proportional too.
+        Segment::Line(l) => Line::new(l.start(), add(&l.end(), &rise), dims).map(Segment::Line),
+        other => Ok(other),
+    }
 }
 
 /// An aborting motion accepted while the path was moving: it starts when the path is at rest.
@@ -578,6 +619,7 @@ pub(super) fn spline(
         .iter()
         .map(|p| coordinates(group, "points", p, dims))
         .collect::<Result<Vec<_>, _>>()?;
+    let counted = counted_coordinates(group, c.independent, dims)?;
     request(
         Geometry::Spline {
             points,
@@ -587,7 +629,7 @@ pub(super) fn spline(
         c.buffer_mode,
         c.transition,
         c.user_segment,
-        ALL_COUNTED,
+        counted,
         defaults,
     )
 }
@@ -809,7 +851,7 @@ impl PathRequest {
                 let mut nodes = Vec::with_capacity(points.len() + 1);
                 nodes.push(start);
                 nodes.extend(points.iter().map(|p| offset(p, *relative)));
-                Curve::spline(&nodes, dims)
+                counted_spline(&nodes, &self.counted, dims)
             }
             Geometry::CenterAngle {
                 center,

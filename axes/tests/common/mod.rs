@@ -6,7 +6,7 @@ use axes::command::{
     ArcDirection, AxisInput, CircleMode, Command, CommandState, Enable, ForceInput,
     GetCommandState, GetParameter, GroupBufferMode, GroupCreate, GroupEnable, GroupParameter,
     GroupSetParameter, MoveAbsolute, MoveCircularAbsolute, MoveLinearAbsolute, MoveRelative,
-    MoveVelocity, Reply, SetParameter, TransitionMode,
+    MoveSpline, MoveVelocity, Reply, SetParameter, TransitionMode,
 };
 use axes::config::{AxisConfig, HomeSwitchConfig, SwitchConfig};
 use axes::status::{GroupState, GroupStatus};
@@ -259,6 +259,24 @@ pub fn group_line(group: u16, position: &[f64]) -> MoveLinearAbsolute {
         user_segment: None,
         independent: Default::default(),
         coordinate_system: None,
+    }
+}
+
+/// A buffered spline of group `group` through `points` (absolute), the group's own limits.
+pub fn group_spline(group: u16, points: Vec<Vec<f64>>) -> MoveSpline {
+    MoveSpline {
+        group,
+        points,
+        relative: false,
+        velocity: None,
+        acceleration: None,
+        deceleration: None,
+        jerk: None,
+        buffer_mode: GroupBufferMode::Buffered,
+        transition: TransitionMode::None,
+        user_segment: None,
+        coordinate_system: None,
+        independent: Default::default(),
     }
 }
 

@@ -320,6 +320,15 @@ impl Arc {
         }
     }
 
+    /// Norm of `d³p/ds³`, the same everywhere on the arc: `r·w³` with `w = sweep/length`.
+    pub fn curvature_rate(&self) -> f64 {
+        if self.length > 0.0 {
+            self.radius * (self.sweep / self.length).powi(3)
+        } else {
+            0.0
+        }
+    }
+
     /// Bound on |tangent component| of `axis` over the arc (the in-plane amplitude plus the
     /// linear part), ≤ 1.
     pub fn max_tangent(&self, axis: usize) -> f64 {

@@ -228,6 +228,7 @@ struct Table {
     /// Bounds over the whole curve (see [`Curve::max_tangent`]).
     max_tangent: Point,
     max_curvature: f64,
+    max_curvature_rate: f64,
 }
 
 /// A stretch of the curve with a length of its own: a spline span, or an eighth of an ellipse.
@@ -299,11 +300,38 @@ pub enum CurveKind {
 pub struct Curve {
     table: Shared<Table>,
     kind: CurveKind,
-    /// Path length of this piece's start on the shared table.
+    /// Length along the shape (the table's) of this piece's start on the shared table.
     s0: f64,
+    /// Path length of this piece (the shape's length × `lift.stretch`).
     length: f64,
     end: Point,
     dims: usize,
+    lift: Lift,
+}
+
+/// Coordinates that move in proportion along a curve without being part of its shape (NMC
+/// D8's extra axes, HMC MoveND's independent axes; see [`Curve::lifted`]): at length `σ` along
+/// the shape the point is `shape(σ) + (σ/L)·rise`, `L` the whole shape's length. The rise is
+/// orthogonal to the shape (on coordinates the shape does not move), so the path length is
+/// the shape's × `stretch = √(1 + |rise/L|²)` everywhere, like a helix's.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Lift {
+    rise: Point,
+    shape_length: f64,
+    stretch: f64,
+}
+
+impl Lift {
+    const NONE: Lift = Lift {
+        rise: [0.0; MAX_AXES],
+        shape_length: 1.0,
+        stretch: 1.0,
+    };
+
+    /// The rise per length along the shape.
+    fn slope(&self) -> Point {
+        scale(&self.rise, 1.0 / self.shape_length)
+    }
 }
 
 /// 5-point Gauss–Legendre nodes and weights on [−1, 1].
@@ -390,6 +418,8 @@ impl Builder<'_> {
 struct Bounds {
     max_tangent: Point,
     max_curvature: f64,
+    /// The largest |Δκ|/Δs between two neighbouring evaluations (`κ` the curvature vector).
+    max_curvature_rate: f64,
     min_speed: f64,
     /// The longest stretch between two evaluations (its length bound).
     spacing: f64,
@@ -404,6 +434,7 @@ impl Bounds {
         Bounds {
             max_tangent: [0.0; MAX_AXES],
             max_curvature: 0.0,
+            max_curvature_rate: 0.0,
             min_speed: f64::INFINITY,
             spacing: 0.0,
             previous_tangent: None,
@@ -422,11 +453,23 @@ impl Bounds {
         let mut fastest: f64 = 0.0;
         let mut kappa = std::mem::take(&mut self.kappa);
         kappa.clear();
+        let mut previous: Option<(Point, f64)> = None;
         for k in 0..=n {
             let e = shape.eval(at(k), span);
             let speed = norm(&e.d1);
             fastest = fastest.max(speed);
-            kappa.push(norm(&curvature(&e)));
+            let kv = curvature(&e);
+            kappa.push(norm(&kv));
+            if let Some((kp, sp)) = previous {
+                let ds = 0.5 * (sp + speed) * du.abs();
+                if ds > 0.0 {
+                    let rate = norm(&sub(&kv, &kp)) / ds;
+                    if rate.is_finite() {
+                        self.max_curvature_rate = self.max_curvature_rate.max(rate);
+                    }
+                }
+            }
+            previous = Some((kv, speed));
             if k == n {
                 break;
             }
@@ -567,7 +610,10 @@ fn build_table(
     // (conservative, so the planner never under-estimates an axis's share of the speed).
     let mut max_tangent = bounds.max_tangent;
     let max_curvature = bounds.max_curvature;
-    for m in max_tangent.iter_mut() {
+    for m in max_tangent.iter_mut().filter(|m| **m > 0.0) {
+        // An axis whose tangent is exactly 0 at every evaluation does not move (its
+        // coordinate's polynomial coefficients are 0): it stays 0, so the coordinates a curve
+        // leaves alone are known exactly (`Curve::lifted`).
         *m = (*m + max_curvature * bounds.spacing).min(1.0);
     }
     Ok(Table {
@@ -575,6 +621,9 @@ fn build_table(
         pieces: built,
         max_tangent,
         max_curvature: max_curvature * 1.05,
+        // A difference quotient is the mean of the rate over its interval; the margin covers
+        // a peak between two evaluations of a smooth curve (64 per blend, 32 per span).
+        max_curvature_rate: bounds.max_curvature_rate * 1.25,
     })
 }
 
@@ -775,7 +824,69 @@ impl Curve {
             length,
             end,
             dims,
+            lift: Lift::NONE,
         }
+    }
+
+    /// This curve (whole, not trimmed, without a rise yet) with `rise` added in proportion to
+    /// the length along it (see `Lift`): it ends at `end + rise`. The rise must lie on
+    /// coordinates the curve does not move (its tangent bound 0 there), so the path length
+    /// grows by the same factor everywhere and the coordinates of the rise move in
+    /// proportion to the curve's own length (NMC D8, HMC MoveND independent axes).
+    pub fn lifted(&self, rise: &Point) -> Result<Curve, GeometryError> {
+        check_finite("rise", rise)?;
+        if self.s0 != 0.0 || self.lift != Lift::NONE {
+            return Err(GeometryError::Invalid(
+                "only a whole curve without a rise can be lifted",
+            ));
+        }
+        let crosses = rise
+            .iter()
+            .zip(&self.table.max_tangent)
+            .any(|(r, t)| *r != 0.0 && *t != 0.0);
+        if crosses {
+            return Err(GeometryError::Invalid(
+                "the coordinates moved in proportion must not be part of the curve's shape",
+            ));
+        }
+        let shape_length = self.length;
+        if !(shape_length > 0.0 && shape_length.is_finite()) {
+            return Err(GeometryError::Invalid(
+                "a curve of length 0 cannot be lifted",
+            ));
+        }
+        let slope = norm(rise) / shape_length;
+        let stretch = (1.0 + slope * slope).sqrt();
+        Ok(Curve {
+            length: shape_length * stretch,
+            end: add(&self.end, rise),
+            lift: Lift {
+                rise: *rise,
+                shape_length,
+                stretch,
+            },
+            ..self.clone()
+        })
+    }
+
+    /// The share of the path length that the coordinates not in the rise make (`1/stretch`),
+    /// when the shape lies wholly on `counted` coordinates and the rise wholly on the others
+    /// (then it is the same along the whole curve); else `None`.
+    pub fn counted_share(&self, counted: &[bool]) -> Option<f64> {
+        let flag = |k: usize| counted.get(k).copied().unwrap_or(false);
+        let shape_in = self
+            .table
+            .max_tangent
+            .iter()
+            .enumerate()
+            .all(|(k, t)| *t == 0.0 || flag(k));
+        let rise_out = self
+            .lift
+            .rise
+            .iter()
+            .enumerate()
+            .all(|(k, r)| *r == 0.0 || !flag(k));
+        (shape_in && rise_out).then(|| 1.0 / self.lift.stretch)
     }
 
     pub fn kind(&self) -> CurveKind {
@@ -816,7 +927,7 @@ impl Curve {
             .iter()
             .map(|p| p.s0)
             .chain(pieces.last().map(|p| p.s0 + p.length))
-            .map(move |s| s - self.s0)
+            .map(move |s| (s - self.s0) * self.lift.stretch)
             .filter(move |&s| (0.0..=self.length).contains(&s))
     }
 
@@ -824,12 +935,22 @@ impl Curve {
     /// value at 8 evaluations per table step, padded by the most the tangent can turn between
     /// them (curvature × spacing). For a trimmed piece, the whole curve's bound.
     pub fn max_tangent(&self, axis: usize) -> f64 {
-        self.table.max_tangent.get(axis).copied().unwrap_or(0.0)
+        let shape = self.table.max_tangent.get(axis).copied().unwrap_or(0.0);
+        let rise = self.lift.slope().get(axis).map_or(0.0, |r| r.abs());
+        ((shape + rise) / self.lift.stretch).min(1.0)
     }
 
     /// A bound on the curvature over the whole curve: the largest evaluated value + 5 %.
     pub fn max_curvature(&self) -> f64 {
-        self.table.max_curvature
+        let k = self.lift.stretch;
+        self.table.max_curvature / (k * k)
+    }
+
+    /// An estimate from above of `|dκ/ds|` over the whole curve (`κ` the curvature vector,
+    /// so this is `|d³p/ds³|`): the largest difference quotient between neighbouring bound
+    /// evaluations + 25 %. The planner's jerk rule on curves uses it.
+    pub fn max_curvature_rate(&self) -> f64 {
+        self.table.max_curvature_rate / self.lift.stretch.powi(3)
     }
 
     /// The point, unit tangent and curvature vector at path length `s` (clamped).
@@ -839,7 +960,9 @@ impl Curve {
         } else {
             s.clamp(0.0, self.length)
         };
-        let (u, span) = self.parameter_at(self.s0 + s);
+        let lift = &self.lift;
+        let sigma = self.s0 + s / lift.stretch;
+        let (u, span) = self.parameter_at(sigma);
         let e = self.table.shape.eval(u, span);
         let speed = norm(&e.d1);
         let t = if speed > 0.0 {
@@ -847,11 +970,25 @@ impl Curve {
         } else {
             [0.0; MAX_AXES]
         };
-        let p = if s >= self.length { self.end } else { e.p };
+        if *lift == Lift::NONE {
+            let p = if s >= self.length { self.end } else { e.p };
+            return PathPoint {
+                p,
+                t,
+                k: curvature(&e),
+            };
+        }
+        // d/ds = (1/stretch)·d/dσ: the tangent gains the rise's slope, the curvature shrinks.
+        let p = if s >= self.length {
+            self.end
+        } else {
+            add(&e.p, &scale(&lift.rise, sigma / lift.shape_length))
+        };
+        let k = lift.stretch;
         PathPoint {
             p,
-            t,
-            k: curvature(&e),
+            t: scale(&add(&t, &lift.slope()), 1.0 / k),
+            k: scale(&curvature(&e), 1.0 / (k * k)),
         }
     }
 
@@ -887,10 +1024,11 @@ impl Curve {
         Curve {
             table: Shared::clone(&self.table),
             kind: self.kind,
-            s0: self.s0 + s0,
+            s0: self.s0 + s0 / self.lift.stretch,
             length: s1 - s0,
             end,
             dims: self.dims,
+            lift: self.lift,
         }
     }
 
@@ -924,8 +1062,13 @@ impl Curve {
                     .collect(),
                 max_tangent,
                 max_curvature: table.max_curvature,
+                max_curvature_rate: table.max_curvature_rate,
             }),
             end: t.apply(&self.end),
+            lift: Lift {
+                rise: t.apply_vector(&self.lift.rise),
+                ..self.lift
+            },
             ..self.clone()
         }
     }

@@ -165,6 +165,18 @@ impl Segment {
             Segment::Curve(c) => c.max_curvature(),
         }
     }
+
+    /// The largest `|d³p/ds³|` (the rate of change of the curvature vector along the path)
+    /// anywhere on the segment: 0 for a line, `r·w³` for an arc (`w` its angle per path
+    /// length), an estimate from above for a curve. The planner bounds the axes' jerk with
+    /// it (`v³·|d³p/ds³|` is the part of the jerk that the path speed alone makes).
+    pub fn max_curvature_rate(&self) -> f64 {
+        match self {
+            Segment::Line(_) => 0.0,
+            Segment::Arc(a) => a.curvature_rate(),
+            Segment::Curve(c) => c.max_curvature_rate(),
+        }
+    }
 }
 
 /// Euclidean norm of the first `dims` components.

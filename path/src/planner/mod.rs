@@ -10,7 +10,9 @@
 //! Output: [`PathPlanner::step`] advances one period, returns the new [`PathState`] and appends
 //! what happened during the period ([`PathEvent`]s, in order) to the caller's vector.
 //! Queries: [`PathPlanner::state`], [`PathPlanner::queued`], [`PathPlanner::queue_end`],
-//! [`PathPlanner::is_idle`], [`PathPlanner::remaining_length`], and for benchmarks
+//! [`PathPlanner::is_idle`], [`PathPlanner::remaining_length`],
+//! [`PathPlanner::stopping_distance`] and [`PathPlanner::advance_toward`] (a guard), and for
+//! benchmarks
 //! [`PathPlanner::starts_last_step`] and [`PathPlanner::lookahead_visits`].
 //!
 //! How (docs/decisions.md, "Path planner (issue 11)"): each motion runs a 1-D
@@ -28,6 +30,7 @@ use crate::geometry::{norm, sub, Segment, POINT_TOLERANCE};
 use crate::{Point, MAX_AXES};
 
 mod blend;
+mod braking;
 mod execution;
 mod junction;
 mod limits;
@@ -36,6 +39,7 @@ mod push;
 mod queue;
 mod reach;
 
+pub use braking::braking_distance;
 use execution::Execution;
 pub use execution::MAX_STARTS_PER_STEP;
 use queue::Entry;
@@ -603,11 +607,7 @@ impl PathPlanner {
                 jerk = jerk.min(m.limits.jerk);
             }
         }
-        if dec.is_nan() || dec <= 0.0 {
-            return f64::INFINITY;
-        }
-        let (v1, s1) = reach::settle(v, a.max(0.0), jerk);
-        s1.max(0.0) + reach::ramp_distance(v1, 0.0, dec, jerk)
+        braking_distance(v, a, dec, jerk)
     }
 
     pub fn state(&self) -> &PathState {

@@ -2,7 +2,7 @@
 //! corner blend that may replace that junction (issue 11 item 4).
 
 use super::blend::corner_curve;
-use super::junction::{corner_rule, curvature_cap, mode_velocity, with_acceleration_share};
+use super::junction::{junction_rule, mode_velocity, with_shares};
 use super::limits::motion_limits;
 use super::queue::{Entry, QueuedMotion};
 use super::reach::{lowest_end, reach, settle};
@@ -35,19 +35,50 @@ fn queued(
         entry_factor: 1.0,
         reports_done: true,
         acceleration_share: 1.0,
+        jerk_share: 1.0,
     }
 }
 
 /// `m`'s path limits again (its segment changed, or its share of the axes' acceleration).
 fn relimit(m: &mut QueuedMotion, axes: &[AxisLimits], period: f64, rules: &LookaheadLimits) {
     let shared;
-    let axes = if m.acceleration_share < 1.0 {
-        shared = with_acceleration_share(axes, m.acceleration_share);
+    let axes = if m.acceleration_share < 1.0 || m.jerk_share < 1.0 {
+        shared = with_shares(axes, m.acceleration_share, m.jerk_share);
         shared.get(..axes.len()).unwrap_or(&[])
     } else {
         axes
     };
     m.limits = motion_limits(&m.segment, &m.programmed, axes, period, rules);
+}
+
+/// The junction from `prev` into `next` (see `junction::junction_rule`): sets `prev`'s end
+/// cap and lowers both motions' shares of the axes' acceleration and jerk where the junction
+/// needs them (then their limits are computed again). Returns whether `prev`'s limits changed.
+fn join(
+    prev: &mut QueuedMotion,
+    next: &mut QueuedMotion,
+    axes: &[AxisLimits],
+    period: f64,
+    rules: &LookaheadLimits,
+) -> bool {
+    let before = prev.segment.sample(prev.length);
+    let after = next.segment.sample(0.0);
+    let v_limit = prev.limits.velocity_cap.min(next.limits.velocity_cap);
+    let rule = junction_rule(&before, &after, axes, period, v_limit);
+    prev.end_cap = rule.cap;
+    let lower = |m: &mut QueuedMotion| {
+        let a = m.acceleration_share.min(rule.acceleration_share);
+        let j = m.jerk_share.min(rule.jerk_share);
+        let changed = a < m.acceleration_share || j < m.jerk_share;
+        if changed {
+            m.acceleration_share = a;
+            m.jerk_share = j;
+            relimit(m, axes, period, rules);
+        }
+        changed
+    };
+    lower(next);
+    lower(prev)
 }
 
 /// The highest velocity at which the path may enter `first` and still stop by the end of
@@ -102,35 +133,22 @@ impl PathPlanner {
             self.queue.push_back(Entry::Motion(Box::new(second)));
             return pi;
         }
-        // Transition::None (or a blend that did not fit): the corner rule, and the curvature
-        // rule where the curvature steps.
+        // Transition::None (or a blend that did not fit): the junction rule (a direction
+        // step, a curvature step).
         let rules = self.lookahead_limits;
         let mut new = new;
         let after = new.segment.sample(0.0);
         let mut before = after;
-        let mut share = 1.0;
         if let Some(Entry::Motion(prev)) = self.queue.get_mut(pi) {
             before = prev.segment.sample(prev.length);
-            let v_limit = prev.limits.velocity_cap.min(new.limits.velocity_cap);
-            let (cap, motions) = corner_rule(&before.t, &after.t, axes, period, v_limit);
-            share = motions;
-            prev.end_cap = cap.min(curvature_cap(&before.k, &after.k, axes, period));
+            let changed = join(prev, &mut new, axes, period, &rules);
             if let Some(a) = rules.corner_acceleration {
                 let step = crate::geometry::norm(&crate::geometry::sub(&before.t, &after.t));
                 if step > 0.0 {
                     prev.end_cap = prev.end_cap.min(a * period / step);
                 }
             }
-            // A velocity step: both motions leave it part of the axes' acceleration.
-            if share < prev.acceleration_share {
-                prev.acceleration_share = share;
-                relimit(prev, axes, period, &rules);
-            }
-        }
-        if share < 1.0 {
-            new.acceleration_share = share;
-            relimit(&mut new, axes, period, &rules);
-            if pi == 0 && self.exec.is_some() {
+            if changed && pi == 0 && self.exec.is_some() {
                 self.replan_pending = true;
             }
         }
@@ -161,9 +179,9 @@ impl PathPlanner {
             return None;
         };
         let rounded = corner_curve(&prev.segment, &new.segment, transition, dims)?;
-        let join = new.join;
+        let mode = new.join;
         let programmed = PathLimits {
-            velocity: mode_velocity(join, prev.programmed.velocity, new.programmed.velocity),
+            velocity: mode_velocity(mode, prev.programmed.velocity, new.programmed.velocity),
             acceleration: prev
                 .programmed
                 .acceleration
@@ -178,7 +196,7 @@ impl PathPlanner {
         let mut arc = queued(
             rounded.blend,
             programmed,
-            join,
+            mode,
             new.tag,
             axes,
             period,
@@ -188,37 +206,35 @@ impl PathPlanner {
         let mut rest = queued(
             rounded.tail,
             new.programmed,
-            join,
+            mode,
             new.tag,
             axes,
             period,
             &rules,
         );
         rest.reports_start = false;
-        let segment = rounded.head;
-        let shortened = segment.length();
-        // Where the curvature steps (a corner arc's ends), the curvature rule.
-        let (arc_start, arc_end) = (arc.segment.sample(0.0), arc.segment.sample(arc.length));
-        arc.end_cap = curvature_cap(&arc_end.k, &rest.segment.sample(0.0).k, axes, period);
-        let head_end = segment.sample(shortened);
-        let head_cap = curvature_cap(&head_end.k, &arc_start.k, axes, period);
+        // The previous motion, shortened (installed only once the blend is sure to fit).
+        let mut head = (**prev).clone();
+        head.length = rounded.head.length();
+        head.segment = rounded.head;
+        relimit(&mut head, axes, period, &rules);
+        // Where the curvature steps (a corner arc's ends), the junction rule.
+        join(&mut arc, &mut rest, axes, period, &rules);
+        join(&mut head, &mut arc, axes, period, &rules);
         if let Some(e) = executing {
             // The path must be able to enter the arc from where it is now.
-            let l = &prev.limits;
+            let l = &head.limits;
             let (v1, s1) = settle(e.v, e.a, l.jerk);
-            let room = shortened - e.s - s1;
+            let room = head.length - e.s - s1;
             if room < 0.0
                 || lowest_end(v1, room, l.deceleration, l.jerk)
-                    > entry_velocity(&arc, &rest).min(head_cap)
+                    > entry_velocity(&arc, &rest).min(head.end_cap)
             {
                 return None;
             }
         }
         if let Some(Entry::Motion(prev)) = self.queue.get_mut(pi) {
-            prev.length = segment.length();
-            prev.segment = segment;
-            relimit(prev, axes, period, &rules);
-            prev.end_cap = head_cap;
+            **prev = head;
         }
         if executing.is_some() {
             self.replan_pending = true;

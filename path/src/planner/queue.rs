@@ -32,8 +32,11 @@ pub(super) struct QueuedMotion {
     pub entry_factor: f64,
     pub reports_done: bool,
     /// The share of the axes' acceleration its limits were planned with: below 1 beside a
-    /// corner that steps the velocity (`junction::CORNER_MOTION_SHARE`).
+    /// junction that steps the velocity (`junction::junction_rule`).
     pub acceleration_share: f64,
+    /// The share of the axes' jerk its limits were planned with: below 1 beside a junction
+    /// whose steps need part of it (`junction::junction_rule`).
+    pub jerk_share: f64,
 }
 
 impl QueuedMotion {

@@ -194,3 +194,77 @@ pub fn distance_to_path(q: &Point, segments: &[Segment]) -> f64 {
         .map(|s| distance_to_segment(q, s))
         .fold(f64::INFINITY, f64::min)
 }
+
+/// Largest ratio over all ticks and the axes with a jerk limit of |finite-difference jerk|
+/// (third differences of the positions) / J_k, less the rounding of four positions
+/// (≤ 8ε|x|/T³).
+pub fn jerk_peak(states: &[PathState], config: &PlannerConfig) -> f64 {
+    let t = config.period;
+    let mut worst: f64 = 0.0;
+    for k in 0..config.dims {
+        let lim = config.axes[k];
+        if !lim.jerk.is_finite() {
+            continue;
+        }
+        let scale = states
+            .iter()
+            .map(|s| s.position[k].abs())
+            .fold(1.0, f64::max);
+        let slack = 8.0 * f64::EPSILON * scale / (t * t * t);
+        for w in states.windows(4) {
+            let j = (w[3].position[k] - 3.0 * w[2].position[k] + 3.0 * w[1].position[k]
+                - w[0].position[k])
+                / (t * t * t);
+            worst = worst.max((j.abs() - slack).max(0.0) / lim.jerk);
+        }
+    }
+    worst
+}
+
+/// LinuxCNC issue #3773's path: 200 small arcs (R ≈ 4 mm, sweeps 20°–90°) joined tangentially,
+/// alternating counter-clockwise and clockwise, climbing 0.01 in z each (a fixed seed).
+pub fn linuxcnc_3773_arcs() -> Vec<Segment> {
+    let (mut x, mut y) = (0.0, 0.0);
+    let mut heading: f64 = 0.0;
+    let mut seed = 0x2545_f491_4f6c_dd1du64;
+    let mut rnd = || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut out = Vec::with_capacity(200);
+    for i in 0..200 {
+        let r = 3.8 + 0.4 * rnd();
+        let sweep = (20.0 + 70.0 * rnd()).to_radians();
+        let ccw = i % 2 == 0;
+        let side = if ccw { 1.0 } else { -1.0 };
+        // Centre on the left (CCW) or right (CW) of the heading: tangent junctions.
+        let (nx, ny) = rotate(
+            heading.cos(),
+            heading.sin(),
+            side * std::f64::consts::FRAC_PI_2,
+        );
+        let (cx, cy) = (x + r * nx, y + r * ny);
+        let (ex, ey) = rotate(x - cx, y - cy, side * sweep);
+        let (ex, ey) = (cx + ex, cy + ey);
+        let z = 0.01 * f64::from(i);
+        let turn = if ccw { Turn::Ccw } else { Turn::Cw };
+        out.push(Segment::Arc(
+            Arc::from_center(
+                p(&[x, y, z]),
+                p(&[ex, ey, z + 0.01]),
+                p(&[cx, cy, z]),
+                (0, 1),
+                turn,
+                0,
+                3,
+            )
+            .unwrap(),
+        ));
+        x = ex;
+        y = ey;
+        heading += side * sweep;
+    }
+    out
+}
