@@ -98,6 +98,7 @@ mod machine;
 mod sampling;
 mod slave;
 mod stream;
+mod superimpose;
 mod trigger;
 mod wire;
 
@@ -114,6 +115,9 @@ pub use compensation::{
 pub use coupling::{
     CamIn, CamInterpolation, CamOut, CamPoint, CamTableDefine, CouplingCommand, FollowSegment,
     GearIn, GearOut, GearSetRatio,
+};
+pub use superimpose::{
+    SuperimposeIn, SuperimposeOut, SuperimposeSetRatios, TangentialIn, TangentialOut,
 };
 pub use group::{
     ArcDirection, CircleMode, CoordinateSet, GroupAxisMove, GroupBufferMode, GroupCommand,
