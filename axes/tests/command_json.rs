@@ -935,5 +935,9 @@ fn superimpose_and_tangential_commands_keep_their_json() {
         r#"{"type":"superimpose_in","slave":2,"masters":[0,1,2],"ratios":[1,1]}"#,
     )
     .unwrap_err();
-    assert!(e.to_string().starts_with("invalid length 3, expected 2 elements"), "{e}");
+    assert!(
+        e.to_string()
+            .starts_with("invalid length 3, expected 2 elements"),
+        "{e}"
+    );
 }

@@ -5,9 +5,11 @@
 
 mod common;
 
+/// What a refusal must match.
+type Expected = fn(&EngineError) -> bool;
+
 use axes::command::{
-    Command, EngineError, GearIn, MasterSource, SuperimposeIn, SuperimposeOut,
-    SuperimposeSetRatios,
+    Command, EngineError, GearIn, MasterSource, SuperimposeIn, SuperimposeOut, SuperimposeSetRatios,
 };
 use axes::status::{CouplingKind, CouplingPhase};
 use axes::{AxisFlags, AxisState, Engine};
@@ -145,7 +147,7 @@ fn bad_input_is_refused_and_disturbs_nothing() {
     let mut e = machine(5);
     ok(&mut e, superimpose(2, [0, 1], [1.0, 1.0]));
     let before = e.snapshot().couplings.clone();
-    let cases: Vec<(Command, fn(&EngineError) -> bool)> = vec![
+    let cases: Vec<(Command, Expected)> = vec![
         (superimpose(3, [3, 1], [1.0, 1.0]), |e| {
             matches!(e, EngineError::CoupledToItself { axis: 3 })
         }),
@@ -153,17 +155,41 @@ fn bad_input_is_refused_and_disturbs_nothing() {
             matches!(e, EngineError::CoupledToItself { axis: 3 })
         }),
         (superimpose(3, [0, 0], [1.0, 1.0]), |e| {
-            matches!(e, EngineError::InvalidArgument { name: "masters", .. })
+            matches!(
+                e,
+                EngineError::InvalidArgument {
+                    name: "masters",
+                    ..
+                }
+            )
         }),
         (superimpose(3, [0, 1], [f64::NAN, 1.0]), |e| {
-            matches!(e, EngineError::InvalidArgument { name: "ratios[0]", .. })
+            matches!(
+                e,
+                EngineError::InvalidArgument {
+                    name: "ratios[0]",
+                    ..
+                }
+            )
         }),
         (superimpose(3, [0, 1], [1.0, f64::INFINITY]), |e| {
-            matches!(e, EngineError::InvalidArgument { name: "ratios[1]", .. })
+            matches!(
+                e,
+                EngineError::InvalidArgument {
+                    name: "ratios[1]",
+                    ..
+                }
+            )
         }),
         // Axis 0 would follow axis 2, which follows axis 0 (through its first master) …
         (superimpose(0, [2, 4], [1.0, 1.0]), |e| {
-            matches!(e, EngineError::CouplingLoop { slave: 0, master: 2 })
+            matches!(
+                e,
+                EngineError::CouplingLoop {
+                    slave: 0,
+                    master: 2
+                }
+            )
         }),
         // … or through its second master, down a gear.
         (
@@ -177,7 +203,15 @@ fn bad_input_is_refused_and_disturbs_nothing() {
                 acceleration: None,
                 direction: None,
             }),
-            |e| matches!(e, EngineError::CouplingLoop { slave: 1, master: 2 }),
+            |e| {
+                matches!(
+                    e,
+                    EngineError::CouplingLoop {
+                        slave: 1,
+                        master: 2
+                    }
+                )
+            },
         ),
         (superimpose(2, [3, 4], [1.0, 1.0]), |e| {
             matches!(e, EngineError::AlreadyCoupled { axis: 2, .. })

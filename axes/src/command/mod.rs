@@ -116,9 +116,6 @@ pub use coupling::{
     CamIn, CamInterpolation, CamOut, CamPoint, CamTableDefine, CouplingCommand, FollowSegment,
     GearIn, GearOut, GearSetRatio,
 };
-pub use superimpose::{
-    SuperimposeIn, SuperimposeOut, SuperimposeSetRatios, TangentialIn, TangentialOut,
-};
 pub use group::{
     ArcDirection, CircleMode, CoordinateSet, GroupAxisMove, GroupBufferMode, GroupCommand,
     GroupContinue, GroupCreate, GroupDelete, GroupDisable, GroupDwell, GroupEmergencyStop,
@@ -149,6 +146,9 @@ pub use slave::{ReadObject, SlaveCommand, WriteObject};
 pub use stream::{
     PtKind, PtPoint, PtPush, PvtMove, PvtPoint, PvtPush, StreamClear, StreamCommand, StreamConfig,
     StreamStart, MAX_PUSH_POINTS, MAX_PVT_MOVE_POINTS,
+};
+pub use superimpose::{
+    SuperimposeIn, SuperimposeOut, SuperimposeSetRatios, TangentialIn, TangentialOut,
 };
 pub use trigger::{
     CaptureArm, CaptureClear, CaptureEdge, CaptureSource, CaptureWindow, CompareOutputMode,

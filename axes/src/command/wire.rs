@@ -13,7 +13,6 @@ use super::{
     WriteObject,
 };
 use super::{CamIn, CamOut, CamTableDefine, CouplingCommand, GearIn, GearOut, GearSetRatio};
-use super::{SuperimposeIn, SuperimposeOut, SuperimposeSetRatios, TangentialIn, TangentialOut};
 use super::{CaptureArm, CaptureClear, CompareStart, CompareStop, TriggerCommand};
 use super::{
     CompensationBacklash, CompensationClear, CompensationCommand, CompensationDisable,
@@ -36,6 +35,7 @@ use super::{
     SamplingCommand, SamplingConfigure, SamplingRead, SamplingStart, SamplingStop,
     SamplingTriggerNow,
 };
+use super::{SuperimposeIn, SuperimposeOut, SuperimposeSetRatios, TangentialIn, TangentialOut};
 
 /// Named `Command` like the type it stands for: serde writes this name in "expected internally
 /// tagged enum Command" (a `rename` does not change that message).
@@ -382,7 +382,9 @@ impl From<super::Command> for Command {
             super::Command::Coupling(CouplingCommand::CamTable(c)) => Command::CamTable(c),
             super::Command::Coupling(CouplingCommand::CamIn(c)) => Command::CamIn(c),
             super::Command::Coupling(CouplingCommand::CamOut(c)) => Command::CamOut(c),
-            super::Command::Coupling(CouplingCommand::SuperimposeIn(c)) => Command::SuperimposeIn(c),
+            super::Command::Coupling(CouplingCommand::SuperimposeIn(c)) => {
+                Command::SuperimposeIn(c)
+            }
             super::Command::Coupling(CouplingCommand::SuperimposeSetRatios(c)) => {
                 Command::SuperimposeSetRatios(c)
             }

@@ -366,19 +366,18 @@ impl Couplings {
                 reason: "the plane needs two different coordinates",
             });
         }
-        let member = |k: u8| {
-            group
-                .members()
-                .get(usize::from(k))
-                .copied()
-                .ok_or_else(|| EngineError::InvalidGroup {
-                    group: c.group,
-                    reason: format!(
-                        "has {} coordinates: no coordinate {k}",
-                        group.members().len()
-                    ),
+        let member =
+            |k: u8| {
+                group.members().get(usize::from(k)).copied().ok_or_else(|| {
+                    EngineError::InvalidGroup {
+                        group: c.group,
+                        reason: format!(
+                            "has {} coordinates: no coordinate {k}",
+                            group.members().len()
+                        ),
+                    }
                 })
-        };
+            };
         let (x, y) = (member(i)?, member(j)?);
         self.check_new(env.axes, x, c.axis)?;
         self.check_new(env.axes, y, c.axis)?;

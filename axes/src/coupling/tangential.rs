@@ -120,7 +120,8 @@ impl Tangential {
         let speed2 = x.v * x.v + y.v * y.v;
         // Below rounding of the positions the direction is noise: the path stands.
         let floor = 1e-12 * (1.0 + x.p.abs() + y.p.abs());
-        if !(speed2.sqrt() * dt > floor) {
+        let moving = speed2.sqrt() * dt > floor;
+        if !moving {
             self.target_velocity = 0.0;
             return;
         }
