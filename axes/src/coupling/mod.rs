@@ -465,6 +465,7 @@ impl Couplings {
                 Some(coupling.master),
                 coupling.phase() == CouplingPhase::InSync,
             );
+            axis.set_coupling_kind(coupling.status().kind);
         }
         let at = self.list.partition_point(|c| c.slave < coupling.slave);
         self.list.insert(at, coupling);

@@ -39,6 +39,18 @@ pub enum CouplingKind {
     Tangential,
 }
 
+impl CouplingKind {
+    /// The snake_case name (JSON, traces, scenario `expect`).
+    pub const fn name(self) -> &'static str {
+        match self {
+            CouplingKind::Gear => "gear",
+            CouplingKind::Cam => "cam",
+            CouplingKind::Superimpose => "superimpose",
+            CouplingKind::Tangential => "tangential",
+        }
+    }
+}
+
 /// One coupling, by slave.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct CouplingStatus {

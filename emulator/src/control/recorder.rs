@@ -9,7 +9,7 @@ use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 
 use axes::command::ErrorKind;
 use axes::runtime::{EngineHandle, ObserverId};
-use axes::status::{AxisFlags, AxisState, AxisStatus};
+use axes::status::{AxisFlags, AxisState, AxisStatus, CouplingKind, StreamStatus};
 use axes::Engine;
 use serde::{Deserialize, Serialize};
 
@@ -24,7 +24,8 @@ pub const MAX_TRACE_ROWS: usize = 1_000_000;
 /// the servo thread up for more than a few microseconds at a time.
 const READ_CHUNK: usize = 8192;
 
-/// One recorded axis at one tick: what a trace row needs, and no more (136 bytes).
+/// One recorded axis at one tick: what a trace row needs, and no more (136 bytes: the
+/// coupling kind and stream count fit in what was padding).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TraceRow {
     pub tick: u64,
@@ -43,6 +44,9 @@ pub struct TraceRow {
     pub captures: u32,
     pub capture_position: f64,
     pub compare_outputs: u32,
+    /// The coupling the axis is the slave of, and the points in its PT/PVT buffer.
+    pub coupling: Option<CouplingKind>,
+    pub stream_used: u16,
     /// The output position is `cmd_pos + compensation` (as the status computes it).
     pub compensation: f64,
     /// The group columns of a member axis.
@@ -69,6 +73,8 @@ impl TraceRow {
             capture_position: s.capture_position,
             compare_outputs: s.compare_outputs,
             compensation: s.compensation,
+            coupling: s.coupling,
+            stream_used: s.stream.used,
             group,
         }
     }
@@ -93,6 +99,11 @@ impl TraceRow {
             compare_outputs: self.compare_outputs,
             output_pos: self.cmd_pos + self.compensation,
             compensation: self.compensation,
+            coupling: self.coupling,
+            stream: StreamStatus {
+                used: self.stream_used,
+                ..StreamStatus::default()
+            },
             ..AxisStatus::default()
         }
     }
@@ -506,6 +517,11 @@ mod tests {
             compensation: 0.25,
             pulses: -3,
             last_error: Some(ErrorKind::LimitReached),
+            coupling: Some(CouplingKind::Superimpose),
+            stream: StreamStatus {
+                used: 17,
+                ..StreamStatus::default()
+            },
             ..AxisStatus::default()
         };
         let (mut a, mut b) = (Vec::new(), Vec::new());
