@@ -24,8 +24,9 @@ pub const MAX_TRACE_ROWS: usize = 1_000_000;
 /// the servo thread up for more than a few microseconds at a time.
 const READ_CHUNK: usize = 8192;
 
-/// One recorded axis at one tick: what a trace row needs, and no more (136 bytes: the
-/// coupling kind and stream count fit in what was padding).
+/// One recorded axis at one tick: what a trace row needs, and no more (136 bytes: the group
+/// columns are kept with an `in_group` flag rather than as an `Option`, whose tag would cost 8
+/// bytes, so the coupling kind and stream count fit).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TraceRow {
     pub tick: u64,
@@ -47,10 +48,12 @@ pub struct TraceRow {
     /// The coupling the axis is the slave of, and the points in its PT/PVT buffer.
     pub coupling: Option<CouplingKind>,
     pub stream_used: u16,
+    /// `group` holds a member axis's group columns.
+    in_group: bool,
     /// The output position is `cmd_pos + compensation` (as the status computes it).
     pub compensation: f64,
-    /// The group columns of a member axis.
-    pub group: Option<GroupColumns>,
+    /// The group columns of a member axis (see `in_group`).
+    group: GroupColumns,
 }
 
 impl TraceRow {
@@ -75,8 +78,14 @@ impl TraceRow {
             compensation: s.compensation,
             coupling: s.coupling,
             stream_used: s.stream.used,
-            group,
+            in_group: group.is_some(),
+            group: group.unwrap_or_default(),
         }
+    }
+
+    /// The group columns of a member axis.
+    pub fn group(&self) -> Option<&GroupColumns> {
+        self.in_group.then_some(&self.group)
     }
 
     /// The status record as `trace::write_row` reads it (fields a row has no column for are
@@ -369,7 +378,7 @@ impl TraceRecorder {
                     time,
                     usize::from(row.axis),
                     &row.status(),
-                    row.group.as_ref(),
+                    row.group(),
                 )
                 .map_err(|e| ApiError::Internal(format!("cannot write a trace row: {e}")))?;
             }

@@ -821,8 +821,8 @@ mod tests {
         assert_eq!(
             e.failures(&seen),
             [
-                "axis 2 coupling_kind: expected tangential, saw superimpose",
-                "axis 2 tangent_angle: expected 90, but it is no tangential axis"
+                "axis 2 tangent_angle: expected 90, but it is no tangential axis",
+                "axis 2 coupling_kind: expected tangential, saw superimpose"
             ]
         );
         let tangential = AxisStatus {
