@@ -1,4 +1,5 @@
-//! Couplings (issue 12 items 1–2): gears and cams that make a slave axis follow a master.
+//! Couplings (issue 12 items 1–2, 9): gears and cams that make a slave axis follow a master;
+//! superimposed motion (two masters) and the tangential axis (the two axes of a group's plane).
 //!
 //! Zero lag. The couplings do not run as stage-2 planners (those see the axes as the last tick
 //! left them, so a slave would follow its master one servo period late). Instead stage 3 steps
