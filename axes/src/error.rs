@@ -125,7 +125,8 @@ pub enum EngineError {
     /// A coupling whose slave would be its own master (issue 12).
     #[error("axis {axis} cannot be its own master")]
     CoupledToItself { axis: AxisIndex },
-    /// `gear_in`/`cam_in` on a slave that already follows a master.
+    /// `gear_in`/`cam_in`/`superimpose_in`/`tangential_in` on a slave that already follows a
+    /// master.
     #[error("axis {axis} is already coupled to master axis {master}")]
     AlreadyCoupled { axis: AxisIndex, master: AxisIndex },
     /// Single-axis motion (or a group) for a coupled slave.
@@ -134,7 +135,8 @@ pub enum EngineError {
     /// The master already follows the slave, directly or through other couplings.
     #[error("coupling axis {slave} to master axis {master} closes a loop in the master chain")]
     CouplingLoop { slave: AxisIndex, master: AxisIndex },
-    /// `gear_out`, `cam_out` or `gear_set_ratio` on an axis that is not such a slave.
+    /// `gear_out`, `cam_out`, `gear_set_ratio`, `superimpose_out`, `superimpose_set_ratios` or
+    /// `tangential_out` on an axis that is not such a slave.
     #[error("axis {axis} is not {what}")]
     NotCoupled { axis: AxisIndex, what: &'static str },
     #[error("cam table {table} does not exist")]

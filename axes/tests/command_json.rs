@@ -648,7 +648,7 @@ fn minimal() -> Vec<(&'static str, Command, &'static str)> {
 
 /// Inputs whose error serde reports, and the text it reports today.
 const ERRORS: &[(&str, &str)] = &[
-    (r#"{"type":"teleport","axis":0}"#, "unknown variant `teleport`, expected one of `enable`, `disable`, `reset`, `move_absolute`, `move_relative`, `move_velocity`, `stop`, `halt`, `resume`, `home`, `set_position`, `set_parameter`, `get_parameter`, `modify_target`, `cancel`, `command_state`, `force_input`, `force_digital_input`, `force_analog_input`, `write_digital_output`, `write_analog_output`, `inject_following_error`, `setpoint`, `read_object`, `write_object`, `move_together`, `stop_axes`, `stop_all`, `enable_all`, `disable_all`, `emergency_stop_all`, `reset_all`, `group_create`, `group_delete`, `group_enable`, `group_disable`, `group_reset`, `move_linear_absolute`, `move_linear_relative`, `move_circular_absolute`, `move_circular_relative`, `group_stop`, `group_halt`, `group_continue`, `group_emergency_stop`, `group_set_override`, `group_set_origin`, `group_set_parameter`, `group_set_output`, `group_dwell`, `group_wait_input`, `group_wait_position`, `group_axis_move`, `move_spline`, `move_ellipse`, `group_set_coordinate_transform`, `group_set_coordinate_system`, `group_set_rotary_transform`, `group_set_xyza_transform`, `group_delete_transform`, `move_protection_enable`, `move_protection_disable`, `move_circular_angle`, `group_jog`, `group_jog_axis`, `gear_in`, `gear_set_ratio`, `gear_out`, `cam_table`, `cam_in`, `cam_out`, `capture_arm`, `capture_clear`, `compare_start`, `compare_stop`, `stream_config`, `pt_push`, `pvt_push`, `stream_clear`, `stream_start`, `pvt_move`, `compensation_lead_screw`, `compensation_backlash`, `compensation_table`, `compensation_enable`, `compensation_disable`, `compensation_clear`, `sampling_configure`, `sampling_start`, `sampling_trigger`, `sampling_stop`, `sampling_read` at line 1 column 18"),
+    (r#"{"type":"teleport","axis":0}"#, "unknown variant `teleport`, expected one of `enable`, `disable`, `reset`, `move_absolute`, `move_relative`, `move_velocity`, `stop`, `halt`, `resume`, `home`, `set_position`, `set_parameter`, `get_parameter`, `modify_target`, `cancel`, `command_state`, `force_input`, `force_digital_input`, `force_analog_input`, `write_digital_output`, `write_analog_output`, `inject_following_error`, `setpoint`, `read_object`, `write_object`, `move_together`, `stop_axes`, `stop_all`, `enable_all`, `disable_all`, `emergency_stop_all`, `reset_all`, `group_create`, `group_delete`, `group_enable`, `group_disable`, `group_reset`, `move_linear_absolute`, `move_linear_relative`, `move_circular_absolute`, `move_circular_relative`, `group_stop`, `group_halt`, `group_continue`, `group_emergency_stop`, `group_set_override`, `group_set_origin`, `group_set_parameter`, `group_set_output`, `group_dwell`, `group_wait_input`, `group_wait_position`, `group_axis_move`, `move_spline`, `move_ellipse`, `group_set_coordinate_transform`, `group_set_coordinate_system`, `group_set_rotary_transform`, `group_set_xyza_transform`, `group_delete_transform`, `move_protection_enable`, `move_protection_disable`, `move_circular_angle`, `group_jog`, `group_jog_axis`, `gear_in`, `gear_set_ratio`, `gear_out`, `cam_table`, `cam_in`, `cam_out`, `capture_arm`, `capture_clear`, `compare_start`, `compare_stop`, `stream_config`, `pt_push`, `pvt_push`, `stream_clear`, `stream_start`, `pvt_move`, `compensation_lead_screw`, `compensation_backlash`, `compensation_table`, `compensation_enable`, `compensation_disable`, `compensation_clear`, `sampling_configure`, `sampling_start`, `sampling_trigger`, `sampling_stop`, `sampling_read`, `superimpose_in`, `superimpose_set_ratios`, `superimpose_out`, `tangential_in`, `tangential_out` at line 1 column 18"),
     (r#"{"axis":0}"#, "missing field `type` at line 1 column 10"),
     (r#"{"type":"move_absolute","axis":0}"#, "missing field `position`"),
     (r#"{"type":"move_absolute","axis":0,"positon":10}"#, "unknown field `positon`, expected one of `axis`, `position`, `velocity`, `acceleration`, `deceleration`, `jerk`, `buffer_mode`"),
@@ -864,6 +864,80 @@ fn sampling_commands_keep_their_json() {
     assert!(
         e.to_string()
             .starts_with("unknown variant `torque`, expected one of `planned_position`"),
+        "{e}"
+    );
+}
+
+#[test]
+fn superimpose_and_tangential_commands_keep_their_json() {
+    use axes::command::{
+        MasterSource, SuperimposeIn, SuperimposeOut, SuperimposeSetRatios, TangentialIn,
+        TangentialOut,
+    };
+    let cases = vec![
+        (
+            Command::from(SuperimposeIn {
+                slave: 3,
+                masters: [0, 1],
+                ratios: [0.707, -0.707],
+                master_source: MasterSource::Actual,
+            }),
+            r#"{"type":"superimpose_in","slave":3,"masters":[0,1],"ratios":[0.707,-0.707],"master_source":"actual"}"#,
+        ),
+        (
+            Command::from(SuperimposeSetRatios {
+                slave: 3,
+                ratios: [1.0, -1.0],
+            }),
+            r#"{"type":"superimpose_set_ratios","slave":3,"ratios":[1.0,-1.0]}"#,
+        ),
+        (
+            Command::from(SuperimposeOut { slave: 3 }),
+            r#"{"type":"superimpose_out","slave":3}"#,
+        ),
+        (
+            Command::from(TangentialIn {
+                axis: 2,
+                group: 1,
+                coordinates: [1, 2],
+                offset: 90.0,
+                units_per_turn: 20000.0,
+            }),
+            r#"{"type":"tangential_in","axis":2,"group":1,"coordinates":[1,2],"offset":90.0,"units_per_turn":20000.0}"#,
+        ),
+        (
+            Command::from(TangentialOut { axis: 2 }),
+            r#"{"type":"tangential_out","axis":2}"#,
+        ),
+    ];
+    assert_pinned(cases);
+    let minimal: Command =
+        serde_json::from_str(r#"{"type":"tangential_in","axis":2,"group":1}"#).unwrap();
+    assert_eq!(
+        minimal,
+        Command::from(TangentialIn {
+            axis: 2,
+            group: 1,
+            coordinates: [0, 1],
+            offset: 0.0,
+            units_per_turn: 360.0,
+        })
+    );
+    let minimal: Command = serde_json::from_str(
+        r#"{"type":"superimpose_in","slave":2,"masters":[0,1],"ratios":[1,1]}"#,
+    )
+    .unwrap();
+    assert_eq!(
+        serde_json::to_string(&minimal).unwrap(),
+        r#"{"type":"superimpose_in","slave":2,"masters":[0,1],"ratios":[1.0,1.0],"master_source":"commanded"}"#
+    );
+    let e = serde_json::from_str::<Command>(
+        r#"{"type":"superimpose_in","slave":2,"masters":[0,1,2],"ratios":[1,1]}"#,
+    )
+    .unwrap_err();
+    assert!(
+        e.to_string()
+            .starts_with("invalid length 3, expected 2 elements"),
         "{e}"
     );
 }

@@ -37,7 +37,7 @@ use crate::profile::{
     Goal, Limits, MotionState, MovingAverage, Options, Overshoot, PlanError, Profile,
 };
 use crate::rng::Rng;
-use crate::status::{AxisFlags, AxisState, AxisStatus, CommandRef};
+use crate::status::{AxisFlags, AxisState, AxisStatus, CommandRef, CouplingKind};
 
 pub use commands::Feed;
 pub(crate) use commands::MotionSubmission;
@@ -216,6 +216,8 @@ pub struct Axis {
     /// sync: single-axis motion is refused while set.
     coupled: Option<AxisIndex>,
     in_sync: bool,
+    /// What kind of coupling that is (the status and trace show it).
+    coupling_kind: Option<CouplingKind>,
     fifo: Fifo,
     /// The PT/PVT buffer (issue 12 item 3), out of line: most axes never stream.
     stream: Box<PvtStream>,
@@ -305,6 +307,7 @@ impl Axis {
             group: None,
             coupled: None,
             in_sync: false,
+            coupling_kind: None,
             fifo: Fifo::new(config.fifo_depth.unwrap_or(DEFAULT_FIFO_DEPTH)),
             stream: Box::default(),
             stream_dry: false,
@@ -405,6 +408,14 @@ impl Axis {
     pub(crate) fn set_coupled(&mut self, master: Option<AxisIndex>, in_sync: bool) {
         self.coupled = master;
         self.in_sync = in_sync && master.is_some();
+        if master.is_none() {
+            self.coupling_kind = None;
+        }
+    }
+
+    /// The kind of the coupling just made with `set_coupled`.
+    pub(crate) fn set_coupling_kind(&mut self, kind: CouplingKind) {
+        self.coupling_kind = self.coupled.map(|_| kind);
     }
 
     /// The actual velocity (user units/s).
@@ -1098,6 +1109,7 @@ impl Axis {
             stream: self.stream.status(),
             output_pos: cmd_pos + self.correction,
             compensation: self.correction,
+            coupling: self.coupling_kind,
         };
     }
 }

@@ -4,6 +4,9 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::superimpose::{
+    SuperimposeIn, SuperimposeOut, SuperimposeSetRatios, TangentialIn, TangentialOut,
+};
 use super::{command_from, AxisIndex, Direction, MasterSource};
 
 /// Couple `slave` to `master` through a gear: slave travel = numerator / denominator × master
@@ -195,6 +198,11 @@ pub enum CouplingCommand {
     CamTable(CamTableDefine),
     CamIn(CamIn),
     CamOut(CamOut),
+    SuperimposeIn(SuperimposeIn),
+    SuperimposeSetRatios(SuperimposeSetRatios),
+    SuperimposeOut(SuperimposeOut),
+    TangentialIn(TangentialIn),
+    TangentialOut(TangentialOut),
 }
 
 impl CouplingCommand {
@@ -207,6 +215,11 @@ impl CouplingCommand {
             CouplingCommand::CamTable(_) => None,
             CouplingCommand::CamIn(c) => Some(c.slave),
             CouplingCommand::CamOut(c) => Some(c.slave),
+            CouplingCommand::SuperimposeIn(c) => Some(c.slave),
+            CouplingCommand::SuperimposeSetRatios(c) => Some(c.slave),
+            CouplingCommand::SuperimposeOut(c) => Some(c.slave),
+            CouplingCommand::TangentialIn(c) => Some(c.axis),
+            CouplingCommand::TangentialOut(c) => Some(c.axis),
         }
     }
 }
@@ -221,5 +234,10 @@ command_from!(
         CamTableDefine => CamTable,
         CamIn => CamIn,
         CamOut => CamOut,
+        SuperimposeIn => SuperimposeIn,
+        SuperimposeSetRatios => SuperimposeSetRatios,
+        SuperimposeOut => SuperimposeOut,
+        TangentialIn => TangentialIn,
+        TangentialOut => TangentialOut,
     ]
 );

@@ -98,6 +98,7 @@ mod machine;
 mod sampling;
 mod slave;
 mod stream;
+mod superimpose;
 mod trigger;
 mod wire;
 
@@ -145,6 +146,9 @@ pub use slave::{ReadObject, SlaveCommand, WriteObject};
 pub use stream::{
     PtKind, PtPoint, PtPush, PvtMove, PvtPoint, PvtPush, StreamClear, StreamCommand, StreamConfig,
     StreamStart, MAX_PUSH_POINTS, MAX_PVT_MOVE_POINTS,
+};
+pub use superimpose::{
+    SuperimposeIn, SuperimposeOut, SuperimposeSetRatios, TangentialIn, TangentialOut,
 };
 pub use trigger::{
     CaptureArm, CaptureClear, CaptureEdge, CaptureSource, CaptureWindow, CompareOutputMode,

@@ -35,6 +35,7 @@ use super::{
     SamplingCommand, SamplingConfigure, SamplingRead, SamplingStart, SamplingStop,
     SamplingTriggerNow,
 };
+use super::{SuperimposeIn, SuperimposeOut, SuperimposeSetRatios, TangentialIn, TangentialOut};
 
 /// Named `Command` like the type it stands for: serde writes this name in "expected internally
 /// tagged enum Command" (a `rename` does not change that message).
@@ -139,6 +140,12 @@ pub(super) enum Command {
     SamplingTrigger(SamplingTriggerNow),
     SamplingStop(SamplingStop),
     SamplingRead(SamplingRead),
+    // Issue 12 item 9, superimposed motion and the tangential axis.
+    SuperimposeIn(SuperimposeIn),
+    SuperimposeSetRatios(SuperimposeSetRatios),
+    SuperimposeOut(SuperimposeOut),
+    TangentialIn(TangentialIn),
+    TangentialOut(TangentialOut),
 }
 
 impl From<Command> for super::Command {
@@ -243,6 +250,11 @@ impl From<Command> for super::Command {
             Command::CamTable(c) => super::Command::Coupling(CouplingCommand::CamTable(c)),
             Command::CamIn(c) => super::Command::Coupling(CouplingCommand::CamIn(c)),
             Command::CamOut(c) => super::Command::Coupling(CouplingCommand::CamOut(c)),
+            Command::SuperimposeIn(c) => super::Command::from(c),
+            Command::SuperimposeSetRatios(c) => super::Command::from(c),
+            Command::SuperimposeOut(c) => super::Command::from(c),
+            Command::TangentialIn(c) => super::Command::from(c),
+            Command::TangentialOut(c) => super::Command::from(c),
             Command::CaptureArm(c) => super::Command::Trigger(TriggerCommand::CaptureArm(c)),
             Command::CaptureClear(c) => super::Command::Trigger(TriggerCommand::CaptureClear(c)),
             Command::CompareStart(c) => super::Command::Trigger(TriggerCommand::CompareStart(c)),
@@ -370,6 +382,19 @@ impl From<super::Command> for Command {
             super::Command::Coupling(CouplingCommand::CamTable(c)) => Command::CamTable(c),
             super::Command::Coupling(CouplingCommand::CamIn(c)) => Command::CamIn(c),
             super::Command::Coupling(CouplingCommand::CamOut(c)) => Command::CamOut(c),
+            super::Command::Coupling(CouplingCommand::SuperimposeIn(c)) => {
+                Command::SuperimposeIn(c)
+            }
+            super::Command::Coupling(CouplingCommand::SuperimposeSetRatios(c)) => {
+                Command::SuperimposeSetRatios(c)
+            }
+            super::Command::Coupling(CouplingCommand::SuperimposeOut(c)) => {
+                Command::SuperimposeOut(c)
+            }
+            super::Command::Coupling(CouplingCommand::TangentialIn(c)) => Command::TangentialIn(c),
+            super::Command::Coupling(CouplingCommand::TangentialOut(c)) => {
+                Command::TangentialOut(c)
+            }
             super::Command::Trigger(TriggerCommand::CaptureArm(c)) => Command::CaptureArm(c),
             super::Command::Trigger(TriggerCommand::CaptureClear(c)) => Command::CaptureClear(c),
             super::Command::Trigger(TriggerCommand::CompareStart(c)) => Command::CompareStart(c),

@@ -1,4 +1,5 @@
-//! Couplings (issue 12 items 1–2): gears and cams that make a slave axis follow a master.
+//! Couplings (issue 12 items 1–2, 9): gears and cams that make a slave axis follow a master;
+//! superimposed motion (two masters) and the tangential axis (the two axes of a group's plane).
 //!
 //! Zero lag. The couplings do not run as stage-2 planners (those see the axes as the last tick
 //! left them, so a slave would follow its master one servo period late). Instead stage 3 steps
@@ -15,7 +16,9 @@
 
 mod cam;
 mod gear;
+mod superimpose;
 pub mod table;
+mod tangential;
 
 use std::collections::BTreeMap;
 use std::sync::Arc;
@@ -23,13 +26,17 @@ use std::sync::Arc;
 use crate::axis::{Axis, Context, Feed};
 use crate::command::{
     bounded, positive, AxisIndex, CamIn, CamTableDefine, CouplingCommand, EngineError, GearIn,
-    MasterSource, Reply,
+    MasterSource, Reply, SuperimposeIn, TangentialIn,
 };
+use crate::group::Groups;
+use crate::param::ParamId;
 use crate::profile::MotionState;
 use crate::status::{CouplingKind, CouplingPhase, CouplingStatus};
 pub use cam::{Cam, CamStart, CamStep};
 pub use gear::{Clutch, Gear};
+pub use superimpose::Superimpose;
 pub use table::CamTable;
+pub use tangential::{Tangential, TurnLimits};
 
 /// Most cam tables defined at once.
 pub const MAX_CAM_TABLES: usize = 256;
@@ -38,6 +45,8 @@ pub const MAX_CAM_TABLES: usize = 256;
 enum Law {
     Gear(Gear),
     Cam(Cam),
+    Superimpose(Superimpose),
+    Tangential(Tangential),
 }
 
 /// One slave and what it follows.
@@ -49,6 +58,10 @@ struct Coupling {
     law: Law,
     /// The master's position (per `source`) of the last tick.
     previous: f64,
+    /// Superimposed and tangential couplings: the second master (followed by `source` too)
+    /// and its position of the last tick.
+    master2: Option<AxisIndex>,
+    previous2: f64,
     /// Set when the coupling ended this tick; removed after the axes have stepped.
     ended: bool,
 }
@@ -64,8 +77,19 @@ impl Coupling {
                 cam.span(),
                 cam.cycle(),
             ),
+            Law::Superimpose(s) => (CouplingKind::Superimpose, s.ratios()[0], None, 0, 0),
+            Law::Tangential(_) => (CouplingKind::Tangential, 0.0, None, 0, 0),
+        };
+        let (ratio2, angle, deviation) = match &self.law {
+            Law::Superimpose(s) => (s.ratios()[1], 0.0, 0.0),
+            Law::Tangential(t) => (0.0, t.angle(), t.deviation()),
+            _ => (0.0, 0.0, 0.0),
         };
         CouplingStatus {
+            master2: self.master2,
+            ratio2,
+            angle,
+            deviation,
             slave: self.slave,
             master: self.master,
             kind,
@@ -82,6 +106,8 @@ impl Coupling {
         match &self.law {
             Law::Gear(g) => g.phase(),
             Law::Cam(c) => c.phase(),
+            Law::Superimpose(_) => CouplingPhase::InSync,
+            Law::Tangential(t) => t.phase(),
         }
     }
 }
@@ -101,6 +127,8 @@ pub struct Couplings {
 /// What a coupling command may touch.
 pub(crate) struct Env<'a, 'b> {
     pub axes: &'a mut [Axis],
+    /// For `tangential_in`: the group whose path is tracked.
+    pub groups: &'a Groups,
     pub ctx: &'a mut Context<'b>,
     pub period: f64,
 }
@@ -160,6 +188,27 @@ impl Couplings {
             CouplingCommand::CamTable(c) => self.define_table(c),
             CouplingCommand::CamIn(c) => self.cam_in(env, &c),
             CouplingCommand::CamOut(c) => self.decouple(env, c.slave, CouplingKind::Cam),
+            CouplingCommand::SuperimposeIn(c) => self.superimpose_in(env, &c),
+            CouplingCommand::SuperimposeSetRatios(c) => {
+                let ratios = check_ratios(c.ratios)?;
+                match self.find_mut(c.slave).map(|k| &mut k.law) {
+                    Some(Law::Superimpose(s)) => {
+                        s.set_ratios(ratios);
+                        Ok(Reply::Done)
+                    }
+                    _ => Err(EngineError::NotCoupled {
+                        axis: c.slave,
+                        what: "the slave of a superimposed coupling",
+                    }),
+                }
+            }
+            CouplingCommand::SuperimposeOut(c) => {
+                self.decouple(env, c.slave, CouplingKind::Superimpose)
+            }
+            CouplingCommand::TangentialIn(c) => self.tangential_in(env, &c),
+            CouplingCommand::TangentialOut(c) => {
+                self.decouple(env, c.axis, CouplingKind::Tangential)
+            }
         }
     }
 
@@ -177,15 +226,23 @@ impl Couplings {
             return Err(EngineError::CoupledToItself { axis: slave });
         }
         s.check_can_couple()?;
-        // Walk up from the master: each axis has at most one master, so the walk ends within
-        // as many steps as there are couplings.
-        let mut up = Some(master);
-        for _ in 0..=self.list.len() {
-            let Some(a) = up else { break };
+        // Walk up from the master through every master of each coupling (two at most): with
+        // no loop so far, each axis is reached at most once per path, and the paths end
+        // within as many steps as there are couplings; the stack is bounded by twice that.
+        let mut stack = vec![master];
+        let mut visited = 0usize;
+        while let Some(a) = stack.pop() {
             if a == slave {
                 return Err(EngineError::CouplingLoop { slave, master });
             }
-            up = self.find(a).map(|c| c.master);
+            visited += 1;
+            if visited > 4 * (self.list.len() + 1) * (self.list.len() + 1) {
+                break;
+            }
+            if let Some(c) = self.find(a) {
+                stack.push(c.master);
+                stack.extend(c.master2);
+            }
         }
         Ok(())
     }
@@ -276,6 +333,88 @@ impl Couplings {
         Ok(Reply::Done)
     }
 
+    /// `superimpose_in`: two different masters, neither the slave nor following it.
+    fn superimpose_in(&mut self, env: &mut Env, c: &SuperimposeIn) -> Result<Reply, EngineError> {
+        let [m1, m2] = c.masters;
+        self.check_new(env.axes, m1, c.slave)?;
+        self.check_new(env.axes, m2, c.slave)?;
+        if m1 == m2 {
+            return Err(EngineError::InvalidArgument {
+                name: "masters",
+                value: f64::from(m1),
+                reason: "the two masters must be different axes",
+            });
+        }
+        let ratios = check_ratios(c.ratios)?;
+        let (p1, slave) = positions(env, m1, c.slave, c.master_source)?;
+        let (p2, _) = positions(env, m2, c.slave, c.master_source)?;
+        let law = Law::Superimpose(Superimpose::new(ratios, [p1, p2], slave.p));
+        self.insert_two(env, c.slave, [m1, m2], c.master_source, law, [p1, p2]);
+        Ok(Reply::Done)
+    }
+
+    /// `tangential_in`: the plane's two member axes of the group are the masters.
+    fn tangential_in(&mut self, env: &mut Env, c: &TangentialIn) -> Result<Reply, EngineError> {
+        let group = env
+            .groups
+            .get(c.group)
+            .ok_or(EngineError::UnknownGroup { group: c.group })?;
+        let [i, j] = c.coordinates;
+        if i == j {
+            return Err(EngineError::InvalidArgument {
+                name: "coordinates",
+                value: f64::from(i),
+                reason: "the plane needs two different coordinates",
+            });
+        }
+        let member =
+            |k: u8| {
+                group.members().get(usize::from(k)).copied().ok_or_else(|| {
+                    EngineError::InvalidGroup {
+                        group: c.group,
+                        reason: format!(
+                            "has {} coordinates: no coordinate {k}",
+                            group.members().len()
+                        ),
+                    }
+                })
+            };
+        let (x, y) = (member(i)?, member(j)?);
+        self.check_new(env.axes, x, c.axis)?;
+        self.check_new(env.axes, y, c.axis)?;
+        let offset = bounded("offset", c.offset)?;
+        let turn = positive("units_per_turn", c.units_per_turn)?;
+        let source = MasterSource::Commanded;
+        let (px, axis) = positions(env, x, c.axis, source)?;
+        let (py, _) = positions(env, y, c.axis, source)?;
+        let law = Law::Tangential(Tangential::new(turn, offset, axis));
+        self.insert_two(env, c.axis, [x, y], source, law, [px, py]);
+        Ok(Reply::Done)
+    }
+
+    /// Add a coupling of `slave` to two masters (by `source`, whose values are `m` now).
+    fn insert_two(
+        &mut self,
+        env: &mut Env,
+        slave: AxisIndex,
+        [master, master2]: [AxisIndex; 2],
+        source: MasterSource,
+        law: Law,
+        [m1, m2]: [f64; 2],
+    ) {
+        let coupling = Coupling {
+            slave,
+            master,
+            source,
+            law,
+            previous: m1,
+            master2: Some(master2),
+            previous2: m2,
+            ended: false,
+        };
+        self.insert_coupling(env, coupling);
+    }
+
     /// Define (or replace) a cam table: `cam_table`, and the config's `[[cam_tables]]`.
     pub(crate) fn define_table(&mut self, c: CamTableDefine) -> Result<Reply, EngineError> {
         if let Some(user) = self
@@ -313,13 +452,21 @@ impl Couplings {
             source,
             law,
             previous: m,
+            master2: None,
+            previous2: 0.0,
             ended: false,
         };
+        self.insert_coupling(env, coupling);
+    }
+
+    /// Add `coupling` (its slave not yet coupled) and recompute stage 3's order.
+    fn insert_coupling(&mut self, env: &mut Env, coupling: Coupling) {
         if let Some(axis) = env.axes.get_mut(coupling.slave as usize) {
             axis.set_coupled(
                 Some(coupling.master),
                 coupling.phase() == CouplingPhase::InSync,
             );
+            axis.set_coupling_kind(coupling.status().kind);
         }
         let at = self.list.partition_point(|c| c.slave < coupling.slave);
         self.list.insert(at, coupling);
@@ -331,6 +478,11 @@ impl Couplings {
             .binary_search_by_key(&slave, |c| c.slave)
             .ok()
             .and_then(|i| self.list.get(i))
+    }
+
+    fn find_mut(&mut self, slave: AxisIndex) -> Option<&mut Coupling> {
+        let i = self.list.binary_search_by_key(&slave, |c| c.slave).ok()?;
+        self.list.get_mut(i)
     }
 
     fn gear_mut(&mut self, slave: AxisIndex) -> Result<&mut Gear, EngineError> {
@@ -359,6 +511,8 @@ impl Couplings {
         let what = match kind {
             CouplingKind::Gear => "the slave of a gear",
             CouplingKind::Cam => "the slave of a cam",
+            CouplingKind::Superimpose => "the slave of a superimposed coupling",
+            CouplingKind::Tangential => "a tangential axis",
         };
         let i = self
             .list
@@ -367,6 +521,8 @@ impl Couplings {
         let matches = match self.list.get(i).map(|c| &c.law) {
             Some(Law::Gear(_)) => kind == CouplingKind::Gear,
             Some(Law::Cam(_)) => kind == CouplingKind::Cam,
+            Some(Law::Superimpose(_)) => kind == CouplingKind::Superimpose,
+            Some(Law::Tangential(_)) => kind == CouplingKind::Tangential,
             None => false,
         };
         if !matches {
@@ -389,19 +545,33 @@ impl Couplings {
         if self.list.is_empty() {
             return;
         }
-        let depth = |mut a: AxisIndex| {
-            let mut d = 0usize;
-            while let Some(c) = self.find(a) {
-                d += 1;
-                a = c.master;
-                if d > self.list.len() {
-                    break;
+        // A slave's depth is one more than its deepest master's: relaxed once per coupling
+        // (a chain is at most that long), so bounded without recursion.
+        let mut depths = vec![0usize; axes];
+        for _ in 0..self.list.len() {
+            let mut changed = false;
+            for c in &self.list {
+                let deepest = [Some(c.master), c.master2]
+                    .into_iter()
+                    .flatten()
+                    .filter_map(|m| depths.get(m as usize).copied())
+                    .max()
+                    .unwrap_or(0);
+                if let Some(d) = depths.get_mut(c.slave as usize) {
+                    if *d < deepest + 1 {
+                        *d = deepest + 1;
+                        changed = true;
+                    }
                 }
             }
-            d
-        };
-        let mut order: Vec<(usize, AxisIndex)> = (0..axes)
-            .map(|i| (depth(i as AxisIndex), i as AxisIndex))
+            if !changed {
+                break;
+            }
+        }
+        let mut order: Vec<(usize, AxisIndex)> = depths
+            .iter()
+            .enumerate()
+            .map(|(i, &d)| (d, i as AxisIndex))
             .collect();
         order.sort_unstable();
         let slots: Vec<(AxisIndex, Option<usize>)> = order
@@ -452,11 +622,24 @@ impl Couplings {
         };
         let master = read_master(master_axis, c.source, c.previous, period);
         let previous = std::mem::replace(&mut c.previous, master.p);
+        // The second master (superimposed, tangential); its velocity comes with its state.
+        let master2 = c
+            .master2
+            .and_then(|m| axes.get(m as usize))
+            .map(|a| read_master(a, c.source, c.previous2, period));
+        if let Some(m2) = master2 {
+            c.previous2 = m2.p;
+        }
         let Some(slave) = axes.get_mut(c.slave as usize) else {
             return;
         };
         let (feed, end) = match &mut c.law {
             Law::Gear(g) => (Some(g.step(master, previous, period)), false),
+            Law::Superimpose(s) => (master2.map(|m2| s.step(master, m2)), false),
+            Law::Tangential(t) => {
+                let limits = turn_limits(slave);
+                (master2.map(|y| t.step(master, y, limits, period)), false)
+            }
             Law::Cam(cam) => {
                 let input = match cam.start_input() {
                     Some(ch) => ctx.di.get(usize::from(ch)).copied().unwrap_or(false),
@@ -536,4 +719,26 @@ fn check_ratio(numerator: f64, denominator: f64) -> Result<(f64, f64), EngineErr
         });
     }
     Ok((n, d))
+}
+
+/// The ratios of a superimposed coupling: finite, within bounds.
+fn check_ratios([k1, k2]: [f64; 2]) -> Result<[f64; 2], EngineError> {
+    Ok([bounded("ratios[0]", k1)?, bounded("ratios[1]", k2)?])
+}
+
+/// A tangential axis turns within its own `speed` (else `max_velocity`), `accel` and `decel`
+/// (digest 000 §4.4 MoveTang); a limit of 0 means none.
+fn turn_limits(axis: &Axis) -> TurnLimits {
+    let p = axis.params();
+    let or_none = |v: f64| if v > 0.0 { v } else { f64::INFINITY };
+    let speed = p.get(ParamId::Speed);
+    TurnLimits {
+        velocity: or_none(if speed > 0.0 {
+            speed
+        } else {
+            p.get(ParamId::MaxVelocity)
+        }),
+        acceleration: or_none(p.get(ParamId::Accel)),
+        deceleration: or_none(p.get(ParamId::Decel)),
+    }
 }

@@ -359,6 +359,7 @@ impl Engine {
             tick,
             period,
             couplings,
+            groups,
             ..
         } = self;
         let mut ctx = Context {
@@ -368,6 +369,7 @@ impl Engine {
         };
         let mut env = CouplingEnv {
             axes,
+            groups,
             ctx: &mut ctx,
             period: *period,
         };

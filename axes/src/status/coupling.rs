@@ -33,6 +33,22 @@ pub enum CouplingKind {
     #[default]
     Gear,
     Cam,
+    /// Slave = k1 · master 1 + k2 · master 2 (HMC SuperimposeEx).
+    Superimpose,
+    /// Tracks the tangent angle of a group's path (HMC MoveTang).
+    Tangential,
+}
+
+impl CouplingKind {
+    /// The snake_case name (JSON, traces, scenario `expect`).
+    pub const fn name(self) -> &'static str {
+        match self {
+            CouplingKind::Gear => "gear",
+            CouplingKind::Cam => "cam",
+            CouplingKind::Superimpose => "superimpose",
+            CouplingKind::Tangential => "tangential",
+        }
+    }
 }
 
 /// One coupling, by slave.
@@ -51,4 +67,17 @@ pub struct CouplingStatus {
     pub table_index: u32,
     /// Periodic cam: the period the master is in, from 0 (NMC FollowGetLoopCount).
     pub cycle: i64,
+    /// Superimposed and tangential: the second master (the tangent plane's second axis).
+    #[serde(default)]
+    pub master2: Option<AxisIndex>,
+    /// Superimposed: k2 (`ratio` is k1; HMC_GetSuperimposeRatio1/2).
+    #[serde(default)]
+    pub ratio2: f64,
+    /// Tangential: the tangent angle tracked, axis units, offset included
+    /// (HMC_GetMoveTangDestDirection).
+    #[serde(default)]
+    pub angle: f64,
+    /// Tangential: angle − the axis's setpoint (HMC_GetMoveTangDeviation).
+    #[serde(default)]
+    pub deviation: f64,
 }

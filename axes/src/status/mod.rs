@@ -266,6 +266,9 @@ pub struct AxisStatus {
     /// The correction compensation after the planner adds this tick (HIMC GetCompPos).
     #[serde(default)]
     pub compensation: f64,
+    /// The kind of the coupling whose slave the axis is (issue 12; `coupling` in traces).
+    #[serde(default)]
+    pub coupling: Option<CouplingKind>,
 }
 
 /// An axis's PT/PVT buffer and run (NMC `MtPtGetSpace`, `MtPtGetStatic`).

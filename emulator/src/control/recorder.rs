@@ -9,7 +9,7 @@ use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 
 use axes::command::ErrorKind;
 use axes::runtime::{EngineHandle, ObserverId};
-use axes::status::{AxisFlags, AxisState, AxisStatus};
+use axes::status::{AxisFlags, AxisState, AxisStatus, CouplingKind, StreamStatus};
 use axes::Engine;
 use serde::{Deserialize, Serialize};
 
@@ -24,7 +24,9 @@ pub const MAX_TRACE_ROWS: usize = 1_000_000;
 /// the servo thread up for more than a few microseconds at a time.
 const READ_CHUNK: usize = 8192;
 
-/// One recorded axis at one tick: what a trace row needs, and no more (136 bytes).
+/// One recorded axis at one tick: what a trace row needs, and no more (136 bytes: the group
+/// columns are kept with an `in_group` flag rather than as an `Option`, whose tag would cost 8
+/// bytes, so the coupling kind and stream count fit).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TraceRow {
     pub tick: u64,
@@ -43,10 +45,15 @@ pub struct TraceRow {
     pub captures: u32,
     pub capture_position: f64,
     pub compare_outputs: u32,
+    /// The coupling the axis is the slave of, and the points in its PT/PVT buffer.
+    pub coupling: Option<CouplingKind>,
+    pub stream_used: u16,
+    /// `group` holds a member axis's group columns.
+    in_group: bool,
     /// The output position is `cmd_pos + compensation` (as the status computes it).
     pub compensation: f64,
-    /// The group columns of a member axis.
-    pub group: Option<GroupColumns>,
+    /// The group columns of a member axis (see `in_group`).
+    group: GroupColumns,
 }
 
 impl TraceRow {
@@ -69,8 +76,16 @@ impl TraceRow {
             capture_position: s.capture_position,
             compare_outputs: s.compare_outputs,
             compensation: s.compensation,
-            group,
+            coupling: s.coupling,
+            stream_used: s.stream.used,
+            in_group: group.is_some(),
+            group: group.unwrap_or_default(),
         }
+    }
+
+    /// The group columns of a member axis.
+    pub fn group(&self) -> Option<&GroupColumns> {
+        self.in_group.then_some(&self.group)
     }
 
     /// The status record as `trace::write_row` reads it (fields a row has no column for are
@@ -93,6 +108,11 @@ impl TraceRow {
             compare_outputs: self.compare_outputs,
             output_pos: self.cmd_pos + self.compensation,
             compensation: self.compensation,
+            coupling: self.coupling,
+            stream: StreamStatus {
+                used: self.stream_used,
+                ..StreamStatus::default()
+            },
             ..AxisStatus::default()
         }
     }
@@ -358,7 +378,7 @@ impl TraceRecorder {
                     time,
                     usize::from(row.axis),
                     &row.status(),
-                    row.group.as_ref(),
+                    row.group(),
                 )
                 .map_err(|e| ApiError::Internal(format!("cannot write a trace row: {e}")))?;
             }
@@ -506,6 +526,11 @@ mod tests {
             compensation: 0.25,
             pulses: -3,
             last_error: Some(ErrorKind::LimitReached),
+            coupling: Some(CouplingKind::Superimpose),
+            stream: StreamStatus {
+                used: 17,
+                ..StreamStatus::default()
+            },
             ..AxisStatus::default()
         };
         let (mut a, mut b) = (Vec::new(), Vec::new());

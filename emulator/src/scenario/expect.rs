@@ -4,7 +4,7 @@
 use std::fmt::Write as _;
 
 use axes::command::{CommandState, ErrorKind};
-use axes::status::{CouplingPhase, CouplingStatus, GroupState, GroupStatus};
+use axes::status::{CouplingKind, CouplingPhase, CouplingStatus, GroupState, GroupStatus};
 use axes::{AxisFlags, AxisState, AxisStatus};
 use serde::de::IntoDeserializer;
 use serde::Deserialize;
@@ -32,6 +32,10 @@ pub(super) enum Check {
     Error(Option<ErrorKind>),
     /// The phase of the coupling whose slave the axis is (`None`: it is no slave).
     Coupling(Option<CouplingPhase>),
+    /// The kind of that coupling (`None`: it is no slave).
+    CouplingKind(Option<CouplingKind>),
+    /// The tangent angle a tangential axis tracks, within the tolerance.
+    TangentAngle(f64),
     /// A count of the axis's PT/PVT stream (`stream_space`, `stream_used`, `stream_underruns`).
     StreamCount(StreamCount, u32),
     StreamRunning(bool),
@@ -255,6 +259,12 @@ impl Expectation {
                 checks.push(Check::Number(q, v));
             }
         }
+        if let Some(v) = spec.tangent_angle {
+            if !v.is_finite() {
+                return Err(("tangent_angle", format!("{v} is not a finite number")));
+            }
+            checks.push(Check::TangentAngle(v));
+        }
         let tolerance = spec.tolerance.unwrap_or(0.0);
         if !(tolerance.is_finite() && tolerance >= 0.0) {
             return Err((
@@ -264,7 +274,9 @@ impl Expectation {
         }
         let group_checks = group_checks(&spec)?;
         if spec.tolerance.is_some()
-            && !checks.iter().any(|c| matches!(c, Check::Number(..)))
+            && !checks
+                .iter()
+                .any(|c| matches!(c, Check::Number(..) | Check::TangentAngle(_)))
             && !group_checks
                 .iter()
                 .any(|c| matches!(c, Check::GroupPosition(_)))
@@ -273,7 +285,7 @@ impl Expectation {
                 "tolerance",
                 "applies to position, velocity, command_position, command_velocity, \
                  following_error, captures, capture_position, compare_outputs, output_position, \
-                 compensation or group_position, and none is given"
+                 compensation, tangent_angle or group_position, and none is given"
                     .into(),
             ));
         }
@@ -307,6 +319,29 @@ impl Expectation {
             };
             checks.push(Check::Coupling(phase));
         }
+        if let Some(name) = &spec.coupling_kind {
+            let kind = [
+                CouplingKind::Gear,
+                CouplingKind::Cam,
+                CouplingKind::Superimpose,
+                CouplingKind::Tangential,
+            ]
+            .into_iter()
+            .find(|k| k.name() == name);
+            match (name.as_str(), kind) {
+                ("none", _) => checks.push(Check::CouplingKind(None)),
+                (_, Some(k)) => checks.push(Check::CouplingKind(Some(k))),
+                (other, None) => {
+                    return Err((
+                        "coupling_kind",
+                        format!(
+                            "unknown kind `{other}`: one of none, gear, cam, superimpose, \
+                             tangential"
+                        ),
+                    ))
+                }
+            }
+        }
         for (count, v) in [
             (StreamCount::Space, spec.stream_space.map(u32::from)),
             (StreamCount::Used, spec.stream_used.map(u32::from)),
@@ -329,7 +364,8 @@ impl Expectation {
                 "no condition on it: give state, position, velocity, command_position, \
                  command_velocity, following_error, captures, capture_position, \
                  compare_outputs, output_position, compensation, flags, not_flags, error, \
-                 coupling, stream_space, stream_used, stream_running or stream_underruns"
+                 coupling, coupling_kind, tangent_angle, stream_space, stream_used, \
+                 stream_running or stream_underruns"
                     .into(),
             ));
         }
@@ -497,6 +533,31 @@ impl Expectation {
                         name(*want),
                         name(got)
                     )
+                }
+                (Check::CouplingKind(want), Some(s)) if s.coupling != *want => write!(
+                    msg,
+                    "axis {axis} coupling_kind: expected {}, saw {}",
+                    want.map_or("none", CouplingKind::name),
+                    s.coupling.map_or("none", CouplingKind::name)
+                ),
+                (Check::TangentAngle(want), Some(_)) => {
+                    let got = seen
+                        .coupling
+                        .filter(|c| c.kind == CouplingKind::Tangential)
+                        .map(|c| c.angle);
+                    match got {
+                        Some(got) if (got - want).abs() <= self.tolerance => continue,
+                        Some(got) => write!(
+                            msg,
+                            "axis {axis} tangent_angle: expected {want} ± {}, saw {got}",
+                            self.tolerance
+                        ),
+                        None => write!(
+                            msg,
+                            "axis {axis} tangent_angle: expected {want}, but it is no \
+                             tangential axis"
+                        ),
+                    }
                 }
                 (Check::StreamCount(count, want), Some(s)) if count.of(s) != *want => write!(
                     msg,
@@ -714,6 +775,79 @@ mod tests {
         assert_eq!(
             e.failures(&free),
             ["axis 1 coupling: expected in_sync, saw none"]
+        );
+    }
+
+    #[test]
+    fn a_coupling_kind_and_a_tangent_angle_are_axis_conditions() {
+        let err = |s: ExpectSpec| Expectation::from_spec(s).unwrap_err();
+        let kind = |k: &str| ExpectSpec {
+            axis: Some(2),
+            coupling_kind: Some(k.into()),
+            ..spec()
+        };
+        assert_eq!(err(kind("belt")).0, "coupling_kind");
+        assert_eq!(
+            err(ExpectSpec {
+                tangent_angle: Some(f64::NAN),
+                ..kind("tangential")
+            })
+            .0,
+            "tangent_angle"
+        );
+        let e = Expectation::from_spec(ExpectSpec {
+            tangent_angle: Some(90.0),
+            tolerance: Some(0.5),
+            ..kind("tangential")
+        })
+        .unwrap();
+        let none = |_: usize| Err("unused".to_string());
+        let status = AxisStatus {
+            coupling: Some(CouplingKind::Superimpose),
+            ..AxisStatus::default()
+        };
+        let superimposed = CouplingStatus {
+            kind: CouplingKind::Superimpose,
+            ..CouplingStatus::default()
+        };
+        let seen = Seen {
+            axis: Some(&status),
+            group: None,
+            coupling: Some(&superimposed),
+            di: &[],
+            do_: &[],
+            command_state: &none,
+        };
+        assert_eq!(
+            e.failures(&seen),
+            [
+                "axis 2 tangent_angle: expected 90, but it is no tangential axis",
+                "axis 2 coupling_kind: expected tangential, saw superimpose"
+            ]
+        );
+        let tangential = AxisStatus {
+            coupling: Some(CouplingKind::Tangential),
+            ..AxisStatus::default()
+        };
+        let at = |angle: f64| CouplingStatus {
+            kind: CouplingKind::Tangential,
+            angle,
+            ..CouplingStatus::default()
+        };
+        let (near, far) = (at(90.4), at(91.0));
+        let seen = Seen {
+            axis: Some(&tangential),
+            coupling: Some(&near),
+            ..seen
+        };
+        assert!(e.failures(&seen).is_empty());
+        let seen = Seen {
+            coupling: Some(&far),
+            ..seen
+        };
+        assert_eq!(
+            e.failures(&seen),
+            ["axis 2 tangent_angle: expected 90 ± 0.5, saw 91"]
         );
     }
 

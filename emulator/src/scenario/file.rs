@@ -108,6 +108,12 @@ pub(super) struct ExpectSpec {
     /// or `none` when it is no slave (issue 12).
     #[serde(default)]
     pub coupling: Option<String>,
+    /// The kind of that coupling: `gear`, `cam`, `superimpose`, `tangential`, or `none`.
+    #[serde(default)]
+    pub coupling_kind: Option<String>,
+    /// A tangential axis: the tangent angle it tracks, axis units (within `tolerance`).
+    #[serde(default)]
+    pub tangent_angle: Option<f64>,
     /// With `command_state`: the step whose command is meant.
     #[serde(default)]
     pub step: Option<usize>,

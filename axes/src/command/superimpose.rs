@@ -1,0 +1,88 @@
+//! Couplings with two masters (issue 12 item 9): superimposed motion (HMC SuperimposeEx) and the
+//! tangential axis (HMC MoveTang). Part of the coupling family; the per-tick work is
+//! `crate::coupling::superimpose` and `crate::coupling::tangential`.
+
+use serde::{Deserialize, Serialize};
+
+use super::{AxisIndex, GroupId, MasterSource};
+
+/// Couple `slave` to two masters: slave travel = `ratios[0]` × travel of `masters[0]` +
+/// `ratios[1]` × travel of `masters[1]` (HMC_SuperimposeEx, digest 000 §4.4; HMC_Superimpose is
+/// ratios [1, 1]). The slave starts from where it stands: the law is on increments, so engaging
+/// never moves it. JSON `type`: `superimpose_in`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SuperimposeIn {
+    pub slave: AxisIndex,
+    /// Two different axes, neither the slave.
+    pub masters: [AxisIndex; 2],
+    /// k1, k2 (HMC: N0/D0, N1/D1); finite, within ±1e12.
+    pub ratios: [f64; 2],
+    /// Which position of the masters is followed (HMC: actual; default commanded, as a gear).
+    #[serde(default)]
+    pub master_source: MasterSource,
+}
+
+/// Change the ratios of a running superimposed coupling (HMC_SetSuperimposeRatio). The slave
+/// keeps its position: the new ratios apply to master travel from now on (digest 000 TV 22).
+/// JSON `type`: `superimpose_set_ratios`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SuperimposeSetRatios {
+    pub slave: AxisIndex,
+    pub ratios: [f64; 2],
+}
+
+/// Decouple a superimposed slave: as `gear_out`, it keeps its velocity and decelerates to rest
+/// with its `decel`. JSON `type`: `superimpose_out`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SuperimposeOut {
+    pub slave: AxisIndex,
+}
+
+fn plane() -> [u8; 2] {
+    [0, 1]
+}
+
+fn is_plane(c: &[u8; 2]) -> bool {
+    *c == [0, 1]
+}
+
+fn turn() -> f64 {
+    360.0
+}
+
+fn is_turn(v: &f64) -> bool {
+    *v == 360.0
+}
+
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
+}
+
+/// Make `axis` track the tangent angle of group `group`'s path in the plane of its coordinates
+/// `coordinates` (default [0, 1], the XY plane) plus `offset` (HMC_MoveTang, digest 000 §4.4).
+/// The angle is in the axis's units, `units_per_turn` to a full turn (default 360: degrees;
+/// HMC's C axis with RepDist R has 2R), unwrapped: it runs on continuously past a full turn. The
+/// axis turns the shortest way at a jump of the tangent (a corner), within its own velocity and
+/// acceleration limits, and holds while the path stands. JSON `type`: `tangential_in`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TangentialIn {
+    pub axis: AxisIndex,
+    pub group: GroupId,
+    #[serde(default = "plane", skip_serializing_if = "is_plane")]
+    pub coordinates: [u8; 2],
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub offset: f64,
+    #[serde(default = "turn", skip_serializing_if = "is_turn")]
+    pub units_per_turn: f64,
+}
+
+/// Stop tracking: the axis decelerates to rest with its `decel`. JSON `type`: `tangential_out`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TangentialOut {
+    pub axis: AxisIndex,
+}

@@ -1,0 +1,174 @@
+//! The tangential axis: an axis that tracks the tangent angle of a group's path in a plane
+//! (HMC_MoveTang, digest 000 §4.4 "Tangential tracking", TV 62), e.g. a knife or a cutting head.
+//!
+//! The tangent is read from the plane's two member axes as stage 3 left them this tick (they
+//! step before the tangential axis, so it has no lag): direction atan2(vy, vx), rate
+//! (vx·ay − vy·ax)/(vx² + vy²). The angle is unwrapped (it runs on past a full turn), in the
+//! axis's units (`units_per_turn` to a turn), plus the offset. The first direction is taken at
+//! the turn nearest the axis's position; later jumps of the tangent (a corner) are taken the
+//! shortest way (digest 000: "at jumps in the tangent it takes the shortest way"; exactly half
+//! a turn counts as counter-clockwise).
+//!
+//! While the tangent turns within the axis's own limits (`speed` and `accel`/`decel`, HMC:
+//! "within its own Accel/Decel/Speed") the axis follows it exactly (in sync). A jump beyond them
+//! (a sharp corner, a blend tighter than the axis can turn) is chased: each tick the velocity
+//! heads for the one that still stops on the angle (v = v_target ± √(2·decel·|error|)), clamped
+//! to `speed` and changed by at most `accel`·dt; once the exact angle is reachable within the
+//! limits again the axis is back in sync. While the path stands (at rest, or stopped at a
+//! corner) the angle holds. Closed-form work per tick.
+
+use std::f64::consts::{PI, TAU};
+
+use crate::profile::MotionState;
+use crate::status::CouplingPhase;
+
+/// The tangential axis's own limits for turning.
+#[derive(Clone, Copy, Debug)]
+pub struct TurnLimits {
+    pub velocity: f64,
+    pub acceleration: f64,
+    pub deceleration: f64,
+}
+
+#[derive(Clone, Debug)]
+pub struct Tangential {
+    /// Axis units per radian.
+    scale: f64,
+    offset: f64,
+    /// The path's last direction (radians); `None` until the path first moves.
+    direction: Option<f64>,
+    /// The tangent angle (units, unwrapped, offset included) and its rate.
+    target: f64,
+    target_velocity: f64,
+    /// The axis's setpoint of the last tick.
+    last: MotionState,
+    phase: CouplingPhase,
+}
+
+/// `d` into (−π, π]: the shortest way round.
+fn shortest(d: f64) -> f64 {
+    let d = d.rem_euclid(TAU);
+    if d > PI {
+        d - TAU
+    } else {
+        d
+    }
+}
+
+impl Tangential {
+    /// Tracking from the axis's commanded state `axis`; it holds until the path moves.
+    pub fn new(units_per_turn: f64, offset: f64, axis: MotionState) -> Tangential {
+        Tangential {
+            scale: units_per_turn / TAU,
+            offset,
+            direction: None,
+            target: axis.p,
+            target_velocity: 0.0,
+            last: axis,
+            phase: CouplingPhase::Waiting,
+        }
+    }
+
+    pub fn phase(&self) -> CouplingPhase {
+        self.phase
+    }
+
+    /// The tangent angle the axis tracks (HMC_GetMoveTangDestDirection), in its units.
+    pub fn angle(&self) -> f64 {
+        self.target
+    }
+
+    /// How far the axis is from the tangent angle (HMC_GetMoveTangDeviation).
+    pub fn deviation(&self) -> f64 {
+        self.target - self.last.p
+    }
+
+    /// This tick's setpoint from the plane's axes `x` and `y` (this tick's states).
+    pub fn step(
+        &mut self,
+        x: MotionState,
+        y: MotionState,
+        limits: TurnLimits,
+        dt: f64,
+    ) -> MotionState {
+        self.track(x, y, dt);
+        let last = self.last;
+        let implied = (self.target - last.p) / dt;
+        let slack = 1.0 + 1e-9;
+        let fits = implied.abs() <= limits.velocity * slack
+            && (implied - last.v).abs()
+                <= limits.acceleration.max(limits.deceleration) * dt * slack;
+        let next = if fits {
+            if self.direction.is_some() {
+                self.phase = CouplingPhase::InSync;
+            }
+            MotionState {
+                p: self.target,
+                v: self.target_velocity,
+                a: (self.target_velocity - last.v) / dt,
+            }
+        } else {
+            self.phase = CouplingPhase::Engaging;
+            self.chase(limits, dt)
+        };
+        self.last = next;
+        next
+    }
+
+    /// Update the tangent angle and its rate from the plane's axes.
+    fn track(&mut self, x: MotionState, y: MotionState, dt: f64) {
+        let speed2 = x.v * x.v + y.v * y.v;
+        // Below rounding of the positions the direction is noise: the path stands.
+        let floor = 1e-12 * (1.0 + x.p.abs() + y.p.abs());
+        let moving = speed2.sqrt() * dt > floor;
+        if !moving {
+            self.target_velocity = 0.0;
+            return;
+        }
+        let direction = y.v.atan2(x.v);
+        let rate = (x.v * y.a - y.v * x.a) / speed2;
+        self.target = match self.direction {
+            Some(previous) => self.target + shortest(direction - previous) * self.scale,
+            None => {
+                let angle = direction * self.scale + self.offset;
+                let turn = TAU * self.scale;
+                angle + ((self.last.p - angle) / turn).round() * turn
+            }
+        };
+        self.direction = Some(direction);
+        self.target_velocity = if rate.is_finite() {
+            rate * self.scale
+        } else {
+            0.0
+        };
+    }
+
+    /// One tick toward the angle within the limits (see the module doc).
+    fn chase(&self, limits: TurnLimits, dt: f64) -> MotionState {
+        let last = self.last;
+        let error = self.target - last.p;
+        let braking = (2.0 * limits.deceleration * error.abs()).sqrt();
+        let wanted = (self.target_velocity + error.signum() * braking)
+            .clamp(-limits.velocity, limits.velocity);
+        let step = limits.acceleration.max(limits.deceleration) * dt;
+        let v = last.v + (wanted - last.v).clamp(-step, step);
+        MotionState {
+            p: last.p + (last.v + v) * 0.5 * dt,
+            v,
+            a: (v - last.v) / dt,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_shortest_way_round() {
+        assert!((shortest(1.5 * PI) + 0.5 * PI).abs() < 1e-12);
+        assert!((shortest(-1.5 * PI) - 0.5 * PI).abs() < 1e-12);
+        assert_eq!(shortest(PI), PI);
+        assert_eq!(shortest(-PI), PI);
+    }
+}
