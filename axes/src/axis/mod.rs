@@ -14,6 +14,7 @@
 mod commands;
 mod compensation;
 pub mod fifo;
+mod gang;
 mod latch;
 mod pvt;
 mod sampling;
@@ -216,6 +217,12 @@ pub struct Axis {
     /// sync: single-axis motion is refused while set.
     coupled: Option<AxisIndex>,
     in_sync: bool,
+    /// Driven by a handwheel (issue 12 item 7): single-axis motion is refused while set.
+    handwheel: bool,
+    /// Gantry (issue 12 item 6): this tick's deviation, and whether the master's latched
+    /// gantry fault shows on this slave.
+    gantry_deviation: f64,
+    gantry_fault_shown: bool,
     fifo: Fifo,
     /// The PT/PVT buffer (issue 12 item 3), out of line: most axes never stream.
     stream: Box<PvtStream>,
@@ -305,6 +312,9 @@ impl Axis {
             group: None,
             coupled: None,
             in_sync: false,
+            handwheel: false,
+            gantry_deviation: 0.0,
+            gantry_fault_shown: false,
             fifo: Fifo::new(config.fifo_depth.unwrap_or(DEFAULT_FIFO_DEPTH)),
             stream: Box::default(),
             stream_dry: false,
@@ -1041,6 +1051,10 @@ impl Axis {
         flags.put(AxisFlags::IN_GROUP, self.group.is_some());
         flags.put(AxisFlags::COUPLED, self.coupled.is_some());
         flags.put(AxisFlags::IN_SYNC, self.in_sync);
+        flags.put(AxisFlags::HANDWHEEL, self.handwheel);
+        if self.gantry_fault_shown {
+            flags |= AxisFlags::GANTRY_FAULT;
+        }
         flags.put(AxisFlags::CAPTURE_TRIGGERED, self.triggers.captures > 0);
         let next = self
             .fifo
@@ -1098,6 +1112,7 @@ impl Axis {
             stream: self.stream.status(),
             output_pos: cmd_pos + self.correction,
             compensation: self.correction,
+            gantry_deviation: self.gantry_deviation,
         };
     }
 }

@@ -4,7 +4,10 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{command_from, AxisIndex, Direction, MasterSource};
+use super::{
+    command_from, AxisIndex, Direction, GantryDisable, GantryEnable, HandwheelIn, HandwheelOut,
+    HandwheelTurn, MasterSource,
+};
 
 /// Couple `slave` to `master` through a gear: slave travel = numerator / denominator × master
 /// travel (PLCopen MC_GearIn; NMC MtGearSetRatio/StartMtn, HMC_Gear, HIMC GearIn). JSON `type`:
@@ -195,6 +198,11 @@ pub enum CouplingCommand {
     CamTable(CamTableDefine),
     CamIn(CamIn),
     CamOut(CamOut),
+    GantryEnable(GantryEnable),
+    GantryDisable(GantryDisable),
+    HandwheelIn(HandwheelIn),
+    HandwheelOut(HandwheelOut),
+    HandwheelTurn(HandwheelTurn),
 }
 
 impl CouplingCommand {
@@ -207,6 +215,11 @@ impl CouplingCommand {
             CouplingCommand::CamTable(_) => None,
             CouplingCommand::CamIn(c) => Some(c.slave),
             CouplingCommand::CamOut(c) => Some(c.slave),
+            CouplingCommand::GantryEnable(c) => Some(c.master),
+            CouplingCommand::GantryDisable(c) => Some(c.master),
+            CouplingCommand::HandwheelIn(c) => Some(c.axis),
+            CouplingCommand::HandwheelOut(c) => Some(c.axis),
+            CouplingCommand::HandwheelTurn(_) => None,
         }
     }
 }
@@ -221,5 +234,10 @@ command_from!(
         CamTableDefine => CamTable,
         CamIn => CamIn,
         CamOut => CamOut,
+        GantryEnable => GantryEnable,
+        GantryDisable => GantryDisable,
+        HandwheelIn => HandwheelIn,
+        HandwheelOut => HandwheelOut,
+        HandwheelTurn => HandwheelTurn,
     ]
 );

@@ -12,7 +12,10 @@ use super::{
     SlaveCommand, Stop, StopAll, StopAxes, StreamSetpoint, WriteAnalogOutput, WriteDigitalOutput,
     WriteObject,
 };
-use super::{CamIn, CamOut, CamTableDefine, CouplingCommand, GearIn, GearOut, GearSetRatio};
+use super::{
+    CamIn, CamOut, CamTableDefine, CouplingCommand, GantryDisable, GantryEnable, GearIn, GearOut,
+    GearSetRatio, HandwheelIn, HandwheelOut, HandwheelTurn,
+};
 use super::{CaptureArm, CaptureClear, CompareStart, CompareStop, TriggerCommand};
 use super::{
     CompensationBacklash, CompensationClear, CompensationCommand, CompensationDisable,
@@ -139,6 +142,12 @@ pub(super) enum Command {
     SamplingTrigger(SamplingTriggerNow),
     SamplingStop(SamplingStop),
     SamplingRead(SamplingRead),
+    // Issue 12 items 6–7, gantry and handwheel.
+    GantryEnable(GantryEnable),
+    GantryDisable(GantryDisable),
+    HandwheelIn(HandwheelIn),
+    HandwheelOut(HandwheelOut),
+    HandwheelTurn(HandwheelTurn),
 }
 
 impl From<Command> for super::Command {
@@ -243,6 +252,11 @@ impl From<Command> for super::Command {
             Command::CamTable(c) => super::Command::Coupling(CouplingCommand::CamTable(c)),
             Command::CamIn(c) => super::Command::Coupling(CouplingCommand::CamIn(c)),
             Command::CamOut(c) => super::Command::Coupling(CouplingCommand::CamOut(c)),
+            Command::GantryEnable(c) => super::Command::from(c),
+            Command::GantryDisable(c) => super::Command::from(c),
+            Command::HandwheelIn(c) => super::Command::from(c),
+            Command::HandwheelOut(c) => super::Command::from(c),
+            Command::HandwheelTurn(c) => super::Command::from(c),
             Command::CaptureArm(c) => super::Command::Trigger(TriggerCommand::CaptureArm(c)),
             Command::CaptureClear(c) => super::Command::Trigger(TriggerCommand::CaptureClear(c)),
             Command::CompareStart(c) => super::Command::Trigger(TriggerCommand::CompareStart(c)),
@@ -370,6 +384,15 @@ impl From<super::Command> for Command {
             super::Command::Coupling(CouplingCommand::CamTable(c)) => Command::CamTable(c),
             super::Command::Coupling(CouplingCommand::CamIn(c)) => Command::CamIn(c),
             super::Command::Coupling(CouplingCommand::CamOut(c)) => Command::CamOut(c),
+            super::Command::Coupling(CouplingCommand::GantryEnable(c)) => Command::GantryEnable(c),
+            super::Command::Coupling(CouplingCommand::GantryDisable(c)) => {
+                Command::GantryDisable(c)
+            }
+            super::Command::Coupling(CouplingCommand::HandwheelIn(c)) => Command::HandwheelIn(c),
+            super::Command::Coupling(CouplingCommand::HandwheelOut(c)) => Command::HandwheelOut(c),
+            super::Command::Coupling(CouplingCommand::HandwheelTurn(c)) => {
+                Command::HandwheelTurn(c)
+            }
             super::Command::Trigger(TriggerCommand::CaptureArm(c)) => Command::CaptureArm(c),
             super::Command::Trigger(TriggerCommand::CaptureClear(c)) => Command::CaptureClear(c),
             super::Command::Trigger(TriggerCommand::CompareStart(c)) => Command::CompareStart(c),

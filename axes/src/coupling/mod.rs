@@ -14,7 +14,9 @@
 //! ramp is followed by the slave, so the two stay in ratio (decisions.md, issue 12 gear).
 
 mod cam;
+mod gantry;
 mod gear;
+mod handwheel;
 pub mod table;
 
 use std::collections::BTreeMap;
@@ -23,12 +25,14 @@ use std::sync::Arc;
 use crate::axis::{Axis, Context, Feed};
 use crate::command::{
     bounded, positive, AxisIndex, CamIn, CamTableDefine, CouplingCommand, EngineError, GearIn,
-    MasterSource, Reply,
+    MasterSource, Reply, HANDWHEEL_EXTERNAL_ENCODERS,
 };
 use crate::profile::MotionState;
 use crate::status::{CouplingKind, CouplingPhase, CouplingStatus};
 pub use cam::{Cam, CamStart, CamStep};
+pub use gantry::GantrySlave;
 pub use gear::{Clutch, Gear};
+pub use handwheel::Handwheel;
 pub use table::CamTable;
 
 /// Most cam tables defined at once.
@@ -38,6 +42,7 @@ pub const MAX_CAM_TABLES: usize = 256;
 enum Law {
     Gear(Gear),
     Cam(Cam),
+    Gantry(GantrySlave),
 }
 
 /// One slave and what it follows.
@@ -57,6 +62,7 @@ impl Coupling {
     fn status(&self) -> CouplingStatus {
         let (kind, ratio, table, table_index, cycle) = match &self.law {
             Law::Gear(g) => (CouplingKind::Gear, g.ratio(), None, 0, 0),
+            Law::Gantry(_) => (CouplingKind::Gantry, 1.0, None, 0, 0),
             Law::Cam(cam) => (
                 CouplingKind::Cam,
                 0.0,
@@ -75,6 +81,10 @@ impl Coupling {
             table,
             table_index,
             cycle,
+            gantry: match &self.law {
+                Law::Gantry(g) => Some(g.status()),
+                _ => None,
+            },
         }
     }
 
@@ -82,6 +92,7 @@ impl Coupling {
         match &self.law {
             Law::Gear(g) => g.phase(),
             Law::Cam(c) => c.phase(),
+            Law::Gantry(_) => CouplingPhase::InSync,
         }
     }
 }
@@ -96,6 +107,9 @@ pub struct Couplings {
     /// Stage 3's order: each axis and the index in `list` of the coupling it is the slave of.
     /// Empty when there is no coupling (then the axes step in index order).
     order: Vec<(AxisIndex, Option<usize>)>,
+    /// The handwheels (issue 12 item 7), by axis, and the external encoders' counts.
+    handwheels: Vec<Handwheel>,
+    external: [i64; HANDWHEEL_EXTERNAL_ENCODERS as usize],
 }
 
 /// What a coupling command may touch.
@@ -134,7 +148,7 @@ fn axis_ref(axes: &[Axis], index: AxisIndex) -> Result<&Axis, EngineError> {
 
 impl Couplings {
     pub fn is_empty(&self) -> bool {
-        self.list.is_empty()
+        self.list.is_empty() && self.handwheels.is_empty()
     }
 
     /// A cam table by number.
@@ -160,6 +174,11 @@ impl Couplings {
             CouplingCommand::CamTable(c) => self.define_table(c),
             CouplingCommand::CamIn(c) => self.cam_in(env, &c),
             CouplingCommand::CamOut(c) => self.decouple(env, c.slave, CouplingKind::Cam),
+            CouplingCommand::GantryEnable(c) => self.gantry_enable(env, &c),
+            CouplingCommand::GantryDisable(c) => self.gantry_disable(env, c.master),
+            CouplingCommand::HandwheelIn(c) => self.handwheel_in(env, &c),
+            CouplingCommand::HandwheelOut(c) => self.handwheel_out(env, c.axis),
+            CouplingCommand::HandwheelTurn(c) => self.handwheel_turn(&c),
         }
     }
 
@@ -359,6 +378,7 @@ impl Couplings {
         let what = match kind {
             CouplingKind::Gear => "the slave of a gear",
             CouplingKind::Cam => "the slave of a cam",
+            CouplingKind::Gantry => "the slave of a gantry",
         };
         let i = self
             .list
@@ -367,7 +387,7 @@ impl Couplings {
         let matches = match self.list.get(i).map(|c| &c.law) {
             Some(Law::Gear(_)) => kind == CouplingKind::Gear,
             Some(Law::Cam(_)) => kind == CouplingKind::Cam,
-            None => false,
+            Some(Law::Gantry(_)) | None => false,
         };
         if !matches {
             return Err(EngineError::NotCoupled { axis: slave, what });
@@ -421,6 +441,9 @@ impl Couplings {
         let Env {
             axes, ctx, period, ..
         } = env;
+        if !self.handwheels.is_empty() {
+            self.drive_handwheels(axes, ctx, *period);
+        }
         if self.list.is_empty() {
             for axis in axes.iter_mut() {
                 axis.step(ctx);
@@ -438,6 +461,9 @@ impl Couplings {
                 axis.step(ctx);
             }
         }
+        if self.has_gantry() {
+            self.supervise_gantries(axes, ctx);
+        }
         self.sweep(axes, ctx);
     }
 
@@ -451,6 +477,10 @@ impl Couplings {
             return;
         };
         let master = read_master(master_axis, c.source, c.previous, period);
+        let gantry_master = match c.law {
+            Law::Gantry(_) => Some(gantry::MasterView::read(master_axis)),
+            _ => None,
+        };
         let previous = std::mem::replace(&mut c.previous, master.p);
         let Some(slave) = axes.get_mut(c.slave as usize) else {
             return;
@@ -469,11 +499,28 @@ impl Couplings {
                     CamStep::End(s) => (Some(s), true),
                 }
             }
+            Law::Gantry(g) => match gantry_master {
+                Some(view) => (Some(g.step(view, slave)), false),
+                None => (None, false),
+            },
         };
         let in_sync = c.phase() == CouplingPhase::InSync;
         let Some(setpoint) = feed else {
             return;
         };
+        if let Law::Gantry(g) = &mut c.law {
+            // A gantry stays ganged when a slave cannot follow: its master stops (the slave's
+            // own fault or disable stops the slave), and the slave is re-anchored when it
+            // follows again.
+            if slave.feed(ctx, Feed::Follow(setpoint)).is_err() {
+                g.refused();
+                let master = c.master;
+                if let Some(m) = axes.get_mut(master as usize) {
+                    m.gantry_fault(ctx);
+                }
+            }
+            return;
+        }
         if slave.feed(ctx, Feed::Follow(setpoint)).is_err() || end {
             // Refused (fault, disable, stop, limit): decoupled, the slave keeps what the
             // refusal left it doing. Ended: it stands at the end and is free from next tick.

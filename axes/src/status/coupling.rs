@@ -2,6 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::GantryStatus;
 use crate::types::{AxisIndex, MasterSource};
 
 /// Where a coupling is (PLCopen MC_GearIn/MC_CamIn outputs; HIMC IsInGear).
@@ -33,6 +34,8 @@ pub enum CouplingKind {
     #[default]
     Gear,
     Cam,
+    /// A gantry slave (issue 12 item 6): `gantry` holds its record.
+    Gantry,
 }
 
 /// One coupling, by slave.
@@ -51,4 +54,7 @@ pub struct CouplingStatus {
     pub table_index: u32,
     /// Periodic cam: the period the master is in, from 0 (NMC FollowGetLoopCount).
     pub cycle: i64,
+    /// Gantry slave: offset, deviation, limits and the pair view.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gantry: Option<GantryStatus>,
 }
