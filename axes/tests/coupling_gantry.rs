@@ -403,3 +403,32 @@ fn bad_gantries_are_refused_and_disturb_nothing() {
     run(&mut e, 1.0);
     assert_eq!(cmd(&e, 0), 100.0);
 }
+
+#[test]
+fn a_disabled_slave_faults_an_enabled_master_but_not_a_disabled_one() {
+    use axes::command::{Disable, DisableAll, Enable, EnableAll};
+    let mut e = machine(2);
+    ok(&mut e, gantry(0, &[1], 0.0, 0.0));
+    ok(&mut e, Command::from(DisableAll {}));
+    run(&mut e, 0.01);
+    ok(&mut e, Command::from(EnableAll {}));
+    run(&mut e, 0.01);
+    let s = e.snapshot();
+    assert!(!s.axes[0].latched.contains(AxisFlags::GANTRY_FAULT));
+    ok(&mut e, move_abs_of(0, 10.0));
+    run(&mut e, 0.5);
+    assert_eq!(cmd(&e, 1), 10.0);
+    // One side switched off: the other stops with a gantry fault.
+    ok(&mut e, Command::from(Disable { axis: 1 }));
+    e.step();
+    let s = e.snapshot();
+    assert!(s.axes[0].latched.contains(AxisFlags::GANTRY_FAULT));
+    assert_eq!(s.axes[0].state, AxisState::ErrorStop);
+    ok(&mut e, Command::from(Enable { axis: 1 }));
+    run(&mut e, 0.01);
+    ok(&mut e, Command::from(Reset { axis: 0 }));
+    run(&mut e, 0.01);
+    ok(&mut e, move_abs_of(0, 20.0));
+    run(&mut e, 0.5);
+    assert_eq!(cmd(&e, 1), 20.0);
+}

@@ -27,8 +27,8 @@ pub struct GantryEnable {
     pub fault_limit: f64,
 }
 
-/// Release the slaves of `master`'s gantry: they stand where they are and take single-axis
-/// motion again (HMC GantrySynchro cancel, NMC DelGantryGroup, HIMC DisableGantryPair). JSON
+/// Release the slaves of `master`'s gantry: each decelerates to rest with its `decel` from the
+/// velocity it has (as `gear_out`) and takes single-axis motion again (HMC GantrySynchro cancel, NMC DelGantryGroup, HIMC DisableGantryPair). JSON
 /// `type`: `gantry_disable`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -202,8 +202,8 @@ impl Couplings {
         Ok(Reply::Done)
     }
 
-    /// `gantry_disable`: the slaves stand where they are (no ramp of their own: they were
-    /// following the master, which goes on with its command) and are free again.
+    /// `gantry_disable`: the slaves decelerate to rest with their `decel` from the velocity
+    /// they have (as `gear_out`) and are free again.
     pub(super) fn gantry_disable(
         &mut self,
         env: &mut Env,

@@ -509,14 +509,16 @@ impl Couplings {
             return;
         };
         if let Law::Gantry(g) = &mut c.law {
-            // A gantry stays ganged when a slave cannot follow: its master stops (the slave's
-            // own fault or disable stops the slave), and the slave is re-anchored when it
-            // follows again.
+            // A gantry stays ganged when a slave cannot follow: an enabled master stops with a
+            // gantry fault (the slave's own fault or disable stops the slave; a disabled master
+            // has nothing to stop, as after `disable_all`), and the slave is re-anchored when
+            // it follows again.
             if slave.feed(ctx, Feed::Follow(setpoint)).is_err() {
                 g.refused();
-                let master = c.master;
-                if let Some(m) = axes.get_mut(master as usize) {
-                    m.gantry_fault(ctx);
+                if let Some(m) = axes.get_mut(c.master as usize) {
+                    if m.is_enabled() {
+                        m.gantry_fault(ctx);
+                    }
                 }
             }
             return;
