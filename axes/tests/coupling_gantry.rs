@@ -7,15 +7,15 @@
 mod common;
 
 use axes::command::{
-    Command, EngineError, ErrorKind, GantryDisable, GantryEnable, GearIn, Home,
-    InjectFollowingError, MasterSource, Reset, SetPosition,
+    Command, EngineError, ErrorKind, GantryDisable, GantryEnable, InjectFollowingError, Reset,
+    SetPosition,
 };
 use axes::config::{AxisConfig, PlantModel};
 use axes::homing::{HomingQuirks, HomingSpec};
 use axes::param::ParamId;
 use axes::status::{CouplingKind, CouplingPhase};
 use axes::{AxisFlags, AxisState, Engine};
-use common::{move_abs_of, ok, refused, run, stepper_mm};
+use common::{gear_in_of, home_of, move_abs_of, ok, refused, run, stepper_mm};
 
 fn machine(n: usize) -> Engine {
     common::enabled_machine(common::virtual_pulse_axis(), n)
@@ -73,19 +73,7 @@ fn a_slave_refuses_its_own_motion_while_ganged_and_takes_it_after_disable() {
     let err = refused(&mut e, move_abs_of(1, 5.0));
     assert_eq!(err, EngineError::AxisCoupled { axis: 1, master: 0 });
     assert_eq!(
-        refused(
-            &mut e,
-            Command::from(GearIn {
-                master: 0,
-                slave: 1,
-                numerator: 1.0,
-                denominator: 1.0,
-                master_source: MasterSource::Commanded,
-                clutch_distance: None,
-                acceleration: None,
-                direction: None,
-            })
-        ),
+        refused(&mut e, gear_in_of(0, 1)),
         EngineError::AlreadyCoupled { axis: 1, master: 0 }
     );
     ok(&mut e, Command::from(GantryDisable { master: 0 }));
@@ -242,23 +230,6 @@ fn homing_the_master_moves_the_slave_along_and_redefines_it() {
     ok(&mut e, move_abs_of(1, 3.0));
     run(&mut e, 1.0);
     ok(&mut e, gantry(0, &[1], 0.0, 0.0));
-    assert_eq!(
-        refused(
-            &mut e,
-            Command::from(Home {
-                axis: 1,
-                method: Some(7),
-                switch_velocity: None,
-                zero_velocity: None,
-                acceleration: None,
-                offset: None,
-                timeout: None,
-                quirks: HomingQuirks::default(),
-                buffer_mode: Default::default(),
-            })
-        ),
-        EngineError::AxisCoupled { axis: 1, master: 0 }
-    );
     let spec = HomingSpec {
         method: 7,
         switch_velocity: 40.0,
@@ -268,20 +239,11 @@ fn homing_the_master_moves_the_slave_along_and_redefines_it() {
         timeout: 60.0,
         quirks: HomingQuirks::default(),
     };
-    ok(
-        &mut e,
-        Command::from(Home {
-            axis: 0,
-            method: Some(spec.method),
-            switch_velocity: Some(spec.switch_velocity),
-            zero_velocity: Some(spec.zero_velocity),
-            acceleration: Some(spec.acceleration),
-            offset: Some(spec.offset),
-            timeout: Some(spec.timeout),
-            quirks: spec.quirks,
-            buffer_mode: Default::default(),
-        }),
+    assert_eq!(
+        refused(&mut e, home_of(1, &spec)),
+        EngineError::AxisCoupled { axis: 1, master: 0 }
     );
+    ok(&mut e, home_of(0, &spec));
     let mut moved = false;
     for _ in 0..30_000 {
         e.step();

@@ -7,11 +7,11 @@
 mod common;
 
 use axes::command::{
-    Command, Disable, EngineError, ErrorKind, GearIn, HandwheelExcess, HandwheelIn, HandwheelOut,
-    HandwheelTurn, MasterSource,
+    Command, Disable, EngineError, ErrorKind, HandwheelExcess, HandwheelIn, HandwheelOut,
+    HandwheelTurn,
 };
 use axes::{AxisFlags, Engine};
-use common::{move_abs_of, ok, refused, run};
+use common::{gear_in_of, move_abs_of, ok, refused, run};
 
 fn machine(n: usize) -> Engine {
     common::enabled_machine(common::virtual_pulse_axis(), n)
@@ -109,19 +109,7 @@ fn an_axis_encoder_drives_another_axis_and_handwheel_out_frees_it() {
         EngineError::AxisOnHandwheel { axis: 1 }
     );
     assert_eq!(
-        refused(
-            &mut e,
-            Command::from(GearIn {
-                master: 0,
-                slave: 1,
-                numerator: 1.0,
-                denominator: 1.0,
-                master_source: MasterSource::Commanded,
-                clutch_distance: None,
-                acceleration: None,
-                direction: None,
-            })
-        ),
+        refused(&mut e, gear_in_of(0, 1)),
         EngineError::AxisOnHandwheel { axis: 1 }
     );
     ok(&mut e, Command::from(HandwheelOut { axis: 1 }));
