@@ -161,6 +161,25 @@ pub enum EngineError {
         space: u16,
         count: u32,
     },
+    /// A `gantry_enable` that cannot be set up as given (issue 12 item 6).
+    #[error("gantry of master axis {master}: {reason}")]
+    InvalidGantry {
+        master: AxisIndex,
+        reason: &'static str,
+    },
+    /// `gantry_enable` on a master that already leads a gantry.
+    #[error("axis {master} already leads a gantry")]
+    GantryExists { master: AxisIndex },
+    /// Single-axis motion for an axis a handwheel drives (issue 12 item 7).
+    #[error("axis {axis} is driven by a handwheel: it takes no single-axis motion")]
+    AxisOnHandwheel { axis: AxisIndex },
+    /// A handwheel input that is neither an axis's encoder nor an external encoder.
+    #[error("handwheel input {input} does not exist (axes 0..{axes}, external encoders 256..{external_end})")]
+    UnknownHandwheelInput {
+        input: u16,
+        axes: u32,
+        external_end: u16,
+    },
     /// A point of a PT/PVT push or move that cannot be run; none of the command's points was
     /// taken.
     #[error("axis {axis}: point {point}: {problem}")]
@@ -253,6 +272,12 @@ impl EngineError {
                 ErrorKind::InvalidArgument
             }
             EngineError::StreamFull { .. } => ErrorKind::QueueFull,
+            EngineError::InvalidGantry { .. } | EngineError::UnknownHandwheelInput { .. } => {
+                ErrorKind::InvalidArgument
+            }
+            EngineError::GantryExists { .. } | EngineError::AxisOnHandwheel { .. } => {
+                ErrorKind::InvalidState
+            }
         }
     }
 }

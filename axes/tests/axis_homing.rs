@@ -6,7 +6,7 @@
 
 mod common;
 
-use axes::command::{Command, CommandState, EngineError, ErrorKind, Home, Stop};
+use axes::command::{Command, CommandState, EngineError, ErrorKind, Stop};
 use axes::config::HomeSwitchConfig;
 use axes::homing::vendor::{hmc, HmcInstruction};
 use axes::homing::{HomingError, HomingQuirks, HomingSpec};
@@ -14,17 +14,7 @@ use axes::{AxisFlags, AxisState, Engine};
 use common::*;
 
 fn home(spec: &HomingSpec) -> Command {
-    Command::from(Home {
-        axis: 0,
-        method: Some(spec.method),
-        switch_velocity: Some(spec.switch_velocity),
-        zero_velocity: Some(spec.zero_velocity),
-        acceleration: Some(spec.acceleration),
-        offset: Some(spec.offset),
-        timeout: Some(spec.timeout),
-        quirks: spec.quirks,
-        buffer_mode: Default::default(),
-    })
+    home_of(0, spec)
 }
 
 fn cia(method: i16, offset: f64) -> HomingSpec {

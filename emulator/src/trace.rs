@@ -2,12 +2,13 @@
 //! them with `--trace`, the control API serves them at `GET /api/v1/trace`). An axis in a group
 //! carries its group's columns (`group`, `path_velocity`, `segment`, `user_segment`: the same
 //! values on every member's row, and on the row of an HMC result axis, which is bound to the
-//! group like a member); they are empty for a free axis. The last three columns are the
+//! group like a member); they are empty for a free axis. The next three columns are the
 //! axis's capture and compare channels (issue 12 items 4–5): edges latched, the newest latch's
 //! actual position, outputs fired (a compare output shows in the row of the tick it fires).
-//! Then `output_pos` and `compensation` (item 8), and the coupling and stream columns: the kind
-//! of the coupling whose slave the axis is (`gear`, `cam`, `superimpose`, `tangential`; empty
-//! when none), whether it is in sync (0/1), and the points held in its PT/PVT buffer.
+//! Then `output_pos` and `compensation` (item 8), `gantry_deviation` (item 6, 0 off a gantry),
+//! and the coupling and stream columns: the kind of the coupling whose slave the axis is
+//! (`gear`, `cam`, `superimpose`, `tangential`, `gantry`; empty when none), whether it is in
+//! sync (0/1), and the points held in its PT/PVT buffer.
 //!
 //! Numbers are written in their shortest round-trip form (`zmij`, `itoa`): a reader that parses
 //! them gets back the exact f64 the engine had. Integral floats drop the `.0` (`100`, not
@@ -19,7 +20,7 @@ use std::io::{self, Write};
 use axes::{AxisFlags, AxisStatus, Engine};
 
 /// The header row, in column order.
-pub const HEADER: &str = "time_s,axis,state,cmd_pos,cmd_vel,cmd_acc,act_pos,act_vel,following_error,pulses,encoder_counts,limit_pos,limit_neg,home_switch,homed,error,group,path_velocity,segment,user_segment,captures,capture_position,compare_outputs,output_pos,compensation,coupling,in_sync,stream_used";
+pub const HEADER: &str = "time_s,axis,state,cmd_pos,cmd_vel,cmd_acc,act_pos,act_vel,following_error,pulses,encoder_counts,limit_pos,limit_neg,home_switch,homed,error,group,path_velocity,segment,user_segment,captures,capture_position,compare_outputs,output_pos,compensation,gantry_deviation,coupling,in_sync,stream_used";
 
 /// The group columns of a member axis's row (issue 11 item 7).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -129,7 +130,8 @@ fn format_fields(buf: &mut Vec<u8>, axis: usize, s: &AxisStatus, group: Option<&
     buf.push(b',');
     buf.extend_from_slice(ints.format(s.compare_outputs).as_bytes());
     // Compensation after the planner (issue 12 item 8): what the drive receives, and why.
-    for v in [s.output_pos, s.compensation] {
+    // Gantry (issue 12 item 6): the deviation from the master, 0 off a gantry.
+    for v in [s.output_pos, s.compensation, s.gantry_deviation] {
         buf.push(b',');
         push_f64(buf, &mut floats, v);
     }
@@ -301,7 +303,7 @@ mod tests {
         let line = row(&s, 0.035);
         assert_eq!(
             line,
-            "0.035,3,discrete_motion,0.30000000000000004,-1234.5,1e-7,100,-0,2.5e+20,-42,9223372036854775807,0,1,0,1,limit_reached,,,,,0,0,0,0,0,,0,0
+            "0.035,3,discrete_motion,0.30000000000000004,-1234.5,1e-7,100,-0,2.5e+20,-42,9223372036854775807,0,1,0,1,limit_reached,,,,,0,0,0,0,0,0,,0,0
 "
         );
         assert_eq!(
@@ -329,7 +331,7 @@ mod tests {
         let idle = row(&AxisStatus::default(), 0.0);
         assert_eq!(
             idle,
-            "0,3,disabled,0,0,0,0,0,0,0,0,0,0,0,0,,,,,,0,0,0,0,0,,0,0
+            "0,3,disabled,0,0,0,0,0,0,0,0,0,0,0,0,,,,,,0,0,0,0,0,0,,0,0
 "
         );
         let mut member = Vec::new();
@@ -342,7 +344,7 @@ mod tests {
         write_member_row(&mut member, 0.0, 1, &AxisStatus::default(), Some(&g)).unwrap();
         assert_eq!(
             String::from_utf8(member).unwrap(),
-            "0,1,disabled,0,0,0,0,0,0,0,0,0,0,0,0,,2,12.5,3,40,0,0,0,0,0,,0,0
+            "0,1,disabled,0,0,0,0,0,0,0,0,0,0,0,0,,2,12.5,3,40,0,0,0,0,0,0,,0,0
 "
         );
     }

@@ -14,6 +14,7 @@
 mod commands;
 mod compensation;
 pub mod fifo;
+mod gang;
 mod latch;
 mod pvt;
 mod sampling;
@@ -218,6 +219,12 @@ pub struct Axis {
     in_sync: bool,
     /// What kind of coupling that is (the status and trace show it).
     coupling_kind: Option<CouplingKind>,
+    /// Driven by a handwheel (issue 12 item 7): single-axis motion is refused while set.
+    handwheel: bool,
+    /// Gantry (issue 12 item 6): this tick's deviation, and whether the master's latched
+    /// gantry fault shows on this slave.
+    gantry_deviation: f64,
+    gantry_fault_shown: bool,
     fifo: Fifo,
     /// The PT/PVT buffer (issue 12 item 3), out of line: most axes never stream.
     stream: Box<PvtStream>,
@@ -308,6 +315,9 @@ impl Axis {
             coupled: None,
             in_sync: false,
             coupling_kind: None,
+            handwheel: false,
+            gantry_deviation: 0.0,
+            gantry_fault_shown: false,
             fifo: Fifo::new(config.fifo_depth.unwrap_or(DEFAULT_FIFO_DEPTH)),
             stream: Box::default(),
             stream_dry: false,
@@ -1052,6 +1062,10 @@ impl Axis {
         flags.put(AxisFlags::IN_GROUP, self.group.is_some());
         flags.put(AxisFlags::COUPLED, self.coupled.is_some());
         flags.put(AxisFlags::IN_SYNC, self.in_sync);
+        flags.put(AxisFlags::HANDWHEEL, self.handwheel);
+        if self.gantry_fault_shown {
+            flags |= AxisFlags::GANTRY_FAULT;
+        }
         flags.put(AxisFlags::CAPTURE_TRIGGERED, self.triggers.captures > 0);
         let next = self
             .fifo
@@ -1110,6 +1124,7 @@ impl Axis {
             output_pos: cmd_pos + self.correction,
             compensation: self.correction,
             coupling: self.coupling_kind,
+            gantry_deviation: self.gantry_deviation,
         };
     }
 }

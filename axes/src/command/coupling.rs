@@ -7,7 +7,10 @@ use serde::{Deserialize, Serialize};
 use super::superimpose::{
     SuperimposeIn, SuperimposeOut, SuperimposeSetRatios, TangentialIn, TangentialOut,
 };
-use super::{command_from, AxisIndex, Direction, MasterSource};
+use super::{
+    command_from, AxisIndex, Direction, GantryDisable, GantryEnable, HandwheelIn, HandwheelOut,
+    HandwheelTurn, MasterSource,
+};
 
 /// Couple `slave` to `master` through a gear: slave travel = numerator / denominator × master
 /// travel (PLCopen MC_GearIn; NMC MtGearSetRatio/StartMtn, HMC_Gear, HIMC GearIn). JSON `type`:
@@ -203,6 +206,11 @@ pub enum CouplingCommand {
     SuperimposeOut(SuperimposeOut),
     TangentialIn(TangentialIn),
     TangentialOut(TangentialOut),
+    GantryEnable(GantryEnable),
+    GantryDisable(GantryDisable),
+    HandwheelIn(HandwheelIn),
+    HandwheelOut(HandwheelOut),
+    HandwheelTurn(HandwheelTurn),
 }
 
 impl CouplingCommand {
@@ -220,6 +228,11 @@ impl CouplingCommand {
             CouplingCommand::SuperimposeOut(c) => Some(c.slave),
             CouplingCommand::TangentialIn(c) => Some(c.axis),
             CouplingCommand::TangentialOut(c) => Some(c.axis),
+            CouplingCommand::GantryEnable(c) => Some(c.master),
+            CouplingCommand::GantryDisable(c) => Some(c.master),
+            CouplingCommand::HandwheelIn(c) => Some(c.axis),
+            CouplingCommand::HandwheelOut(c) => Some(c.axis),
+            CouplingCommand::HandwheelTurn(_) => None,
         }
     }
 }
@@ -239,5 +252,10 @@ command_from!(
         SuperimposeOut => SuperimposeOut,
         TangentialIn => TangentialIn,
         TangentialOut => TangentialOut,
+        GantryEnable => GantryEnable,
+        GantryDisable => GantryDisable,
+        HandwheelIn => HandwheelIn,
+        HandwheelOut => HandwheelOut,
+        HandwheelTurn => HandwheelTurn,
     ]
 );

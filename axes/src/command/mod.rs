@@ -90,9 +90,11 @@ pub enum AxisInput {
 mod axis;
 mod compensation;
 mod coupling;
+mod gantry;
 mod group;
 mod group_frames;
 mod group_jog;
+mod handwheel;
 mod io;
 mod machine;
 mod sampling;
@@ -116,6 +118,7 @@ pub use coupling::{
     CamIn, CamInterpolation, CamOut, CamPoint, CamTableDefine, CouplingCommand, FollowSegment,
     GearIn, GearOut, GearSetRatio,
 };
+pub use gantry::{GantryDisable, GantryEnable, MAX_GANTRY_SLAVES};
 pub use group::{
     ArcDirection, CircleMode, CoordinateSet, GroupAxisMove, GroupBufferMode, GroupCommand,
     GroupContinue, GroupCreate, GroupDelete, GroupDisable, GroupDwell, GroupEmergencyStop,
@@ -130,6 +133,10 @@ pub use group_frames::{
     ProtectionMode,
 };
 pub use group_jog::{GroupJog, GroupJogAxis};
+pub use handwheel::{
+    HandwheelExcess, HandwheelIn, HandwheelOut, HandwheelTurn, HANDWHEEL_EXTERNAL_BASE,
+    HANDWHEEL_EXTERNAL_ENCODERS,
+};
 pub use io::{
     ForceAnalogInput, ForceDigitalInput, IoCommand, WriteAnalogOutput, WriteDigitalOutput,
 };

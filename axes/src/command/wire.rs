@@ -12,7 +12,10 @@ use super::{
     SlaveCommand, Stop, StopAll, StopAxes, StreamSetpoint, WriteAnalogOutput, WriteDigitalOutput,
     WriteObject,
 };
-use super::{CamIn, CamOut, CamTableDefine, CouplingCommand, GearIn, GearOut, GearSetRatio};
+use super::{
+    CamIn, CamOut, CamTableDefine, CouplingCommand, GantryDisable, GantryEnable, GearIn, GearOut,
+    GearSetRatio, HandwheelIn, HandwheelOut, HandwheelTurn,
+};
 use super::{CaptureArm, CaptureClear, CompareStart, CompareStop, TriggerCommand};
 use super::{
     CompensationBacklash, CompensationClear, CompensationCommand, CompensationDisable,
@@ -146,6 +149,12 @@ pub(super) enum Command {
     SuperimposeOut(SuperimposeOut),
     TangentialIn(TangentialIn),
     TangentialOut(TangentialOut),
+    // Issue 12 items 6–7, gantry and handwheel.
+    GantryEnable(GantryEnable),
+    GantryDisable(GantryDisable),
+    HandwheelIn(HandwheelIn),
+    HandwheelOut(HandwheelOut),
+    HandwheelTurn(HandwheelTurn),
 }
 
 impl From<Command> for super::Command {
@@ -255,6 +264,11 @@ impl From<Command> for super::Command {
             Command::SuperimposeOut(c) => super::Command::from(c),
             Command::TangentialIn(c) => super::Command::from(c),
             Command::TangentialOut(c) => super::Command::from(c),
+            Command::GantryEnable(c) => super::Command::from(c),
+            Command::GantryDisable(c) => super::Command::from(c),
+            Command::HandwheelIn(c) => super::Command::from(c),
+            Command::HandwheelOut(c) => super::Command::from(c),
+            Command::HandwheelTurn(c) => super::Command::from(c),
             Command::CaptureArm(c) => super::Command::Trigger(TriggerCommand::CaptureArm(c)),
             Command::CaptureClear(c) => super::Command::Trigger(TriggerCommand::CaptureClear(c)),
             Command::CompareStart(c) => super::Command::Trigger(TriggerCommand::CompareStart(c)),
@@ -394,6 +408,15 @@ impl From<super::Command> for Command {
             super::Command::Coupling(CouplingCommand::TangentialIn(c)) => Command::TangentialIn(c),
             super::Command::Coupling(CouplingCommand::TangentialOut(c)) => {
                 Command::TangentialOut(c)
+            }
+            super::Command::Coupling(CouplingCommand::GantryEnable(c)) => Command::GantryEnable(c),
+            super::Command::Coupling(CouplingCommand::GantryDisable(c)) => {
+                Command::GantryDisable(c)
+            }
+            super::Command::Coupling(CouplingCommand::HandwheelIn(c)) => Command::HandwheelIn(c),
+            super::Command::Coupling(CouplingCommand::HandwheelOut(c)) => Command::HandwheelOut(c),
+            super::Command::Coupling(CouplingCommand::HandwheelTurn(c)) => {
+                Command::HandwheelTurn(c)
             }
             super::Command::Trigger(TriggerCommand::CaptureArm(c)) => Command::CaptureArm(c),
             super::Command::Trigger(TriggerCommand::CaptureClear(c)) => Command::CaptureClear(c),

@@ -15,8 +15,10 @@
 //! ramp is followed by the slave, so the two stay in ratio (decisions.md, issue 12 gear).
 
 mod cam;
+mod gantry;
 mod gear;
 mod superimpose;
+mod handwheel;
 pub mod table;
 mod tangential;
 
@@ -26,15 +28,17 @@ use std::sync::Arc;
 use crate::axis::{Axis, Context, Feed};
 use crate::command::{
     bounded, positive, AxisIndex, CamIn, CamTableDefine, CouplingCommand, EngineError, GearIn,
-    MasterSource, Reply, SuperimposeIn, TangentialIn,
+    MasterSource, Reply, SuperimposeIn, TangentialIn, HANDWHEEL_EXTERNAL_ENCODERS,
 };
 use crate::group::Groups;
 use crate::param::ParamId;
 use crate::profile::MotionState;
 use crate::status::{CouplingKind, CouplingPhase, CouplingStatus};
 pub use cam::{Cam, CamStart, CamStep};
+pub use gantry::GantrySlave;
 pub use gear::{Clutch, Gear};
 pub use superimpose::Superimpose;
+pub use handwheel::Handwheel;
 pub use table::CamTable;
 pub use tangential::{Tangential, TurnLimits};
 
@@ -47,6 +51,7 @@ enum Law {
     Cam(Cam),
     Superimpose(Superimpose),
     Tangential(Tangential),
+    Gantry(GantrySlave),
 }
 
 /// One slave and what it follows.
@@ -70,6 +75,7 @@ impl Coupling {
     fn status(&self) -> CouplingStatus {
         let (kind, ratio, table, table_index, cycle) = match &self.law {
             Law::Gear(g) => (CouplingKind::Gear, g.ratio(), None, 0, 0),
+            Law::Gantry(_) => (CouplingKind::Gantry, 1.0, None, 0, 0),
             Law::Cam(cam) => (
                 CouplingKind::Cam,
                 0.0,
@@ -99,6 +105,10 @@ impl Coupling {
             table,
             table_index,
             cycle,
+            gantry: match &self.law {
+                Law::Gantry(g) => Some(g.status()),
+                _ => None,
+            },
         }
     }
 
@@ -108,6 +118,7 @@ impl Coupling {
             Law::Cam(c) => c.phase(),
             Law::Superimpose(_) => CouplingPhase::InSync,
             Law::Tangential(t) => t.phase(),
+            Law::Gantry(_) => CouplingPhase::InSync,
         }
     }
 }
@@ -122,6 +133,9 @@ pub struct Couplings {
     /// Stage 3's order: each axis and the index in `list` of the coupling it is the slave of.
     /// Empty when there is no coupling (then the axes step in index order).
     order: Vec<(AxisIndex, Option<usize>)>,
+    /// The handwheels (issue 12 item 7), by axis, and the external encoders' counts.
+    handwheels: Vec<Handwheel>,
+    external: [i64; HANDWHEEL_EXTERNAL_ENCODERS as usize],
 }
 
 /// What a coupling command may touch.
@@ -162,7 +176,7 @@ fn axis_ref(axes: &[Axis], index: AxisIndex) -> Result<&Axis, EngineError> {
 
 impl Couplings {
     pub fn is_empty(&self) -> bool {
-        self.list.is_empty()
+        self.list.is_empty() && self.handwheels.is_empty()
     }
 
     /// A cam table by number.
@@ -209,6 +223,11 @@ impl Couplings {
             CouplingCommand::TangentialOut(c) => {
                 self.decouple(env, c.axis, CouplingKind::Tangential)
             }
+            CouplingCommand::GantryEnable(c) => self.gantry_enable(env, &c),
+            CouplingCommand::GantryDisable(c) => self.gantry_disable(env, c.master),
+            CouplingCommand::HandwheelIn(c) => self.handwheel_in(env, &c),
+            CouplingCommand::HandwheelOut(c) => self.handwheel_out(env, c.axis),
+            CouplingCommand::HandwheelTurn(c) => self.handwheel_turn(&c),
         }
     }
 
@@ -513,6 +532,7 @@ impl Couplings {
             CouplingKind::Cam => "the slave of a cam",
             CouplingKind::Superimpose => "the slave of a superimposed coupling",
             CouplingKind::Tangential => "a tangential axis",
+            CouplingKind::Gantry => "the slave of a gantry",
         };
         let i = self
             .list
@@ -523,7 +543,7 @@ impl Couplings {
             Some(Law::Cam(_)) => kind == CouplingKind::Cam,
             Some(Law::Superimpose(_)) => kind == CouplingKind::Superimpose,
             Some(Law::Tangential(_)) => kind == CouplingKind::Tangential,
-            None => false,
+            Some(Law::Gantry(_)) | None => false,
         };
         if !matches {
             return Err(EngineError::NotCoupled { axis: slave, what });
@@ -591,6 +611,9 @@ impl Couplings {
         let Env {
             axes, ctx, period, ..
         } = env;
+        if !self.handwheels.is_empty() {
+            self.drive_handwheels(axes, ctx, *period);
+        }
         if self.list.is_empty() {
             for axis in axes.iter_mut() {
                 axis.step(ctx);
@@ -608,6 +631,9 @@ impl Couplings {
                 axis.step(ctx);
             }
         }
+        if self.has_gantry() {
+            self.supervise_gantries(axes, ctx);
+        }
         self.sweep(axes, ctx);
     }
 
@@ -621,6 +647,10 @@ impl Couplings {
             return;
         };
         let master = read_master(master_axis, c.source, c.previous, period);
+        let gantry_master = match c.law {
+            Law::Gantry(_) => Some(gantry::MasterView::read(master_axis)),
+            _ => None,
+        };
         let previous = std::mem::replace(&mut c.previous, master.p);
         // The second master (superimposed, tangential); its velocity comes with its state.
         let master2 = c
@@ -652,11 +682,30 @@ impl Couplings {
                     CamStep::End(s) => (Some(s), true),
                 }
             }
+            Law::Gantry(g) => match gantry_master {
+                Some(view) => (Some(g.step(view, slave)), false),
+                None => (None, false),
+            },
         };
         let in_sync = c.phase() == CouplingPhase::InSync;
         let Some(setpoint) = feed else {
             return;
         };
+        if let Law::Gantry(g) = &mut c.law {
+            // A gantry stays ganged when a slave cannot follow: an enabled master stops with a
+            // gantry fault (the slave's own fault or disable stops the slave; a disabled master
+            // has nothing to stop, as after `disable_all`), and the slave is re-anchored when
+            // it follows again.
+            if slave.feed(ctx, Feed::Follow(setpoint)).is_err() {
+                g.refused();
+                if let Some(m) = axes.get_mut(c.master as usize) {
+                    if m.is_enabled() {
+                        m.gantry_fault(ctx);
+                    }
+                }
+            }
+            return;
+        }
         if slave.feed(ctx, Feed::Follow(setpoint)).is_err() || end {
             // Refused (fault, disable, stop, limit): decoupled, the slave keeps what the
             // refusal left it doing. Ended: it stands at the end and is free from next tick.

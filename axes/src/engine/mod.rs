@@ -823,6 +823,7 @@ impl Engine {
         self.groups
             .status_into(&self.axes, &snapshot.axes, &mut snapshot.groups);
         self.couplings.status_into(&mut snapshot.couplings);
+        self.couplings.handwheels_into(&mut snapshot.handwheels);
         self.triggers
             .status_into(&mut snapshot.captures, &mut snapshot.compares);
         if snapshot.io_version != self.io.version {

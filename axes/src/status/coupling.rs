@@ -2,6 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::GantryStatus;
 use crate::types::{AxisIndex, MasterSource};
 
 /// Where a coupling is (PLCopen MC_GearIn/MC_CamIn outputs; HIMC IsInGear).
@@ -37,6 +38,8 @@ pub enum CouplingKind {
     Superimpose,
     /// Tracks the tangent angle of a group's path (HMC MoveTang).
     Tangential,
+    /// A gantry slave (issue 12 item 6): `gantry` holds its record.
+    Gantry,
 }
 
 impl CouplingKind {
@@ -47,6 +50,7 @@ impl CouplingKind {
             CouplingKind::Cam => "cam",
             CouplingKind::Superimpose => "superimpose",
             CouplingKind::Tangential => "tangential",
+            CouplingKind::Gantry => "gantry",
         }
     }
 }
@@ -80,4 +84,7 @@ pub struct CouplingStatus {
     /// Tangential: angle − the axis's setpoint (HMC_GetMoveTangDeviation).
     #[serde(default)]
     pub deviation: f64,
+    /// Gantry slave: offset, deviation, limits and the pair view.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gantry: Option<GantryStatus>,
 }

@@ -9,9 +9,11 @@ use serde::{Deserialize, Serialize};
 use crate::types::{CommandId, CommandKind, ErrorKind, StreamMode};
 
 mod coupling;
+mod gang;
 mod group;
 mod snapshot;
 pub use coupling::{CouplingKind, CouplingPhase, CouplingStatus};
+pub use gang::{GantryStatus, HandwheelStatus};
 mod trigger;
 pub use group::{GroupFault, GroupState, GroupStatus, InterferenceStatus};
 pub use snapshot::Snapshot;
@@ -104,6 +106,14 @@ bitflags::bitflags! {
         const IN_SYNC = 1 << 26;
         /// A PT/PVT stream ran out of points while moving (latched, issue 12 item 3).
         const STREAM_UNDERRUN = 1 << 27;
+        /// A gantry axis whose deviation from its master is over the warning limit
+        /// (auto-clearing, HMC AxisStatus bit 5; issue 12 item 6).
+        const GANTRY_WARNING = 1 << 28;
+        /// A gantry's deviation went over the fault limit (HMC AxisStatus bit 6): latched on
+        /// the master (an error-stop fault until `reset`), shown on its slaves while latched.
+        const GANTRY_FAULT = 1 << 29;
+        /// Driven by a handwheel (issue 12 item 7): single-axis motion is refused.
+        const HANDWHEEL = 1 << 30;
     }
 }
 
@@ -132,7 +142,8 @@ impl AxisFlags {
         .union(AxisFlags::ESTOP)
         .union(AxisFlags::ENCODER_LOSS)
         .union(AxisFlags::HOMING_FAILED)
-        .union(AxisFlags::STREAM_UNDERRUN);
+        .union(AxisFlags::STREAM_UNDERRUN)
+        .union(AxisFlags::GANTRY_FAULT);
 
     /// Flags that can be latched and must be cleared by `reset`.
     pub const LATCHABLE: AxisFlags = AxisFlags::ERROR_STOP_FAULTS
@@ -146,7 +157,7 @@ impl AxisFlags {
 
 /// Every axis flag and its snake_case name, in bit order: the names the control API, traces and
 /// register maps use. A fixed table, so that renaming a constant cannot silently change them.
-pub const FLAG_NAMES: [(AxisFlags, &str); 28] = [
+pub const FLAG_NAMES: [(AxisFlags, &str); 31] = [
     (AxisFlags::ENABLED, "enabled"),
     (AxisFlags::MOVING, "moving"),
     (AxisFlags::IN_POSITION, "in_position"),
@@ -175,6 +186,9 @@ pub const FLAG_NAMES: [(AxisFlags, &str); 28] = [
     (AxisFlags::COUPLED, "coupled"),
     (AxisFlags::IN_SYNC, "in_sync"),
     (AxisFlags::STREAM_UNDERRUN, "stream_underrun"),
+    (AxisFlags::GANTRY_WARNING, "gantry_warning"),
+    (AxisFlags::GANTRY_FAULT, "gantry_fault"),
+    (AxisFlags::HANDWHEEL, "handwheel"),
 ];
 
 /// The names of the flags set in `flags`, in bit order.
@@ -269,6 +283,10 @@ pub struct AxisStatus {
     /// The kind of the coupling whose slave the axis is (issue 12; `coupling` in traces).
     #[serde(default)]
     pub coupling: Option<CouplingKind>,
+    /// Gantry slave: its deviation from the master, (slave − master actual) − the offset at
+    /// engagement; gantry master: the largest of its slaves' by magnitude (issue 12 item 6).
+    #[serde(default)]
+    pub gantry_deviation: f64,
 }
 
 /// An axis's PT/PVT buffer and run (NMC `MtPtGetSpace`, `MtPtGetStatic`).

@@ -5,7 +5,8 @@
 use serde::{Deserialize, Serialize};
 
 use super::{
-    AxisStatus, CaptureStatus, CompareStatus, CouplingStatus, DriveStatus, GroupStatus, IoImage,
+    AxisStatus, CaptureStatus, CompareStatus, CouplingStatus, DriveStatus, GroupStatus,
+    HandwheelStatus, IoImage,
 };
 use crate::param::ParamSet;
 use crate::sampling::SamplerStatus;
@@ -47,6 +48,9 @@ pub struct Snapshot {
     pub params: std::sync::Arc<Vec<ParamSet>>,
     /// Changes whenever a parameter of any axis changes.
     pub params_version: u64,
+    /// The handwheels (issue 12 item 7), by axis.
+    #[serde(default)]
+    pub handwheels: Vec<HandwheelStatus>,
 }
 
 impl Snapshot {

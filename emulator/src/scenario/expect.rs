@@ -102,6 +102,8 @@ pub(super) enum Quantity {
     OutputPosition,
     /// The correction of compensation after the planner.
     Compensation,
+    /// A gantry axis's deviation from its master (issue 12 item 6).
+    GantryDeviation,
 }
 
 impl Quantity {
@@ -117,6 +119,7 @@ impl Quantity {
             Quantity::CompareOutputs => "compare_outputs",
             Quantity::OutputPosition => "output_position",
             Quantity::Compensation => "compensation",
+            Quantity::GantryDeviation => "gantry_deviation",
         }
     }
 
@@ -132,6 +135,7 @@ impl Quantity {
             Quantity::CompareOutputs => f64::from(s.compare_outputs),
             Quantity::OutputPosition => s.output_pos,
             Quantity::Compensation => s.compensation,
+            Quantity::GantryDeviation => s.gantry_deviation,
         }
     }
 }
@@ -251,6 +255,7 @@ impl Expectation {
             (Quantity::CompareOutputs, spec.compare_outputs),
             (Quantity::OutputPosition, spec.output_position),
             (Quantity::Compensation, spec.compensation),
+            (Quantity::GantryDeviation, spec.gantry_deviation),
         ] {
             if let Some(v) = v {
                 if !v.is_finite() {
@@ -285,7 +290,8 @@ impl Expectation {
                 "tolerance",
                 "applies to position, velocity, command_position, command_velocity, \
                  following_error, captures, capture_position, compare_outputs, output_position, \
-                 compensation, tangent_angle or group_position, and none is given"
+                 compensation, tangent_angle, gantry_deviation or group_position, and none is \
+                 given"
                     .into(),
             ));
         }
@@ -363,9 +369,9 @@ impl Expectation {
                 "axis",
                 "no condition on it: give state, position, velocity, command_position, \
                  command_velocity, following_error, captures, capture_position, \
-                 compare_outputs, output_position, compensation, flags, not_flags, error, \
-                 coupling, coupling_kind, tangent_angle, stream_space, stream_used, \
-                 stream_running or stream_underruns"
+                 compare_outputs, output_position, compensation, gantry_deviation, flags, \
+                 not_flags, error, coupling, coupling_kind, tangent_angle, stream_space, \
+                 stream_used, stream_running or stream_underruns"
                     .into(),
             ));
         }

@@ -94,6 +94,9 @@ pub(super) struct ExpectSpec {
     /// The correction of compensation after the planner.
     #[serde(default)]
     pub compensation: Option<f64>,
+    /// A gantry axis's deviation from its master (`gantry_deviation`, issue 12 item 6).
+    #[serde(default)]
+    pub gantry_deviation: Option<f64>,
     /// Allowed |seen − expected| of the numbers above; 0 (exact) when absent.
     #[serde(default)]
     pub tolerance: Option<f64>,

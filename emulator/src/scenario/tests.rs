@@ -294,3 +294,55 @@ points = [{{ master = 0, slave = 0 }}, {{ master = 200, slave = 50 }}]
     assert_eq!(r.expectations, 5);
     assert!(r.failures.is_empty(), "{:#?}", r.failures);
 }
+
+#[test]
+fn a_gantry_and_a_handwheel_run_and_are_checked_by_expect() {
+    // The README's "Gantry" and "Handwheel" examples on three steppers.
+    let axis = "[[axes]]\n[axes.params]\naxis_type = \"stepper\"\nunits = 1000\nrep_mode = \"finite\"\nspeed = 100\naccel = 1000\ndecel = 1000\n";
+    let text = format!(
+        r#"
+end = 2.0
+[[step]]
+at = 0
+command = {{ type = "enable_all" }}
+[[step]]
+at = 0
+command = {{ type = "gantry_enable", master = 0, slaves = [1], warning_limit = 0.5, fault_limit = 2 }}
+[[step]]
+at = 0
+command = {{ type = "move_absolute", axis = 0, position = 50 }}
+[[step]]
+at = 0
+command = {{ type = "handwheel_in", axis = 2, input = 256, numerator = 1, denominator = 100, velocity = 20, acceleration = 200 }}
+[[step]]
+at = 0.1
+command = {{ type = "handwheel_turn", input = 256, counts = 1000 }}
+[[step]]
+at = 0.2
+expect = {{ axis = 1, coupling = "in_sync", flags = ["coupled"], not_flags = ["gantry_warning", "gantry_fault"], gantry_deviation = 0 }}
+[[step]]
+at = 1.5
+expect = {{ axis = 1, command_position = 50, gantry_deviation = 0 }}
+[[step]]
+at = 1.5
+expect = {{ axis = 2, command_position = 10, flags = ["handwheel"] }}
+[[step]]
+at = 1.6
+command = {{ type = "handwheel_out", axis = 2 }}
+[[step]]
+at = 1.6
+command = {{ type = "gantry_disable", master = 0 }}
+[[step]]
+at = 1.7
+expect = {{ axis = 2, not_flags = ["handwheel"] }}
+
+[machine]
+period = 0.001
+{axis}{axis}{axis}
+"#
+    );
+    let s = parse(&text).unwrap();
+    let r = s.run(None).unwrap();
+    assert_eq!(r.expectations, 4);
+    assert!(r.failures.is_empty(), "{:#?}", r.failures);
+}

@@ -115,6 +115,9 @@ impl Axis {
                 master,
             });
         }
+        if self.handwheel {
+            return Err(EngineError::AxisOnHandwheel { axis: self.index });
+        }
         if matches!(self.source, Source::Fed(_)) && matches!(self.activity, Activity::Streaming) {
             Err(self.invalid_state("take single-axis motion while a machine planner feeds it"))
         } else {
@@ -130,6 +133,9 @@ impl Axis {
                 axis: self.index,
                 master,
             });
+        }
+        if self.handwheel {
+            return Err(EngineError::AxisOnHandwheel { axis: self.index });
         }
         if let Some(group) = self.group {
             return Err(EngineError::AxisInGroup {

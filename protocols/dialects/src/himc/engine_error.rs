@@ -152,6 +152,13 @@ pub fn error_code(e: &EngineError, subject: Subject) -> u32 {
             axis(*a, "eERR_AXIS_CMD_INVALID_MASTER_SLAVE_CONNECTION")
         }
         E::AxisCoupled { axis: a, .. } => axis(*a, "eERR_AXIS_CMD_INVALID_IN_SYNC"),
+        // Gantry set-up refused (digest 004 §5.3: 0x83□□00dc, the one gantry code).
+        E::InvalidGantry { master: a, .. } | E::GantryExists { master: a } => {
+            axis(*a, "eERR_AXIS_CMD_INVALID_GANTRY_MODE")
+        }
+        // HIMC has no handwheel (MPG) API: the nearest codes of the axis table.
+        E::AxisOnHandwheel { axis: a } => axis(*a, "eERR_AXIS_CMD_INVALID_STATE"),
+        E::UnknownHandwheelInput { .. } => invalid(subject),
         E::NotCoupled { axis: a, .. } => axis(*a, "eERR_AXIS_CMD_GEAR_DISABLED"),
         E::UnknownCamTable { .. } | E::InvalidCamTable { .. } | E::CamTableInUse { .. } => {
             match subject {
