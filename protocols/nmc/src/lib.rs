@@ -13,10 +13,12 @@
 //! - [`structs`]: the manual's structs (`TPtpPara` …) as the wire carries them;
 //! - [`errors`]: the return codes of `mtn_lib20_err.h` (not in the manual: mcemu's, stable);
 //! - [`header`]: the C headers generated from the table (checked against the committed ones);
+//! - [`handle`]: what a `HAND` encodes (kind, library slot, axis number);
 //! - [`session`]: the server side of one connection (version negotiation, then requests).
 
 pub mod errors;
 pub mod frame;
+pub mod handle;
 pub mod header;
 pub mod payload;
 pub mod session;
