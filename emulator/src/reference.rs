@@ -135,6 +135,12 @@ fn field_orders() -> BTreeMap<&'static str, Vec<&'static str>> {
         ("FrontendsConfig", field_order::<FrontendsConfig>()),
         ("ControlConfig", field_order::<ControlConfig>()),
         ("PlannedFrontend", field_order::<PlannedFrontend>()),
+        ("NmcConfig", field_order::<crate::nmc::config::NmcConfig>()),
+        (
+            "NmcLocalConfig",
+            field_order::<crate::nmc::config::NmcLocalConfig>(),
+        ),
+        ("NmcDevice", field_order::<crate::nmc::config::NmcDevice>()),
         ("TcpConfig", field_order::<TcpConfig>()),
         ("RtuConfig", field_order::<RtuConfig>()),
         ("RtuOverTcpConfig", field_order::<RtuOverTcpConfig>()),

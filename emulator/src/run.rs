@@ -36,7 +36,11 @@ pub enum RunError {
 
 /// Every protocol front-end, in start order. Adding a front-end is its module (a [`Start`]
 /// function), an entry here and its config section.
-pub const FRONTENDS: [Start; 2] = [crate::modbus::serve::start, crate::canopen::serve::start];
+pub const FRONTENDS: [Start; 3] = [
+    crate::modbus::serve::start,
+    crate::canopen::serve::start,
+    crate::nmc::serve::start,
+];
 
 /// Start every front-end of [`FRONTENDS`]; the first failure stops the start.
 pub async fn start_all(

@@ -293,7 +293,7 @@ impl Mcemu {
             command.arg("--config").arg(path);
         }
         command.args(["--set", "frontends.control.bind=127.0.0.1:0"]);
-        for section in ["modbus_tcp", "modbus_rtu_over_tcp", "socketcand"] {
+        for section in ["modbus_tcp", "modbus_rtu_over_tcp", "socketcand", "nmc"] {
             if has_section(&text, section) {
                 command.args(["--set", &format!("frontends.{section}.bind=127.0.0.1:0")]);
             }

@@ -33,6 +33,7 @@ pub struct Code {
 
 pub const RTN_CMD_SUCCESS: i16 = 0;
 pub const RTN_COMM_ERROR: i16 = -1;
+pub const RTN_UNSUPPORTED: i16 = 10;
 pub const RTN_INVALID_HANDLE: i16 = 30;
 pub const RTN_WRONG_HANDLE_KIND: i16 = 31;
 pub const RTN_NULL_POINTER: i16 = 32;
@@ -67,7 +68,7 @@ pub const CODES: &[Code] = &[
     c(7, "RTN_AXIS_IN_ERROR", State, "the axis has a latched error: NMC_MtClrError first"),
     c(8, "RTN_LIMIT_ACTIVE", State, "a limit blocks motion in this direction"),
     c(9, "RTN_QUEUE_FULL", State, "the command queue is full"),
-    c(10, "RTN_UNSUPPORTED", Unsupported, "not supported by this axis or device"),
+    c(RTN_UNSUPPORTED, "RTN_UNSUPPORTED", Unsupported, "not supported by this axis or device"),
     c(11, "RTN_INVALID_STATE", State, "not allowed in the axis's present state"),
     c(12, "RTN_CAUSE_STILL_PRESENT", State, "the error's cause is still present"),
     c(13, "RTN_UNKNOWN_COMMAND", Unsupported, "unknown command"),
