@@ -46,6 +46,7 @@ impl Frontend for NmcFrontend {
         let c = &self.service.counters;
         let k = &self.connections;
         json!({
+            "name": self.name,
             "device": {
                 "kind": self.service.device.kind,
                 "id": self.service.device.id,

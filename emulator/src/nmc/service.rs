@@ -351,3 +351,40 @@ pub fn pulses(scale: PulseScale, units: f64) -> i64 {
         p.clamp(i64::MIN as f64, i64::MAX as f64) as i64
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use axes::command::ErrorKind;
+
+    /// `mtn_lib20_err.h` codes 1–21 are the dialect's engine codes, name for name.
+    #[test]
+    fn engine_codes_match_the_dialect() {
+        for (kind, name) in [
+            (ErrorKind::InvalidAxis, "RTN_INVALID_AXIS"),
+            (ErrorKind::UnknownParameter, "RTN_UNKNOWN_PARAMETER"),
+            (ErrorKind::InvalidParameter, "RTN_INVALID_PARAMETER"),
+            (ErrorKind::ReadOnlyParameter, "RTN_READ_ONLY_PARAMETER"),
+            (ErrorKind::InvalidArgument, "RTN_INVALID_ARGUMENT"),
+            (ErrorKind::AxisDisabled, "RTN_AXIS_DISABLED"),
+            (ErrorKind::AxisInError, "RTN_AXIS_IN_ERROR"),
+            (ErrorKind::LimitActive, "RTN_LIMIT_ACTIVE"),
+            (ErrorKind::QueueFull, "RTN_QUEUE_FULL"),
+            (ErrorKind::Unsupported, "RTN_UNSUPPORTED"),
+            (ErrorKind::InvalidState, "RTN_INVALID_STATE"),
+            (ErrorKind::CauseStillPresent, "RTN_CAUSE_STILL_PRESENT"),
+            (ErrorKind::UnknownCommand, "RTN_UNKNOWN_COMMAND"),
+            (ErrorKind::Homing, "RTN_HOMING"),
+            (ErrorKind::Object, "RTN_OBJECT"),
+            (ErrorKind::InvalidSlave, "RTN_INVALID_SLAVE"),
+            (ErrorKind::InvalidChannel, "RTN_INVALID_CHANNEL"),
+            (ErrorKind::LimitReached, "RTN_LIMIT_REACHED"),
+            (ErrorKind::Fault, "RTN_FAULT"),
+            (ErrorKind::InvalidGroup, "RTN_INVALID_GROUP"),
+            (ErrorKind::GroupState, "RTN_GROUP_STATE"),
+        ] {
+            let code = mcemu_dialects::nmc::code_for_kind(kind);
+            let row = mcemu_nmc::errors::lookup(code);
+            assert_eq!(row.map(|r| r.name), Some(name), "{kind:?}");
+        }
+    }
+}

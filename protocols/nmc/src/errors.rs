@@ -1,6 +1,6 @@
 //! The return codes of `mtn_lib20_err.h`. The manual names only 0 (`RTN_CMD_SUCCESS`) and −1
 //! (a communication error, digest 001 §1.2, §8 item 1); the rest are mcemu's and stable: never
-//! renumbered, only added to (docs/decisions.md, "NMC front-end: error codes").
+//! renumbered, only added to (docs/decisions.md, "NMC front-end (issue 13)").
 //!
 //! Codes 1–21 are one per engine error kind and equal `mcemu_dialects::nmc::code_for_kind`
 //! (a test in mcemu checks it); 30–39 are argument errors the server or the library finds; 40–49

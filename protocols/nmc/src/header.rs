@@ -1,7 +1,7 @@
 //! The C headers, generated from [`crate::table`] and [`crate::errors`]. The generated text is
 //! committed under `protocols/nmc-shim/include/` (so `gcc -I protocols/nmc-shim/include` needs no
 //! build step); a test fails when the committed files differ, and `NMC_BLESS=1 cargo test -p
-//! mcemu-nmc header` rewrites them (docs/decisions.md, "NMC front-end: the header").
+//! mcemu-nmc header` rewrites them (docs/decisions.md, "NMC front-end (issue 13)").
 
 use crate::errors::CODES;
 use crate::table::{Arg, CType, Dir, HeaderFile, FUNCTIONS};
