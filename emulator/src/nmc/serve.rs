@@ -264,7 +264,8 @@ async fn connection<S: AsyncRead + AsyncWrite + Unpin>(
                     payload,
                 } => {
                     let _in_request = activity.as_ref().map(Activity::request);
-                    let (status, reply) = service.serve(function, &payload, &peer).await;
+                    let handler = super::handlers::find(function.id);
+                    let (status, reply) = service.serve(function, handler, &payload, &peer).await;
                     session.reply(sequence, function.id, status, &reply);
                 }
                 Event::Negotiated { .. } => {}

@@ -22,7 +22,6 @@ use mcemu_nmc::structs::{HomeSetting, JogPara, PtpPara};
 use mcemu_nmc::table::Function;
 
 use super::config::NmcDevice;
-use super::handlers;
 
 /// Why a request is refused: its return code and the text `NMC_GetErrDesc` shows.
 #[derive(Clone, Debug, PartialEq)]
@@ -180,10 +179,17 @@ impl NmcService {
         self.settings.lock().unwrap_or_else(PoisonError::into_inner)
     }
 
-    /// Serve one request: the reply's code and payload (out arguments, or the error's text).
-    pub async fn serve(&self, function: &Function, payload: &[u8], peer: &str) -> (i16, Vec<u8>) {
+    /// Serve one request with `handler` (the function's, from the handler tables; `None` if it
+    /// has none): the reply's code and payload (out arguments, or the error's text).
+    pub async fn serve(
+        &self,
+        function: &Function,
+        handler: Option<Handler>,
+        payload: &[u8],
+        peer: &str,
+    ) -> (i16, Vec<u8>) {
         self.counters.requests.inc();
-        let result = self.run(function, payload).await;
+        let result = self.run(handler, payload).await;
         match result {
             Ok(out) => (0, out),
             Err(r) => {
@@ -202,8 +208,8 @@ impl NmcService {
         }
     }
 
-    async fn run(&self, function: &Function, payload: &[u8]) -> Result<Vec<u8>, Refusal> {
-        let handler = handlers::find(function.id).ok_or_else(|| {
+    async fn run(&self, handler: Option<Handler>, payload: &[u8]) -> Result<Vec<u8>, Refusal> {
+        let handler = handler.ok_or_else(|| {
             Refusal::new(
                 mcemu_nmc::errors::RTN_UNKNOWN_FUNCTION,
                 "not served by this mcemu",
