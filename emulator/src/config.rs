@@ -207,10 +207,11 @@ pub struct FrontendsConfig {
     pub canopen: Option<crate::canopen::config::CanopenConfig>,
     /// CANopen over the socketcand TCP protocol, for hosts without SocketCAN.
     pub socketcand: Option<crate::canopen::config::SocketcandFrontendConfig>,
-    /// NMC protocol over TCP (network controllers, `NMC_DevOpenByIP`).
-    pub nmc: Option<PlannedFrontend>,
-    /// NMC protocol on a local socket (PCIe card indices, `NMC_DevOpen`).
-    pub nmc_local: Option<PlannedFrontend>,
+    /// NMC protocol over TCP (network controllers, `NMC_DevOpenByIP`): what mcemu's
+    /// `nmc_lib20` library reaches.
+    pub nmc: Option<crate::nmc::config::NmcConfig>,
+    /// NMC protocol on a Unix socket (PCIe/GCE cards, `NMC_DevOpen` by index).
+    pub nmc_local: Option<crate::nmc::config::NmcLocalConfig>,
     /// HIMC Native ASCII server (HMPL calls as text; the controller's port is 3999).
     pub ascii_native: Option<mcemu_ascii::config::NativeConfig>,
     /// HIMC User ASCII server (declarative command patterns; the controller's port is 4000).
@@ -476,17 +477,17 @@ impl Config {
             }
         }
         let f = &self.frontends;
-        for (name, section) in [
-            ("nmc", &f.nmc),
-            ("nmc_local", &f.nmc_local),
-            ("ascii_user", &f.ascii_user),
-        ] {
-            if section.as_ref().is_some_and(|s| s.enabled) {
-                return Err((
-                    format!("frontends.{name}.enabled"),
-                    "this front-end is not built yet; set enabled = false".into(),
-                ));
-            }
+        if let Some(c) = &f.nmc {
+            crate::nmc::config::check("nmc", c.max_connections, c.idle_timeout, &c.device)?;
+        }
+        if let Some(c) = &f.nmc_local {
+            crate::nmc::config::check("nmc_local", c.max_connections, c.idle_timeout, &c.device)?;
+        }
+        if f.ascii_user.as_ref().is_some_and(|s| s.enabled) {
+            return Err((
+                "frontends.ascii_user.enabled".into(),
+                "this front-end is not built yet; set enabled = false".into(),
+            ));
         }
         Ok(())
     }
@@ -575,8 +576,10 @@ mod tests {
         assert!(e.to_string().starts_with("m.toml: TOML parse error"), "{e}");
         let e = Config::parse("[machine]\nclock = \"fast\"\n", "m.toml").unwrap_err();
         assert_eq!(e.key, "machine.clock");
-        let e = Config::parse("[frontends.nmc]\nenabled = true\n", "m.toml").unwrap_err();
-        assert_eq!(e.key, "frontends.nmc.enabled");
+        let e = Config::parse("[frontends.ascii_user]\nenabled = true\n", "m.toml").unwrap_err();
+        assert_eq!(e.key, "frontends.ascii_user.enabled");
+        let e = Config::parse("[frontends.nmc]\nmax_connections = 0\n", "m.toml").unwrap_err();
+        assert_eq!(e.key, "frontends.nmc.max_connections");
         let e = Config::parse("[frontends.control]\nmax_requests = 0\n", "m.toml").unwrap_err();
         assert_eq!(e.key, "frontends.control.max_requests");
         assert!(e.reason.contains("outside 1"), "{}", e.reason);

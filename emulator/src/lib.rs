@@ -8,6 +8,7 @@ pub mod control;
 pub mod frontend;
 pub mod listener;
 pub mod modbus;
+pub mod nmc;
 pub mod reference;
 pub mod run;
 pub mod scenario;

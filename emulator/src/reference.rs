@@ -139,6 +139,12 @@ fn field_orders() -> BTreeMap<&'static str, Vec<&'static str>> {
             "NativeConfig",
             field_order::<mcemu_ascii::config::NativeConfig>(),
         ),
+        ("NmcConfig", field_order::<crate::nmc::config::NmcConfig>()),
+        (
+            "NmcLocalConfig",
+            field_order::<crate::nmc::config::NmcLocalConfig>(),
+        ),
+        ("NmcDevice", field_order::<crate::nmc::config::NmcDevice>()),
         ("TcpConfig", field_order::<TcpConfig>()),
         ("RtuConfig", field_order::<RtuConfig>()),
         ("RtuOverTcpConfig", field_order::<RtuOverTcpConfig>()),

@@ -576,8 +576,8 @@ fn a_period_out_of_range_is_refused() {
 fn enabling_a_front_end_that_is_not_built_is_refused() {
     refused(
         "frontend",
-        "[frontends.nmc]\nenabled = true\nbind = \"127.0.0.1:5600\"\n",
-        &["frontends.nmc.enabled", "not built yet"],
+        "[frontends.ascii_user]\nenabled = true\nbind = \"127.0.0.1:5600\"\n",
+        &["frontends.ascii_user.enabled", "not built yet"],
     );
 }
 

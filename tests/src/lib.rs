@@ -25,6 +25,7 @@ use std::time::{Duration, Instant};
 mod ascii;
 mod mcemu;
 mod modbus;
+mod nmc;
 mod socketcand;
 
 pub use ascii::{run_transcript, AsciiClient, ASCII_REPLY_TIMEOUT};
@@ -36,6 +37,7 @@ pub use modbus::{
     crc16, hex, mbap_frame, mbpoll, mbpoll_values, rtu_frame, to_hex, ByteLink, MbapClient,
     MbapReply, RawSerial, REPLY_TIMEOUT,
 };
+pub use nmc::{compile_example, nmc_include_dir, nmc_library_dir, run_example, PROGRAM_TIMEOUT};
 pub use socketcand::{RawFrame, Socketcand};
 
 /// How long [`run_python_client`] lets one client run before killing it.

@@ -115,7 +115,7 @@ fn newest_source() -> Option<SystemTime> {
 }
 
 /// The directory of the running test executable's profile (`<target>/debug`).
-fn profile_dir() -> PathBuf {
+pub(crate) fn profile_dir() -> PathBuf {
     let exe = std::env::current_exe().expect("the test executable's path");
     // target/<profile>/deps/<test>-<hash>
     exe.parent()
@@ -125,7 +125,7 @@ fn profile_dir() -> PathBuf {
 }
 
 /// `cargo` with the target directory and profile of the running test executable.
-fn cargo_in_profile(profile_dir: &Path, subcommand: &[&str]) -> Command {
+pub(crate) fn cargo_in_profile(profile_dir: &Path, subcommand: &[&str]) -> Command {
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
     let mut command = Command::new(cargo);
     command.current_dir(workspace_root()).args(subcommand);

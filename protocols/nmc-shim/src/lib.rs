@@ -1,2 +1,44 @@
-//! `nmc_lib20`: drop-in C library exporting the `NMC_*` API, talking to mcemu (ARCHITECTURE §5).
-//! Filled by the NMC issue.
+//! `nmc_lib20`: a drop-in replacement of Gaochuan's `NMC_*` C library (digest 001) that talks
+//! to mcemu instead of a controller. A program written for the manual compiles against
+//! `include/mtn_lib20.h` and links `libnmc_lib20.so`.
+//!
+//! - [`address`]: which mcemu a device opens (`MCEMU_NMC`);
+//! - [`connection`]: one connection per device handle, requests matched by sequence number,
+//!   any thread, every call bounded by the timeout, reconnect after a loss;
+//! - [`registry`]: the open devices by handle slot;
+//! - [`last_error`]: `NMC_GetLastErr`, `NMC_GetErrDesc`, `NMC_SetErrCodeMode`;
+//! - [`ffi`]: the exported functions, one file per family, each made from its row of the
+//!   function table (`mcemu_nmc::table`). `unsafe` lives only in `ffi`'s pointer helpers.
+
+pub mod address;
+pub mod connection;
+pub mod ffi;
+pub mod last_error;
+pub mod registry;
+
+#[cfg(test)]
+mod tests {
+    use mcemu_nmc::table::{Served, FUNCTIONS};
+
+    /// Every row of the table is exported by this library (the names of `ffi` are checked by
+    /// the C tests linking them; here: the table's rows all belong to a family file).
+    #[test]
+    fn every_row_is_exported() {
+        let sources = [
+            include_str!("ffi/library.rs"),
+            include_str!("ffi/device.rs"),
+            include_str!("ffi/axis.rs"),
+            include_str!("ffi/motion.rs"),
+            include_str!("ffi/home.rs"),
+            include_str!("ffi/io.rs"),
+        ]
+        .concat();
+        for f in FUNCTIONS {
+            // `fn NMC_X(` by hand, or `NMC_X,` as a wrapper macro's first argument.
+            let exported = sources.contains(&format!("fn {}(", f.name))
+                || sources.contains(&format!("{},", f.name));
+            assert!(exported, "{} ({:?}) is not exported", f.name, f.served);
+        }
+        assert!(FUNCTIONS.iter().any(|f| f.served == Served::Library));
+    }
+}

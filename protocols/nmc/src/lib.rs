@@ -1,1 +1,26 @@
-//! NMC wire protocol shared by the server and the `nmc_lib20` shim (ARCHITECTURE §5). Filled by the NMC issue.
+//! The NMC wire protocol between the `nmc_lib20` shim (a drop-in replacement of Gaochuan's
+//! `NMC_*` C library, digest 001) and mcemu's NMC front-end, sans-IO: bytes in, frames out.
+//! The manual defines no wire format (digest 001 §7): this one is mcemu's.
+//!
+//! - [`frame`]: the fixed 16-byte little-endian header (magic, version, kind, sequence,
+//!   function id, status, payload length), the frame size limit, and [`frame::FrameDecoder`]
+//!   (push bytes, pop frames);
+//! - [`payload`]: the encoding of the C argument kinds (`short`, `long` as i64, `double`,
+//!   strings, arrays, structs) in a request or reply payload;
+//! - [`table`]: THE function table — id, name, arguments with their C types and directions —
+//!   from which the shim's calls, the server's dispatch and the C header are all made; adding a
+//!   function is one row here plus its handler in the server and its export in the shim;
+//! - [`structs`]: the manual's structs (`TPtpPara` …) as the wire carries them;
+//! - [`errors`]: the return codes of `mtn_lib20_err.h` (not in the manual: mcemu's, stable);
+//! - [`header`]: the C headers generated from the table (checked against the committed ones);
+//! - [`handle`]: what a `HAND` encodes (kind, library slot, axis number);
+//! - [`session`]: the server side of one connection (version negotiation, then requests).
+
+pub mod errors;
+pub mod frame;
+pub mod handle;
+pub mod header;
+pub mod payload;
+pub mod session;
+pub mod structs;
+pub mod table;

@@ -1,0 +1,140 @@
+//! Axis handles, the status word, positions, velocities, servo (digest 001 §2.2, §2.4, §2.8).
+
+use axes::command::{Disable, Enable, Reset};
+use axes::AxisFlags;
+use mcemu_dialects::nmc::{axis_status, AxisExtra};
+use mcemu_nmc::handle::Handle;
+use mcemu_nmc::table::{self, Function};
+
+use crate::nmc::service::{pulses, Call, Handler, Refusal};
+
+pub const HANDLERS: &[(Function, Handler)] = &[
+    (table::MT_OPEN, mt_open),
+    (table::MT_GET_STS, mt_get_sts),
+    (table::MT_GET_STS_EX, mt_get_sts),
+    (table::MT_CLR_ERROR, mt_clr_error),
+    (table::MT_CLR_STS_BY_BITS, mt_clr_sts_by_bits),
+    (table::MT_GET_PRF_POS, mt_get_prf_pos),
+    (table::MT_GET_PRF_VEL, mt_get_prf_vel),
+    (table::MT_GET_AXIS_POS, mt_get_axis_pos),
+    (table::MT_GET_CMD_POS, mt_get_cmd_pos),
+    (table::MT_GET_ENC_POS, mt_get_enc_pos),
+    (table::MT_SET_SV_ON, mt_set_sv_on),
+    (table::MT_SET_SV_OFF, mt_set_sv_off),
+    (table::MT_GET_MOTION_IO, mt_get_motion_io),
+];
+
+fn mt_open(c: &mut Call<'_>) -> Result<(), Refusal> {
+    c.device()?;
+    let item = c.input.i16()?;
+    let n = c.snapshot.axes.len();
+    let axis = u8::try_from(item)
+        .ok()
+        .filter(|a| usize::from(*a) < n)
+        .ok_or_else(|| Refusal::range("itemNo", item, &format!("[0, {}]", n.saturating_sub(1))))?;
+    c.output.u16(Handle::axis(0, axis).encode());
+    Ok(())
+}
+
+/// The §3.1 word from the dialect (the same 16 bits as a `short`).
+fn mt_get_sts(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let axis = c.axis()?;
+    let word = c
+        .status(axis)
+        .map_or(0, |s| axis_status(s, AxisExtra::default()));
+    c.output.i16(word as i16);
+    Ok(())
+}
+
+/// Latched errors whose cause is gone (MVERR, ALM, POSERR, ESTP, limits; digest 001 §4.2).
+fn mt_clr_error(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let axis = c.axis()?;
+    c.command(Reset { axis: axis as u16 });
+    Ok(())
+}
+
+/// As `NMC_MtClrError`: the engine clears latched errors whose cause is gone, so a bit whose
+/// cause remains (a limit still pressed, TV26) stays whatever the mask says; the mask is not
+/// yet applied bit by bit (docs/decisions.md).
+fn mt_clr_sts_by_bits(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let axis = c.axis()?;
+    let _mask = c.input.i16()?;
+    c.command(Reset { axis: axis as u16 });
+    Ok(())
+}
+
+/// A position in pulses, read from the axis status by `pick` (user units).
+fn position(c: &mut Call<'_>, pick: fn(&axes::AxisStatus) -> f64) -> Result<(), Refusal> {
+    let axis = c.axis()?;
+    let scale = c.scale(axis);
+    let p = c.status(axis).map_or(0, |s| pulses(scale, pick(s)));
+    c.output.i64(p);
+    Ok(())
+}
+
+fn mt_get_prf_pos(c: &mut Call<'_>) -> Result<(), Refusal> {
+    position(c, |s| s.cmd_pos)
+}
+
+/// axisPos = prfPos + startPos; startPos (NMC_MtPrfConfig) is 0 until that family lands.
+fn mt_get_axis_pos(c: &mut Call<'_>) -> Result<(), Refusal> {
+    position(c, |s| s.cmd_pos)
+}
+
+/// The pulses sent to the drive: planned position plus compensation (digest 001 §4.1).
+fn mt_get_cmd_pos(c: &mut Call<'_>) -> Result<(), Refusal> {
+    position(c, |s| s.output_pos)
+}
+
+/// The encoder counter (internal mode counts the axis's own pulses, digest 001 §4.1).
+fn mt_get_enc_pos(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let axis = c.axis()?;
+    let p = c.status(axis).map_or(0, |s| s.encoder_counts);
+    c.output.i64(p);
+    Ok(())
+}
+
+/// pulse/ms.
+fn mt_get_prf_vel(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let axis = c.axis()?;
+    let scale = c.scale(axis);
+    let v = c.status(axis).map_or(0.0, |s| {
+        mcemu_dialects::nmc::velocity_from_engine(scale, s.cmd_vel)
+    });
+    c.output.f64(v);
+    Ok(())
+}
+
+fn mt_set_sv_on(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let axis = c.axis()?;
+    c.command(Enable { axis: axis as u16 });
+    Ok(())
+}
+
+fn mt_set_sv_off(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let axis = c.axis()?;
+    c.command(Disable { axis: axis as u16 });
+    Ok(())
+}
+
+/// bit0 negative limit, bit1 positive limit, bit2 home, bit3 drive alarm, bit4 in position,
+/// bit5 capture source (digest 001 §3.3).
+fn mt_get_motion_io(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let axis = c.axis()?;
+    let f = c.status(axis).map_or(AxisFlags::empty(), |s| s.flags);
+    let mut v = 0i64;
+    for (bit, flag) in [
+        (0, AxisFlags::HW_LIMIT_NEG),
+        (1, AxisFlags::HW_LIMIT_POS),
+        (2, AxisFlags::HOME_SWITCH),
+        (3, AxisFlags::DRIVE_ALARM),
+        (4, AxisFlags::IN_POSITION),
+        (5, AxisFlags::CAPTURE_TRIGGERED),
+    ] {
+        if f.contains(flag) {
+            v |= 1 << bit;
+        }
+    }
+    c.output.i64(v);
+    Ok(())
+}

@@ -1,0 +1,57 @@
+//! The handlers, one file per family of the function table, each listing its
+//! `(row, handler)` pairs.
+
+use mcemu_nmc::table::Function;
+
+use super::service::Handler;
+
+mod axis;
+mod device;
+mod home;
+mod io;
+mod motion;
+
+const FAMILIES: [&[(Function, Handler)]; 5] = [
+    device::HANDLERS,
+    axis::HANDLERS,
+    motion::HANDLERS,
+    home::HANDLERS,
+    io::HANDLERS,
+];
+
+/// The handler of function `id`.
+pub fn find(id: u16) -> Option<Handler> {
+    FAMILIES
+        .iter()
+        .flat_map(|f| f.iter())
+        .find(|(f, _)| f.id == id)
+        .map(|(_, h)| *h)
+}
+
+/// The ids that have a handler.
+#[cfg(test)]
+pub fn served() -> impl Iterator<Item = u16> {
+    FAMILIES
+        .into_iter()
+        .flat_map(|f| f.iter())
+        .map(|(f, _)| f.id)
+}
+
+#[cfg(test)]
+mod tests {
+    use mcemu_nmc::table::{Served, FUNCTIONS};
+
+    /// Every row the server serves has exactly one handler, and no handler serves a row the
+    /// library answers alone.
+    #[test]
+    fn every_served_row_has_one_handler() {
+        let ids: Vec<u16> = super::served().collect();
+        for f in FUNCTIONS {
+            let n = ids.iter().filter(|id| **id == f.id).count();
+            match f.served {
+                Served::Server => assert_eq!(n, 1, "{}", f.name),
+                Served::Library => assert_eq!(n, 0, "{}", f.name),
+            }
+        }
+    }
+}

@@ -1,0 +1,221 @@
+//! THE function table: every `NMC_*` function the library exports, with the manual's name,
+//! argument order and C types (digest 001 §2), its wire id, and who serves it. The C header
+//! (`crate::header`), the shim's calls and the server's dispatch are all made from it; adding a
+//! function is one row here, its export in the shim and its handler in the server.
+//!
+//! Ids are stable (a client and a server of different builds must agree): never reuse or
+//! renumber one; families take a block of 256 (0x00xx library, 0x01xx device, 0x02xx axis
+//! status and servo, 0x03xx PTP/JOG/stop, 0x04xx homing, 0x05xx I/O).
+
+/// A C argument kind, as the manual writes it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CType {
+    Short,
+    UShort,
+    Int,
+    UInt,
+    /// The platform's `long` (32 bits on Windows, 64 on Linux x86-64): i64 on the wire.
+    Long,
+    ULong,
+    UChar,
+    Double,
+    /// `HAND`, a 16-bit handle (digest 001 §1.2); out: `PHAND`.
+    Hand,
+    /// `char *`: a NUL-terminated string in, or a caller's buffer out.
+    Str,
+    /// `unsigned char *pIPv4Array`: 4 bytes.
+    Ipv4,
+    /// `TSearchMode` (an enum: any value, digest 001 §2.2).
+    SearchMode,
+    /// A pointer to one of the manual's structs (`crate::structs`).
+    Struct(&'static str),
+    /// A pointer to an array of structs; its length is the previous out argument.
+    StructArray(&'static str),
+}
+
+/// Which way an argument goes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Dir {
+    /// Passed by value (or a pointer the function only reads): in the request.
+    In,
+    /// A pointer the function writes: in the reply.
+    Out,
+}
+
+/// Who carries a function out.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Served {
+    /// The library alone (error codes, timeouts, its version): never on the wire.
+    Library,
+    /// mcemu, through a request.
+    Server,
+}
+
+/// Which header declares it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum HeaderFile {
+    /// `mtn_lib20.h`: the manual's functions.
+    Main,
+    /// `mtn_lib20_ext.h`: mcemu's additions (`NMC_DevClose`).
+    Ext,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Arg {
+    pub name: &'static str,
+    pub ty: CType,
+    pub dir: Dir,
+}
+
+/// One row.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Function {
+    pub id: u16,
+    pub name: &'static str,
+    pub served: Served,
+    pub header: HeaderFile,
+    pub args: &'static [Arg],
+}
+
+impl Function {
+    /// The arguments the request carries, in order.
+    pub fn inputs(&self) -> impl Iterator<Item = &Arg> {
+        self.args.iter().filter(|a| a.dir == Dir::In)
+    }
+    /// The arguments the reply carries, in order.
+    pub fn outputs(&self) -> impl Iterator<Item = &Arg> {
+        self.args.iter().filter(|a| a.dir == Dir::Out)
+    }
+}
+
+/// The row of function `id`.
+pub fn by_id(id: u16) -> Option<&'static Function> {
+    FUNCTIONS.iter().find(|f| f.id == id)
+}
+
+/// The row named `name` (`NMC_MtGetSts`).
+pub fn by_name(name: &str) -> Option<&'static Function> {
+    FUNCTIONS.iter().find(|f| f.name == name)
+}
+
+macro_rules! functions {
+    ($(
+        $konst:ident = $id:literal $served:ident $hdr:ident $name:ident
+            ( $( $dir:ident $ty:expr => $arg:ident ),* $(,)? );
+    )*) => {
+        $(
+            #[doc = concat!("`", stringify!($name), "`")]
+            pub const $konst: Function = Function {
+                id: $id,
+                name: stringify!($name),
+                served: Served::$served,
+                header: HeaderFile::$hdr,
+                args: &[$( Arg { name: stringify!($arg), ty: $ty, dir: Dir::$dir } ),*],
+            };
+        )*
+        /// Every row, in id order.
+        pub const FUNCTIONS: &[Function] = &[$( $konst ),*];
+    };
+}
+
+use CType::*;
+
+functions! {
+    // ---- the library itself (digest 001 §2.20, §7) ----
+    GET_DLL_VERSION = 0x0001 Library Main NMC_GetDllVersion(Out Str => pVersion);
+    SET_COMM_PARA = 0x0002 Library Main NMC_SetCommPara(In Hand => devHandle, In ULong => waitTimeInUs, In ULong => retryTimes);
+    GET_LAST_ERR = 0x0003 Library Main NMC_GetLastErr();
+    GET_ERR_DESC = 0x0004 Library Main NMC_GetErrDesc(In Short => errCode, Out Str => errDesc);
+    SET_ERR_CODE_MODE = 0x0005 Library Main NMC_SetErrCodeMode(In Short => mode);
+    DEV_SEARCH = 0x0006 Library Main NMC_DevSearch(In SearchMode => mode, Out UShort => pDevNo, Out StructArray("TDevInfo") => pInfoList);
+    DEV_CLOSE = 0x0007 Library Ext NMC_DevClose(Out Hand => pDevHandle);
+    // ---- device (digest 001 §2.2, §2.20) ----
+    DEV_OPEN = 0x0101 Server Main NMC_DevOpen(In Short => devNo, Out Hand => pDevHandle);
+    DEV_OPEN_BY_ID = 0x0102 Server Main NMC_DevOpenByID(In Str => idStr, Out Hand => pDevHandle);
+    DEV_OPEN_BY_IP = 0x0103 Server Main NMC_DevOpenByIP(In Ipv4 => pIPv4Array, Out Hand => pDevHandle);
+    DEV_RESET = 0x0104 Server Main NMC_DevReset(In Hand => devHandle);
+    GET_CARD_INFO = 0x0105 Server Main NMC_GetCardInfo(In Hand => devHandle, Out Struct("TCardInfo") => pInfo);
+    GET_CLOCK = 0x0106 Server Main NMC_GetClock(In Hand => devHandle, Out ULong => pClock, Out ULong => pLoop);
+    // ---- axis handles, status, servo (digest 001 §2.2, §2.4, §2.8) ----
+    MT_OPEN = 0x0201 Server Main NMC_MtOpen(In Hand => devHandle, In Short => itemNo, Out Hand => pAxisHandle);
+    MT_GET_STS = 0x0202 Server Main NMC_MtGetSts(In Hand => axisHandle, Out Short => pStsWord);
+    MT_GET_STS_EX = 0x0203 Server Main NMC_MtGetStsEx(In Hand => axisHandle, Out Short => pStsWord);
+    MT_CLR_ERROR = 0x0204 Server Main NMC_MtClrError(In Hand => axisHandle);
+    MT_CLR_STS_BY_BITS = 0x0205 Server Main NMC_MtClrStsByBits(In Hand => axisHandle, In Short => stsMask);
+    MT_GET_PRF_POS = 0x0206 Server Main NMC_MtGetPrfPos(In Hand => axisHandle, Out Long => pos);
+    MT_GET_PRF_VEL = 0x0207 Server Main NMC_MtGetPrfVel(In Hand => axisHandle, Out Double => pVel);
+    MT_GET_AXIS_POS = 0x0208 Server Main NMC_MtGetAxisPos(In Hand => axisHandle, Out Long => pos);
+    MT_GET_CMD_POS = 0x0209 Server Main NMC_MtGetCmdPos(In Hand => axisHandle, Out Long => pos);
+    MT_GET_ENC_POS = 0x020A Server Main NMC_MtGetEncPos(In Hand => axisHandle, Out Long => pPos);
+    MT_SET_SV_ON = 0x020B Server Main NMC_MtSetSvOn(In Hand => axisHandle);
+    MT_SET_SV_OFF = 0x020C Server Main NMC_MtSetSvOff(In Hand => axisHandle);
+    MT_GET_MOTION_IO = 0x020D Server Main NMC_MtGetMotionIO(In Hand => axisHandle, Out Long => inValue);
+    // ---- profile modes, PTP, JOG, stops (digest 001 §2.5) ----
+    MT_SET_PRF_MODE = 0x0301 Server Main NMC_MtSetPrfMode(In Hand => axisHandle, In Short => mode);
+    MT_GET_PRF_MODE = 0x0302 Server Main NMC_MtGetPrfMode(In Hand => axisHandle, Out Short => mode);
+    MT_SET_PTP_PARA = 0x0303 Server Main NMC_MtSetPtpPara(In Hand => axisHandle, In Struct("TPtpPara") => pAxPara);
+    MT_GET_PTP_PARA = 0x0304 Server Main NMC_MtGetPtpPara(In Hand => axisHandle, Out Struct("TPtpPara") => pAxPara);
+    MT_SET_PTP_TGT_POS = 0x0305 Server Main NMC_MtSetPtpTgtPos(In Hand => axisHandle, In Long => pos);
+    MT_GET_PTP_TGT_POS = 0x0306 Server Main NMC_MtGetPtpTgtPos(In Hand => axisHandle, Out Long => pos);
+    MT_SET_VEL = 0x0307 Server Main NMC_MtSetVel(In Hand => axisHandle, In Double => vel);
+    MT_GET_VEL = 0x0308 Server Main NMC_MtGetVel(In Hand => axisHandle, Out Double => vel);
+    MT_SET_JOG_PARA = 0x0309 Server Main NMC_MtSetJogPara(In Hand => axisHandle, In Struct("TJogPara") => pAxPara);
+    MT_GET_JOG_PARA = 0x030A Server Main NMC_MtGetJogPara(In Hand => axisHandle, Out Struct("TJogPara") => pAxPara);
+    MT_UPDATE = 0x030B Server Main NMC_MtUpdate(In Hand => axisHandle);
+    MT_UPDATE_MULTI = 0x030C Server Main NMC_MtUpdateMulti(In Hand => axisHandle, In Long => mask);
+    MT_STOP = 0x030D Server Main NMC_MtStop(In Hand => axisHandle);
+    MT_ABRUPT_STOP = 0x030E Server Main NMC_MtAbruptStop(In Hand => axisHandle);
+    MT_STOP_MULTI = 0x030F Server Main NMC_MtStopMulti(In Hand => axisHandle, In Long => mask);
+    MT_ESTP = 0x0310 Server Main NMC_MtEstp(In Hand => axisHandle);
+    MT_MOVE_PTP_ABS = 0x0311 Server Main NMC_MtMovePtpAbs(In Hand => axisHandle, In Double => acc, In Double => dec, In Double => startVel, In Double => endVel, In Double => maxVel, In Short => smoothCoef, In Long => tgtPos);
+    MT_MOVE_PTP_REL = 0x0312 Server Main NMC_MtMovePtpRel(In Hand => axisHandle, In Double => acc, In Double => dec, In Double => startVel, In Double => endVel, In Double => maxVel, In Short => smoothCoef, In Long => relPos);
+    MT_MOVE_JOG = 0x0313 Server Main NMC_MtMoveJog(In Hand => axisHandle, In Double => acc, In Double => dec, In Double => maxVel, In Short => smoothCoef, In Short => clrStsFlag);
+    // ---- homing (digest 001 §2.6, §3.13) ----
+    MT_SET_HOME_PARA = 0x0401 Server Main NMC_MtSetHomePara(In Hand => axisHandle, In Struct("THomeSetting") => pHomePara);
+    MT_GET_HOME_PARA = 0x0402 Server Main NMC_MtGetHomePara(In Hand => axisHandle, Out Struct("THomeSetting") => pHomePara);
+    MT_HOME = 0x0403 Server Main NMC_MtHome(In Hand => axisHandle);
+    MT_TRY_HOME = 0x0404 Server Main NMC_MtTryHome(In Hand => axisHandle);
+    MT_HOME_STOP = 0x0405 Server Main NMC_MtHomeStop(In Hand => axisHandle);
+    MT_GET_HOME_STS = 0x0406 Server Main NMC_MtGetHomeSts(In Hand => axisHandle, Out UShort => pStsWord);
+    MT_GET_HOME_ERROR = 0x0407 Server Main NMC_MtGetHomeError(In Hand => axisHandle, Out Long => cmdPos);
+    // ---- digital I/O (digest 001 §2.8) ----
+    SET_DO_GROUP = 0x0501 Server Main NMC_SetDOGroup(In Hand => devHandle, In Long => value, In Short => groupID);
+    GET_DO_GROUP = 0x0502 Server Main NMC_GetDOGroup(In Hand => devHandle, Out Long => pDoValue, In Short => groupID);
+    SET_DO_BIT = 0x0503 Server Main NMC_SetDOBit(In Hand => devHandle, In Short => bitIndex, In Short => value);
+    GET_DO_BIT = 0x0504 Server Main NMC_GetDOBit(In Hand => devHandle, In Short => bitIndex, Out Short => bitValue);
+    GET_DI_GROUP = 0x0505 Server Main NMC_GetDIGroup(In Hand => devHandle, Out Long => pInValue, In Short => groupID);
+    GET_DI_BIT = 0x0506 Server Main NMC_GetDIBit(In Hand => devHandle, In Short => bitIndex, Out Short => bitValue);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ids_and_names_are_unique_and_ids_ascend() {
+        for pair in FUNCTIONS.windows(2) {
+            assert!(
+                pair[0].id < pair[1].id,
+                "{} ≥ {}",
+                pair[0].name,
+                pair[1].name
+            );
+        }
+        let mut names: Vec<&str> = FUNCTIONS.iter().map(|f| f.name).collect();
+        names.sort_unstable();
+        names.dedup();
+        assert_eq!(names.len(), FUNCTIONS.len());
+        assert!(FUNCTIONS.iter().all(|f| f.name.starts_with("NMC_")));
+        assert!(by_id(0).is_none(), "id 0 is the hello");
+    }
+
+    #[test]
+    fn lookups_find_rows() {
+        assert_eq!(by_name("NMC_MtGetSts"), Some(&MT_GET_STS));
+        assert_eq!(by_id(0x0202), Some(&MT_GET_STS));
+        let outs: Vec<&str> = GET_DO_GROUP.outputs().map(|a| a.name).collect();
+        assert_eq!(outs, ["pDoValue"]);
+        let ins: Vec<&str> = GET_DO_GROUP.inputs().map(|a| a.name).collect();
+        assert_eq!(ins, ["devHandle", "groupID"]);
+    }
+}
