@@ -22,10 +22,12 @@ use std::sync::{mpsc, Arc, Mutex};
 use std::thread::{self, JoinHandle};
 use std::time::{Duration, Instant};
 
+mod browser;
 mod mcemu;
 mod modbus;
 mod socketcand;
 
+pub use browser::{run_dashboard_scenario, CHROMIUM};
 pub use mcemu::{
     cargo_test_executable, mcemu_bin, mcemu_release_bin, wait_for, Mcemu, McemuExit, TempDir,
     STOP_TIMEOUT,
