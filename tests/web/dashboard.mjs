@@ -163,6 +163,10 @@ async function machine(page, context) {
   const preRows = at;
   check(Math.abs(preRows - 100) <= 1, `20 % pre-trigger of a 0.5 s window: ${preRows} ticks before it`);
 
+  // The screenshot for the README: the machine after all this, and the captured trigger.
+  await page.screenshot({ path: arg, fullPage: true });
+  check(true, `screenshot ${arg}`);
+
   // Load it back in.
   await page.locator("#load-csv").setInputFiles(file);
   await page.waitForFunction(() => Number(document.getElementById("trigger-status").dataset.loaded) > 0);
@@ -181,9 +185,6 @@ async function machine(page, context) {
   check((await api("/state")).body.axes[2].state === "disabled", "and axis 2 stayed disabled");
   await evil.close();
 
-  await page.locator("#load-csv").evaluate((e) => (e.value = ""));
-  await page.screenshot({ path: arg, fullPage: true });
-  check(true, `screenshot ${arg}`);
 }
 
 async function axes64(page) {

@@ -17,54 +17,39 @@ struct Asset {
 }
 
 const JS: &str = "text/javascript; charset=utf-8";
+const CSS: &str = "text/css; charset=utf-8";
+const HTML: &str = "text/html; charset=utf-8";
+
+/// An [`Asset`] of `web/FILE` served at `PATH`.
+macro_rules! asset {
+    ($path:literal, $content_type:expr, $file:literal) => {
+        Asset {
+            path: $path,
+            content_type: $content_type,
+            body: include_str!(concat!("web/", $file)),
+        }
+    };
+}
 
 /// Every file the page loads.
 const ASSETS: [Asset; 9] = [
-    Asset {
-        path: "/",
-        content_type: "text/html; charset=utf-8",
-        body: include_str!("web/index.html"),
-    },
-    Asset {
-        path: "/dashboard/style.css",
-        content_type: "text/css; charset=utf-8",
-        body: include_str!("web/style.css"),
-    },
-    Asset {
-        path: "/dashboard/app.js",
-        content_type: JS,
-        body: include_str!("web/app.js"),
-    },
-    Asset {
-        path: "/dashboard/api.js",
-        content_type: JS,
-        body: include_str!("web/api.js"),
-    },
-    Asset {
-        path: "/dashboard/machine.js",
-        content_type: JS,
-        body: include_str!("web/machine.js"),
-    },
-    Asset {
-        path: "/dashboard/scope.js",
-        content_type: JS,
-        body: include_str!("web/scope.js"),
-    },
-    Asset {
-        path: "/dashboard/csv.js",
-        content_type: JS,
-        body: include_str!("web/csv.js"),
-    },
-    Asset {
-        path: "/dashboard/vendor/uplot/uPlot.esm.js",
-        content_type: JS,
-        body: include_str!("web/vendor/uplot/uPlot.esm.js"),
-    },
-    Asset {
-        path: "/dashboard/vendor/uplot/uPlot.min.css",
-        content_type: "text/css; charset=utf-8",
-        body: include_str!("web/vendor/uplot/uPlot.min.css"),
-    },
+    asset!("/", HTML, "index.html"),
+    asset!("/dashboard/style.css", CSS, "style.css"),
+    asset!("/dashboard/app.js", JS, "app.js"),
+    asset!("/dashboard/api.js", JS, "api.js"),
+    asset!("/dashboard/machine.js", JS, "machine.js"),
+    asset!("/dashboard/scope.js", JS, "scope.js"),
+    asset!("/dashboard/csv.js", JS, "csv.js"),
+    asset!(
+        "/dashboard/vendor/uplot/uPlot.esm.js",
+        JS,
+        "vendor/uplot/uPlot.esm.js"
+    ),
+    asset!(
+        "/dashboard/vendor/uplot/uPlot.min.css",
+        CSS,
+        "vendor/uplot/uPlot.min.css"
+    ),
 ];
 
 /// The page's routes (no state, no token: the files hold nothing secret).
