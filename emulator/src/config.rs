@@ -234,6 +234,12 @@ pub struct ControlConfig {
     /// Rows a trace recording may hold (rows = ticks × recorded axes); at the cap the
     /// recording stops at a whole tick.
     pub trace_max_rows: usize,
+    /// Dashboard streams (`GET /api/v1/stream`) open at once; a further one is answered 503.
+    pub stream_max_clients: usize,
+    /// The token every API request must carry (`Authorization: Bearer …`). Absent: none on
+    /// 127.0.0.1 or ::1, and one generated and printed at start on any other address.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub token: Option<String>,
 }
 
 impl Default for ControlConfig {
@@ -244,6 +250,8 @@ impl Default for ControlConfig {
             max_connections: 128,
             max_requests: 64,
             trace_max_rows: 1_000_000,
+            stream_max_clients: 4,
+            token: None,
         }
     }
 }
@@ -468,6 +476,7 @@ impl Config {
             ("max_connections", c.max_connections, 4096),
             ("max_requests", c.max_requests, 4096),
             ("trace_max_rows", c.trace_max_rows, 100_000_000),
+            ("stream_max_clients", c.stream_max_clients, 64),
         ] {
             if !(1..=max).contains(&value) {
                 return Err((
@@ -475,6 +484,15 @@ impl Config {
                     format!("{value} is outside 1 … {max}"),
                 ));
             }
+        }
+        if c.token
+            .as_ref()
+            .is_some_and(|t| t.is_empty() || !t.bytes().all(|b| b.is_ascii_graphic()))
+        {
+            return Err((
+                "frontends.control.token".into(),
+                "must be non-empty printable ASCII without spaces (it travels in a header)".into(),
+            ));
         }
         let f = &self.frontends;
         if let Some(c) = &f.nmc {

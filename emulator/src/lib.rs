@@ -5,6 +5,7 @@ pub mod ascii;
 pub mod canopen;
 pub mod config;
 pub mod control;
+pub mod dashboard;
 pub mod frontend;
 pub mod listener;
 pub mod modbus;

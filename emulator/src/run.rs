@@ -107,6 +107,11 @@ async fn serve(
     let control = &config.frontends.control;
     let mut control_task = None;
     if control.enabled {
+        let (access, generated) = control::Access::for_bind(control.bind, control.token.as_deref());
+        if let Some(token) = generated {
+            // Before the `listening:` line, so whoever waits for that has the token too.
+            println!("control token: {token}");
+        }
         let listener = BoundedListener::new(
             bind("control", control.bind).await?,
             control.max_connections,
@@ -115,7 +120,8 @@ async fn serve(
         let app = control::router(
             ControlState::new(handle.clone(), config)
                 .with_frontends(frontends.clone())
-                .with_can_log(can_log),
+                .with_can_log(can_log)
+                .with_access(access),
         );
         control_task = Some(tokio::spawn(async move {
             if let Err(e) = axum::serve(listener, app).await {

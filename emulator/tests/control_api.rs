@@ -1020,7 +1020,15 @@ fn control_rejects_bad_requests_with_json_errors() {
 
     let e = m.get("/api/v1/nowhere").expect(404);
     assert_eq!(e["error"], "not_found");
-    m.get("/").expect(404);
+    m.get("/dashboard/nowhere.js").expect(404);
+    // `/` is the dashboard (issue 15).
+    let page = m.get("/");
+    assert_eq!(page.status, 200);
+    assert!(
+        page.content_type.starts_with("text/html"),
+        "{}",
+        page.content_type
+    );
     let e = m.get("/api/v1/commands").expect(405);
     assert_eq!(e["error"], "method_not_allowed");
     let r = Mcemu::reply(m.agent.delete(m.url("/api/v1/state")).call());

@@ -23,12 +23,14 @@ use std::thread::{self, JoinHandle};
 use std::time::{Duration, Instant};
 
 mod ascii;
+mod browser;
 mod mcemu;
 mod modbus;
 mod nmc;
 mod socketcand;
 
 pub use ascii::{run_transcript, AsciiClient, ASCII_REPLY_TIMEOUT};
+pub use browser::{run_dashboard_scenario, CHROMIUM};
 pub use mcemu::{
     cargo_test_executable, mcemu_bin, mcemu_release_bin, wait_for, Mcemu, McemuExit, TempDir,
     STOP_TIMEOUT,

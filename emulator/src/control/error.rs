@@ -75,6 +75,14 @@ pub enum ApiError {
     Busy { capacity: usize },
     #[error("{limit} requests are being handled; retry later")]
     TooManyRequests { limit: usize },
+    #[error(
+        "{limit} streams are open (`[frontends.control] stream_max_clients`); close one first"
+    )]
+    TooManyStreams { limit: usize },
+    #[error("this control port needs its token: send `Authorization: Bearer <token>` (printed by `mcemu run`, or `[frontends.control] token`)")]
+    Unauthorized,
+    #[error("cross-origin request refused: Origin `{origin}` is not this server ({host})")]
+    CrossOrigin { origin: String, host: String },
     #[error("the runtime is stopped")]
     Stopped,
     #[error("the servo thread died; the engine is lost")]
@@ -113,7 +121,11 @@ impl ApiError {
             | AlreadyLogging { .. }
             | NotLogging
             | LogExists { .. } => StatusCode::CONFLICT,
-            Busy { .. } | TooManyRequests { .. } | Stopped => StatusCode::SERVICE_UNAVAILABLE,
+            Busy { .. } | TooManyRequests { .. } | TooManyStreams { .. } | Stopped => {
+                StatusCode::SERVICE_UNAVAILABLE
+            }
+            Unauthorized => StatusCode::UNAUTHORIZED,
+            CrossOrigin { .. } => StatusCode::FORBIDDEN,
             ServoDied | Internal(_) => StatusCode::INTERNAL_SERVER_ERROR,
             Engine { .. } => StatusCode::UNPROCESSABLE_ENTITY,
         }
@@ -143,6 +155,9 @@ impl ApiError {
             LogNotWritable { .. } => "log_not_writable",
             Busy { .. } => "runtime_busy",
             TooManyRequests { .. } => "too_many_requests",
+            TooManyStreams { .. } => "too_many_streams",
+            Unauthorized => "unauthorized",
+            CrossOrigin { .. } => "cross_origin",
             Stopped => "runtime_stopped",
             ServoDied => "servo_died",
             Internal(_) => "internal",
@@ -216,11 +231,18 @@ impl IntoResponse for ApiError {
         let mut response = (self.status(), Json(Ordered(self.fields()))).into_response();
         if matches!(
             self,
-            ApiError::Busy { .. } | ApiError::TooManyRequests { .. }
+            ApiError::Busy { .. }
+                | ApiError::TooManyRequests { .. }
+                | ApiError::TooManyStreams { .. }
         ) {
             response
                 .headers_mut()
                 .insert(header::RETRY_AFTER, HeaderValue::from_static("1"));
+        }
+        if matches!(self, ApiError::Unauthorized) {
+            response
+                .headers_mut()
+                .insert(header::WWW_AUTHENTICATE, HeaderValue::from_static("Bearer"));
         }
         response
     }

@@ -19,7 +19,9 @@ mod commands;
 pub(crate) mod error;
 mod names;
 mod recorder;
+mod security;
 mod state;
+mod stream;
 mod time;
 
 use std::sync::Arc;
@@ -38,6 +40,8 @@ pub use commands::{AxisFault, CommandBody, FaultRequest, InputRequest, MAX_COMMA
 pub use error::{ApiError, MAX_BODY_BYTES};
 pub use names::{flag_by_name, flag_names, FLAG_NAMES};
 pub use recorder::{TraceRecorder, TraceStart, TraceState, TraceStatus, MAX_TRACE_ROWS};
+pub use security::{generate_token, Access};
+pub use stream::{StreamClients, StreamRequest, StreamStatus, CHANNELS, CLIENT_QUEUE};
 pub use time::MAX_ADVANCE_TICKS;
 
 use crate::config::{ClockSetting, Config};
@@ -74,6 +78,11 @@ pub struct ControlState {
     /// `[frontends.control] max_requests` permits, and that number for the 503 reply.
     requests: (Arc<Semaphore>, usize),
     trace_reads: Arc<Semaphore>,
+    /// The open dashboard streams, at most `stream_max_clients`.
+    pub streams: Arc<StreamClients>,
+    pub stream_max_clients: usize,
+    /// Who may use the API: the token, if one is required.
+    pub access: Access,
 }
 
 impl ControlState {
@@ -93,12 +102,21 @@ impl ControlState {
                 config.frontends.control.max_requests,
             ),
             trace_reads: Arc::new(Semaphore::new(CONCURRENT_TRACE_READS)),
+            streams: Arc::default(),
+            stream_max_clients: config.frontends.control.stream_max_clients,
+            access: Access::open(),
         }
     }
 
     /// The same state serving `frontends`.
     pub fn with_frontends(mut self, frontends: Vec<Arc<dyn Frontend>>) -> ControlState {
         self.frontends = Arc::new(frontends);
+        self
+    }
+
+    /// The same state requiring `access`'s token.
+    pub fn with_access(mut self, access: Access) -> ControlState {
+        self.access = access;
         self
     }
 
@@ -110,7 +128,7 @@ impl ControlState {
 }
 
 /// The routes, with their method, as `GET /api/v1` lists them.
-const ROUTES: [(&str, &str, &str); 11] = [
+const ROUTES: [(&str, &str, &str); 12] = [
     (
         "GET",
         "/api/v1/state",
@@ -153,12 +171,17 @@ const ROUTES: [(&str, &str, &str); 11] = [
         "/api/v1/canopen/log/stop",
         "stop the CAN bus log (the config's too)",
     ),
+    (
+        "GET",
+        "/api/v1/stream",
+        "server-sent events: every tick of ?axes=0,1&channels=cmd_pos,act_pos&io=true&batch=N, batched",
+    ),
     ("GET", "/api/v1", "this list"),
 ];
 
-/// The API's routes, versioned under `/api/v1`.
+/// The API's routes, versioned under `/api/v1`, and the dashboard at `/`.
 pub fn router(state: ControlState) -> Router {
-    Router::new()
+    let api = Router::new()
         .route("/api/v1", get(index))
         .route("/api/v1/state", get(state::get_state))
         .route("/api/v1/commands", post(commands::post_commands))
@@ -170,6 +193,7 @@ pub fn router(state: ControlState) -> Router {
         .route("/api/v1/trace", get(trace_csv))
         .route("/api/v1/canopen/log/start", post(can_log_start))
         .route("/api/v1/canopen/log/stop", post(can_log_stop))
+        .route("/api/v1/stream", get(stream::get_stream))
         .fallback(not_found)
         .method_not_allowed_fallback(method_not_allowed)
         .layer(DefaultBodyLimit::max(MAX_BODY_BYTES))
@@ -177,7 +201,14 @@ pub fn router(state: ControlState) -> Router {
             state.requests.clone(),
             limit_requests,
         ))
-        .with_state(state)
+        // Outermost: refused requests take no request permit.
+        .layer(middleware::from_fn_with_state(
+            state.access.clone(),
+            security::guard,
+        ))
+        .with_state(state);
+    // The dashboard's files need no token: they hold nothing, and the page asks for it.
+    crate::dashboard::routes().merge(api)
 }
 
 /// Requests beyond `max_requests` are answered 503 at once; each may hold a 1 MiB body.

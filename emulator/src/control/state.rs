@@ -44,6 +44,8 @@ pub struct StateView<'a> {
     /// The servo runtime's counters and lateness histogram (`axes::runtime::RuntimeStats`).
     pub runtime: RuntimeStats,
     pub trace: TraceStatus,
+    /// The dashboard streams: open, the bound, batches lost by slow clients.
+    pub stream: super::StreamStatus,
     /// Each running protocol front-end: counters, active faults, last error.
     pub frontends: Vec<serde_json::Value>,
 }
@@ -277,6 +279,7 @@ pub async fn get_state(State(state): State<ControlState>) -> axum::response::Res
             .collect(),
         runtime: state.handle.stats(),
         trace: state.trace.status(),
+        stream: state.streams.status(state.stream_max_clients),
         frontends: state.frontends.iter().map(|f| f.state()).collect(),
     };
     Json(view).into_response()
