@@ -17,8 +17,8 @@
 mod cam;
 mod gantry;
 mod gear;
-mod superimpose;
 mod handwheel;
+mod superimpose;
 pub mod table;
 mod tangential;
 
@@ -37,8 +37,8 @@ use crate::status::{CouplingKind, CouplingPhase, CouplingStatus};
 pub use cam::{Cam, CamStart, CamStep};
 pub use gantry::GantrySlave;
 pub use gear::{Clutch, Gear};
-pub use superimpose::Superimpose;
 pub use handwheel::Handwheel;
+pub use superimpose::Superimpose;
 pub use table::CamTable;
 pub use tangential::{Tangential, TurnLimits};
 
