@@ -178,3 +178,38 @@ macro_rules! getter {
     };
 }
 pub(crate) use getter;
+
+/// A handle and one of the manual's structs in (`NMC_MtSetPtpPara(axisHandle, &para)`): `$c` is
+/// the C struct, `$wire` its wire form (`From<$c>` plus `write`).
+macro_rules! struct_setter {
+    ($name:ident, $row:expr, $c:ty, $wire:ty) => {
+        #[no_mangle]
+        pub extern "C" fn $name(handle: HAND, para: *mut $c) -> c_short {
+            $crate::ffi::require!($row, para);
+            let p = <$wire>::from($crate::ffi::load(para.cast_const()));
+            $crate::ffi::served(&$row, handle, |w| p.write(w), |_| Ok(()))
+        }
+    };
+}
+pub(crate) use struct_setter;
+
+/// A handle in, one of the manual's structs out (`NMC_MtGetPtpPara(axisHandle, &para)`): the
+/// wire form's `read`, then `$c::from`.
+macro_rules! struct_getter {
+    ($name:ident, $row:expr, $c:ty, $wire:ty) => {
+        #[no_mangle]
+        pub extern "C" fn $name(handle: HAND, para: *mut $c) -> c_short {
+            $crate::ffi::require!($row, para);
+            $crate::ffi::served(
+                &$row,
+                handle,
+                |_| {},
+                |r| {
+                    $crate::ffi::store(para, <$c>::from(<$wire>::read(r)?));
+                    Ok(())
+                },
+            )
+        }
+    };
+}
+pub(crate) use struct_getter;

@@ -6,7 +6,7 @@ use mcemu_nmc::structs::{JogPara, PtpPara};
 use mcemu_nmc::table;
 
 use super::types::{to_long, TJogPara, TPtpPara};
-use super::{action, getter, load, require, served, setter, store, HAND};
+use super::{action, getter, served, setter, struct_getter, struct_setter, HAND};
 
 setter!(NMC_MtSetPrfMode, table::MT_SET_PRF_MODE, c_short, i16);
 getter!(
@@ -17,32 +17,8 @@ getter!(
     std::convert::identity
 );
 
-#[no_mangle]
-pub extern "C" fn NMC_MtSetPtpPara(axisHandle: HAND, pAxPara: *mut TPtpPara) -> c_short {
-    require!(table::MT_SET_PTP_PARA, pAxPara);
-    let p = PtpPara::from(load(pAxPara.cast_const()));
-    served(
-        &table::MT_SET_PTP_PARA,
-        axisHandle,
-        |w| p.write(w),
-        |_| Ok(()),
-    )
-}
-
-#[no_mangle]
-pub extern "C" fn NMC_MtGetPtpPara(axisHandle: HAND, pAxPara: *mut TPtpPara) -> c_short {
-    require!(table::MT_GET_PTP_PARA, pAxPara);
-    served(
-        &table::MT_GET_PTP_PARA,
-        axisHandle,
-        |_| {},
-        |r| {
-            store(pAxPara, TPtpPara::from(PtpPara::read(r)?));
-            Ok(())
-        },
-    )
-}
-
+struct_setter!(NMC_MtSetPtpPara, table::MT_SET_PTP_PARA, TPtpPara, PtpPara);
+struct_getter!(NMC_MtGetPtpPara, table::MT_GET_PTP_PARA, TPtpPara, PtpPara);
 setter!(NMC_MtSetPtpTgtPos, table::MT_SET_PTP_TGT_POS, c_long, i64);
 getter!(
     NMC_MtGetPtpTgtPos,
@@ -60,32 +36,8 @@ getter!(
     std::convert::identity
 );
 
-#[no_mangle]
-pub extern "C" fn NMC_MtSetJogPara(axisHandle: HAND, pAxPara: *mut TJogPara) -> c_short {
-    require!(table::MT_SET_JOG_PARA, pAxPara);
-    let p = JogPara::from(load(pAxPara.cast_const()));
-    served(
-        &table::MT_SET_JOG_PARA,
-        axisHandle,
-        |w| p.write(w),
-        |_| Ok(()),
-    )
-}
-
-#[no_mangle]
-pub extern "C" fn NMC_MtGetJogPara(axisHandle: HAND, pAxPara: *mut TJogPara) -> c_short {
-    require!(table::MT_GET_JOG_PARA, pAxPara);
-    served(
-        &table::MT_GET_JOG_PARA,
-        axisHandle,
-        |_| {},
-        |r| {
-            store(pAxPara, TJogPara::from(JogPara::read(r)?));
-            Ok(())
-        },
-    )
-}
-
+struct_setter!(NMC_MtSetJogPara, table::MT_SET_JOG_PARA, TJogPara, JogPara);
+struct_getter!(NMC_MtGetJogPara, table::MT_GET_JOG_PARA, TJogPara, JogPara);
 action!(NMC_MtUpdate, table::MT_UPDATE);
 setter!(NMC_MtUpdateMulti, table::MT_UPDATE_MULTI, c_long, i64);
 action!(NMC_MtStop, table::MT_STOP);
