@@ -12,7 +12,7 @@
 use std::future::Future;
 use std::io::Write;
 use std::pin::Pin;
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, PoisonError};
 
 use axes::runtime::EngineHandle;
 use serde_json::{Map, Value};
@@ -116,9 +116,38 @@ pub(crate) async fn bind(
 }
 
 /// Print `listening: <protocol> <address>`: tests and supervisors read these lines as they come.
+/// The same pair is kept for `GET /state`'s `listeners` ([`listeners`]).
 pub(crate) fn announce(protocol: &str, address: impl std::fmt::Display) {
+    let address = address.to_string();
     println!("listening: {protocol} {address}");
     let _ = std::io::stdout().flush();
+    LISTENERS
+        .lock()
+        .unwrap_or_else(PoisonError::into_inner)
+        .push(Listener {
+            protocol: protocol.to_string(),
+            address,
+        });
+}
+
+/// One `listening:` line: a protocol (`modbus-tcp`, `nmc-local` …) and the address or path it
+/// was bound to (port 0 resolved).
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct Listener {
+    pub protocol: String,
+    pub address: String,
+}
+
+/// Every `listening:` line this process printed, in order. Process-wide like stdout itself: a
+/// process runs one machine, and each front-end announces from its own module.
+static LISTENERS: Mutex<Vec<Listener>> = Mutex::new(Vec::new());
+
+/// What this process listens on, as its `listening:` lines said.
+pub fn listeners() -> Vec<Listener> {
+    LISTENERS
+        .lock()
+        .unwrap_or_else(PoisonError::into_inner)
+        .clone()
 }
 
 /// What a start function gives: a handle per started front-end (none when its sections are

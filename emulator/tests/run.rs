@@ -118,6 +118,44 @@ fn the_default_machine_comes_up_reports_its_listeners_and_stops_on_sigint() {
 }
 
 #[test]
+fn state_lists_the_listeners_the_listening_lines_announced() {
+    let m = Mcemu::start(&["run", "--any-port"]);
+    let mut announced = Vec::new();
+    loop {
+        let line = m.until("listening: ");
+        let rest = line.strip_prefix("listening: ").unwrap();
+        let (protocol, address) = rest.split_once(' ').unwrap();
+        announced.push(serde_json::json!({"protocol": protocol, "address": address}));
+        if protocol == "control" {
+            break;
+        }
+    }
+    let control = announced.last().unwrap()["address"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    let body = ureq::get(format!("http://{control}/api/v1/state"))
+        .call()
+        .unwrap()
+        .body_mut()
+        .read_to_string()
+        .unwrap();
+    let state: serde_json::Value = serde_json::from_str(&body).unwrap();
+    // Every line, in order, with the port that was really bound (`--any-port` asked for 0).
+    assert_eq!(
+        state["listeners"],
+        serde_json::Value::Array(announced.clone())
+    );
+    assert!(announced.len() >= 5, "{announced:?}");
+    assert!(announced
+        .iter()
+        .all(|l| !l["address"].as_str().unwrap().ends_with(":0")));
+    m.signal("INT");
+    let (status, _) = m.wait();
+    assert!(status.success(), "{status}");
+}
+
+#[test]
 fn flags_override_the_clock_and_period_and_sigterm_stops_cleanly() {
     let config = temp_config(
         "flags.toml",

@@ -40,6 +40,11 @@ fn the_page_shows_and_drives_the_default_machine() {
         "{out}"
     );
     assert!(shot.is_file(), "no screenshot at {}", shot.display());
+    // The front-ends view showed the listeners (`/state`'s `listeners`).
+    assert!(
+        out.contains("ok: the modbus-tcp front-end shows it listens on 127.0.0.1:"),
+        "{out}"
+    );
     // What the page did, seen through the API: axis 0 stopped short at the forced limit,
     // axis 1 went to 20, axis 2 was not enabled by the cross-origin form.
     let state = mcemu.state();

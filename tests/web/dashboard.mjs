@@ -96,6 +96,17 @@ async function machine(page, context) {
   const names = await page.locator("tr.axis-row td.axis-name").allTextContents();
   check(names.join(",") === "0 x,1 y,2 z,3 a" || names.length === 4, `axis names ${names}`);
 
+  // The front-ends view says where each listens, as the `listening:` lines did.
+  const listeners = (await api("/state")).body.listeners;
+  const control = new URL(base).host;
+  await page.waitForFunction((c) => document.getElementById("listeners").textContent.includes(c), control);
+  for (const l of listeners.filter((l) => l.protocol !== "control")) {
+    const section = page.locator(`[data-frontend="${l.protocol.replaceAll("-", "_")}"] .frontend-status`);
+    const text = await section.textContent();
+    check(text.includes(`listening: ${l.address}`), `the ${l.protocol} front-end shows it listens on ${l.address}`);
+  }
+  check(listeners.length >= 2, `the listeners table lists ${listeners.length} listeners, the control port ${control} among them`);
+
   // Enable and move axis 0 from the page; time advances from the page too.
   const axis0 = await openAxis(page, 0);
   check((await click(axis0, '[data-action="enable"]')) === "", "enable axis 0 from the page");

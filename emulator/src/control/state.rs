@@ -48,6 +48,9 @@ pub struct StateView<'a> {
     pub stream: super::StreamStatus,
     /// Each running protocol front-end: counters, active faults, last error.
     pub frontends: Vec<serde_json::Value>,
+    /// What the machine listens on, as its `listening:` lines say (`{protocol, address}`), the
+    /// control port included.
+    pub listeners: Vec<crate::frontend::Listener>,
 }
 
 #[derive(Serialize)]
@@ -281,6 +284,7 @@ pub async fn get_state(State(state): State<ControlState>) -> axum::response::Res
         trace: state.trace.status(),
         stream: state.streams.status(state.stream_max_clients),
         frontends: state.frontends.iter().map(|f| f.state()).collect(),
+        listeners: crate::frontend::listeners(),
     };
     Json(view).into_response()
 }

@@ -129,7 +129,7 @@ export class MachineView {
     this.renderAxes(state.axes);
     this.renderIo(state.io);
     this.renderStructure(state);
-    this.renderFrontends(state.frontends);
+    this.renderFrontends(state.frontends, state.listeners || []);
   }
 
   renderRuntime(state) {
@@ -232,7 +232,12 @@ export class MachineView {
     document.getElementById("drives").replaceChildren(table("drives (CiA 402)", state.drives));
   }
 
-  renderFrontends(frontends) {
+  renderFrontends(frontends, listeners) {
+    const key = JSON.stringify(listeners);
+    if (key !== this.listenersKey) {
+      this.listenersKey = key;
+      document.getElementById("listeners").replaceChildren(table("listening", listeners));
+    }
     const box = document.getElementById("frontends");
     if (!this.frontendBoxes || this.frontendBoxes.length !== frontends.length) {
       this.frontendBoxes = frontends.map((f) => {
@@ -261,7 +266,10 @@ export class MachineView {
     frontends.forEach((f, i) => {
       const c = f.counters || {};
       const conn = c.connections || {};
+      // A front-end's listeners are those its `listening:` lines named after its section.
+      const own = listeners.filter((l) => l.protocol === f.name.replaceAll("_", "-")).map((l) => l.address);
       const lines = [
+        `listening: ${own.length ? own.join(", ") : "-"}`,
         Object.entries(f).filter(([, v]) => v === null || typeof v !== "object").map(([k, v]) => `${k}: ${v}`).join(", "),
         `connections: open ${conn.open ?? "-"}, opened ${conn.opened ?? "-"}, refused ${conn.refused_at_limit ?? "-"}`,
         `requests ${c.requests ?? "-"}, replies ${c.replies ?? "-"}, exceptions ${c.exceptions ?? "-"}, bytes in/out ${c.bytes_in ?? "-"}/${c.bytes_out ?? "-"}`,
