@@ -40,6 +40,10 @@ fn the_page_shows_and_drives_the_default_machine() {
         "{out}"
     );
     assert!(shot.is_file(), "no screenshot at {}", shot.display());
+    assert!(
+        out.contains("ok: the stream carries the channels chosen per axis (0.act_pos,1.following_error,di,do)"),
+        "{out}"
+    );
     // The front-ends view showed the listeners (`/state`'s `listeners`).
     assert!(
         out.contains("ok: the modbus-tcp front-end shows it listens on 127.0.0.1:"),

@@ -199,6 +199,25 @@ async function machine(page, context) {
   check((await api("/state")).body.axes[2].state === "disabled", "and axis 2 stayed disabled");
   await evil.close();
 
+  // Channels chosen per axis: axis 0's act_pos and axis 1's following_error only.
+  await page.locator("#channel-grid summary").click();
+  await page.locator('#stream-form [name="axes"]').fill("0-1");
+  await page.locator('#stream-form [name="axes"]').dispatchEvent("change");
+  for (const box of await page.locator('#channel-choice [name="channel"]').all()) await box.uncheck();
+  await page.locator('#channel-grid input[value="0:act_pos"]').check();
+  await page.locator('#channel-grid input[value="1:following_error"]').check();
+  const before = await page.evaluate(() => window.mcemuScope.hello);
+  await page.locator('#stream-form button[type="submit"]').click();
+  await page.waitForFunction((old) => window.mcemuScope.hello !== old && window.mcemuScope.hello.axis_channels, before);
+  const labels = await page.evaluate(() => window.mcemuScope.series.map((s) => s.label).join(","));
+  check(labels === "0.act_pos,1.following_error,di,do", `the stream carries the channels chosen per axis (${labels})`);
+  const total = await page.evaluate(() => window.mcemuScope.total);
+  await advance(page, 0.2);
+  await page.waitForFunction((n) => window.mcemuScope.total >= n + 200, total);
+  const last = await page.evaluate(() => window.mcemuScope.series[0].ring.at(window.mcemuScope.total - 1));
+  const actual = (await api("/state")).body.axes[0].act_pos;
+  check(Math.abs(last - actual) < 1e-9, `axis 0's act_pos arrives tick by tick (${last} = ${actual})`);
+
 }
 
 async function axes64(page) {

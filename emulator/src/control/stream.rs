@@ -9,13 +9,16 @@
 //! thread. The observer removes itself once the client is gone.
 //!
 //! Query: `axes=0,1` (default: all), `channels=cmd_pos,act_pos` (default: all of
-//! [`CHANNELS`]), `io=false` (default true: DI/DO bit masks each tick), `batch=N` ticks
-//! (default: 50 ms worth, at least 1).
+//! [`CHANNELS`]) for the same channels of every axis, or instead `series=0:cmd_pos,0:act_pos,
+//! 1:following_error` for channels chosen per axis (axes in order of first mention);
+//! `io=false` (default true: DI/DO bit masks each tick), `batch=N` ticks (default: 50 ms worth,
+//! at least 1).
 //!
-//! Events: first `hello` (`{period, tick, axes, channels, io, batch, max_clients, flag_bits}`), then `samples`
-//! (`{first_tick, ticks, dropped, data: [[[value per tick] per channel] per axis], di, do,
-//! changes: [{tick, axis, state, flags}]}`); `changes` lists each state or flag change of a
-//! streamed axis at the tick it happened.
+//! Events: first `hello` (`{period, tick, axes, channels, axis_channels, io, batch,
+//! max_clients, flag_bits}`: `axis_channels[a]` are axis `axes[a]`'s channels, `channels` their
+//! union), then `samples` (`{first_tick, ticks, dropped, data: [[[value per tick] per channel of
+//! axis_channels[a]] per axis a], di, do, changes: [{tick, axis, state, flags}]}`); `changes`
+//! lists each state or flag change of a streamed axis at the tick it happened.
 
 use std::convert::Infallible;
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
@@ -92,9 +95,36 @@ impl Channel {
 #[derive(Clone, Debug, PartialEq)]
 pub struct StreamRequest {
     pub axes: Vec<u16>,
-    pub channels: Vec<Channel>,
+    /// `axis_channels[a]`: the channels of `axes[a]`, in the order they are sent.
+    pub axis_channels: Vec<Vec<Channel>>,
     pub io: bool,
     pub batch: u32,
+}
+
+/// `cmd_pos` → its channel, or the error naming the choices.
+fn channel_named(key: &str, item: &str) -> Result<Channel, ApiError> {
+    CHANNELS
+        .iter()
+        .find(|(n, _)| *n == item)
+        .map(|(_, c)| *c)
+        .ok_or_else(|| {
+            ApiError::InvalidRequest(format!(
+                "{key}: no channel `{item}` (one of {})",
+                CHANNELS.map(|(n, _)| n).join(", ")
+            ))
+        })
+}
+
+/// `2` → axis 2 if the machine has it.
+fn axis_numbered(key: &str, item: &str, axis_count: usize) -> Result<u16, ApiError> {
+    item.parse::<u16>()
+        .ok()
+        .filter(|&a| usize::from(a) < axis_count)
+        .ok_or_else(|| {
+            ApiError::InvalidRequest(format!(
+                "{key}: `{item}` is not an axis (the machine has {axis_count})"
+            ))
+        })
 }
 
 impl StreamRequest {
@@ -102,6 +132,7 @@ impl StreamRequest {
     pub fn parse(query: Option<&str>, axis_count: usize, period: f64) -> Result<Self, ApiError> {
         let mut axes = None;
         let mut channels = None;
+        let mut series: Option<Vec<(u16, Vec<Channel>)>> = None;
         let mut io = true;
         let mut batch = None;
         for pair in query.unwrap_or("").split('&').filter(|p| !p.is_empty()) {
@@ -112,15 +143,7 @@ impl StreamRequest {
                 "axes" => {
                     let mut list = Vec::new();
                     for item in value.split(',').filter(|v| !v.is_empty()) {
-                        let axis = item
-                            .parse::<u16>()
-                            .ok()
-                            .filter(|&a| usize::from(a) < axis_count)
-                            .ok_or_else(|| {
-                                ApiError::InvalidRequest(format!(
-                                    "axes: `{item}` is not an axis (the machine has {axis_count})"
-                                ))
-                            })?;
+                        let axis = axis_numbered("axes", item, axis_count)?;
                         if list.contains(&axis) {
                             return Err(ApiError::InvalidRequest(format!(
                                 "axes: {axis} is listed twice"
@@ -133,21 +156,36 @@ impl StreamRequest {
                 "channels" => {
                     let mut list = Vec::new();
                     for item in value.split(',').filter(|v| !v.is_empty()) {
-                        let channel = CHANNELS
-                            .iter()
-                            .find(|(n, _)| *n == item)
-                            .map(|(_, c)| *c)
-                            .ok_or_else(|| {
-                                ApiError::InvalidRequest(format!(
-                                    "channels: no channel `{item}` (one of {})",
-                                    CHANNELS.map(|(n, _)| n).join(", ")
-                                ))
-                            })?;
+                        let channel = channel_named("channels", item)?;
                         if !list.contains(&channel) {
                             list.push(channel);
                         }
                     }
                     channels = Some(list);
+                }
+                "series" => {
+                    let value = value.replace("%3A", ":").replace("%3a", ":");
+                    let mut list: Vec<(u16, Vec<Channel>)> = Vec::new();
+                    for item in value.split(',').filter(|v| !v.is_empty()) {
+                        let (axis, channel) = item.split_once(':').ok_or_else(|| {
+                            ApiError::InvalidRequest(format!(
+                                "series: `{item}` is not AXIS:CHANNEL (`0:cmd_pos`)"
+                            ))
+                        })?;
+                        let axis = axis_numbered("series", axis, axis_count)?;
+                        let channel = channel_named("series", channel)?;
+                        match list.iter_mut().find(|(a, _)| *a == axis) {
+                            Some((_, chosen)) if chosen.contains(&channel) => {}
+                            Some((_, chosen)) => chosen.push(channel),
+                            None => list.push((axis, vec![channel])),
+                        }
+                    }
+                    if list.is_empty() {
+                        return Err(ApiError::InvalidRequest(
+                            "series: empty; list AXIS:CHANNEL pairs (`0:cmd_pos,1:act_pos`)".into(),
+                        ));
+                    }
+                    series = Some(list);
                 }
                 "io" => {
                     io = match value.as_str() {
@@ -177,24 +215,37 @@ impl StreamRequest {
                 "token" => {}
                 other => {
                     return Err(ApiError::InvalidRequest(format!(
-                        "unknown query parameter `{other}` (axes, channels, io, batch)"
+                        "unknown query parameter `{other}` (axes, channels, series, io, batch)"
                     )))
                 }
             }
+        }
+        if series.is_some() && (axes.is_some() || channels.is_some()) {
+            return Err(ApiError::InvalidRequest(
+                "series chooses axes and channels itself: give it without axes or channels".into(),
+            ));
         }
         let default_batch = if period.is_finite() && period > 0.0 {
             (DEFAULT_BATCH_SECONDS / period).round().clamp(1.0, 1000.0) as u32
         } else {
             1
         };
-        let axes = axes.unwrap_or_else(|| {
-            (0..axis_count)
-                .map(|a| u16::try_from(a).unwrap_or(u16::MAX))
-                .collect()
-        });
+        let (axes, axis_channels) = match series {
+            Some(series) => series.into_iter().unzip(),
+            None => {
+                let axes: Vec<u16> = axes.unwrap_or_else(|| {
+                    (0..axis_count)
+                        .map(|a| u16::try_from(a).unwrap_or(u16::MAX))
+                        .collect()
+                });
+                let channels = channels.unwrap_or_else(|| CHANNELS.map(|(_, c)| c).to_vec());
+                let per_axis = vec![channels; axes.len()];
+                (axes, per_axis)
+            }
+        };
         Ok(StreamRequest {
             axes,
-            channels: channels.unwrap_or_else(|| CHANNELS.map(|(_, c)| c).to_vec()),
+            axis_channels,
             io,
             batch: batch.unwrap_or(default_batch),
         })
@@ -202,7 +253,18 @@ impl StreamRequest {
 
     /// Values one tick adds to a batch.
     fn values_per_tick(&self) -> usize {
-        self.axes.len() * self.channels.len()
+        self.axis_channels.iter().map(Vec::len).sum()
+    }
+
+    /// Every channel streamed for some axis, in order of first appearance.
+    fn channel_union(&self) -> Vec<Channel> {
+        let mut union: Vec<Channel> = Vec::new();
+        for c in self.axis_channels.iter().flatten() {
+            if !union.contains(c) {
+                union.push(*c);
+            }
+        }
+        union
     }
 }
 
@@ -283,7 +345,7 @@ impl Sampler {
             let Some(status) = engine.axis_status(usize::from(axis)) else {
                 continue;
             };
-            for channel in &self.request.channels {
+            for channel in self.request.axis_channels.get(i).into_iter().flatten() {
                 self.batch.values.push(channel.value(&status));
             }
             let now = (status.state, status.flags);
@@ -385,15 +447,19 @@ impl Drop for Place {
 /// The `samples` event of one batch, transposed per axis and channel for the plots.
 fn samples_json(request: &StreamRequest, batch: &Batch) -> Value {
     let per_tick = request.values_per_tick();
-    let channels = request.channels.len();
-    let data: Vec<Vec<Vec<f64>>> = (0..request.axes.len())
-        .map(|a| {
-            (0..channels)
+    let mut offset = 0;
+    let data: Vec<Vec<Vec<f64>>> = request
+        .axis_channels
+        .iter()
+        .map(|channels| {
+            let first = offset;
+            offset += channels.len();
+            (0..channels.len())
                 .map(|c| {
                     batch
                         .values
                         .iter()
-                        .skip(a * channels + c)
+                        .skip(first + c)
                         .step_by(per_tick.max(1))
                         .copied()
                         .collect()
@@ -466,7 +532,12 @@ pub async fn get_stream(State(state): State<ControlState>, RawQuery(query): RawQ
         "period": snapshot.period,
         "tick": snapshot.tick,
         "axes": request.axes,
-        "channels": request.channels.iter().map(|c| c.name()).collect::<Vec<_>>(),
+        "channels": request.channel_union().iter().map(|c| c.name()).collect::<Vec<_>>(),
+        "axis_channels": request
+            .axis_channels
+            .iter()
+            .map(|cs| cs.iter().map(|c| c.name()).collect::<Vec<_>>())
+            .collect::<Vec<_>>(),
         "io": request.io,
         "batch": request.batch,
         "max_clients": max,
@@ -514,10 +585,8 @@ mod tests {
     #[test]
     fn queries_are_checked() {
         let r = StreamRequest::parse(None, 3, 1e-3).unwrap();
-        assert_eq!(
-            (r.axes, r.channels.len(), r.io, r.batch),
-            (vec![0, 1, 2], 7, true, 50)
-        );
+        assert_eq!((r.axes, r.io, r.batch), (vec![0, 1, 2], true, 50));
+        assert!(r.axis_channels.iter().all(|cs| cs.len() == 7));
         let r = StreamRequest::parse(
             Some("axes=2,0&channels=act_pos&io=false&batch=3&token=x"),
             3,
@@ -525,8 +594,27 @@ mod tests {
         )
         .unwrap();
         assert_eq!(r.axes, vec![2, 0]);
-        assert_eq!(r.channels, vec![Channel::ActPos]);
+        assert_eq!(r.axis_channels, vec![vec![Channel::ActPos]; 2]);
         assert_eq!((r.io, r.batch), (false, 3));
+        // Channels chosen per axis: axes in order of first mention, repeats ignored.
+        let r = StreamRequest::parse(
+            Some("series=2:act_pos,0:cmd_pos,2:following_error%2C0%3Acmd_pos"),
+            3,
+            1e-3,
+        )
+        .unwrap();
+        assert_eq!(r.axes, vec![2, 0]);
+        assert_eq!(
+            r.axis_channels,
+            vec![
+                vec![Channel::ActPos, Channel::FollowingError],
+                vec![Channel::CmdPos]
+            ]
+        );
+        assert_eq!(
+            r.channel_union(),
+            vec![Channel::ActPos, Channel::FollowingError, Channel::CmdPos]
+        );
         for bad in [
             "axes=3",
             "axes=1,1",
@@ -536,6 +624,12 @@ mod tests {
             "batch=0",
             "batch=99999",
             "rate=1",
+            "series=",
+            "series=0",
+            "series=3:cmd_pos",
+            "series=0:speed",
+            "series=0:cmd_pos&axes=0",
+            "channels=cmd_pos&series=0:cmd_pos",
         ] {
             assert!(
                 matches!(
@@ -600,5 +694,60 @@ mod tests {
         // The client goes: the observer removes itself at its next tick.
         drop(rx);
         handle.advance(1).unwrap();
+    }
+
+    #[test]
+    fn channels_chosen_per_axis_arrive_per_axis() {
+        let config = EngineConfig {
+            axes: vec![AxisConfig::default(); 2],
+            ..EngineConfig::default()
+        };
+        let engine = Engine::new(&config).unwrap();
+        let (handle, _guard) =
+            Runtime::start(engine, RuntimeOptions::with_clock(ClockMode::Virtual)).unwrap();
+        let request = Arc::new(
+            StreamRequest::parse(Some("series=1:cmd_pos,0:flags,1:cmd_vel&batch=5"), 2, 1e-3)
+                .unwrap(),
+        );
+        let (tx, mut rx) = mpsc::channel(4);
+        let (_recycle, recycled) = mpsc::unbounded_channel();
+        let mut sampler = Sampler {
+            request: Arc::clone(&request),
+            batch: Batch::with_capacity(&request),
+            last: vec![None; 2],
+            tx,
+            recycled,
+            dropped: Arc::default(),
+            clients: Arc::default(),
+        };
+        handle
+            .add_observer(move |e: &Engine| sampler.sample(e))
+            .unwrap();
+        handle.call(Command::from(Enable { axis: 1 })).unwrap();
+        let move_to: Command = serde_json::from_str(
+            r#"{"type":"move_absolute","axis":1,"position":1.0,"velocity":10.0}"#,
+        )
+        .unwrap();
+        handle.call(move_to).unwrap();
+        handle.advance(5).unwrap();
+        let json = samples_json(&request, &rx.try_recv().unwrap());
+        let series = |a: usize, c: usize| -> Vec<f64> {
+            json["data"][a][c]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|v| v.as_f64().unwrap())
+                .collect()
+        };
+        // Axis 1 first (first mentioned): its position grows, its velocity is positive.
+        let (pos, vel) = (series(0, 0), series(0, 1));
+        assert_eq!((pos.len(), vel.len()), (5, 5));
+        assert!(pos.windows(2).all(|w| w[1] > w[0]), "{pos:?}");
+        assert!(vel.iter().all(|&v| v > 0.0), "{vel:?}");
+        // Axis 0: its flags only, the same each tick (it is not moving).
+        let flags = series(1, 0);
+        assert_eq!(flags.len(), 5);
+        assert!(flags.windows(2).all(|w| w[0] == w[1]), "{flags:?}");
+        assert!(json["data"][1].as_array().unwrap().len() == 1);
     }
 }

@@ -47,6 +47,7 @@ export class Scope {
   }
 
   setupForms() {
+    // Channels for every axis (a column of the per-axis grid at once) …
     const choice = document.getElementById("channel-choice");
     for (const c of ALL_CHANNELS) {
       const box = document.createElement("input");
@@ -54,10 +55,16 @@ export class Scope {
       box.name = "channel";
       box.value = c;
       box.checked = DEFAULT_CHANNELS.includes(c);
+      box.onchange = () => {
+        for (const cell of document.querySelectorAll(`#channel-grid input[data-channel="${c}"]`)) cell.checked = box.checked;
+      };
       const label = document.createElement("label");
       label.append(box, ` ${c}`);
       choice.append(label);
     }
+    // … or per axis, in the grid (rows: the axes field's axes).
+    this.gridChoice = new Map(); // "axis:channel" → checked, as the user left it
+    document.querySelector('#stream-form [name="axes"]').addEventListener("change", () => this.buildGrid());
     document.getElementById("stream-form").addEventListener("submit", (e) => {
       e.preventDefault();
       this.connect();
@@ -76,9 +83,8 @@ export class Scope {
     return Math.max(2, Math.min(CAPACITY, Math.round(seconds / period)));
   }
 
-  /** (Re)open the stream with the form's axes and channels. */
-  connect(axisCount) {
-    if (axisCount != null) this.axisCount = axisCount;
+  /** The axes field's axes (`0-3,6`), filled with the first eight axes when empty. */
+  axisList() {
     const form = document.getElementById("stream-form");
     let axes = form.elements.axes.value.trim();
     if (!axes) {
@@ -89,12 +95,48 @@ export class Scope {
     const list = [];
     for (const part of axes.split(",")) {
       const [from, to] = part.split("-").map((s) => Number(s.trim()));
-      for (let a = from; a <= (Number.isFinite(to) ? to : from); a++) list.push(a);
+      for (let a = from; Number.isInteger(a) && a <= (Number.isFinite(to) ? to : from); a++) if (!list.includes(a)) list.push(a);
     }
-    const channels = [...form.querySelectorAll('[name="channel"]:checked')].map((b) => b.value);
+    return list;
+  }
+
+  /** The per-axis channel grid for the axes field's axes, keeping what the user chose. */
+  buildGrid() {
+    const grid = document.getElementById("channel-grid");
+    for (const cell of grid.querySelectorAll("input[data-channel]")) this.gridChoice.set(cell.value, cell.checked);
+    const all = Object.fromEntries([...document.querySelectorAll('[name="channel"]')].map((b) => [b.value, b.checked]));
+    const head = document.createElement("tr");
+    head.append(document.createElement("th"), ...ALL_CHANNELS.map((c) => Object.assign(document.createElement("th"), { textContent: c })));
+    const rows = this.axisList().map((axis) => {
+      const row = document.createElement("tr");
+      row.append(Object.assign(document.createElement("th"), { textContent: `axis ${axis}` }));
+      for (const c of ALL_CHANNELS) {
+        const box = document.createElement("input");
+        box.type = "checkbox";
+        box.value = `${axis}:${c}`;
+        box.dataset.channel = c;
+        box.checked = this.gridChoice.get(box.value) ?? all[c];
+        const td = document.createElement("td");
+        td.append(box);
+        row.append(td);
+      }
+      return row;
+    });
+    grid.querySelector("table").replaceChildren(head, ...rows);
+  }
+
+  /** (Re)open the stream with the grid's channels of each axis. */
+  connect(axisCount) {
+    if (axisCount != null) this.axisCount = axisCount;
+    this.buildGrid();
+    const series = [...document.querySelectorAll("#channel-grid input[data-channel]:checked")].map((b) => b.value);
+    if (series.length === 0) {
+      this.status.textContent = "choose at least one channel of one axis";
+      return;
+    }
     if (this.source) this.source.close();
     this.status.textContent = "connecting…";
-    const source = new EventSource(streamUrl({ axes: list.join(","), channels: channels.join(",") }));
+    const source = new EventSource(streamUrl({ series: series.join(",") }));
     this.source = source;
     source.addEventListener("hello", (e) => this.onHello(JSON.parse(e.data)));
     source.addEventListener("samples", (e) => this.onSamples(JSON.parse(e.data)));
@@ -109,9 +151,10 @@ export class Scope {
   onHello(hello) {
     this.hello = hello;
     this.series = [];
-    for (const axis of hello.axes) {
-      for (const channel of hello.channels) this.series.push({ axis, channel, label: `${axis}.${channel}`, ring: new Ring(CAPACITY) });
-    }
+    hello.axes.forEach((axis, a) => {
+      const channels = hello.axis_channels ? hello.axis_channels[a] : hello.channels;
+      for (const channel of channels) this.series.push({ axis, channel, label: `${axis}.${channel}`, ring: new Ring(CAPACITY) });
+    });
     if (hello.io) {
       for (const channel of ["di", "do"]) this.series.push({ axis: null, channel, label: channel, ring: new Ring(CAPACITY) });
     }
@@ -127,14 +170,15 @@ export class Scope {
     source.replaceChildren(...this.series.map((s, i) => new Option(s.label, String(i))));
     const again = this.series.findIndex((s) => s.label === keep);
     source.value = String(again >= 0 ? again : 0);
-    this.status.textContent = `streaming ${hello.axes.length} axes × ${hello.channels.length} channels, ${hello.batch} ticks a batch`;
+    const values = hello.axis_channels ? hello.axis_channels.reduce((n, cs) => n + cs.length, 0) : hello.axes.length * hello.channels.length;
+    this.status.textContent = `streaming ${values} channels of ${hello.axes.length} axes, ${hello.batch} ticks a batch`;
     if (!this.loaded) this.buildPlot(this.series.map(({ axis, channel, label }) => ({ axis, channel, label })));
     this.dirty = true;
   }
 
   onSamples(batch) {
     const nAxes = this.hello.axes.length;
-    const nChannels = this.hello.channels.length;
+    const perAxis = this.hello.axes.map((_, a) => (this.hello.axis_channels ? this.hello.axis_channels[a].length : this.hello.channels.length));
     let change = 0;
     const changes = batch.changes;
     for (let k = 0; k < batch.ticks; k++) {
@@ -147,7 +191,7 @@ export class Scope {
       this.ticks.set(n, tick);
       let s = 0;
       for (let a = 0; a < nAxes; a++) {
-        for (let c = 0; c < nChannels; c++) {
+        for (let c = 0; c < perAxis[a]; c++) {
           const v = batch.data[a][c][k];
           this.series[s++].ring.set(n, v == null ? NaN : v);
         }
