@@ -6,8 +6,12 @@
 //!
 //! ```sh
 //! cargo bench -p mcemu --bench dashboard_stream
-//! MCEMU_DASHBOARD_SECONDS=600 cargo bench -p mcemu --bench dashboard_stream   # memory after 10 min
+//! # memory over 10 minutes of streaming to one page:
+//! MCEMU_DASHBOARD_SECONDS=600 MCEMU_DASHBOARD_PAGES=0,1 cargo bench -p mcemu --bench dashboard_stream
 //! ```
+//!
+//! The page's JS heap and mcemu's RSS are printed at the start and at the end of each window:
+//! bounded memory shows as an end no larger than the start plus noise.
 //!
 //! mcemu runs an 8-axis machine on the realtime clock (1 ms), every axis jogging so every value
 //! changes each tick. The pages are tabs of one chromium driven by `tests/web/bench.mjs`
@@ -24,9 +28,22 @@ use std::time::{Duration, Instant};
 use mcemu_tests::{require_tool, spawn_until_line, workspace_root, READY_TIMEOUT};
 use serde_json::{json, Value};
 
+/// Pages per run, unless `MCEMU_DASHBOARD_PAGES` lists others (`0,1`); 0 is the baseline.
 const PAGES: [usize; 3] = [0, 1, 4];
 
 fn main() {
+    let pages_list: Vec<usize> = std::env::var("MCEMU_DASHBOARD_PAGES")
+        .ok()
+        .map(|s| {
+            s.split(',')
+                .map(|p| {
+                    p.trim()
+                        .parse()
+                        .expect("MCEMU_DASHBOARD_PAGES: numbers, `0,1`")
+                })
+                .collect()
+        })
+        .unwrap_or_else(|| PAGES.to_vec());
     let seconds: f64 = std::env::var("MCEMU_DASHBOARD_SECONDS")
         .ok()
         .map(|s| s.parse().expect("MCEMU_DASHBOARD_SECONDS: a number"))
@@ -70,24 +87,26 @@ fn main() {
          pages are tabs of one headless chromium"
     );
     println!(
-        "{:>6} {:>14} {:>16} {:>22} {:>16} {:>12} {:>6}",
+        "{:>6} {:>14} {:>16} {:>22} {:>20} {:>20} {:>6}",
         "pages",
         "mcemu CPU %",
         "Δ per page %",
         "page fps min/mean",
-        "page heap MB",
-        "mcemu RSS MB",
+        "page heap MB start→end",
+        "mcemu RSS MB start→end",
         "lost"
     );
     let mut baseline = None;
-    for pages in PAGES {
-        let (cpu, result) = if pages == 0 {
+    for pages in pages_list {
+        let (cpu, rss_start, result) = if pages == 0 {
             let before = cpu_seconds(pid);
+            let rss = rss_bytes(pid);
             let start = Instant::now();
             std::thread::sleep(Duration::from_secs_f64(seconds));
             (
                 (cpu_seconds(pid) - before) / start.elapsed().as_secs_f64(),
-                json!({"fps": [], "heap": [], "lost": []}),
+                rss,
+                json!({"fps": [], "heap_start": [], "heap": [], "lost": []}),
             )
         } else {
             run_pages(&base, pid, pages, seconds)
@@ -108,6 +127,7 @@ fn main() {
         };
         let fps = floats("fps");
         let heap = floats("heap");
+        let heap_start = floats("heap_start");
         let lost: f64 = floats("lost").iter().sum();
         let fps_text = if fps.is_empty() {
             "-".to_string()
@@ -118,23 +138,25 @@ fn main() {
                 fps.iter().sum::<f64>() / fps.len() as f64
             )
         };
+        let largest = |v: &[f64]| v.iter().copied().fold(0.0, f64::max) / 1e6;
         let heap_text = if heap.is_empty() {
             "-".to_string()
         } else {
-            format!("{:.1}", heap.iter().copied().fold(0.0, f64::max) / 1e6)
+            format!("{:.1}→{:.1}", largest(&heap_start), largest(&heap))
         };
+        let rss_text = format!("{:.1}→{:.1}", rss_start / 1e6, rss_bytes(pid) / 1e6);
         println!(
-            "{pages:>6} {:>14.2} {per_page:>16} {fps_text:>22} {heap_text:>16} {:>12.1} {lost:>6}",
+            "{pages:>6} {:>14.2} {per_page:>16} {fps_text:>22} {heap_text:>20} {rss_text:>20} {lost:>6}",
             cpu * 100.0,
-            rss_bytes(pid) / 1e6
         );
     }
     mcemu.kill();
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// Open `pages` pages and measure mcemu's CPU share while they stream.
-fn run_pages(base: &str, pid: u32, pages: usize, seconds: f64) -> (f64, Value) {
+/// Open `pages` pages and measure mcemu's CPU share while they stream; also mcemu's RSS when
+/// the window starts.
+fn run_pages(base: &str, pid: u32, pages: usize, seconds: f64) -> (f64, f64, Value) {
     let web = workspace_root().join("tests/web");
     assert!(
         web.join("node_modules/playwright-core").is_dir(),
@@ -148,15 +170,17 @@ fn run_pages(base: &str, pid: u32, pages: usize, seconds: f64) -> (f64, Value) {
         .unwrap();
     let mut lines = BufReader::new(child.stdout.take().unwrap()).lines();
     let mut measuring = None;
+    let mut rss_start = 0.0;
     let mut result = None;
     for line in lines.by_ref() {
         let line = line.unwrap();
         if line == "measuring" {
+            rss_start = rss_bytes(pid);
             measuring = Some((cpu_seconds(pid), Instant::now()));
         } else if line.starts_with('{') {
             let (before, start) = measuring.expect("`measuring` before the result");
             let cpu = (cpu_seconds(pid) - before) / start.elapsed().as_secs_f64();
-            result = Some((cpu, serde_json::from_str(&line).unwrap()));
+            result = Some((cpu, rss_start, serde_json::from_str(&line).unwrap()));
             break;
         }
     }

@@ -1,7 +1,7 @@
 // Load generator of emulator/benches/dashboard_stream.rs: PAGES dashboard pages in one headless
 // chromium, each streaming the page's default channels, for SECONDS. Prints `measuring` once
 // every page streams, then one JSON line: per page the requestAnimationFrame rate over the
-// window, the JS heap after it, and the batches the server reported lost.
+// window, the JS heap at its start and its end, and the batches the server reported lost.
 //
 //   node bench.mjs BASE_URL PAGES SECONDS
 
@@ -21,14 +21,16 @@ try {
     await page.waitForFunction(() => /streaming: tick/.test(document.getElementById("stream-status").textContent), null, { timeout: 60000 });
     open.push(page);
   }
+  const heapOf = () => Promise.all(open.map((p) => p.evaluate(() => (performance.memory ? performance.memory.usedJSHeapSize : 0))));
+  const heapStart = await heapOf();
   const start = await Promise.all(open.map((p) => p.evaluate(() => window.mcemuScope.frames)));
   console.log("measuring");
   await new Promise((r) => setTimeout(r, seconds * 1000));
   const end = await Promise.all(open.map((p) => p.evaluate(() => window.mcemuScope.frames)));
-  const heap = await Promise.all(open.map((p) => p.evaluate(() => (performance.memory ? performance.memory.usedJSHeapSize : 0))));
+  const heap = await heapOf();
   const lost = await Promise.all(open.map((p) => p.evaluate(() => Number(document.getElementById("stream-status").dataset.dropped || 0))));
   const fps = end.map((e, i) => (e - start[i]) / seconds);
-  console.log(JSON.stringify({ fps, heap, lost }));
+  console.log(JSON.stringify({ fps, heap_start: heapStart, heap, lost }));
 } finally {
   await browser.close();
 }
