@@ -393,6 +393,31 @@ fn control_moves_an_axis_in_virtual_time() {
 }
 
 #[test]
+fn control_state_lists_the_handwheels() {
+    let m = Mcemu::start("virtual", &[]);
+    assert_eq!(m.state()["handwheels"], json!([]));
+    // S-HANDWHEEL (digest 001 §2.15): axis 0 follows the first external encoder × 5.
+    m.command(json!([
+        {"type": "enable", "axis": 0},
+        {"type": "handwheel_in", "axis": 0, "input": 256, "numerator": 5, "denominator": 1,
+         "velocity": 10, "acceleration": 1},
+        {"type": "handwheel_turn", "input": 256, "counts": 4}
+    ]));
+    m.advance(json!({"seconds": 10}));
+    let wheels = m.state()["handwheels"].clone();
+    assert_eq!(wheels.as_array().unwrap().len(), 1, "{wheels}");
+    let wheel = &wheels[0];
+    assert_eq!(
+        (&wheel["axis"], &wheel["input"], &wheel["counts"]),
+        (&json!(0), &json!(256), &json!(4)),
+        "{wheel}"
+    );
+    assert_eq!((f(&wheel["ratio"]), f(&wheel["target"])), (5.0, 20.0));
+    assert!((f(&wheel["lag"]) - (20.0 - f(&m.axis(0)["cmd_pos"]))).abs() < 1e-9);
+    m.stop();
+}
+
+#[test]
 fn control_command_arrays_apply_in_order_and_stop_at_the_first_error() {
     let m = Mcemu::start("virtual", &[]);
     let replies = m.command(json!([

@@ -50,11 +50,18 @@ fn the_page_shows_and_drives_the_default_machine() {
         "{out}"
     );
     // What the page did, seen through the API: axis 0 stopped short at the forced limit,
-    // axis 1 went to 20, axis 2 was not enabled by the cross-origin form.
+    // axis 1 went to 20; the cross-origin form did not enable axis 2 (the page checked it
+    // before enabling it itself for the handwheel and gear it then showed).
+    assert!(
+        out.contains("ok: and axis 2 stayed disabled")
+            && out.contains("ok: the couplings and handwheels tables show them"),
+        "{out}"
+    );
     let state = mcemu.state();
     assert!(state["axes"][0]["act_pos"].as_f64().unwrap() < 400.0);
     assert_eq!(state["axes"][1]["act_pos"], 20.0);
-    assert_eq!(state["axes"][2]["state"], "disabled");
+    assert_eq!(state["handwheels"][0]["axis"], 2);
+    assert_eq!(state["couplings"][0]["slave"], 3);
 }
 
 #[test]

@@ -199,6 +199,17 @@ async function machine(page, context) {
   check((await api("/state")).body.axes[2].state === "disabled", "and axis 2 stayed disabled");
   await evil.close();
 
+  // Couplings and handwheels show as they are made: axis 3 geared to axis 2, the first
+  // external encoder driving axis 2.
+  const coupled = await api("/commands", { method: "POST", body: [
+    { type: "enable", axis: 2 }, { type: "enable", axis: 3 },
+    { type: "gear_in", master: 2, slave: 3, numerator: 1, denominator: 2 },
+    { type: "handwheel_in", axis: 2, input: 256, numerator: 1, denominator: 1, velocity: 10, acceleration: 100 },
+  ] });
+  check(coupled.status === 200, `gear and handwheel made (${JSON.stringify(coupled.body)})`);
+  await page.waitForFunction(() => /gear/.test(document.getElementById("couplings").textContent) && /256/.test(document.getElementById("handwheels").textContent));
+  check(true, "the couplings and handwheels tables show them");
+
   // Channels chosen per axis: axis 0's act_pos and axis 1's following_error only.
   await page.locator("#channel-grid summary").click();
   await page.locator('#stream-form [name="axes"]').fill("0-1");

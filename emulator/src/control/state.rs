@@ -7,7 +7,8 @@ use axes::runtime::RuntimeStats;
 use axes::sampling::SamplerStatus;
 use axes::status::{
     AxisState, AxisStatus, CaptureStatus, CommandRef, CompareStatus, CouplingStatus, DriveStatus,
-    GroupFault, GroupState, GroupStatus, InterferenceStatus, IoImage, StreamStatus,
+    GroupFault, GroupState, GroupStatus, HandwheelStatus, InterferenceStatus, IoImage,
+    StreamStatus,
 };
 use axum::extract::State;
 use axum::Json;
@@ -36,6 +37,9 @@ pub struct StateView<'a> {
     pub captures: &'a [CaptureStatus],
     /// The position-compare channels, by channel (`axes::status::CompareStatus`).
     pub compares: &'a [CompareStatus],
+    /// The handwheels, by axis: input, ratio, counts, target, lag, dropped travel
+    /// (`axes::status::HandwheelStatus`).
+    pub handwheels: &'a [HandwheelStatus],
     pub io: IoView<'a>,
     pub drives: Vec<DriveView>,
     /// The configured data samplers (`sampling_configure`); their data come from
@@ -272,6 +276,7 @@ pub async fn get_state(State(state): State<ControlState>) -> axum::response::Res
         couplings: &snapshot.couplings,
         captures: &snapshot.captures,
         compares: &snapshot.compares,
+        handwheels: &snapshot.handwheels,
         io: IoView::from(&snapshot.io),
         samplers: &snapshot.samplers,
         drives: snapshot

@@ -224,12 +224,14 @@ export class MachineView {
   }
 
   renderStructure(state) {
-    const key = JSON.stringify([state.groups, state.couplings, state.drives]);
+    const parts = [
+      ["groups", "groups"], ["couplings", "couplings"], ["handwheels", "handwheels"], ["captures", "capture channels"],
+      ["compares", "compare channels"], ["samplers", "samplers"], ["drives", "drives (CiA 402)"],
+    ];
+    const key = JSON.stringify(parts.map(([k]) => state[k]));
     if (key === this.structureKey) return;
     this.structureKey = key;
-    document.getElementById("groups").replaceChildren(table("groups", state.groups));
-    document.getElementById("couplings").replaceChildren(table("couplings", state.couplings));
-    document.getElementById("drives").replaceChildren(table("drives (CiA 402)", state.drives));
+    for (const [k, title] of parts) document.getElementById(k).replaceChildren(table(title, state[k]));
   }
 
   renderFrontends(frontends, listeners) {
