@@ -58,6 +58,7 @@ fn cam(master: u16, slave: u16, table: u16) -> CamIn {
         start_position: None,
         start_direction: None,
         start_input: None,
+        start_capture: None,
     }
 }
 
@@ -230,6 +231,7 @@ fn a_cam_started_by_a_digital_input_starts_at_the_master_position_of_that_tick()
         &mut e,
         Command::from(CamIn {
             start_input: Some(3),
+            start_capture: None,
             ..cam(0, 1, 0)
         }),
     );
@@ -377,6 +379,7 @@ fn bad_tables_and_cams_are_refused_naming_what_is_wrong() {
             &mut e,
             Command::from(CamIn {
                 start_input: Some(999),
+                start_capture: None,
                 ..cam(0, 1, 0)
             })
         ),

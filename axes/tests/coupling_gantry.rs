@@ -27,6 +27,7 @@ fn gantry(master: u16, slaves: &[u16], warning_limit: f64, fault_limit: f64) -> 
         slaves: slaves.to_vec(),
         warning_limit,
         fault_limit,
+        require_disabled: false,
     })
 }
 

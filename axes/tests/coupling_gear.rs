@@ -28,6 +28,7 @@ fn gear(master: u16, slave: u16, numerator: f64, denominator: f64) -> GearIn {
         clutch_distance: None,
         acceleration: None,
         direction: None,
+        phase_offset: 0,
     }
 }
 

@@ -23,8 +23,9 @@ fn full() -> Vec<(Command, &'static str)> {
                 clutch_distance: Some(2000.0),
                 acceleration: None,
                 direction: Some(Direction::Negative),
+                phase_offset: 7,
             }),
-            r#"{"type":"gear_in","master":1,"slave":0,"numerator":4.0,"denominator":5.0,"master_source":"encoder","clutch_distance":2000.0,"direction":"negative"}"#,
+            r#"{"type":"gear_in","master":1,"slave":0,"numerator":4.0,"denominator":5.0,"master_source":"encoder","clutch_distance":2000.0,"direction":"negative","phase_offset":7}"#,
         ),
         (
             Command::from(GearSetRatio {
@@ -74,6 +75,7 @@ fn full() -> Vec<(Command, &'static str)> {
                 start_position: Some(50000.0),
                 start_direction: Some(Direction::Positive),
                 start_input: None,
+                start_capture: None,
             }),
             r#"{"type":"cam_in","master":0,"slave":1,"table":7,"master_source":"actual","periodic":true,"loop_count":3,"master_absolute":true,"slave_absolute":true,"master_offset":1.5,"slave_offset":-2.0,"master_scaling":2.0,"slave_scaling":0.5,"start_position":50000.0,"start_direction":"positive"}"#,
         ),
@@ -108,6 +110,7 @@ fn the_required_fields_alone_read_back_with_their_defaults() {
             clutch_distance: None,
             acceleration: None,
             direction: None,
+            phase_offset: 0,
         })
     );
     let t: Command = serde_json::from_str(

@@ -202,6 +202,7 @@ fn bad_input_is_refused_and_disturbs_nothing() {
                 clutch_distance: None,
                 acceleration: None,
                 direction: None,
+                phase_offset: 0,
             }),
             |e| {
                 matches!(

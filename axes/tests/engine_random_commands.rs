@@ -434,6 +434,7 @@ fn coupling_command() -> BoxedStrategy<Command> {
                     clutch_distance: clutch,
                     acceleration: acc,
                     direction,
+                    phase_offset: 0,
                 })
             }),
         (axis(), number(), number()).prop_map(|(slave, numerator, denominator)| {
@@ -502,6 +503,7 @@ fn coupling_command() -> BoxedStrategy<Command> {
                         start_position: sp,
                         start_direction: sd,
                         start_input: si,
+                        start_capture: None,
                     })
                 }
             ),

@@ -36,6 +36,10 @@ pub struct GearIn {
     pub acceleration: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub direction: Option<Direction>,
+    /// Servo periods the slave runs behind the gear, 0 to 128 (HMC_SetGearPhaseOffset, digest
+    /// 000 §4.3: "delays the slave trajectory"; fixed while the gear runs).
+    #[serde(default, skip_serializing_if = "is_zero_u32")]
+    pub phase_offset: u32,
 }
 
 /// Change the ratio of a running gear (HMC_SetGearRatio, NMC MtGearSetRatio in motion), through
@@ -152,7 +156,9 @@ fn is_zero_u32(v: &u32) -> bool {
 /// `loop_count` periods (0 = for ever, NMC FollowSetLoopCount); otherwise the cam ends when the
 /// master leaves the table. Start: at once, or when the master crosses `start_position` (in
 /// `start_direction`, either way if absent: HMC fixed-position modes 1/5, NMC FollowSetEvent 2),
-/// or when digital input `start_input` is on (HMC DI modes 3/7).
+/// or when digital input `start_input` is on (HMC DI modes 3/7), or when capture channel
+/// `start_capture` of the master latches (HMC event modes 2/6: the cam starts at the latched
+/// master position).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CamIn {
@@ -183,6 +189,8 @@ pub struct CamIn {
     pub start_direction: Option<Direction>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub start_input: Option<u16>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub start_capture: Option<u8>,
 }
 
 /// Decouple a cam's slave (PLCopen MC_CamOut): as `gear_out`. JSON `type`: `cam_out`.

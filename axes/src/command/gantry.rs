@@ -25,6 +25,11 @@ pub struct GantryEnable {
     pub warning_limit: f64,
     #[serde(default)]
     pub fault_limit: f64,
+    /// HIMC `EnableGantryPair` (digest 004 §2.6, TV 38): refuse unless the master and every
+    /// slave are disabled. The pair is made at rest; `enable` of the master then enables the
+    /// slaves too (TV 39), as it does on any gantry.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub require_disabled: bool,
 }
 
 /// Release the slaves of `master`'s gantry: each decelerates to rest with its `decel` from the

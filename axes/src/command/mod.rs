@@ -158,8 +158,8 @@ pub use superimpose::{
     SuperimposeIn, SuperimposeOut, SuperimposeSetRatios, TangentialIn, TangentialOut,
 };
 pub use trigger::{
-    CaptureArm, CaptureClear, CaptureEdge, CaptureSource, CaptureWindow, CompareOutputMode,
-    CompareStart, CompareStop, PositionSource, TriggerCommand,
+    CaptureArm, CaptureClear, CaptureEdge, CaptureSource, CaptureWindow, CompareFire,
+    CompareOutputMode, CompareStart, CompareStop, PositionSource, TriggerCommand,
 };
 
 /// A command into the engine, by family: what it addresses decides which stage of the engine
@@ -211,7 +211,7 @@ impl Command {
             Command::Trigger(TriggerCommand::CaptureClear(c)) => Some(c.axis),
             Command::Trigger(TriggerCommand::CompareStart(c)) => Some(c.axis),
             Command::Compensation(c) => Some(c.axis()),
-            Command::Trigger(TriggerCommand::CompareStop(_))
+            Command::Trigger(TriggerCommand::CompareStop(_) | TriggerCommand::CompareFire(_))
             | Command::Sampling(_)
             | Command::Group(_)
             | Command::Io(_)

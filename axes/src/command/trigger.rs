@@ -109,6 +109,16 @@ pub struct CompareStop {
     pub channel: u8,
 }
 
+/// Fire compare channel `channel`'s output once now, as one of its positions would, without
+/// using up a position (NMC `Comp2DimensOnoff` 2, "manual output", S-CMP-MANUAL, digest 001
+/// §2.11). The channel must have been started (it may be done). JSON `type`: `compare_fire`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CompareFire {
+    #[serde(default)]
+    pub channel: u8,
+}
+
 /// A command on the capture and compare channels; it takes effect at once, between ticks.
 #[derive(Clone, Debug, PartialEq)]
 pub enum TriggerCommand {
@@ -116,6 +126,7 @@ pub enum TriggerCommand {
     CaptureClear(CaptureClear),
     CompareStart(CompareStart),
     CompareStop(CompareStop),
+    CompareFire(CompareFire),
 }
 
 command_from!(
@@ -126,5 +137,6 @@ command_from!(
         CaptureClear => CaptureClear,
         CompareStart => CompareStart,
         CompareStop => CompareStop,
+        CompareFire => CompareFire,
     ]
 );

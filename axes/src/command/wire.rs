@@ -16,7 +16,7 @@ use super::{
     CamIn, CamOut, CamTableDefine, CouplingCommand, GantryDisable, GantryEnable, GearIn, GearOut,
     GearSetRatio, HandwheelIn, HandwheelOut, HandwheelTurn,
 };
-use super::{CaptureArm, CaptureClear, CompareStart, CompareStop, TriggerCommand};
+use super::{CaptureArm, CaptureClear, CompareFire, CompareStart, CompareStop, TriggerCommand};
 use super::{
     CompensationBacklash, CompensationClear, CompensationCommand, CompensationDisable,
     CompensationEnable, CompensationLeadScrew, CompensationTable,
@@ -155,6 +155,8 @@ pub(super) enum Command {
     HandwheelIn(HandwheelIn),
     HandwheelOut(HandwheelOut),
     HandwheelTurn(HandwheelTurn),
+    // Issue 12 item 5, NMC manual compare output.
+    CompareFire(CompareFire),
 }
 
 impl From<Command> for super::Command {
@@ -273,6 +275,7 @@ impl From<Command> for super::Command {
             Command::CaptureClear(c) => super::Command::Trigger(TriggerCommand::CaptureClear(c)),
             Command::CompareStart(c) => super::Command::Trigger(TriggerCommand::CompareStart(c)),
             Command::CompareStop(c) => super::Command::Trigger(TriggerCommand::CompareStop(c)),
+            Command::CompareFire(c) => super::Command::Trigger(TriggerCommand::CompareFire(c)),
             Command::StreamConfig(c) => super::Command::Stream(StreamCommand::Config(c)),
             Command::PtPush(c) => super::Command::Stream(StreamCommand::PtPush(c)),
             Command::PvtPush(c) => super::Command::Stream(StreamCommand::PvtPush(c)),
@@ -422,6 +425,7 @@ impl From<super::Command> for Command {
             super::Command::Trigger(TriggerCommand::CaptureClear(c)) => Command::CaptureClear(c),
             super::Command::Trigger(TriggerCommand::CompareStart(c)) => Command::CompareStart(c),
             super::Command::Trigger(TriggerCommand::CompareStop(c)) => Command::CompareStop(c),
+            super::Command::Trigger(TriggerCommand::CompareFire(c)) => Command::CompareFire(c),
             super::Command::Stream(StreamCommand::Config(c)) => Command::StreamConfig(c),
             super::Command::Stream(StreamCommand::PtPush(c)) => Command::PtPush(c),
             super::Command::Stream(StreamCommand::PvtPush(c)) => Command::PvtPush(c),

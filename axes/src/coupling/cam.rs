@@ -22,6 +22,9 @@ pub enum CamStart {
     MasterPosition(f64, Option<Direction>),
     /// This digital input is on.
     Input(u16),
+    /// This capture channel of the master latches (HMC event modes 2/6, digest 000 §4.3): the
+    /// cam starts at the latched master position.
+    Capture(u8),
 }
 
 /// What the cam asks of its slave this tick.
@@ -59,12 +62,31 @@ pub struct Cam {
     /// The table span the master is in (HMC_GetCamMasterPosIndex); where the next sample's
     /// search starts.
     span: usize,
+    /// A capture start: the channel's latch count already seen (latches from before the
+    /// cam do not start it), and the latched master position once a new latch came.
+    capture_seen: Option<u32>,
+    captured: Option<f64>,
+    /// The table's first and last master coordinates and its slave rise, read once (a table
+    /// in use is never replaced).
+    x0: f64,
+    x1: f64,
+    rise: f64,
+    /// Periodic: the period k of the last division and the master coordinates [lo, hi) well
+    /// inside it, where floor((x − x0) / period) is k for certain: a tick there skips the
+    /// division (the cam slave's per-tick cost, issue 12 performance) and gets the same k.
+    period_cache: (f64, f64, f64),
 }
 
 impl Cam {
     /// A cam as `c` asks, on `table`, with the parameters already checked.
     pub fn new(c: &CamIn, table: Arc<CamTable>, start: CamStart) -> Cam {
+        let (x0, x1) = table.master_range();
+        let (y0, y1) = table.slave_range();
         Cam {
+            x0,
+            x1,
+            rise: y1 - y0,
+            period_cache: (0.0, f64::INFINITY, f64::NEG_INFINITY),
             table_id: c.table,
             table,
             periodic: c.periodic,
@@ -81,6 +103,8 @@ impl Cam {
             slave_origin: 0.0,
             cycle: 0,
             span: 0,
+            capture_seen: None,
+            captured: None,
         }
     }
 
@@ -115,6 +139,7 @@ impl Cam {
         match self.start {
             CamStart::Immediate => Some(master),
             CamStart::Input(_) => input.then_some(master),
+            CamStart::Capture(_) => self.captured,
             CamStart::MasterPosition(at, direction) => {
                 let up = previous < at && at <= master;
                 let down = previous > at && at >= master;
@@ -161,7 +186,7 @@ impl Cam {
         if self.master_absolute {
             x
         } else {
-            x + self.table.master_range().0
+            x + self.x0
         }
     }
 
@@ -189,13 +214,11 @@ impl Cam {
             return CamStep::Wait;
         }
         let x = self.coordinate(master.p);
-        let (x0, x1) = self.table.master_range();
-        let (y0, y1) = self.table.slave_range();
+        let (x0, x1, rise) = (self.x0, self.x1, self.rise);
         let at_rest = |p: f64| MotionState { p, v: 0.0, a: 0.0 };
         let (k, wrapped) = if self.periodic {
-            let period = x1 - x0;
-            let k = ((x - x0) / period).floor();
-            (k, x - k * period)
+            let k = self.period_of(x);
+            (k, x - k * (x1 - x0))
         } else if x < x0 || x > x1 {
             // HMC single cam: leaving the table cancels the cam; the slave stands at the end.
             let s = self.table.sample(x.clamp(x0, x1));
@@ -207,7 +230,7 @@ impl Cam {
             self.cycle = k as i64;
             if self.loop_count > 0 && self.cycle >= i64::from(self.loop_count) {
                 // NMC loop count / HMC CancelREPCam: end exactly at the last period's end.
-                let y = y0 + f64::from(self.loop_count) * (y1 - y0);
+                let y = self.table.slave_range().0 + f64::from(self.loop_count) * rise;
                 return CamStep::End(at_rest(self.slave_at(y)));
             }
         }
@@ -215,10 +238,50 @@ impl Cam {
         let xv = master.v * self.per_master_unit;
         let xa = master.a * self.per_master_unit;
         CamStep::Follow(MotionState {
-            p: self.slave_at(s.y + k * (y1 - y0)),
+            p: self.slave_at(s.y + k * rise),
             v: self.slave_scaling * s.dy * xv,
             a: self.slave_scaling * (s.ddy * xv * xv + s.dy * xa),
         })
+    }
+
+    /// The period of table coordinate `x`: floor((x − x0) / period), from the cache when `x`
+    /// lies well inside the last period found. The margin (10⁻⁹ of the magnitudes) is far
+    /// above the rounding of the division and of the bounds, so the cached k is the one the
+    /// division would give; where the period is too small for a margin the range is empty.
+    #[inline]
+    fn period_of(&mut self, x: f64) -> f64 {
+        let (k, lo, hi) = self.period_cache;
+        if lo <= x && x < hi {
+            return k;
+        }
+        let period = self.x1 - self.x0;
+        let k = ((x - self.x0) / period).floor();
+        let margin = 1e-9 * (x.abs() + self.x0.abs() + period);
+        self.period_cache = (
+            k,
+            self.x0 + k * period + margin,
+            self.x0 + (k + 1.0) * period - margin,
+        );
+        k
+    }
+
+    /// The capture channel that starts the cam, while it waits for it.
+    pub fn waits_for_capture(&self) -> Option<u8> {
+        match self.start {
+            CamStart::Capture(ch) if self.phase == CouplingPhase::Waiting => Some(ch),
+            _ => None,
+        }
+    }
+
+    /// The start channel has latched `count` edges since it was armed, the newest at master
+    /// position `latched` (by the cam's master source); None: the channel is not armed. The
+    /// first call sets what counts as old; a later, higher count is a new edge.
+    pub fn offer_capture(&mut self, count: Option<u32>, latched: f64) {
+        let count = count.unwrap_or(0);
+        match self.capture_seen {
+            Some(seen) if count > seen => self.captured = Some(latched),
+            _ => self.capture_seen = Some(count),
+        }
     }
 
     /// Before [`Cam::step`] of a waiting cam: start it if its condition holds this tick.

@@ -34,6 +34,10 @@ pub struct MasterView {
 }
 
 impl MasterView {
+    pub fn enabled(&self) -> bool {
+        self.enabled
+    }
+
     pub fn read(master: &Axis) -> MasterView {
         let c = master.commanded();
         MasterView {
@@ -179,11 +183,33 @@ impl Couplings {
         if self.gantry_slaves(master).next().is_some() {
             return Err(EngineError::GantryExists { master });
         }
+        if c.require_disabled {
+            // HIMC EnableGantryPair (digest 004 §2.6, TV 38): both axes must be disabled.
+            for &a in std::iter::once(&master).chain(&c.slaves) {
+                let axis = axis_ref(env.axes, a)?;
+                if axis.is_enabled() {
+                    return Err(invalid(
+                        "every axis of the pair must be disabled (HIMC EnableGantryPair)",
+                    ));
+                }
+                if !axis.can_move() {
+                    return Err(invalid("every axis of the pair must be able to move"));
+                }
+            }
+        }
         for (i, &slave) in c.slaves.iter().enumerate() {
             if c.slaves.iter().take(i).any(|&s| s == slave) {
                 return Err(invalid("a slave is listed twice"));
             }
-            self.check_new(env.axes, master, slave)?;
+            if c.require_disabled {
+                if slave == master {
+                    return Err(EngineError::CoupledToItself { axis: slave });
+                }
+                axis_ref(env.axes, slave)?.check_unclaimed()?;
+                self.check_no_loop(master, slave)?;
+            } else {
+                self.check_new(env.axes, master, slave)?;
+            }
         }
         for &slave in &c.slaves {
             let law = GantrySlave::new(
@@ -231,6 +257,13 @@ impl Couplings {
         }
         self.reorder(env.axes.len());
         Ok(Reply::Done)
+    }
+
+    /// The slaves of `master`'s gantry, if it is a gantry master: a power command on the
+    /// master (`enable`, `disable`) applies to them too (HIMC §7.1.1, TV 39: enabling the RHS
+    /// enables both).
+    pub(crate) fn gantry_power_gang(&self, master: AxisIndex) -> Vec<AxisIndex> {
+        self.gantry_slaves(master).collect()
     }
 
     fn gantry_slaves(&self, master: AxisIndex) -> impl Iterator<Item = AxisIndex> + '_ {

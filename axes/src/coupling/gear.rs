@@ -40,6 +40,33 @@ pub struct Gear {
     master: f64,
     /// The slave's setpoint of the last tick.
     last: MotionState,
+    /// HMC_SetGearPhaseOffset: the setpoints pass through this delay line.
+    delay: Option<Delay>,
+}
+
+/// Most servo periods a gear's slave may run behind (HMC_SetGearPhaseOffset: 0~128).
+pub const MAX_PHASE_OFFSET: u32 = 128;
+
+/// A delay line of setpoints (HMC_SetGearPhaseOffset, digest 000 §4.3: "delays the slave
+/// trajectory by 0~128 servo cycles"): each tick's setpoint comes out `len` ticks later; until
+/// the first does, the slave holds where the gear found it. Allocated once at `gear_in`.
+#[derive(Clone, Debug)]
+struct Delay {
+    ring: Box<[MotionState]>,
+    head: usize,
+}
+
+impl Delay {
+    fn pass(&mut self, next: MotionState) -> MotionState {
+        let len = self.ring.len();
+        match self.ring.get_mut(self.head) {
+            Some(slot) => {
+                self.head = (self.head + 1) % len;
+                std::mem::replace(slot, next)
+            }
+            None => next,
+        }
+    }
 }
 
 impl Gear {
@@ -64,9 +91,34 @@ impl Gear {
             slave_anchor: slave.p,
             master,
             last: slave,
+            delay: None,
         };
         gear.engage(0.0);
         gear
+    }
+
+    /// Run the slave `ticks` servo periods behind (≤ [`MAX_PHASE_OFFSET`], checked by the
+    /// caller); 0 is none.
+    pub fn with_phase_offset(mut self, ticks: u32) -> Gear {
+        if ticks > 0 {
+            let rest = MotionState {
+                p: self.last.p,
+                v: 0.0,
+                a: 0.0,
+            };
+            self.delay = Some(Delay {
+                ring: vec![rest; ticks as usize].into_boxed_slice(),
+                head: 0,
+            });
+        }
+        self
+    }
+
+    /// The phase offset in servo periods.
+    pub fn phase_offset(&self) -> u32 {
+        self.delay
+            .as_ref()
+            .map_or(0, |d| u32::try_from(d.ring.len()).unwrap_or(u32::MAX))
     }
 
     /// The ratio it runs at (or engages to).
@@ -133,6 +185,15 @@ impl Gear {
     /// This tick's slave setpoint for the master's state `master` (already this tick's) and the
     /// master's raw position of the last tick `raw_previous`.
     pub fn step(&mut self, master: MotionState, raw_previous: f64, dt: f64) -> MotionState {
+        let next = self.advance(master, raw_previous, dt);
+        match &mut self.delay {
+            Some(delay) => delay.pass(next),
+            None => next,
+        }
+    }
+
+    /// [`Gear::step`] before the phase offset.
+    fn advance(&mut self, master: MotionState, raw_previous: f64, dt: f64) -> MotionState {
         let m = self.filter(master, self.master, raw_previous);
         self.master = m.p;
         let r = self.ratio;

@@ -15,6 +15,7 @@
 //! ramp is followed by the slave, so the two stay in ratio (decisions.md, issue 12 gear).
 
 mod cam;
+mod cam_event;
 mod gantry;
 mod gear;
 mod handwheel;
@@ -35,6 +36,7 @@ use crate::param::ParamId;
 use crate::profile::MotionState;
 use crate::status::{CouplingKind, CouplingPhase, CouplingStatus};
 pub use cam::{Cam, CamStart, CamStep};
+use cam_event::cam_capture_start;
 pub use gantry::GantrySlave;
 pub use gear::{Clutch, Gear};
 pub use handwheel::Handwheel;
@@ -108,6 +110,10 @@ impl Coupling {
             gantry: match &self.law {
                 Law::Gantry(g) => Some(g.status()),
                 _ => None,
+            },
+            phase_offset: match &self.law {
+                Law::Gear(g) => g.phase_offset(),
+                _ => 0,
             },
         }
     }
@@ -245,6 +251,12 @@ impl Couplings {
             return Err(EngineError::CoupledToItself { axis: slave });
         }
         s.check_can_couple()?;
+        self.check_no_loop(master, slave)
+    }
+
+    /// Refuse a coupling of `slave` to `master` when the master follows the slave down its
+    /// chain.
+    fn check_no_loop(&self, master: AxisIndex, slave: AxisIndex) -> Result<(), EngineError> {
         // Walk up from the master through every master of each coupling (two at most): with
         // no loop so far, each axis is reached at most once per path, and the paths end
         // within as many steps as there are couplings; the stack is bounded by twice that.
@@ -296,7 +308,15 @@ impl Couplings {
             (None, None) => Clutch::Immediate,
         };
         let (m, slave) = positions(env, c.master, c.slave, c.master_source)?;
-        let gear = Gear::new(numerator, denominator, clutch, c.direction, m, slave);
+        if c.phase_offset > gear::MAX_PHASE_OFFSET {
+            return Err(EngineError::InvalidArgument {
+                name: "phase_offset",
+                value: f64::from(c.phase_offset),
+                reason: "0 to 128 servo periods (HMC_SetGearPhaseOffset)",
+            });
+        }
+        let gear = Gear::new(numerator, denominator, clutch, c.direction, m, slave)
+            .with_phase_offset(c.phase_offset);
         self.insert(
             env,
             (c.master, c.slave, c.master_source),
@@ -343,8 +363,18 @@ impl Couplings {
                 }
                 CamStart::Input(ch)
             }
-            (None, None) => CamStart::Immediate,
+            (None, None) => match c.start_capture {
+                Some(ch) => cam_capture_start(ch)?,
+                None => CamStart::Immediate,
+            },
         };
+        if c.start_capture.is_some() && !matches!(start, CamStart::Capture(_)) {
+            return Err(EngineError::InvalidArgument {
+                name: "start_capture",
+                value: c.start_capture.map_or(0.0, f64::from),
+                reason: "give one start: a position, an input or a capture channel",
+            });
+        }
         let (m, slave) = positions(env, c.master, c.slave, c.master_source)?;
         let mut cam = Cam::new(c, table, start);
         cam.start_if_immediate(m, slave.p);
@@ -683,6 +713,12 @@ impl Couplings {
                 }
             }
             Law::Gantry(g) => match gantry_master {
+                // Both sides off (a HIMC pair made at rest, TV 39): nothing to follow; the
+                // slave is re-anchored when the pair is enabled.
+                Some(view) if !view.enabled() && !slave.is_enabled() => {
+                    g.refused();
+                    (None, false)
+                }
                 Some(view) => (Some(g.step(view, slave)), false),
                 None => (None, false),
             },

@@ -27,6 +27,8 @@ pub struct CamTable {
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Piece {
     x0: f64,
+    /// The span's end: a sample from the last span checks x0 ≤ x < x1 on the piece alone.
+    x1: f64,
     inv_h: f64,
     y0: f64,
     c1: f64,
@@ -40,6 +42,7 @@ impl Piece {
         let d = y1 - y0;
         Piece {
             x0,
+            x1,
             inv_h: 1.0 / h,
             y0,
             c1: h * m0,
@@ -48,6 +51,7 @@ impl Piece {
         }
     }
 
+    #[inline]
     fn sample(&self, x: f64) -> CamSample {
         let t = ((x - self.x0) * self.inv_h).clamp(0.0, 1.0);
         let (c1, c2, c3) = (self.c1, self.c2, self.c3);
@@ -169,14 +173,15 @@ impl CamTable {
 
     /// [`CamTable::sample`] starting from the span of the last sample (`span`, updated): O(1)
     /// while the master stays in it, a binary search when it leaves.
+    #[inline]
     pub fn sample_from(&self, x: f64, span: &mut usize) -> CamSample {
-        let inside = match (self.xs.get(*span), self.xs.get(*span + 1)) {
-            (Some(&a), Some(&b)) => a <= x && x < b,
-            _ => false,
-        };
-        if !inside {
-            *span = self.span_of(x);
+        // Piece i spans xs[i] to xs[i + 1], so this is the search's own test, one load away.
+        if let Some(piece) = self.pieces.get(*span) {
+            if piece.x0 <= x && x < piece.x1 {
+                return piece.sample(x);
+            }
         }
+        *span = self.span_of(x);
         self.sample_span(*span, x)
     }
 

@@ -261,6 +261,30 @@ impl Engine {
 
     /// A command for one axis, from a front-end.
     fn apply_axis_command(&mut self, command: AxisCommand) -> Result<Reply, EngineError> {
+        let (gang, disable) = match &command {
+            AxisCommand::Enable(Enable { axis }) => {
+                (self.couplings.gantry_power_gang(*axis), false)
+            }
+            AxisCommand::Disable(Disable { axis }) => {
+                (self.couplings.gantry_power_gang(*axis), true)
+            }
+            _ => (Vec::new(), false),
+        };
+        let reply = self.apply_power_or_other(command)?;
+        // A gantry master's power goes to its slaves too (HIMC §7.1.1, digest 004 TV 39).
+        for axis in gang {
+            self.apply_power_or_other(if disable {
+                AxisCommand::Disable(Disable { axis })
+            } else {
+                AxisCommand::Enable(Enable { axis })
+            })?;
+        }
+        Ok(reply)
+    }
+
+    /// One axis command, through its drive first for power commands on an engine-mastered
+    /// drive.
+    fn apply_power_or_other(&mut self, command: AxisCommand) -> Result<Reply, EngineError> {
         if let Some(reply) = self.route_power(&command) {
             return reply;
         }
@@ -346,7 +370,12 @@ impl Engine {
     /// A gear or cam command (issue 12), applied to the coupling registry with the axes and
     /// the inputs it may need.
     fn apply_coupling_command(&mut self, command: CouplingCommand) -> Result<Reply, EngineError> {
-        self.with_couplings(|couplings, env| couplings.apply(env, command))
+        let reply = self.with_couplings(|couplings, env| couplings.apply(env, command));
+        if self.couplings.waits_for_captures() {
+            // A cam waiting for a capture takes the latches it finds now as old.
+            self.couplings.offer_captures(&self.triggers);
+        }
+        reply
     }
 
     /// Lend the coupling registry what a coupling command or stage 3 touches: the axes, the
@@ -718,6 +747,10 @@ impl Engine {
     /// their slaves, and each slave is fed from its master just before it steps: a slave
     /// follows its master's state of this same tick (`crate::coupling`).
     fn step_axes(&mut self) {
+        if self.couplings.waits_for_captures() {
+            // HMC cam event start: the latches of the last tick's stage 3b.
+            self.couplings.offer_captures(&self.triggers);
+        }
         self.with_couplings(|couplings, env| couplings.step_axes(env));
     }
 

@@ -87,4 +87,7 @@ pub struct CouplingStatus {
     /// Gantry slave: offset, deviation, limits and the pair view.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub gantry: Option<GantryStatus>,
+    /// Gear: servo periods the slave runs behind (HMC_GetGearPhaseOffset).
+    #[serde(default)]
+    pub phase_offset: u32,
 }

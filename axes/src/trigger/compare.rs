@@ -216,6 +216,12 @@ impl Compare {
         }
     }
 
+    /// A manual output (NMC `Comp2DimensOnoff` 2): fired as a position would fire it, counted
+    /// in `count`, no position used up; the minimum interval does not hold it back.
+    pub(super) fn fire_now(&mut self, env: &mut Env) {
+        self.fire(env);
+    }
+
     fn fire(&mut self, env: &mut Env) {
         let output = self.status.output;
         match self.mode {

@@ -108,6 +108,17 @@ impl Triggers {
                 channel_in_range("compare", c.channel, COMPARE_CHANNELS)?;
                 self.stop_compare(env, c.channel);
             }
+            TriggerCommand::CompareFire(c) => {
+                channel_in_range("compare", c.channel, COMPARE_CHANNELS)?;
+                let compare = self
+                    .compares
+                    .iter_mut()
+                    .find(|k| k.channel() == c.channel)
+                    .ok_or_else(|| invalid("compare", c.channel, "not started"))?;
+                compare.fire_now(env);
+                let axis = compare.status().axis;
+                self.refresh_counts(env, axis);
+            }
         }
         Ok(Reply::Done)
     }

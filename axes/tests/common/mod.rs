@@ -484,5 +484,6 @@ pub fn gear_in_of(master: u16, slave: u16) -> Command {
         clutch_distance: None,
         acceleration: None,
         direction: None,
+        phase_offset: 0,
     })
 }

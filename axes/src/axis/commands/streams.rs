@@ -128,6 +128,13 @@ impl Axis {
     /// Whether the axis may become a coupling's slave now: it can move (enabled, no fault),
     /// belongs to no group and follows no other master.
     pub(crate) fn check_can_couple(&self) -> Result<(), EngineError> {
+        self.check_unclaimed()?;
+        self.check_can_move()
+    }
+
+    /// Whether no coupling, handwheel or group claims the axis (what a coupling needs, power
+    /// aside).
+    pub(crate) fn check_unclaimed(&self) -> Result<(), EngineError> {
         if let Some(master) = self.coupled {
             return Err(EngineError::AlreadyCoupled {
                 axis: self.index,
@@ -143,7 +150,7 @@ impl Axis {
                 group,
             });
         }
-        self.check_can_move()
+        Ok(())
     }
 
     /// Make `source` the axis's command source if the axis may move `toward` (the sign is the
