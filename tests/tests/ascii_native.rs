@@ -64,7 +64,11 @@ mod transcript {
         axis_parameters,
         homing_gpio_errors,
         strings_math,
-        groups
+        groups,
+        gear_gantry,
+        group_settings,
+        slaves,
+        tables_triggers
     );
 }
 

@@ -220,6 +220,28 @@ impl Native {
         }
     }
 
+    /// The reply to a call whose batch ended in an object read ([`Then::Object`]): its value
+    /// as the function returns it; a read that did not give an integer is the HMPL internal
+    /// error.
+    pub fn finish_object(
+        &self,
+        pending: &Pending,
+        replies: &[axes::Reply],
+        registers: &mut Registers,
+    ) -> String {
+        let outcome = match (pending.then, replies.last()) {
+            (Then::Object(how), Some(axes::Reply::Object { value })) => how.outcome(value),
+            _ => None,
+        };
+        match outcome {
+            Some(o) => {
+                self.counters.calls_ok.inc();
+                self.text(o)
+            }
+            None => self.fail(pending.function, HMPL_INTERNAL_ERROR, registers),
+        }
+    }
+
     /// The reply to `MoveHome` awaited until homing ended: 0 if the axis is homed, else the
     /// engine's homing failure (`eERR_AXIS_DRIVE_HOME_FAILED`), latched.
     pub fn finish_homing(
@@ -251,7 +273,7 @@ fn success(ret: Ret) -> Outcome {
         Ret::Void => Outcome::Void,
         Ret::Double => Outcome::Double(0.0),
         Ret::Int64 => Outcome::Int64(0),
-        Ret::Int | Ret::Array6 => Outcome::Int(0),
+        Ret::Int | Ret::Status | Ret::Array6 => Outcome::Int(0),
     }
 }
 
@@ -260,6 +282,7 @@ fn success(ret: Ret) -> Outcome {
 fn failure(ret: Ret, code: u32) -> Outcome {
     match ret {
         Ret::Int => Outcome::code(code),
+        Ret::Status => Outcome::Int(-1),
         Ret::Double => Outcome::Double(0.0),
         Ret::Int64 => Outcome::Int64(-1),
         Ret::Array6 => Outcome::Array(code as i32, [0.0; 6]),

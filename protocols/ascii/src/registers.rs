@@ -1,6 +1,8 @@
 //! [`Registers`]: what the controller keeps beside the engine for HMPL: the last error of the
-//! system, of each axis and of each group (chapter 18), and the axis settings the engine does
-//! not hold (buffer mode, op mode, the homed flag `SetHomedStatus` sets).
+//! system, of each axis and of each group (chapter 18), and the settings the engine does not
+//! hold (axis buffer and op modes, the homed flag `SetHomedStatus` sets, group members,
+//! profiles and modes, gear links, gantry pairs, slave output images, analog conversion types,
+//! the user table, PT, touch-probe and filter settings).
 
 use std::collections::BTreeMap;
 
@@ -29,6 +31,49 @@ pub struct Registers {
     pub group_profiles: BTreeMap<u16, ProfileValues>,
     /// `SetGrpCoordSys` by group: the `CS_*` mask (absent: `CS_MCS`, 0).
     pub group_coordinate_systems: BTreeMap<u16, i64>,
+    /// `SetGrpAngMotionProfile` by group (absent: the defaults, TV 49).
+    pub group_angular_profiles: BTreeMap<u16, ProfileValues>,
+    /// `SetGrpBufferMode` by group, `BM_*` (absent: `BM_BUFF`).
+    pub group_buffer_modes: BTreeMap<u16, i64>,
+    /// `SetGrpTransMode` by group, `TM_*` (absent: `TM_NONE`).
+    pub group_transition_modes: BTreeMap<u16, i64>,
+    /// `SetGrpTransPrm` by group.
+    pub group_transition_parameters: BTreeMap<u16, TransitionParameters>,
+    /// `SetGrpCoordTrans` by (group, `CS_*` mask): {X, Y, Z, A, B, C}.
+    pub group_transforms: BTreeMap<(u16, i64), [f64; 6]>,
+    /// `SetGrpLookAheadPrm` by (group, prm_id).
+    pub group_lookahead: BTreeMap<(u16, u8), f64>,
+    /// `SetGrpQueueSize` by group: n of 2ⁿ entries.
+    pub group_queue_sizes: BTreeMap<u16, u8>,
+    /// The digital outputs (0x60FE:1) the controller writes to each drive (`SetSlvGPO`).
+    pub slave_outputs: BTreeMap<u16, u32>,
+    /// `SetSlvAIType` / `SetSlvAOType` by analog channel (absent: `HMPL_DAC_NONE`).
+    pub ai_types: BTreeMap<u16, i64>,
+    pub ao_types: BTreeMap<u16, i64>,
+    /// `SetSlvAOMonitor` by analog output: the variable id.
+    pub ao_monitors: BTreeMap<u16, i64>,
+    /// `SetSlvAOParam` by analog output: scale and offset (absent: 1, 0).
+    pub ao_scales: BTreeMap<u16, (f64, f64)>,
+    /// `ForceWritePDO` objects (slave, index, subindex) not yet released.
+    pub forced_pdos: std::collections::BTreeSet<(i64, i64, i64)>,
+    /// The user table (§11.1), sparse: an entry not here is 0.
+    pub user_table: BTreeMap<u32, f64>,
+    /// What `SaveUserTable` wrote (the controller's disk), sparse.
+    pub saved_user_table: BTreeMap<u32, f64>,
+    /// `SetPT_*` by axis.
+    pub pt: BTreeMap<u16, PtSettings>,
+    /// `SetTouchProbeNFunc` by (axis, probe 0/1).
+    pub probe_functions: BTreeMap<(u16, u8), ProbeFunction>,
+    /// `SetAxisVsf`, `SetAxisInShape` (by axis), `SetGrpInShape` (by group).
+    pub filters: BTreeMap<(Filter, u16), FilterSettings>,
+    /// `EnableGantryPair`: RHS → LHS (§7.2).
+    pub gantry_pairs: BTreeMap<u16, u16>,
+    /// Axes `EnableComp` switched on (`IsCompActive`).
+    pub compensating: std::collections::BTreeSet<u16>,
+    /// `EnableGear` links, slave → master (§6.2); `DisableGear` removes them.
+    pub gear_links: BTreeMap<u16, u16>,
+    /// The last `GearIn` ratio by slave (`GetGearRatio` after `GearOut`).
+    pub gear_ratios: BTreeMap<u16, f64>,
 }
 
 impl Registers {
@@ -46,6 +91,50 @@ impl Registers {
             _ => self.system_error = code,
         }
     }
+}
+
+/// The group's transition parameters (§8.3.26): trans_vel, trans_dis, trans_dev, trans_curv.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TransitionParameters {
+    pub velocity: f64,
+    pub distance: f64,
+    pub deviation: f64,
+    pub curvature: f64,
+}
+
+/// `SetPT_*` of one axis.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PtSettings {
+    pub start: Option<f64>,
+    pub end: Option<f64>,
+    pub interval: Option<f64>,
+    /// ns (absent: one servo period).
+    pub pulse_ns: Option<i64>,
+}
+
+/// `SetTouchProbeNFunc` of one probe: input (0 external, 1 Z), continuous, edge (0 rising).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ProbeFunction {
+    pub input: i64,
+    pub continuous: bool,
+    pub falling: bool,
+}
+
+/// A filter's frequency (Hz), damping ratio and shaper type as set.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FilterSettings {
+    pub frequency: f64,
+    pub damping: f64,
+    /// `SHAPER_NORMAL` 1, `SHAPER_ROBUST` 0 (VSF: none).
+    pub shaper: Option<i64>,
+}
+
+/// Which filter.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Filter {
+    AxisVsf,
+    AxisInShape,
+    GroupInShape,
 }
 
 #[cfg(test)]

@@ -32,6 +32,9 @@ pub enum Ty {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Ret {
     Int,
+    /// An `int` that is 0 on success and −1 on any failure, the code latched (the GPIO and
+    /// SDO/PDO functions, §9, §17.2).
+    Status,
     Double,
     Int64,
     /// `int` return code plus the 6-element output array.
@@ -153,6 +156,35 @@ pub enum Then {
     Succeed,
     /// `MoveHome` with `move_home_waits`: reply once axis N's homing has ended.
     AwaitHoming(u16),
+    /// The batch's last reply is an object read (`read_object`): reply its value as this.
+    Object(ObjectReply),
+}
+
+/// How a function replies an object it read (chapters 9, 17).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ObjectReply {
+    /// The integer value (`ReadSDO`, `ReadPDO`: `int64`).
+    Int64,
+    /// Bit N of it as a BOOL (`GetSlvGPI`).
+    Bit(u32),
+    /// Its bits from N on as an `int` mask (`GetSlvAllGPI…`).
+    BitsFrom(u32),
+}
+
+impl ObjectReply {
+    /// The reply to `value`; `None` if it is no integer.
+    pub fn outcome(self, value: &axes::od::Value) -> Option<crate::reply::Outcome> {
+        use crate::reply::Outcome;
+        let v = value.as_i64().or_else(|| match value {
+            axes::od::Value::Bool(b) => Some(i64::from(*b)),
+            _ => None,
+        })?;
+        Some(match self {
+            ObjectReply::Int64 => Outcome::Int64(v),
+            ObjectReply::Bit(n) => Outcome::bool(n < 64 && (v >> n) & 1 == 1),
+            ObjectReply::BitsFrom(n) => Outcome::Int(v.checked_shr(n).unwrap_or(0) as u32 as i32),
+        })
+    }
 }
 
 /// A handler's answer.

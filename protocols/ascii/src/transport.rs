@@ -60,6 +60,11 @@ impl Server {
             Step::Engine(commands, pending) => (commands, pending),
         };
         let result = match self.engine.call_batch_async(commands).await {
+            Ok(replies) if matches!(pending.then, Then::Object(_)) => {
+                return self
+                    .native
+                    .finish_object(&pending, &replies, &mut self.registers());
+            }
             Ok(_) => Ok(()),
             Err(CallError::Engine(e)) => Err(Some(e)),
             Err(_) => Err(None),

@@ -11,12 +11,13 @@ const A: &[Ty] = &[Ty::Int];
 const AD: &[Ty] = &[Ty::Int, Ty::Double];
 
 pub static ROWS: &[Function] = &[
+    // §7.1.1, TV 39: either axis of a gantry pair enables both.
     row("Enable", "5.2.1", A, Ret::Int, Axis, |cx, a| {
-        simple(cx, a, "enable")
+        paired(cx, a, "enable")
     }),
     // §5.2.2: de-energizes and clears the planned path (the engine's disable clears the FIFO).
     row("Disable", "5.2.2", A, Ret::Int, Axis, |cx, a| {
-        simple(cx, a, "disable")
+        paired(cx, a, "disable")
     }),
     row("Reset", "5.2.3", A, Ret::Int, Axis, |cx, a| {
         simple(cx, a, "reset")
@@ -62,16 +63,59 @@ fn simple(cx: &mut Ctx<'_>, args: &Args, kind: &str) -> Plan {
     }
 }
 
+/// `kind` on the axis, and on its gantry partner if it has one (RHS first).
+fn paired(cx: &mut Ctx<'_>, args: &Args, kind: &str) -> Plan {
+    let axis = match axis_of(cx, args) {
+        Ok((axis, _)) => axis,
+        Err(code) => return Plan::Fail(code),
+    };
+    let axes = match super::gantry::pair_of(cx, axis) {
+        Some((rhs, lhs)) => vec![rhs, lhs],
+        None => vec![axis],
+    };
+    let batch: Result<Vec<axes::Command>, _> = axes
+        .into_iter()
+        .map(|a| serde_json::from_value(json!({"type": kind, "axis": a})))
+        .collect();
+    match batch {
+        Ok(b) => Plan::Engine(b, crate::table::Then::Succeed),
+        Err(_) => Plan::Fail(mcemu_dialects::himc::system::HMPL_INTERNAL_ERROR),
+    }
+}
+
 fn motion(cx: &mut Ctx<'_>, args: &Args, mut command: Value) -> Plan {
     let axis = match axis_of(cx, args) {
         Ok((axis, _)) => axis,
         Err(code) => return Plan::Fail(code),
     };
+    // §7.1: a gantry pair moves through its RHS axis; the engine's gantry is engaged with the
+    // first move once both axes are enabled.
+    let mut batch = Vec::new();
+    if let Some((rhs, lhs)) = super::gantry::pair_of(cx, axis) {
+        if axis == lhs {
+            return Plan::Fail(super::axis_error(axis, "eERR_AXIS_CMD_INVALID_GANTRY_MODE"));
+        }
+        let both = [rhs, lhs].iter().all(|&a| super::gear::enabled(cx, a));
+        if both && !super::gantry::engaged(cx, rhs) {
+            match serde_json::from_value(
+                json!({"type": "gantry_enable", "master": rhs, "slaves": [lhs]}),
+            ) {
+                Ok(c) => batch.push(c),
+                Err(_) => return Plan::Fail(mcemu_dialects::himc::system::HMPL_INTERNAL_ERROR),
+            }
+        }
+    }
     let buffered = cx.registers.buffer_modes.get(&axis) == Some(&1);
     if let Value::Object(fields) = &mut command {
         fields.insert("axis".into(), json!(axis));
         let mode = if buffered { "buffered" } else { "aborting" };
         fields.insert("buffer_mode".into(), json!(mode));
     }
-    engine(command)
+    match serde_json::from_value(command) {
+        Ok(c) => {
+            batch.push(c);
+            Plan::Engine(batch, crate::table::Then::Succeed)
+        }
+        Err(_) => Plan::Fail(mcemu_dialects::himc::system::HMPL_INTERNAL_ERROR),
+    }
 }

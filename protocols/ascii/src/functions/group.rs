@@ -5,14 +5,15 @@
 //! The 2-D moves address the first two group coordinates; the others hold their place.
 
 use axes::status::{GroupState, GroupStatus};
-use axes::Command;
 use mcemu_dialects::himc::constants::coordinate_system_name;
-use mcemu_dialects::himc::group::{self as profile, Profile, ProfileValues};
-use mcemu_dialects::himc::group_errors::GroupErrorRow;
-use mcemu_dialects::himc::system::{HMPL_ARG_OUT_OF_RANGE, HMPL_INTERNAL_ERROR};
-use serde_json::{json, Value};
+use mcemu_dialects::himc::group::{Profile, ProfileValues};
+use mcemu_dialects::himc::system::HMPL_ARG_OUT_OF_RANGE;
+use serde_json::json;
 
 use super::engine;
+use super::group_state::{
+    apply_profile, group_error, group_id, modes, profile_of, regroup, status, target,
+};
 use crate::reply::Outcome;
 use crate::table::{
     row, Addresses::Axis, Addresses::Group, Args, Ctx, Function, Plan, Ret, Then, Ty,
@@ -28,53 +29,6 @@ const GDDD: &[Ty] = &[Ty::Int, Ty::Double, Ty::Double, Ty::Double];
 /// reply.
 const POSE: &[Ty] = &[Ty::Int, Ty::Int, Ty::OutArray6];
 const GDDDD: &[Ty] = &[Ty::Int, Ty::Double, Ty::Double, Ty::Double, Ty::Double];
-
-fn group_id(args: &Args) -> Result<u16, u32> {
-    u16::try_from(args.int(0)).map_err(|_| HMPL_ARG_OUT_OF_RANGE)
-}
-
-fn group_error(group: u16, name: &str) -> u32 {
-    GroupErrorRow::by_name(name).map_or(HMPL_INTERNAL_ERROR, |e| {
-        e.error().code(u8::try_from(group).unwrap_or(u8::MAX))
-    })
-}
-
-fn status<'a>(cx: &'a Ctx<'_>, group: u16) -> Option<&'a GroupStatus> {
-    cx.snapshot.groups.iter().find(|g| g.group == group)
-}
-
-fn command(value: Value) -> Result<Command, u32> {
-    serde_json::from_value(value).map_err(|_| HMPL_INTERNAL_ERROR)
-}
-
-/// The batch that makes the engine's group `group` have `members` (none: no group), with its
-/// motion profile.
-fn regroup(cx: &Ctx<'_>, group: u16, members: &[u16]) -> Result<Vec<Command>, u32> {
-    let mut batch = Vec::new();
-    if status(cx, group).is_some() {
-        batch.push(command(json!({"type": "group_delete", "group": group}))?);
-    }
-    if !members.is_empty() {
-        batch.push(command(
-            json!({"type": "group_create", "group": group, "axes": members}),
-        )?);
-        let values = profile_of(cx, group);
-        for (name, value) in profile::parameters(Profile::Linear, &values) {
-            batch.push(command(json!({
-                "type": "group_set_parameter", "group": group, "name": name, "value": value,
-            }))?);
-        }
-    }
-    Ok(batch)
-}
-
-fn profile_of(cx: &Ctx<'_>, group: u16) -> ProfileValues {
-    cx.registers
-        .group_profiles
-        .get(&group)
-        .copied()
-        .unwrap_or(profile::defaults(Profile::Linear))
-}
 
 /// §8.3.1, TV 50–51: append an axis; the 10th, or one already in a group, is refused.
 fn add_axis(cx: &mut Ctx<'_>, args: &Args) -> Plan {
@@ -158,18 +112,6 @@ fn simple(cx: &mut Ctx<'_>, args: &Args, kind: &str) -> Plan {
     }
 }
 
-/// The group's coordinates, the first `given` replaced (absolute) or added to (relative).
-fn target(s: &GroupStatus, given: &[f64], relative: bool) -> Vec<f64> {
-    let n = usize::from(s.axis_count);
-    (0..n)
-        .map(|i| match given.get(i) {
-            Some(&v) => v,
-            None if relative => 0.0,
-            None => s.coordinates.get(i).copied().unwrap_or(0.0),
-        })
-        .collect()
-}
-
 fn line(cx: &mut Ctx<'_>, args: &Args, dims: usize, relative: bool) -> Plan {
     let group = match group_id(args) {
         Ok(g) => g,
@@ -183,11 +125,13 @@ fn line(cx: &mut Ctx<'_>, args: &Args, dims: usize, relative: bool) -> Plan {
         return Plan::Fail(group_error(group, "eERR_CRD_CMD_LIN_INVALID_PARAM"));
     }
     let point = target(s, &given, relative);
-    if relative {
-        engine(json!({"type": "move_linear_relative", "group": group, "distance": point}))
+    let mut move_ = if relative {
+        json!({"type": "move_linear_relative", "group": group, "distance": point})
     } else {
-        engine(json!({"type": "move_linear_absolute", "group": group, "position": point}))
-    }
+        json!({"type": "move_linear_absolute", "group": group, "position": point})
+    };
+    modes(cx, group, &mut move_);
+    engine(move_)
 }
 
 /// An arc in the XY plane: `mode` `center` or `border` through `aux`, to `end`.
@@ -208,7 +152,7 @@ fn arc(cx: &mut Ctx<'_>, args: &Args, mode: &str, direction: &str, turns: u32) -
     if s.axis_count < 2 || values.iter().any(|v| !v.is_finite()) {
         return Plan::Fail(group_error(group, "eERR_CRD_CMD_CIRC_INVALID_PARAM"));
     }
-    engine(json!({
+    let mut move_ = json!({
         "type": "move_circular_absolute",
         "group": group,
         "mode": mode,
@@ -216,7 +160,9 @@ fn arc(cx: &mut Ctx<'_>, args: &Args, mode: &str, direction: &str, turns: u32) -
         "end_point": target(s, &values[2..], false),
         "direction": direction,
         "turns": turns,
-    }))
+    });
+    modes(cx, group, &mut move_);
+    engine(move_)
 }
 
 /// §8.2.17, TV 45–46: `turns` ≥ 0 CCW, < 0 CW; 0 and ±1 sweep less than a turn, each further
@@ -247,23 +193,7 @@ fn motion_profile(cx: &mut Ctx<'_>, args: &Args) -> Plan {
         deceleration: args.double(3),
         smooth_ms: args.double(4),
     };
-    if let Err(e) = profile::check(Profile::Linear, &values) {
-        return Plan::Fail(e.code(u8::try_from(group).unwrap_or(u8::MAX)));
-    }
-    cx.registers.group_profiles.insert(group, values);
-    if status(cx, group).is_none() {
-        return Plan::Done(Outcome::Int(0));
-    }
-    let batch: Result<Vec<Command>, u32> = profile::parameters(Profile::Linear, &values)
-        .into_iter()
-        .map(|(name, value)| {
-            command(json!({"type": "group_set_parameter", "group": group, "name": name, "value": value}))
-        })
-        .collect();
-    match batch {
-        Ok(b) => Plan::Engine(b, Then::Succeed),
-        Err(c) => Plan::Fail(c),
-    }
+    apply_profile(cx, group, Profile::Linear, values)
 }
 
 fn profile_get(cx: &mut Ctx<'_>, args: &Args, field: fn(&ProfileValues) -> f64) -> Plan {

@@ -10,16 +10,27 @@ use mcemu_dialects::himc::{value_from_engine, value_to_engine, AxisError};
 use crate::reply::Outcome;
 use crate::table::{Args, Ctx, Function, Plan, Then};
 
+pub mod analog;
 pub mod axis;
+pub mod compensation;
 pub mod errors;
+pub mod filters;
+pub mod gantry;
+pub mod gear;
 pub mod gpio;
 pub mod group;
+pub mod group_settings;
+pub mod group_state;
 pub mod homing;
 pub mod math;
+pub mod sdo;
 pub mod settings;
+pub mod slave;
 pub mod status;
 pub mod strings;
 pub mod system;
+pub mod table_values;
+pub mod trigger;
 
 /// Every served function, in manual order.
 pub fn all() -> impl Iterator<Item = &'static Function> {
@@ -30,8 +41,18 @@ pub fn all() -> impl Iterator<Item = &'static Function> {
         axis::ROWS,
         settings::ROWS,
         status::ROWS,
+        gear::ROWS,
+        gantry::ROWS,
         group::ROWS,
+        group_settings::ROWS,
         gpio::ROWS,
+        slave::ROWS,
+        analog::ROWS,
+        table_values::ROWS,
+        trigger::ROWS,
+        compensation::ROWS,
+        filters::ROWS,
+        sdo::ROWS,
         errors::ROWS,
         homing::ROWS,
     ]

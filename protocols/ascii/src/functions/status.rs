@@ -8,11 +8,12 @@ use crate::reply::Outcome;
 use crate::table::{row, Addresses::Axis, Args, Ctx, Function, Plan, Ret, Ty};
 
 fn holds(cx: &mut Ctx<'_>, args: &Args, p: Predicate) -> Plan {
+    let cx: &Ctx<'_> = cx;
     match axis_of(cx, args) {
-        Ok((_, s)) => {
+        Ok((axis, s)) => {
             let extra = AxisExtra {
-                gantry: false,
-                compensation: s.compensation != 0.0,
+                gantry: super::gantry::pair_of(cx, axis).is_some(),
+                compensation: cx.registers.compensating.contains(&axis) || s.compensation != 0.0,
             };
             Plan::Done(Outcome::bool(p.holds(s, extra)))
         }

@@ -46,7 +46,7 @@ pub static ROWS: &[Function] = &[
         engine(json!({"type": "emergency_stop_all"}))
     }),
     row("GetSlaveNum", "2.10", &[], Ret::Int, Controller, |cx, _| {
-        done(i32::try_from(cx.snapshot.drives.len()).unwrap_or(i32::MAX))
+        done(i32::try_from(super::slave::slave_count(cx)).unwrap_or(i32::MAX))
     }),
     row("ScanNetwork", "2.16", &[], Ret::Int, Controller, |_, _| {
         done(0)
@@ -82,7 +82,7 @@ fn done(i: i32) -> Plan {
 }
 
 fn slave_state(cx: &mut Ctx<'_>, args: &Args) -> Plan {
-    let exists = usize::try_from(args.int(0)).is_ok_and(|s| s < cx.snapshot.drives.len());
+    let exists = super::slave::slave(cx, args.int(0)).is_ok();
     if exists {
         done(ECAT_OP)
     } else {
