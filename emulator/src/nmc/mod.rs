@@ -5,6 +5,8 @@
 //!
 //! - `config`: the two sections and the device identity;
 //! - `service`: one request → reply payload + engine commands; the per-axis NMC settings;
+//! - `sync_state`: what the gear, PT, capture, compare, gantry, handwheel and compensation
+//!   families keep between calls;
 //! - `handlers`: one file per family of the function table (`mcemu_nmc::table`);
 //! - `serve`: the transports (the kit's bounded accept loop on TCP, the same table on the Unix
 //!   socket), the connection loop over `mcemu_nmc::session`, the control-API handle.
@@ -13,3 +15,4 @@ pub mod config;
 mod handlers;
 pub mod serve;
 pub mod service;
+pub mod sync_state;

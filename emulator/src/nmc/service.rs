@@ -138,6 +138,8 @@ pub struct NmcService {
     pub counters: NmcCounters,
     pub last_refusal: mcemu_frontend::refusal::LastRefusal<RefusedCall>,
     settings: Mutex<Vec<AxisSettings>>,
+    /// The gear, PT, capture, compare, gantry, handwheel and compensation settings.
+    sync: Mutex<super::sync_state::SyncState>,
     /// `TCardInfo` counts (digest 001 §1.1).
     pub io_counts: [i16; 4],
 }
@@ -157,6 +159,7 @@ impl NmcService {
             counters: NmcCounters::default(),
             last_refusal: Default::default(),
             settings: Mutex::new(Vec::new()),
+            sync: Mutex::new(Default::default()),
             io_counts,
         };
         service.reset_settings();
@@ -173,6 +176,11 @@ impl NmcService {
             })
             .collect();
         *self.settings() = fresh;
+        *self.sync() = super::sync_state::SyncState::new(snapshot.axes.len());
+    }
+
+    pub fn sync(&self) -> MutexGuard<'_, super::sync_state::SyncState> {
+        self.sync.lock().unwrap_or_else(PoisonError::into_inner)
     }
 
     pub fn settings(&self) -> MutexGuard<'_, Vec<AxisSettings>> {
