@@ -66,6 +66,36 @@ fn s_io_tv38() {
 }
 
 #[test]
+fn s_gear_tv58() {
+    example("s_gear.c");
+}
+
+#[test]
+fn s_pt_static_stream_and_pvt_tv55_tv57() {
+    example("s_pt.c");
+}
+
+#[test]
+fn s_capt_repeat_and_advcapt_tv60_tv62() {
+    example("s_capt.c");
+}
+
+#[test]
+fn s_cmp_2d_and_1d_tv63() {
+    example("s_cmp.c");
+}
+
+#[test]
+fn s_gantry_and_handwheel_tv73() {
+    example("s_gang.c");
+}
+
+#[test]
+fn s_leadscrew_backlash_2dcomp_tv72() {
+    example("s_comp.c");
+}
+
+#[test]
 fn eight_threads_on_one_handle_each_get_their_reply() {
     example("threads.c");
 }
