@@ -12,8 +12,9 @@ use std::time::{Duration, Instant};
 
 use mcemu_tests::{
     compile_example, fresh_dir, nmc_library_dir, output_report, python, python_script, run_example,
-    run_with_timeout, workspace_root, Mcemu, PROGRAM_TIMEOUT,
+    run_with_timeout, wait_for, workspace_root, Mcemu, PROGRAM_TIMEOUT,
 };
+use serde_json::json;
 
 fn gaochuan() -> PathBuf {
     workspace_root().join("fixtures/gaochuan-gcn.toml")
@@ -142,6 +143,86 @@ fn a_lost_mcemu_is_minus_one_and_the_next_call_reconnects() {
     let _m = Mcemu::start(Some(&gaochuan()), &["--set", &set]);
     writeln!(stdin, "go").unwrap();
     assert_eq!(lines.next().unwrap().unwrap(), "back 0");
+    assert!(child.wait().unwrap().success());
+}
+
+/// Server-side faults through `POST /api/v1/faults` (issue 13): a delay beyond the timeout, no
+/// reply, a closed connection, a garbage frame (a bit of the magic flipped) and a wrong
+/// sequence number each give the call −1 within the timeout (400 ms), and the next call works.
+#[test]
+fn nmc_faults_give_minus_one_and_the_next_call_works() {
+    let dir = fresh_dir(env!("CARGO_TARGET_TMPDIR"), "nmc-faults");
+    let exe = compile_example("faults.c", &dir, &[]);
+    let m = Mcemu::start(Some(&gaochuan()), &[]);
+    let mut child = Command::new(&exe)
+        .env("MCEMU_NMC", m.address("nmc"))
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stdin = child.stdin.take().unwrap();
+    let mut lines = BufReader::new(child.stdout.take().unwrap()).lines();
+    assert_eq!(lines.next().unwrap().unwrap(), "ready");
+    let faults = [
+        json!({"frontend": "nmc", "fault": "delay", "ms": 1500, "count": 1}),
+        json!({"frontend": "nmc", "fault": "no_reply", "count": 1}),
+        json!({"frontend": "nmc", "fault": "close", "count": 1}),
+        json!({"frontend": "nmc", "fault": "corrupt", "count": 1}),
+        json!({"frontend": "nmc", "fault": "wrong_sequence", "count": 1}),
+    ];
+    for fault in &faults {
+        let active = m.fault(fault);
+        assert_eq!(active.as_array().map(Vec::len), Some(1), "{active}");
+        let asked = Instant::now();
+        writeln!(stdin, "go").unwrap();
+        assert_eq!(lines.next().unwrap().unwrap(), "faulted -1", "{fault}");
+        assert!(asked.elapsed() < Duration::from_secs(5), "{fault}");
+        assert_eq!(lines.next().unwrap().unwrap(), "after 0", "{fault}");
+    }
+    let f = m.frontend("nmc");
+    assert_eq!(f["active_faults"], json!([]), "{f}");
+    for kind in ["delay", "no_reply", "close", "corrupt", "wrong_sequence"] {
+        assert_eq!(f["faults_applied"][kind], 1, "{f}");
+    }
+    let (status, _) = m.post("/faults", &json!({"frontend": "nmc", "fault": "exception"}));
+    assert_eq!(status, 400);
+    drop(stdin);
+    assert!(child.wait().unwrap().success());
+}
+
+/// mcemu killed DURING a call (the request is in, held by a `no_reply` fault): the call returns
+/// −1 well within its timeout, and after mcemu restarts on the same address the next call
+/// reconnects.
+#[test]
+fn mcemu_killed_during_a_call_is_minus_one_and_the_next_call_reconnects() {
+    let dir = fresh_dir(env!("CARGO_TARGET_TMPDIR"), "nmc-kill-during");
+    let exe = compile_example("faults.c", &dir, &[]);
+    let m = Mcemu::start(Some(&gaochuan()), &[]);
+    let address = m.address("nmc").to_string();
+    let mut child = Command::new(&exe)
+        .env("MCEMU_NMC", &address)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stdin = child.stdin.take().unwrap();
+    let mut lines = BufReader::new(child.stdout.take().unwrap()).lines();
+    assert_eq!(lines.next().unwrap().unwrap(), "ready");
+    m.fault(&json!({"frontend": "nmc", "fault": "no_reply"}));
+    let requests = m.frontend("nmc")["requests"].as_u64().unwrap();
+    writeln!(stdin, "during").unwrap();
+    assert_eq!(lines.next().unwrap().unwrap(), "calling");
+    // The request reached the server (and is held there): now kill it.
+    wait_for("the call reaching mcemu", Duration::from_secs(5), || {
+        (m.frontend("nmc")["requests"].as_u64().unwrap() > requests).then_some(())
+    });
+    drop(m);
+    assert_eq!(lines.next().unwrap().unwrap(), "lost -1");
+    let set = format!("frontends.nmc.bind={address}");
+    let _m = Mcemu::start(Some(&gaochuan()), &["--set", &set]);
+    writeln!(stdin, "after").unwrap();
+    assert_eq!(lines.next().unwrap().unwrap(), "after 0");
+    drop(stdin);
     assert!(child.wait().unwrap().success());
 }
 

@@ -4,6 +4,8 @@
 //! PCIe/GCE cards).
 //!
 //! - `config`: the two sections and the device identity;
+//! - `faults`: what `POST /api/v1/faults` injects (delay, no reply, close, corrupt, wrong
+//!   sequence);
 //! - `service`: one request → reply payload + engine commands; the per-axis NMC settings;
 //! - `sync_state`: what the gear, PT, capture, compare, gantry, handwheel and compensation
 //!   families keep between calls;
@@ -12,6 +14,7 @@
 //!   socket), the connection loop over `mcemu_nmc::session`, the control-API handle.
 
 pub mod config;
+pub mod faults;
 mod handlers;
 pub mod serve;
 pub mod service;

@@ -136,6 +136,8 @@ pub struct NmcService {
     pub engine: EngineHandle,
     pub device: NmcDevice,
     pub counters: NmcCounters,
+    /// Injected faults (`POST /api/v1/faults`).
+    pub faults: super::faults::NmcFaults,
     pub last_refusal: mcemu_frontend::refusal::LastRefusal<RefusedCall>,
     settings: Mutex<Vec<AxisSettings>>,
     /// The gear, PT, capture, compare, gantry, handwheel and compensation settings.
@@ -157,6 +159,7 @@ impl NmcService {
             engine,
             device,
             counters: NmcCounters::default(),
+            faults: Default::default(),
             last_refusal: Default::default(),
             settings: Mutex::new(Vec::new()),
             sync: Mutex::new(Default::default()),
