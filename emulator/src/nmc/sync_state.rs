@@ -69,6 +69,9 @@ pub struct CompareGroup {
     pub points: Vec<[i64; 2]>,
 }
 
+/// A gantry group: its number, its master, its slaves with their error limits (pulses).
+pub type GantryGroup = (i16, usize, Vec<(usize, i64)>);
+
 /// The device-wide part.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct SyncState {
@@ -76,8 +79,7 @@ pub struct SyncState {
     pub compare: [CompareGroup; 2],
     /// Advanced capture channel 0–3: the axis whose positions it latches.
     pub adv_capture_axis: [Option<usize>; 4],
-    /// Gantry group → (master, slaves with their error limits).
-    pub gantry: Vec<(i16, usize, Vec<(usize, i64)>)>,
+    pub gantry: Vec<GantryGroup>,
     /// SetHandWheelInput (default 256, the first external encoder).
     pub handwheel_input: u16,
     /// The axis a handwheel drives now, with ratio, acc and vel as written.

@@ -159,7 +159,7 @@ fn handwheel_in(
     vel: f64,
 ) -> Result<Command, Refusal> {
     for (name, v) in [("ratio", ratio), ("acc", acc), ("vel", vel)] {
-        if !(finite(name, v)? > 0.0) {
+        if finite(name, v)? <= 0.0 {
             return Err(Refusal::range(name, v, "(0, ∞)"));
         }
     }
