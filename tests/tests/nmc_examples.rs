@@ -146,6 +146,38 @@ fn a_lost_mcemu_is_minus_one_and_the_next_call_reconnects() {
     assert!(child.wait().unwrap().success());
 }
 
+/// TV60 and TV61 on DI0, which this harness drives through the control API between the
+/// program's steps (falls with axis 2 at 500, rises at 1500).
+#[test]
+fn tv60_tv61_capture_on_di0() {
+    let dir = fresh_dir(env!("CARGO_TARGET_TMPDIR"), "nmc-capt-di");
+    let exe = compile_example("capt_di.c", &dir, &[]);
+    let m = Mcemu::start(Some(&gaochuan()), &[]);
+    let di0 = |value: bool| {
+        m.post_ok(
+            "/commands",
+            &json!({"type": "force_digital_input", "channel": 0, "value": value}),
+        );
+    };
+    di0(true);
+    let mut child = Command::new(&exe)
+        .env("MCEMU_NMC", m.address("nmc"))
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stdin = child.stdin.take().unwrap();
+    let mut lines = BufReader::new(child.stdout.take().unwrap()).lines();
+    assert_eq!(lines.next().unwrap().unwrap(), "at 500");
+    di0(false);
+    writeln!(stdin, "fell").unwrap();
+    assert_eq!(lines.next().unwrap().unwrap(), "at 1500");
+    di0(true);
+    writeln!(stdin, "rose").unwrap();
+    assert_eq!(lines.next().unwrap().unwrap(), "ok");
+    assert!(child.wait().unwrap().success());
+}
+
 /// Server-side faults through `POST /api/v1/faults` (issue 13): a delay beyond the timeout, no
 /// reply, a closed connection, a garbage frame (a bit of the magic flipped) and a wrong
 /// sequence number each give the call −1 within the timeout (400 ms), and the next call works.
