@@ -260,8 +260,18 @@ fn apply_2d(c: &mut Call<'_>, comp: &Comp2D) -> Result<(), Refusal> {
         c.command(CompensationTable {
             axis: axis as u16,
             references: references.clone(),
-            start: (0..2).map(|i| t.pos_begin[i] as f64 / ppu[i]).collect(),
-            step: (0..2).map(|i| t.step[i] as f64 / ppu[i]).collect(),
+            start: t
+                .pos_begin
+                .iter()
+                .zip(&ppu)
+                .map(|(p, u)| *p as f64 / u)
+                .collect(),
+            step: t
+                .step
+                .iter()
+                .zip(&ppu)
+                .map(|(s, u)| *s as f64 / u)
+                .collect(),
             count: t
                 .count
                 .iter()
