@@ -12,8 +12,9 @@ use std::time::{Duration, Instant};
 
 use mcemu_tests::{
     compile_example, fresh_dir, nmc_library_dir, output_report, python, python_script, run_example,
-    run_with_timeout, workspace_root, Mcemu, PROGRAM_TIMEOUT,
+    run_with_timeout, wait_for, workspace_root, Mcemu, PROGRAM_TIMEOUT,
 };
+use serde_json::json;
 
 fn gaochuan() -> PathBuf {
     workspace_root().join("fixtures/gaochuan-gcn.toml")
@@ -66,6 +67,36 @@ fn s_io_tv38() {
 }
 
 #[test]
+fn s_gear_tv58() {
+    example("s_gear.c");
+}
+
+#[test]
+fn s_pt_static_stream_and_pvt_tv55_tv57() {
+    example("s_pt.c");
+}
+
+#[test]
+fn s_capt_repeat_and_advcapt_tv60_tv62() {
+    example("s_capt.c");
+}
+
+#[test]
+fn s_cmp_2d_and_1d_tv63() {
+    example("s_cmp.c");
+}
+
+#[test]
+fn s_gantry_and_handwheel_tv73() {
+    example("s_gang.c");
+}
+
+#[test]
+fn s_leadscrew_backlash_2dcomp_tv72() {
+    example("s_comp.c");
+}
+
+#[test]
 fn eight_threads_on_one_handle_each_get_their_reply() {
     example("threads.c");
 }
@@ -112,6 +143,118 @@ fn a_lost_mcemu_is_minus_one_and_the_next_call_reconnects() {
     let _m = Mcemu::start(Some(&gaochuan()), &["--set", &set]);
     writeln!(stdin, "go").unwrap();
     assert_eq!(lines.next().unwrap().unwrap(), "back 0");
+    assert!(child.wait().unwrap().success());
+}
+
+/// TV60 and TV61 on DI0, which this harness drives through the control API between the
+/// program's steps (falls with axis 2 at 500, rises at 1500).
+#[test]
+fn tv60_tv61_capture_on_di0() {
+    let dir = fresh_dir(env!("CARGO_TARGET_TMPDIR"), "nmc-capt-di");
+    let exe = compile_example("capt_di.c", &dir, &[]);
+    let m = Mcemu::start(Some(&gaochuan()), &[]);
+    let di0 = |value: bool| {
+        m.post_ok(
+            "/commands",
+            &json!({"type": "force_digital_input", "channel": 0, "value": value}),
+        );
+    };
+    di0(true);
+    let mut child = Command::new(&exe)
+        .env("MCEMU_NMC", m.address("nmc"))
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stdin = child.stdin.take().unwrap();
+    let mut lines = BufReader::new(child.stdout.take().unwrap()).lines();
+    assert_eq!(lines.next().unwrap().unwrap(), "at 500");
+    di0(false);
+    writeln!(stdin, "fell").unwrap();
+    assert_eq!(lines.next().unwrap().unwrap(), "at 1500");
+    di0(true);
+    writeln!(stdin, "rose").unwrap();
+    assert_eq!(lines.next().unwrap().unwrap(), "ok");
+    assert!(child.wait().unwrap().success());
+}
+
+/// Server-side faults through `POST /api/v1/faults` (issue 13): a delay beyond the timeout, no
+/// reply, a closed connection, a garbage frame (a bit of the magic flipped) and a wrong
+/// sequence number each give the call −1 within the timeout (400 ms), and the next call works.
+#[test]
+fn nmc_faults_give_minus_one_and_the_next_call_works() {
+    let dir = fresh_dir(env!("CARGO_TARGET_TMPDIR"), "nmc-faults");
+    let exe = compile_example("faults.c", &dir, &[]);
+    let m = Mcemu::start(Some(&gaochuan()), &[]);
+    let mut child = Command::new(&exe)
+        .env("MCEMU_NMC", m.address("nmc"))
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stdin = child.stdin.take().unwrap();
+    let mut lines = BufReader::new(child.stdout.take().unwrap()).lines();
+    assert_eq!(lines.next().unwrap().unwrap(), "ready");
+    let faults = [
+        json!({"frontend": "nmc", "fault": "delay", "ms": 1500, "count": 1}),
+        json!({"frontend": "nmc", "fault": "no_reply", "count": 1}),
+        json!({"frontend": "nmc", "fault": "close", "count": 1}),
+        json!({"frontend": "nmc", "fault": "corrupt", "count": 1}),
+        json!({"frontend": "nmc", "fault": "wrong_sequence", "count": 1}),
+    ];
+    for fault in &faults {
+        let active = m.fault(fault);
+        assert_eq!(active.as_array().map(Vec::len), Some(1), "{active}");
+        let asked = Instant::now();
+        writeln!(stdin, "go").unwrap();
+        assert_eq!(lines.next().unwrap().unwrap(), "faulted -1", "{fault}");
+        assert!(asked.elapsed() < Duration::from_secs(5), "{fault}");
+        assert_eq!(lines.next().unwrap().unwrap(), "after 0", "{fault}");
+    }
+    let f = m.frontend("nmc");
+    assert_eq!(f["active_faults"], json!([]), "{f}");
+    for kind in ["delay", "no_reply", "close", "corrupt", "wrong_sequence"] {
+        assert_eq!(f["faults_applied"][kind], 1, "{f}");
+    }
+    let (status, _) = m.post("/faults", &json!({"frontend": "nmc", "fault": "exception"}));
+    assert_eq!(status, 400);
+    drop(stdin);
+    assert!(child.wait().unwrap().success());
+}
+
+/// mcemu killed DURING a call (the request is in, held by a `no_reply` fault): the call returns
+/// −1 well within its timeout, and after mcemu restarts on the same address the next call
+/// reconnects.
+#[test]
+fn mcemu_killed_during_a_call_is_minus_one_and_the_next_call_reconnects() {
+    let dir = fresh_dir(env!("CARGO_TARGET_TMPDIR"), "nmc-kill-during");
+    let exe = compile_example("faults.c", &dir, &[]);
+    let m = Mcemu::start(Some(&gaochuan()), &[]);
+    let address = m.address("nmc").to_string();
+    let mut child = Command::new(&exe)
+        .env("MCEMU_NMC", &address)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stdin = child.stdin.take().unwrap();
+    let mut lines = BufReader::new(child.stdout.take().unwrap()).lines();
+    assert_eq!(lines.next().unwrap().unwrap(), "ready");
+    m.fault(&json!({"frontend": "nmc", "fault": "no_reply"}));
+    let requests = m.frontend("nmc")["requests"].as_u64().unwrap();
+    writeln!(stdin, "during").unwrap();
+    assert_eq!(lines.next().unwrap().unwrap(), "calling");
+    // The request reached the server (and is held there): now kill it.
+    wait_for("the call reaching mcemu", Duration::from_secs(5), || {
+        (m.frontend("nmc")["requests"].as_u64().unwrap() > requests).then_some(())
+    });
+    drop(m);
+    assert_eq!(lines.next().unwrap().unwrap(), "lost -1");
+    let set = format!("frontends.nmc.bind={address}");
+    let _m = Mcemu::start(Some(&gaochuan()), &["--set", &set]);
+    writeln!(stdin, "after").unwrap();
+    assert_eq!(lines.next().unwrap().unwrap(), "after 0");
+    drop(stdin);
     assert!(child.wait().unwrap().success());
 }
 

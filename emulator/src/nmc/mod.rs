@@ -4,12 +4,18 @@
 //! PCIe/GCE cards).
 //!
 //! - `config`: the two sections and the device identity;
+//! - `faults`: what `POST /api/v1/faults` injects (delay, no reply, close, corrupt, wrong
+//!   sequence);
 //! - `service`: one request → reply payload + engine commands; the per-axis NMC settings;
+//! - `sync_state`: what the gear, PT, capture, compare, gantry, handwheel and compensation
+//!   families keep between calls;
 //! - `handlers`: one file per family of the function table (`mcemu_nmc::table`);
 //! - `serve`: the transports (the kit's bounded accept loop on TCP, the same table on the Unix
 //!   socket), the connection loop over `mcemu_nmc::session`, the control-API handle.
 
 pub mod config;
+pub mod faults;
 mod handlers;
 pub mod serve;
 pub mod service;
+pub mod sync_state;

@@ -33,13 +33,15 @@ impl Frontend for NmcFrontend {
         self.name
     }
 
-    fn inject(&self, _fault: Map<String, Value>) -> Result<Value, ApiError> {
-        Err(ApiError::InvalidBody {
-            detail: "the NMC front-end has no faults to inject yet".into(),
-            field: Some("frontend".into()),
+    fn inject(&self, fault: Map<String, Value>) -> Result<Value, ApiError> {
+        let request = super::faults::parse(&fault).map_err(|e| ApiError::InvalidBody {
+            detail: e.message,
+            field: e.field,
             line: 0,
             column: 0,
-        })
+        })?;
+        let active = self.service.faults.list.apply(request);
+        Ok(json!({ "active_faults": active }))
     }
 
     fn state(&self) -> Value {
@@ -67,6 +69,8 @@ impl Frontend for NmcFrontend {
             "bad_frames": c.bad_frames.get(),
             "version_refused": c.version_refused.get(),
             "last_refusal": self.service.last_refusal.get(),
+            "active_faults": self.service.faults.list.active(),
+            "faults_applied": self.service.faults.applied(),
         })
     }
 }
@@ -232,6 +236,8 @@ async fn connection<S: AsyncRead + AsyncWrite + Unpin>(
 ) {
     let mut session = ServerSession::new();
     let mut buf = vec![0u8; 8192];
+    // Output in order: the session's, with a faulted reply's frame changed in place.
+    let mut pending: Vec<u8> = Vec::new();
     let counters = &service.counters;
     loop {
         let read = async {
@@ -264,9 +270,33 @@ async fn connection<S: AsyncRead + AsyncWrite + Unpin>(
                     payload,
                 } => {
                     let _in_request = activity.as_ref().map(Activity::request);
+                    let fault = service.faults.take();
+                    if fault.close {
+                        let _ = stream.shutdown().await;
+                        return;
+                    }
                     let handler = super::handlers::find(function.id);
                     let (status, reply) = service.serve(function, handler, &payload, &peer).await;
+                    if fault.no_reply {
+                        continue;
+                    }
+                    if let Some(d) = fault.delay {
+                        tokio::time::sleep(d).await;
+                    }
+                    let sequence = if fault.wrong_sequence {
+                        sequence.wrapping_add(1)
+                    } else {
+                        sequence
+                    };
+                    let before = session.take_output();
                     session.reply(sequence, function.id, status, &reply);
+                    let mut frame = session.take_output();
+                    if let Some((byte, bit)) = fault.corrupt {
+                        // Byte 0 by default: the magic, so the library sees garbage.
+                        mcemu_frontend::fault::flip_bit(&mut frame, byte, bit, 0);
+                    }
+                    pending.extend(before);
+                    pending.extend(frame);
                 }
                 Event::Negotiated { .. } => {}
                 Event::UnknownFunction { .. } => counters.unknown_function.inc(),
@@ -274,7 +304,8 @@ async fn connection<S: AsyncRead + AsyncWrite + Unpin>(
                 Event::Close(CloseReason::Version) => counters.version_refused.inc(),
             }
         }
-        let out = session.take_output();
+        pending.extend(session.take_output());
+        let out = std::mem::take(&mut pending);
         if !out.is_empty() && stream.write_all(&out).await.is_err() {
             return;
         }

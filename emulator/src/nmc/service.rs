@@ -136,8 +136,12 @@ pub struct NmcService {
     pub engine: EngineHandle,
     pub device: NmcDevice,
     pub counters: NmcCounters,
+    /// Injected faults (`POST /api/v1/faults`).
+    pub faults: super::faults::NmcFaults,
     pub last_refusal: mcemu_frontend::refusal::LastRefusal<RefusedCall>,
     settings: Mutex<Vec<AxisSettings>>,
+    /// The gear, PT, capture, compare, gantry, handwheel and compensation settings.
+    sync: Mutex<super::sync_state::SyncState>,
     /// `TCardInfo` counts (digest 001 §1.1).
     pub io_counts: [i16; 4],
 }
@@ -155,8 +159,10 @@ impl NmcService {
             engine,
             device,
             counters: NmcCounters::default(),
+            faults: Default::default(),
             last_refusal: Default::default(),
             settings: Mutex::new(Vec::new()),
+            sync: Mutex::new(Default::default()),
             io_counts,
         };
         service.reset_settings();
@@ -173,6 +179,11 @@ impl NmcService {
             })
             .collect();
         *self.settings() = fresh;
+        *self.sync() = super::sync_state::SyncState::new(snapshot.axes.len());
+    }
+
+    pub fn sync(&self) -> MutexGuard<'_, super::sync_state::SyncState> {
+        self.sync.lock().unwrap_or_else(PoisonError::into_inner)
     }
 
     pub fn settings(&self) -> MutexGuard<'_, Vec<AxisSettings>> {

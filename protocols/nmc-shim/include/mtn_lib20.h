@@ -104,6 +104,75 @@ typedef struct {
 
 typedef struct { unsigned short address; char idStr[16]; char description[64]; unsigned short ID; } TDevInfo;
 
+/* PT segment types, NMC_MtPtPush (digest 001 §3.17). */
+#define MT_PT_NORMAL (0)
+#define MT_PT_STOP   (1)
+#define MT_PT_EVEN   (2)
+
+typedef struct { double smoothDec; double abruptDec; double reserved1[2]; long reserved2[4]; } TPtPara;
+typedef struct { double smoothDec; double abruptDec; double reserved1[2]; long dataMode; long loopCount; long reserved2[4]; } TPvtPara;
+
+/* Capture (digest 001 §3.15). */
+#define CAPT_MODE_Z        0
+#define CAPT_MODE_IO       1
+#define CAPT_MODE_Z_AND_IO 2
+#define CAPT_MODE_Z_AFT_IO 3
+#define CAPT_IO_SRC_HOME 0
+#define CAPT_IO_SRC_LMTN 1
+#define CAPT_IO_SRC_LMTP 2
+#define CAPT_IO_SRC_DI0  3
+#define CAPT_IO_SRC_DI1  4
+#define CAPT_IO_SRC_DI2  5
+#define CAPT_IO_SRC_DI3  6
+#define CAPT_IO_SRC_DI4  7
+#define CAPT_IO_SRC_DI5  8
+#define CAPT_IO_SRC_DI6  9
+#define CAPT_IO_SRC_DI7  10
+#define CAPT_IO_SRC_DI8  11
+#define CAPT_IO_SRC_DI9  12
+#define CAPT_IO_SRC_DI10 13
+#define CAPT_IO_SRC_DI11 14
+#define CAPT_IO_SRC_DI12 15
+#define CAPT_EX_SRC_GPI    0
+#define CAPT_EX_SRC_NEGLMT 1
+#define CAPT_EX_SRC_POSLMT 2
+#define CAPT_EX_SRC_HOME   3
+#define CAPT_EX_SRC_Z      4
+#define CAPT_EX_SRC_PRFPOS 5
+#define CAPT_EX_SRC_ENCPOS 6
+#define REPEAT_CAPT_MAX_NUM 64
+
+typedef struct {
+    short capPosIndex;
+    short trigSrc;
+    short trigIndex;
+    short filter;
+    long trigValue;
+} TAdvCaptureParam;
+
+/* Position compare (digest 001 §3.16). */
+typedef struct {
+    short outputChn;
+    short outputType;
+    short chnType;
+    short dir1No;
+    short dir2No;
+    short posSrc;
+    short stLevel;
+    short errZone;
+    short directOutZone;
+    short vibrateRange;
+    long gateTime;
+    long minIntervalTime;
+    long reserved[8];
+} TComp2DimensParamEx;
+typedef struct { short sts; short reserved1; long freeSpace; long usedSpace; long outCount; long reserved2[4]; } TComp2DimensSts;
+
+/* Compensation (digest 001 §3.17). */
+typedef struct { short count[2]; short reserved[2]; long posBegin[2]; long step[2]; double angle; } T2DCompensationTable;
+typedef struct { long xDirComp; long yDirComp; long zDirComp; } TCompData;
+typedef struct { short enable; short tableIndex; short axisType[2]; short axisIndex[3]; } T2DCompensation;
+
 short NMC_GetDllVersion(char *pVersion);
 short NMC_SetCommPara(HAND devHandle, unsigned long waitTimeInUs, unsigned long retryTimes);
 short NMC_GetLastErr(void);
@@ -161,6 +230,57 @@ short NMC_SetDOBit(HAND devHandle, short bitIndex, short value);
 short NMC_GetDOBit(HAND devHandle, short bitIndex, short *bitValue);
 short NMC_GetDIGroup(HAND devHandle, long *pInValue, short groupID);
 short NMC_GetDIBit(HAND devHandle, short bitIndex, short *bitValue);
+short NMC_MtGearSetDir(HAND axisHandle, short dir);
+short NMC_MtGearGetDir(HAND axisHandle, short *pdir);
+short NMC_MtGearSetMaster(HAND axisHandle, short masterNo, short masterType);
+short NMC_MtGearGetMaster(HAND axisHandle, short *pmasterNo, short *pmasterType);
+short NMC_MtGearSetRatio(HAND axisHandle, long masterEven, long slaveEven, long masterSlope);
+short NMC_MtGearGetRatio(HAND axisHandle, long *pMasterEven, long *pSlaveEven, long *pMasterSlope);
+short NMC_MtGearStartMtn(HAND axisHandle, short syncAxCnts, short *pSyncAxArray);
+short NMC_MtPtSetStatic(HAND axisHandle, short onOff, long loopCount);
+short NMC_MtPtGetStatic(HAND axisHandle, short *pOnOff, long *pLoopCount);
+short NMC_MtPtGetSpace(HAND axisHandle, short *pSpace, short *pUsed);
+short NMC_MtPtPush(HAND axisHandle, short count, double *pPosArray, long *pTimeArray, short *pTypeArray);
+short NMC_MtPtBufClr(HAND axisHandle);
+short NMC_MtPtStartMtn(HAND axisHandle, short otherSynAxCnts, short *pOtherSynAxArray);
+short NMC_MtPtSetPara(HAND axisHandle, TPtPara *pPara);
+short NMC_MtPvtSetPara(HAND axisHandle, TPvtPara *pPara);
+short NMC_MtPvtGetPara(HAND axisHandle, TPvtPara *pPara);
+short NMC_MtPvtData(HAND axisHandle, short count, double *pPosArray, double *pTimeArray, double *pVelArray);
+short NMC_MtPvtBufGetSpace(HAND axisHandle, short *pFreeSpace, short *pUsedSpace);
+short NMC_MtPvtBufClr(HAND axisHandle);
+short NMC_MtPvtStartMtn(HAND axisHandle, short otherSynAxCnts, short *pOtherSynAxArray);
+short NMC_MtSetCaptSns(HAND axisHandle, short mode, short ioSrc, short level);
+short NMC_MtGetCaptSns(HAND axisHandle, short *pMode, short *pIoSrc, short *pLevel);
+short NMC_MtSetCapt(HAND axisHandle);
+short NMC_MtGetCaptPos(HAND axisHandle, long *pPos);
+short NMC_MtClrCaptSts(HAND axisHandle);
+short NMC_MtSetAdvCaptParam(HAND devHandle, TAdvCaptureParam *pParam, short ch);
+short NMC_MtClrAdvCaptSts(HAND devHandle, short ch);
+short NMC_MtGetAdvCaptPos(HAND devHandle, short *captSts, long *pPosArray, short ch);
+short NMC_MtSetCaptRepeat(HAND axisHandle, short count);
+short NMC_MtGetCaptRepeatStatus(HAND axisHandle, short *pCount);
+short NMC_MtGetCaptRepeatPosMulti(HAND axisHandle, long *pPosArray, short startNum, short count);
+short NMC_Comp2DimensSetParamEx(HAND devHandle, short group, TComp2DimensParamEx *param, short chn);
+short NMC_Comp2DimensGetParamEx(HAND devHandle, short group, TComp2DimensParamEx *param, short chn);
+short NMC_Comp2DimensSetData(HAND devHandle, short group, long *pArrayPos, short count, short chn);
+short NMC_Comp2DimensOnoff(HAND devHandle, short group, short onOff, short chn);
+short NMC_Comp2DimensStatusEx(HAND devHandle, short group, TComp2DimensSts *pStatus, short chn);
+short NMC_SetGantryMaster(HAND axisHandle, short group);
+short NMC_SetGantrySlave(HAND axisHandle, short group, long gantryErrLmt);
+short NMC_DelGantryGroup(HAND axisHandle, short group);
+short NMC_SetHandWheel(HAND devHandle, short axis, double ratio, double acc, double vel);
+short NMC_SetHandWheelInput(HAND devHandle, short index);
+short NMC_SetHandWheelRatio(HAND devHandle, double ratio);
+short NMC_ClrHandWheel(HAND devHandle);
+short NMC_MtSetLeadScrewCompPara(HAND axisHandle, short num, long startPos, long cmpLen, short *pCompPos, short *pCompNeg);
+short NMC_MtEnableLeadScrew(HAND axisHandle, short enable);
+short NMC_MtSetBacklash(HAND axisHandle, long compValue, double compDelta, long compDir);
+short NMC_MtGetBacklash(HAND axisHandle, long *pCompValue, double *pCompDelta, long *pCompDir);
+short NMC_Set2DCompensationTable(HAND devHandle, short tableIndex, T2DCompensationTable *pTable, TCompData *pData);
+short NMC_Get2DCompensationTable(HAND devHandle, short tableIndex, T2DCompensationTable *pTable, TCompData *pData);
+short NMC_Set2DCompensation(HAND devHandle, T2DCompensation *pComp);
+short NMC_Get2DCompensation(HAND devHandle, T2DCompensation *pComp);
 
 #ifdef __cplusplus
 }

@@ -31,6 +31,12 @@ mod tests {
             include_str!("ffi/motion.rs"),
             include_str!("ffi/home.rs"),
             include_str!("ffi/io.rs"),
+            include_str!("ffi/gear.rs"),
+            include_str!("ffi/pt.rs"),
+            include_str!("ffi/capture.rs"),
+            include_str!("ffi/compare.rs"),
+            include_str!("ffi/gang.rs"),
+            include_str!("ffi/compensation.rs"),
         ]
         .concat();
         for f in FUNCTIONS {

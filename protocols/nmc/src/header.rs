@@ -160,6 +160,9 @@ fn c_arg(a: &Arg) -> String {
         CType::Str => return format!("char *{}", a.name),
         CType::Ipv4 => return format!("unsigned char *{}", a.name),
         CType::Struct(s) | CType::StructArray(s) => return format!("{s} *{}", a.name),
+        CType::ShortArray => return format!("short *{}", a.name),
+        CType::LongArray => return format!("long *{}", a.name),
+        CType::DoubleArray => return format!("double *{}", a.name),
     };
     match (a.ty, a.dir) {
         (CType::Hand, Dir::Out) => format!("PHAND {}", a.name),
@@ -185,7 +188,11 @@ fn prototypes(file: HeaderFile) -> String {
 
 /// `mtn_lib20.h`.
 pub fn main_header() -> String {
-    format!("{MAIN_PREAMBLE}{}{MAIN_END}", prototypes(HeaderFile::Main))
+    format!(
+        "{MAIN_PREAMBLE}{}{}{MAIN_END}",
+        crate::sync_header::SYNC_PREAMBLE,
+        prototypes(HeaderFile::Main)
+    )
 }
 
 /// `mtn_lib20_ext.h`.

@@ -11,6 +11,8 @@
 //!   from which the shim's calls, the server's dispatch and the C header are all made; adding a
 //!   function is one row here plus its handler in the server and its export in the shim;
 //! - [`structs`]: the manual's structs (`TPtpPara` …) as the wire carries them;
+//! - [`sync_structs`], [`sync_header`]: the structs and header text of the gear, PT/PVT,
+//!   capture, compare, gantry, handwheel and compensation families;
 //! - [`errors`]: the return codes of `mtn_lib20_err.h` (not in the manual: mcemu's, stable);
 //! - [`header`]: the C headers generated from the table (checked against the committed ones);
 //! - [`handle`]: what a `HAND` encodes (kind, library slot, axis number);
@@ -23,4 +25,6 @@ pub mod header;
 pub mod payload;
 pub mod session;
 pub mod structs;
+pub mod sync_header;
+pub mod sync_structs;
 pub mod table;

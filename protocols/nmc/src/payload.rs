@@ -142,6 +142,10 @@ impl<'a> Reader<'a> {
         self.at += n;
         Ok(s)
     }
+    /// Bytes not yet read.
+    pub fn remaining(&self) -> usize {
+        self.bytes.len().saturating_sub(self.at)
+    }
     /// Nothing may be left.
     pub fn finish(&self) -> Result<(), PayloadError> {
         match self.bytes.len() - self.at.min(self.bytes.len()) {

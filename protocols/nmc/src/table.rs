@@ -5,7 +5,8 @@
 //!
 //! Ids are stable (a client and a server of different builds must agree): never reuse or
 //! renumber one; families take a block of 256 (0x00xx library, 0x01xx device, 0x02xx axis
-//! status and servo, 0x03xx PTP/JOG/stop, 0x04xx homing, 0x05xx I/O).
+//! status and servo, 0x03xx PTP/JOG/stop, 0x04xx homing, 0x05xx I/O, 0x0Cxx gear, 0x0Dxx
+//! PT/PVT, 0x0Exx capture, 0x0Fxx compare, 0x10xx gantry and handwheel, 0x11xx compensation).
 
 /// A C argument kind, as the manual writes it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -29,8 +30,14 @@ pub enum CType {
     SearchMode,
     /// A pointer to one of the manual's structs (`crate::structs`).
     Struct(&'static str),
-    /// A pointer to an array of structs; its length is the previous out argument.
+    /// A pointer to an array of structs; its length is the previous out argument, or what the
+    /// function's row comment says.
     StructArray(&'static str),
+    /// `short *`, `long *`, `double *` arrays (`short *pSyncAxArray`), in or out; the length
+    /// is another argument's value. Wire: u16 count, then the elements.
+    ShortArray,
+    LongArray,
+    DoubleArray,
 }
 
 /// Which way an argument goes.
@@ -185,6 +192,63 @@ functions! {
     GET_DO_BIT = 0x0504 Server Main NMC_GetDOBit(In Hand => devHandle, In Short => bitIndex, Out Short => bitValue);
     GET_DI_GROUP = 0x0505 Server Main NMC_GetDIGroup(In Hand => devHandle, Out Long => pInValue, In Short => groupID);
     GET_DI_BIT = 0x0506 Server Main NMC_GetDIBit(In Hand => devHandle, In Short => bitIndex, Out Short => bitValue);
+    // ---- electronic gear (digest 001 §2.16, §4.7) ----
+    MT_GEAR_SET_DIR = 0x0C01 Server Main NMC_MtGearSetDir(In Hand => axisHandle, In Short => dir);
+    MT_GEAR_GET_DIR = 0x0C02 Server Main NMC_MtGearGetDir(In Hand => axisHandle, Out Short => pdir);
+    MT_GEAR_SET_MASTER = 0x0C03 Server Main NMC_MtGearSetMaster(In Hand => axisHandle, In Short => masterNo, In Short => masterType);
+    MT_GEAR_GET_MASTER = 0x0C04 Server Main NMC_MtGearGetMaster(In Hand => axisHandle, Out Short => pmasterNo, Out Short => pmasterType);
+    MT_GEAR_SET_RATIO = 0x0C05 Server Main NMC_MtGearSetRatio(In Hand => axisHandle, In Long => masterEven, In Long => slaveEven, In Long => masterSlope);
+    MT_GEAR_GET_RATIO = 0x0C06 Server Main NMC_MtGearGetRatio(In Hand => axisHandle, Out Long => pMasterEven, Out Long => pSlaveEven, Out Long => pMasterSlope);
+    MT_GEAR_START_MTN = 0x0C07 Server Main NMC_MtGearStartMtn(In Hand => axisHandle, In Short => syncAxCnts, In ShortArray => pSyncAxArray);
+    // ---- PT and PVT (digest 001 §2.13, §2.14, §4.7) ----
+    MT_PT_SET_STATIC = 0x0D01 Server Main NMC_MtPtSetStatic(In Hand => axisHandle, In Short => onOff, In Long => loopCount);
+    MT_PT_GET_STATIC = 0x0D02 Server Main NMC_MtPtGetStatic(In Hand => axisHandle, Out Short => pOnOff, Out Long => pLoopCount);
+    MT_PT_GET_SPACE = 0x0D03 Server Main NMC_MtPtGetSpace(In Hand => axisHandle, Out Short => pSpace, Out Short => pUsed);
+    MT_PT_PUSH = 0x0D04 Server Main NMC_MtPtPush(In Hand => axisHandle, In Short => count, In DoubleArray => pPosArray, In LongArray => pTimeArray, In ShortArray => pTypeArray);
+    MT_PT_BUF_CLR = 0x0D05 Server Main NMC_MtPtBufClr(In Hand => axisHandle);
+    MT_PT_START_MTN = 0x0D06 Server Main NMC_MtPtStartMtn(In Hand => axisHandle, In Short => otherSynAxCnts, In ShortArray => pOtherSynAxArray);
+    MT_PT_SET_PARA = 0x0D07 Server Main NMC_MtPtSetPara(In Hand => axisHandle, In Struct("TPtPara") => pPara);
+    MT_PVT_SET_PARA = 0x0D11 Server Main NMC_MtPvtSetPara(In Hand => axisHandle, In Struct("TPvtPara") => pPara);
+    MT_PVT_GET_PARA = 0x0D12 Server Main NMC_MtPvtGetPara(In Hand => axisHandle, Out Struct("TPvtPara") => pPara);
+    MT_PVT_DATA = 0x0D13 Server Main NMC_MtPvtData(In Hand => axisHandle, In Short => count, In DoubleArray => pPosArray, In DoubleArray => pTimeArray, In DoubleArray => pVelArray);
+    MT_PVT_BUF_GET_SPACE = 0x0D14 Server Main NMC_MtPvtBufGetSpace(In Hand => axisHandle, Out Short => pFreeSpace, Out Short => pUsedSpace);
+    MT_PVT_BUF_CLR = 0x0D15 Server Main NMC_MtPvtBufClr(In Hand => axisHandle);
+    MT_PVT_START_MTN = 0x0D16 Server Main NMC_MtPvtStartMtn(In Hand => axisHandle, In Short => otherSynAxCnts, In ShortArray => pOtherSynAxArray);
+    // ---- capture (digest 001 §2.18, §3.15, §4.6) ----
+    MT_SET_CAPT_SNS = 0x0E01 Server Main NMC_MtSetCaptSns(In Hand => axisHandle, In Short => mode, In Short => ioSrc, In Short => level);
+    MT_GET_CAPT_SNS = 0x0E02 Server Main NMC_MtGetCaptSns(In Hand => axisHandle, Out Short => pMode, Out Short => pIoSrc, Out Short => pLevel);
+    MT_SET_CAPT = 0x0E03 Server Main NMC_MtSetCapt(In Hand => axisHandle);
+    MT_GET_CAPT_POS = 0x0E04 Server Main NMC_MtGetCaptPos(In Hand => axisHandle, Out Long => pPos);
+    MT_CLR_CAPT_STS = 0x0E05 Server Main NMC_MtClrCaptSts(In Hand => axisHandle);
+    MT_SET_ADV_CAPT_PARAM = 0x0E06 Server Main NMC_MtSetAdvCaptParam(In Hand => devHandle, In Struct("TAdvCaptureParam") => pParam, In Short => ch);
+    MT_CLR_ADV_CAPT_STS = 0x0E07 Server Main NMC_MtClrAdvCaptSts(In Hand => devHandle, In Short => ch);
+    MT_GET_ADV_CAPT_POS = 0x0E08 Server Main NMC_MtGetAdvCaptPos(In Hand => devHandle, Out Short => captSts, Out LongArray => pPosArray, In Short => ch);
+    MT_SET_CAPT_REPEAT = 0x0E09 Server Main NMC_MtSetCaptRepeat(In Hand => axisHandle, In Short => count);
+    MT_GET_CAPT_REPEAT_STATUS = 0x0E0A Server Main NMC_MtGetCaptRepeatStatus(In Hand => axisHandle, Out Short => pCount);
+    MT_GET_CAPT_REPEAT_POS_MULTI = 0x0E0B Server Main NMC_MtGetCaptRepeatPosMulti(In Hand => axisHandle, Out LongArray => pPosArray, In Short => startNum, In Short => count);
+    // ---- position compare, 1-D and 2-D (digest 001 §2.11, §3.16, §4.6) ----
+    COMP_2DIMENS_SET_PARAM_EX = 0x0F01 Server Main NMC_Comp2DimensSetParamEx(In Hand => devHandle, In Short => group, In Struct("TComp2DimensParamEx") => param, In Short => chn);
+    COMP_2DIMENS_GET_PARAM_EX = 0x0F02 Server Main NMC_Comp2DimensGetParamEx(In Hand => devHandle, In Short => group, Out Struct("TComp2DimensParamEx") => param, In Short => chn);
+    COMP_2DIMENS_SET_DATA = 0x0F03 Server Main NMC_Comp2DimensSetData(In Hand => devHandle, In Short => group, In LongArray => pArrayPos, In Short => count, In Short => chn);
+    COMP_2DIMENS_ONOFF = 0x0F04 Server Main NMC_Comp2DimensOnoff(In Hand => devHandle, In Short => group, In Short => onOff, In Short => chn);
+    COMP_2DIMENS_STATUS_EX = 0x0F05 Server Main NMC_Comp2DimensStatusEx(In Hand => devHandle, In Short => group, Out Struct("TComp2DimensSts") => pStatus, In Short => chn);
+    // ---- gantry and handwheel (digest 001 §2.9, §2.10, §4.7) ----
+    SET_GANTRY_MASTER = 0x1001 Server Main NMC_SetGantryMaster(In Hand => axisHandle, In Short => group);
+    SET_GANTRY_SLAVE = 0x1002 Server Main NMC_SetGantrySlave(In Hand => axisHandle, In Short => group, In Long => gantryErrLmt);
+    DEL_GANTRY_GROUP = 0x1003 Server Main NMC_DelGantryGroup(In Hand => axisHandle, In Short => group);
+    SET_HAND_WHEEL = 0x1011 Server Main NMC_SetHandWheel(In Hand => devHandle, In Short => axis, In Double => ratio, In Double => acc, In Double => vel);
+    SET_HAND_WHEEL_INPUT = 0x1012 Server Main NMC_SetHandWheelInput(In Hand => devHandle, In Short => index);
+    SET_HAND_WHEEL_RATIO = 0x1013 Server Main NMC_SetHandWheelRatio(In Hand => devHandle, In Double => ratio);
+    CLR_HAND_WHEEL = 0x1014 Server Main NMC_ClrHandWheel(In Hand => devHandle);
+    // ---- mechanical compensation (digest 001 §2.19, §3.17, §4.1) ----
+    MT_SET_LEAD_SCREW_COMP_PARA = 0x1101 Server Main NMC_MtSetLeadScrewCompPara(In Hand => axisHandle, In Short => num, In Long => startPos, In Long => cmpLen, In ShortArray => pCompPos, In ShortArray => pCompNeg);
+    MT_ENABLE_LEAD_SCREW = 0x1102 Server Main NMC_MtEnableLeadScrew(In Hand => axisHandle, In Short => enable);
+    MT_SET_BACKLASH = 0x1103 Server Main NMC_MtSetBacklash(In Hand => axisHandle, In Long => compValue, In Double => compDelta, In Long => compDir);
+    MT_GET_BACKLASH = 0x1104 Server Main NMC_MtGetBacklash(In Hand => axisHandle, Out Long => pCompValue, Out Double => pCompDelta, Out Long => pCompDir);
+    SET_2D_COMPENSATION_TABLE = 0x1105 Server Main NMC_Set2DCompensationTable(In Hand => devHandle, In Short => tableIndex, In Struct("T2DCompensationTable") => pTable, In StructArray("TCompData") => pData);
+    GET_2D_COMPENSATION_TABLE = 0x1106 Server Main NMC_Get2DCompensationTable(In Hand => devHandle, In Short => tableIndex, Out Struct("T2DCompensationTable") => pTable, Out StructArray("TCompData") => pData);
+    SET_2D_COMPENSATION = 0x1107 Server Main NMC_Set2DCompensation(In Hand => devHandle, In Struct("T2DCompensation") => pComp);
+    GET_2D_COMPENSATION = 0x1108 Server Main NMC_Get2DCompensation(In Hand => devHandle, Out Struct("T2DCompensation") => pComp);
 }
 
 #[cfg(test)]

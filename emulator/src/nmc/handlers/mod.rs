@@ -10,13 +10,27 @@ mod device;
 mod home;
 mod io;
 mod motion;
+// The synchronised-motion families.
+mod capture;
+mod compare;
+mod compensation;
+mod gang;
+mod gear;
+mod pt;
+mod sync_args;
 
-const FAMILIES: [&[(Function, Handler)]; 5] = [
+const FAMILIES: [&[(Function, Handler)]; 11] = [
     device::HANDLERS,
     axis::HANDLERS,
     motion::HANDLERS,
     home::HANDLERS,
     io::HANDLERS,
+    gear::HANDLERS,
+    pt::HANDLERS,
+    capture::HANDLERS,
+    compare::HANDLERS,
+    gang::HANDLERS,
+    compensation::HANDLERS,
 ];
 
 /// The handler of function `id`.

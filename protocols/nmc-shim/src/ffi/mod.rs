@@ -25,6 +25,16 @@ pub mod io;
 pub mod library;
 pub mod motion;
 pub mod types;
+// The synchronised-motion families (gear, PT/PVT, capture, compare, gantry and handwheel,
+// compensation) and their arrays and structs.
+mod arrays;
+pub mod capture;
+pub mod compare;
+pub mod compensation;
+pub mod gang;
+pub mod gear;
+pub mod pt;
+pub mod sync_types;
 
 pub use types::HAND;
 
