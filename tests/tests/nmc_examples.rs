@@ -22,9 +22,14 @@ fn gaochuan() -> PathBuf {
 /// Compile `name`, start a fresh mcemu on the Gaochuan fixture, run the program against it and
 /// expect its last line to be `ok`.
 fn example(name: &str) -> String {
+    example_with(name, &[])
+}
+
+/// [`example`] with extra `mcemu run` arguments (a scaled clock for the long paths).
+fn example_with(name: &str, args: &[&str]) -> String {
     let dir = fresh_dir(env!("CARGO_TARGET_TMPDIR"), &format!("nmc-{name}"));
     let exe = compile_example(name, &dir, &[]);
-    let m = Mcemu::start(Some(&gaochuan()), &[]);
+    let m = Mcemu::start(Some(&gaochuan()), args);
     let out = run_example(&exe, m.address("nmc"));
     let stdout = String::from_utf8_lossy(&out.stdout).to_string();
     assert!(
@@ -63,6 +68,17 @@ fn s_home_1_tv29_tv30() {
 #[test]
 fn s_io_tv38() {
     example("s_io.c");
+}
+
+#[test]
+fn s_config_tv05_tv10_tv22_tv68() {
+    example("s_config.c");
+}
+
+/// The coordinate-system examples (S-CRD-*) and TV04, TV42–TV54, on a clock 5× real time.
+#[test]
+fn s_crd_examples_tv42_tv54() {
+    example_with("s_crd.c", &["--clock", "scaled:5"]);
 }
 
 #[test]

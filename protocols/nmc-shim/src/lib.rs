@@ -31,6 +31,9 @@ mod tests {
             include_str!("ffi/motion.rs"),
             include_str!("ffi/home.rs"),
             include_str!("ffi/io.rs"),
+            include_str!("ffi/crd.rs"),
+            include_str!("ffi/axis_config.rs"),
+            include_str!("ffi/aliases.rs"),
         ]
         .concat();
         for f in FUNCTIONS {

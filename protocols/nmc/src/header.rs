@@ -158,6 +158,7 @@ fn c_arg(a: &Arg) -> String {
         CType::Hand => "HAND",
         CType::SearchMode => "TSearchMode",
         CType::Str => return format!("char *{}", a.name),
+        CType::Longs => return format!("long *{}", a.name),
         CType::Ipv4 => return format!("unsigned char *{}", a.name),
         CType::Struct(s) | CType::StructArray(s) => return format!("{s} *{}", a.name),
     };
@@ -185,7 +186,11 @@ fn prototypes(file: HeaderFile) -> String {
 
 /// `mtn_lib20.h`.
 pub fn main_header() -> String {
-    format!("{MAIN_PREAMBLE}{}{MAIN_END}", prototypes(HeaderFile::Main))
+    format!(
+        "{MAIN_PREAMBLE}{}{}{MAIN_END}",
+        crate::crd::C_DECLARATIONS,
+        prototypes(HeaderFile::Main)
+    )
 }
 
 /// `mtn_lib20_ext.h`.

@@ -11,11 +11,15 @@
 //!   from which the shim's calls, the server's dispatch and the C header are all made; adding a
 //!   function is one row here plus its handler in the server and its export in the shim;
 //! - [`structs`]: the manual's structs (`TPtpPara` …) as the wire carries them;
+//! - [`axis_config`]: `TSafePara` as the wire carries it;
+//! - [`crd`]: the coordinate-system structs (`TCrdConfig` …) and their C declarations;
 //! - [`errors`]: the return codes of `mtn_lib20_err.h` (not in the manual: mcemu's, stable);
 //! - [`header`]: the C headers generated from the table (checked against the committed ones);
 //! - [`handle`]: what a `HAND` encodes (kind, library slot, axis number);
 //! - [`session`]: the server side of one connection (version negotiation, then requests).
 
+pub mod axis_config;
+pub mod crd;
 pub mod errors;
 pub mod frame;
 pub mod handle;

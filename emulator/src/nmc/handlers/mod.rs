@@ -5,18 +5,28 @@ use mcemu_nmc::table::Function;
 
 use super::service::Handler;
 
+mod aliases;
 mod axis;
+mod axis_config;
+mod crd;
+mod crd_segment;
+mod crd_status;
 mod device;
 mod home;
 mod io;
 mod motion;
 
-const FAMILIES: [&[(Function, Handler)]; 5] = [
+const FAMILIES: [&[(Function, Handler)]; 10] = [
     device::HANDLERS,
     axis::HANDLERS,
     motion::HANDLERS,
     home::HANDLERS,
     io::HANDLERS,
+    crd::HANDLERS,
+    crd_segment::HANDLERS,
+    crd_status::HANDLERS,
+    axis_config::HANDLERS,
+    aliases::HANDLERS,
 ];
 
 /// The handler of function `id`.

@@ -18,7 +18,11 @@ use crate::connection::CallError;
 use crate::last_error::report;
 use crate::registry;
 
+pub mod aliases;
 pub mod axis;
+pub mod axis_config;
+pub mod crd;
+pub mod crd_types;
 pub mod device;
 pub mod home;
 pub mod io;
@@ -213,3 +217,29 @@ macro_rules! struct_getter {
     };
 }
 pub(crate) use struct_getter;
+
+/// The `n` values of the caller's array at `p` (non-null, checked by [`require!`]).
+pub(crate) fn load_array<T: Copy + Default>(p: *const T, n: usize) -> Vec<T> {
+    if p.is_null() {
+        return Vec::new();
+    }
+    // SAFETY: non-null, checked above; that the array holds `n` readable, initialised `T`s is
+    // the C caller's contract (the manual's length for this argument: the coordinate system's
+    // coordinates, a mask's bits or `count`).
+    (0..n)
+        .map(|i| unsafe { p.add(i).read_unaligned() })
+        .collect()
+}
+
+/// Write `values` to the caller's array at `p` (non-null, checked by [`require!`]; room for
+/// `values.len()` elements by the C contract).
+pub(crate) fn store_array<T: Copy>(p: *mut T, values: &[T]) {
+    if p.is_null() {
+        return;
+    }
+    for (i, v) in values.iter().enumerate() {
+        // SAFETY: non-null, checked above; the caller's array has room for the count it asked
+        // for, and `values` is never longer than that count.
+        unsafe { p.add(i).write_unaligned(*v) }
+    }
+}
