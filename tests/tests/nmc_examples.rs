@@ -75,6 +75,11 @@ fn s_config_tv05_tv10_tv22_tv68() {
     example("s_config.c");
 }
 
+#[test]
+fn s_io_analog_tv41_and_appendix_a_dog() {
+    example("s_analog.c");
+}
+
 /// The coordinate-system examples (S-CRD-*) and TV04, TV42–TV54, on a clock 5× real time.
 #[test]
 fn s_crd_examples_tv42_tv54() {

@@ -1,6 +1,6 @@
 //! NMC settings the engine has no model of, kept and read back (digest 001 §2.3; decisions.md,
 //! "NMC basic configuration"): the pulse-output mode and filter, the velocity filter, the
-//! encoder mode words. They are the device's, shared by its connections.
+//! encoder mode words, the analog channels' ranges, raw values, bias and limits. They are the device's, shared by its connections.
 
 use std::collections::BTreeMap;
 
@@ -16,12 +16,54 @@ pub struct AxisStored {
     pub vel_filter: i16,
 }
 
+/// One analog output's settings (digest 001 §2.8): the engine keeps only its voltage.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DacStored {
+    /// `NMC_SetDacMode` range code 0–5 (default 4, ±10 V, TV41).
+    pub mode: i16,
+    /// The raw value last written (`NMC_GetDac` reads it back, TV41).
+    pub raw: i16,
+    pub bias: i16,
+    pub max: i16,
+    pub min: i16,
+}
+
+impl Default for DacStored {
+    fn default() -> DacStored {
+        DacStored {
+            mode: 4,
+            raw: 0,
+            bias: 0,
+            max: i16::MAX,
+            min: i16::MIN,
+        }
+    }
+}
+
+/// One analog input's settings: range code (default 4) and filter [0, 64] ms (default 0).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct AdcStored {
+    pub range: i16,
+    pub filter: i16,
+}
+
+impl Default for AdcStored {
+    fn default() -> AdcStored {
+        AdcStored {
+            range: 4,
+            filter: 0,
+        }
+    }
+}
+
 /// The device's stored settings.
 #[derive(Clone, Debug, Default)]
 pub struct Stored {
     pub axes: BTreeMap<usize, AxisStored>,
     /// `NMC_SetEncMode` words by encoder channel (default 0x0100, internal: digest 001 §6).
     pub enc_mode: BTreeMap<u8, u16>,
+    pub dac: BTreeMap<usize, DacStored>,
+    pub adc: BTreeMap<usize, AdcStored>,
 }
 
 /// The encoder mode of a channel never written: internal pulse counting (digest 001 §6).

@@ -301,6 +301,20 @@ short NMC_MtSetAxisArrivalPara(HAND axisHandle, long arrivalBand, long stableTim
 short NMC_MtGetAxisArrivalPara(HAND axisHandle, long *pArrivalBand, long *pStableTime);
 short NMC_SetDOGGroup(HAND devHandle, long value, short groupID);
 short NMC_GetDOGGroup(HAND devHandle, long *pDoValue, short groupID);
+short NMC_SetDacMode(HAND devHandle, short ch, short mode);
+short NMC_GetDacMode(HAND devHandle, short ch, short *pMode);
+short NMC_SetAdcMode(HAND devHandle, short ch, short range, short filterCoe);
+short NMC_GetAdcMode(HAND devHandle, short ch, short *pRange, short *pFilterCoe);
+short NMC_SetDac(HAND devHandle, short ch, short dacValue);
+short NMC_GetDac(HAND devHandle, short ch, short *pDacValue);
+short NMC_GetAdc(HAND devHandle, short ch, short *pAdcValue);
+short NMC_SetDacBias(HAND devHandle, short ch, short bias);
+short NMC_GetDacBias(HAND devHandle, short ch, short *pBias);
+short NMC_SetDacLmt(HAND devHandle, short ch, short maxVal, short minVal);
+short NMC_GetDacLmt(HAND devHandle, short ch, short *pMaxVal, short *pMinVal);
+short NMC_GetAdcVoltageMulti(HAND devHandle, short ch, short count, double *pAdcVolArray);
+short NMC_SetDacVoltageMulti(HAND devHandle, short ch, short count, double *pDacVolArray);
+short NMC_GetDacVoltageMulti(HAND devHandle, short ch, short count, double *pDacVolArray);
 
 #ifdef __cplusplus
 }

@@ -34,6 +34,7 @@ mod tests {
             include_str!("ffi/crd.rs"),
             include_str!("ffi/axis_config.rs"),
             include_str!("ffi/aliases.rs"),
+            include_str!("ffi/analog.rs"),
         ]
         .concat();
         for f in FUNCTIONS {

@@ -6,7 +6,8 @@
 //! Ids are stable (a client and a server of different builds must agree): never reuse or
 //! renumber one; families take a block of 256 (0x00xx library, 0x01xx device, 0x02xx axis
 //! status and servo, 0x03xx PTP/JOG/stop, 0x04xx homing, 0x05xx I/O, 0x06xx coordinate
-//! systems, 0x07xx basic axis configuration, 0x08xx Appendix A aliases).
+//! systems, 0x07xx basic axis configuration, 0x08xx Appendix A aliases,
+//! 0x09xx analog I/O).
 
 /// A C argument kind, as the manual writes it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -36,6 +37,9 @@ pub enum CType {
     /// `long *`: an array of the platform's `long`, its length the function's (the crd's
     /// coordinates, a mask's bits, `cnts`). On the wire: u16 count, then i64 each.
     Longs,
+    /// `double *`: an array of doubles, its length an in argument (`count`). On the wire: u16
+    /// count, then f64 each.
+    Doubles,
 }
 
 /// Which way an argument goes.
@@ -277,6 +281,21 @@ functions! {
     // ---- Appendix A: the summary table's misspellings, as aliases (digest 001 App. A) ----
     SET_DOG_GROUP = 0x0801 Server Main NMC_SetDOGGroup(In Hand => devHandle, In Long => value, In Short => groupID);
     GET_DOG_GROUP = 0x0802 Server Main NMC_GetDOGGroup(In Hand => devHandle, Out Long => pDoValue, In Short => groupID);
+    // ---- analog I/O (digest 001 §2.8, §4.8) ----
+    SET_DAC_MODE = 0x0901 Server Main NMC_SetDacMode(In Hand => devHandle, In Short => ch, In Short => mode);
+    GET_DAC_MODE = 0x0902 Server Main NMC_GetDacMode(In Hand => devHandle, In Short => ch, Out Short => pMode);
+    SET_ADC_MODE = 0x0903 Server Main NMC_SetAdcMode(In Hand => devHandle, In Short => ch, In Short => range, In Short => filterCoe);
+    GET_ADC_MODE = 0x0904 Server Main NMC_GetAdcMode(In Hand => devHandle, In Short => ch, Out Short => pRange, Out Short => pFilterCoe);
+    SET_DAC = 0x0905 Server Main NMC_SetDac(In Hand => devHandle, In Short => ch, In Short => dacValue);
+    GET_DAC = 0x0906 Server Main NMC_GetDac(In Hand => devHandle, In Short => ch, Out Short => pDacValue);
+    GET_ADC = 0x0907 Server Main NMC_GetAdc(In Hand => devHandle, In Short => ch, Out Short => pAdcValue);
+    SET_DAC_BIAS = 0x0908 Server Main NMC_SetDacBias(In Hand => devHandle, In Short => ch, In Short => bias);
+    GET_DAC_BIAS = 0x0909 Server Main NMC_GetDacBias(In Hand => devHandle, In Short => ch, Out Short => pBias);
+    SET_DAC_LMT = 0x090A Server Main NMC_SetDacLmt(In Hand => devHandle, In Short => ch, In Short => maxVal, In Short => minVal);
+    GET_DAC_LMT = 0x090B Server Main NMC_GetDacLmt(In Hand => devHandle, In Short => ch, Out Short => pMaxVal, Out Short => pMinVal);
+    GET_ADC_VOLTAGE_MULTI = 0x090C Server Main NMC_GetAdcVoltageMulti(In Hand => devHandle, In Short => ch, In Short => count, Out Doubles => pAdcVolArray);
+    SET_DAC_VOLTAGE_MULTI = 0x090D Server Main NMC_SetDacVoltageMulti(In Hand => devHandle, In Short => ch, In Short => count, In Doubles => pDacVolArray);
+    GET_DAC_VOLTAGE_MULTI = 0x090E Server Main NMC_GetDacVoltageMulti(In Hand => devHandle, In Short => ch, In Short => count, Out Doubles => pDacVolArray);
 }
 
 #[cfg(test)]

@@ -6,6 +6,7 @@ use mcemu_nmc::table::Function;
 use super::service::Handler;
 
 mod aliases;
+mod analog;
 mod axis;
 mod axis_config;
 mod crd;
@@ -16,7 +17,7 @@ mod home;
 mod io;
 mod motion;
 
-const FAMILIES: [&[(Function, Handler)]; 10] = [
+const FAMILIES: [&[(Function, Handler)]; 11] = [
     device::HANDLERS,
     axis::HANDLERS,
     motion::HANDLERS,
@@ -27,6 +28,7 @@ const FAMILIES: [&[(Function, Handler)]; 10] = [
     crd_status::HANDLERS,
     axis_config::HANDLERS,
     aliases::HANDLERS,
+    analog::HANDLERS,
 ];
 
 /// The handler of function `id`.

@@ -19,6 +19,7 @@ use crate::last_error::report;
 use crate::registry;
 
 pub mod aliases;
+pub mod analog;
 pub mod axis;
 pub mod axis_config;
 pub mod crd;
