@@ -80,6 +80,24 @@ fn s_io_analog_tv41_and_appendix_a_dog() {
     example("s_analog.c");
 }
 
+/// S-ECAT-START and TV33 on an EtherCAT card; the same calls refused on the network card.
+#[test]
+fn s_ecat_start_tv33() {
+    example_with("s_ecat.c", &["--set", "frontends.nmc.device.kind=\"ecat\""]);
+    let dir = fresh_dir(env!("CARGO_TARGET_TMPDIR"), "nmc-s_ecat-pulse");
+    let exe = compile_example("s_ecat.c", &dir, &[]);
+    let m = Mcemu::start(Some(&gaochuan()), &[]);
+    let mut command = Command::new(&exe);
+    command.arg("pulse").env("MCEMU_NMC", m.address("nmc"));
+    let out = run_with_timeout(command, b"", PROGRAM_TIMEOUT);
+    let stdout = String::from_utf8_lossy(&out.stdout).to_string();
+    assert!(
+        out.status.success() && stdout.lines().last() == Some("ok"),
+        "{}",
+        output_report("s_ecat.c pulse", &out)
+    );
+}
+
 /// The coordinate-system examples (S-CRD-*) and TV04, TV42–TV54, on a clock 5× real time.
 #[test]
 fn s_crd_examples_tv42_tv54() {

@@ -64,6 +64,9 @@ pub struct Stored {
     pub enc_mode: BTreeMap<u8, u16>,
     pub dac: BTreeMap<usize, DacStored>,
     pub adc: BTreeMap<usize, AdcStored>,
+    /// The EtherCAT master (GCE cards): the `.gml` name last loaded, and whether it runs.
+    pub ecat_config: Option<String>,
+    pub ecat_started: bool,
 }
 
 /// The encoder mode of a channel never written: internal pulse counting (digest 001 §6).

@@ -315,6 +315,18 @@ short NMC_GetDacLmt(HAND devHandle, short ch, short *pMaxVal, short *pMinVal);
 short NMC_GetAdcVoltageMulti(HAND devHandle, short ch, short count, double *pAdcVolArray);
 short NMC_SetDacVoltageMulti(HAND devHandle, short ch, short count, double *pDacVolArray);
 short NMC_GetDacVoltageMulti(HAND devHandle, short ch, short count, double *pDacVolArray);
+short NMC_EcatLoadConfigFromFile(HAND devHandle, char *gmlFileName, short masterIdx);
+short NMC_EcatStart(HAND devHandle);
+short NMC_EcatStop(HAND devHandle);
+short NMC_EcatGetSts(HAND devHandle, unsigned short *pSts);
+short NMC_EcatGetResource(HAND devHandle, short *pSlaveCnt, short *pDriverCnt, short *pIoCnt);
+short NMC_EcatStartHome(HAND axisHandle, int method, int velSwitch, int velZero, int acc, int prmEx);
+short NMC_EcatGetHomeSts(HAND axisHandle, unsigned char *pStatus);
+short NMC_EcatStopHome(HAND axisHandle);
+short NMC_EcatSdoRead(HAND devHandle, short devId, unsigned short idx, unsigned char sub_idx, unsigned int len, unsigned char *val, unsigned int *abort_code);
+short NMC_EcatSdoWrite(HAND devHandle, short devId, unsigned short idx, unsigned char sub_idx, unsigned int len, unsigned char *val, unsigned int *abort_code);
+short NMC_EcatAxisGetErrorCode(HAND axisHandle, unsigned short *pError);
+short NMC_EcatAxisGetDi(HAND axisHandle, long *pDiVal);
 
 #ifdef __cplusplus
 }

@@ -35,6 +35,7 @@ mod tests {
             include_str!("ffi/axis_config.rs"),
             include_str!("ffi/aliases.rs"),
             include_str!("ffi/analog.rs"),
+            include_str!("ffi/ecat.rs"),
         ]
         .concat();
         for f in FUNCTIONS {

@@ -160,6 +160,7 @@ fn c_arg(a: &Arg) -> String {
         CType::Str => return format!("char *{}", a.name),
         CType::Longs => return format!("long *{}", a.name),
         CType::Doubles => return format!("double *{}", a.name),
+        CType::Bytes => return format!("unsigned char *{}", a.name),
         CType::Ipv4 => return format!("unsigned char *{}", a.name),
         CType::Struct(s) | CType::StructArray(s) => return format!("{s} *{}", a.name),
     };

@@ -7,7 +7,7 @@
 //! renumber one; families take a block of 256 (0x00xx library, 0x01xx device, 0x02xx axis
 //! status and servo, 0x03xx PTP/JOG/stop, 0x04xx homing, 0x05xx I/O, 0x06xx coordinate
 //! systems, 0x07xx basic axis configuration, 0x08xx Appendix A aliases,
-//! 0x09xx analog I/O).
+//! 0x09xx analog I/O, 0x0Axx EtherCAT).
 
 /// A C argument kind, as the manual writes it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -40,6 +40,9 @@ pub enum CType {
     /// `double *`: an array of doubles, its length an in argument (`count`). On the wire: u16
     /// count, then f64 each.
     Doubles,
+    /// `unsigned char *`: a byte buffer, its length an in argument (`len`). On the wire: u16
+    /// count, then the bytes.
+    Bytes,
 }
 
 /// Which way an argument goes.
@@ -296,6 +299,19 @@ functions! {
     GET_ADC_VOLTAGE_MULTI = 0x090C Server Main NMC_GetAdcVoltageMulti(In Hand => devHandle, In Short => ch, In Short => count, Out Doubles => pAdcVolArray);
     SET_DAC_VOLTAGE_MULTI = 0x090D Server Main NMC_SetDacVoltageMulti(In Hand => devHandle, In Short => ch, In Short => count, In Doubles => pDacVolArray);
     GET_DAC_VOLTAGE_MULTI = 0x090E Server Main NMC_GetDacVoltageMulti(In Hand => devHandle, In Short => ch, In Short => count, Out Doubles => pDacVolArray);
+    // ---- EtherCAT master, drives and SDO (digest 001 §2.1) ----
+    ECAT_LOAD_CONFIG_FROM_FILE = 0x0A01 Server Main NMC_EcatLoadConfigFromFile(In Hand => devHandle, In Str => gmlFileName, In Short => masterIdx);
+    ECAT_START = 0x0A02 Server Main NMC_EcatStart(In Hand => devHandle);
+    ECAT_STOP = 0x0A03 Server Main NMC_EcatStop(In Hand => devHandle);
+    ECAT_GET_STS = 0x0A04 Server Main NMC_EcatGetSts(In Hand => devHandle, Out UShort => pSts);
+    ECAT_GET_RESOURCE = 0x0A05 Server Main NMC_EcatGetResource(In Hand => devHandle, Out Short => pSlaveCnt, Out Short => pDriverCnt, Out Short => pIoCnt);
+    ECAT_START_HOME = 0x0A06 Server Main NMC_EcatStartHome(In Hand => axisHandle, In Int => method, In Int => velSwitch, In Int => velZero, In Int => acc, In Int => prmEx);
+    ECAT_GET_HOME_STS = 0x0A07 Server Main NMC_EcatGetHomeSts(In Hand => axisHandle, Out UChar => pStatus);
+    ECAT_STOP_HOME = 0x0A08 Server Main NMC_EcatStopHome(In Hand => axisHandle);
+    ECAT_SDO_READ = 0x0A09 Server Main NMC_EcatSdoRead(In Hand => devHandle, In Short => devId, In UShort => idx, In UChar => sub_idx, In UInt => len, Out Bytes => val, Out UInt => abort_code);
+    ECAT_SDO_WRITE = 0x0A0A Server Main NMC_EcatSdoWrite(In Hand => devHandle, In Short => devId, In UShort => idx, In UChar => sub_idx, In UInt => len, In Bytes => val, Out UInt => abort_code);
+    ECAT_AXIS_GET_ERROR_CODE = 0x0A0B Server Main NMC_EcatAxisGetErrorCode(In Hand => axisHandle, Out UShort => pError);
+    ECAT_AXIS_GET_DI = 0x0A0C Server Main NMC_EcatAxisGetDi(In Hand => axisHandle, Out Long => pDiVal);
 }
 
 #[cfg(test)]

@@ -13,11 +13,12 @@ mod crd;
 mod crd_segment;
 mod crd_status;
 mod device;
+mod ecat;
 mod home;
 mod io;
 mod motion;
 
-const FAMILIES: [&[(Function, Handler)]; 11] = [
+const FAMILIES: [&[(Function, Handler)]; 12] = [
     device::HANDLERS,
     axis::HANDLERS,
     motion::HANDLERS,
@@ -29,6 +30,7 @@ const FAMILIES: [&[(Function, Handler)]; 11] = [
     axis_config::HANDLERS,
     aliases::HANDLERS,
     analog::HANDLERS,
+    ecat::HANDLERS,
 ];
 
 /// The handler of function `id`.

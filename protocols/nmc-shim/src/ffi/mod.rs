@@ -25,6 +25,7 @@ pub mod axis_config;
 pub mod crd;
 pub mod crd_types;
 pub mod device;
+pub mod ecat;
 pub mod home;
 pub mod io;
 pub mod library;
