@@ -98,6 +98,11 @@ fn s_ecat_start_tv33() {
     );
 }
 
+#[test]
+fn user_parameter_areas_tv66() {
+    example("s_user_para.c");
+}
+
 /// The coordinate-system examples (S-CRD-*) and TV04, TV42–TV54, on a clock 5× real time.
 #[test]
 fn s_crd_examples_tv42_tv54() {

@@ -67,6 +67,10 @@ pub struct Stored {
     /// The EtherCAT master (GCE cards): the `.gml` name last loaded, and whether it runs.
     pub ecat_config: Option<String>,
     pub ecat_started: bool,
+    /// The user parameter areas (`NMC_UserParaWr`, `…Ex`), zero until written; kept while
+    /// mcemu runs (decisions.md).
+    pub user_para: Vec<u8>,
+    pub user_para_ex: Vec<u8>,
 }
 
 /// The encoder mode of a channel never written: internal pulse counting (digest 001 §6).

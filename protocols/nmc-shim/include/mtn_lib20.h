@@ -327,6 +327,10 @@ short NMC_EcatSdoRead(HAND devHandle, short devId, unsigned short idx, unsigned 
 short NMC_EcatSdoWrite(HAND devHandle, short devId, unsigned short idx, unsigned char sub_idx, unsigned int len, unsigned char *val, unsigned int *abort_code);
 short NMC_EcatAxisGetErrorCode(HAND axisHandle, unsigned short *pError);
 short NMC_EcatAxisGetDi(HAND axisHandle, long *pDiVal);
+short NMC_UserParaWr(HAND devHandle, unsigned long add, unsigned long len, unsigned char *pWrData);
+short NMC_UserParaRd(HAND devHandle, unsigned long add, unsigned long len, unsigned char *pRdData);
+short NMC_UserParaWrEx(HAND devHandle, unsigned long add, unsigned long len, unsigned char *pWrData);
+short NMC_UserParaRdEx(HAND devHandle, unsigned long add, unsigned long len, unsigned char *pRdData);
 
 #ifdef __cplusplus
 }

@@ -36,6 +36,7 @@ mod tests {
             include_str!("ffi/aliases.rs"),
             include_str!("ffi/analog.rs"),
             include_str!("ffi/ecat.rs"),
+            include_str!("ffi/user_para.rs"),
         ]
         .concat();
         for f in FUNCTIONS {

@@ -7,7 +7,7 @@
 //! renumber one; families take a block of 256 (0x00xx library, 0x01xx device, 0x02xx axis
 //! status and servo, 0x03xx PTP/JOG/stop, 0x04xx homing, 0x05xx I/O, 0x06xx coordinate
 //! systems, 0x07xx basic axis configuration, 0x08xx Appendix A aliases,
-//! 0x09xx analog I/O, 0x0Axx EtherCAT).
+//! 0x09xx analog I/O, 0x0Axx EtherCAT, 0x0Bxx user parameters).
 
 /// A C argument kind, as the manual writes it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -312,6 +312,11 @@ functions! {
     ECAT_SDO_WRITE = 0x0A0A Server Main NMC_EcatSdoWrite(In Hand => devHandle, In Short => devId, In UShort => idx, In UChar => sub_idx, In UInt => len, In Bytes => val, Out UInt => abort_code);
     ECAT_AXIS_GET_ERROR_CODE = 0x0A0B Server Main NMC_EcatAxisGetErrorCode(In Hand => axisHandle, Out UShort => pError);
     ECAT_AXIS_GET_DI = 0x0A0C Server Main NMC_EcatAxisGetDi(In Hand => axisHandle, Out Long => pDiVal);
+    // ---- user parameter areas (digest 001 §2.20) ----
+    USER_PARA_WR = 0x0B01 Server Main NMC_UserParaWr(In Hand => devHandle, In ULong => add, In ULong => len, In Bytes => pWrData);
+    USER_PARA_RD = 0x0B02 Server Main NMC_UserParaRd(In Hand => devHandle, In ULong => add, In ULong => len, Out Bytes => pRdData);
+    USER_PARA_WR_EX = 0x0B03 Server Main NMC_UserParaWrEx(In Hand => devHandle, In ULong => add, In ULong => len, In Bytes => pWrData);
+    USER_PARA_RD_EX = 0x0B04 Server Main NMC_UserParaRdEx(In Hand => devHandle, In ULong => add, In ULong => len, Out Bytes => pRdData);
 }
 
 #[cfg(test)]

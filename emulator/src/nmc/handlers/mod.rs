@@ -17,8 +17,9 @@ mod ecat;
 mod home;
 mod io;
 mod motion;
+mod user_para;
 
-const FAMILIES: [&[(Function, Handler)]; 12] = [
+const FAMILIES: [&[(Function, Handler)]; 13] = [
     device::HANDLERS,
     axis::HANDLERS,
     motion::HANDLERS,
@@ -31,6 +32,7 @@ const FAMILIES: [&[(Function, Handler)]; 12] = [
     aliases::HANDLERS,
     analog::HANDLERS,
     ecat::HANDLERS,
+    user_para::HANDLERS,
 ];
 
 /// The handler of function `id`.

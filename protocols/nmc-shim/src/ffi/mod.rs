@@ -31,6 +31,7 @@ pub mod io;
 pub mod library;
 pub mod motion;
 pub mod types;
+pub mod user_para;
 
 pub use types::HAND;
 
