@@ -312,19 +312,42 @@ int main(void) {
                 low_seen = 1;
                 CHECK(pos[0] >= 8000 && pos[1] >= 8000, "TV48: DO0 low at (%ld,%ld)", pos[0], pos[1]);
             }
-            if (low_seen && !arrived && pos[0] == 0 && pos[1] == 0) arrived = clock_ms();
+            if (low_seen && !arrived && pos[0] == 0 && pos[1] == 0) {
+                arrived = clock_ms();
+                CHECK(bit == 0, "TV48: DO0 already high on arriving at the origin");
+            }
             if (low_seen && !high_seen && bit == 1) {
                 high_seen = 1;
                 high_at = clock_ms();
+                CHECK(iabs(pos[0]) < 3000 && iabs(pos[1]) < 3000, "TV48: DO0 high at (%ld,%ld)", pos[0], pos[1]);
             }
         } while (sts & BIT_CORD_BUSY);
         CHECK(low_seen && high_seen && arrived, "TV48: low %d high %d arrived %lu", low_seen, high_seen, arrived);
-        CHECK(high_at >= arrived + 900, "TV48: DO0 high %lu ms after arriving", high_at - arrived);
+        /* 1000 ms of dwell; the arrival is seen at the first poll after it (a loaded machine
+         * polls late), so only half is asserted. */
+        CHECK(high_at >= arrived + 500, "TV48: DO0 high %lu ms after arriving", high_at - arrived);
         wait_still(ax[3]);
         OK(NMC_MtGetPrfPos(ax[3], &pos[3]));
         CHECK(pos[3] == 10000, "TV48: axis 3 at %ld", pos[3]);
         at(0, 0, 0);
     }
+
+    /* Relative buffered axis moves with their own parameters; the path waits for them. */
+    OK(NMC_CrdBufClr(crdHandle));
+    one[0] = -5000;
+    CHECK(NMC_CrdBufAxMoveRel(crdHandle, 30, 0x8, one, 1, 0) != 0, "relative move before its parameters");
+    OK(NMC_CrdBufSetPtpMovePara(crdHandle, 30, 3, 20, 1, 0));
+    OK(NMC_CrdBufAxMoveRel(crdHandle, 31, 0x8, one, 1, 0));
+    line(32, 1000, 0, 0, 10, 1);
+    OK(NMC_CrdBufWaitEncInPosition(crdHandle, 33, 0x8, 0));
+    line(34, 0, 0, 0, 10, 1);
+    run(NULL);
+    OK(NMC_MtGetPrfPos(ax[3], &pos[3]));
+    CHECK(pos[3] == 5000, "relative axis move: axis 3 at %ld", pos[3]);
+    at(0, 0, 0);
+    OK(NMC_CrdSetLookAheadCentriAcc(crdHandle, 1, 0.5));
+    CHECK(NMC_CrdSetLookAheadCentriAcc(crdHandle, 2, 0.5) == RTN_ARG_RANGE, "isUsingSetAcc 2");
+    OK(NMC_CrdSetLookAheadCentriAcc(crdHandle, 0, 0));
 
     /* TV54: a 2 s dwell (scale 1) between two lines. */
     {

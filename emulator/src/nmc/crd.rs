@@ -33,6 +33,10 @@ pub struct CrdState {
     pub pushed: u64,
     /// The feed override, (0, 10).
     pub override_factor: f64,
+    /// `NMC_CrdBufSetPtpMovePara` by axis: velocity (pulse/ms), acceleration (pulse/ms²).
+    pub axis_ptp: Vec<(usize, f64, f64)>,
+    /// `NMC_CrdSetLookAheadCentriAcc`: the arcs' centripetal acceleration, pulse/ms² (0 off).
+    pub centri_acc: f64,
 }
 
 impl CrdState {

@@ -228,6 +228,7 @@ short NMC_CrdGetPara(HAND crdHandle, TCrdPara *pCrdPara);
 short NMC_CrdSetExtPara(HAND crdHandle, TExtCrdPara *extCrdPara);
 short NMC_CrdGetExtPara(HAND crdHandle, TExtCrdPara *extCrdPara);
 short NMC_CrdSetSafePara(HAND crdHandle, TCrdSafePara *pSafePara);
+short NMC_CrdSetLookAheadCentriAcc(HAND crdHandle, short isUsingSetAcc, double centriAcc);
 short NMC_CrdLineXYZEx(HAND crdHandle, long segNo, short crdAxMask, long *pTgPosArray, double endVel, double vel, double synAcc, short lookaheadDis);
 short NMC_CrdLineXYZA(HAND crdHandle, long segNo, short crdAxMask, long *pTgPosArray, double endVel, double vel, double synAcc, short lookaheadDis);
 short NMC_CrdLineXYZ(HAND crdHandle, long segNo, short crdAxMask, long *pTgPosArray, double endVel, double vel, double synAcc);
@@ -250,6 +251,9 @@ short NMC_CrdBufDoEx(HAND crdHandle, long segNo, short group, long doMask, long 
 short NMC_CrdBufDelay(HAND crdHandle, long segNo, short scale, long count);
 short NMC_CrdBufWaitDI(HAND crdHandle, long segNo, short index, short diValue, long waitLastTime);
 short NMC_CrdBufAxMoveEx(HAND crdHandle, long segNo, short axisMask, long *pTgPos, double vel, double acc, short blockEn, short synEn);
+short NMC_CrdBufWaitEncInPosition(HAND crdHandle, long segNo, long axisMask, long overTime);
+short NMC_CrdBufSetPtpMovePara(HAND crdHandle, long segNo, short axisNo, double vel, double acc, short soomthCoef);
+short NMC_CrdBufAxMoveRel(HAND crdHandle, long segNo, short axisMask, long *pRelPos, short blockEn, short synEn);
 short NMC_CrdStartMtn(HAND crdHandle);
 short NMC_CrdEndMtn(HAND crdHandle);
 short NMC_CrdStopMtn(HAND crdHandle);

@@ -209,6 +209,7 @@ functions! {
     CRD_SET_EXT_PARA = 0x0609 Server Main NMC_CrdSetExtPara(In Hand => crdHandle, In Struct("TExtCrdPara") => extCrdPara);
     CRD_GET_EXT_PARA = 0x060A Server Main NMC_CrdGetExtPara(In Hand => crdHandle, Out Struct("TExtCrdPara") => extCrdPara);
     CRD_SET_SAFE_PARA = 0x060B Server Main NMC_CrdSetSafePara(In Hand => crdHandle, In Struct("TCrdSafePara") => pSafePara);
+    CRD_SET_LOOK_AHEAD_CENTRI_ACC = 0x060C Server Main NMC_CrdSetLookAheadCentriAcc(In Hand => crdHandle, In Short => isUsingSetAcc, In Double => centriAcc);
     CRD_LINE_XYZ_EX = 0x0610 Server Main NMC_CrdLineXYZEx(In Hand => crdHandle, In Long => segNo, In Short => crdAxMask, In Longs => pTgPosArray, In Double => endVel, In Double => vel, In Double => synAcc, In Short => lookaheadDis);
     CRD_LINE_XYZA = 0x0611 Server Main NMC_CrdLineXYZA(In Hand => crdHandle, In Long => segNo, In Short => crdAxMask, In Longs => pTgPosArray, In Double => endVel, In Double => vel, In Double => synAcc, In Short => lookaheadDis);
     CRD_LINE_XYZ = 0x0612 Server Main NMC_CrdLineXYZ(In Hand => crdHandle, In Long => segNo, In Short => crdAxMask, In Longs => pTgPosArray, In Double => endVel, In Double => vel, In Double => synAcc);
@@ -231,6 +232,9 @@ functions! {
     CRD_BUF_DELAY = 0x062A Server Main NMC_CrdBufDelay(In Hand => crdHandle, In Long => segNo, In Short => scale, In Long => count);
     CRD_BUF_WAIT_DI = 0x062B Server Main NMC_CrdBufWaitDI(In Hand => crdHandle, In Long => segNo, In Short => index, In Short => diValue, In Long => waitLastTime);
     CRD_BUF_AX_MOVE_EX = 0x062C Server Main NMC_CrdBufAxMoveEx(In Hand => crdHandle, In Long => segNo, In Short => axisMask, In Longs => pTgPos, In Double => vel, In Double => acc, In Short => blockEn, In Short => synEn);
+    CRD_BUF_WAIT_ENC_IN_POSITION = 0x062D Server Main NMC_CrdBufWaitEncInPosition(In Hand => crdHandle, In Long => segNo, In Long => axisMask, In Long => overTime);
+    CRD_BUF_SET_PTP_MOVE_PARA = 0x062E Server Main NMC_CrdBufSetPtpMovePara(In Hand => crdHandle, In Long => segNo, In Short => axisNo, In Double => vel, In Double => acc, In Short => soomthCoef);
+    CRD_BUF_AX_MOVE_REL = 0x062F Server Main NMC_CrdBufAxMoveRel(In Hand => crdHandle, In Long => segNo, In Short => axisMask, In Longs => pRelPos, In Short => blockEn, In Short => synEn);
     CRD_START_MTN = 0x0630 Server Main NMC_CrdStartMtn(In Hand => crdHandle);
     CRD_END_MTN = 0x0631 Server Main NMC_CrdEndMtn(In Hand => crdHandle);
     CRD_STOP_MTN = 0x0632 Server Main NMC_CrdStopMtn(In Hand => crdHandle);

@@ -5,7 +5,8 @@
 
 use axes::command::{
     Command, GroupContinue, GroupCreate, GroupDelete, GroupEmergencyStop, GroupEnable, GroupHalt,
-    GroupId, GroupReset, GroupSetOrigin, GroupSetOverride, GroupStop, Reset,
+    GroupId, GroupParameter, GroupReset, GroupSetOrigin, GroupSetOverride, GroupSetParameter,
+    GroupStop, Reset,
 };
 use axes::status::{GroupState, GroupStatus};
 use mcemu_dialects::nmc::acceleration_to_engine;
@@ -29,6 +30,10 @@ pub const HANDLERS: &[(Function, Handler)] = &[
     (table::CRD_SET_EXT_PARA, crd_set_ext_para),
     (table::CRD_GET_EXT_PARA, crd_get_ext_para),
     (table::CRD_SET_SAFE_PARA, crd_set_safe_para),
+    (
+        table::CRD_SET_LOOK_AHEAD_CENTRI_ACC,
+        crd_set_look_ahead_centri_acc,
+    ),
     (table::CRD_START_MTN, crd_start_mtn),
     (table::CRD_END_MTN, crd_end_mtn),
     (table::CRD_STOP_MTN, crd_stop_mtn),
@@ -203,6 +208,10 @@ fn crd_config(c: &mut Call<'_>) -> Result<(), Refusal> {
     s.config = Some(config);
     let origin = origin_command(c, n, &s, &axes);
     c.command(origin);
+    if s.centri_acc > 0.0 {
+        let centri = centri_command(c, n, &s);
+        c.command(centri);
+    }
     s.pending.clear();
     s.started = false;
     s.end = here(c, &s);
@@ -460,5 +469,40 @@ fn crd_set_override(c: &mut Call<'_>) -> Result<(), Refusal> {
 fn crd_get_override(c: &mut Call<'_>) -> Result<(), Refusal> {
     let n = crd(c)?;
     c.output.f64(state(c, n).override_factor);
+    Ok(())
+}
+
+/// The engine's `arc_acceleration` (v ≤ √(A·r) on arcs) in the first member's units;
+/// isUsingSetAcc 0 turns it off.
+fn centri_command(c: &Call<'_>, n: usize, s: &CrdState) -> Command {
+    let scale = s.axes().first().map_or(
+        mcemu_dialects::PulseScale {
+            pulses_per_unit: 1.0,
+        },
+        |a| c.scale(*a),
+    );
+    GroupSetParameter {
+        group: n as GroupId,
+        name: GroupParameter::ArcAcceleration,
+        value: acceleration_to_engine(scale, s.centri_acc),
+    }
+    .into()
+}
+
+fn crd_set_look_ahead_centri_acc(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let n = crd(c)?;
+    let using = c.input.i16()?;
+    let acc = c.input.f64()?;
+    if !(0..=1).contains(&using) {
+        return Err(Refusal::range("isUsingSetAcc", using, "{0, 1}"));
+    }
+    non_negative("centriAcc", acc, "pulse/ms²")?;
+    let mut s = state(c, n);
+    s.centri_acc = if using == 1 { acc } else { 0.0 };
+    if group(c, n).is_some() {
+        let command = centri_command(c, n, &s);
+        c.command(command);
+    }
+    update(c, n, |now| *now = s);
     Ok(())
 }

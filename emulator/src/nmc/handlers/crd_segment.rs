@@ -41,6 +41,12 @@ pub const HANDLERS: &[(Function, Handler)] = &[
     (table::CRD_BUF_DELAY, crd_buf_delay),
     (table::CRD_BUF_WAIT_DI, crd_buf_wait_di),
     (table::CRD_BUF_AX_MOVE_EX, crd_buf_ax_move_ex),
+    (
+        table::CRD_BUF_WAIT_ENC_IN_POSITION,
+        crd_buf_wait_enc_in_position,
+    ),
+    (table::CRD_BUF_SET_PTP_MOVE_PARA, crd_buf_set_ptp_move_para),
+    (table::CRD_BUF_AX_MOVE_REL, crd_buf_ax_move_rel),
 ];
 
 const XY: [usize; 2] = [0, 1];
@@ -855,9 +861,72 @@ fn crd_buf_wait_di(c: &mut Call<'_>) -> Result<(), Refusal> {
     marker(c, p, vec![command.into()])
 }
 
+/// The buffered moves of the axes of `mask` (by number, outside the coordinate system) to
+/// `target(axis, value)` of their values in mask order; blockEn (without synEn) makes the
+/// path wait until they arrive.
+#[allow(clippy::too_many_arguments)]
+fn axis_moves(
+    c: &Call<'_>,
+    p: &mut Push,
+    mask: i16,
+    values: &[i64],
+    kinematics: impl Fn(usize) -> Result<(f64, f64), Refusal>,
+    target: impl Fn(&Push, usize, i64) -> i64,
+    block: i16,
+    syn: i16,
+) -> Result<Vec<Command>, Refusal> {
+    if !(0..=1).contains(&block) {
+        return Err(Refusal::range("blockEn", block, "{0, 1}"));
+    }
+    if !(0..=1).contains(&syn) {
+        return Err(Refusal::range("synEn", syn, "{0, 1}"));
+    }
+    let mut moves = Vec::new();
+    let mut waits = Vec::new();
+    let mut given = values.iter().copied();
+    for axis in 0..16 {
+        if mask as u16 & (1 << axis) == 0 {
+            continue;
+        }
+        p.outside(c, axis, "axisMask")?;
+        let value = given
+            .next()
+            .ok_or_else(|| Refusal::range("positions", values.len(), "one value per mask bit"))?;
+        let to = target(p, axis, value);
+        let (vel, acc) = kinematics(axis)?;
+        let scale = c.scale(axis);
+        moves.push(
+            GroupAxisMove {
+                group: p.group(),
+                axis: axis as u16,
+                position: scale.to_engine(to as f64),
+                velocity: Some(velocity_to_engine(scale, vel)),
+                acceleration: Some(acceleration_to_engine(scale, acc)),
+                deceleration: Some(acceleration_to_engine(scale, acc)),
+                jerk: None,
+            }
+            .into(),
+        );
+        if block == 1 && syn == 0 {
+            waits.push(
+                GroupWaitPosition {
+                    group: p.group(),
+                    axis: axis as u16,
+                    position: scale.to_engine(to as f64),
+                    tolerance: None,
+                    timeout: None,
+                }
+                .into(),
+            );
+        }
+        p.set_ext_end(axis, to);
+    }
+    moves.extend(waits);
+    Ok(moves)
+}
+
 /// Absolute moves of axes outside the coordinate system (mask by axis number, one target per
-/// bit) that start when the path reaches them; blockEn (without synEn) makes the path wait
-/// until they arrive.
+/// bit) that start when the path reaches them.
 fn crd_buf_ax_move_ex(c: &mut Call<'_>) -> Result<(), Refusal> {
     let mut p = Push::begin(c)?;
     let _seg_no = c.input.i64()?;
@@ -871,50 +940,109 @@ fn crd_buf_ax_move_ex(c: &mut Call<'_>) -> Result<(), Refusal> {
     if !(acc.is_finite() && acc > 0.0) {
         return Err(Refusal::range("acc", acc, "(0, ∞) pulse/ms²"));
     }
-    if !(0..=1).contains(&block) {
-        return Err(Refusal::range("blockEn", block, "{0, 1}"));
+    let moves = axis_moves(
+        c,
+        &mut p,
+        mask,
+        &targets,
+        |_| Ok((vel, acc)),
+        |_, _, v| v,
+        block,
+        syn,
+    )?;
+    marker(c, p, moves)
+}
+
+/// Relative moves of axes outside the coordinate system, from where the pushed commands leave
+/// them, with `NMC_CrdBufSetPtpMovePara`'s velocity and acceleration (synEn too: the engine
+/// cannot take the next segment's timing, decisions.md).
+fn crd_buf_ax_move_rel(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let mut p = Push::begin(c)?;
+    let _seg_no = c.input.i64()?;
+    let mask = c.input.i16()?;
+    let distances = read_longs(c)?;
+    let (block, syn) = (c.input.i16()?, c.input.i16()?);
+    let para = p.s.axis_ptp.clone();
+    let kinematics = |axis: usize| {
+        para.iter()
+            .find(|(a, _, _)| *a == axis)
+            .map(|(_, v, a)| (*v, *a))
+            .ok_or_else(|| {
+                Refusal::new(
+                    mcemu_dialects::nmc::code_for_kind(axes::command::ErrorKind::InvalidState),
+                    format!("axis {axis}: NMC_CrdBufSetPtpMovePara first (its velocity and acceleration)"),
+                )
+            })
+    };
+    let target = |p: &Push, axis: usize, d: i64| p.ext_end(c, axis).saturating_add(d);
+    let moves = axis_moves(c, &mut p, mask, &distances, kinematics, target, block, syn)?;
+    marker(c, p, moves)
+}
+
+/// The velocity and acceleration of later relative axis moves of `axisNo`; smoothCoef
+/// [0, 199] ms is checked and not used (the engine's buffered axis move has no smoothing).
+fn crd_buf_set_ptp_move_para(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let mut p = Push::begin(c)?;
+    let _seg_no = c.input.i64()?;
+    let axis = c.input.i16()?;
+    let (vel, acc, smooth) = (c.input.f64()?, c.input.f64()?, c.input.i16()?);
+    let axis = usize::try_from(axis)
+        .map_err(|_| Refusal::range("axisNo", axis, "an axis of the device"))?;
+    p.outside(c, axis, "axisNo")?;
+    if !(vel.is_finite() && vel > 0.0) {
+        return Err(Refusal::range("vel", vel, "(0, ∞) pulse/ms"));
     }
-    if !(0..=1).contains(&syn) {
-        return Err(Refusal::range("synEn", syn, "{0, 1}"));
+    if !(acc.is_finite() && acc > 0.0) {
+        return Err(Refusal::range("acc", acc, "(0, ∞) pulse/ms²"));
     }
-    let mut moves = Vec::new();
+    if !(0..=199).contains(&smooth) {
+        return Err(Refusal::range("soomthCoef", smooth, "[0, 199] ms"));
+    }
+    p.s.axis_ptp.retain(|(a, _, _)| *a != axis);
+    p.s.axis_ptp.push((axis, vel, acc));
+    marker(c, p, Vec::new())
+}
+
+/// Wait until the axes of `axisMask` (by number) are in position where the pushed commands
+/// leave them (their `in_position_window`); overTime ms (0: no limit; past it MVERR).
+fn crd_buf_wait_enc_in_position(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let p = Push::begin(c)?;
+    let _seg_no = c.input.i64()?;
+    let (mask, time) = (c.input.i64()?, c.input.i64()?);
+    let n = c.snapshot.axes.len().min(32);
+    if mask < 0 || mask >> n != 0 {
+        return Err(Refusal::range(
+            "axisMask",
+            format!("{mask:#x}"),
+            "bits of the device's axes",
+        ));
+    }
+    if time < 0 {
+        return Err(Refusal::range("overTime", time, "[0, ∞) ms"));
+    }
+    let origin = p.s.origin();
     let mut waits = Vec::new();
-    let mut values = targets.iter().copied();
-    for axis in 0..16 {
-        if mask as u16 & (1 << axis) == 0 {
-            continue;
-        }
-        p.outside(c, axis, "axisMask")?;
-        let target = values
-            .next()
-            .ok_or_else(|| Refusal::range("pTgPos", targets.len(), "one value per mask bit"))?;
-        let scale = c.scale(axis);
-        moves.push(
-            GroupAxisMove {
+    for axis in (0..n).filter(|a| mask & (1 << a) != 0) {
+        let at = match p.axes.iter().position(|m| *m == axis) {
+            Some(k) => {
+                p.s.end
+                    .get(k)
+                    .copied()
+                    .unwrap_or(0)
+                    .saturating_add(origin.get(k).copied().unwrap_or(0))
+            }
+            None => p.ext_end(c, axis),
+        };
+        waits.push(
+            GroupWaitPosition {
                 group: p.group(),
                 axis: axis as u16,
-                position: scale.to_engine(target as f64),
-                velocity: Some(velocity_to_engine(scale, vel)),
-                acceleration: Some(acceleration_to_engine(scale, acc)),
-                deceleration: Some(acceleration_to_engine(scale, acc)),
-                jerk: None,
+                position: c.scale(axis).to_engine(at as f64),
+                tolerance: None,
+                timeout: (time > 0).then_some(time as f64 / 1e3),
             }
             .into(),
         );
-        if block == 1 && syn == 0 {
-            waits.push(
-                GroupWaitPosition {
-                    group: p.group(),
-                    axis: axis as u16,
-                    position: scale.to_engine(target as f64),
-                    tolerance: None,
-                    timeout: None,
-                }
-                .into(),
-            );
-        }
-        p.set_ext_end(axis, target);
     }
-    moves.extend(waits);
-    marker(c, p, moves)
+    marker(c, p, waits)
 }

@@ -852,3 +852,87 @@ positions!(NMC_CrdGetPrfPos, table::CRD_GET_PRF_POS);
 positions!(NMC_CrdGePrftPos, table::CRD_GE_PRFT_POS);
 positions!(NMC_CrdGetAxisPos, table::CRD_GET_AXIS_POS);
 positions!(NMC_CrdGetEncPos, table::CRD_GET_ENC_POS);
+
+#[no_mangle]
+pub extern "C" fn NMC_CrdSetLookAheadCentriAcc(
+    crdHandle: HAND,
+    isUsingSetAcc: c_short,
+    centriAcc: f64,
+) -> c_short {
+    served(
+        &table::CRD_SET_LOOK_AHEAD_CENTRI_ACC,
+        crdHandle,
+        |w| {
+            w.i16(isUsingSetAcc).f64(centriAcc);
+        },
+        |_| Ok(()),
+    )
+}
+
+#[no_mangle]
+pub extern "C" fn NMC_CrdBufWaitEncInPosition(
+    crdHandle: HAND,
+    segNo: c_long,
+    axisMask: c_long,
+    overTime: c_long,
+) -> c_short {
+    segment(
+        &table::CRD_BUF_WAIT_ENC_IN_POSITION,
+        crdHandle,
+        segNo,
+        |w| {
+            w.i64(i64::from(axisMask)).i64(i64::from(overTime));
+        },
+        None,
+        false,
+    )
+}
+
+/// `soomthCoef` [sic] as the manual spells it.
+#[no_mangle]
+pub extern "C" fn NMC_CrdBufSetPtpMovePara(
+    crdHandle: HAND,
+    segNo: c_long,
+    axisNo: c_short,
+    vel: f64,
+    acc: f64,
+    soomthCoef: c_short,
+) -> c_short {
+    segment(
+        &table::CRD_BUF_SET_PTP_MOVE_PARA,
+        crdHandle,
+        segNo,
+        |w| {
+            w.i16(axisNo).f64(vel).f64(acc).i16(soomthCoef);
+        },
+        None,
+        false,
+    )
+}
+
+/// `pRelPos` holds one distance per bit of `axisMask`, lowest axis first.
+#[no_mangle]
+pub extern "C" fn NMC_CrdBufAxMoveRel(
+    crdHandle: HAND,
+    segNo: c_long,
+    axisMask: c_short,
+    pRelPos: *mut c_long,
+    blockEn: c_short,
+    synEn: c_short,
+) -> c_short {
+    require!(table::CRD_BUF_AX_MOVE_REL, pRelPos);
+    let n = (axisMask as u16).count_ones() as usize;
+    let d = load_array(pRelPos.cast_const(), n);
+    segment(
+        &table::CRD_BUF_AX_MOVE_REL,
+        crdHandle,
+        segNo,
+        |w| {
+            w.i16(axisMask);
+            put_longs(w, &d);
+            w.i16(blockEn).i16(synEn);
+        },
+        None,
+        false,
+    )
+}
