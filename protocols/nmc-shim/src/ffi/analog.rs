@@ -5,7 +5,7 @@ use std::ffi::c_short;
 
 use mcemu_nmc::table::{self, Function};
 
-use super::{load_array, require, served, store, store_array, HAND};
+use super::{load_array, reply_list, require, served, store, store_array, HAND};
 
 /// Channels a voltage call handles at once (`count` ∈ [1, 8]).
 const MULTI_MAX: usize = 8;
@@ -145,12 +145,8 @@ fn get_volts(
             w.i16(ch).i16(count);
         },
         |r| {
-            let n = usize::from(r.u16()?);
-            let mut values = Vec::with_capacity(n.min(MULTI_MAX));
-            for _ in 0..n {
-                values.push(r.f64()?);
-            }
-            store_array(out, values.get(..wanted).unwrap_or(&values));
+            let values = reply_list(r, wanted, |r| r.f64())?;
+            store_array(out, &values);
             Ok(())
         },
     )

@@ -13,8 +13,8 @@ use mcemu_nmc::table::{self, Function};
 use super::crd_types::{TCrdConfig, TCrdLineXYZD8Unit, TCrdPara, TCrdSafePara, TExtCrdPara};
 use super::types::to_long;
 use super::{
-    action, getter, load, load_array, require, served, setter, store, store_array, struct_getter,
-    struct_setter, HAND,
+    action, getter, load, load_array, reply_list, require, served, setter, store, store_array,
+    struct_getter, struct_setter, HAND,
 };
 
 /// The coordinate system the server names, in the slot of `devHandle` (its connection).
@@ -827,13 +827,9 @@ fn positions(row: &Function, crdHandle: HAND, cnts: c_short, out: *mut c_long) -
             w.i16(cnts);
         },
         |r| {
-            let n = usize::from(r.u16()?);
-            let mut values = Vec::with_capacity(n);
-            for _ in 0..n {
-                values.push(to_long(r.i64()?));
-            }
             let wanted = usize::try_from(cnts).unwrap_or(0);
-            store_array(out, values.get(..wanted).unwrap_or(&values));
+            let values = reply_list(r, wanted, |r| r.i64().map(to_long))?;
+            store_array(out, &values);
             Ok(())
         },
     )

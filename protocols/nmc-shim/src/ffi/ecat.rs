@@ -5,7 +5,9 @@ use std::ffi::{c_char, c_int, c_long, c_short, c_uchar, c_uint, c_ushort};
 use mcemu_nmc::table::{self, Function};
 
 use super::types::to_long;
-use super::{action, c_string, getter, load_array, require, served, store, store_array, HAND};
+use super::{
+    action, c_string, getter, load_array, reply_list, require, served, store, store_array, HAND,
+};
 
 /// A file name the manual bounds at no length: at most this many bytes travel.
 const PATH_MAX: usize = 4096;
@@ -119,12 +121,8 @@ pub extern "C" fn NMC_EcatSdoRead(
             w.i16(devId).u16(idx).u8(sub_idx).u32(len);
         },
         |r| {
-            let n = usize::from(r.u16()?);
-            let mut bytes = Vec::with_capacity(n.min(SDO_MAX));
-            for _ in 0..n {
-                bytes.push(r.u8()?);
-            }
-            store_array(val, bytes.get(..wanted).unwrap_or(&bytes));
+            let bytes = reply_list(r, wanted, |r| r.u8())?;
+            store_array(val, &bytes);
             store(abort_code, r.u32()?);
             Ok(())
         },

@@ -246,3 +246,20 @@ pub(crate) fn store_array<T: Copy>(p: *mut T, values: &[T]) {
         unsafe { p.add(i).write_unaligned(*v) }
     }
 }
+
+/// A reply's array: u16 count, then `count` elements read by `one` (at most `max` kept).
+pub(crate) fn reply_list<T>(
+    r: &mut Reader<'_>,
+    max: usize,
+    mut one: impl FnMut(&mut Reader<'_>) -> Result<T, PayloadError>,
+) -> Result<Vec<T>, PayloadError> {
+    let n = usize::from(r.u16()?);
+    let mut values = Vec::with_capacity(n.min(max));
+    for _ in 0..n {
+        let v = one(r)?;
+        if values.len() < max {
+            values.push(v);
+        }
+    }
+    Ok(values)
+}

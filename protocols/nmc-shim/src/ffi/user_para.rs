@@ -5,7 +5,7 @@ use std::ffi::{c_short, c_uchar, c_ulong};
 
 use mcemu_nmc::table::{self, Function};
 
-use super::{load_array, require, served, store_array, HAND};
+use super::{load_array, reply_list, require, served, store_array, HAND};
 
 /// Bytes one call moves at most (above every area's per-call limit).
 const CHUNK_MAX: usize = 1024;
@@ -54,12 +54,8 @@ fn read(
             w.u64(u64::from(add)).u64(u64::from(len));
         },
         |r| {
-            let n = usize::from(r.u16()?);
-            let mut bytes = Vec::with_capacity(n.min(CHUNK_MAX));
-            for _ in 0..n {
-                bytes.push(r.u8()?);
-            }
-            store_array(data, bytes.get(..wanted).unwrap_or(&bytes));
+            let bytes = reply_list(r, wanted, |r| r.u8())?;
+            store_array(data, &bytes);
             Ok(())
         },
     )
