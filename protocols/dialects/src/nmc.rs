@@ -396,4 +396,50 @@ mod tests {
         };
         assert_eq!(compare_status(Some(&busy)), (1, 60, 40));
     }
+
+    /// Digest 001 §3.8: BUSY only while the path runs (a halt at rest is not busy, TV49),
+    /// EMPTY with nothing queued or pending (TV50), MVERR and NODATASTOP after an e-stop.
+    #[test]
+    fn crd_status_bits() {
+        let free = CrdExtra {
+            pending: 0,
+            free: 1024,
+        };
+        assert_eq!(
+            crd_status(None, free),
+            BIT_CORD_EMPTY,
+            "a coordinate system without a group"
+        );
+        let moving = GroupStatus {
+            state: GroupState::Moving,
+            queue_used: 2,
+            path_velocity: 10.0,
+            ..GroupStatus::default()
+        };
+        assert_eq!(crd_status(Some(&moving), free), BIT_CORD_BUSY);
+        let halted = GroupStatus {
+            state: GroupState::Halted,
+            path_velocity: 0.0,
+            ..moving
+        };
+        assert_eq!(crd_status(Some(&halted), free), 0);
+        let pending = CrdExtra {
+            pending: 3,
+            free: 0,
+        };
+        let standby = GroupStatus {
+            state: GroupState::Standby,
+            ..GroupStatus::default()
+        };
+        assert_eq!(crd_status(Some(&standby), pending), BIT_CORD_FULL);
+        let estop = GroupStatus {
+            state: GroupState::ErrorStop,
+            fault: Some(GroupFault::EmergencyStop),
+            ..GroupStatus::default()
+        };
+        assert_eq!(
+            crd_status(Some(&estop), free),
+            BIT_CORD_MVERR | BIT_CORD_EMPTY | BIT_CORD_NODATASTOP
+        );
+    }
 }
