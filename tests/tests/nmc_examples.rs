@@ -23,9 +23,14 @@ fn gaochuan() -> PathBuf {
 /// Compile `name`, start a fresh mcemu on the Gaochuan fixture, run the program against it and
 /// expect its last line to be `ok`.
 fn example(name: &str) -> String {
+    example_with(name, &[])
+}
+
+/// [`example`] with extra `mcemu run` arguments (a scaled clock for the long paths).
+fn example_with(name: &str, args: &[&str]) -> String {
     let dir = fresh_dir(env!("CARGO_TARGET_TMPDIR"), &format!("nmc-{name}"));
     let exe = compile_example(name, &dir, &[]);
-    let m = Mcemu::start(Some(&gaochuan()), &[]);
+    let m = Mcemu::start(Some(&gaochuan()), args);
     let out = run_example(&exe, m.address("nmc"));
     let stdout = String::from_utf8_lossy(&out.stdout).to_string();
     assert!(
@@ -94,6 +99,45 @@ fn s_gantry_and_handwheel_tv73() {
 #[test]
 fn s_leadscrew_backlash_2dcomp_tv72() {
     example("s_comp.c");
+}
+
+#[test]
+fn s_config_tv05_tv10_tv22_tv68() {
+    example("s_config.c");
+}
+
+#[test]
+fn s_io_analog_tv41_and_appendix_a_dog() {
+    example("s_analog.c");
+}
+
+/// S-ECAT-START and TV33 on an EtherCAT card; the same calls refused on the network card.
+#[test]
+fn s_ecat_start_tv33() {
+    example_with("s_ecat.c", &["--set", "frontends.nmc.device.kind=\"ecat\""]);
+    let dir = fresh_dir(env!("CARGO_TARGET_TMPDIR"), "nmc-s_ecat-pulse");
+    let exe = compile_example("s_ecat.c", &dir, &[]);
+    let m = Mcemu::start(Some(&gaochuan()), &[]);
+    let mut command = Command::new(&exe);
+    command.arg("pulse").env("MCEMU_NMC", m.address("nmc"));
+    let out = run_with_timeout(command, b"", PROGRAM_TIMEOUT);
+    let stdout = String::from_utf8_lossy(&out.stdout).to_string();
+    assert!(
+        out.status.success() && stdout.lines().last() == Some("ok"),
+        "{}",
+        output_report("s_ecat.c pulse", &out)
+    );
+}
+
+#[test]
+fn user_parameter_areas_tv66() {
+    example("s_user_para.c");
+}
+
+/// The coordinate-system examples (S-CRD-*) and TV04, TV42–TV54, on a clock 5× real time.
+#[test]
+fn s_crd_examples_tv42_tv54() {
+    example_with("s_crd.c", &["--clock", "scaled:5"]);
 }
 
 #[test]

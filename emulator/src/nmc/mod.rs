@@ -9,13 +9,17 @@
 //! - `service`: one request → reply payload + engine commands; the per-axis NMC settings;
 //! - `sync_state`: what the gear, PT, capture, compare, gantry, handwheel and compensation
 //!   families keep between calls;
+//! - `crd`: the coordinate systems' state the engine's groups do not keep;
 //! - `handlers`: one file per family of the function table (`mcemu_nmc::table`);
+//! - `stored`: settings the engine has no model of, kept and read back;
 //! - `serve`: the transports (the kit's bounded accept loop on TCP, the same table on the Unix
 //!   socket), the connection loop over `mcemu_nmc::session`, the control-API handle.
 
 pub mod config;
+pub mod crd;
 pub mod faults;
 mod handlers;
 pub mod serve;
 pub mod service;
+pub mod stored;
 pub mod sync_state;

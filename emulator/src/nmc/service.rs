@@ -22,6 +22,8 @@ use mcemu_nmc::structs::{HomeSetting, JogPara, PtpPara};
 use mcemu_nmc::table::Function;
 
 use super::config::NmcDevice;
+use super::crd::{CrdState, CRD_COUNT};
+use super::stored::Stored;
 
 /// Why a request is refused: its return code and the text `NMC_GetErrDesc` shows.
 #[derive(Clone, Debug, PartialEq)]
@@ -142,6 +144,10 @@ pub struct NmcService {
     settings: Mutex<Vec<AxisSettings>>,
     /// The gear, PT, capture, compare, gantry, handwheel and compensation settings.
     sync: Mutex<super::sync_state::SyncState>,
+    /// The coordinate systems (`NMC_Crd*`), by number.
+    crd: Mutex<[CrdState; CRD_COUNT]>,
+    /// Settings the engine has no model of (pulse mode, filters, encoder modes).
+    stored: Mutex<Stored>,
     /// `TCardInfo` counts (digest 001 §1.1).
     pub io_counts: [i16; 4],
 }
@@ -163,6 +169,8 @@ impl NmcService {
             last_refusal: Default::default(),
             settings: Mutex::new(Vec::new()),
             sync: Mutex::new(Default::default()),
+            crd: Mutex::new(std::array::from_fn(|_| CrdState::fresh())),
+            stored: Mutex::new(Stored::default()),
             io_counts,
         };
         service.reset_settings();
@@ -188,6 +196,14 @@ impl NmcService {
 
     pub fn settings(&self) -> MutexGuard<'_, Vec<AxisSettings>> {
         self.settings.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+
+    pub fn crd(&self) -> MutexGuard<'_, [CrdState; CRD_COUNT]> {
+        self.crd.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+
+    pub fn stored(&self) -> MutexGuard<'_, Stored> {
+        self.stored.lock().unwrap_or_else(PoisonError::into_inner)
     }
 
     /// Serve one request with `handler` (the function's, from the handler tables; `None` if it

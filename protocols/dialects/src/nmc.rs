@@ -2,7 +2,9 @@
 //! library's units (pulse, pulse/ms, pulse/ms²).
 
 use axes::command::{EngineError, ErrorKind};
-use axes::status::{CaptureStatus, CompareState, CompareStatus};
+use axes::status::{
+    CaptureStatus, CompareState, CompareStatus, GroupFault, GroupState, GroupStatus,
+};
 use axes::{AxisFlags, AxisState, AxisStatus};
 
 use crate::PulseScale;
@@ -165,6 +167,75 @@ pub fn acceleration_from_engine(scale: PulseScale, units_per_s2: f64) -> f64 {
     scale.from_engine(units_per_s2) / 1e6
 }
 
+// Coordinate-system status bits, `NMC_CrdGetSts` (bits 0-5) and `NMC_CrdGetInnerSts` (bits 6-11),
+// digest 001 §3.8, verbatim macro names.
+pub const BIT_CORD_BUSY: u32 = 0x0001;
+pub const BIT_CORD_MVERR: u32 = 0x0002;
+pub const BIT_CORD_EMPTY: u32 = 0x0004;
+pub const BIT_CORD_FULL: u32 = 0x0008;
+pub const BIT_CORD_NODATASTOP: u32 = 0x0010;
+pub const BIT_CORD_POSREC: u32 = 0x0040;
+pub const BIT_CORD_AXIS_ERR: u32 = 0x0200;
+
+/// What the coordinate-system word shows that [`GroupStatus`] does not carry: the commands
+/// the front-end holds until `NMC_CrdStartMtn` (digest 001 §4.4: push first, then start).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct CrdExtra {
+    /// Commands pushed and not yet handed to the engine.
+    pub pending: usize,
+    /// Places left for pushing (the engine queue's, less `pending`).
+    pub free: usize,
+}
+
+/// The coordinate-system status word (digest 001 §3.8): `NMC_CrdGetSts` is its low 6 bits,
+/// `NMC_CrdGetInnerSts` all of it.
+///
+/// - BUSY: the path runs (Moving, Stopping, or a halt still decelerating); a path halted at rest
+///   by `NMC_CrdStopMtn` is not busy (TV49).
+/// - MVERR: the group is in ErrorStop (a member fault, an e-stop, a wait timeout).
+/// - EMPTY: nothing queued and nothing pending; FULL: no place left.
+/// - NODATASTOP: the path was e-stopped (`NMC_CrdEstopMtn`).
+/// - POSREC (inner): every member in position with nothing queued.
+/// - AXIS_ERR (inner): a member's fault stopped the path.
+pub fn crd_status(g: Option<&GroupStatus>, extra: CrdExtra) -> u32 {
+    let Some(g) = g else {
+        let mut w = 0;
+        if extra.pending == 0 {
+            w |= BIT_CORD_EMPTY;
+        }
+        if extra.free == 0 {
+            w |= BIT_CORD_FULL;
+        }
+        return w;
+    };
+    let busy = match g.state {
+        GroupState::Moving | GroupState::Stopping => true,
+        GroupState::Halted => g.path_velocity != 0.0,
+        GroupState::Disabled | GroupState::Standby | GroupState::ErrorStop => false,
+    };
+    let mut w = 0;
+    for (on, bit) in [
+        (busy, BIT_CORD_BUSY),
+        (g.state == GroupState::ErrorStop, BIT_CORD_MVERR),
+        (g.queue_used == 0 && extra.pending == 0, BIT_CORD_EMPTY),
+        (extra.free == 0, BIT_CORD_FULL),
+        (
+            g.fault == Some(GroupFault::EmergencyStop),
+            BIT_CORD_NODATASTOP,
+        ),
+        (g.in_position && extra.pending == 0, BIT_CORD_POSREC),
+        (
+            matches!(g.fault, Some(GroupFault::Member { .. })),
+            BIT_CORD_AXIS_ERR,
+        ),
+    ] {
+        if on {
+            w |= bit;
+        }
+    }
+    w
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -324,5 +395,51 @@ mod tests {
             ..done
         };
         assert_eq!(compare_status(Some(&busy)), (1, 60, 40));
+    }
+
+    /// Digest 001 §3.8: BUSY only while the path runs (a halt at rest is not busy, TV49),
+    /// EMPTY with nothing queued or pending (TV50), MVERR and NODATASTOP after an e-stop.
+    #[test]
+    fn crd_status_bits() {
+        let free = CrdExtra {
+            pending: 0,
+            free: 1024,
+        };
+        assert_eq!(
+            crd_status(None, free),
+            BIT_CORD_EMPTY,
+            "a coordinate system without a group"
+        );
+        let moving = GroupStatus {
+            state: GroupState::Moving,
+            queue_used: 2,
+            path_velocity: 10.0,
+            ..GroupStatus::default()
+        };
+        assert_eq!(crd_status(Some(&moving), free), BIT_CORD_BUSY);
+        let halted = GroupStatus {
+            state: GroupState::Halted,
+            path_velocity: 0.0,
+            ..moving
+        };
+        assert_eq!(crd_status(Some(&halted), free), 0);
+        let pending = CrdExtra {
+            pending: 3,
+            free: 0,
+        };
+        let standby = GroupStatus {
+            state: GroupState::Standby,
+            ..GroupStatus::default()
+        };
+        assert_eq!(crd_status(Some(&standby), pending), BIT_CORD_FULL);
+        let estop = GroupStatus {
+            state: GroupState::ErrorStop,
+            fault: Some(GroupFault::EmergencyStop),
+            ..GroupStatus::default()
+        };
+        assert_eq!(
+            crd_status(Some(&estop), free),
+            BIT_CORD_MVERR | BIT_CORD_EMPTY | BIT_CORD_NODATASTOP
+        );
     }
 }

@@ -173,6 +173,62 @@ typedef struct { short count[2]; short reserved[2]; long posBegin[2]; long step[
 typedef struct { long xDirComp; long yDirComp; long zDirComp; } TCompData;
 typedef struct { short enable; short tableIndex; short axisType[2]; short axisIndex[3]; } T2DCompensation;
 
+/* Coordinate system (digest 001 §3.7, §3.8, §3.10). */
+#define BIT_CORD_BUSY           0x00000001
+#define BIT_CORD_MVERR          0x00000002
+#define BIT_CORD_EMPTY          0x00000004
+#define BIT_CORD_FULL           0x00000008
+#define BIT_CORD_NODATASTOP     0x00000010
+#define BIT_CORD_SDRAM_HWERR    0x00000020
+#define BIT_CORD_POSREC         0x00000040
+#define BIT_CORD_AUXAXIS_BUSY   0x00000080
+#define BIT_CORD_AUXAXIS_ERR    0x00000100
+#define BIT_CORD_AXIS_ERR       0x00000200
+#define BIT_CORD_SDRAM_CALC_ERR 0x00000400
+#define BIT_CORD_SCARA_CALC_ERR 0x00000800
+#define CRD_BUFF_DO_MOTOR_ENABLE 1
+#define CRD_BUFF_DO_MOTOR_CLEAR  2
+#define CRD_BUFF_DO_GPDO1        3
+#define CRD_BUFF_DO_GPDO2        4
+#define CRD_BUFF_DO_EXTDO1       5
+#define CRD_BUFF_DO_EXTDO2       6
+#define CRD_BUFF_DO_EXTDO3       7
+#define CRD_BUFF_DO_EXTDO4       8
+#define CRD_BUFF_DO_EXTDO5       9
+#define CRD_BUFF_DO_EXTDO6       10
+#define CRD_BUFF_DELAY_SCALE_MS  0
+#define CRD_BUFF_DELAY_SCALE_S   1
+
+typedef struct { short axCnts; short reserved[3]; short pAxArray[4]; short port[4]; } TCrdConfig;
+typedef struct {
+    short orgFlag;
+    short reserved[3];
+    long offset[4];
+    double synAccMax;
+    double synVelMax;
+} TCrdPara;
+typedef struct {
+    double startVel;
+    double T;
+    double smoothDec;
+    double abruptDec;
+    short lookAheadSwitch;
+    short eventTime;
+    short reserved[2];
+} TExtCrdPara;
+typedef struct { double estpDec; double maxAcc; double maxVel; } TCrdSafePara;
+typedef struct {
+    long segNo;
+    short crdAxMask;
+    short extAxMask;
+    long tgPos[8];
+    float vel;
+    float endVel;
+    float acc;
+    short lookaheadDis;
+    short reserved;
+} TCrdLineXYZD8Unit;
+
 short NMC_GetDllVersion(char *pVersion);
 short NMC_SetCommPara(HAND devHandle, unsigned long waitTimeInUs, unsigned long retryTimes);
 short NMC_GetLastErr(void);
@@ -230,6 +286,124 @@ short NMC_SetDOBit(HAND devHandle, short bitIndex, short value);
 short NMC_GetDOBit(HAND devHandle, short bitIndex, short *bitValue);
 short NMC_GetDIGroup(HAND devHandle, long *pInValue, short groupID);
 short NMC_GetDIBit(HAND devHandle, short bitIndex, short *bitValue);
+short NMC_CrdOpen(HAND devHandle, PHAND pCrdHandle);
+short NMC_CrdOpenEx(HAND devHandle, short itemNo, PHAND pCrdHandle);
+short NMC_CrdClose(PHAND pCrdHandle);
+short NMC_CrdConfig(HAND crdHandle, TCrdConfig *pConfig);
+short NMC_CrdGetConfig(HAND crdHandle, TCrdConfig *pConfig);
+short NMC_CrdDelete(HAND crdHandle);
+short NMC_CrdSetPara(HAND crdHandle, TCrdPara *pCrdPara);
+short NMC_CrdGetPara(HAND crdHandle, TCrdPara *pCrdPara);
+short NMC_CrdSetExtPara(HAND crdHandle, TExtCrdPara *extCrdPara);
+short NMC_CrdGetExtPara(HAND crdHandle, TExtCrdPara *extCrdPara);
+short NMC_CrdSetSafePara(HAND crdHandle, TCrdSafePara *pSafePara);
+short NMC_CrdSetLookAheadCentriAcc(HAND crdHandle, short isUsingSetAcc, double centriAcc);
+short NMC_CrdLineXYZEx(HAND crdHandle, long segNo, short crdAxMask, long *pTgPosArray, double endVel, double vel, double synAcc, short lookaheadDis);
+short NMC_CrdLineXYZA(HAND crdHandle, long segNo, short crdAxMask, long *pTgPosArray, double endVel, double vel, double synAcc, short lookaheadDis);
+short NMC_CrdLineXYZ(HAND crdHandle, long segNo, short crdAxMask, long *pTgPosArray, double endVel, double vel, double synAcc);
+short NMC_CrdLineXYZD8(HAND crdHandle, long segNo, long crdAxmask, long extAxMask, long *pTgPosArray, double endVel, double vel, double synAcc, short lookaheadDis);
+short NMC_CrdLineXYZD8Pack(HAND crdHandle, short count, TCrdLineXYZD8Unit *pCmdArray);
+short NMC_CrdArcCenterEx(HAND crdHandle, long segNo, long *pTgPosArray, long *pCenterPosArray, short circleDir, double endVel, double vel, double synAcc, short lookaheadDis);
+short NMC_CrdArcCenterYZEx(HAND crdHandle, long segNo, long *pTgPos, long *pCenterPos, short circleDir, double velEnd, double vel, double synAcc, short lookaheadDis);
+short NMC_CrdArcCenterZXEx(HAND crdHandle, long segNo, long *pTgPos, long *pCenterPos, short circleDir, double velEnd, double vel, double synAcc, short lookaheadDis);
+short NMC_CrdArcCenter(HAND crdHandle, long segNo, long *pTgPosArray, long *pCenterPosArray, short circleDir, double endVel, double vel, double synAcc);
+short NMC_CrdArcRadiusEx(HAND crdHandle, long segNo, long *pTgPosArray, double radius, short circleDir, double endVel, double vel, double synAcc, short lookaheadDis);
+short NMC_CrdArcRadiusYZEx(HAND crdHandle, long segNo, long *pTgPos, double radius, short circleDir, double velEnd, double vel, double synAcc, short lookaheadDis);
+short NMC_CrdArcRadiusZXEx(HAND crdHandle, long segNo, long *pTgPos, double radius, short circleDir, double velEnd, double vel, double synAcc, short lookaheadDis);
+short NMC_CrdArcPPPEx(HAND crdHandle, long segNo, long *pMidPosArray, long *pTgPosArray, double endVel, double vel, double synAcc, short lookaheadDis);
+short NMC_CrdHelixCenterEx(HAND crdHandle, long segNo, long *pTgPosArray, long *pCenterPosArray, short circleDir, double rounds, double endVel, double vel, double synAcc, short lookaheadDis);
+short NMC_CrdArc3DEx(HAND crdHandle, long segNo, long *pMidPos, long *pTgPos, double velEnd, double vel, double synAcc, short lookaheadDis);
+short NMC_CrdArc3D(HAND crdHandle, long segNo, long *pMidPos, long *pTgPos, double velEnd, double vel, double synAcc);
+short NMC_CrdEllipse(HAND crdHandle, long segNo, double abRatio, long *pCenterPos, short ellipseDir, double vel, double synAcc);
+short NMC_CrdBufDo(HAND crdHandle, long segNo, short doType, long ch, long value);
+short NMC_CrdBufDoEx(HAND crdHandle, long segNo, short group, long doMask, long doValue);
+short NMC_CrdBufDelay(HAND crdHandle, long segNo, short scale, long count);
+short NMC_CrdBufWaitDI(HAND crdHandle, long segNo, short index, short diValue, long waitLastTime);
+short NMC_CrdBufAxMoveEx(HAND crdHandle, long segNo, short axisMask, long *pTgPos, double vel, double acc, short blockEn, short synEn);
+short NMC_CrdBufWaitEncInPosition(HAND crdHandle, long segNo, long axisMask, long overTime);
+short NMC_CrdBufSetPtpMovePara(HAND crdHandle, long segNo, short axisNo, double vel, double acc, short soomthCoef);
+short NMC_CrdBufAxMoveRel(HAND crdHandle, long segNo, short axisMask, long *pRelPos, short blockEn, short synEn);
+short NMC_CrdStartMtn(HAND crdHandle);
+short NMC_CrdEndMtn(HAND crdHandle);
+short NMC_CrdStopMtn(HAND crdHandle);
+short NMC_CrdEstopMtn(HAND crdHandle);
+short NMC_CrdClrError(HAND crdHandle);
+short NMC_CrdBufClr(HAND crdHandle);
+short NMC_CrdSetOverride(HAND crdHandle, double override);
+short NMC_CrdGetOverride(HAND crdHandle, double *pOverride);
+short NMC_CrdSetOverRide(HAND crdHandle, double override);
+short NMC_CrdGetOverRide(HAND crdHandle, double *pOverride);
+short NMC_CrdGetSts(HAND crdHandle, short *pStsWord);
+short NMC_CrdGetStsEx(HAND crdHandle, short *pSts, long *pUserSeg);
+short NMC_CrdGetInnerSts(HAND crdHandle, long *pStsWord);
+short NMC_CrdGetPrfPos(HAND crdHandle, short cnts, long *pPosArray);
+short NMC_CrdGePrftPos(HAND crdHandle, short cnts, long *pPosArray);
+short NMC_CrdGetAxisPos(HAND crdHandle, short cnts, long *pPosArray);
+short NMC_CrdGetEncPos(HAND crdHandle, short cnts, long *pPosArray);
+short NMC_CrdGetVel(HAND crdHandle, double *pVel);
+short NMC_CrdBufGetFree(HAND crdHandle, long *pRes);
+short NMC_CrdBufGetUsed(HAND crdHandle, long *pLen);
+short NMC_CrdGetUserSegNo(HAND crdHandle, long *pSegNo);
+short NMC_CrdGetBufAllCmdCnt(HAND crdHandle, long *pCnt);
+short NMC_CrdGetBufLeftLength(HAND crdHandle, double *pLen);
+short NMC_MtSetAlarmCfg(HAND axisHandle, short alarmEnable, short alarmSns);
+short NMC_MtGetAlarmOnOff(HAND axisHandle, short *enable);
+short NMC_MtGetAlarmSns(HAND axisHandle, short *swt);
+short NMC_MtSetLmtCfg(HAND axisHandle, short posLmtEnable, short negLmtEnable, short posLmtSns, short negLmtSns);
+short NMC_MtGetLmtOnOff(HAND axisHandle, short *posEn, short *negEn);
+short NMC_MtGetLmtSns(HAND axisHandle, short *posSwt, short *negSwt);
+short NMC_MtSwLmtOnOff(HAND axisHandle, short enable);
+short NMC_MtGetSwLmtOnOff(HAND axisHandle, short *enable);
+short NMC_MtSwLmtValue(HAND axisHandle, long posLmt, long negLmt);
+short NMC_MtGetSwLmtValue(HAND axisHandle, long *posLmt, long *negLmt);
+short NMC_MtSetStepMode(HAND axisHandle, short inv, short mode);
+short NMC_MtGetStepMode(HAND axisHandle, short *pInv, short *pMode);
+short NMC_SetEncMode(HAND devHandle, unsigned char encId, unsigned short encMode);
+short NMC_GetEncMode(HAND devHandle, unsigned char encId, unsigned short *encMode);
+short NMC_MtSetSafePara(HAND axisHandle, TSafePara *pPara);
+short NMC_MtGetSafePara(HAND axisHandle, TSafePara *pPara);
+short NMC_MtSetPosErrLmt(HAND axisHandle, long posErr);
+short NMC_MtGetPosErrLmt(HAND axisHandle, long *posErr);
+short NMC_MtSetAxisVelFilter(HAND axisHandle, short filterCoef);
+short NMC_MtGetAxisVelFilter(HAND axisHandle, short *filterCoef);
+short NMC_MtSetStepFilter(HAND axisHandle, unsigned short coe);
+short NMC_MtGetStepFilter(HAND axisHandle, unsigned short *pCoe);
+short NMC_MtSetPosErrAction(HAND axisHandle, short actionsBits);
+short NMC_MtGetPosErrAction(HAND axisHandle, short *pActionsBits);
+short NMC_MtSetAxisArrivalPara(HAND axisHandle, long arrivalBand, long stableTime);
+short NMC_MtGetAxisArrivalPara(HAND axisHandle, long *pArrivalBand, long *pStableTime);
+short NMC_SetDOGGroup(HAND devHandle, long value, short groupID);
+short NMC_GetDOGGroup(HAND devHandle, long *pDoValue, short groupID);
+short NMC_SetDacMode(HAND devHandle, short ch, short mode);
+short NMC_GetDacMode(HAND devHandle, short ch, short *pMode);
+short NMC_SetAdcMode(HAND devHandle, short ch, short range, short filterCoe);
+short NMC_GetAdcMode(HAND devHandle, short ch, short *pRange, short *pFilterCoe);
+short NMC_SetDac(HAND devHandle, short ch, short dacValue);
+short NMC_GetDac(HAND devHandle, short ch, short *pDacValue);
+short NMC_GetAdc(HAND devHandle, short ch, short *pAdcValue);
+short NMC_SetDacBias(HAND devHandle, short ch, short bias);
+short NMC_GetDacBias(HAND devHandle, short ch, short *pBias);
+short NMC_SetDacLmt(HAND devHandle, short ch, short maxVal, short minVal);
+short NMC_GetDacLmt(HAND devHandle, short ch, short *pMaxVal, short *pMinVal);
+short NMC_GetAdcVoltageMulti(HAND devHandle, short ch, short count, double *pAdcVolArray);
+short NMC_SetDacVoltageMulti(HAND devHandle, short ch, short count, double *pDacVolArray);
+short NMC_GetDacVoltageMulti(HAND devHandle, short ch, short count, double *pDacVolArray);
+short NMC_EcatLoadConfigFromFile(HAND devHandle, char *gmlFileName, short masterIdx);
+short NMC_EcatStart(HAND devHandle);
+short NMC_EcatStop(HAND devHandle);
+short NMC_EcatGetSts(HAND devHandle, unsigned short *pSts);
+short NMC_EcatGetResource(HAND devHandle, short *pSlaveCnt, short *pDriverCnt, short *pIoCnt);
+short NMC_EcatStartHome(HAND axisHandle, int method, int velSwitch, int velZero, int acc, int prmEx);
+short NMC_EcatGetHomeSts(HAND axisHandle, unsigned char *pStatus);
+short NMC_EcatStopHome(HAND axisHandle);
+short NMC_EcatSdoRead(HAND devHandle, short devId, unsigned short idx, unsigned char sub_idx, unsigned int len, unsigned char *val, unsigned int *abort_code);
+short NMC_EcatSdoWrite(HAND devHandle, short devId, unsigned short idx, unsigned char sub_idx, unsigned int len, unsigned char *val, unsigned int *abort_code);
+short NMC_EcatAxisGetErrorCode(HAND axisHandle, unsigned short *pError);
+short NMC_EcatAxisGetDi(HAND axisHandle, long *pDiVal);
+short NMC_UserParaWr(HAND devHandle, unsigned long add, unsigned long len, unsigned char *pWrData);
+short NMC_UserParaRd(HAND devHandle, unsigned long add, unsigned long len, unsigned char *pRdData);
+short NMC_UserParaWrEx(HAND devHandle, unsigned long add, unsigned long len, unsigned char *pWrData);
+short NMC_UserParaRdEx(HAND devHandle, unsigned long add, unsigned long len, unsigned char *pRdData);
 short NMC_MtGearSetDir(HAND axisHandle, short dir);
 short NMC_MtGearGetDir(HAND axisHandle, short *pdir);
 short NMC_MtGearSetMaster(HAND axisHandle, short masterNo, short masterType);

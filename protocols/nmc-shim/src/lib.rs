@@ -37,6 +37,12 @@ mod tests {
             include_str!("ffi/compare.rs"),
             include_str!("ffi/gang.rs"),
             include_str!("ffi/compensation.rs"),
+            include_str!("ffi/crd.rs"),
+            include_str!("ffi/axis_config.rs"),
+            include_str!("ffi/aliases.rs"),
+            include_str!("ffi/analog.rs"),
+            include_str!("ffi/ecat.rs"),
+            include_str!("ffi/user_para.rs"),
         ]
         .concat();
         for f in FUNCTIONS {

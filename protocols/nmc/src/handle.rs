@@ -1,9 +1,10 @@
 //! `HAND` values (16 bits, digest 001 §1.2; the encoding is mcemu's, §8 item 2):
 //!
 //! ```text
-//! bits 15-14 kind   1 device, 2 axis (3 coordinate system, later)
+//! bits 15-14 kind   1 device, 2 axis, 3 coordinate system
 //! bits 13-8  slot   the library's device slot (0-63): which connection
-//! bits  7-0  item   the axis number (0-255; EtherCAT axes from 16); 0 for a device
+//! bits  7-0  item   the axis number (0-255; EtherCAT axes from 16), the coordinate system
+//!                   number (0-1); 0 for a device
 //! ```
 //!
 //! The server sees the whole value but uses only kind and item; the slot is the library's.
@@ -14,6 +15,8 @@
 pub enum HandleKind {
     Device = 1,
     Axis = 2,
+    /// A coordinate system (`NMC_CrdOpenEx`, digest 001 §2.2).
+    Crd = 3,
 }
 
 /// The parts of a handle.
@@ -44,6 +47,14 @@ impl Handle {
         }
     }
 
+    pub fn crd(slot: u8, item: u8) -> Handle {
+        Handle {
+            kind: HandleKind::Crd,
+            slot,
+            item,
+        }
+    }
+
     pub fn encode(self) -> u16 {
         ((self.kind as u16) << 14) | (u16::from(self.slot & 0x3F) << 8) | u16::from(self.item)
     }
@@ -53,6 +64,7 @@ impl Handle {
         let kind = match h >> 14 {
             1 => HandleKind::Device,
             2 => HandleKind::Axis,
+            3 => HandleKind::Crd,
             _ => return None,
         };
         Some(Handle {
@@ -74,7 +86,12 @@ mod tests {
 
     #[test]
     fn handles_round_trip_and_zero_is_invalid() {
-        for h in [Handle::device(63), Handle::axis(5, 17), Handle::axis(0, 0)] {
+        for h in [
+            Handle::device(63),
+            Handle::axis(5, 17),
+            Handle::axis(0, 0),
+            Handle::crd(2, 1),
+        ] {
             assert_eq!(Handle::decode(h.encode()), Some(h));
             assert_ne!(h.encode(), 0);
         }

@@ -158,6 +158,7 @@ fn c_arg(a: &Arg) -> String {
         CType::Hand => "HAND",
         CType::SearchMode => "TSearchMode",
         CType::Str => return format!("char *{}", a.name),
+        CType::Bytes => return format!("unsigned char *{}", a.name),
         CType::Ipv4 => return format!("unsigned char *{}", a.name),
         CType::Struct(s) | CType::StructArray(s) => return format!("{s} *{}", a.name),
         CType::ShortArray => return format!("short *{}", a.name),
@@ -189,8 +190,9 @@ fn prototypes(file: HeaderFile) -> String {
 /// `mtn_lib20.h`.
 pub fn main_header() -> String {
     format!(
-        "{MAIN_PREAMBLE}{}{}{MAIN_END}",
+        "{MAIN_PREAMBLE}{}{}{}{MAIN_END}",
         crate::sync_header::SYNC_PREAMBLE,
+        crate::crd::C_DECLARATIONS,
         prototypes(HeaderFile::Main)
     )
 }

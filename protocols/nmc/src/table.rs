@@ -5,8 +5,10 @@
 //!
 //! Ids are stable (a client and a server of different builds must agree): never reuse or
 //! renumber one; families take a block of 256 (0x00xx library, 0x01xx device, 0x02xx axis
-//! status and servo, 0x03xx PTP/JOG/stop, 0x04xx homing, 0x05xx I/O, 0x0Cxx gear, 0x0Dxx
-//! PT/PVT, 0x0Exx capture, 0x0Fxx compare, 0x10xx gantry and handwheel, 0x11xx compensation).
+//! status and servo, 0x03xx PTP/JOG/stop, 0x04xx homing, 0x05xx I/O, 0x06xx coordinate
+//! systems, 0x07xx basic axis configuration, 0x08xx Appendix A aliases, 0x09xx analog I/O,
+//! 0x0Axx EtherCAT, 0x0Bxx user parameters, 0x0Cxx gear, 0x0Dxx PT/PVT, 0x0Exx capture, 0x0Fxx
+//! compare, 0x10xx gantry and handwheel, 0x11xx compensation).
 
 /// A C argument kind, as the manual writes it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -30,14 +32,23 @@ pub enum CType {
     SearchMode,
     /// A pointer to one of the manual's structs (`crate::structs`).
     Struct(&'static str),
-    /// A pointer to an array of structs; its length is the previous out argument, or what the
-    /// function's row comment says.
+    /// A pointer to an array of structs; its length is the previous out argument, for an in
+    /// array the previous in argument (`count`), or what the function's row comment says. On
+    /// the wire: u16 count, then the structs.
     StructArray(&'static str),
-    /// `short *`, `long *`, `double *` arrays (`short *pSyncAxArray`), in or out; the length
-    /// is another argument's value. Wire: u16 count, then the elements.
+    /// `short *` (`short *pSyncAxArray`), in or out; its length another argument's value. On
+    /// the wire: u16 count, then i16 each.
     ShortArray,
+    /// `long *`: an array of the platform's `long`, its length the function's (the crd's
+    /// coordinates, a mask's bits, `cnts`) or another argument's value. On the wire: u16 count,
+    /// then i64 each.
     LongArray,
+    /// `double *`: an array of doubles, its length an in argument (`count`). On the wire: u16
+    /// count, then f64 each.
     DoubleArray,
+    /// `unsigned char *`: a byte buffer, its length an in argument (`len`). On the wire: u16
+    /// count, then the bytes.
+    Bytes,
 }
 
 /// Which way an argument goes.
@@ -192,6 +203,130 @@ functions! {
     GET_DO_BIT = 0x0504 Server Main NMC_GetDOBit(In Hand => devHandle, In Short => bitIndex, Out Short => bitValue);
     GET_DI_GROUP = 0x0505 Server Main NMC_GetDIGroup(In Hand => devHandle, Out Long => pInValue, In Short => groupID);
     GET_DI_BIT = 0x0506 Server Main NMC_GetDIBit(In Hand => devHandle, In Short => bitIndex, Out Short => bitValue);
+    // ---- coordinate systems (digest 001 §2.2, §2.7, §3.7-§3.10, §4.4) ----
+    CRD_OPEN = 0x0601 Server Main NMC_CrdOpen(In Hand => devHandle, Out Hand => pCrdHandle);
+    CRD_OPEN_EX = 0x0602 Server Main NMC_CrdOpenEx(In Hand => devHandle, In Short => itemNo, Out Hand => pCrdHandle);
+    CRD_CLOSE = 0x0603 Server Main NMC_CrdClose(Out Hand => pCrdHandle);
+    CRD_CONFIG = 0x0604 Server Main NMC_CrdConfig(In Hand => crdHandle, In Struct("TCrdConfig") => pConfig);
+    CRD_GET_CONFIG = 0x0605 Server Main NMC_CrdGetConfig(In Hand => crdHandle, Out Struct("TCrdConfig") => pConfig);
+    CRD_DELETE = 0x0606 Server Main NMC_CrdDelete(In Hand => crdHandle);
+    CRD_SET_PARA = 0x0607 Server Main NMC_CrdSetPara(In Hand => crdHandle, In Struct("TCrdPara") => pCrdPara);
+    CRD_GET_PARA = 0x0608 Server Main NMC_CrdGetPara(In Hand => crdHandle, Out Struct("TCrdPara") => pCrdPara);
+    CRD_SET_EXT_PARA = 0x0609 Server Main NMC_CrdSetExtPara(In Hand => crdHandle, In Struct("TExtCrdPara") => extCrdPara);
+    CRD_GET_EXT_PARA = 0x060A Server Main NMC_CrdGetExtPara(In Hand => crdHandle, Out Struct("TExtCrdPara") => extCrdPara);
+    CRD_SET_SAFE_PARA = 0x060B Server Main NMC_CrdSetSafePara(In Hand => crdHandle, In Struct("TCrdSafePara") => pSafePara);
+    CRD_SET_LOOK_AHEAD_CENTRI_ACC = 0x060C Server Main NMC_CrdSetLookAheadCentriAcc(In Hand => crdHandle, In Short => isUsingSetAcc, In Double => centriAcc);
+    CRD_LINE_XYZ_EX = 0x0610 Server Main NMC_CrdLineXYZEx(In Hand => crdHandle, In Long => segNo, In Short => crdAxMask, In LongArray => pTgPosArray, In Double => endVel, In Double => vel, In Double => synAcc, In Short => lookaheadDis);
+    CRD_LINE_XYZA = 0x0611 Server Main NMC_CrdLineXYZA(In Hand => crdHandle, In Long => segNo, In Short => crdAxMask, In LongArray => pTgPosArray, In Double => endVel, In Double => vel, In Double => synAcc, In Short => lookaheadDis);
+    CRD_LINE_XYZ = 0x0612 Server Main NMC_CrdLineXYZ(In Hand => crdHandle, In Long => segNo, In Short => crdAxMask, In LongArray => pTgPosArray, In Double => endVel, In Double => vel, In Double => synAcc);
+    CRD_LINE_XYZ_D8 = 0x0613 Server Main NMC_CrdLineXYZD8(In Hand => crdHandle, In Long => segNo, In Long => crdAxmask, In Long => extAxMask, In LongArray => pTgPosArray, In Double => endVel, In Double => vel, In Double => synAcc, In Short => lookaheadDis);
+    CRD_LINE_XYZ_D8_PACK = 0x0614 Server Main NMC_CrdLineXYZD8Pack(In Hand => crdHandle, In Short => count, In StructArray("TCrdLineXYZD8Unit") => pCmdArray);
+    CRD_ARC_CENTER_EX = 0x0618 Server Main NMC_CrdArcCenterEx(In Hand => crdHandle, In Long => segNo, In LongArray => pTgPosArray, In LongArray => pCenterPosArray, In Short => circleDir, In Double => endVel, In Double => vel, In Double => synAcc, In Short => lookaheadDis);
+    CRD_ARC_CENTER_YZ_EX = 0x0619 Server Main NMC_CrdArcCenterYZEx(In Hand => crdHandle, In Long => segNo, In LongArray => pTgPos, In LongArray => pCenterPos, In Short => circleDir, In Double => velEnd, In Double => vel, In Double => synAcc, In Short => lookaheadDis);
+    CRD_ARC_CENTER_ZX_EX = 0x061A Server Main NMC_CrdArcCenterZXEx(In Hand => crdHandle, In Long => segNo, In LongArray => pTgPos, In LongArray => pCenterPos, In Short => circleDir, In Double => velEnd, In Double => vel, In Double => synAcc, In Short => lookaheadDis);
+    CRD_ARC_CENTER = 0x061B Server Main NMC_CrdArcCenter(In Hand => crdHandle, In Long => segNo, In LongArray => pTgPosArray, In LongArray => pCenterPosArray, In Short => circleDir, In Double => endVel, In Double => vel, In Double => synAcc);
+    CRD_ARC_RADIUS_EX = 0x061C Server Main NMC_CrdArcRadiusEx(In Hand => crdHandle, In Long => segNo, In LongArray => pTgPosArray, In Double => radius, In Short => circleDir, In Double => endVel, In Double => vel, In Double => synAcc, In Short => lookaheadDis);
+    CRD_ARC_RADIUS_YZ_EX = 0x061D Server Main NMC_CrdArcRadiusYZEx(In Hand => crdHandle, In Long => segNo, In LongArray => pTgPos, In Double => radius, In Short => circleDir, In Double => velEnd, In Double => vel, In Double => synAcc, In Short => lookaheadDis);
+    CRD_ARC_RADIUS_ZX_EX = 0x061E Server Main NMC_CrdArcRadiusZXEx(In Hand => crdHandle, In Long => segNo, In LongArray => pTgPos, In Double => radius, In Short => circleDir, In Double => velEnd, In Double => vel, In Double => synAcc, In Short => lookaheadDis);
+    CRD_ARC_PPP_EX = 0x061F Server Main NMC_CrdArcPPPEx(In Hand => crdHandle, In Long => segNo, In LongArray => pMidPosArray, In LongArray => pTgPosArray, In Double => endVel, In Double => vel, In Double => synAcc, In Short => lookaheadDis);
+    CRD_HELIX_CENTER_EX = 0x0620 Server Main NMC_CrdHelixCenterEx(In Hand => crdHandle, In Long => segNo, In LongArray => pTgPosArray, In LongArray => pCenterPosArray, In Short => circleDir, In Double => rounds, In Double => endVel, In Double => vel, In Double => synAcc, In Short => lookaheadDis);
+    CRD_ARC_3D_EX = 0x0621 Server Main NMC_CrdArc3DEx(In Hand => crdHandle, In Long => segNo, In LongArray => pMidPos, In LongArray => pTgPos, In Double => velEnd, In Double => vel, In Double => synAcc, In Short => lookaheadDis);
+    CRD_ARC_3D = 0x0622 Server Main NMC_CrdArc3D(In Hand => crdHandle, In Long => segNo, In LongArray => pMidPos, In LongArray => pTgPos, In Double => velEnd, In Double => vel, In Double => synAcc);
+    CRD_ELLIPSE = 0x0623 Server Main NMC_CrdEllipse(In Hand => crdHandle, In Long => segNo, In Double => abRatio, In LongArray => pCenterPos, In Short => ellipseDir, In Double => vel, In Double => synAcc);
+    CRD_BUF_DO = 0x0628 Server Main NMC_CrdBufDo(In Hand => crdHandle, In Long => segNo, In Short => doType, In Long => ch, In Long => value);
+    CRD_BUF_DO_EX = 0x0629 Server Main NMC_CrdBufDoEx(In Hand => crdHandle, In Long => segNo, In Short => group, In Long => doMask, In Long => doValue);
+    CRD_BUF_DELAY = 0x062A Server Main NMC_CrdBufDelay(In Hand => crdHandle, In Long => segNo, In Short => scale, In Long => count);
+    CRD_BUF_WAIT_DI = 0x062B Server Main NMC_CrdBufWaitDI(In Hand => crdHandle, In Long => segNo, In Short => index, In Short => diValue, In Long => waitLastTime);
+    CRD_BUF_AX_MOVE_EX = 0x062C Server Main NMC_CrdBufAxMoveEx(In Hand => crdHandle, In Long => segNo, In Short => axisMask, In LongArray => pTgPos, In Double => vel, In Double => acc, In Short => blockEn, In Short => synEn);
+    CRD_BUF_WAIT_ENC_IN_POSITION = 0x062D Server Main NMC_CrdBufWaitEncInPosition(In Hand => crdHandle, In Long => segNo, In Long => axisMask, In Long => overTime);
+    CRD_BUF_SET_PTP_MOVE_PARA = 0x062E Server Main NMC_CrdBufSetPtpMovePara(In Hand => crdHandle, In Long => segNo, In Short => axisNo, In Double => vel, In Double => acc, In Short => soomthCoef);
+    CRD_BUF_AX_MOVE_REL = 0x062F Server Main NMC_CrdBufAxMoveRel(In Hand => crdHandle, In Long => segNo, In Short => axisMask, In LongArray => pRelPos, In Short => blockEn, In Short => synEn);
+    CRD_START_MTN = 0x0630 Server Main NMC_CrdStartMtn(In Hand => crdHandle);
+    CRD_END_MTN = 0x0631 Server Main NMC_CrdEndMtn(In Hand => crdHandle);
+    CRD_STOP_MTN = 0x0632 Server Main NMC_CrdStopMtn(In Hand => crdHandle);
+    CRD_ESTOP_MTN = 0x0633 Server Main NMC_CrdEstopMtn(In Hand => crdHandle);
+    CRD_CLR_ERROR = 0x0634 Server Main NMC_CrdClrError(In Hand => crdHandle);
+    CRD_BUF_CLR = 0x0635 Server Main NMC_CrdBufClr(In Hand => crdHandle);
+    CRD_SET_OVERRIDE = 0x0636 Server Main NMC_CrdSetOverride(In Hand => crdHandle, In Double => override);
+    CRD_GET_OVERRIDE = 0x0637 Server Main NMC_CrdGetOverride(In Hand => crdHandle, Out Double => pOverride);
+    CRD_SET_OVER_RIDE = 0x0638 Server Main NMC_CrdSetOverRide(In Hand => crdHandle, In Double => override);
+    CRD_GET_OVER_RIDE = 0x0639 Server Main NMC_CrdGetOverRide(In Hand => crdHandle, Out Double => pOverride);
+    CRD_GET_STS = 0x0640 Server Main NMC_CrdGetSts(In Hand => crdHandle, Out Short => pStsWord);
+    CRD_GET_STS_EX = 0x0641 Server Main NMC_CrdGetStsEx(In Hand => crdHandle, Out Short => pSts, Out Long => pUserSeg);
+    CRD_GET_INNER_STS = 0x0642 Server Main NMC_CrdGetInnerSts(In Hand => crdHandle, Out Long => pStsWord);
+    CRD_GET_PRF_POS = 0x0643 Server Main NMC_CrdGetPrfPos(In Hand => crdHandle, In Short => cnts, Out LongArray => pPosArray);
+    CRD_GE_PRFT_POS = 0x0644 Server Main NMC_CrdGePrftPos(In Hand => crdHandle, In Short => cnts, Out LongArray => pPosArray);
+    CRD_GET_AXIS_POS = 0x0645 Server Main NMC_CrdGetAxisPos(In Hand => crdHandle, In Short => cnts, Out LongArray => pPosArray);
+    CRD_GET_ENC_POS = 0x0646 Server Main NMC_CrdGetEncPos(In Hand => crdHandle, In Short => cnts, Out LongArray => pPosArray);
+    CRD_GET_VEL = 0x0647 Server Main NMC_CrdGetVel(In Hand => crdHandle, Out Double => pVel);
+    CRD_BUF_GET_FREE = 0x0648 Server Main NMC_CrdBufGetFree(In Hand => crdHandle, Out Long => pRes);
+    CRD_BUF_GET_USED = 0x0649 Server Main NMC_CrdBufGetUsed(In Hand => crdHandle, Out Long => pLen);
+    CRD_GET_USER_SEG_NO = 0x064A Server Main NMC_CrdGetUserSegNo(In Hand => crdHandle, Out Long => pSegNo);
+    CRD_GET_BUF_ALL_CMD_CNT = 0x064B Server Main NMC_CrdGetBufAllCmdCnt(In Hand => crdHandle, Out Long => pCnt);
+    CRD_GET_BUF_LEFT_LENGTH = 0x064C Server Main NMC_CrdGetBufLeftLength(In Hand => crdHandle, Out Double => pLen);
+    // ---- basic axis configuration (digest 001 §2.3, §2.20) ----
+    MT_SET_ALARM_CFG = 0x0701 Server Main NMC_MtSetAlarmCfg(In Hand => axisHandle, In Short => alarmEnable, In Short => alarmSns);
+    MT_GET_ALARM_ON_OFF = 0x0702 Server Main NMC_MtGetAlarmOnOff(In Hand => axisHandle, Out Short => enable);
+    MT_GET_ALARM_SNS = 0x0703 Server Main NMC_MtGetAlarmSns(In Hand => axisHandle, Out Short => swt);
+    MT_SET_LMT_CFG = 0x0704 Server Main NMC_MtSetLmtCfg(In Hand => axisHandle, In Short => posLmtEnable, In Short => negLmtEnable, In Short => posLmtSns, In Short => negLmtSns);
+    MT_GET_LMT_ON_OFF = 0x0705 Server Main NMC_MtGetLmtOnOff(In Hand => axisHandle, Out Short => posEn, Out Short => negEn);
+    MT_GET_LMT_SNS = 0x0706 Server Main NMC_MtGetLmtSns(In Hand => axisHandle, Out Short => posSwt, Out Short => negSwt);
+    MT_SW_LMT_ON_OFF = 0x0707 Server Main NMC_MtSwLmtOnOff(In Hand => axisHandle, In Short => enable);
+    MT_GET_SW_LMT_ON_OFF = 0x0708 Server Main NMC_MtGetSwLmtOnOff(In Hand => axisHandle, Out Short => enable);
+    MT_SW_LMT_VALUE = 0x0709 Server Main NMC_MtSwLmtValue(In Hand => axisHandle, In Long => posLmt, In Long => negLmt);
+    MT_GET_SW_LMT_VALUE = 0x070A Server Main NMC_MtGetSwLmtValue(In Hand => axisHandle, Out Long => posLmt, Out Long => negLmt);
+    MT_SET_STEP_MODE = 0x070B Server Main NMC_MtSetStepMode(In Hand => axisHandle, In Short => inv, In Short => mode);
+    MT_GET_STEP_MODE = 0x070C Server Main NMC_MtGetStepMode(In Hand => axisHandle, Out Short => pInv, Out Short => pMode);
+    SET_ENC_MODE = 0x070D Server Main NMC_SetEncMode(In Hand => devHandle, In UChar => encId, In UShort => encMode);
+    GET_ENC_MODE = 0x070E Server Main NMC_GetEncMode(In Hand => devHandle, In UChar => encId, Out UShort => encMode);
+    MT_SET_SAFE_PARA = 0x070F Server Main NMC_MtSetSafePara(In Hand => axisHandle, In Struct("TSafePara") => pPara);
+    MT_GET_SAFE_PARA = 0x0710 Server Main NMC_MtGetSafePara(In Hand => axisHandle, Out Struct("TSafePara") => pPara);
+    MT_SET_POS_ERR_LMT = 0x0711 Server Main NMC_MtSetPosErrLmt(In Hand => axisHandle, In Long => posErr);
+    MT_GET_POS_ERR_LMT = 0x0712 Server Main NMC_MtGetPosErrLmt(In Hand => axisHandle, Out Long => posErr);
+    MT_SET_AXIS_VEL_FILTER = 0x0713 Server Main NMC_MtSetAxisVelFilter(In Hand => axisHandle, In Short => filterCoef);
+    MT_GET_AXIS_VEL_FILTER = 0x0714 Server Main NMC_MtGetAxisVelFilter(In Hand => axisHandle, Out Short => filterCoef);
+    MT_SET_STEP_FILTER = 0x0715 Server Main NMC_MtSetStepFilter(In Hand => axisHandle, In UShort => coe);
+    MT_GET_STEP_FILTER = 0x0716 Server Main NMC_MtGetStepFilter(In Hand => axisHandle, Out UShort => pCoe);
+    MT_SET_POS_ERR_ACTION = 0x0717 Server Main NMC_MtSetPosErrAction(In Hand => axisHandle, In Short => actionsBits);
+    MT_GET_POS_ERR_ACTION = 0x0718 Server Main NMC_MtGetPosErrAction(In Hand => axisHandle, Out Short => pActionsBits);
+    MT_SET_AXIS_ARRIVAL_PARA = 0x0719 Server Main NMC_MtSetAxisArrivalPara(In Hand => axisHandle, In Long => arrivalBand, In Long => stableTime);
+    MT_GET_AXIS_ARRIVAL_PARA = 0x071A Server Main NMC_MtGetAxisArrivalPara(In Hand => axisHandle, Out Long => pArrivalBand, Out Long => pStableTime);
+    // ---- Appendix A: the summary table's misspellings, as aliases (digest 001 App. A) ----
+    SET_DOG_GROUP = 0x0801 Server Main NMC_SetDOGGroup(In Hand => devHandle, In Long => value, In Short => groupID);
+    GET_DOG_GROUP = 0x0802 Server Main NMC_GetDOGGroup(In Hand => devHandle, Out Long => pDoValue, In Short => groupID);
+    // ---- analog I/O (digest 001 §2.8, §4.8) ----
+    SET_DAC_MODE = 0x0901 Server Main NMC_SetDacMode(In Hand => devHandle, In Short => ch, In Short => mode);
+    GET_DAC_MODE = 0x0902 Server Main NMC_GetDacMode(In Hand => devHandle, In Short => ch, Out Short => pMode);
+    SET_ADC_MODE = 0x0903 Server Main NMC_SetAdcMode(In Hand => devHandle, In Short => ch, In Short => range, In Short => filterCoe);
+    GET_ADC_MODE = 0x0904 Server Main NMC_GetAdcMode(In Hand => devHandle, In Short => ch, Out Short => pRange, Out Short => pFilterCoe);
+    SET_DAC = 0x0905 Server Main NMC_SetDac(In Hand => devHandle, In Short => ch, In Short => dacValue);
+    GET_DAC = 0x0906 Server Main NMC_GetDac(In Hand => devHandle, In Short => ch, Out Short => pDacValue);
+    GET_ADC = 0x0907 Server Main NMC_GetAdc(In Hand => devHandle, In Short => ch, Out Short => pAdcValue);
+    SET_DAC_BIAS = 0x0908 Server Main NMC_SetDacBias(In Hand => devHandle, In Short => ch, In Short => bias);
+    GET_DAC_BIAS = 0x0909 Server Main NMC_GetDacBias(In Hand => devHandle, In Short => ch, Out Short => pBias);
+    SET_DAC_LMT = 0x090A Server Main NMC_SetDacLmt(In Hand => devHandle, In Short => ch, In Short => maxVal, In Short => minVal);
+    GET_DAC_LMT = 0x090B Server Main NMC_GetDacLmt(In Hand => devHandle, In Short => ch, Out Short => pMaxVal, Out Short => pMinVal);
+    GET_ADC_VOLTAGE_MULTI = 0x090C Server Main NMC_GetAdcVoltageMulti(In Hand => devHandle, In Short => ch, In Short => count, Out DoubleArray => pAdcVolArray);
+    SET_DAC_VOLTAGE_MULTI = 0x090D Server Main NMC_SetDacVoltageMulti(In Hand => devHandle, In Short => ch, In Short => count, In DoubleArray => pDacVolArray);
+    GET_DAC_VOLTAGE_MULTI = 0x090E Server Main NMC_GetDacVoltageMulti(In Hand => devHandle, In Short => ch, In Short => count, Out DoubleArray => pDacVolArray);
+    // ---- EtherCAT master, drives and SDO (digest 001 §2.1) ----
+    ECAT_LOAD_CONFIG_FROM_FILE = 0x0A01 Server Main NMC_EcatLoadConfigFromFile(In Hand => devHandle, In Str => gmlFileName, In Short => masterIdx);
+    ECAT_START = 0x0A02 Server Main NMC_EcatStart(In Hand => devHandle);
+    ECAT_STOP = 0x0A03 Server Main NMC_EcatStop(In Hand => devHandle);
+    ECAT_GET_STS = 0x0A04 Server Main NMC_EcatGetSts(In Hand => devHandle, Out UShort => pSts);
+    ECAT_GET_RESOURCE = 0x0A05 Server Main NMC_EcatGetResource(In Hand => devHandle, Out Short => pSlaveCnt, Out Short => pDriverCnt, Out Short => pIoCnt);
+    ECAT_START_HOME = 0x0A06 Server Main NMC_EcatStartHome(In Hand => axisHandle, In Int => method, In Int => velSwitch, In Int => velZero, In Int => acc, In Int => prmEx);
+    ECAT_GET_HOME_STS = 0x0A07 Server Main NMC_EcatGetHomeSts(In Hand => axisHandle, Out UChar => pStatus);
+    ECAT_STOP_HOME = 0x0A08 Server Main NMC_EcatStopHome(In Hand => axisHandle);
+    ECAT_SDO_READ = 0x0A09 Server Main NMC_EcatSdoRead(In Hand => devHandle, In Short => devId, In UShort => idx, In UChar => sub_idx, In UInt => len, Out Bytes => val, Out UInt => abort_code);
+    ECAT_SDO_WRITE = 0x0A0A Server Main NMC_EcatSdoWrite(In Hand => devHandle, In Short => devId, In UShort => idx, In UChar => sub_idx, In UInt => len, In Bytes => val, Out UInt => abort_code);
+    ECAT_AXIS_GET_ERROR_CODE = 0x0A0B Server Main NMC_EcatAxisGetErrorCode(In Hand => axisHandle, Out UShort => pError);
+    ECAT_AXIS_GET_DI = 0x0A0C Server Main NMC_EcatAxisGetDi(In Hand => axisHandle, Out Long => pDiVal);
+    // ---- user parameter areas (digest 001 §2.20) ----
+    USER_PARA_WR = 0x0B01 Server Main NMC_UserParaWr(In Hand => devHandle, In ULong => add, In ULong => len, In Bytes => pWrData);
+    USER_PARA_RD = 0x0B02 Server Main NMC_UserParaRd(In Hand => devHandle, In ULong => add, In ULong => len, Out Bytes => pRdData);
+    USER_PARA_WR_EX = 0x0B03 Server Main NMC_UserParaWrEx(In Hand => devHandle, In ULong => add, In ULong => len, In Bytes => pWrData);
+    USER_PARA_RD_EX = 0x0B04 Server Main NMC_UserParaRdEx(In Hand => devHandle, In ULong => add, In ULong => len, Out Bytes => pRdData);
     // ---- electronic gear (digest 001 §2.16, §4.7) ----
     MT_GEAR_SET_DIR = 0x0C01 Server Main NMC_MtGearSetDir(In Hand => axisHandle, In Short => dir);
     MT_GEAR_GET_DIR = 0x0C02 Server Main NMC_MtGearGetDir(In Hand => axisHandle, Out Short => pdir);

@@ -150,6 +150,7 @@ fn gear_in(c: &Call<'_>, axis: usize) -> Command {
         clutch_distance: (s.gear_master_slope > 0)
             .then(|| s.gear_master_slope as f64 / c.scale(master).pulses_per_unit),
         acceleration: None,
+        phase_offset: 0,
         direction: match s.gear_dir {
             0 => None,
             d if d > 0 => Some(Direction::Positive),

@@ -54,7 +54,7 @@ fn group_value(bits: &[bool], start: usize) -> i64 {
         .fold(0i64, |v, (i, _)| v | (1 << i))
 }
 
-fn set_do_group(c: &mut Call<'_>) -> Result<(), Refusal> {
+pub(super) fn set_do_group(c: &mut Call<'_>) -> Result<(), Refusal> {
     c.device()?;
     let (value, group) = (c.input.i64()?, c.input.i16()?);
     let count = c.snapshot.io.do_.len();
@@ -68,7 +68,7 @@ fn set_do_group(c: &mut Call<'_>) -> Result<(), Refusal> {
     Ok(())
 }
 
-fn get_do_group(c: &mut Call<'_>) -> Result<(), Refusal> {
+pub(super) fn get_do_group(c: &mut Call<'_>) -> Result<(), Refusal> {
     c.device()?;
     let group = c.input.i16()?;
     let start = group_start(group, c.snapshot.io.do_.len())?;

@@ -5,8 +5,15 @@ use mcemu_nmc::table::Function;
 
 use super::service::Handler;
 
+mod aliases;
+mod analog;
 mod axis;
+mod axis_config;
+mod crd;
+mod crd_segment;
+mod crd_status;
 mod device;
+mod ecat;
 mod home;
 mod io;
 mod motion;
@@ -19,7 +26,9 @@ mod gear;
 mod pt;
 mod sync_args;
 
-const FAMILIES: [&[(Function, Handler)]; 11] = [
+mod user_para;
+
+const FAMILIES: [&[(Function, Handler)]; 19] = [
     device::HANDLERS,
     axis::HANDLERS,
     motion::HANDLERS,
@@ -31,6 +40,14 @@ const FAMILIES: [&[(Function, Handler)]; 11] = [
     compare::HANDLERS,
     gang::HANDLERS,
     compensation::HANDLERS,
+    crd::HANDLERS,
+    crd_segment::HANDLERS,
+    crd_status::HANDLERS,
+    axis_config::HANDLERS,
+    aliases::HANDLERS,
+    analog::HANDLERS,
+    ecat::HANDLERS,
+    user_para::HANDLERS,
 ];
 
 /// The handler of function `id`.

@@ -18,8 +18,14 @@ use crate::connection::CallError;
 use crate::last_error::report;
 use crate::registry;
 
+pub mod aliases;
+pub mod analog;
 pub mod axis;
+pub mod axis_config;
+pub mod crd;
+pub mod crd_types;
 pub mod device;
+pub mod ecat;
 pub mod home;
 pub mod io;
 pub mod library;
@@ -35,6 +41,7 @@ pub mod gang;
 pub mod gear;
 pub mod pt;
 pub mod sync_types;
+pub mod user_para;
 
 pub use types::HAND;
 
@@ -223,3 +230,46 @@ macro_rules! struct_getter {
     };
 }
 pub(crate) use struct_getter;
+
+/// The `n` values of the caller's array at `p` (non-null, checked by [`require!`]).
+pub(crate) fn load_array<T: Copy + Default>(p: *const T, n: usize) -> Vec<T> {
+    if p.is_null() {
+        return Vec::new();
+    }
+    // SAFETY: non-null, checked above; that the array holds `n` readable, initialised `T`s is
+    // the C caller's contract (the manual's length for this argument: the coordinate system's
+    // coordinates, a mask's bits or `count`).
+    (0..n)
+        .map(|i| unsafe { p.add(i).read_unaligned() })
+        .collect()
+}
+
+/// Write `values` to the caller's array at `p` (non-null, checked by [`require!`]; room for
+/// `values.len()` elements by the C contract).
+pub(crate) fn store_array<T: Copy>(p: *mut T, values: &[T]) {
+    if p.is_null() {
+        return;
+    }
+    for (i, v) in values.iter().enumerate() {
+        // SAFETY: non-null, checked above; the caller's array has room for the count it asked
+        // for, and `values` is never longer than that count.
+        unsafe { p.add(i).write_unaligned(*v) }
+    }
+}
+
+/// A reply's array: u16 count, then `count` elements read by `one` (at most `max` kept).
+pub(crate) fn reply_list<T>(
+    r: &mut Reader<'_>,
+    max: usize,
+    mut one: impl FnMut(&mut Reader<'_>) -> Result<T, PayloadError>,
+) -> Result<Vec<T>, PayloadError> {
+    let n = usize::from(r.u16()?);
+    let mut values = Vec::with_capacity(n.min(max));
+    for _ in 0..n {
+        let v = one(r)?;
+        if values.len() < max {
+            values.push(v);
+        }
+    }
+    Ok(values)
+}
