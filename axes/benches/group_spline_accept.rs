@@ -13,9 +13,7 @@
 
 use std::time::{Duration, Instant};
 
-use axes::command::{
-    Command, GroupBufferMode, GroupCreate, GroupEnable, MoveSpline, TransitionMode,
-};
+use axes::command::{Command, GroupBufferMode, MoveSpline, TransitionMode};
 use axes::Engine;
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion};
 
@@ -29,26 +27,7 @@ const RUNS: usize = 5;
 
 /// An enabled 2-axis group at rest.
 fn machine() -> Engine {
-    let mut engine = common::engine(2);
-    for c in common::motion_commands(2)
-        .into_iter()
-        .filter(|c| matches!(c, Command::Axis(axes::command::AxisCommand::Enable(_))))
-    {
-        engine.apply(c).expect("enable");
-    }
-    engine
-        .apply(Command::from(GroupCreate {
-            group: 1,
-            axes: vec![0, 1],
-            queue_capacity: None,
-            lookahead: None,
-            result_axis: None,
-            orientation: Default::default(),
-        }))
-        .expect("group_create");
-    engine
-        .apply(Command::from(GroupEnable { group: 1 }))
-        .expect("group_enable");
+    let mut engine = common::grouped_engine(2);
     engine.step();
     engine
 }
