@@ -12,9 +12,7 @@
 
 use std::hint::black_box;
 
-use axes::command::{
-    Command, GroupBufferMode, GroupCreate, GroupEnable, MoveLinearAbsolute, TransitionMode,
-};
+use axes::command::{Command, GroupBufferMode, MoveLinearAbsolute, TransitionMode};
 use axes::Engine;
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 
@@ -38,26 +36,7 @@ struct Group {
 
 impl Group {
     fn new() -> Group {
-        let mut engine = common::engine(AXES);
-        for c in common::motion_commands(AXES)
-            .into_iter()
-            .filter(|c| matches!(c, Command::Axis(axes::command::AxisCommand::Enable(_))))
-        {
-            engine.apply(c).expect("enable");
-        }
-        engine
-            .apply(Command::from(GroupCreate {
-                group: 1,
-                axes: (0..AXES as u16).collect(),
-                queue_capacity: None,
-                lookahead: None,
-                result_axis: None,
-                orientation: Default::default(),
-            }))
-            .expect("group_create");
-        engine
-            .apply(Command::from(GroupEnable { group: 1 }))
-            .expect("group_enable");
+        let engine = common::grouped_engine(AXES);
         let mut g = Group { engine, next: 1 };
         g.refill();
         // Past the first acceleration.

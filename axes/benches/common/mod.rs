@@ -2,7 +2,7 @@
 // Shared by several benches; each uses a part.
 #![allow(dead_code)]
 
-use axes::command::{BufferMode, Enable, MoveRelative};
+use axes::command::{BufferMode, Enable, GroupCreate, GroupEnable, MoveRelative};
 use axes::config::{AxisConfig, EngineConfig, HomeSwitchConfig, PlantModel, SwitchConfig};
 use axes::{Command, Engine, ParamId};
 
@@ -88,6 +88,31 @@ pub fn motion_commands(n: usize) -> Vec<Command> {
 pub fn moving_engine(n: usize) -> Engine {
     let mut e = engine(n);
     for command in motion_commands(n) {
+        if let Err(err) = e.apply(command) {
+            eprintln!("bench command refused: {err}");
+            std::process::exit(2);
+        }
+    }
+    e
+}
+
+/// A machine of `n` busy axes, enabled, at rest, all in group 1, enabled (Standby).
+pub fn grouped_engine(n: usize) -> Engine {
+    let mut e = engine(n);
+    let setup = (0..n as u16)
+        .map(|axis| Command::from(Enable { axis }))
+        .chain([
+            Command::from(GroupCreate {
+                group: 1,
+                axes: (0..n as u16).collect(),
+                queue_capacity: None,
+                lookahead: None,
+                result_axis: None,
+                orientation: Default::default(),
+            }),
+            Command::from(GroupEnable { group: 1 }),
+        ]);
+    for command in setup {
         if let Err(err) = e.apply(command) {
             eprintln!("bench command refused: {err}");
             std::process::exit(2);

@@ -5,7 +5,7 @@ use path::planner::{Motion, PathEvent, PathState, PlannerError};
 use path::MAX_AXES;
 
 use super::queue::{Entry, Item, Wait};
-use super::{axis_limits, Env, Group};
+use super::{axis_limits, Env, Group, ResultAxis};
 use crate::axis::{Feed, MotionAction, MotionSubmission, Overrides};
 use crate::command::{CommandId, CommandKind, CommandState, EngineError, ErrorKind, StopMode};
 use crate::profile::MotionState;
@@ -63,17 +63,20 @@ impl Group {
         self.follow_live_speed(env.axes);
         let mut events = std::mem::take(&mut self.events);
         events.clear();
-        let state = *self.planner.step(&mut events);
+        // The members are fed from the planner's state in place (not a copy of it each tick):
+        // acting on the events does not touch the planner.
+        self.planner.step(&mut events);
         for event in events.drain(..) {
             self.on_event(env, event);
         }
         self.events = events;
-        if let Err((k, axis, error)) = self.feed(env, &state) {
+        if let Err((k, axis, error)) = self.feed(env) {
             let cause = GroupFault::Member {
                 axis,
                 error: error.kind(),
             };
             if self.stops_along_path() {
+                let state = *self.planner.state();
                 self.begin_fault_stop(env, cause);
                 // This tick's point for the members after the one that refused it.
                 self.feed_on_path(env, &state, k + 1);
@@ -153,36 +156,13 @@ impl Group {
 
     /// Feed every member this tick's point of the path (axis = group coordinate + origin), then
     /// the result axis. A refusal names the slot (member coordinate, or [`RESULT_SLOT`]).
-    fn feed(&mut self, env: &mut Env, state: &PathState) -> Result<(), (usize, u16, EngineError)> {
+    fn feed(&mut self, env: &mut Env) -> Result<(), (usize, u16, EngineError)> {
+        let state = self.planner.state();
         for (k, &a) in self.members.iter().enumerate() {
             self.feed_member(env, state, k, a).map_err(|e| (k, a, e))?;
         }
-        self.feed_result_axis(env, state)
+        feed_result_axis(&mut self.result, self.length_ratio, env, state)
             .map_err(|(a, e)| (RESULT_SLOT, a, e))
-    }
-
-    /// Feed the result axis its start plus the counted path length travelled, and the path
-    /// velocity and acceleration over the counted coordinates (digest 000 §4.3: "the result
-    /// axis's EndPos grows by the path length"). The travel of one tick counts at the ratio of
-    /// the motion executing at its end: where a motion starts mid-tick after one with another
-    /// ratio, the error is at most one tick's travel times the difference of the two ratios.
-    fn feed_result_axis(
-        &mut self,
-        env: &mut Env,
-        state: &PathState,
-    ) -> Result<(), (u16, EngineError)> {
-        let ratio = self.length_ratio;
-        let Some(r) = &mut self.result else {
-            return Ok(());
-        };
-        r.position += (state.travelled - r.travelled) * ratio;
-        r.travelled = state.travelled;
-        let setpoint = MotionState {
-            p: r.position,
-            v: state.path_velocity * ratio,
-            a: state.path_acceleration * ratio,
-        };
-        follow(env, r.axis, setpoint)
     }
 
     /// Feed member `a` (group coordinate `k`) this tick's point of the path.
@@ -302,7 +282,7 @@ impl Group {
         }
         // The result axis follows the path's deceleration too (digest 000 §6.1 (b)).
         if from <= RESULT_SLOT && !left[RESULT_SLOT] {
-            if let Err((a, _)) = self.feed_result_axis(env, state) {
+            if let Err((a, _)) = feed_result_axis(&mut self.result, self.length_ratio, env, state) {
                 left[RESULT_SLOT] = true;
                 release_member(env, a);
             }
@@ -614,6 +594,31 @@ impl Group {
             }
         }
     }
+}
+
+/// Feed the result axis (if the group has one) its start plus the counted path length
+/// travelled, and the path velocity and acceleration over the counted coordinates (digest 000
+/// §4.3: "the result axis's EndPos grows by the path length"). The travel of one tick counts at
+/// `ratio`, the ratio of the motion executing at its end: where a motion starts mid-tick after
+/// one with another ratio, the error is at most one tick's travel times the difference of the
+/// two ratios.
+fn feed_result_axis(
+    result: &mut Option<ResultAxis>,
+    ratio: f64,
+    env: &mut Env,
+    state: &PathState,
+) -> Result<(), (u16, EngineError)> {
+    let Some(r) = result else {
+        return Ok(());
+    };
+    r.position += (state.travelled - r.travelled) * ratio;
+    r.travelled = state.travelled;
+    let setpoint = MotionState {
+        p: r.position,
+        v: state.path_velocity * ratio,
+        a: state.path_acceleration * ratio,
+    };
+    follow(env, r.axis, setpoint)
 }
 
 /// Feed axis `a` (a member or the result axis) `setpoint`; a refusal names the axis.

@@ -349,7 +349,7 @@ impl Arc {
         }
         let s = s.clamp(0.0, self.length);
         if s >= self.length {
-            return self.sample_at(self.sweep, self.end);
+            return self.sample_at(self.sweep.sin_cos(), self.end);
         }
         let theta = self.sweep * s / self.length;
         let (sin, cos) = theta.sin_cos();
@@ -359,11 +359,12 @@ impl Arc {
             *out =
                 self.center[k] + self.radius * (cos * self.u[k] + sin * self.v[k]) + f * self.h[k];
         }
-        self.sample_at(theta, p)
+        // The same sine and cosine: a servo tick evaluates them once.
+        self.sample_at((sin, cos), p)
     }
 
-    fn sample_at(&self, theta: f64, p: Point) -> PathPoint {
-        let (sin, cos) = theta.sin_cos();
+    /// The sample at angle θ given as `(sin θ, cos θ)`, with its point `p`.
+    fn sample_at(&self, (sin, cos): (f64, f64), p: Point) -> PathPoint {
         let w = self.sweep / self.length;
         let mut t = [0.0; MAX_AXES];
         let mut k = [0.0; MAX_AXES];

@@ -386,8 +386,6 @@ impl PathPlanner {
     /// Write the path state from the executing motion (or the last point reached).
     fn publish(&mut self) {
         let st = &mut self.state;
-        st.velocity = [0.0; MAX_AXES];
-        st.acceleration = [0.0; MAX_AXES];
         // By reference: an `Execution` holds a whole profile (hundreds of bytes), and this
         // runs every tick.
         match (self.exec.as_ref(), self.queue.front()) {
@@ -404,6 +402,7 @@ impl PathPlanner {
             }
             _ => {
                 st.position = self.position;
+                st.acceleration = [0.0; MAX_AXES];
                 for k in 0..MAX_AXES {
                     st.velocity[k] = self.end_tangent[k] * self.carry;
                 }

@@ -70,7 +70,8 @@ impl Axis {
             Setpoint::Velocity { velocity } => velocity,
             Setpoint::Torque { torque } => torque,
         };
-        self.start_stream(ctx, toward, Source::External(sp))?;
+        self.admit_stream(ctx, toward)?;
+        self.source = Source::External(sp);
         Ok(Reply::Done)
     }
 
@@ -96,7 +97,14 @@ impl Axis {
                 return self.refuse(e);
             }
         }
-        self.start_stream(ctx, state.p - self.raw.p, Source::Fed(state))
+        self.admit_stream(ctx, state.p - self.raw.p)?;
+        // In place while fed: a whole `Source` (it can hold a profile, hundreds of bytes)
+        // moved every tick for every member was a group tick's largest single cost.
+        match &mut self.source {
+            Source::Fed(fed) => *fed = state,
+            other => *other = Source::Fed(state),
+        }
+        Ok(())
     }
 
     /// Refuse single-axis commands that would take the command source from a machine-level
@@ -153,13 +161,12 @@ impl Axis {
         Ok(())
     }
 
-    /// Make `source` the axis's command source if the axis may move `toward` (the sign is the
-    /// direction); the first setpoint of a stream aborts everything else.
-    pub(super) fn start_stream(
+    /// Whether the axis may move `toward` (the sign is the direction) on a stream; the first
+    /// setpoint of a stream aborts everything else. The caller then sets the command source.
+    pub(super) fn admit_stream(
         &mut self,
         ctx: &mut Context,
         toward: f64,
-        source: Source,
     ) -> Result<(), EngineError> {
         if let Err(e) = self.check_can_move() {
             return self.refuse(e);
@@ -171,7 +178,6 @@ impl Axis {
             self.abort_all(ctx, CommandState::Aborted);
             self.activity = Activity::Streaming;
         }
-        self.source = source;
         Ok(())
     }
 
