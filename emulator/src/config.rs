@@ -189,8 +189,7 @@ impl schemars::JsonSchema for ClockSetting {
     }
 }
 
-/// The front-ends, one section each. The sections of front-ends later issues build are accepted
-/// with `enabled = false`, so fixtures can already carry them.
+/// The front-ends, one section each.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct FrontendsConfig {
@@ -215,7 +214,7 @@ pub struct FrontendsConfig {
     /// HIMC Native ASCII server (HMPL calls as text; the controller's port is 3999).
     pub ascii_native: Option<mcemu_ascii::config::NativeConfig>,
     /// HIMC User ASCII server (declarative command patterns; the controller's port is 4000).
-    pub ascii_user: Option<PlannedFrontend>,
+    pub ascii_user: Option<mcemu_ascii::user::config::UserConfig>,
 }
 
 /// The HTTP control API (ARCHITECTURE §6).
@@ -254,16 +253,6 @@ impl Default for ControlConfig {
             token: None,
         }
     }
-}
-
-/// A front-end section whose front-end is not built yet: it may be present, disabled.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
-#[serde(deny_unknown_fields, default)]
-pub struct PlannedFrontend {
-    /// Must be `false` until the front-end is built.
-    pub enabled: bool,
-    /// Address, device path or interface, as the front-end will take it.
-    pub bind: Option<String>,
 }
 
 /// A config that cannot run: which file, which key, why.
@@ -501,11 +490,9 @@ impl Config {
         if let Some(c) = &f.nmc_local {
             crate::nmc::config::check("nmc_local", c.max_connections, c.idle_timeout, &c.device)?;
         }
-        if f.ascii_user.as_ref().is_some_and(|s| s.enabled) {
-            return Err((
-                "frontends.ascii_user.enabled".into(),
-                "this front-end is not built yet; set enabled = false".into(),
-            ));
+        if let Some(c) = f.ascii_user.as_ref().filter(|c| c.enabled) {
+            c.grammar()
+                .map_err(|e| (format!("frontends.ascii_user.{}", e.key), e.reason))?;
         }
         Ok(())
     }
@@ -594,8 +581,13 @@ mod tests {
         assert!(e.to_string().starts_with("m.toml: TOML parse error"), "{e}");
         let e = Config::parse("[machine]\nclock = \"fast\"\n", "m.toml").unwrap_err();
         assert_eq!(e.key, "machine.clock");
-        let e = Config::parse("[frontends.ascii_user]\nenabled = true\n", "m.toml").unwrap_err();
-        assert_eq!(e.key, "frontends.ascii_user.enabled");
+        let e = Config::parse(
+            "[[frontends.ascii_user.commands]]\npattern = \"GO %x\"\n",
+            "m.toml",
+        )
+        .unwrap_err();
+        assert_eq!(e.key, "frontends.ascii_user.commands[0].pattern");
+        assert!(e.reason.contains("%x"), "{}", e.reason);
         let e = Config::parse("[frontends.nmc]\nmax_connections = 0\n", "m.toml").unwrap_err();
         assert_eq!(e.key, "frontends.nmc.max_connections");
         let e = Config::parse("[frontends.control]\nmax_requests = 0\n", "m.toml").unwrap_err();

@@ -53,6 +53,13 @@ pub trait Frontend: Send + Sync {
     }
     /// Save what it persists, after it stopped serving. Nothing, by default.
     fn save(&self) {}
+    /// Send `message` to every client (`POST /api/v1/frontends/NAME/broadcast`; User ASCII's
+    /// `ASCII_ServerBroadcast`); what was sent. Refused by default: most protocols have none.
+    fn broadcast(&self, _message: &str) -> Result<Value, ApiError> {
+        Err(ApiError::NoBroadcast {
+            name: self.name().to_string(),
+        })
+    }
     /// The CAN bus's `candump -L` log, for `/canopen/log/*`, if this front-end has a CAN bus.
     fn can_log(&self) -> Option<Arc<dyn CanLog>> {
         None

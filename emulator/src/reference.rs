@@ -106,7 +106,7 @@ fn field_order<T: DeserializeOwned>() -> Vec<&'static str> {
 /// alphabetically (and `every_config_struct_has_its_field_order` fails).
 fn field_orders() -> BTreeMap<&'static str, Vec<&'static str>> {
     use crate::canopen::config::{CanopenConfig, CanopenNodeConfig, SocketcandFrontendConfig};
-    use crate::config::{ControlConfig, FrontendsConfig, MachineConfig, PlannedFrontend};
+    use crate::config::{ControlConfig, FrontendsConfig, MachineConfig};
     use axes::cia402::DriveConfig;
     use axes::config::{
         AxisConfig, EncoderConfig, GroupsConfig, HomeSwitchConfig, InputBinding, IoConfig,
@@ -134,7 +134,14 @@ fn field_orders() -> BTreeMap<&'static str, Vec<&'static str>> {
         ("CamPoint", field_order::<axes::command::CamPoint>()),
         ("FrontendsConfig", field_order::<FrontendsConfig>()),
         ("ControlConfig", field_order::<ControlConfig>()),
-        ("PlannedFrontend", field_order::<PlannedFrontend>()),
+        (
+            "UserConfig",
+            field_order::<mcemu_ascii::user::config::UserConfig>(),
+        ),
+        (
+            "CommandConfig",
+            field_order::<mcemu_ascii::user::config::CommandConfig>(),
+        ),
         (
             "NativeConfig",
             field_order::<mcemu_ascii::config::NativeConfig>(),
@@ -415,7 +422,12 @@ impl Walker<'_> {
                     array,
                 };
             }
-            return Shape::Value(def.map_or_else(|| "?".into(), scalar_type));
+            let ty = def.map_or_else(|| "?".into(), scalar_type);
+            return Shape::Value(if array && !ty.is_empty() {
+                format!("array of {ty}")
+            } else {
+                ty
+            });
         }
         if inner
             .get("additionalProperties")

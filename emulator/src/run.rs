@@ -36,10 +36,11 @@ pub enum RunError {
 
 /// Every protocol front-end, in start order. Adding a front-end is its module (a [`Start`]
 /// function), an entry here and its config section.
-pub const FRONTENDS: [Start; 4] = [
+pub const FRONTENDS: [Start; 5] = [
     crate::modbus::serve::start,
     crate::canopen::serve::start,
     crate::ascii::start,
+    crate::ascii::user::start,
     crate::nmc::serve::start,
 ];
 

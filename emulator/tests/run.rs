@@ -94,7 +94,7 @@ fn the_default_machine_comes_up_reports_its_listeners_and_stops_on_sigint() {
         "{banner}"
     );
     // Every front-end of the default machine, the control API last.
-    let listening: Vec<String> = (0..6).map(|_| m.until("listening: ")).collect();
+    let listening: Vec<String> = (0..7).map(|_| m.until("listening: ")).collect();
     assert_eq!(listening[0], "listening: modbus-tcp 127.0.0.1:1502");
     let pty = listening[1]
         .strip_prefix("listening: modbus-rtu /dev/pts/")
@@ -105,10 +105,11 @@ fn the_default_machine_comes_up_reports_its_listeners_and_stops_on_sigint() {
         "listening: modbus-rtu-over-tcp 127.0.0.1:1503"
     );
     assert_eq!(listening[3], "listening: ascii-native 127.0.0.1:3999");
-    assert_eq!(listening[4], "listening: nmc 127.0.0.1:7700");
-    assert_eq!(listening[5], "listening: control 127.0.0.1:8700");
+    assert_eq!(listening[4], "listening: ascii-user 127.0.0.1:4000");
+    assert_eq!(listening[5], "listening: nmc 127.0.0.1:7700");
+    assert_eq!(listening[6], "listening: control 127.0.0.1:8700");
     // The ports really are open.
-    for port in [1502, 1503, 3999, 7700, 8700] {
+    for port in [1502, 1503, 3999, 4000, 7700, 8700] {
         TcpStream::connect(("127.0.0.1", port)).expect("the port accepts connections");
     }
     m.signal("INT");

@@ -1,10 +1,13 @@
 //! `mcemu run`'s HIMC Native ASCII front-end (`[frontends.ascii_native]`): bound and announced
-//! (`listening: ascii-native ADDR`), served by `mcemu_ascii::transport` over the engine, its
-//! counters in `GET /api/v1/state`.
+//! (`listening: ascii-native ADDR`), served by `mcemu_ascii::transport::native` over the engine,
+//! its counters in `GET /api/v1/state`. The User ASCII front-end is [`user`].
+
+pub mod user;
 
 use std::sync::Arc;
 
-use mcemu_ascii::transport::{serve, Server};
+use mcemu_ascii::transport::native::Server;
+use mcemu_ascii::transport::serve;
 use serde_json::{Map, Value};
 use tokio::task::JoinSet;
 

@@ -6,7 +6,7 @@ use axes::command::{
     InjectFollowingError, Reply,
 };
 use axes::runtime::CallError;
-use axum::extract::{RawQuery, State};
+use axum::extract::{Path, RawQuery, State};
 use axum::response::{IntoResponse, Response};
 use axum::Json;
 use serde::Deserialize;
@@ -358,6 +358,35 @@ pub async fn post_faults(State(state): State<ControlState>, JsonBody(body): Json
                 .into_response(),
             }
         }
+    }
+}
+
+/// `POST /api/v1/frontends/{name}/broadcast` with `{"message": "…"}`: the message, as given (no
+/// terminator added), to every client of front-end `name` (User ASCII's `ASCII_ServerBroadcast`).
+pub async fn post_broadcast(
+    State(state): State<ControlState>,
+    Path(name): Path<String>,
+    JsonBody(body): JsonBody,
+) -> Response {
+    #[derive(serde::Deserialize)]
+    #[serde(deny_unknown_fields)]
+    struct Broadcast {
+        message: String,
+    }
+    let request: Broadcast = match parse_json(&body) {
+        Ok(r) => r,
+        Err(e) => return e.into_response(),
+    };
+    match state.frontends.iter().find(|f| f.name() == name) {
+        Some(frontend) => match frontend.broadcast(&request.message) {
+            Ok(reply) => Json(reply).into_response(),
+            Err(e) => e.into_response(),
+        },
+        None => ApiError::NoSuchFrontend {
+            name,
+            running: running_names(&state),
+        }
+        .into_response(),
     }
 }
 

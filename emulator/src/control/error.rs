@@ -57,6 +57,10 @@ pub enum ApiError {
     NotVirtual { clock: String },
     #[error("no such front-end running: `{name}` (running: {running})")]
     NoSuchFrontend { name: String, running: String },
+    #[error("front-end `{name}` has no broadcast (ascii_user has)")]
+    NoBroadcast { name: String },
+    #[error("a broadcast is at most {limit} bytes (ASCII_ServerBroadcast); this one is {length}")]
+    BroadcastTooLong { length: usize, limit: usize },
     #[error("no trace: POST /api/v1/trace/start, run, then GET /api/v1/trace")]
     NoTrace,
     #[error("the trace was restarted while it was being read; read it again")]
@@ -108,7 +112,9 @@ impl ApiError {
             | UnreadableBody(_)
             | InvalidRequest(_)
             | NoSuchFrontend { .. }
+            | NoBroadcast { .. }
             | LogNotWritable { .. } => StatusCode::BAD_REQUEST,
+            BroadcastTooLong { .. } => StatusCode::UNPROCESSABLE_ENTITY,
             UnsupportedMediaType { .. } => StatusCode::UNSUPPORTED_MEDIA_TYPE,
             BodyTooLarge { .. } => StatusCode::PAYLOAD_TOO_LARGE,
             BodyTimeout { .. } => StatusCode::REQUEST_TIMEOUT,
@@ -146,6 +152,8 @@ impl ApiError {
             MethodNotAllowed { .. } => "method_not_allowed",
             NotVirtual { .. } => "not_virtual_clock",
             NoSuchFrontend { .. } => "no_such_frontend",
+            NoBroadcast { .. } => "no_broadcast",
+            BroadcastTooLong { .. } => "broadcast_too_long",
             NoTrace => "no_trace",
             TraceRestarted => "trace_restarted",
             NoCanBus => "no_can_bus",

@@ -128,7 +128,7 @@ impl ControlState {
 }
 
 /// The routes, with their method, as `GET /api/v1` lists them.
-const ROUTES: [(&str, &str, &str); 12] = [
+const ROUTES: [(&str, &str, &str); 13] = [
     (
         "GET",
         "/api/v1/state",
@@ -148,6 +148,11 @@ const ROUTES: [(&str, &str, &str); 12] = [
         "POST",
         "/api/v1/faults",
         "{\"axis\":0,\"fault\":\"drive_alarm\",\"active\":true}, encoder_loss, following_error",
+    ),
+    (
+        "POST",
+        "/api/v1/frontends/{name}/broadcast",
+        "{\"message\":\"test\\n\\r\"}: to every client of ascii_user (at most 128 bytes, sent as given)",
     ),
     (
         "POST",
@@ -187,6 +192,10 @@ pub fn router(state: ControlState) -> Router {
         .route("/api/v1/commands", post(commands::post_commands))
         .route("/api/v1/inputs", post(commands::post_inputs))
         .route("/api/v1/faults", post(commands::post_faults))
+        .route(
+            "/api/v1/frontends/{name}/broadcast",
+            post(commands::post_broadcast),
+        )
         .route("/api/v1/time/advance", post(time::post_advance))
         .route("/api/v1/trace/start", post(trace_start))
         .route("/api/v1/trace/stop", post(trace_stop))

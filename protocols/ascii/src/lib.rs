@@ -9,8 +9,11 @@
 //!   [`registers`];
 //! - [`reply`]: return values as text.
 //!
-//! [`transport`] is the thin tokio server over it; [`config`] its config section; [`counters`]
-//! what `GET /api/v1/state` shows.
+//! [`user`] is the User ASCII core (port 4000): a grammar declared in the config in place of the
+//! user's HMPL parser (digest 004 §1.7).
+//!
+//! [`transport`] holds the thin tokio servers over both, sharing one connection loop; [`config`]
+//! the Native config section; [`counters`] what `GET /api/v1/state` shows.
 
 pub mod config;
 pub mod counters;
@@ -22,3 +25,4 @@ pub mod registers;
 pub mod reply;
 pub mod table;
 pub mod transport;
+pub mod user;

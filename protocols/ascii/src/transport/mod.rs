@@ -1,0 +1,171 @@
+//! The tokio side of the ASCII servers: one connection loop for both, the front-end kit's
+//! bounded accept loop around it. Per connection: read → [`LineSplitter`] →
+//! [`LineServer::handle`] → reply, one line after the other, and (User ASCII) the broadcasts in
+//! between lines. Clients interleave at line boundaries: each is its own task.
+//!
+//! [`native::Server`] serves Native ASCII (port 3999), [`user::Server`] User ASCII (4000).
+
+pub mod native;
+pub mod user;
+
+use std::future::Future;
+use std::sync::Arc;
+use std::time::Duration;
+
+use mcemu_dialects::himc::system::HMPL_STR_MAX_LEN;
+use mcemu_frontend::bound::{self, AtLimit, Bound, Connection, ConnectionTable};
+use tokio::io::{AsyncReadExt, AsyncWriteExt};
+use tokio::net::{TcpListener, TcpStream};
+use tokio::sync::broadcast;
+
+use crate::counters::StreamCounters;
+use crate::line::{Line, LineSplitter};
+
+/// A text server the connection loop drives: its reply to each line, its limits and counters.
+pub trait LineServer: Send + Sync + 'static {
+    /// The reply to one line (line ending included; may be empty: nothing is sent).
+    fn handle(&self, line: &Line) -> impl Future<Output = String> + Send;
+    fn limits(&self) -> Limits;
+    fn stream_counters(&self) -> &StreamCounters;
+    /// Messages every connection writes between lines (User ASCII's broadcast); `None`: none.
+    fn broadcasts(&self) -> Option<broadcast::Receiver<Arc<[u8]>>> {
+        None
+    }
+}
+
+/// A server's connection bound and timeouts (its config section's).
+#[derive(Clone, Copy, Debug)]
+pub struct Limits {
+    /// The config section, for logs.
+    pub frontend: &'static str,
+    pub max_connections: usize,
+    pub at_limit: AtLimit,
+    /// 0 = never.
+    pub idle_timeout_ms: u64,
+    /// 0 = never.
+    pub write_timeout_ms: u64,
+}
+
+/// Accept clients on `listener` until `shutdown`, within the server's connection bound.
+pub async fn serve<S: LineServer>(
+    listener: TcpListener,
+    server: Arc<S>,
+    shutdown: impl Future<Output = ()>,
+) {
+    let limits = server.limits();
+    let bound = Bound {
+        max_connections: limits.max_connections,
+        at_limit: limits.at_limit,
+    };
+    let connections = Arc::clone(&server.stream_counters().connections);
+    let table = ConnectionTable::new(bound, connections);
+    let refuse = |stream: TcpStream, _| async move { drop(stream) };
+    let serve = |c: Connection| connection(Arc::clone(&server), c);
+    bound::serve(listener, table, limits.frontend, shutdown, serve, refuse).await;
+}
+
+fn limit(ms: u64) -> Option<Duration> {
+    (ms > 0).then(|| Duration::from_millis(ms))
+}
+
+/// Run `work`, giving up after `limit` if there is one.
+async fn within<T>(limit: Option<Duration>, work: impl Future<Output = T>) -> Option<T> {
+    match limit {
+        Some(d) => tokio::time::timeout(d, work).await.ok(),
+        None => Some(work.await),
+    }
+}
+
+/// What woke a connection up.
+enum Event {
+    Read(Option<std::io::Result<usize>>),
+    Broadcast(Arc<[u8]>),
+    Stop,
+}
+
+/// The next broadcast; never, without a channel. A lagging client misses the oldest ones.
+async fn next_broadcast(rx: &mut Option<broadcast::Receiver<Arc<[u8]>>>) -> Arc<[u8]> {
+    loop {
+        let Some(r) = rx.as_mut() else {
+            return std::future::pending().await;
+        };
+        match r.recv().await {
+            Ok(m) => return m,
+            Err(broadcast::error::RecvError::Lagged(_)) => continue,
+            Err(broadcast::error::RecvError::Closed) => *rx = None,
+        }
+    }
+}
+
+async fn connection<S: LineServer>(server: Arc<S>, mut c: Connection) {
+    let limits = server.limits();
+    let counters = server.stream_counters();
+    let idle = limit(limits.idle_timeout_ms);
+    let write_limit = limit(limits.write_timeout_ms);
+    let mut broadcasts = server.broadcasts();
+    let mut splitter = LineSplitter::new(HMPL_STR_MAX_LEN);
+    let mut buf = vec![0u8; 4096];
+    let mut lines = Vec::new();
+    loop {
+        let event = tokio::select! {
+            r = within(idle, c.stream.read(&mut buf)) => Event::Read(r),
+            m = next_broadcast(&mut broadcasts) => Event::Broadcast(m),
+            () = bound::stopping(&mut c.stop) => Event::Stop,
+        };
+        let n = match event {
+            Event::Stop => return,
+            Event::Broadcast(m) => {
+                if !write(&mut c, &m, write_limit, counters).await {
+                    return;
+                }
+                continue;
+            }
+            Event::Read(None) => {
+                counters.idle_timeouts.inc();
+                tracing::info!("closed: idle for {} ms", limits.idle_timeout_ms);
+                return;
+            }
+            Event::Read(Some(Ok(n))) if n > 0 => n,
+            // Closed or failed: a line it had begun is dropped, unanswered.
+            Event::Read(Some(_)) => {
+                if splitter.in_line() {
+                    counters.partial_lines.inc();
+                }
+                return;
+            }
+        };
+        c.activity.received();
+        counters.bytes_in.add(n as u64);
+        splitter.push(buf.get(..n).unwrap_or_default(), &mut lines);
+        for line in lines.drain(..) {
+            let reply = {
+                let _in_request = c.activity.request();
+                server.handle(&line).await
+            };
+            if !write(&mut c, reply.as_bytes(), write_limit, counters).await {
+                return;
+            }
+        }
+    }
+}
+
+/// Write `bytes` within the write limit; whether the connection lives on.
+async fn write(
+    c: &mut Connection,
+    bytes: &[u8],
+    limit: Option<Duration>,
+    counters: &StreamCounters,
+) -> bool {
+    if bytes.is_empty() {
+        return true;
+    }
+    match within(limit, c.stream.write_all(bytes)).await {
+        Some(Ok(())) => true,
+        Some(Err(_)) => false,
+        None => {
+            counters.write_timeouts.inc();
+            tracing::info!("closed: the client takes no replies");
+            false
+        }
+    }
+}
