@@ -759,8 +759,33 @@ fn compensation() -> Vec<(Command, &'static str)> {
                 count: vec![2, 2],
                 values: vec![0.0, 1.0, 2.0, 3.0],
                 enable: true,
+                angle: 0.0,
+                interpolation: axes::command::CompensationInterpolation::Linear,
             }),
             r#"{"type":"compensation_table","axis":2,"references":[{"axis":0,"source":"actual"},{"axis":1,"source":"planned"}],"start":[0.0,0.0],"step":[3.0,4.0],"count":[2,2],"values":[0.0,1.0,2.0,3.0],"enable":true}"#,
+        ),
+        (
+            Command::from(CompensationTable {
+                axis: 2,
+                references: vec![
+                    CompensationReference {
+                        axis: 0,
+                        source: ReferenceSource::Planned,
+                    },
+                    CompensationReference {
+                        axis: 1,
+                        source: ReferenceSource::Planned,
+                    },
+                ],
+                start: vec![0.0, 0.0],
+                step: vec![3000.0, 4000.0],
+                count: vec![3, 4],
+                values: vec![0.0; 12],
+                enable: false,
+                angle: 30.0,
+                interpolation: axes::command::CompensationInterpolation::Cubic,
+            }),
+            r#"{"type":"compensation_table","axis":2,"references":[{"axis":0,"source":"planned"},{"axis":1,"source":"planned"}],"start":[0.0,0.0],"step":[3000.0,4000.0],"count":[3,4],"values":[0.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0],"enable":false,"angle":30.0,"interpolation":"cubic"}"#,
         ),
         (
             Command::from(CompensationEnable { axis: 3 }),

@@ -112,8 +112,8 @@ pub use axis::{
 };
 pub use compensation::{
     BacklashDirection, CompensationBacklash, CompensationClear, CompensationCommand,
-    CompensationDisable, CompensationEnable, CompensationKind, CompensationLeadScrew,
-    CompensationReference, CompensationTable, ReferenceSource,
+    CompensationDisable, CompensationEnable, CompensationInterpolation, CompensationKind,
+    CompensationLeadScrew, CompensationReference, CompensationTable, ReferenceSource,
 };
 pub use coupling::{
     CamIn, CamInterpolation, CamOut, CamPoint, CamTableDefine, CouplingCommand, FollowSegment,
