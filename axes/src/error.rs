@@ -189,6 +189,17 @@ pub enum EngineError {
         point: u32,
         problem: StreamPointProblem,
     },
+    /// An NMC Follow command that cannot be applied as given (issue 12 item 2).
+    #[error("follow of axis {axis}: {reason}")]
+    InvalidFollow { axis: AxisIndex, reason: String },
+    /// A Follow push with more segments than the FIFO has room for (NMC FollowGetSpace).
+    #[error("axis {axis}: follow FIFO {fifo} has room for {space} segments, {count} pushed")]
+    FollowFull {
+        axis: AxisIndex,
+        fifo: u8,
+        space: u16,
+        count: u32,
+    },
 }
 
 /// What is wrong with one PT/PVT point ([`EngineError::StreamPoint`]). The HIMC dialect maps
@@ -278,6 +289,8 @@ impl EngineError {
             EngineError::GantryExists { .. } | EngineError::AxisOnHandwheel { .. } => {
                 ErrorKind::InvalidState
             }
+            EngineError::InvalidFollow { .. } => ErrorKind::InvalidArgument,
+            EngineError::FollowFull { .. } => ErrorKind::QueueFull,
         }
     }
 }

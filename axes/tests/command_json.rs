@@ -653,7 +653,7 @@ fn minimal() -> Vec<(&'static str, Command, &'static str)> {
 
 /// Inputs whose error serde reports, and the text it reports today.
 const ERRORS: &[(&str, &str)] = &[
-    (r#"{"type":"teleport","axis":0}"#, "unknown variant `teleport`, expected one of `enable`, `disable`, `reset`, `move_absolute`, `move_relative`, `move_velocity`, `stop`, `halt`, `resume`, `home`, `set_position`, `set_parameter`, `get_parameter`, `modify_target`, `cancel`, `command_state`, `force_input`, `force_digital_input`, `force_analog_input`, `write_digital_output`, `write_analog_output`, `inject_following_error`, `setpoint`, `read_object`, `write_object`, `move_together`, `stop_axes`, `stop_all`, `enable_all`, `disable_all`, `emergency_stop_all`, `reset_all`, `group_create`, `group_delete`, `group_enable`, `group_disable`, `group_reset`, `move_linear_absolute`, `move_linear_relative`, `move_circular_absolute`, `move_circular_relative`, `group_stop`, `group_halt`, `group_continue`, `group_emergency_stop`, `group_set_override`, `group_set_origin`, `group_set_parameter`, `group_set_output`, `group_dwell`, `group_wait_input`, `group_wait_position`, `group_axis_move`, `move_spline`, `move_ellipse`, `group_set_coordinate_transform`, `group_set_coordinate_system`, `group_set_rotary_transform`, `group_set_xyza_transform`, `group_delete_transform`, `move_protection_enable`, `move_protection_disable`, `move_circular_angle`, `group_jog`, `group_jog_axis`, `gear_in`, `gear_set_ratio`, `gear_out`, `cam_table`, `cam_in`, `cam_out`, `capture_arm`, `capture_clear`, `compare_start`, `compare_stop`, `stream_config`, `pt_push`, `pvt_push`, `stream_clear`, `stream_start`, `pvt_move`, `compensation_lead_screw`, `compensation_backlash`, `compensation_table`, `compensation_enable`, `compensation_disable`, `compensation_clear`, `sampling_configure`, `sampling_start`, `sampling_trigger`, `sampling_stop`, `sampling_read`, `superimpose_in`, `superimpose_set_ratios`, `superimpose_out`, `tangential_in`, `tangential_out`, `gantry_enable`, `gantry_disable`, `handwheel_in`, `handwheel_out`, `handwheel_turn`, `compare_fire` at line 1 column 18"),
+    (r#"{"type":"teleport","axis":0}"#, "unknown variant `teleport`, expected one of `enable`, `disable`, `reset`, `move_absolute`, `move_relative`, `move_velocity`, `stop`, `halt`, `resume`, `home`, `set_position`, `set_parameter`, `get_parameter`, `modify_target`, `cancel`, `command_state`, `force_input`, `force_digital_input`, `force_analog_input`, `write_digital_output`, `write_analog_output`, `inject_following_error`, `setpoint`, `read_object`, `write_object`, `move_together`, `stop_axes`, `stop_all`, `enable_all`, `disable_all`, `emergency_stop_all`, `reset_all`, `group_create`, `group_delete`, `group_enable`, `group_disable`, `group_reset`, `move_linear_absolute`, `move_linear_relative`, `move_circular_absolute`, `move_circular_relative`, `group_stop`, `group_halt`, `group_continue`, `group_emergency_stop`, `group_set_override`, `group_set_origin`, `group_set_parameter`, `group_set_output`, `group_dwell`, `group_wait_input`, `group_wait_position`, `group_axis_move`, `move_spline`, `move_ellipse`, `group_set_coordinate_transform`, `group_set_coordinate_system`, `group_set_rotary_transform`, `group_set_xyza_transform`, `group_delete_transform`, `move_protection_enable`, `move_protection_disable`, `move_circular_angle`, `group_jog`, `group_jog_axis`, `gear_in`, `gear_set_ratio`, `gear_out`, `cam_table`, `cam_in`, `cam_out`, `capture_arm`, `capture_clear`, `compare_start`, `compare_stop`, `stream_config`, `pt_push`, `pvt_push`, `stream_clear`, `stream_start`, `pvt_move`, `compensation_lead_screw`, `compensation_backlash`, `compensation_table`, `compensation_enable`, `compensation_disable`, `compensation_clear`, `sampling_configure`, `sampling_start`, `sampling_trigger`, `sampling_stop`, `sampling_read`, `superimpose_in`, `superimpose_set_ratios`, `superimpose_out`, `tangential_in`, `tangential_out`, `gantry_enable`, `gantry_disable`, `handwheel_in`, `handwheel_out`, `handwheel_turn`, `compare_fire`, `follow_config`, `follow_push`, `follow_clear`, `follow_start`, `follow_switch`, `follow_out`, `handwheel_set_ratio`, `stream_start_on_input`, `capture_arm_threshold` at line 1 column 18"),
     (r#"{"axis":0}"#, "missing field `type` at line 1 column 10"),
     (r#"{"type":"move_absolute","axis":0}"#, "missing field `position`"),
     (r#"{"type":"move_absolute","axis":0,"positon":10}"#, "unknown field `positon`, expected one of `axis`, `position`, `velocity`, `acceleration`, `deceleration`, `jerk`, `buffer_mode`"),
@@ -764,8 +764,33 @@ fn compensation() -> Vec<(Command, &'static str)> {
                 count: vec![2, 2],
                 values: vec![0.0, 1.0, 2.0, 3.0],
                 enable: true,
+                angle: 0.0,
+                interpolation: axes::command::CompensationInterpolation::Linear,
             }),
             r#"{"type":"compensation_table","axis":2,"references":[{"axis":0,"source":"actual"},{"axis":1,"source":"planned"}],"start":[0.0,0.0],"step":[3.0,4.0],"count":[2,2],"values":[0.0,1.0,2.0,3.0],"enable":true}"#,
+        ),
+        (
+            Command::from(CompensationTable {
+                axis: 2,
+                references: vec![
+                    CompensationReference {
+                        axis: 0,
+                        source: ReferenceSource::Planned,
+                    },
+                    CompensationReference {
+                        axis: 1,
+                        source: ReferenceSource::Planned,
+                    },
+                ],
+                start: vec![0.0, 0.0],
+                step: vec![3000.0, 4000.0],
+                count: vec![3, 4],
+                values: vec![0.0; 12],
+                enable: false,
+                angle: 30.0,
+                interpolation: axes::command::CompensationInterpolation::Cubic,
+            }),
+            r#"{"type":"compensation_table","axis":2,"references":[{"axis":0,"source":"planned"},{"axis":1,"source":"planned"}],"start":[0.0,0.0],"step":[3000.0,4000.0],"count":[3,4],"values":[0.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0],"enable":false,"angle":30.0,"interpolation":"cubic"}"#,
         ),
         (
             Command::from(CompensationEnable { axis: 3 }),
@@ -1017,4 +1042,93 @@ fn gantry_and_handwheel_commands_keep_their_json() {
     assert!(serde_json::to_string(&minimal)
         .unwrap()
         .ends_with(r#""excess":"catch_up"}"#));
+}
+
+#[test]
+fn follow_and_handwheel_ratio_commands_keep_their_json() {
+    use axes::command::{
+        CamPoint, Direction, FollowClear, FollowConfig, FollowDirection, FollowEvent, FollowOut,
+        FollowPush, FollowSegment, FollowStart, FollowSwitch, HandwheelSetRatio, MasterSource,
+    };
+    let cases = vec![
+        (
+            Command::from(FollowConfig {
+                axis: 1,
+                master: Some(0),
+                master_source: Some(MasterSource::Actual),
+                loop_count: Some(3),
+                event: Some(FollowEvent::MasterCrossing),
+                start_position: Some(50000.0),
+                start_direction: Some(Direction::Negative),
+                direction: Some(FollowDirection::Positive),
+            }),
+            r#"{"type":"follow_config","axis":1,"master":0,"master_source":"actual","loop_count":3,"event":"master_crossing","start_position":50000.0,"start_direction":"negative","direction":"positive"}"#,
+        ),
+        (
+            Command::from(FollowPush {
+                axis: 1,
+                fifo: 1,
+                points: vec![CamPoint {
+                    master: 20000.0,
+                    slave: 10000.0,
+                    segment: FollowSegment::Continuous,
+                }],
+            }),
+            r#"{"type":"follow_push","axis":1,"fifo":1,"points":[{"master":20000.0,"slave":10000.0,"segment":"continuous"}]}"#,
+        ),
+        (
+            Command::from(FollowClear { axis: 1, fifo: 0 }),
+            r#"{"type":"follow_clear","axis":1,"fifo":0}"#,
+        ),
+        (
+            Command::from(FollowStart { axes: vec![1, 2] }),
+            r#"{"type":"follow_start","axes":[1,2]}"#,
+        ),
+        (
+            Command::from(FollowSwitch { axes: vec![1] }),
+            r#"{"type":"follow_switch","axes":[1]}"#,
+        ),
+        (
+            Command::from(FollowOut { axis: 1 }),
+            r#"{"type":"follow_out","axis":1}"#,
+        ),
+        (
+            Command::from(HandwheelSetRatio {
+                axis: Some(2),
+                numerator: 3.0,
+                denominator: 2.0,
+            }),
+            r#"{"type":"handwheel_set_ratio","axis":2,"numerator":3.0,"denominator":2.0}"#,
+        ),
+        (
+            Command::from(axes::command::StreamStartOnInput {
+                axis: 1,
+                input: 5,
+                edge: CaptureEdge::Falling,
+            }),
+            r#"{"type":"stream_start_on_input","axis":1,"input":5,"edge":"falling"}"#,
+        ),
+        (
+            Command::from(axes::command::CaptureArmThreshold {
+                axis: 0,
+                channel: 2,
+                source: PositionSource::Actual,
+                source_axis: Some(3),
+                threshold: 1500.0,
+                edge: CaptureEdge::Both,
+                repeat: 4,
+                continuous: true,
+            }),
+            r#"{"type":"capture_arm_threshold","axis":0,"channel":2,"source":"actual","source_axis":3,"threshold":1500.0,"edge":"both","repeat":4,"continuous":true}"#,
+        ),
+    ];
+    assert_pinned(cases);
+    // Every setting is optional (one NMC setter each); a ratio for every handwheel.
+    for minimal in [
+        r#"{"type":"follow_config","axis":1}"#,
+        r#"{"type":"handwheel_set_ratio","numerator":1.0,"denominator":4.0}"#,
+    ] {
+        let c: Command = serde_json::from_str(minimal).unwrap();
+        assert_eq!(serde_json::to_string(&c).unwrap(), minimal);
+    }
 }

@@ -48,6 +48,9 @@ pub struct CompensationBacklash {
 /// A uniform 1/2/3-D grid: the correction of `axis` from the positions of 1–3 reference axes
 /// (HIMC SetupComp/SetupComp2D/SetupComp3D; NMC 2-D table, S-2DCOMP, one table per corrected
 /// axis). `values` lists the grid points with the first reference varying fastest.
+/// `angle` (degrees, 2-D tables only; NMC `T2DCompensationTable.angle`, S-2DCOMP) turns the
+/// table's axes counter-clockwise about its first point; `interpolation` `cubic` (HIMC
+/// SetCompAlgType 1, 1-D and 2-D only) interpolates by natural cubic splines.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CompensationTable {
@@ -62,6 +65,29 @@ pub struct CompensationTable {
     pub values: Vec<f64>,
     #[serde(default = "yes")]
     pub enable: bool,
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub angle: f64,
+    #[serde(default, skip_serializing_if = "is_linear")]
+    pub interpolation: CompensationInterpolation,
+}
+
+/// How a compensation grid is interpolated between its points (HIMC SetCompAlgType).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CompensationInterpolation {
+    /// 0: (multi)linear, the default.
+    #[default]
+    Linear,
+    /// 1: natural cubic spline per reference (a tensor-product spline in 2-D).
+    Cubic,
+}
+
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
+}
+
+fn is_linear(v: &CompensationInterpolation) -> bool {
+    *v == CompensationInterpolation::Linear
 }
 
 fn yes() -> bool {

@@ -8,8 +8,9 @@ use super::superimpose::{
     SuperimposeIn, SuperimposeOut, SuperimposeSetRatios, TangentialIn, TangentialOut,
 };
 use super::{
-    command_from, AxisIndex, Direction, GantryDisable, GantryEnable, HandwheelIn, HandwheelOut,
-    HandwheelTurn, MasterSource,
+    command_from, AxisIndex, Direction, FollowClear, FollowConfig, FollowOut, FollowPush,
+    FollowStart, FollowSwitch, GantryDisable, GantryEnable, HandwheelIn, HandwheelOut,
+    HandwheelSetRatio, HandwheelTurn, MasterSource,
 };
 
 /// Couple `slave` to `master` through a gear: slave travel = numerator / denominator × master
@@ -219,6 +220,14 @@ pub enum CouplingCommand {
     HandwheelIn(HandwheelIn),
     HandwheelOut(HandwheelOut),
     HandwheelTurn(HandwheelTurn),
+    // NMC Follow FIFOs (digest 001 §2.17), `command/follow.rs`.
+    FollowConfig(FollowConfig),
+    FollowPush(FollowPush),
+    FollowClear(FollowClear),
+    FollowStart(FollowStart),
+    FollowSwitch(FollowSwitch),
+    FollowOut(FollowOut),
+    HandwheelSetRatio(HandwheelSetRatio),
 }
 
 impl CouplingCommand {
@@ -241,6 +250,13 @@ impl CouplingCommand {
             CouplingCommand::HandwheelIn(c) => Some(c.axis),
             CouplingCommand::HandwheelOut(c) => Some(c.axis),
             CouplingCommand::HandwheelTurn(_) => None,
+            CouplingCommand::FollowConfig(c) => Some(c.axis),
+            CouplingCommand::FollowPush(c) => Some(c.axis),
+            CouplingCommand::FollowClear(c) => Some(c.axis),
+            CouplingCommand::FollowStart(c) => c.axes.first().copied(),
+            CouplingCommand::FollowSwitch(c) => c.axes.first().copied(),
+            CouplingCommand::FollowOut(c) => Some(c.axis),
+            CouplingCommand::HandwheelSetRatio(c) => c.axis,
         }
     }
 }
@@ -265,5 +281,12 @@ command_from!(
         HandwheelIn => HandwheelIn,
         HandwheelOut => HandwheelOut,
         HandwheelTurn => HandwheelTurn,
+        FollowConfig => FollowConfig,
+        FollowPush => FollowPush,
+        FollowClear => FollowClear,
+        FollowStart => FollowStart,
+        FollowSwitch => FollowSwitch,
+        FollowOut => FollowOut,
+        HandwheelSetRatio => HandwheelSetRatio,
     ]
 );

@@ -58,3 +58,16 @@ pub struct HandwheelTurn {
     pub input: u16,
     pub counts: i64,
 }
+
+/// Change the ratio of a running handwheel without a jump: from this command on the axis
+/// follows its target here plus (counts − counts now) × numerator / denominator (NMC
+/// SetHandWheelRatio, digest 001 §2.9). Without `axis`, every handwheel (NMC has one per
+/// device). JSON `type`: `handwheel_set_ratio`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HandwheelSetRatio {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub axis: Option<AxisIndex>,
+    pub numerator: f64,
+    pub denominator: f64,
+}

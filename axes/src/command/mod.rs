@@ -90,6 +90,7 @@ pub enum AxisInput {
 mod axis;
 mod compensation;
 mod coupling;
+mod follow;
 mod gantry;
 mod group;
 mod group_frames;
@@ -111,12 +112,16 @@ pub use axis::{
 };
 pub use compensation::{
     BacklashDirection, CompensationBacklash, CompensationClear, CompensationCommand,
-    CompensationDisable, CompensationEnable, CompensationKind, CompensationLeadScrew,
-    CompensationReference, CompensationTable, ReferenceSource,
+    CompensationDisable, CompensationEnable, CompensationInterpolation, CompensationKind,
+    CompensationLeadScrew, CompensationReference, CompensationTable, ReferenceSource,
 };
 pub use coupling::{
     CamIn, CamInterpolation, CamOut, CamPoint, CamTableDefine, CouplingCommand, FollowSegment,
     GearIn, GearOut, GearSetRatio,
+};
+pub use follow::{
+    FollowClear, FollowConfig, FollowDirection, FollowEvent, FollowOut, FollowPush, FollowStart,
+    FollowSwitch, FOLLOW_FIFOS, FOLLOW_FIFO_SEGMENTS,
 };
 pub use gantry::{GantryDisable, GantryEnable, MAX_GANTRY_SLAVES};
 pub use group::{
@@ -134,8 +139,8 @@ pub use group_frames::{
 };
 pub use group_jog::{GroupJog, GroupJogAxis};
 pub use handwheel::{
-    HandwheelExcess, HandwheelIn, HandwheelOut, HandwheelTurn, HANDWHEEL_EXTERNAL_BASE,
-    HANDWHEEL_EXTERNAL_ENCODERS,
+    HandwheelExcess, HandwheelIn, HandwheelOut, HandwheelSetRatio, HandwheelTurn,
+    HANDWHEEL_EXTERNAL_BASE, HANDWHEEL_EXTERNAL_ENCODERS,
 };
 pub use io::{
     ForceAnalogInput, ForceDigitalInput, IoCommand, WriteAnalogOutput, WriteDigitalOutput,
@@ -152,14 +157,14 @@ pub use sampling::{
 pub use slave::{ReadObject, SlaveCommand, WriteObject};
 pub use stream::{
     PtKind, PtPoint, PtPush, PvtMove, PvtPoint, PvtPush, StreamClear, StreamCommand, StreamConfig,
-    StreamStart, MAX_PUSH_POINTS, MAX_PVT_MOVE_POINTS,
+    StreamStart, StreamStartOnInput, MAX_PUSH_POINTS, MAX_PVT_MOVE_POINTS,
 };
 pub use superimpose::{
     SuperimposeIn, SuperimposeOut, SuperimposeSetRatios, TangentialIn, TangentialOut,
 };
 pub use trigger::{
-    CaptureArm, CaptureClear, CaptureEdge, CaptureSource, CaptureWindow, CompareFire,
-    CompareOutputMode, CompareStart, CompareStop, PositionSource, TriggerCommand,
+    CaptureArm, CaptureArmThreshold, CaptureClear, CaptureEdge, CaptureSource, CaptureWindow,
+    CompareFire, CompareOutputMode, CompareStart, CompareStop, PositionSource, TriggerCommand,
 };
 
 /// A command into the engine, by family: what it addresses decides which stage of the engine
@@ -210,6 +215,7 @@ impl Command {
             Command::Trigger(TriggerCommand::CaptureArm(c)) => Some(c.axis),
             Command::Trigger(TriggerCommand::CaptureClear(c)) => Some(c.axis),
             Command::Trigger(TriggerCommand::CompareStart(c)) => Some(c.axis),
+            Command::Trigger(TriggerCommand::CaptureArmThreshold(c)) => Some(c.axis),
             Command::Compensation(c) => Some(c.axis()),
             Command::Trigger(TriggerCommand::CompareStop(_) | TriggerCommand::CompareFire(_))
             | Command::Sampling(_)

@@ -132,6 +132,7 @@ pub enum StreamCommand {
     Clear(StreamClear),
     Start(StreamStart),
     PvtMove(PvtMove),
+    StartOnInput(StreamStartOnInput),
 }
 
 impl StreamCommand {
@@ -142,7 +143,8 @@ impl StreamCommand {
             | StreamCommand::PtPush(PtPush { axis, .. })
             | StreamCommand::PvtPush(PvtPush { axis, .. })
             | StreamCommand::Clear(StreamClear { axis })
-            | StreamCommand::PvtMove(PvtMove { axis, .. }) => Some(*axis),
+            | StreamCommand::PvtMove(PvtMove { axis, .. })
+            | StreamCommand::StartOnInput(StreamStartOnInput { axis, .. }) => Some(*axis),
             StreamCommand::Start(_) => None,
         }
     }
@@ -158,5 +160,20 @@ command_from!(
         StreamClear => Clear,
         StreamStart => Start,
         PvtMove => PvtMove,
+        StreamStartOnInput => StartOnInput,
     ]
 );
+
+/// Start `axis`'s stream at an edge of digital input `input` (NMC `MtPtStartMtnEx(axis,
+/// diIndex, diSns)`, "DI 沿触发", digest 001 §2.8: `diSns` 0 = `falling`, 1 = `rising`). Armed
+/// until the edge: an edge seen by a tick starts the stream before the next tick, as a
+/// `stream_start` sent then would, so it takes its first sample one period later. Arming again
+/// replaces the arm; `stream_clear` disarms. A start the stream refuses at the edge (nothing
+/// pushed, the axis moving or faulted) drops the arm. JSON `type`: `stream_start_on_input`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StreamStartOnInput {
+    pub axis: AxisIndex,
+    pub input: u16,
+    pub edge: super::CaptureEdge,
+}

@@ -127,6 +127,7 @@ pub enum TriggerCommand {
     CompareStart(CompareStart),
     CompareStop(CompareStop),
     CompareFire(CompareFire),
+    CaptureArmThreshold(CaptureArmThreshold),
 }
 
 command_from!(
@@ -138,5 +139,32 @@ command_from!(
         CompareStart => CompareStart,
         CompareStop => CompareStop,
         CompareFire => CompareFire,
+        CaptureArmThreshold => CaptureArmThreshold,
     ]
 );
+
+/// Arm capture channel `channel` of `axis` to latch when the position of `source_axis`
+/// (default `axis`) crosses `threshold` (NMC `MtSetAdvCaptParam` with `trigSrc`
+/// `CAPT_EX_SRC_PRFPOS` 5 → `source` `commanded`, `CAPT_EX_SRC_ENCPOS` 6 → `actual`;
+/// `trigIndex` → `source_axis`, `trigValue` → `threshold`, `capPosIndex` → `axis`; digest 001
+/// §2.18, §3.15, S-ADVCAPT). Crossing upward is a rising edge, downward a falling one; the latch
+/// is taken at the crossing's fraction of the tick. Otherwise as `capture_arm`. JSON `type`:
+/// `capture_arm_threshold`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CaptureArmThreshold {
+    pub axis: AxisIndex,
+    #[serde(default)]
+    pub channel: u8,
+    #[serde(default)]
+    pub source: PositionSource,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub source_axis: Option<AxisIndex>,
+    pub threshold: f64,
+    #[serde(default)]
+    pub edge: CaptureEdge,
+    #[serde(default = "one")]
+    pub repeat: u16,
+    #[serde(default)]
+    pub continuous: bool,
+}

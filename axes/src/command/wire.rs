@@ -4,6 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::StreamStartOnInput;
 use super::{
     AxisCommand, Cancel, Disable, DisableAll, EmergencyStopAll, Enable, EnableAll,
     ForceAnalogInput, ForceDigitalInput, ForceInput, GetCommandState, GetParameter, Halt, Home,
@@ -16,10 +17,16 @@ use super::{
     CamIn, CamOut, CamTableDefine, CouplingCommand, GantryDisable, GantryEnable, GearIn, GearOut,
     GearSetRatio, HandwheelIn, HandwheelOut, HandwheelTurn,
 };
-use super::{CaptureArm, CaptureClear, CompareFire, CompareStart, CompareStop, TriggerCommand};
+use super::{
+    CaptureArm, CaptureArmThreshold, CaptureClear, CompareFire, CompareStart, CompareStop,
+    TriggerCommand,
+};
 use super::{
     CompensationBacklash, CompensationClear, CompensationCommand, CompensationDisable,
     CompensationEnable, CompensationLeadScrew, CompensationTable,
+};
+use super::{
+    FollowClear, FollowConfig, FollowOut, FollowPush, FollowStart, FollowSwitch, HandwheelSetRatio,
 };
 use super::{
     GroupAxisMove, GroupCommand, GroupContinue, GroupCreate, GroupDelete, GroupDisable, GroupDwell,
@@ -157,6 +164,16 @@ pub(super) enum Command {
     HandwheelTurn(HandwheelTurn),
     // Issue 12 item 5, NMC manual compare output.
     CompareFire(CompareFire),
+    // Issue 12 items 2 and 7, NMC Follow FIFOs and SetHandWheelRatio.
+    FollowConfig(FollowConfig),
+    FollowPush(FollowPush),
+    FollowClear(FollowClear),
+    FollowStart(FollowStart),
+    FollowSwitch(FollowSwitch),
+    FollowOut(FollowOut),
+    HandwheelSetRatio(HandwheelSetRatio),
+    StreamStartOnInput(StreamStartOnInput),
+    CaptureArmThreshold(CaptureArmThreshold),
 }
 
 impl From<Command> for super::Command {
@@ -271,6 +288,15 @@ impl From<Command> for super::Command {
             Command::HandwheelIn(c) => super::Command::from(c),
             Command::HandwheelOut(c) => super::Command::from(c),
             Command::HandwheelTurn(c) => super::Command::from(c),
+            Command::FollowConfig(c) => super::Command::from(c),
+            Command::FollowPush(c) => super::Command::from(c),
+            Command::FollowClear(c) => super::Command::from(c),
+            Command::FollowStart(c) => super::Command::from(c),
+            Command::FollowSwitch(c) => super::Command::from(c),
+            Command::FollowOut(c) => super::Command::from(c),
+            Command::HandwheelSetRatio(c) => super::Command::from(c),
+            Command::StreamStartOnInput(c) => super::Command::from(c),
+            Command::CaptureArmThreshold(c) => super::Command::from(c),
             Command::CaptureArm(c) => super::Command::Trigger(TriggerCommand::CaptureArm(c)),
             Command::CaptureClear(c) => super::Command::Trigger(TriggerCommand::CaptureClear(c)),
             Command::CompareStart(c) => super::Command::Trigger(TriggerCommand::CompareStart(c)),
@@ -421,17 +447,32 @@ impl From<super::Command> for Command {
             super::Command::Coupling(CouplingCommand::HandwheelTurn(c)) => {
                 Command::HandwheelTurn(c)
             }
+            super::Command::Coupling(CouplingCommand::FollowConfig(c)) => Command::FollowConfig(c),
+            super::Command::Coupling(CouplingCommand::FollowPush(c)) => Command::FollowPush(c),
+            super::Command::Coupling(CouplingCommand::FollowClear(c)) => Command::FollowClear(c),
+            super::Command::Coupling(CouplingCommand::FollowStart(c)) => Command::FollowStart(c),
+            super::Command::Coupling(CouplingCommand::FollowSwitch(c)) => Command::FollowSwitch(c),
+            super::Command::Coupling(CouplingCommand::FollowOut(c)) => Command::FollowOut(c),
+            super::Command::Coupling(CouplingCommand::HandwheelSetRatio(c)) => {
+                Command::HandwheelSetRatio(c)
+            }
             super::Command::Trigger(TriggerCommand::CaptureArm(c)) => Command::CaptureArm(c),
             super::Command::Trigger(TriggerCommand::CaptureClear(c)) => Command::CaptureClear(c),
             super::Command::Trigger(TriggerCommand::CompareStart(c)) => Command::CompareStart(c),
             super::Command::Trigger(TriggerCommand::CompareStop(c)) => Command::CompareStop(c),
             super::Command::Trigger(TriggerCommand::CompareFire(c)) => Command::CompareFire(c),
+            super::Command::Trigger(TriggerCommand::CaptureArmThreshold(c)) => {
+                Command::CaptureArmThreshold(c)
+            }
             super::Command::Stream(StreamCommand::Config(c)) => Command::StreamConfig(c),
             super::Command::Stream(StreamCommand::PtPush(c)) => Command::PtPush(c),
             super::Command::Stream(StreamCommand::PvtPush(c)) => Command::PvtPush(c),
             super::Command::Stream(StreamCommand::Clear(c)) => Command::StreamClear(c),
             super::Command::Stream(StreamCommand::Start(c)) => Command::StreamStart(c),
             super::Command::Stream(StreamCommand::PvtMove(c)) => Command::PvtMove(c),
+            super::Command::Stream(StreamCommand::StartOnInput(c)) => {
+                Command::StreamStartOnInput(c)
+            }
             super::Command::Compensation(c) => match c {
                 CompensationCommand::LeadScrew(c) => Command::CompensationLeadScrew(c),
                 CompensationCommand::Backlash(c) => Command::CompensationBacklash(c),

@@ -2,8 +2,11 @@
 //! and the NMC 2-D table (digest 001 §2.19, `T2DCompensationTable`). The first reference varies
 //! fastest in `values` (NMC S-2DCOMP: x = i % count_x). Linear in each dimension; outside the
 //! grid the nearest edge is held (digest 004 §2.13). The cell follows from the position by one
-//! division per dimension: no search.
+//! division per dimension: no search. Options: a 2-D table turned by an angle about its first
+//! point (NMC `T2DCompensationTable.angle`), and cubic-spline interpolation in 1-D and 2-D
+//! (HIMC SetCompAlgType 1, `spline.rs`).
 
+use super::spline::{Cell, SplineSlopes};
 use super::table::check_finite;
 use crate::error::EngineError;
 
@@ -19,6 +22,10 @@ pub struct Grid {
     step: Vec<f64>,
     count: Vec<usize>,
     values: Vec<f64>,
+    /// sin and cos of the angle the table's axes are turned by (2-D).
+    turn: Option<(f64, f64)>,
+    /// Cubic-spline slopes (`interpolation: cubic`).
+    spline: Option<Box<SplineSlopes>>,
 }
 
 impl Grid {
@@ -73,7 +80,49 @@ impl Grid {
             step: step.to_vec(),
             count: count.iter().map(|c| *c as usize).collect(),
             values: values.to_vec(),
+            turn: None,
+            spline: None,
         })
+    }
+
+    /// Turn a 2-D table's axes by `degrees` counter-clockwise about its first point (NMC
+    /// S-2DCOMP `angle`), and interpolate by cubic splines (`cubic`, 1-D and 2-D: HIMC's 3-D
+    /// tables have no spline).
+    pub fn with_options(
+        mut self,
+        axis: u32,
+        degrees: f64,
+        cubic: bool,
+    ) -> Result<Grid, EngineError> {
+        let bad = |reason: String| EngineError::InvalidCompensation { axis, reason };
+        if !degrees.is_finite() || degrees.abs() > 360.0 {
+            return Err(bad(format!(
+                "angle = {degrees}: must be a finite number of degrees within ±360"
+            )));
+        }
+        if degrees != 0.0 {
+            if self.dimensions() != 2 {
+                return Err(bad(format!(
+                    "an angle turns a 2-D table; this one has {} reference axes",
+                    self.dimensions()
+                )));
+            }
+            self.turn = Some(degrees.to_radians().sin_cos());
+        }
+        if cubic {
+            if self.dimensions() > 2 {
+                return Err(bad(
+                    "cubic interpolation is for 1-D and 2-D tables (HIMC: 3-D has no spline)"
+                        .into(),
+                ));
+            }
+            self.spline = Some(Box::new(SplineSlopes::new(
+                &self.values,
+                &self.count,
+                &self.step,
+            )));
+        }
+        Ok(self)
     }
 
     pub fn dimensions(&self) -> usize {
@@ -98,6 +147,16 @@ impl Grid {
 
     /// The interpolated value at the reference positions `x` (one per dimension).
     pub fn value_at(&self, x: &[f64; MAX_DIMENSIONS]) -> f64 {
+        let turned;
+        let x = match (self.turn, self.start.as_slice()) {
+            (Some((sin, cos)), [s0, s1, ..]) => {
+                // The machine position in the table's turned axes, about its first point.
+                let (dx, dy) = (x[0] - s0, x[1] - s1);
+                turned = [s0 + dx * cos + dy * sin, s1 - dx * sin + dy * cos, x[2]];
+                &turned
+            }
+            _ => x,
+        };
         // Per dimension: the lower grid index and the fraction towards the next one.
         let mut cell = [(0usize, 0.0f64); MAX_DIMENSIONS];
         let mut stride = [0usize; MAX_DIMENSIONS];
@@ -121,8 +180,24 @@ impl Grid {
             }
             s *= n;
         }
-        // Sum over the 2^dims corners of the cell, each weighted by its fractions.
         let dims = self.dimensions().min(MAX_DIMENSIONS);
+        if let Some(spline) = &self.spline {
+            let (i, t) = cell[0];
+            let (j, u) = cell[1];
+            let (sx, sy) = (stride[0], stride[1]);
+            return spline.patch(
+                &self.values,
+                Cell {
+                    i0: i * sx + j * sy,
+                    stride: (dims == 2).then_some(sy),
+                    t,
+                    u,
+                    hx: self.step.first().copied().unwrap_or(1.0),
+                    hy: self.step.get(1).copied().unwrap_or(1.0),
+                },
+            );
+        }
+        // Sum over the 2^dims corners of the cell, each weighted by its fractions.
         let mut sum = 0.0;
         for corner in 0..(1usize << dims) {
             let mut weight = 1.0;

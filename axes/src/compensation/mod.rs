@@ -7,6 +7,7 @@
 //! finds its cell by division, the backlash moves one bounded step.
 
 mod grid;
+mod spline;
 mod table;
 
 pub use grid::{Grid, MAX_DIMENSIONS, MAX_GRID_VALUES};
@@ -15,8 +16,9 @@ pub use table::Table1d;
 use serde::{Deserialize, Serialize};
 
 use crate::command::{
-    AxisIndex, BacklashDirection, CompensationBacklash, CompensationKind, CompensationLeadScrew,
-    CompensationReference, CompensationTable, ReferenceSource, MAX_MAGNITUDE,
+    AxisIndex, BacklashDirection, CompensationBacklash, CompensationInterpolation,
+    CompensationKind, CompensationLeadScrew, CompensationReference, CompensationTable,
+    ReferenceSource, MAX_MAGNITUDE,
 };
 use crate::error::EngineError;
 
@@ -122,7 +124,11 @@ impl Compensation {
                 ),
             });
         }
-        let grid = Grid::new(id, &c.start, &c.step, &c.count, &c.values)?;
+        let grid = Grid::new(id, &c.start, &c.step, &c.count, &c.values)?.with_options(
+            id,
+            c.angle,
+            c.interpolation == CompensationInterpolation::Cubic,
+        )?;
         if let Some(r) = c.references.iter().find(|r| u32::from(r.axis) >= count) {
             return Err(EngineError::InvalidAxis {
                 axis: u32::from(r.axis),

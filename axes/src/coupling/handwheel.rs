@@ -14,8 +14,8 @@ use super::{axis_ref, Couplings, Env};
 use crate::axis::{Axis, Context, Feed};
 use crate::command::HandwheelExcess;
 use crate::command::{
-    positive, EngineError, HandwheelIn, HandwheelTurn, Reply, HANDWHEEL_EXTERNAL_BASE,
-    HANDWHEEL_EXTERNAL_ENCODERS,
+    positive, EngineError, HandwheelIn, HandwheelSetRatio, HandwheelTurn, Reply,
+    HANDWHEEL_EXTERNAL_BASE, HANDWHEEL_EXTERNAL_ENCODERS,
 };
 use crate::profile::MotionState;
 use crate::status::HandwheelStatus;
@@ -107,6 +107,15 @@ impl Handwheel {
             dt,
         );
         self.state
+    }
+
+    /// A new ratio from here on (NMC SetHandWheelRatio): the target stays where it is and
+    /// only the counts after this moment use the new ratio, so nothing jumps.
+    pub fn set_ratio(&mut self, ratio: f64) {
+        self.base = self.target;
+        self.base_counts = self.counts;
+        self.dropped = 0.0;
+        self.ratio = ratio;
     }
 
     pub fn status(&self) -> HandwheelStatus {
@@ -227,6 +236,37 @@ impl Couplings {
         if let Some(a) = env.axes.get_mut(axis as usize) {
             a.set_handwheel(false);
             let _ = a.feed(env.ctx, Feed::Release);
+        }
+        Ok(Reply::Done)
+    }
+
+    /// `handwheel_set_ratio`: the named axis's handwheel, or without `axis` every handwheel.
+    pub(super) fn handwheel_set_ratio(
+        &mut self,
+        env: &mut Env,
+        c: &HandwheelSetRatio,
+    ) -> Result<Reply, EngineError> {
+        let (numerator, denominator) = super::check_ratio(c.numerator, c.denominator)?;
+        let none = |axis: AxisIndex| EngineError::NotCoupled {
+            axis,
+            what: "driven by a handwheel",
+        };
+        match c.axis {
+            Some(axis) => {
+                axis_ref(env.axes, axis)?;
+                let wheel = self
+                    .handwheels
+                    .iter_mut()
+                    .find(|h| h.axis == axis)
+                    .ok_or(none(axis))?;
+                wheel.set_ratio(numerator / denominator);
+            }
+            None if self.handwheels.is_empty() => return Err(none(0)),
+            None => {
+                for wheel in &mut self.handwheels {
+                    wheel.set_ratio(numerator / denominator);
+                }
+            }
         }
         Ok(Reply::Done)
     }

@@ -16,6 +16,7 @@
 
 mod cam;
 mod cam_event;
+mod follow;
 mod gantry;
 mod gear;
 mod handwheel;
@@ -37,6 +38,7 @@ use crate::profile::MotionState;
 use crate::status::{CouplingKind, CouplingPhase, CouplingStatus};
 pub use cam::{Cam, CamStart, CamStep};
 use cam_event::cam_capture_start;
+pub use follow::{FollowLink, FollowSlave};
 pub use gantry::GantrySlave;
 pub use gear::{Clutch, Gear};
 pub use handwheel::Handwheel;
@@ -54,6 +56,8 @@ enum Law {
     Superimpose(Superimpose),
     Tangential(Tangential),
     Gantry(GantrySlave),
+    /// NMC Follow: the run is the slave's `FollowSlave` in `Couplings::follows`.
+    Follow(FollowLink),
 }
 
 /// One slave and what it follows.
@@ -87,6 +91,13 @@ impl Coupling {
             ),
             Law::Superimpose(s) => (CouplingKind::Superimpose, s.ratios()[0], None, 0, 0),
             Law::Tangential(_) => (CouplingKind::Tangential, 0.0, None, 0, 0),
+            Law::Follow(l) => (
+                CouplingKind::Follow,
+                0.0,
+                None,
+                l.segment(),
+                i64::from(l.loops()),
+            ),
         };
         let (ratio2, angle, deviation) = match &self.law {
             Law::Superimpose(s) => (s.ratios()[1], 0.0, 0.0),
@@ -125,6 +136,7 @@ impl Coupling {
             Law::Superimpose(_) => CouplingPhase::InSync,
             Law::Tangential(t) => t.phase(),
             Law::Gantry(_) => CouplingPhase::InSync,
+            Law::Follow(l) => l.phase(),
         }
     }
 }
@@ -142,6 +154,8 @@ pub struct Couplings {
     /// The handwheels (issue 12 item 7), by axis, and the external encoders' counts.
     handwheels: Vec<Handwheel>,
     external: [i64; HANDWHEEL_EXTERNAL_ENCODERS as usize],
+    /// NMC Follow slaves' settings, FIFOs and runs (issue 12 item 2), by axis.
+    follows: BTreeMap<AxisIndex, FollowSlave>,
 }
 
 /// What a coupling command may touch.
@@ -234,6 +248,13 @@ impl Couplings {
             CouplingCommand::HandwheelIn(c) => self.handwheel_in(env, &c),
             CouplingCommand::HandwheelOut(c) => self.handwheel_out(env, c.axis),
             CouplingCommand::HandwheelTurn(c) => self.handwheel_turn(&c),
+            CouplingCommand::FollowConfig(c) => self.follow_config(env, &c),
+            CouplingCommand::FollowPush(c) => self.follow_push(env, &c),
+            CouplingCommand::FollowClear(c) => self.follow_clear(env, &c),
+            CouplingCommand::FollowStart(c) => self.follow_start(env, &c),
+            CouplingCommand::FollowSwitch(c) => self.follow_switch(env, &c),
+            CouplingCommand::FollowOut(c) => self.decouple(env, c.axis, CouplingKind::Follow),
+            CouplingCommand::HandwheelSetRatio(c) => self.handwheel_set_ratio(env, &c),
         }
     }
 
@@ -563,6 +584,7 @@ impl Couplings {
             CouplingKind::Superimpose => "the slave of a superimposed coupling",
             CouplingKind::Tangential => "a tangential axis",
             CouplingKind::Gantry => "the slave of a gantry",
+            CouplingKind::Follow => "a Follow slave",
         };
         let i = self
             .list
@@ -573,12 +595,16 @@ impl Couplings {
             Some(Law::Cam(_)) => kind == CouplingKind::Cam,
             Some(Law::Superimpose(_)) => kind == CouplingKind::Superimpose,
             Some(Law::Tangential(_)) => kind == CouplingKind::Tangential,
+            Some(Law::Follow(_)) => kind == CouplingKind::Follow,
             Some(Law::Gantry(_)) | None => false,
         };
         if !matches {
             return Err(EngineError::NotCoupled { axis: slave, what });
         }
         self.list.remove(i);
+        if kind == CouplingKind::Follow {
+            self.follow_ended(slave);
+        }
         if let Some(axis) = env.axes.get_mut(slave as usize) {
             axis.set_coupled(None, false);
             // Not fed (a cam that never started): nothing to release.
@@ -722,6 +748,13 @@ impl Couplings {
                 Some(view) => (Some(g.step(view, slave)), false),
                 None => (None, false),
             },
+            Law::Follow(link) => {
+                match link.step(self.follows.get_mut(&c.slave), master, previous) {
+                    CamStep::Wait => (None, false),
+                    CamStep::Follow(s) => (Some(s), false),
+                    CamStep::End(s) => (Some(s), true),
+                }
+            }
         };
         let in_sync = c.phase() == CouplingPhase::InSync;
         let Some(setpoint) = feed else {
@@ -747,6 +780,9 @@ impl Couplings {
             // refusal left it doing. Ended: it stands at the end and is free from next tick.
             c.ended = true;
             slave.set_coupled(None, false);
+            if let (Law::Follow(_), Some(f)) = (&c.law, self.follows.get_mut(&c.slave)) {
+                f.end();
+            }
         } else {
             slave.set_coupled(Some(c.master), in_sync);
         }

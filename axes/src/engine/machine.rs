@@ -36,6 +36,8 @@ pub(super) struct Checkpoint {
     couplings: Option<Couplings>,
     /// The capture and compare channels (a whole-machine checkpoint: a batch may arm them).
     triggers: Option<Triggers>,
+    /// Streams armed to start on an input (`stream_start_on_input` may be in a batch).
+    input_starts: Option<Vec<super::stream_inputs::InputStart>>,
     io: Option<Io>,
     slaves: Option<Vec<Slave>>,
     ledger: LedgerMark,
@@ -386,11 +388,13 @@ impl Engine {
             matches!(scope, Scope::Machine).then(|| (self.groups.clone(), self.groups_await_power));
         let couplings = matches!(scope, Scope::Machine).then(|| self.couplings.clone());
         let triggers = matches!(scope, Scope::Machine).then(|| self.triggers.clone());
+        let input_starts = matches!(scope, Scope::Machine).then(|| self.input_starts.clone());
         Checkpoint {
             axes,
             groups,
             couplings,
             triggers,
+            input_starts,
             io,
             slaves,
             ledger: self.ledger.checkpoint(),
@@ -412,6 +416,9 @@ impl Engine {
         }
         if let Some(triggers) = checkpoint.triggers {
             self.triggers = triggers;
+        }
+        if let Some(starts) = checkpoint.input_starts {
+            self.input_starts = starts;
         }
         if let Some(io) = checkpoint.io {
             self.io = io;

@@ -27,6 +27,7 @@ mod compensation;
 mod machine;
 mod planner;
 mod sampling;
+mod stream_inputs;
 mod streams;
 pub use crate::axis::Feed;
 pub use machine::MAX_ATOMIC_COMMANDS;
@@ -131,6 +132,8 @@ pub struct Engine {
     triggers: Triggers,
     /// Data sampling (issue 12 item 9): stage 5 records after the axes and drives.
     samplers: Samplers,
+    /// Streams armed to start on a digital input edge (`stream_inputs.rs`).
+    input_starts: Vec<stream_inputs::InputStart>,
 }
 
 impl Engine {
@@ -204,6 +207,7 @@ impl Engine {
             feeds: Feeds::default(),
             triggers: Triggers::default(),
             samplers: Samplers::default(),
+            input_starts: Vec::new(),
         })
     }
 
@@ -677,6 +681,7 @@ impl Engine {
     /// Commands ([`Engine::apply`]) arrive between steps and act on the state the last step
     /// left.
     pub fn step(&mut self) {
+        self.start_streams_on_inputs();
         self.tick += 1;
         self.read_inputs();
         self.run_planners();
@@ -857,6 +862,8 @@ impl Engine {
             .status_into(&self.axes, &snapshot.axes, &mut snapshot.groups);
         self.couplings.status_into(&mut snapshot.couplings);
         self.couplings.handwheels_into(&mut snapshot.handwheels);
+        self.couplings.follows_into(&mut snapshot.follows);
+        self.stream_input_starts_into(&mut snapshot.stream_input_starts);
         self.triggers
             .status_into(&mut snapshot.captures, &mut snapshot.compares);
         if snapshot.io_version != self.io.version {

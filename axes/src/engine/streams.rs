@@ -31,18 +31,26 @@ impl Engine {
                 self.with_axis(axis, |a, _| a.pvt_push(&points))
             }
             StreamCommand::Clear(StreamClear { axis }) => {
-                self.with_axis(axis, |a, _| a.stream_clear())
+                let cleared = self.with_axis(axis, |a, _| a.stream_clear());
+                if cleared.is_ok() {
+                    self.disarm_stream_start(axis);
+                }
+                cleared
             }
             StreamCommand::PvtMove(PvtMove { axis, points }) => {
                 self.with_axis(axis, |a, ctx| a.pvt_move(ctx, &points))
             }
             StreamCommand::Start(c) => self.start_streams(c),
+            StreamCommand::StartOnInput(c) => self.arm_stream_start(c),
         }
     }
 
     /// Every listed axis's stream starts at the same stream time 0, so all of them take their
     /// first sample on the next tick; one refusal and none starts (the error names its item).
-    fn start_streams(&mut self, StreamStart { axes }: StreamStart) -> Result<Reply, EngineError> {
+    pub(super) fn start_streams(
+        &mut self,
+        StreamStart { axes }: StreamStart,
+    ) -> Result<Reply, EngineError> {
         if axes.is_empty() {
             return Err(EngineError::InvalidArgument {
                 name: "axes",

@@ -40,6 +40,8 @@ pub enum CouplingKind {
     Tangential,
     /// A gantry slave (issue 12 item 6): `gantry` holds its record.
     Gantry,
+    /// An NMC Follow slave (FIFOs of segments): `Snapshot::follows` holds its record.
+    Follow,
 }
 
 impl CouplingKind {
@@ -51,6 +53,7 @@ impl CouplingKind {
             CouplingKind::Superimpose => "superimpose",
             CouplingKind::Tangential => "tangential",
             CouplingKind::Gantry => "gantry",
+            CouplingKind::Follow => "follow",
         }
     }
 }

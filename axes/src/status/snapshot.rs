@@ -5,8 +5,8 @@
 use serde::{Deserialize, Serialize};
 
 use super::{
-    AxisStatus, CaptureStatus, CompareStatus, CouplingStatus, DriveStatus, GroupStatus,
-    HandwheelStatus, IoImage,
+    AxisStatus, CaptureStatus, CompareStatus, CouplingStatus, DriveStatus, FollowStatus,
+    GroupStatus, HandwheelStatus, IoImage,
 };
 use crate::param::ParamSet;
 use crate::sampling::SamplerStatus;
@@ -51,6 +51,12 @@ pub struct Snapshot {
     /// The handwheels (issue 12 item 7), by axis.
     #[serde(default)]
     pub handwheels: Vec<HandwheelStatus>,
+    /// The NMC Follow slaves (issue 12 item 2: FIFOs, loops, start event), by axis.
+    #[serde(default)]
+    pub follows: Vec<FollowStatus>,
+    /// Streams armed to start on a digital input edge (NMC MtPtStartMtnEx), by arming order.
+    #[serde(default)]
+    pub stream_input_starts: Vec<super::StreamInputStart>,
 }
 
 impl Snapshot {

@@ -21,6 +21,12 @@ pub enum CaptureSource {
     LimitNeg,
     /// A general digital input of the machine (`input` names the channel).
     Di,
+    /// The commanded position of the source axis crossing a threshold
+    /// (`capture_arm_threshold`; NMC CAPT_EX_SRC_PRFPOS).
+    CommandedPosition,
+    /// The actual (encoder) position of the source axis crossing a threshold (NMC
+    /// CAPT_EX_SRC_ENCPOS).
+    ActualPosition,
 }
 
 /// Which edges latch (NMC `level`, HMC `bTrigEdge`, HIMC `detect_edge`, CiA 402 0x60B8 bits

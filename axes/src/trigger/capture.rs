@@ -5,20 +5,60 @@
 
 use super::{channel_in_range, invalid, Env, CAPTURE_CHANNELS, MAX_CAPTURE_REPEAT};
 use crate::axis::SignalEdge;
-use crate::command::{bounded, CaptureArm, EngineError};
+use crate::command::{bounded, CaptureArm, CaptureArmThreshold, EngineError};
 use crate::config::AxisSignal;
-use crate::status::{CaptureSource, CaptureState, CaptureStatus, Latch};
+use crate::status::{CaptureSource, CaptureState, CaptureStatus, Latch, PositionSource};
 use crate::types::AxisIndex;
 
 #[derive(Clone, Debug)]
 pub(super) struct Capture {
     status: CaptureStatus,
+    /// The position a `commanded_position`/`actual_position` source crosses.
+    threshold: Option<f64>,
 }
 
 impl Capture {
     /// A channel armed as `c` asks, or why it cannot be.
     pub(super) fn arm(env: &Env, c: &CaptureArm) -> Result<Capture, EngineError> {
+        Capture::arm_with(env, c, None)
+    }
+
+    /// A channel latching where a position crosses a threshold (NMC advanced capture sources
+    /// PRFPOS/ENCPOS, digest 001 §3.15).
+    pub(super) fn arm_threshold(
+        env: &Env,
+        c: &CaptureArmThreshold,
+    ) -> Result<Capture, EngineError> {
+        let arm = CaptureArm {
+            axis: c.axis,
+            channel: c.channel,
+            source: match c.source {
+                PositionSource::Commanded => CaptureSource::CommandedPosition,
+                PositionSource::Actual => CaptureSource::ActualPosition,
+            },
+            input: None,
+            source_axis: c.source_axis,
+            edge: c.edge,
+            repeat: c.repeat,
+            continuous: c.continuous,
+            window: None,
+        };
+        Capture::arm_with(env, &arm, Some(bounded("threshold", c.threshold)?))
+    }
+
+    fn arm_with(env: &Env, c: &CaptureArm, threshold: Option<f64>) -> Result<Capture, EngineError> {
         let channel = c.channel;
+        let by_threshold = matches!(
+            c.source,
+            CaptureSource::CommandedPosition | CaptureSource::ActualPosition
+        );
+        if by_threshold && threshold.is_none() {
+            return Err(invalid(
+                "capture",
+                channel,
+                "a position source needs a threshold: use capture_arm_threshold",
+            ));
+        }
         env.axis(c.axis)?;
         channel_in_range("capture", channel, CAPTURE_CHANNELS)?;
         let source_axis = c.source_axis.unwrap_or(c.axis);
@@ -80,6 +120,7 @@ impl Capture {
                 count: 0,
                 latches: Vec::with_capacity(usize::from(c.repeat)),
             },
+            threshold,
         };
         capture.refresh_window(env);
         Ok(capture)
@@ -126,6 +167,10 @@ impl Capture {
             CaptureSource::Home => (s.source_axis, AxisSignal::Home, false),
             CaptureSource::LimitPos => (s.source_axis, AxisSignal::LimitPos, false),
             CaptureSource::LimitNeg => (s.source_axis, AxisSignal::LimitNeg, false),
+            CaptureSource::CommandedPosition => {
+                return self.crossing(env, PositionSource::Commanded)
+            }
+            CaptureSource::ActualPosition => return self.crossing(env, PositionSource::Actual),
             CaptureSource::Di => {
                 let input = s.input?;
                 // A forced or unwired input changes only by command (`input_changed`); a wired
@@ -149,6 +194,27 @@ impl Capture {
             .get(axis as usize)?
             .signal_edge(signal, electrical)?;
         Some((edge, axis == s.axis))
+    }
+
+    /// Where the source axis's `source` position crossed the threshold in the last tick (up:
+    /// rising), at the fraction of the tick its straight travel gives.
+    fn crossing(&self, env: &Env, source: PositionSource) -> Option<(SignalEdge, bool)> {
+        let t = self.threshold?;
+        let [a, b] = env
+            .axes
+            .get(self.status.source_axis as usize)?
+            .swept(source);
+        let up = a < t && t <= b;
+        let down = a > t && t >= b;
+        if !(up || down) {
+            return None;
+        }
+        let edge = SignalEdge {
+            rising: Some(up),
+            fraction: ((t - a) / (b - a)).clamp(0.0, 1.0),
+            motor: None,
+        };
+        Some((edge, false))
     }
 
     /// A command changed digital input `channel` to `level`; whether it latched.

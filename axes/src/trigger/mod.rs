@@ -81,16 +81,11 @@ impl Triggers {
         match command {
             TriggerCommand::CaptureArm(c) => {
                 let capture = Capture::arm(env, &c)?;
-                let key = (c.axis, c.channel);
-                match self.captures.binary_search_by_key(&key, Capture::key) {
-                    Ok(i) => {
-                        if let Some(slot) = self.captures.get_mut(i) {
-                            *slot = capture;
-                        }
-                    }
-                    Err(i) => self.captures.insert(i, capture),
-                }
-                self.refresh_counts(env, c.axis);
+                self.put_capture(env, capture);
+            }
+            TriggerCommand::CaptureArmThreshold(c) => {
+                let capture = Capture::arm_threshold(env, &c)?;
+                self.put_capture(env, capture);
             }
             TriggerCommand::CaptureClear(c) => {
                 env.axis(c.axis)?;
@@ -121,6 +116,20 @@ impl Triggers {
             }
         }
         Ok(Reply::Done)
+    }
+
+    /// Arm `capture`, replacing the channel's arm.
+    fn put_capture(&mut self, env: &mut Env, capture: Capture) {
+        let key = capture.key();
+        match self.captures.binary_search_by_key(&key, Capture::key) {
+            Ok(i) => {
+                if let Some(slot) = self.captures.get_mut(i) {
+                    *slot = capture;
+                }
+            }
+            Err(i) => self.captures.insert(i, capture),
+        }
+        self.refresh_counts(env, key.0);
     }
 
     fn stop_compare(&mut self, env: &mut Env, channel: u8) {

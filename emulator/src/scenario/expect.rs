@@ -331,6 +331,7 @@ impl Expectation {
                 CouplingKind::Cam,
                 CouplingKind::Superimpose,
                 CouplingKind::Tangential,
+                CouplingKind::Follow,
             ]
             .into_iter()
             .find(|k| k.name() == name);
@@ -342,7 +343,7 @@ impl Expectation {
                         "coupling_kind",
                         format!(
                             "unknown kind `{other}`: one of none, gear, cam, superimpose, \
-                             tangential"
+                             tangential, follow"
                         ),
                     ))
                 }

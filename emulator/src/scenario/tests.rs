@@ -296,6 +296,47 @@ points = [{{ master = 0, slave = 0 }}, {{ master = 200, slave = 50 }}]
 }
 
 #[test]
+fn an_nmc_follow_runs_its_fifo_once_and_is_checked_by_expect() {
+    // S-FOLLOW's FIFO in mm (digest 001 §2.17, TV 59) with loop count 1: the master's 60 mm
+    // move carries the slave 40 mm, then the Follow ends (FIFO 1 is empty).
+    let axis = "[[axes]]\n[axes.params]\naxis_type = \"stepper\"\nunits = 1000\nrep_mode = \"finite\"\nspeed = 100\naccel = 1000\ndecel = 1000\n";
+    let text = format!(
+        r#"
+end = 2.0
+[[step]]
+at = 0
+command = {{ type = "enable_all" }}
+[[step]]
+at = 0
+command = {{ type = "follow_push", axis = 1, fifo = 0, points = [{{ master = 20, slave = 10 }}, {{ master = 40, slave = 30 }}, {{ master = 60, slave = 40 }}] }}
+[[step]]
+at = 0
+command = {{ type = "follow_config", axis = 1, master = 0, loop_count = 1 }}
+[[step]]
+at = 0
+command = {{ type = "follow_start", axes = [1] }}
+[[step]]
+at = 0
+command = {{ type = "move_absolute", axis = 0, position = 60, velocity = 50 }}
+[[step]]
+at = 0.5
+expect = {{ axis = 1, coupling = "in_sync", coupling_kind = "follow", flags = ["coupled"] }}
+[[step]]
+at = 1.9
+expect = {{ axis = 1, coupling = "none", command_position = 40, tolerance = 1e-9, not_flags = ["coupled"] }}
+
+[machine]
+period = 0.001
+{axis}{axis}
+"#
+    );
+    let s = parse(&text).unwrap();
+    let r = s.run(None).unwrap();
+    assert_eq!(r.expectations, 2);
+    assert!(r.failures.is_empty(), "{:#?}", r.failures);
+}
+
+#[test]
 fn a_gantry_and_a_handwheel_run_and_are_checked_by_expect() {
     // The README's "Gantry" and "Handwheel" examples on three steppers.
     let axis = "[[axes]]\n[axes.params]\naxis_type = \"stepper\"\nunits = 1000\nrep_mode = \"finite\"\nspeed = 100\naccel = 1000\ndecel = 1000\n";

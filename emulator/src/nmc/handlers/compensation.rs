@@ -7,7 +7,6 @@ use axes::command::{
     BacklashDirection, Command, CompensationBacklash, CompensationLeadScrew, CompensationReference,
     CompensationTable, ReferenceSource,
 };
-use mcemu_nmc::errors::RTN_UNSUPPORTED;
 use mcemu_nmc::sync_structs::{Comp2D, Comp2DTable, CompData};
 use mcemu_nmc::table::{self, Function};
 
@@ -160,7 +159,7 @@ fn table_index(c: &mut Call<'_>) -> Result<(), Refusal> {
     count_in("tableIndex", c.input.i16()?, 0, 0).map(|_| ())
 }
 
-/// count[k] ≥ 2, X·Y·3 ≤ 3000, step > 0; the angle is not emulated (0 only).
+/// count[k] ≥ 2, X·Y·3 ≤ 3000, step > 0, |angle| ≤ 360°.
 fn set_2d_compensation_table(c: &mut Call<'_>) -> Result<(), Refusal> {
     c.device()?;
     table_index(c)?;
@@ -181,14 +180,9 @@ fn set_2d_compensation_table(c: &mut Call<'_>) -> Result<(), Refusal> {
             "(0, ∞) pulse each",
         ));
     }
-    if t.angle != 0.0 {
-        return Err(Refusal::new(
-            RTN_UNSUPPORTED,
-            format!(
-                "angle = {}: a rotated 2-D table is not emulated (0 only)",
-                t.angle
-            ),
-        ));
+    // The table's axes turned about its first point (docs/decisions.md, the engine's rule).
+    if !(t.angle.is_finite() && t.angle.abs() <= 360.0) {
+        return Err(Refusal::range("angle", t.angle, "[-360, 360] degrees"));
     }
     let data = array_of(c, "pData", x * y, CompData::read)?;
     let comp = {
@@ -279,6 +273,8 @@ fn apply_2d(c: &mut Call<'_>, comp: &Comp2D) -> Result<(), Refusal> {
                 .collect(),
             values,
             enable: true,
+            angle: t.angle,
+            interpolation: Default::default(),
         });
     }
     Ok(())

@@ -167,6 +167,9 @@ pub fn error_code(e: &EngineError, subject: Subject) -> u32 {
             }
         }
         E::InvalidTrigger { .. } => invalid(subject),
+        // HIMC has no NMC Follow: the nearest codes of the axis table.
+        E::InvalidFollow { .. } => invalid(subject),
+        E::FollowFull { axis: a, .. } => axis(*a, "eERR_AXIS_CMD_QUEUE_FULL"),
         E::StreamPoint { axis: a, .. } => code_for(e).map_or_else(
             || invalid(subject),
             |c| compose(AXIS_CLASS, id_byte(*a), c.value),
