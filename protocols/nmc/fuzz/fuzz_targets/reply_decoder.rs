@@ -10,8 +10,8 @@ use mcemu_nmc::frame::FrameDecoder;
 use mcemu_nmc::payload::{PayloadError, Reader};
 use mcemu_nmc::structs::{CardInfo, HomeSetting, JogPara, PtpPara};
 use mcemu_nmc::sync_structs::{
-    read_array, AdvCaptureParam, Comp2D, Comp2DTable, Comp2DimensParam, Comp2DimensSts,
-    CompData, PtPara, PvtPara,
+    read_array, AdvCaptureParam, Comp2D, Comp2DTable, Comp2DimensParam, Comp2DimensSts, CompData,
+    PtPara, PvtPara,
 };
 use mcemu_nmc::table::{self, CType};
 
