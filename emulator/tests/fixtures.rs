@@ -573,15 +573,6 @@ fn a_period_out_of_range_is_refused() {
 }
 
 #[test]
-fn enabling_a_front_end_that_is_not_built_is_refused() {
-    refused(
-        "frontend",
-        "[frontends.ascii_user]\nenabled = true\nbind = \"127.0.0.1:5600\"\n",
-        &["frontends.ascii_user.enabled", "not built yet"],
-    );
-}
-
-#[test]
 fn a_fault_that_cannot_apply_to_its_transport_is_refused() {
     refused(
         "fault",

@@ -59,8 +59,13 @@ int main(void) {
         data[i].yDirComp = i / 4;
         data[i].zDirComp = 10 * i;
     }
+    table.angle = 400;
+    CHECK(NMC_Set2DCompensationTable(devHandle, 0, &table, data) != 0, "angle 400 accepted");
+    /* A turned table (its axes turned about the first point, docs/decisions.md) is kept. */
     table.angle = 30;
-    CHECK(NMC_Set2DCompensationTable(devHandle, 0, &table, data) != 0, "an angle accepted");
+    OK(NMC_Set2DCompensationTable(devHandle, 0, &table, data));
+    OK(NMC_Get2DCompensationTable(devHandle, 0, &back, dataBack));
+    CHECK(back.angle == 30, "angle read back: %f", back.angle);
     table.angle = 0;
     table.count[0] = 1;
     CHECK(NMC_Set2DCompensationTable(devHandle, 0, &table, data) != 0, "count 1 accepted");

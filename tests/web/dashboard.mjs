@@ -217,9 +217,10 @@ async function machine(page, context) {
   for (const box of await page.locator('#channel-choice [name="channel"]').all()) await box.uncheck();
   await page.locator('#channel-grid input[value="0:act_pos"]').check();
   await page.locator('#channel-grid input[value="1:following_error"]').check();
-  const before = await page.evaluate(() => window.mcemuScope.hello);
+  // Mark the current stream's hello in the page, then wait for the next stream's.
+  await page.evaluate(() => (window.mcemuScope.hello.seenByTest = true));
   await page.locator('#stream-form button[type="submit"]').click();
-  await page.waitForFunction((old) => window.mcemuScope.hello !== old && window.mcemuScope.hello.axis_channels, before);
+  await page.waitForFunction(() => window.mcemuScope.hello && !window.mcemuScope.hello.seenByTest);
   const labels = await page.evaluate(() => window.mcemuScope.series.map((s) => s.label).join(","));
   check(labels === "0.act_pos,1.following_error,di,do", `the stream carries the channels chosen per axis (${labels})`);
   const total = await page.evaluate(() => window.mcemuScope.total);
