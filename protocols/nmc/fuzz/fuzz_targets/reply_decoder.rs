@@ -45,6 +45,9 @@ fn read_outputs(f: &table::Function, r: &mut Reader<'_>) -> Result<(), PayloadEr
             CType::DoubleArray => {
                 read_array(r, |r| r.f64())?;
             }
+            CType::Bytes => {
+                read_array(r, |r| r.u8())?;
+            }
             CType::StructArray("TCompData") => {
                 read_array(r, CompData::read)?;
             }
