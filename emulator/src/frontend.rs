@@ -42,8 +42,16 @@ pub struct FrontendContext<'a> {
 pub trait Frontend: Send + Sync {
     /// The name requests use: the front-end's config section (`modbus_tcp`, `canopen` …).
     fn name(&self) -> &str;
-    /// Inject or clear a fault; `fault` is the request body without `frontend`.
-    fn inject(&self, fault: Map<String, Value>) -> Result<Value, ApiError>;
+    /// Inject or clear a fault; `fault` is the request body without `frontend`. By default
+    /// the front-end has none, and says so.
+    fn inject(&self, _fault: Map<String, Value>) -> Result<Value, ApiError> {
+        Err(ApiError::InvalidBody {
+            detail: format!("{} has no faults to inject", self.name()),
+            field: Some("frontend".into()),
+            line: 0,
+            column: 0,
+        })
+    }
     /// Counters, active faults and last error, for `GET /state`'s `frontends`.
     fn state(&self) -> Value;
     /// Stop serving what does not stop by itself when the context's `shutdown` turns `true`

@@ -8,10 +8,9 @@ use std::sync::Arc;
 
 use mcemu_ascii::transport::native::Server;
 use mcemu_ascii::transport::serve;
-use serde_json::{Map, Value};
+use serde_json::Value;
 use tokio::task::JoinSet;
 
-use crate::control::ApiError;
 use crate::frontend::{bind, handles, Frontend, FrontendContext, FrontendError, StartFuture};
 
 /// The running Native ASCII server.
@@ -22,15 +21,6 @@ pub struct AsciiNativeFrontend {
 impl Frontend for AsciiNativeFrontend {
     fn name(&self) -> &str {
         "ascii_native"
-    }
-
-    fn inject(&self, _fault: Map<String, Value>) -> Result<Value, ApiError> {
-        Err(ApiError::InvalidBody {
-            detail: "ascii_native has no faults to inject".into(),
-            field: Some("frontend".into()),
-            line: 0,
-            column: 0,
-        })
     }
 
     fn state(&self) -> Value {

@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use mcemu_ascii::transport::serve;
 use mcemu_ascii::transport::user::Server;
-use serde_json::{Map, Value};
+use serde_json::Value;
 use tokio::task::JoinSet;
 
 use crate::control::ApiError;
@@ -20,15 +20,6 @@ pub struct AsciiUserFrontend {
 impl Frontend for AsciiUserFrontend {
     fn name(&self) -> &str {
         "ascii_user"
-    }
-
-    fn inject(&self, _fault: Map<String, Value>) -> Result<Value, ApiError> {
-        Err(ApiError::InvalidBody {
-            detail: "ascii_user has no faults to inject".into(),
-            field: Some("frontend".into()),
-            line: 0,
-            column: 0,
-        })
     }
 
     fn state(&self) -> Value {
