@@ -1047,7 +1047,8 @@ def r_heartbeat(cx):
     TCG on a loaded machine the servo thread stalls for longer than a period (hundreds of ms,
     and engine time then runs ahead in its catch-up burst): the producer sends one heartbeat for
     the missed stretch, as it must, so there it is held to never more than the wall clock allows
-    and to having kept going."""
+    and to having kept going. The same holds on the host when the runtime counts an overrun
+    in the window (a loaded CI host stalls the servo thread too)."""
     node = cx.node(1)
     rec = Recorder(cx.net, [0x701])
     node.sdo.download(0x1017, 0, struct.pack("<H", 100))
@@ -1077,7 +1078,10 @@ def r_heartbeat(cx):
     notes = {"heartbeats": n, "wall_s": round(wall, 3), "engine_s": round(engine, 3),
              "engine_ticks_dropped": s1["runtime"]["dropped_ticks"],
              "overruns": s1["runtime"]["overruns"]}
-    if IN_VM:
+    notes["overruns_in_window"] = s1["runtime"]["overruns"] - s0["runtime"]["overruns"]
+    if IN_VM or notes["overruns_in_window"] > 0:
+        # The servo thread stalled for longer than a period in the window (the runtime counts
+        # it as an overrun; CI on a loaded host does this as TCG does): held as under TCG.
         check(wall / 0.1 / 2 - 1 <= n <= wall / 0.1 + slack,
               f"{n} heartbeats in {wall:.3f} s of wall time ({notes})")
     else:
