@@ -36,3 +36,16 @@ pub fn run_dashboard_scenario(scenario: &str, base: &str, arg: &str) -> String {
     assert!(out.status.success(), "{report}");
     String::from_utf8_lossy(&out.stdout).into_owned()
 }
+
+/// Run the dashboard's JavaScript unit tests `tests/web/NAME` with `node --test`; panics with
+/// their output unless every test passed. Returns the output (TAP).
+pub fn run_web_unit_tests(name: &str) -> String {
+    let mut command = Command::new(require_tool("node"));
+    command
+        .current_dir(workspace_root().join("tests/web"))
+        .args(["--test", name]);
+    let out: Output = run_with_timeout(command, b"", BROWSER_TIMEOUT);
+    let report = output_report(&format!("node --test {name}"), &out);
+    assert!(out.status.success(), "{report}");
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}

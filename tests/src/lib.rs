@@ -30,7 +30,7 @@ mod nmc;
 mod socketcand;
 
 pub use ascii::{run_transcript, AsciiClient, ASCII_REPLY_TIMEOUT};
-pub use browser::{run_dashboard_scenario, CHROMIUM};
+pub use browser::{run_dashboard_scenario, run_web_unit_tests, CHROMIUM};
 pub use mcemu::{
     cargo_test_executable, mcemu_bin, mcemu_release_bin, wait_for, Mcemu, McemuExit, TempDir,
     STOP_TIMEOUT,

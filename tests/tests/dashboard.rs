@@ -8,7 +8,7 @@ use std::io::{BufRead, BufReader};
 use std::path::PathBuf;
 use std::time::Duration;
 
-use mcemu_tests::{fresh_dir, run_dashboard_scenario, Mcemu};
+use mcemu_tests::{fresh_dir, run_dashboard_scenario, run_web_unit_tests, Mcemu};
 use serde_json::{json, Value};
 
 const VIRTUAL: [&str; 2] = ["--set", "machine.clock=virtual"];
@@ -49,6 +49,10 @@ fn the_page_shows_and_drives_the_default_machine() {
         out.contains("ok: the modbus-tcp front-end shows it listens on 127.0.0.1:"),
         "{out}"
     );
+    assert!(
+        out.contains("ok: the thinned plot keeps the extremes and both ends of the window"),
+        "{out}"
+    );
     // What the page did, seen through the API: axis 0 stopped short at the forced limit,
     // axis 1 went to 20; the cross-origin form did not enable axis 2 (the page checked it
     // before enabling it itself for the handwheel and gear it then showed).
@@ -62,6 +66,17 @@ fn the_page_shows_and_drives_the_default_machine() {
     assert_eq!(state["axes"][1]["act_pos"], 20.0);
     assert_eq!(state["handwheels"][0]["axis"], 2);
     assert_eq!(state["couplings"][0]["slave"], 3);
+}
+
+/// What the plot draws: min and max per pixel column (`decimate.js`), a spike kept, a ring's
+/// wrap read in order, gaps kept, a zoomed region whole.
+#[test]
+fn the_plot_thins_to_min_and_max_per_pixel_column() {
+    let out = run_web_unit_tests("decimate.test.mjs");
+    assert!(
+        out.contains("# pass 4") && out.contains("# fail 0"),
+        "{out}"
+    );
 }
 
 #[test]

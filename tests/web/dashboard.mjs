@@ -124,6 +124,30 @@ async function machine(page, context) {
   });
   check(true, "the plot follows axis 0 to 10");
 
+  // A window longer than the plot is wide: drawn as a minimum and a maximum per pixel column,
+  // the data whole (a burst of more than 3.2 s would lose batches: 2 s at a time).
+  for (let i = 0; i < 3; i++) {
+    const before = await page.evaluate(() => window.mcemuScope.total);
+    await advance(page, 2);
+    await page.waitForFunction((n) => window.mcemuScope.total >= n + 2000, before);
+  }
+  await page.waitForFunction(() => Number(document.getElementById("plot").dataset.points) >= 4000);
+  const thinned = await page.evaluate(() => {
+    const s = window.mcemuScope;
+    const whole = s.plotFrame;
+    const i = whole.series.findIndex((x) => x.label === "0.cmd_pos");
+    const max = (a) => a.reduce((m, v) => (v > m ? v : m), -Infinity);
+    const min = (a) => a.reduce((m, v) => (v < m ? v : m), Infinity);
+    return {
+      drawn: s.plot.data[0].length, ticks: whole.time.length, pixels: s.pixels(),
+      same: max(s.plot.data[i + 1]) === max(whole.series[i].values) && min(s.plot.data[i + 1]) === min(whole.series[i].values),
+      first: s.plot.data[0][0] === whole.time[0], last: s.plot.data[0][s.plot.data[0].length - 1] === whole.time[whole.time.length - 1],
+    };
+  });
+  check(thinned.drawn <= 2 * thinned.pixels && thinned.drawn < thinned.ticks,
+    `${thinned.ticks} ticks drawn as ${thinned.drawn} points on ${thinned.pixels} pixel columns`);
+  check(thinned.same && thinned.first && thinned.last, "the thinned plot keeps the extremes and both ends of the window");
+
   // A typed error is shown where the user clicked.
   const axis1 = await openAxis(page, 1);
   await axis1.locator('[data-input="position"]').fill("5");

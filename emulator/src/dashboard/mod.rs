@@ -32,7 +32,7 @@ macro_rules! asset {
 }
 
 /// Every file the page loads.
-const ASSETS: [Asset; 9] = [
+const ASSETS: [Asset; 10] = [
     asset!("/", HTML, "index.html"),
     asset!("/dashboard/style.css", CSS, "style.css"),
     asset!("/dashboard/app.js", JS, "app.js"),
@@ -40,6 +40,7 @@ const ASSETS: [Asset; 9] = [
     asset!("/dashboard/machine.js", JS, "machine.js"),
     asset!("/dashboard/scope.js", JS, "scope.js"),
     asset!("/dashboard/csv.js", JS, "csv.js"),
+    asset!("/dashboard/decimate.js", JS, "decimate.js"),
     asset!(
         "/dashboard/vendor/uplot/uPlot.esm.js",
         JS,

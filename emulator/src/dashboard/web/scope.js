@@ -2,6 +2,8 @@
 // arrives from `GET /api/v1/stream` in batches and goes into ring buffers; the browser's timer
 // only decides when to redraw (requestAnimationFrame), never what was sampled.
 //
+// Drawing is thinned to two points per pixel column (decimate.js); the data are not.
+//
 // Modes: rolling (the last `window` seconds), paused (frozen), triggered (normal: the latest
 // capture, re-armed after each; single: one capture, then stopped until armed again), loaded
 // (a trace CSV from disk). Export writes what the plot shows, zoom included, as trace CSV.
@@ -9,6 +11,7 @@
 import uPlot from "./vendor/uplot/uPlot.esm.js";
 import { streamUrl } from "./api.js";
 import { parseCsv, toCsv } from "./csv.js";
+import { arrayColumn, decimate, PlotBuffers } from "./decimate.js";
 
 /** Ticks kept per channel: 200 s at 1 kHz. */
 const CAPACITY = 200000;
@@ -40,6 +43,8 @@ export class Scope {
     this.loaded = false;
     this.dirty = false;
     this.frame = null; // the frame on the plot while paused, triggered or loaded
+    this.view = null; // what the plot shows: { frame } or the rings' samples { from, to }
+    this.buffers = new PlotBuffers();
     this.cursors = { a: null, b: null };
     this.hello = null;
     this.setupForms();
@@ -306,13 +311,6 @@ export class Scope {
     this.dirty = true;
   }
 
-  /** What the plot shows now: a frame, or the rolling window. */
-  shown() {
-    if (this.frame) return this.frame;
-    if (!this.hello) return null;
-    return this.frameOf(this.total - this.windowTicks(), this.total);
-  }
-
   buildPlot(series) {
     const key = series.map((s) => s.label).join("|");
     if (this.plot && key === this.plotKey) return;
@@ -325,7 +323,7 @@ export class Scope {
       axes: [{ label: "s" }, {}],
       series: [{ label: "time s" }, ...series.map((s, i) => ({ label: s.label, stroke: COLORS[i % COLORS.length], width: 1, spanGaps: false }))],
       cursor: { drag: { x: true, y: false } },
-      hooks: { draw: [(u) => this.drawCursors(u)] },
+      hooks: { draw: [(u) => this.drawCursors(u)], setScale: [(u, key) => key === "x" && this.onZoom()] },
     };
     this.plot = new uPlot(opts, [[], ...series.map(() => [])], this.plotBox);
     this.plot.over.addEventListener("click", (e) => {
@@ -372,17 +370,78 @@ export class Scope {
     this.readout.textContent = parts.join(" · ");
   }
 
+  /** What the plot shows, whole (every tick): for cursors, export and the tests. */
+  get plotFrame() {
+    const v = this.view;
+    if (!v) return null;
+    return v.frame || this.frameOf(v.from, v.to);
+  }
+
+  /** The view's columns for decimate(): its times and each series' values. */
+  columns(view) {
+    if (view.frame) {
+      const f = view.frame;
+      return { length: f.time.length, time: arrayColumn(f.time), series: f.series.map((s) => arrayColumn(s.values)) };
+    }
+    const start = view.from % CAPACITY;
+    const ring = (r, scale) => ({ buf: r.buf, start, cap: CAPACITY, scale });
+    return { length: view.to - view.from, time: ring(this.ticks, this.hello.period), series: this.series.map((s) => ring(s.ring, 1)) };
+  }
+
+  /** Pixel columns of the plotting area. */
+  pixels() {
+    return Math.max(100, Math.round(this.plot.bbox.width / (window.devicePixelRatio || 1)));
+  }
+
   draw() {
     requestAnimationFrame(() => this.draw());
     this.frames = (this.frames || 0) + 1;
     if (!this.dirty || !this.plot) return;
-    if (this.paused && this.plotFrame) return;
-    const frame = this.shown();
-    if (!frame) return;
+    if (this.paused && this.view) return;
+    let view;
+    if (this.frame) view = { frame: this.frame };
+    else if (this.hello) view = { from: Math.max(this.oldest(), this.total - this.windowTicks()), to: this.total };
+    else return;
     this.dirty = false;
-    this.plotFrame = frame;
-    this.plot.setData([frame.time, ...frame.series.map((s) => s.values)]);
-    document.getElementById("plot").dataset.points = String(frame.time.length);
+    this.view = view;
+    const cols = this.columns(view);
+    this.drawnRange = null;
+    this.plot.setData(decimate(cols.time, cols.series, [{ lo: 0, hi: cols.length, buckets: this.pixels() }], this.buffers));
+    document.getElementById("plot").dataset.points = String(cols.length);
+  }
+
+  /**
+   * Zoom on a still view (paused, triggered, loaded): the zoomed range drawn at full
+   * resolution, the rest thinned harder, so zooming out again (double click) finds it all.
+   */
+  onZoom() {
+    const v = this.view;
+    if (!v || !(v.frame || this.paused)) return;
+    const { min, max } = this.plot.scales.x;
+    if (min == null || (this.drawnRange && this.drawnRange[0] === min && this.drawnRange[1] === max)) return;
+    this.drawnRange = [min, max];
+    const cols = this.columns(v);
+    const t = (i) => cols.time.buf[(cols.time.start + i) % cols.time.cap] * cols.time.scale;
+    const first = (x) => {
+      let lo = 0;
+      let hi = cols.length;
+      while (lo < hi) {
+        const mid = (lo + hi) >> 1;
+        if (t(mid) < x) lo = mid + 1;
+        else hi = mid;
+      }
+      return lo;
+    };
+    const a = Math.max(0, first(min) - 1);
+    const b = Math.min(cols.length, first(max) + 1);
+    const px = this.pixels();
+    const regions = [
+      { lo: 0, hi: a, buckets: px >> 2 },
+      { lo: a, hi: b, buckets: px },
+      { lo: b, hi: cols.length, buckets: px >> 2 },
+    ];
+    this.plot.setData(decimate(cols.time, cols.series, regions, this.buffers), false);
+    this.plot.redraw();
   }
 
   /** The shown frame cut to the plot's x range (zoom included). */
@@ -419,7 +478,7 @@ export class Scope {
       this.armed = false;
       this.buildPlot(frame.series);
       this.frame = frame;
-      this.plotFrame = null;
+      this.view = null;
       this.paused = false;
       this.dirty = true;
       this.triggerStatus.textContent = `loaded ${file.name}: ${frame.time.length} ticks, ${frame.series.length} series (arm or stream to go live)`;
