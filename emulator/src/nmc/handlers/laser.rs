@@ -106,6 +106,18 @@ pub(super) fn switch_output(c: &Call<'_>, l: &LaserState, ch: usize) -> Option<u
     o.filter(|o| *o < outputs).map(|o| o as u16)
 }
 
+/// Before channel `ch`'s switch output moves (output type, port, gate mapping): the old one
+/// goes low.
+pub(super) fn release_switch(c: &mut Call<'_>, ch: usize) {
+    let l = laser(c);
+    if let Some(o) = switch_output(c, &l, ch) {
+        c.command(WriteDigitalOutput {
+            channel: o,
+            value: false,
+        });
+    }
+}
+
 /// The largest power of output type `t`: DA raw, duty %, frequency Hz (digest 001 §2.12).
 fn power_max(t: i16) -> i64 {
     match t {
@@ -264,14 +276,7 @@ fn set_output_type(c: &mut Call<'_>, t: i16, index: i16, option: f64) -> Result<
             ))
         }
     }
-    // The old output image lets go of what it showed.
-    let before = laser(c);
-    if let Some(o) = switch_output(c, &before, ch) {
-        c.command(WriteDigitalOutput {
-            channel: o,
-            value: false,
-        });
-    }
+    release_switch(c, ch);
     update_channel(c, ch, |k| {
         k.output_type = t;
         k.index = index;

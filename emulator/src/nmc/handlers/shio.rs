@@ -11,7 +11,8 @@ use mcemu_nmc::laser::ShioPara;
 use mcemu_nmc::table::{self, Function};
 
 use super::laser::{
-    axis_mask, channel, drive, gate_output, laser, switch_output, update, SHIO_OUTPUT_MODE,
+    axis_mask, channel, drive, gate_output, laser, release_switch, switch_output, update,
+    SHIO_OUTPUT_MODE,
 };
 use crate::nmc::service::{Call, Handler, Refusal};
 
@@ -227,17 +228,6 @@ fn set_pwm_to_gate(c: &mut Call<'_>) -> Result<(), Refusal> {
     update(c, |l| l.shio.pwm_to_gate = on == 1);
     drive(c, 0);
     Ok(())
-}
-
-/// Before channel `ch`'s switch output moves: the old one goes low.
-fn release_switch(c: &mut Call<'_>, ch: usize) {
-    let l = laser(c);
-    if let Some(o) = switch_output(c, &l, ch) {
-        c.command(WriteDigitalOutput {
-            channel: o,
-            value: false,
-        });
-    }
 }
 
 /// A PWM pulse train on channel 0 (SHIO mode only): its switch output is high for a
