@@ -134,6 +134,18 @@ macro_rules! shorts2 {
     };
 }
 
+/// `(handle, short, short, short)`.
+macro_rules! shorts3 {
+    ($name:ident, $row:expr, $a:ident, $b:ident, $c:ident) => {
+        #[no_mangle]
+        pub extern "C" fn $name(handle: HAND, $a: c_short, $b: c_short, $c: c_short) -> c_short {
+            call_in(&$row, handle, |w| {
+                w.i16($a).i16($b).i16($c);
+            })
+        }
+    };
+}
+
 /// `(handle, short ch)`.
 macro_rules! short1 {
     ($name:ident, $row:expr) => {
@@ -329,18 +341,6 @@ pub extern "C" fn NMC_LaserGetOnOff(
     )
 }
 
-#[no_mangle]
-pub extern "C" fn NMC_LaserSetFollowParam(
-    devHandle: HAND,
-    powerFilter: c_short,
-    followAdvMode: c_short,
-    ch: c_short,
-) -> c_short {
-    call_in(&table::LASER_SET_FOLLOW_PARAM, devHandle, |w| {
-        w.i16(powerFilter).i16(followAdvMode).i16(ch);
-    })
-}
-
 /// The longest side of a compensation table (xCount, yCount ∈ [2, 10]).
 const CMP_SIDE_MAX: usize = 10;
 
@@ -442,6 +442,21 @@ shorts2!(
     group,
     ch
 );
+shorts3!(
+    NMC_LaserSetFollowParam,
+    table::LASER_SET_FOLLOW_PARAM,
+    powerFilter,
+    followAdvMode,
+    ch
+);
+shorts3!(
+    NMC_SetPwmToGate,
+    table::SET_PWM_TO_GATE,
+    pwmCh,
+    gateCh,
+    onOff
+);
+shorts3!(NMC_SetPWMPort, table::SET_PWM_PORT, portType, portIdx, ch);
 
 // ---- SHIO and PWM ----
 #[no_mangle]
@@ -483,30 +498,6 @@ pub extern "C" fn NMC_SHIOTriggerOn(
 ) -> c_short {
     call_in(&table::SHIO_TRIGGER_ON, devHandle, |w| {
         w.f64(freq).f64(width).i16(ch);
-    })
-}
-
-#[no_mangle]
-pub extern "C" fn NMC_SetPwmToGate(
-    devHandle: HAND,
-    pwmCh: c_short,
-    gateCh: c_short,
-    onOff: c_short,
-) -> c_short {
-    call_in(&table::SET_PWM_TO_GATE, devHandle, |w| {
-        w.i16(pwmCh).i16(gateCh).i16(onOff);
-    })
-}
-
-#[no_mangle]
-pub extern "C" fn NMC_SetPWMPort(
-    devHandle: HAND,
-    portType: c_short,
-    portIdx: c_short,
-    ch: c_short,
-) -> c_short {
-    call_in(&table::SET_PWM_PORT, devHandle, |w| {
-        w.i16(portType).i16(portIdx).i16(ch);
     })
 }
 
