@@ -129,6 +129,20 @@ fn s_ecat_start_tv33() {
     );
 }
 
+/// S-LASER (digest 001 §5, C3§2.2–2.3): settings read back, the switch and DA echoes, buffered
+/// on/off in path order.
+#[test]
+fn s_laser_echoes_and_buffered_on_off() {
+    example("s_laser.c");
+}
+
+/// S-LASER's SHIO examples (C3§2.4.3): the gate pin, pulse trains, the buffered gate in path
+/// order.
+#[test]
+fn s_shio_gate_and_pwm() {
+    example("s_shio.c");
+}
+
 #[test]
 fn user_parameter_areas_tv66() {
     example("s_user_para.c");

@@ -12,6 +12,7 @@
 //! - `crd`: the coordinate systems' state the engine's groups do not keep;
 //! - `handlers`: one file per family of the function table (`mcemu_nmc::table`);
 //! - `stored`: settings the engine has no model of, kept and read back;
+//! - `laser_state`: the laser, SHIO and PWM settings (kept in `stored`);
 //! - `serve`: the transports (the kit's bounded accept loop on TCP, the same table on the Unix
 //!   socket), the connection loop over `mcemu_nmc::session`, the control-API handle.
 
@@ -19,6 +20,7 @@ pub mod config;
 pub mod crd;
 pub mod faults;
 mod handlers;
+pub mod laser_state;
 pub mod serve;
 pub mod service;
 pub mod stored;

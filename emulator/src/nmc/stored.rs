@@ -71,6 +71,8 @@ pub struct Stored {
     /// mcemu runs (decisions.md).
     pub user_para: Vec<u8>,
     pub user_para_ex: Vec<u8>,
+    /// The laser, SHIO and PWM settings (`crate::nmc::laser_state`).
+    pub laser: super::laser_state::LaserState,
 }
 
 /// The encoder mode of a channel never written: internal pulse counting (digest 001 §6).

@@ -173,6 +173,49 @@ typedef struct { short count[2]; short reserved[2]; long posBegin[2]; long step[
 typedef struct { long xDirComp; long yDirComp; long zDirComp; } TCompData;
 typedef struct { short enable; short tableIndex; short axisType[2]; short axisIndex[3]; } T2DCompensation;
 
+/* Laser and SHIO (digest 001 §2.12, §3.20). */
+#define LASER_DISABLE_MODE     (0)
+#define BASIC_OUTPUT_MODE      (1)
+#define TIME_ARRAY_OUTPUT_MODE (2)
+#define SHIO_OUTPUT_MODE       (3)
+#define LASER_NONE        (0)
+#define LASER_DA          (1)
+#define LASER_PWM_DUTY    (2)
+#define LASER_PWM_FRQ     (3)
+#define LASER_PWM_FRQ_EXT (4)
+#define LASER_GROUP (12)
+#define LASET_POINT (40)
+
+typedef struct {
+    short pwmEnable;
+    short outputType;
+    short outputCh;
+    short stLevelRevs;
+    long pwmPeriod;
+    long pwmWidth;
+    long gateDistance;
+    long minFrqFrq;
+    short posSrc;
+    short axisMask;
+    short minFrqEn;
+    short reserved2;
+} TTimeArrayPara;
+typedef struct { unsigned short time[LASET_POINT]; short power[LASET_POINT]; short count; } TLaserPower;
+typedef struct {
+    short isArray;
+    short outMode;
+    short posSrc;
+    short axisMask;
+    double delay;
+    double gateTime;
+    long gateDistance;
+    long k;
+    long startDot;
+    long lowFrqRange;
+    long reserved4;
+    long reserved5;
+} TSHIOPara;
+
 /* Coordinate system (digest 001 §3.7, §3.8, §3.10). */
 #define BIT_CORD_BUSY           0x00000001
 #define BIT_CORD_MVERR          0x00000002
@@ -455,6 +498,52 @@ short NMC_Set2DCompensationTable(HAND devHandle, short tableIndex, T2DCompensati
 short NMC_Get2DCompensationTable(HAND devHandle, short tableIndex, T2DCompensationTable *pTable, TCompData *pData);
 short NMC_Set2DCompensation(HAND devHandle, T2DCompensation *pComp);
 short NMC_Get2DCompensation(HAND devHandle, T2DCompensation *pComp);
+short NMC_LaserSetMode(HAND devHandle, short mode, short ch);
+short NMC_LaserSetModes(HAND devHandle, short mode, short ch);
+short NMC_LaserSetOutputTypeEx(HAND devHandle, short outputType, short index, double optionVal, short ch);
+short NMC_LaserSetOutputType(HAND devHandle, short outputType, short index, long optionVal, short ch);
+short NMC_LaserSetParam(HAND devHandle, long onDelay, long offDelay, long minValue, long maxValue, long standbyPower, short ch);
+short NMC_LaserGetParam(HAND devHandle, long *pOnDelay, long *pOffDelay, long *pMinValue, long *pMaxValue, long *pStandbyPower, short ch);
+short NMC_LaserSetPowerEx(HAND devHandle, double outVal, short ch);
+short NMC_LaserOnOff(HAND devHandle, short onOff, short ch);
+short NMC_LaserGetPower(HAND devHandle, double *pVal, short ch);
+short NMC_LaserGetOnOff(HAND devHandle, short *pOnOffState, short ch);
+short NMC_LaserSetFollowParam(HAND devHandle, short powerFilter, short followAdvMode, short ch);
+short NMC_SetLaserPowerCmpTable(HAND devHandle, short tableNo, long *pXCmpPos, long *pYCmpPos, short xCount, short yCount, unsigned long powerMin, unsigned long powerMax, unsigned long *pLaserCmpPower, short ch);
+short NMC_StartLaserPowerComp(HAND devHandle, short *pAxisNo, short ch);
+short NMC_StopLaserPowerComp(HAND devHandle, short ch);
+short NMC_LaserSetTimeArrayPara(HAND devHandle, TTimeArrayPara *pPara, short ch);
+short NMC_LaserSetTimeArrayPower(HAND devHandle, short group, TLaserPower *pLaserPower);
+short NMC_LaserTimeArrayExe(HAND devHandle, short group, short ch);
+short NMC_SHIOConfigPara(HAND devHandle, TSHIOPara *pSHIOPara, short ch);
+short NMC_SHIOEnableMinFrq(HAND devHandle, long minFrq, short ch);
+short NMC_SHIODisableMinFrq(HAND devHandle, short ch);
+short NMC_SHIOEnableMinFrg(HAND devHandle, long minFrq, short ch);
+short NMC_SHIODisableMinFrg(HAND devHandle, short ch);
+short NMC_SHIOChangeAxisMask(HAND devHandle, short axisMask, short ch);
+short NMC_SHIOGateOn(HAND devHandle, short ch);
+short NMC_SHIOGateOff(HAND devHandle, short ch);
+short NMC_SHIOTriggerOn(HAND devHandle, double freq, double width, short ch);
+short NMC_SHIOTriggerOff(HAND devHandle, short ch);
+short NMC_SHIOGatePulse(HAND devHandle, double gateTime, double gateFrq, long outCount, short ch);
+short NMC_SetPwmToGate(HAND devHandle, short pwmCh, short gateCh, short onOff);
+short NMC_PwmPulseOut(HAND devHandle, double onTime, double pwmFrq, long outCount, short ch);
+short NMC_SetPWMPort(HAND devHandle, short portType, short portIdx, short ch);
+short NMC_GetPWMPort(HAND devHandle, short *pPortType, short *pGpoIdx, short ch);
+short NMC_CrdBufLaserOnOff(HAND crdHandle, long segNo, short onOff, short ch);
+short NMC_CrdBufLaserPower(HAND crdHandle, long segNo, long power, short ch);
+short NMC_CrdBufLaserSetFollow(HAND crdHandle, long segNo, double overRide, short followType, short ch);
+short NMC_CrdBufLaserSetParam(HAND crdHandle, long segment, long onDelay, long offDelay, long minValue, long maxValue, long standbyPower, short ch);
+short NMC_CrdBufLaserTimeArrayExe(HAND crdHandle, long segNo, short group, short ch);
+short NMC_CrdBufSHIOGatePulse(HAND crdHandle, long segNo, double gateTime, double gateFrq, long outCount, short ch);
+short NMC_CrdBufSHIOSetParam(HAND crdHandle, long segment, double delay, double gateTime, double gateDistance, short ch);
+short NMC_CrdBufSHIOChangeAxisMask(HAND crdHandle, long segment, short axisMask, short ch);
+short NMC_CrdBufSHIOSetMinFrq(HAND crdHandle, long segment, long minFrq, short ch);
+short NMC_CrdBufSHIOClrMinFrq(HAND crdHandle, long segment, short ch);
+short NMC_CrdBufSHIOSetMinFrg(HAND crdHandle, long segment, long minFrq, short ch);
+short NMC_CrdBufSHIOClrMinFrg(HAND crdHandle, long segment, short ch);
+short NMC_BufSHIOGateOn(HAND crdHandle, long segNo, short ch);
+short NMC_BufSHIOGateOff(HAND crdHandle, long segNo, short ch);
 
 #ifdef __cplusplus
 }

@@ -43,6 +43,7 @@ mod tests {
             include_str!("ffi/analog.rs"),
             include_str!("ffi/ecat.rs"),
             include_str!("ffi/user_para.rs"),
+            include_str!("ffi/laser.rs"),
         ]
         .concat();
         for f in FUNCTIONS {

@@ -8,7 +8,7 @@
 //! status and servo, 0x03xx PTP/JOG/stop, 0x04xx homing, 0x05xx I/O, 0x06xx coordinate
 //! systems, 0x07xx basic axis configuration, 0x08xx Appendix A aliases, 0x09xx analog I/O,
 //! 0x0Axx EtherCAT, 0x0Bxx user parameters, 0x0Cxx gear, 0x0Dxx PT/PVT, 0x0Exx capture, 0x0Fxx
-//! compare, 0x10xx gantry and handwheel, 0x11xx compensation).
+//! compare, 0x10xx gantry and handwheel, 0x11xx compensation, 0x15xx laser, SHIO and PWM).
 
 /// A C argument kind, as the manual writes it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -384,6 +384,55 @@ functions! {
     GET_2D_COMPENSATION_TABLE = 0x1106 Server Main NMC_Get2DCompensationTable(In Hand => devHandle, In Short => tableIndex, Out Struct("T2DCompensationTable") => pTable, Out StructArray("TCompData") => pData);
     SET_2D_COMPENSATION = 0x1107 Server Main NMC_Set2DCompensation(In Hand => devHandle, In Struct("T2DCompensation") => pComp);
     GET_2D_COMPENSATION = 0x1108 Server Main NMC_Get2DCompensation(In Hand => devHandle, Out Struct("T2DCompensation") => pComp);
+    // ---- laser, SHIO and PWM (digest 001 §2.12, §3.20): N/A outputs, stored and echoed ----
+    LASER_SET_MODE = 0x1501 Server Main NMC_LaserSetMode(In Hand => devHandle, In Short => mode, In Short => ch);
+    LASER_SET_MODES = 0x1502 Server Main NMC_LaserSetModes(In Hand => devHandle, In Short => mode, In Short => ch);
+    LASER_SET_OUTPUT_TYPE_EX = 0x1503 Server Main NMC_LaserSetOutputTypeEx(In Hand => devHandle, In Short => outputType, In Short => index, In Double => optionVal, In Short => ch);
+    LASER_SET_OUTPUT_TYPE = 0x1504 Server Main NMC_LaserSetOutputType(In Hand => devHandle, In Short => outputType, In Short => index, In Long => optionVal, In Short => ch);
+    LASER_SET_PARAM = 0x1505 Server Main NMC_LaserSetParam(In Hand => devHandle, In Long => onDelay, In Long => offDelay, In Long => minValue, In Long => maxValue, In Long => standbyPower, In Short => ch);
+    LASER_GET_PARAM = 0x1506 Server Main NMC_LaserGetParam(In Hand => devHandle, Out Long => pOnDelay, Out Long => pOffDelay, Out Long => pMinValue, Out Long => pMaxValue, Out Long => pStandbyPower, In Short => ch);
+    LASER_SET_POWER_EX = 0x1507 Server Main NMC_LaserSetPowerEx(In Hand => devHandle, In Double => outVal, In Short => ch);
+    LASER_ON_OFF = 0x1508 Server Main NMC_LaserOnOff(In Hand => devHandle, In Short => onOff, In Short => ch);
+    LASER_GET_POWER = 0x1509 Server Main NMC_LaserGetPower(In Hand => devHandle, Out Double => pVal, In Short => ch);
+    LASER_GET_ON_OFF = 0x150A Server Main NMC_LaserGetOnOff(In Hand => devHandle, Out Short => pOnOffState, In Short => ch);
+    LASER_SET_FOLLOW_PARAM = 0x150B Server Main NMC_LaserSetFollowParam(In Hand => devHandle, In Short => powerFilter, In Short => followAdvMode, In Short => ch);
+    // pLaserCmpPower is `unsigned long *` (xCount·yCount values): a StructArray of that C type
+    // puts the manual's spelling in the header; on the wire u16 count, then u64 each.
+    SET_LASER_POWER_CMP_TABLE = 0x150C Server Main NMC_SetLaserPowerCmpTable(In Hand => devHandle, In Short => tableNo, In LongArray => pXCmpPos, In LongArray => pYCmpPos, In Short => xCount, In Short => yCount, In ULong => powerMin, In ULong => powerMax, In StructArray("unsigned long") => pLaserCmpPower, In Short => ch);
+    START_LASER_POWER_COMP = 0x150D Server Main NMC_StartLaserPowerComp(In Hand => devHandle, In ShortArray => pAxisNo, In Short => ch);
+    STOP_LASER_POWER_COMP = 0x150E Server Main NMC_StopLaserPowerComp(In Hand => devHandle, In Short => ch);
+    LASER_SET_TIME_ARRAY_PARA = 0x150F Server Main NMC_LaserSetTimeArrayPara(In Hand => devHandle, In Struct("TTimeArrayPara") => pPara, In Short => ch);
+    LASER_SET_TIME_ARRAY_POWER = 0x1510 Server Main NMC_LaserSetTimeArrayPower(In Hand => devHandle, In Short => group, In Struct("TLaserPower") => pLaserPower);
+    LASER_TIME_ARRAY_EXE = 0x1511 Server Main NMC_LaserTimeArrayExe(In Hand => devHandle, In Short => group, In Short => ch);
+    SHIO_CONFIG_PARA = 0x1521 Server Main NMC_SHIOConfigPara(In Hand => devHandle, In Struct("TSHIOPara") => pSHIOPara, In Short => ch);
+    SHIO_ENABLE_MIN_FRQ = 0x1522 Server Main NMC_SHIOEnableMinFrq(In Hand => devHandle, In Long => minFrq, In Short => ch);
+    SHIO_DISABLE_MIN_FRQ = 0x1523 Server Main NMC_SHIODisableMinFrq(In Hand => devHandle, In Short => ch);
+    SHIO_ENABLE_MIN_FRG = 0x1524 Server Main NMC_SHIOEnableMinFrg(In Hand => devHandle, In Long => minFrq, In Short => ch);
+    SHIO_DISABLE_MIN_FRG = 0x1525 Server Main NMC_SHIODisableMinFrg(In Hand => devHandle, In Short => ch);
+    SHIO_CHANGE_AXIS_MASK = 0x1526 Server Main NMC_SHIOChangeAxisMask(In Hand => devHandle, In Short => axisMask, In Short => ch);
+    SHIO_GATE_ON = 0x1527 Server Main NMC_SHIOGateOn(In Hand => devHandle, In Short => ch);
+    SHIO_GATE_OFF = 0x1528 Server Main NMC_SHIOGateOff(In Hand => devHandle, In Short => ch);
+    SHIO_TRIGGER_ON = 0x1529 Server Main NMC_SHIOTriggerOn(In Hand => devHandle, In Double => freq, In Double => width, In Short => ch);
+    SHIO_TRIGGER_OFF = 0x152A Server Main NMC_SHIOTriggerOff(In Hand => devHandle, In Short => ch);
+    SHIO_GATE_PULSE = 0x152B Server Main NMC_SHIOGatePulse(In Hand => devHandle, In Double => gateTime, In Double => gateFrq, In Long => outCount, In Short => ch);
+    SET_PWM_TO_GATE = 0x152C Server Main NMC_SetPwmToGate(In Hand => devHandle, In Short => pwmCh, In Short => gateCh, In Short => onOff);
+    PWM_PULSE_OUT = 0x152D Server Main NMC_PwmPulseOut(In Hand => devHandle, In Double => onTime, In Double => pwmFrq, In Long => outCount, In Short => ch);
+    SET_PWM_PORT = 0x152E Server Main NMC_SetPWMPort(In Hand => devHandle, In Short => portType, In Short => portIdx, In Short => ch);
+    GET_PWM_PORT = 0x152F Server Main NMC_GetPWMPort(In Hand => devHandle, Out Short => pPortType, Out Short => pGpoIdx, In Short => ch);
+    CRD_BUF_LASER_ON_OFF = 0x1541 Server Main NMC_CrdBufLaserOnOff(In Hand => crdHandle, In Long => segNo, In Short => onOff, In Short => ch);
+    CRD_BUF_LASER_POWER = 0x1542 Server Main NMC_CrdBufLaserPower(In Hand => crdHandle, In Long => segNo, In Long => power, In Short => ch);
+    CRD_BUF_LASER_SET_FOLLOW = 0x1543 Server Main NMC_CrdBufLaserSetFollow(In Hand => crdHandle, In Long => segNo, In Double => overRide, In Short => followType, In Short => ch);
+    CRD_BUF_LASER_SET_PARAM = 0x1544 Server Main NMC_CrdBufLaserSetParam(In Hand => crdHandle, In Long => segment, In Long => onDelay, In Long => offDelay, In Long => minValue, In Long => maxValue, In Long => standbyPower, In Short => ch);
+    CRD_BUF_LASER_TIME_ARRAY_EXE = 0x1545 Server Main NMC_CrdBufLaserTimeArrayExe(In Hand => crdHandle, In Long => segNo, In Short => group, In Short => ch);
+    CRD_BUF_SHIO_GATE_PULSE = 0x1546 Server Main NMC_CrdBufSHIOGatePulse(In Hand => crdHandle, In Long => segNo, In Double => gateTime, In Double => gateFrq, In Long => outCount, In Short => ch);
+    CRD_BUF_SHIO_SET_PARAM = 0x1547 Server Main NMC_CrdBufSHIOSetParam(In Hand => crdHandle, In Long => segment, In Double => delay, In Double => gateTime, In Double => gateDistance, In Short => ch);
+    CRD_BUF_SHIO_CHANGE_AXIS_MASK = 0x1548 Server Main NMC_CrdBufSHIOChangeAxisMask(In Hand => crdHandle, In Long => segment, In Short => axisMask, In Short => ch);
+    CRD_BUF_SHIO_SET_MIN_FRQ = 0x1549 Server Main NMC_CrdBufSHIOSetMinFrq(In Hand => crdHandle, In Long => segment, In Long => minFrq, In Short => ch);
+    CRD_BUF_SHIO_CLR_MIN_FRQ = 0x154A Server Main NMC_CrdBufSHIOClrMinFrq(In Hand => crdHandle, In Long => segment, In Short => ch);
+    CRD_BUF_SHIO_SET_MIN_FRG = 0x154B Server Main NMC_CrdBufSHIOSetMinFrg(In Hand => crdHandle, In Long => segment, In Long => minFrq, In Short => ch);
+    CRD_BUF_SHIO_CLR_MIN_FRG = 0x154C Server Main NMC_CrdBufSHIOClrMinFrg(In Hand => crdHandle, In Long => segment, In Short => ch);
+    BUF_SHIO_GATE_ON = 0x154D Server Main NMC_BufSHIOGateOn(In Hand => crdHandle, In Long => segNo, In Short => ch);
+    BUF_SHIO_GATE_OFF = 0x154E Server Main NMC_BufSHIOGateOff(In Hand => crdHandle, In Long => segNo, In Short => ch);
 }
 
 #[cfg(test)]

@@ -113,7 +113,7 @@ fn user_segment(seg_no: i64) -> Option<u32> {
 }
 
 /// One coordinate system's segment being built: its members and their scales.
-struct Push {
+pub(super) struct Push {
     n: usize,
     s: CrdState,
     axes: Vec<usize>,
@@ -121,7 +121,7 @@ struct Push {
 }
 
 impl Push {
-    fn begin(c: &mut Call<'_>) -> Result<Push, Refusal> {
+    pub(super) fn begin(c: &mut Call<'_>) -> Result<Push, Refusal> {
         let n = crd(c)?;
         let mut s = state(c, n);
         let axes = members(&s)?;
@@ -134,7 +134,7 @@ impl Push {
         Ok(Push { n, s, axes, scales })
     }
 
-    fn group(&self) -> GroupId {
+    pub(super) fn group(&self) -> GroupId {
         self.n as GroupId
     }
 
@@ -730,7 +730,7 @@ fn crd_ellipse(c: &mut Call<'_>) -> Result<(), Refusal> {
 }
 
 /// A buffered command that does not move the path.
-fn marker(c: &mut Call<'_>, p: Push, commands: Vec<Command>) -> Result<(), Refusal> {
+pub(super) fn marker(c: &mut Call<'_>, p: Push, commands: Vec<Command>) -> Result<(), Refusal> {
     let end = p.s.end;
     p.finish(c, commands, end)
 }

@@ -16,7 +16,11 @@ mod device;
 mod ecat;
 mod home;
 mod io;
+// The laser, SHIO and PWM families (stored, echoed on the I/O image).
+mod laser;
+mod laser_buf;
 mod motion;
+mod shio;
 // The synchronised-motion families.
 mod capture;
 mod compare;
@@ -28,7 +32,7 @@ mod sync_args;
 
 mod user_para;
 
-const FAMILIES: [&[(Function, Handler)]; 19] = [
+const FAMILIES: [&[(Function, Handler)]; 22] = [
     device::HANDLERS,
     axis::HANDLERS,
     motion::HANDLERS,
@@ -48,6 +52,9 @@ const FAMILIES: [&[(Function, Handler)]; 19] = [
     analog::HANDLERS,
     ecat::HANDLERS,
     user_para::HANDLERS,
+    laser::HANDLERS,
+    shio::HANDLERS,
+    laser_buf::HANDLERS,
 ];
 
 /// The handler of function `id`.

@@ -28,6 +28,7 @@ pub mod device;
 pub mod ecat;
 pub mod home;
 pub mod io;
+pub mod laser;
 pub mod library;
 pub mod motion;
 pub mod types;
