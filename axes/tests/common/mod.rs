@@ -485,5 +485,6 @@ pub fn gear_in_of(master: u16, slave: u16) -> Command {
         acceleration: None,
         direction: None,
         phase_offset: 0,
+        transition: false,
     })
 }
