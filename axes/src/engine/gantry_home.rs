@@ -9,7 +9,7 @@
 //!
 //! A sequencer over the engine's own commands, as a host would send them between two ticks:
 //! `gantry_enable` (the followers), `home` (HMC_Home/HomeEx with the axis's parameters),
-//! `gantry_disable`, `move_relative`, `set_position`, `move_absolute`. At the top of each tick
+//! `gantry_disable`, `set_position`, `move_absolute`. At the top of each tick
 //! it looks at the commands it is waiting for and, when they are all done, makes the next
 //! step. Positions are compared in the axes' motor frames, which no homing or redefinition
 //! moves, so the skew it finds is mechanical. Bounded work: ≤ 8 axes, a few commands a step.
@@ -17,8 +17,7 @@
 use super::Engine;
 use crate::command::{
     AxisIndex, CommandId, CommandState, EngineError, GantryDisable, GantryEnable, GantryHome,
-    GetCommandState, Home, MoveAbsolute, MoveRelative, PositionFrame, Reply, SetPosition,
-    MAX_GANTRY_HOME_AXES,
+    GetCommandState, Home, MoveAbsolute, PositionFrame, Reply, SetPosition, MAX_GANTRY_HOME_AXES,
 };
 use crate::homing::vendor::hmc;
 use crate::param::ParamId;
@@ -157,17 +156,7 @@ impl Engine {
             .get(run.next)
             .copied()
             .ok_or(invalid("no axis"))?;
-        let slaves: Vec<AxisIndex> = run.c.axes.iter().copied().filter(|&a| a != axis).collect();
-        self.apply(
-            GantryEnable {
-                master: axis,
-                slaves,
-                warning_limit: 0.0,
-                fault_limit: 0.0,
-                require_disabled: false,
-            }
-            .into(),
-        )?;
+        self.gang(axis, &run.c.axes)?;
         let params = self
             .axis(usize::from(axis))
             .map(|a| a.params().clone())
@@ -201,6 +190,43 @@ impl Engine {
                 Err(e)
             }
         }
+    }
+
+    /// Gang every axis of `axes` but `master` to `master`, without limits.
+    fn gang(&mut self, master: AxisIndex, axes: &[AxisIndex]) -> Result<(), EngineError> {
+        let slaves = axes.iter().copied().filter(|&a| a != master).collect();
+        self.apply(
+            GantryEnable {
+                master,
+                slaves,
+                warning_limit: 0.0,
+                fault_limit: 0.0,
+                require_disabled: false,
+            }
+            .into(),
+        )?;
+        Ok(())
+    }
+
+    /// `move_absolute` of `axis` with its own profile; the id to wait for.
+    fn move_to(
+        &mut self,
+        axis: AxisIndex,
+        position: f64,
+    ) -> Result<Option<CommandId>, EngineError> {
+        let reply = self.apply(
+            MoveAbsolute {
+                axis,
+                position,
+                velocity: None,
+                acceleration: None,
+                deceleration: None,
+                jerk: None,
+                buffer_mode: Default::default(),
+            }
+            .into(),
+        )?;
+        Ok(accepted_id(reply))
     }
 
     fn motor(&self, axis: AxisIndex) -> f64 {
@@ -286,31 +312,13 @@ impl Engine {
                 } else {
                     // Back to where the first axis found its reference, all together.
                     run.phase = GantryHomePhase::ReturnBack;
-                    let slaves = axes.iter().copied().skip(1).collect();
-                    self.apply(
-                        GantryEnable {
-                            master: first,
-                            slaves,
-                            warning_limit: 0.0,
-                            fault_limit: 0.0,
-                            require_disabled: false,
-                        }
-                        .into(),
-                    )?;
+                    self.gang(first, &axes)?;
                     let back = run.first_at.first().copied().unwrap_or(0.0) - self.motor(first);
-                    let reply = self.apply(
-                        MoveRelative {
-                            axis: first,
-                            distance: back,
-                            velocity: None,
-                            acceleration: None,
-                            deceleration: None,
-                            jerk: None,
-                            buffer_mode: Default::default(),
-                        }
-                        .into(),
-                    )?;
-                    run.waiting.extend(accepted_id(reply));
+                    let to = self
+                        .axis(usize::from(first))
+                        .map_or(0.0, |a| a.commanded().p)
+                        + back;
+                    run.waiting.extend(self.move_to(first, to)?);
                 }
             }
             GantryHomePhase::ReturnBack => {
@@ -344,19 +352,8 @@ impl Engine {
                 }
                 run.phase = GantryHomePhase::Compensate;
                 for &a in &axes {
-                    let reply = self.apply(
-                        MoveAbsolute {
-                            axis: a,
-                            position: run.c.reference_position,
-                            velocity: None,
-                            acceleration: None,
-                            deceleration: None,
-                            jerk: None,
-                            buffer_mode: Default::default(),
-                        }
-                        .into(),
-                    )?;
-                    run.waiting.extend(accepted_id(reply));
+                    run.waiting
+                        .extend(self.move_to(a, run.c.reference_position)?);
                 }
             }
             GantryHomePhase::Compensate => run.phase = GantryHomePhase::Finish,
