@@ -169,17 +169,7 @@ impl Engine {
             params.get(ParamId::Accel),
         )
         .map_err(EngineError::Homing)?;
-        let home = Home {
-            axis,
-            method: Some(spec.method),
-            switch_velocity: Some(spec.switch_velocity),
-            zero_velocity: Some(spec.zero_velocity),
-            acceleration: Some(spec.acceleration),
-            offset: Some(spec.offset),
-            timeout: Some(spec.timeout),
-            quirks: spec.quirks,
-            buffer_mode: Default::default(),
-        };
+        let home = Home::with_spec(axis, &spec);
         match self.apply(home.into()) {
             Ok(reply) => {
                 run.waiting.extend(accepted_id(reply));
