@@ -73,6 +73,7 @@ fn machine(kind: Kind) -> Engine {
                 acceleration: None,
                 direction: None,
                 phase_offset: 0,
+                transition: false,
             }),
             Kind::Cam => Command::from(CamIn {
                 master: m,

@@ -29,6 +29,7 @@ fn gear(master: u16, slave: u16, numerator: f64, denominator: f64) -> GearIn {
         acceleration: None,
         direction: None,
         phase_offset: 0,
+        transition: false,
     }
 }
 

@@ -19,6 +19,7 @@ fn gear(phase_offset: u32) -> Command {
         acceleration: None,
         direction: None,
         phase_offset,
+        transition: false,
     })
 }
 

@@ -24,8 +24,24 @@ fn full() -> Vec<(Command, &'static str)> {
                 acceleration: None,
                 direction: Some(Direction::Negative),
                 phase_offset: 7,
+                transition: false,
             }),
             r#"{"type":"gear_in","master":1,"slave":0,"numerator":4.0,"denominator":5.0,"master_source":"encoder","clutch_distance":2000.0,"direction":"negative","phase_offset":7}"#,
+        ),
+        (
+            Command::from(GearIn {
+                master: 0,
+                slave: 1,
+                numerator: 1.0,
+                denominator: 2.0,
+                master_source: MasterSource::Commanded,
+                clutch_distance: None,
+                acceleration: None,
+                direction: None,
+                phase_offset: 0,
+                transition: true,
+            }),
+            r#"{"type":"gear_in","master":0,"slave":1,"numerator":1.0,"denominator":2.0,"master_source":"commanded","transition":true}"#,
         ),
         (
             Command::from(GearSetRatio {
@@ -89,7 +105,8 @@ fn full() -> Vec<(Command, &'static str)> {
 #[test]
 fn every_coupling_command_serializes_to_its_pinned_json_and_back() {
     let cases = full();
-    assert_eq!(cases.len(), 6, "one case per coupling command");
+    // One case per coupling command, and gear_in's transition switch (HMC) on its own.
+    assert_eq!(cases.len(), 7, "one case per coupling command");
     common::assert_pinned(cases);
 }
 
@@ -111,6 +128,7 @@ fn the_required_fields_alone_read_back_with_their_defaults() {
             acceleration: None,
             direction: None,
             phase_offset: 0,
+            transition: false,
         })
     );
     let t: Command = serde_json::from_str(

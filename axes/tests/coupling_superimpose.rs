@@ -203,6 +203,7 @@ fn bad_input_is_refused_and_disturbs_nothing() {
                 acceleration: None,
                 direction: None,
                 phase_offset: 0,
+                transition: false,
             }),
             |e| {
                 matches!(

@@ -435,6 +435,7 @@ fn coupling_command() -> BoxedStrategy<Command> {
                     acceleration: acc,
                     direction,
                     phase_offset: 0,
+                    transition: false,
                 })
             }),
         (axis(), number(), number()).prop_map(|(slave, numerator, denominator)| {

@@ -134,6 +134,24 @@ pub struct Home {
     pub buffer_mode: BufferMode,
 }
 
+impl Home {
+    /// `home` of `axis` with every setting of `spec` (a vendor mode mapped by
+    /// `homing::vendor`), aborting.
+    pub fn with_spec(axis: AxisIndex, spec: &crate::homing::HomingSpec) -> Home {
+        Home {
+            axis,
+            method: Some(spec.method),
+            switch_velocity: Some(spec.switch_velocity),
+            zero_velocity: Some(spec.zero_velocity),
+            acceleration: Some(spec.acceleration),
+            offset: Some(spec.offset),
+            timeout: Some(spec.timeout),
+            quirks: spec.quirks,
+            buffer_mode: BufferMode::default(),
+        }
+    }
+}
+
 /// Redefine the current position without moving.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -41,6 +41,11 @@ pub struct GearIn {
     /// 000 §4.3: "delays the slave trajectory"; fixed while the gear runs).
     #[serde(default, skip_serializing_if = "is_zero_u32")]
     pub phase_offset: u32,
+    /// HMC_SetGearTransationSwitch = 1 (digest 000 §4.3): engage, and change the ratio, with
+    /// the slave's own `accel` (speeding up) and `decel` (slowing down), then lock the positions
+    /// once the velocities match. Not with `clutch_distance` or `acceleration`.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub transition: bool,
 }
 
 /// Change the ratio of a running gear (HMC_SetGearRatio, NMC MtGearSetRatio in motion), through

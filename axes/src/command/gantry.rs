@@ -40,3 +40,34 @@ pub struct GantryEnable {
 pub struct GantryDisable {
     pub master: AxisIndex,
 }
+
+/// Most axes one `gantry_home` aligns (HMC_GantryInit: ucAxisNum ≤ 8).
+pub const MAX_GANTRY_HOME_AXES: usize = 8;
+
+/// Home a gantry's axes together and align them (HMC_GantryInit, manual §4.4.11.2, digest 000
+/// §4.4 "Gantry"). In the order given, each axis homes on its own home switch with HMC_Home
+/// (`instruction` `home`) or HMC_HomeEx (`home_ex`) mode `home_mode` (0–5, digest 000 §5) and
+/// its own `speed`, `creep_speed` and `accel`, while the other axes follow it as a gantry;
+/// then the whole gantry returns to where the first axis found its reference; then every axis
+/// is redefined at once so that its reference reads `reference_position`; then, if no axis
+/// is more than `position_error` (0 = no limit) from the first, each axis moves on its own to
+/// `reference_position`, which aligns the gantry on its reference switches. Progress and the
+/// deviations found are `Snapshot::gantry_homes` (HMC_GetGantryInitState). A stop, fault or
+/// refusal of any step ends it as `failed`. JSON `type`: `gantry_home`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GantryHome {
+    /// 2 to 8 axes, each once; none in a gantry, group or coupling.
+    pub axes: Vec<AxisIndex>,
+    #[serde(default = "default_instruction")]
+    pub instruction: crate::homing::vendor::HmcInstruction,
+    #[serde(default)]
+    pub home_mode: u8,
+    pub reference_position: f64,
+    #[serde(default)]
+    pub position_error: f64,
+}
+
+fn default_instruction() -> crate::homing::vendor::HmcInstruction {
+    crate::homing::vendor::HmcInstruction::Home
+}

@@ -8,8 +8,8 @@
 use serde::{Deserialize, Serialize};
 
 use super::{
-    command_from, AxisCommand, AxisIndex, BufferMode, CommandId, MoveAbsolute, MoveRelative,
-    MoveVelocity, StopMode,
+    command_from, AxisCommand, AxisIndex, BufferMode, CommandId, GantryHome, MoveAbsolute,
+    MoveRelative, MoveVelocity, StopMode,
 };
 
 /// State of a command by id. Ids are engine-wide, so the query is too. JSON `type`:
@@ -145,6 +145,8 @@ pub enum MachineCommand {
     DisableAll(DisableAll),
     EmergencyStopAll(EmergencyStopAll),
     ResetAll(ResetAll),
+    /// HMC_GantryInit (`command/gantry.rs`): a sequence over several axes.
+    GantryHome(GantryHome),
 }
 
 command_from!(
@@ -159,5 +161,6 @@ command_from!(
         DisableAll => DisableAll,
         EmergencyStopAll => EmergencyStopAll,
         ResetAll => ResetAll,
+        GantryHome => GantryHome,
     ]
 );

@@ -123,7 +123,9 @@ pub use follow::{
     FollowClear, FollowConfig, FollowDirection, FollowEvent, FollowOut, FollowPush, FollowStart,
     FollowSwitch, FOLLOW_FIFOS, FOLLOW_FIFO_SEGMENTS,
 };
-pub use gantry::{GantryDisable, GantryEnable, MAX_GANTRY_SLAVES};
+pub use gantry::{
+    GantryDisable, GantryEnable, GantryHome, MAX_GANTRY_HOME_AXES, MAX_GANTRY_SLAVES,
+};
 pub use group::{
     ArcDirection, CircleMode, CoordinateSet, GroupAxisMove, GroupBufferMode, GroupCommand,
     GroupContinue, GroupCreate, GroupDelete, GroupDisable, GroupDwell, GroupEmergencyStop,

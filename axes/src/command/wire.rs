@@ -174,6 +174,8 @@ pub(super) enum Command {
     HandwheelSetRatio(HandwheelSetRatio),
     StreamStartOnInput(StreamStartOnInput),
     CaptureArmThreshold(CaptureArmThreshold),
+    // Issue 12 item 6, HMC_GantryInit.
+    GantryHome(super::GantryHome),
 }
 
 impl From<Command> for super::Command {
@@ -215,6 +217,7 @@ impl From<Command> for super::Command {
                 super::Command::Machine(MachineCommand::EmergencyStopAll(c))
             }
             Command::ResetAll(c) => super::Command::Machine(MachineCommand::ResetAll(c)),
+            Command::GantryHome(c) => super::Command::Machine(MachineCommand::GantryHome(c)),
             Command::GroupCreate(c) => super::Command::Group(GroupCommand::Create(c)),
             Command::GroupDelete(c) => super::Command::Group(GroupCommand::Delete(c)),
             Command::GroupEnable(c) => super::Command::Group(GroupCommand::Enable(c)),
@@ -362,6 +365,7 @@ impl From<super::Command> for Command {
                 Command::EmergencyStopAll(c)
             }
             super::Command::Machine(MachineCommand::ResetAll(c)) => Command::ResetAll(c),
+            super::Command::Machine(MachineCommand::GantryHome(c)) => Command::GantryHome(c),
             super::Command::Group(GroupCommand::Create(c)) => Command::GroupCreate(c),
             super::Command::Group(GroupCommand::Delete(c)) => Command::GroupDelete(c),
             super::Command::Group(GroupCommand::Enable(c)) => Command::GroupEnable(c),

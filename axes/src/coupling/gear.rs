@@ -21,6 +21,10 @@ pub enum Clutch {
     /// The slave's velocity goes to ratio × master velocity with this acceleration; the
     /// positions lock when the velocities match (PLCopen MC_GearIn InGear).
     Acceleration(f64),
+    /// As `Acceleration`, with `accel` while the slave's speed grows and `decel` while it
+    /// shrinks: HMC_SetGearTransationSwitch = 1, "a smoothing transition with the axis's own
+    /// Accel/Decel at gear start and on ratio changes" (digest 000 §4.3).
+    Transition { accel: f64, decel: f64 },
 }
 
 #[derive(Clone, Debug)]
@@ -149,7 +153,9 @@ impl Gear {
         self.from_ratio = from;
         self.phase = match self.clutch {
             Clutch::Immediate => CouplingPhase::InSync,
-            Clutch::Distance(_) | Clutch::Acceleration(_) => CouplingPhase::Engaging,
+            Clutch::Distance(_) | Clutch::Acceleration(_) | Clutch::Transition { .. } => {
+                CouplingPhase::Engaging
+            }
         };
     }
 
@@ -217,9 +223,21 @@ impl Gear {
                     }
                 }
             }
-            (CouplingPhase::Engaging, Clutch::Acceleration(acc)) => {
+            (CouplingPhase::Engaging, Clutch::Acceleration(_) | Clutch::Transition { .. }) => {
                 let target = r * m.v;
                 let dv = target - self.last.v;
+                let acc = match self.clutch {
+                    // Speeding up (or through zero) with accel, slowing down with decel.
+                    Clutch::Transition { accel, decel } => {
+                        if target.abs() >= self.last.v.abs() || target * self.last.v < 0.0 {
+                            accel
+                        } else {
+                            decel
+                        }
+                    }
+                    Clutch::Acceleration(acc) => acc,
+                    _ => f64::INFINITY,
+                };
                 let step = dv.clamp(-acc * dt, acc * dt);
                 let v = self.last.v + step;
                 let p = self.last.p + (self.last.v + v) * 0.5 * dt;
@@ -275,6 +293,39 @@ mod tests {
         }
         assert_eq!(g.phase(), CouplingPhase::InSync);
         assert!((s.p - 7200.0).abs() < 1e-9, "{}", s.p);
+    }
+
+    #[test]
+    fn a_transition_speeds_up_with_accel_and_slows_down_with_decel() {
+        // HMC_SetGearTransationSwitch (digest 000 §4.3): accel 10 up to ratio 2 × master 5.
+        let clutch = Clutch::Transition {
+            accel: 10.0,
+            decel: 2.0,
+        };
+        let mut g = Gear::new(2.0, 1.0, clutch, None, 0.0, MotionState::default());
+        let dt = 0.01;
+        let (mut m, mut prev) = (0.0, 0.0);
+        let mut until_in_sync = |g: &mut Gear| {
+            for tick in 1..1000 {
+                m += 5.0 * dt;
+                let s = g.step(at(m, 5.0), prev, dt);
+                prev = m;
+                if g.phase() == CouplingPhase::InSync {
+                    return (tick, s.v);
+                }
+            }
+            (0, 0.0)
+        };
+        // 0 → 10 at accel 10: 1 s, 100 ticks (one more where rounding leaves a last ulp).
+        let (ticks, v) = until_in_sync(&mut g);
+        assert!((100..=101).contains(&ticks), "{ticks}");
+        assert!((v - 10.0).abs() < 1e-9, "{v}");
+        // Ratio 1: 10 → 5 at decel 2 takes 2.5 s.
+        g.set_ratio(1.0, 1.0);
+        assert_eq!(g.phase(), CouplingPhase::Engaging);
+        let (ticks, v) = until_in_sync(&mut g);
+        assert!((250..=251).contains(&ticks), "{ticks}");
+        assert!((v - 5.0).abs() < 1e-9, "{v}");
     }
 
     #[test]

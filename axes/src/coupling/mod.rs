@@ -303,6 +303,20 @@ impl Couplings {
         self.check_new(env.axes, c.master, c.slave)?;
         let (numerator, denominator) = check_ratio(c.numerator, c.denominator)?;
         let clutch = match (c.clutch_distance, c.acceleration) {
+            (Some(_), _) | (_, Some(_)) if c.transition => {
+                return Err(EngineError::InvalidArgument {
+                    name: "transition",
+                    value: 1.0,
+                    reason: "the transition clutch uses the slave's accel and decel: give no clutch distance or acceleration with it",
+                })
+            }
+            (None, None) if c.transition => {
+                let p = axis_ref(env.axes, c.slave)?.params();
+                Clutch::Transition {
+                    accel: positive("accel", p.get(ParamId::Accel))?,
+                    decel: positive("decel", p.get(ParamId::Decel))?,
+                }
+            }
             (Some(_), Some(_)) => {
                 return Err(EngineError::InvalidArgument {
                     name: "clutch_distance",

@@ -38,6 +38,8 @@ pub(super) struct Checkpoint {
     triggers: Option<Triggers>,
     /// Streams armed to start on an input (`stream_start_on_input` may be in a batch).
     input_starts: Option<Vec<super::stream_inputs::InputStart>>,
+    /// `gantry_home` runs (a batch may start one).
+    gantry_homes: Option<Vec<super::gantry_home::GantryHoming>>,
     io: Option<Io>,
     slaves: Option<Vec<Slave>>,
     ledger: LedgerMark,
@@ -123,6 +125,7 @@ impl Engine {
                 Ok(Reply::Done)
             }
             MachineCommand::ResetAll(_) => self.reset_everything(),
+            MachineCommand::GantryHome(c) => self.start_gantry_home(c),
         }
     }
 
@@ -389,7 +392,9 @@ impl Engine {
         let couplings = matches!(scope, Scope::Machine).then(|| self.couplings.clone());
         let triggers = matches!(scope, Scope::Machine).then(|| self.triggers.clone());
         let input_starts = matches!(scope, Scope::Machine).then(|| self.input_starts.clone());
+        let gantry_homes = matches!(scope, Scope::Machine).then(|| self.gantry_homes.clone());
         Checkpoint {
+            gantry_homes,
             axes,
             groups,
             couplings,
@@ -419,6 +424,9 @@ impl Engine {
         }
         if let Some(starts) = checkpoint.input_starts {
             self.input_starts = starts;
+        }
+        if let Some(runs) = checkpoint.gantry_homes {
+            self.gantry_homes = runs;
         }
         if let Some(io) = checkpoint.io {
             self.io = io;

@@ -24,6 +24,7 @@ use crate::trigger::{Env as TriggerEnv, Triggers};
 use std::sync::Arc;
 
 mod compensation;
+mod gantry_home;
 mod machine;
 mod planner;
 mod sampling;
@@ -134,6 +135,8 @@ pub struct Engine {
     samplers: Samplers,
     /// Streams armed to start on a digital input edge (`stream_inputs.rs`).
     input_starts: Vec<stream_inputs::InputStart>,
+    /// `gantry_home` runs, running or ended (`gantry_home.rs`).
+    gantry_homes: Vec<gantry_home::GantryHoming>,
 }
 
 impl Engine {
@@ -208,6 +211,7 @@ impl Engine {
             triggers: Triggers::default(),
             samplers: Samplers::default(),
             input_starts: Vec::new(),
+            gantry_homes: Vec::new(),
         })
     }
 
@@ -682,6 +686,7 @@ impl Engine {
     /// left.
     pub fn step(&mut self) {
         self.start_streams_on_inputs();
+        self.step_gantry_homes();
         self.tick += 1;
         self.read_inputs();
         self.run_planners();
@@ -864,6 +869,7 @@ impl Engine {
         self.couplings.handwheels_into(&mut snapshot.handwheels);
         self.couplings.follows_into(&mut snapshot.follows);
         self.stream_input_starts_into(&mut snapshot.stream_input_starts);
+        self.gantry_homes_into(&mut snapshot.gantry_homes);
         self.triggers
             .status_into(&mut snapshot.captures, &mut snapshot.compares);
         if snapshot.io_version != self.io.version {

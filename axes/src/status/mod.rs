@@ -15,6 +15,8 @@ mod snapshot;
 pub use coupling::{CouplingKind, CouplingPhase, CouplingStatus};
 mod follow;
 pub use follow::{FollowDirection, FollowEvent, FollowState, FollowStatus};
+mod gantry_home;
+pub use gantry_home::{GantryHomePhase, GantryHomeStatus};
 mod stream_arm;
 pub use gang::{GantryStatus, HandwheelStatus};
 pub use stream_arm::StreamInputStart;

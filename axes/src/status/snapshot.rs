@@ -57,6 +57,9 @@ pub struct Snapshot {
     /// Streams armed to start on a digital input edge (NMC MtPtStartMtnEx), by arming order.
     #[serde(default)]
     pub stream_input_starts: Vec<super::StreamInputStart>,
+    /// The gantry homings (HMC_GantryInit), running or ended, by start order.
+    #[serde(default)]
+    pub gantry_homes: Vec<super::GantryHomeStatus>,
 }
 
 impl Snapshot {

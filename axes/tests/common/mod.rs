@@ -460,17 +460,7 @@ pub fn assert_pinned(cases: Vec<(Command, &'static str)>) {
 
 /// `home` of `axis` with every setting of `spec`, aborting.
 pub fn home_of(axis: u16, spec: &axes::homing::HomingSpec) -> Command {
-    Command::from(axes::command::Home {
-        axis,
-        method: Some(spec.method),
-        switch_velocity: Some(spec.switch_velocity),
-        zero_velocity: Some(spec.zero_velocity),
-        acceleration: Some(spec.acceleration),
-        offset: Some(spec.offset),
-        timeout: Some(spec.timeout),
-        quirks: spec.quirks,
-        buffer_mode: Default::default(),
-    })
+    Command::from(axes::command::Home::with_spec(axis, spec))
 }
 
 /// `gear_in` of `slave` to `master`'s commanded position at 1:1, engaged at once.
@@ -485,5 +475,6 @@ pub fn gear_in_of(master: u16, slave: u16) -> Command {
         acceleration: None,
         direction: None,
         phase_offset: 0,
+        transition: false,
     })
 }

@@ -151,6 +151,7 @@ fn gear_in(c: &Call<'_>, axis: usize) -> Command {
             .then(|| s.gear_master_slope as f64 / c.scale(master).pulses_per_unit),
         acceleration: None,
         phase_offset: 0,
+        transition: false,
         direction: match s.gear_dir {
             0 => None,
             d if d > 0 => Some(Direction::Positive),
