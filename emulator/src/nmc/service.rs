@@ -148,6 +148,8 @@ pub struct NmcService {
     crd: Mutex<[CrdState; CRD_COUNT]>,
     /// Settings the engine has no model of (pulse mode, filters, encoder modes).
     stored: Mutex<Stored>,
+    /// The axis-level additions' settings, the watchdog and the E-stop inputs.
+    ax: Mutex<super::ax_state::AxState>,
     /// `TCardInfo` counts (digest 001 §1.1).
     pub io_counts: [i16; 4],
 }
@@ -171,6 +173,7 @@ impl NmcService {
             sync: Mutex::new(Default::default()),
             crd: Mutex::new(std::array::from_fn(|_| CrdState::fresh())),
             stored: Mutex::new(Stored::default()),
+            ax: Mutex::new(Default::default()),
             io_counts,
         };
         service.reset_settings();
@@ -204,6 +207,10 @@ impl NmcService {
 
     pub fn stored(&self) -> MutexGuard<'_, Stored> {
         self.stored.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+
+    pub fn ax(&self) -> MutexGuard<'_, super::ax_state::AxState> {
+        self.ax.lock().unwrap_or_else(PoisonError::into_inner)
     }
 
     /// Serve one request with `handler` (the function's, from the handler tables; `None` if it
@@ -245,9 +252,12 @@ impl NmcService {
         let mut reply = Writer::new();
         let mut plan = Plan::default();
         {
+            let snapshot = self.engine.snapshot();
+            // Any request keeps the watchdog quiet (digest 001 §2.20, TV71).
+            self.ax().heard(super::ax_state::seconds(&snapshot));
             let mut call = Call {
                 service: self,
-                snapshot: self.engine.snapshot(),
+                snapshot,
                 input: Reader::new(payload),
                 output: &mut reply,
                 plan: &mut plan,

@@ -14,12 +14,16 @@
 //! - [`sync_structs`], [`sync_header`]: the structs and header text of the gear, PT/PVT,
 //!   capture, compare, gantry, handwheel and compensation families;
 //! - [`axis_config`]: `TSafePara` as the wire carries it;
+//! - [`ax_structs`], [`ax_header`]: the packed status and PTP structs and the advanced E-stop
+//!   input of the axis-level additions (family 0x13xx);
 //! - [`crd`]: the coordinate-system structs (`TCrdConfig` …) and their C declarations;
 //! - [`errors`]: the return codes of `mtn_lib20_err.h` (not in the manual: mcemu's, stable);
 //! - [`header`]: the C headers generated from the table (checked against the committed ones);
 //! - [`handle`]: what a `HAND` encodes (kind, library slot, axis number);
 //! - [`session`]: the server side of one connection (version negotiation, then requests).
 
+pub mod ax_header;
+pub mod ax_structs;
 pub mod axis_config;
 pub mod crd;
 pub mod errors;

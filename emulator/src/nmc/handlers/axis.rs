@@ -86,10 +86,12 @@ fn mt_get_cmd_pos(c: &mut Call<'_>) -> Result<(), Refusal> {
     position(c, |s| s.output_pos)
 }
 
-/// The encoder counter (internal mode counts the axis's own pulses, digest 001 §4.1).
+/// The encoder counter (internal mode counts the axis's own pulses, digest 001 §4.1), as
+/// `NMC_MtSetEncPos` / `MtSetEncCoe` adjust its report (`ax_state::EncReport`).
 fn mt_get_enc_pos(c: &mut Call<'_>) -> Result<(), Refusal> {
     let axis = c.axis()?;
-    let p = c.status(axis).map_or(0, |s| s.encoder_counts);
+    let counts = c.status(axis).map_or(0, |s| s.encoder_counts);
+    let p = c.service.ax().enc_pos(axis, counts);
     c.output.i64(p);
     Ok(())
 }
@@ -122,6 +124,12 @@ fn mt_set_sv_off(c: &mut Call<'_>) -> Result<(), Refusal> {
 fn mt_get_motion_io(c: &mut Call<'_>) -> Result<(), Refusal> {
     let axis = c.axis()?;
     let f = c.status(axis).map_or(AxisFlags::empty(), |s| s.flags);
+    c.output.i64(motion_io(f));
+    Ok(())
+}
+
+/// The `NMC_MtGetMotionIO` bits of flags `f` (each input's active state).
+pub(super) fn motion_io(f: AxisFlags) -> i64 {
     let mut v = 0i64;
     for (bit, flag) in [
         (0, AxisFlags::HW_LIMIT_NEG),
@@ -135,6 +143,5 @@ fn mt_get_motion_io(c: &mut Call<'_>) -> Result<(), Refusal> {
             v |= 1 << bit;
         }
     }
-    c.output.i64(v);
-    Ok(())
+    v
 }

@@ -27,8 +27,13 @@ mod pt;
 mod sync_args;
 
 mod user_para;
+// The axis-level additions (family 0x13xx).
+mod ax_guards;
+mod axis_ext;
+mod extras;
+mod follow;
 
-const FAMILIES: [&[(Function, Handler)]; 19] = [
+const FAMILIES: [&[(Function, Handler)]; 23] = [
     device::HANDLERS,
     axis::HANDLERS,
     motion::HANDLERS,
@@ -48,6 +53,10 @@ const FAMILIES: [&[(Function, Handler)]; 19] = [
     analog::HANDLERS,
     ecat::HANDLERS,
     user_para::HANDLERS,
+    axis_ext::HANDLERS,
+    ax_guards::HANDLERS,
+    follow::HANDLERS,
+    extras::HANDLERS,
 ];
 
 /// The handler of function `id`.

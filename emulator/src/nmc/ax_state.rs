@@ -1,0 +1,312 @@
+//! What the axis-level additions (id family 0x13xx) keep between calls, and the two guards
+//! that act without a call: the communication watchdog (`NMC_SetWatchDog`, digest 001 §2.20,
+//! TV71) and the E-stop inputs (`NMC_MtSetEstopDI`, `NMC_SetEstopDIEx`, §2.3).
+//!
+//! Both are judged on the engine's virtual clock (`Snapshot::tick` × `period`): [`AxState::due`]
+//! takes a snapshot and returns the engine commands to apply now; `ax_watch` calls it every
+//! millisecond or two while a guard is armed. Every request the device serves records its
+//! tick ([`AxState::heard`]), which is what keeps the watchdog quiet.
+
+use axes::command::{
+    BufferMode, Command, MoveAbsolute, MoveVelocity, Stop, StopMode, WriteDigitalOutput,
+};
+use axes::status::Snapshot;
+use axes::AxisFlags;
+use mcemu_dialects::nmc::{acceleration_to_engine, velocity_to_engine};
+use mcemu_nmc::ax_structs::{EstopExParam, ESTOP_DI_EX_CH_NUM};
+
+use super::service::{pulses, scale_of, AxisSettings};
+
+/// `NMC_SetWatchDog`: after `timeout` seconds without a request, stop the axes (abruptly for
+/// stopMode 1, with their stop deceleration for 0) and write `do_value` to DO group `group`
+/// (its first output channel `do_start`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Watchdog {
+    pub timeout: f64,
+    pub stop_mode: i16,
+    pub do_start: usize,
+    pub do_value: i64,
+    /// Fired since the last request: fires once per silence.
+    pub fired: bool,
+}
+
+/// One axis's `NMC_MtSetEstopDI`: general input `gpi` at level `sense` (0 low, 1 high) stops it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct EstopDi {
+    pub gpi: i16,
+    pub sense: i16,
+    /// At its level when last looked at (the edge into it stops the axis even when still).
+    pub active: bool,
+}
+
+/// One armed `NMC_SetEstopDIEx` group and since when (seconds) its input has been at the
+/// triggering level (`None`: not at it).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EstopEx {
+    pub param: EstopExParam,
+    pub active_since: Option<f64>,
+    /// Its level has held for the filter time since it last came.
+    pub fired: bool,
+}
+
+/// `NMC_MtSetPtpComparePara`: when the axis's planned position passes `pos` (pulses) moving
+/// positive (`dir` 1) or negative (0), its move continues at `vel` pulse/ms.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PtpCompare {
+    pub dir: i16,
+    pub pos: i64,
+    pub vel: f64,
+    /// Armed, not yet passed.
+    pub active: bool,
+    /// Passed: the velocity was changed.
+    pub out: bool,
+}
+
+/// How `NMC_MtGetEncPos` reports an axis's encoder counts: times `coe` (`NMC_MtSetEncCoe`,
+/// default 1), plus `offset` (`NMC_MtSetEncPos`, `MtZeroPos`), in pulses.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EncReport {
+    pub coe: f64,
+    pub offset: i64,
+}
+
+impl Default for EncReport {
+    fn default() -> EncReport {
+        EncReport {
+            coe: 1.0,
+            offset: 0,
+        }
+    }
+}
+
+impl EncReport {
+    /// The reported position of raw `counts`.
+    pub fn position(&self, counts: i64) -> i64 {
+        let scaled = (counts as f64 * self.coe).round();
+        (scaled.clamp(i64::MIN as f64, i64::MAX as f64) as i64).saturating_add(self.offset)
+    }
+
+    /// The offset that makes raw `counts` read `wanted`.
+    pub fn offset_for(&self, counts: i64, wanted: i64) -> i64 {
+        wanted.saturating_sub(EncReport { offset: 0, ..*self }.position(counts))
+    }
+}
+
+/// The device's axis-level settings.
+#[derive(Clone, Debug, Default)]
+pub struct AxState {
+    /// `NMC_SetProfilePeriod` µs (None: never set; the engine's period is read).
+    pub profile_period: Option<i16>,
+    pub watchdog: Option<Watchdog>,
+    /// Seconds on the virtual clock of the last request.
+    pub last_heard: f64,
+    /// By axis.
+    pub estop_di: std::collections::BTreeMap<usize, EstopDi>,
+    pub estop_ex: [Option<EstopEx>; ESTOP_DI_EX_CH_NUM],
+    /// `NMC_MtSetSvClr` levels by axis (1 inactive, the default).
+    pub sv_clr: std::collections::BTreeMap<usize, i16>,
+    /// By axis.
+    pub enc: std::collections::BTreeMap<usize, EncReport>,
+    /// By axis.
+    pub ptp_compare: std::collections::BTreeMap<usize, PtpCompare>,
+    /// `NMC_MtSetAxisDampCompParam` by axis: enable, param1, param2 (kept only).
+    pub damp_comp: std::collections::BTreeMap<usize, (i16, i16, i16)>,
+}
+
+/// The virtual time of a snapshot, seconds.
+pub fn seconds(s: &Snapshot) -> f64 {
+    s.time()
+}
+
+impl AxState {
+    /// Whether a guard needs watching.
+    pub fn armed(&self) -> bool {
+        self.watchdog.is_some()
+            || !self.estop_di.is_empty()
+            || self.estop_ex.iter().any(Option::is_some)
+            || self.ptp_compare.values().any(|p| p.active)
+    }
+
+    /// Axis `axis`'s encoder position from its raw `counts`.
+    pub fn enc_pos(&self, axis: usize, counts: i64) -> i64 {
+        self.enc
+            .get(&axis)
+            .copied()
+            .unwrap_or_default()
+            .position(counts)
+    }
+
+    /// A request arrived at virtual time `now`.
+    pub fn heard(&mut self, now: f64) {
+        self.last_heard = now;
+        if let Some(w) = &mut self.watchdog {
+            w.fired = false;
+        }
+    }
+
+    /// The commands the guards call for in snapshot `s` (empty: nothing to do). An E-stop
+    /// input reaching its level stops its axes (latching BIT_AXIS_ESTP); while it stays there,
+    /// a move started anyway is stopped too.
+    /// `settings`: the axes' NMC settings (the moves a passed PTP compare changes).
+    pub fn due(&mut self, s: &Snapshot, settings: &[AxisSettings]) -> Vec<Command> {
+        let now = seconds(s);
+        let mut out = Vec::new();
+        self.ptp_compares_due(s, settings, &mut out);
+        // Per axis: held at an E-stop level; reached it just now.
+        let mut estop = vec![false; s.axes.len()];
+        let mut edge = vec![false; s.axes.len()];
+        for (&axis, e) in &mut self.estop_di {
+            let level = usize::try_from(e.gpi)
+                .ok()
+                .and_then(|i| s.io.di.get(i))
+                .copied();
+            let active = level == Some(e.sense == 1);
+            if let (Some(held), Some(new)) = (estop.get_mut(axis), edge.get_mut(axis)) {
+                *held |= active;
+                *new |= active && !e.active;
+            }
+            e.active = active;
+        }
+        for e in self.estop_ex.iter_mut().flatten() {
+            let level = input_level(s, &e.param);
+            if level == Some(e.param.di_sense == 1) {
+                let since = *e.active_since.get_or_insert(now);
+                // filter: how long the level must hold, in ms (digest 001 §3.6 gives no unit).
+                if now - since + 1e-9 >= f64::from(e.param.filter) / 1e3 {
+                    for axis in 0..estop.len().min(16) {
+                        if e.param.ax_mask & (1 << axis) != 0 {
+                            if let (Some(held), Some(new)) =
+                                (estop.get_mut(axis), edge.get_mut(axis))
+                            {
+                                *held = true;
+                                *new |= !e.fired;
+                            }
+                        }
+                    }
+                    e.fired = true;
+                }
+            } else {
+                (e.active_since, e.fired) = (None, false);
+            }
+        }
+        for (axis, (held, new)) in estop.iter().zip(&edge).enumerate() {
+            // Moving and not already in an E-stop (which is MOVING until it has stopped).
+            let moving = s.axes.get(axis).is_some_and(|a| {
+                a.flags.contains(AxisFlags::MOVING) && !a.latched.contains(AxisFlags::ESTOP)
+            });
+            if *new || (*held && moving) {
+                out.push(
+                    Stop {
+                        axis: axis as u16,
+                        mode: StopMode::Emergency,
+                        deceleration: None,
+                    }
+                    .into(),
+                );
+            }
+        }
+        if let Some(w) = &mut self.watchdog {
+            if !w.fired && now - self.last_heard >= w.timeout {
+                w.fired = true;
+                let mode = if w.stop_mode == 1 {
+                    StopMode::Abrupt
+                } else {
+                    StopMode::Smooth
+                };
+                for axis in 0..s.axes.len() {
+                    out.push(
+                        Stop {
+                            axis: axis as u16,
+                            mode,
+                            deceleration: None,
+                        }
+                        .into(),
+                    );
+                }
+                let count = s.io.do_.len().saturating_sub(w.do_start).min(32);
+                for i in 0..count {
+                    out.push(
+                        WriteDigitalOutput {
+                            channel: (w.do_start + i) as u16,
+                            value: w.do_value & (1 << i) != 0,
+                        }
+                        .into(),
+                    );
+                }
+            }
+        }
+        out
+    }
+}
+
+impl AxState {
+    /// The PTP compares whose position the moving axis has passed: the move goes on at the new
+    /// velocity (a jog keeps its direction), from the tick the watcher sees it.
+    fn ptp_compares_due(
+        &mut self,
+        s: &Snapshot,
+        settings: &[AxisSettings],
+        out: &mut Vec<Command>,
+    ) {
+        for (&axis, p) in &mut self.ptp_compare {
+            let (Some(a), Some(set)) = (s.axes.get(axis), settings.get(axis)) else {
+                continue;
+            };
+            if !p.active || !a.flags.contains(AxisFlags::MOVING) {
+                continue;
+            }
+            let scale = scale_of(s, axis);
+            let here = pulses(scale, a.cmd_pos);
+            let passed = if p.dir == 1 {
+                here >= p.pos
+            } else {
+                here <= p.pos
+            };
+            if !passed {
+                continue;
+            }
+            (p.active, p.out) = (false, true);
+            let command: Command = if set.prf_mode == MT_JOG_PRF_MODE {
+                MoveVelocity {
+                    axis: axis as u16,
+                    velocity: velocity_to_engine(scale, p.vel).copysign(a.cmd_vel),
+                    acceleration: Some(acceleration_to_engine(scale, set.jog.acc)),
+                    deceleration: Some(acceleration_to_engine(scale, set.jog.dec)),
+                    jerk: None,
+                    buffer_mode: BufferMode::Aborting,
+                }
+                .into()
+            } else {
+                MoveAbsolute {
+                    axis: axis as u16,
+                    position: scale.to_engine(set.target as f64),
+                    velocity: Some(velocity_to_engine(scale, p.vel)),
+                    acceleration: Some(acceleration_to_engine(scale, set.ptp.acc)),
+                    deceleration: Some(acceleration_to_engine(scale, set.ptp.dec)),
+                    jerk: None,
+                    buffer_mode: BufferMode::Aborting,
+                }
+                .into()
+            };
+            out.push(command);
+        }
+    }
+}
+
+/// `MT_JOG_PRF_MODE` (digest 001 §3.2).
+const MT_JOG_PRF_MODE: i16 = 1;
+
+/// The level of the input an advanced E-stop group watches: a general input, or a dedicated
+/// one of axis `di_index` (1 negative limit, 2 positive limit, 3 home, 4 index).
+pub fn input_level(s: &Snapshot, p: &EstopExParam) -> Option<bool> {
+    let index = usize::try_from(p.di_index).ok()?;
+    let flag = match p.di_type {
+        0 => return s.io.di.get(index).copied(),
+        1 => AxisFlags::HW_LIMIT_NEG,
+        2 => AxisFlags::HW_LIMIT_POS,
+        3 => AxisFlags::HOME_SWITCH,
+        4 => AxisFlags::INDEX,
+        _ => return None,
+    };
+    s.axes.get(index).map(|a| a.flags.contains(flag))
+}
