@@ -381,3 +381,34 @@ fn s_follow_tv59() {
 fn ptp_compare_pt_para_and_aliases() {
     example("ax_extras.c");
 }
+
+/// Closed loop and profile configuration: PID sets, DAC, TV67, TV70, the encoder coefficient.
+#[test]
+fn closed_loop_and_profile_config_tv67_tv70() {
+    example("closed_loop.c");
+}
+
+/// NMC_SaveMotionConfig: saved, reloaded by NMC_DevReset, and there after mcemu restarts on the
+/// same state directory.
+#[test]
+fn saved_motion_config_survives_a_restart() {
+    let dir = fresh_dir(env!("CARGO_TARGET_TMPDIR"), "nmc-motion-config");
+    let exe = compile_example("motion_config.c", &dir, &[]);
+    let state = dir.join("state");
+    let state_arg = state.to_str().unwrap();
+    for mode in ["save", "check"] {
+        let m = Mcemu::start(Some(&gaochuan()), &["--state-dir", state_arg]);
+        let mut command = Command::new(&exe);
+        command.arg(mode).env("MCEMU_NMC", m.address("nmc"));
+        let out = run_with_timeout(command, b"", PROGRAM_TIMEOUT);
+        let stdout = String::from_utf8_lossy(&out.stdout).to_string();
+        assert!(
+            out.status.success() && stdout.lines().last() == Some("ok"),
+            "{}",
+            output_report(mode, &out)
+        );
+        let exit = m.terminate();
+        assert!(exit.status.success(), "{exit:?}");
+    }
+    assert!(state.join("nmc/nmc.json").is_file());
+}

@@ -13,7 +13,7 @@ use axes::command::{
 use axes::status::Snapshot;
 use axes::AxisFlags;
 use mcemu_dialects::nmc::{acceleration_to_engine, velocity_to_engine};
-use mcemu_nmc::ax_structs::{EstopExParam, ESTOP_DI_EX_CH_NUM};
+use mcemu_nmc::ax_structs::{DacMotor, EstopExParam, PidPara, ESTOP_DI_EX_CH_NUM};
 
 use super::service::{pulses, scale_of, AxisSettings};
 
@@ -92,6 +92,42 @@ impl EncReport {
     }
 }
 
+/// One axis's closed-loop and profile configuration (digest 001 §2.15, §2.20).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AxisLoop {
+    /// `NMC_MtSetCtrlMode`: 0 pulse (open loop), 1 DA closed loop.
+    pub ctrl_mode: i16,
+    /// The three PID sets and the active one.
+    pub pid: [PidPara; 3],
+    pub pid_index: i16,
+    pub dac: DacMotor,
+    /// `NMC_MtPrfConfig`: mapped axis, port, and the offset axisPos = prfPos + startPos.
+    pub map_axis: i16,
+    pub port: i16,
+    pub start_pos: i64,
+    /// `NMC_MtSetPrfCoe` (0, 1].
+    pub prf_coe: f64,
+}
+
+impl AxisLoop {
+    pub fn fresh(axis: usize) -> AxisLoop {
+        AxisLoop {
+            ctrl_mode: 0,
+            pid: [PidPara::default(); 3],
+            pid_index: 0,
+            dac: DacMotor {
+                inverse: 0,
+                bias: 0,
+                dac_lmt: i16::MAX,
+            },
+            map_axis: i16::try_from(axis).unwrap_or(i16::MAX),
+            port: 0,
+            start_pos: 0,
+            prf_coe: 1.0,
+        }
+    }
+}
+
 /// The device's axis-level settings.
 #[derive(Clone, Debug, Default)]
 pub struct AxState {
@@ -107,6 +143,8 @@ pub struct AxState {
     pub sv_clr: std::collections::BTreeMap<usize, i16>,
     /// By axis.
     pub enc: std::collections::BTreeMap<usize, EncReport>,
+    /// By axis (`AxisLoop::fresh` until written).
+    pub loops: std::collections::BTreeMap<usize, AxisLoop>,
     /// By axis.
     pub ptp_compare: std::collections::BTreeMap<usize, PtpCompare>,
     /// `NMC_MtSetAxisDampCompParam` by axis: enable, param1, param2 (kept only).
@@ -125,6 +163,20 @@ impl AxState {
             || !self.estop_di.is_empty()
             || self.estop_ex.iter().any(Option::is_some)
             || self.ptp_compare.values().any(|p| p.active)
+    }
+
+    /// Axis `axis`'s closed-loop and profile configuration.
+    pub fn axis_loop(&self, axis: usize) -> AxisLoop {
+        self.loops
+            .get(&axis)
+            .copied()
+            .unwrap_or_else(|| AxisLoop::fresh(axis))
+    }
+
+    pub fn axis_loop_mut(&mut self, axis: usize) -> &mut AxisLoop {
+        self.loops
+            .entry(axis)
+            .or_insert_with(|| AxisLoop::fresh(axis))
     }
 
     /// Axis `axis`'s encoder position from its raw `counts`.

@@ -13,6 +13,8 @@
 //! - `handlers`: one file per family of the function table (`mcemu_nmc::table`);
 //! - `ax_state`, `ax_watch`: the axis-level additions' settings (family 0x13xx), and the
 //!   watchdog and E-stop inputs, judged on the virtual clock by a task of their own;
+//! - `saved_config`: `NMC_SaveMotionConfig`'s file in the state directory, applied at start
+//!   and on `NMC_DevReset`;
 //! - `stored`: settings the engine has no model of, kept and read back;
 //! - `serve`: the transports (the kit's bounded accept loop on TCP, the same table on the Unix
 //!   socket), the connection loop over `mcemu_nmc::session`, the control-API handle.
@@ -23,6 +25,7 @@ pub mod config;
 pub mod crd;
 pub mod faults;
 mod handlers;
+pub mod saved_config;
 pub mod serve;
 pub mod service;
 pub mod stored;

@@ -98,6 +98,7 @@ fn section(
     max_connections: usize,
 ) -> (Arc<NmcFrontend>, Arc<ConnectionTable>) {
     let service = NmcService::new(cx.handle.clone(), device.clone(), io_counts(cx));
+    service.set_saving(cx.state_dir.cloned(), name);
     let connections = Arc::new(ConnectionCounters::default());
     let table = ConnectionTable::new(
         Bound {
@@ -126,6 +127,7 @@ async fn start_sections(
     let mut started = Vec::new();
     if let Some(c) = f.nmc.as_ref().filter(|c| c.enabled) {
         let (frontend, table) = section(cx, "nmc", &c.device, c.max_connections);
+        super::saved_config::restore_at_start(&frontend.service).await;
         tasks.spawn(super::ax_watch::watch(
             Arc::clone(&frontend.service),
             stopped(cx.shutdown),
@@ -164,6 +166,7 @@ async fn start_sections(
     }
     if let Some(c) = f.nmc_local.as_ref().filter(|c| c.enabled) {
         let (frontend, table) = section(cx, "nmc_local", &c.device, c.max_connections);
+        super::saved_config::restore_at_start(&frontend.service).await;
         tasks.spawn(super::ax_watch::watch(
             Arc::clone(&frontend.service),
             stopped(cx.shutdown),

@@ -152,6 +152,9 @@ pub struct NmcService {
     ax: Mutex<super::ax_state::AxState>,
     /// `TCardInfo` counts (digest 001 §1.1).
     pub io_counts: [i16; 4],
+    /// Where `NMC_SaveMotionConfig` saves (`saved_config`), and the section's name (the
+    /// file's); set once when the section starts.
+    saving: std::sync::OnceLock<(Option<crate::state_dir::StateDir>, &'static str)>,
 }
 
 /// What `GET /state` shows of a refused call.
@@ -175,6 +178,7 @@ impl NmcService {
             stored: Mutex::new(Stored::default()),
             ax: Mutex::new(Default::default()),
             io_counts,
+            saving: std::sync::OnceLock::new(),
         };
         service.reset_settings();
         Arc::new(service)
@@ -207,6 +211,20 @@ impl NmcService {
 
     pub fn stored(&self) -> MutexGuard<'_, Stored> {
         self.stored.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+
+    /// Set where the saved motion configuration lives (once, at start).
+    pub fn set_saving(&self, dir: Option<crate::state_dir::StateDir>, section: &'static str) {
+        let _ = self.saving.set((dir, section));
+    }
+
+    pub fn state_dir(&self) -> Option<&crate::state_dir::StateDir> {
+        self.saving.get().and_then(|(d, _)| d.as_ref())
+    }
+
+    /// The front-end section's name (`nmc`, `nmc_local`).
+    pub fn section(&self) -> &'static str {
+        self.saving.get().map_or("nmc", |(_, s)| s)
     }
 
     pub fn ax(&self) -> MutexGuard<'_, super::ax_state::AxState> {

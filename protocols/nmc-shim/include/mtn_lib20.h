@@ -230,6 +230,10 @@ typedef struct {
 #define PROFILE_FOLLOW_MASTER_AXIS_ENC (2)
 #define PROFILE_FOLLOW_MASTER_ENC      (3)
 
+/* Closed loop, NMC_MtSetCloseLoopDac / NMC_MtSetPIDPara (digest 001 §3.17). */
+typedef struct { short inverse; short bias; short dacLmt; } TDacMotor;
+typedef struct { float kp; float ki; float kd; float kvff; long integralLimit; long derivativeLimit; short outLimit; } TPidPara;
+
 /* Coordinate system (digest 001 §3.7, §3.8, §3.10). */
 #define BIT_CORD_BUSY           0x00000001
 #define BIT_CORD_MVERR          0x00000002
@@ -549,6 +553,22 @@ short NMC_MtSetPtpComparePara(HAND axisHandle, short dir, long comparaPos, doubl
 short NMC_MtGetPtpCompareSts(HAND axisHandle, short *pIsCompareActive, short *pIsCompareOut);
 short NMC_Comp2DimensStatus(HAND devHandle, short group, TComp2DimensSts *pStatus, short chn);
 short NMC_MtSetAxisDampCompParam(HAND axisHandle, short enable, short param1, short param2);
+short NMC_MtSetCtrlMode(HAND axisHandle, short mode);
+short NMC_MtGetCtrlMode(HAND axisHandle, short *pMode);
+short NMC_MtSetPIDPara(HAND axisHandle, short index, TPidPara *pidPara);
+short NMC_MtGetPIDPara(HAND axisHandle, short index, TPidPara *pPidPara);
+short NMC_MtSetPIDIndex(HAND axisHandle, short index);
+short NMC_MtGetPIDIndex(HAND axisHandle, short *pIndex);
+short NMC_MtSetCloseLoopDac(HAND axisHandle, TDacMotor *pDacPara);
+short NMC_MtGetCloseLoopDac(HAND axisHandle, TDacMotor *pDacPara);
+short NMC_SetCloseLoopDac(HAND axisHandle, TDacMotor *pDacPara);
+short NMC_MtPrfConfig(HAND axisHandle, short mapAxisNo, short port, long startPos);
+short NMC_MtGetPrfConfig(HAND axisHandle, short *mapAxisNo, short *port, long *startPos);
+short NMC_MtSetPrfCoe(HAND axisHandle, double inCoe);
+short NMC_MtGetPrfCoe(HAND axisHandle, double *inCoe);
+short NMC_MtSetEncCoe(HAND axisHandle, double encCoe);
+short NMC_MtGetEncCoe(HAND axisHandle, double *pEncCoe);
+short NMC_SaveMotionConfig(HAND devHandle, short enable);
 
 #ifdef __cplusplus
 }

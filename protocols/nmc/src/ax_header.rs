@@ -61,4 +61,8 @@ typedef struct {
 #define PROFILE_FOLLOW_MASTER_AXIS_ENC (2)
 #define PROFILE_FOLLOW_MASTER_ENC      (3)
 
+/* Closed loop, NMC_MtSetCloseLoopDac / NMC_MtSetPIDPara (digest 001 §3.17). */
+typedef struct { short inverse; short bias; short dacLmt; } TDacMotor;
+typedef struct { float kp; float ki; float kd; float kvff; long integralLimit; long derivativeLimit; short outLimit; } TPidPara;
+
 "#;

@@ -1,5 +1,5 @@
-//! The structs of the axis-level additions (digest 001 §3.4, §3.6: packed status, packed PTP
-//! moves, the advanced E-stop input) as the wire carries them, with the rules of
+//! The structs of the axis-level additions (digest 001 §3.4, §3.6, §3.17: packed status, packed
+//! PTP moves, the advanced E-stop input, the closed loop's DAC and PID) as the wire carries them, with the rules of
 //! `crate::structs`: fields in declaration order, `long` as i64, `float` as f64, `reserved`
 //! members not sent. Fixed-size arrays go element by element, no count.
 
@@ -210,6 +210,63 @@ impl EstopExParam {
     }
 }
 
+/// `TDacMotor` (digest 001 §3.17): output inversion, zero-drift bias, output limit (32767 the
+/// most).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct DacMotor {
+    pub inverse: i16,
+    pub bias: i16,
+    pub dac_lmt: i16,
+}
+
+impl DacMotor {
+    pub fn write(&self, w: &mut Writer) {
+        w.i16(self.inverse).i16(self.bias).i16(self.dac_lmt);
+    }
+    pub fn read(r: &mut Reader<'_>) -> Result<DacMotor, PayloadError> {
+        Ok(DacMotor {
+            inverse: r.i16()?,
+            bias: r.i16()?,
+            dac_lmt: r.i16()?,
+        })
+    }
+}
+
+/// `TPidPara` (digest 001 §3.17): gains (`float` in C, f64 here) and limits.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PidPara {
+    pub kp: f64,
+    pub ki: f64,
+    pub kd: f64,
+    pub kvff: f64,
+    pub integral_limit: i64,
+    pub derivative_limit: i64,
+    pub out_limit: i16,
+}
+
+impl PidPara {
+    pub fn write(&self, w: &mut Writer) {
+        w.f64(self.kp)
+            .f64(self.ki)
+            .f64(self.kd)
+            .f64(self.kvff)
+            .i64(self.integral_limit)
+            .i64(self.derivative_limit)
+            .i16(self.out_limit);
+    }
+    pub fn read(r: &mut Reader<'_>) -> Result<PidPara, PayloadError> {
+        Ok(PidPara {
+            kp: r.f64()?,
+            ki: r.f64()?,
+            kd: r.f64()?,
+            kvff: r.f64()?,
+            integral_limit: r.i64()?,
+            derivative_limit: r.i64()?,
+            out_limit: r.i16()?,
+        })
+    }
+}
+
 #[cfg(test)]
 #[allow(clippy::unwrap_used)]
 mod tests {
@@ -256,6 +313,26 @@ mod tests {
         e.write(&mut w);
         let mut r = Reader::new(&w.bytes);
         assert_eq!(EstopExParam::read(&mut r).unwrap(), e);
+        r.finish().unwrap();
+
+        let pid = PidPara {
+            kp: 5.0,
+            ki: 1.0,
+            integral_limit: -3,
+            out_limit: 32767,
+            ..Default::default()
+        };
+        let mut w = Writer::new();
+        pid.write(&mut w);
+        DacMotor {
+            inverse: 1,
+            bias: -20,
+            dac_lmt: 500,
+        }
+        .write(&mut w);
+        let mut r = Reader::new(&w.bytes);
+        assert_eq!(PidPara::read(&mut r).unwrap(), pid);
+        assert_eq!(DacMotor::read(&mut r).unwrap().dac_lmt, 500);
         r.finish().unwrap();
     }
 }

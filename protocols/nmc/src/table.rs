@@ -427,6 +427,24 @@ functions! {
     MT_GET_PTP_COMPARE_STS = 0x1343 Server Main NMC_MtGetPtpCompareSts(In Hand => axisHandle, Out Short => pIsCompareActive, Out Short => pIsCompareOut);
     COMP_2DIMENS_STATUS = 0x1344 Server Main NMC_Comp2DimensStatus(In Hand => devHandle, In Short => group, Out Struct("TComp2DimensSts") => pStatus, In Short => chn);
     MT_SET_AXIS_DAMP_COMP_PARAM = 0x1345 Server Main NMC_MtSetAxisDampCompParam(In Hand => axisHandle, In Short => enable, In Short => param1, In Short => param2);
+    // ---- closed loop, profile configuration, saved motion configuration (digest 001 §1.5,
+    // §2.2, §2.15, §2.20) ----
+    MT_SET_CTRL_MODE = 0x1350 Server Main NMC_MtSetCtrlMode(In Hand => axisHandle, In Short => mode);
+    MT_GET_CTRL_MODE = 0x1351 Server Main NMC_MtGetCtrlMode(In Hand => axisHandle, Out Short => pMode);
+    MT_SET_PID_PARA = 0x1352 Server Main NMC_MtSetPIDPara(In Hand => axisHandle, In Short => index, In Struct("TPidPara") => pidPara);
+    MT_GET_PID_PARA = 0x1353 Server Main NMC_MtGetPIDPara(In Hand => axisHandle, In Short => index, Out Struct("TPidPara") => pPidPara);
+    MT_SET_PID_INDEX = 0x1354 Server Main NMC_MtSetPIDIndex(In Hand => axisHandle, In Short => index);
+    MT_GET_PID_INDEX = 0x1355 Server Main NMC_MtGetPIDIndex(In Hand => axisHandle, Out Short => pIndex);
+    MT_SET_CLOSE_LOOP_DAC = 0x1356 Server Main NMC_MtSetCloseLoopDac(In Hand => axisHandle, In Struct("TDacMotor") => pDacPara);
+    MT_GET_CLOSE_LOOP_DAC = 0x1357 Server Main NMC_MtGetCloseLoopDac(In Hand => axisHandle, Out Struct("TDacMotor") => pDacPara);
+    SET_CLOSE_LOOP_DAC = 0x1358 Server Main NMC_SetCloseLoopDac(In Hand => axisHandle, In Struct("TDacMotor") => pDacPara);
+    MT_PRF_CONFIG = 0x1359 Server Main NMC_MtPrfConfig(In Hand => axisHandle, In Short => mapAxisNo, In Short => port, In Long => startPos);
+    MT_GET_PRF_CONFIG = 0x135A Server Main NMC_MtGetPrfConfig(In Hand => axisHandle, Out Short => mapAxisNo, Out Short => port, Out Long => startPos);
+    MT_SET_PRF_COE = 0x135B Server Main NMC_MtSetPrfCoe(In Hand => axisHandle, In Double => inCoe);
+    MT_GET_PRF_COE = 0x135C Server Main NMC_MtGetPrfCoe(In Hand => axisHandle, Out Double => inCoe);
+    MT_SET_ENC_COE = 0x135D Server Main NMC_MtSetEncCoe(In Hand => axisHandle, In Double => encCoe);
+    MT_GET_ENC_COE = 0x135E Server Main NMC_MtGetEncCoe(In Hand => axisHandle, Out Double => pEncCoe);
+    SAVE_MOTION_CONFIG = 0x1360 Server Main NMC_SaveMotionConfig(In Hand => devHandle, In Short => enable);
 }
 
 #[cfg(test)]

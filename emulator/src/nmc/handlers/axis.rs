@@ -76,9 +76,14 @@ fn mt_get_prf_pos(c: &mut Call<'_>) -> Result<(), Refusal> {
     position(c, |s| s.cmd_pos)
 }
 
-/// axisPos = prfPos + startPos; startPos (NMC_MtPrfConfig) is 0 until that family lands.
+/// axisPos = prfPos + startPos (`NMC_MtPrfConfig`, digest 001 §2.20, TV70).
 fn mt_get_axis_pos(c: &mut Call<'_>) -> Result<(), Refusal> {
-    position(c, |s| s.cmd_pos)
+    let axis = c.axis()?;
+    let scale = c.scale(axis);
+    let p = c.status(axis).map_or(0, |s| pulses(scale, s.cmd_pos));
+    let start = c.service.ax().axis_loop(axis).start_pos;
+    c.output.i64(p.saturating_add(start));
+    Ok(())
 }
 
 /// The pulses sent to the drive: planned position plus compensation (digest 001 §4.1).

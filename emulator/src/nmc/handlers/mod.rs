@@ -30,10 +30,11 @@ mod user_para;
 // The axis-level additions (family 0x13xx).
 mod ax_guards;
 mod axis_ext;
+mod closed_loop;
 mod extras;
 mod follow;
 
-const FAMILIES: [&[(Function, Handler)]; 23] = [
+const FAMILIES: [&[(Function, Handler)]; 24] = [
     device::HANDLERS,
     axis::HANDLERS,
     motion::HANDLERS,
@@ -57,6 +58,7 @@ const FAMILIES: [&[(Function, Handler)]; 23] = [
     ax_guards::HANDLERS,
     follow::HANDLERS,
     extras::HANDLERS,
+    closed_loop::HANDLERS,
 ];
 
 /// The handler of function `id`.

@@ -5,7 +5,7 @@
 
 use std::ffi::{c_long, c_short};
 
-use mcemu_nmc::ax_structs::{AxisStsPack12Ex, EstopExParam, MovePtpPack8};
+use mcemu_nmc::ax_structs::{AxisStsPack12Ex, DacMotor, EstopExParam, MovePtpPack8, PidPara};
 
 use super::types::to_long;
 
@@ -130,6 +130,75 @@ impl From<EstopExParam> for TEstopExParam {
             filter: p.filter,
             diSense: to_long(p.di_sense),
             reserved: [0; 3],
+        }
+    }
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct TDacMotor {
+    pub inverse: c_short,
+    pub bias: c_short,
+    pub dacLmt: c_short,
+}
+
+impl From<TDacMotor> for DacMotor {
+    fn from(p: TDacMotor) -> DacMotor {
+        DacMotor {
+            inverse: p.inverse,
+            bias: p.bias,
+            dac_lmt: p.dacLmt,
+        }
+    }
+}
+
+impl From<DacMotor> for TDacMotor {
+    fn from(p: DacMotor) -> TDacMotor {
+        TDacMotor {
+            inverse: p.inverse,
+            bias: p.bias,
+            dacLmt: p.dac_lmt,
+        }
+    }
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct TPidPara {
+    pub kp: f32,
+    pub ki: f32,
+    pub kd: f32,
+    pub kvff: f32,
+    pub integralLimit: c_long,
+    pub derivativeLimit: c_long,
+    pub outLimit: c_short,
+}
+
+impl From<TPidPara> for PidPara {
+    fn from(p: TPidPara) -> PidPara {
+        PidPara {
+            kp: f64::from(p.kp),
+            ki: f64::from(p.ki),
+            kd: f64::from(p.kd),
+            kvff: f64::from(p.kvff),
+            integral_limit: i64::from(p.integralLimit),
+            derivative_limit: i64::from(p.derivativeLimit),
+            out_limit: p.outLimit,
+        }
+    }
+}
+
+impl From<PidPara> for TPidPara {
+    fn from(p: PidPara) -> TPidPara {
+        // `float` in C: the gains narrow on purpose.
+        TPidPara {
+            kp: p.kp as f32,
+            ki: p.ki as f32,
+            kd: p.kd as f32,
+            kvff: p.kvff as f32,
+            integralLimit: to_long(p.integral_limit),
+            derivativeLimit: to_long(p.derivative_limit),
+            outLimit: p.out_limit,
         }
     }
 }

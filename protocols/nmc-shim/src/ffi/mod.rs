@@ -25,6 +25,7 @@ pub mod ax_types;
 pub mod axis;
 pub mod axis_config;
 pub mod axis_ext;
+pub mod closed_loop;
 pub mod crd;
 pub mod crd_types;
 pub mod device;
