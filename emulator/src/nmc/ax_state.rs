@@ -362,3 +362,82 @@ pub fn input_level(s: &Snapshot, p: &EstopExParam) -> Option<bool> {
     };
     s.axes.get(index).map(|a| a.flags.contains(flag))
 }
+
+#[cfg(test)]
+mod tests {
+    use axes::status::{AxisStatus, Snapshot};
+    use axes::AxisFlags;
+
+    use super::*;
+
+    /// A snapshot at tick `tick` (1 ms period) of two axes, axis 1 `moving`, DI2 at `di2`.
+    fn snapshot(tick: u64, moving: bool, di2: bool) -> Snapshot {
+        let mut s = Snapshot {
+            tick,
+            period: 1e-3,
+            ..Snapshot::default()
+        };
+        let mut a = AxisStatus::default();
+        a.flags.put(AxisFlags::MOVING, moving);
+        s.axes = vec![AxisStatus::default(), a];
+        s.io.di = vec![false, false, di2];
+        s.io.do_ = vec![true; 8];
+        s
+    }
+
+    fn stops(c: &[Command]) -> usize {
+        c.iter()
+            .filter(|c| matches!(c, Command::Axis(axes::command::AxisCommand::Stop(_))))
+            .count()
+    }
+
+    /// TV71 on the virtual clock: quiet until 500 ms after the last request, then both axes
+    /// stop and DO group 0 is written, once; a request re-arms it.
+    #[test]
+    fn the_watchdog_fires_once_per_silence_on_the_virtual_clock() {
+        let mut st = AxState {
+            watchdog: Some(Watchdog {
+                timeout: 0.5,
+                stop_mode: 1,
+                do_start: 0,
+                do_value: 0,
+                fired: false,
+            }),
+            ..AxState::default()
+        };
+        st.heard(0.1);
+        assert!(st.due(&snapshot(599, true, false), &[]).is_empty());
+        let fired = st.due(&snapshot(600, true, false), &[]);
+        assert_eq!(stops(&fired), 2);
+        assert_eq!(fired.len(), 2 + 8, "8 outputs of group 0 written");
+        assert!(st.due(&snapshot(2000, true, false), &[]).is_empty());
+        st.heard(2.0);
+        assert!(st.due(&snapshot(2499, true, false), &[]).is_empty());
+        assert_eq!(stops(&st.due(&snapshot(2500, true, false), &[])), 2);
+    }
+
+    /// An advanced E-stop group: DI2 high for the filter's 5 ms stops axis 1 (still or not,
+    /// once at the edge); while it stays high only a moving axis is stopped again.
+    #[test]
+    fn an_estop_group_fires_after_its_filter_time() {
+        let mut st = AxState::default();
+        st.estop_ex[0] = Some(EstopEx {
+            param: EstopExParam {
+                ax_mask: 0b10,
+                di_type: 0,
+                di_index: 2,
+                filter: 5,
+                di_sense: 1,
+            },
+            active_since: None,
+            fired: false,
+        });
+        assert!(st.armed());
+        assert!(st.due(&snapshot(10, false, true), &[]).is_empty());
+        assert!(st.due(&snapshot(14, false, true), &[]).is_empty());
+        assert_eq!(stops(&st.due(&snapshot(15, false, true), &[])), 1);
+        assert!(st.due(&snapshot(16, false, true), &[]).is_empty());
+        assert_eq!(stops(&st.due(&snapshot(17, true, true), &[])), 1);
+        assert!(st.due(&snapshot(18, true, false), &[]).is_empty());
+    }
+}
