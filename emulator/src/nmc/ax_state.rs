@@ -15,7 +15,7 @@ use axes::AxisFlags;
 use mcemu_dialects::nmc::{acceleration_to_engine, velocity_to_engine};
 use mcemu_nmc::ax_structs::{DacMotor, EstopExParam, PidPara, ESTOP_DI_EX_CH_NUM};
 
-use super::service::{pulses, scale_of, AxisSettings};
+use mcemu_dialects::PulseScale;
 
 /// `NMC_SetWatchDog`: after `timeout` seconds without a request, stop the axes (abruptly for
 /// stopMode 1, with their stop deceleration for 0) and write `do_value` to DO group `group`
@@ -47,6 +47,18 @@ pub struct EstopEx {
     pub active_since: Option<f64>,
     /// Its level has held for the filter time since it last came.
     pub fired: bool,
+}
+
+/// What a passed PTP compare needs of its axis's move (from the service's settings): a jog
+/// (keeps its direction) or a PTP move to `target` pulses; its acceleration and deceleration
+/// (pulse/ms²); the axis's pulse scale.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MoveSettings {
+    pub jog: bool,
+    pub target: i64,
+    pub acc: f64,
+    pub dec: f64,
+    pub scale: PulseScale,
 }
 
 /// `NMC_MtSetPtpComparePara`: when the axis's planned position passes `pos` (pulses) moving
@@ -199,11 +211,11 @@ impl AxState {
     /// The commands the guards call for in snapshot `s` (empty: nothing to do). An E-stop
     /// input reaching its level stops its axes (latching BIT_AXIS_ESTP); while it stays there,
     /// a move started anyway is stopped too.
-    /// `settings`: the axes' NMC settings (the moves a passed PTP compare changes).
-    pub fn due(&mut self, s: &Snapshot, settings: &[AxisSettings]) -> Vec<Command> {
+    /// `moves`: each axis's move (what a passed PTP compare changes).
+    pub fn due(&mut self, s: &Snapshot, moves: &[MoveSettings]) -> Vec<Command> {
         let now = seconds(s);
         let mut out = Vec::new();
-        self.ptp_compares_due(s, settings, &mut out);
+        self.ptp_compares_due(s, moves, &mut out);
         // Per axis: held at an E-stop level; reached it just now.
         let mut estop = vec![false; s.axes.len()];
         let mut edge = vec![false; s.axes.len()];
@@ -294,47 +306,46 @@ impl AxState {
 impl AxState {
     /// The PTP compares whose position the moving axis has passed: the move goes on at the new
     /// velocity (a jog keeps its direction), from the tick the watcher sees it.
-    fn ptp_compares_due(
-        &mut self,
-        s: &Snapshot,
-        settings: &[AxisSettings],
-        out: &mut Vec<Command>,
-    ) {
+    fn ptp_compares_due(&mut self, s: &Snapshot, moves: &[MoveSettings], out: &mut Vec<Command>) {
         for (&axis, p) in &mut self.ptp_compare {
-            let (Some(a), Some(set)) = (s.axes.get(axis), settings.get(axis)) else {
+            let (Some(a), Some(m)) = (s.axes.get(axis), moves.get(axis)) else {
                 continue;
             };
             if !p.active || !a.flags.contains(AxisFlags::MOVING) {
                 continue;
             }
-            let scale = scale_of(s, axis);
-            let here = pulses(scale, a.cmd_pos);
+            let here = m.scale.from_engine(a.cmd_pos);
             let passed = if p.dir == 1 {
-                here >= p.pos
+                here >= p.pos as f64
             } else {
-                here <= p.pos
+                here <= p.pos as f64
             };
             if !passed {
                 continue;
             }
             (p.active, p.out) = (false, true);
-            let command: Command = if set.prf_mode == MT_JOG_PRF_MODE {
+            let (axis, scale) = (axis as u16, m.scale);
+            let (acc, dec) = (
+                Some(acceleration_to_engine(scale, m.acc)),
+                Some(acceleration_to_engine(scale, m.dec)),
+            );
+            let command: Command = if m.jog {
                 MoveVelocity {
-                    axis: axis as u16,
+                    axis,
                     velocity: velocity_to_engine(scale, p.vel).copysign(a.cmd_vel),
-                    acceleration: Some(acceleration_to_engine(scale, set.jog.acc)),
-                    deceleration: Some(acceleration_to_engine(scale, set.jog.dec)),
+                    acceleration: acc,
+                    deceleration: dec,
                     jerk: None,
                     buffer_mode: BufferMode::Aborting,
                 }
                 .into()
             } else {
                 MoveAbsolute {
-                    axis: axis as u16,
-                    position: scale.to_engine(set.target as f64),
+                    axis,
+                    position: scale.to_engine(m.target as f64),
                     velocity: Some(velocity_to_engine(scale, p.vel)),
-                    acceleration: Some(acceleration_to_engine(scale, set.ptp.acc)),
-                    deceleration: Some(acceleration_to_engine(scale, set.ptp.dec)),
+                    acceleration: acc,
+                    deceleration: dec,
                     jerk: None,
                     buffer_mode: BufferMode::Aborting,
                 }
@@ -344,9 +355,6 @@ impl AxState {
         }
     }
 }
-
-/// `MT_JOG_PRF_MODE` (digest 001 §3.2).
-const MT_JOG_PRF_MODE: i16 = 1;
 
 /// The level of the input an advanced E-stop group watches: a general input, or a dedicated
 /// one of axis `di_index` (1 negative limit, 2 positive limit, 3 home, 4 index).

@@ -7,7 +7,32 @@ use std::future::Future;
 use std::sync::Arc;
 use std::time::Duration;
 
-use super::service::NmcService;
+use axes::status::Snapshot;
+
+use super::ax_state::MoveSettings;
+use super::service::{scale_of, NmcService};
+
+/// `MT_JOG_PRF_MODE` (digest 001 §3.2).
+const MT_JOG_PRF_MODE: i16 = 1;
+
+/// Each axis's move as a passed PTP compare changes it.
+fn moves(service: &NmcService, snapshot: &Snapshot) -> Vec<MoveSettings> {
+    let settings = service.settings();
+    settings
+        .iter()
+        .enumerate()
+        .map(|(axis, s)| {
+            let jog = s.prf_mode == MT_JOG_PRF_MODE;
+            MoveSettings {
+                jog,
+                target: s.target,
+                acc: if jog { s.jog.acc } else { s.ptp.acc },
+                dec: if jog { s.jog.dec } else { s.ptp.dec },
+                scale: scale_of(snapshot, axis),
+            }
+        })
+        .collect()
+}
 
 const ARMED: Duration = Duration::from_millis(1);
 const IDLE: Duration = Duration::from_millis(20);
@@ -25,8 +50,8 @@ pub async fn watch(service: Arc<NmcService>, stop: impl Future<Output = ()>) {
             continue;
         }
         let snapshot = service.engine.snapshot();
-        let settings = service.settings().clone();
-        let commands = service.ax().due(&snapshot, &settings);
+        let moves = moves(&service, &snapshot);
+        let commands = service.ax().due(&snapshot, &moves);
         if !commands.is_empty() {
             // A refusal (an axis already stopped, disabled) changes nothing the next look
             // would not see again.
