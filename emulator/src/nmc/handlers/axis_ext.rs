@@ -2,7 +2,7 @@
 //! redefining positions, the home and alarm-clear levels, the inputs' electrical levels and
 //! the planning period (digest 001 §2.3–§2.5, §2.8, §2.20, §3.4, §3.6).
 
-use axes::command::{Command, PositionFrame, Reset, SetParameter, SetPosition};
+use axes::command::{PositionFrame, Reset, SetPosition};
 use axes::param::ParamId;
 use axes::AxisFlags;
 use mcemu_dialects::nmc::{axis_status, velocity_from_engine, AxisExtra};
@@ -281,12 +281,7 @@ fn mt_home_sns(c: &mut Call<'_>) -> Result<(), Refusal> {
     if !(0..=1).contains(&sns) {
         return Err(Refusal::range("sns", sns, "{0 low, 1 high}"));
     }
-    c.command(Command::from(SetParameter {
-        axis: axis as u16,
-        name: ParamId::HomeInvert,
-        value: f64::from(1 - sns),
-        lenient: false,
-    }));
+    super::axis_config::set(c, axis, ParamId::HomeInvert, f64::from(1 - sns));
     Ok(())
 }
 

@@ -6,11 +6,11 @@
 //! `NMC_MtGetAxisPos`; the encoder coefficient scales `NMC_MtGetEncPos`; the planning
 //! coefficient is kept and read back. `NMC_SaveMotionConfig` is served here too.
 
-use axes::command::{Command, SetParameter};
 use axes::param::ParamId;
 use mcemu_nmc::ax_structs::{DacMotor, PidPara};
 use mcemu_nmc::table::{self, Function};
 
+use super::axis_config::set;
 use super::sync_args::axis_number;
 use crate::nmc::service::{Call, Handler, Refusal};
 
@@ -32,15 +32,6 @@ pub const HANDLERS: &[(Function, Handler)] = &[
     (table::MT_GET_ENC_COE, mt_get_enc_coe),
     (table::SAVE_MOTION_CONFIG, save_motion_config),
 ];
-
-fn set(c: &mut Call<'_>, axis: usize, name: ParamId, value: f64) {
-    c.command(Command::from(SetParameter {
-        axis: axis as u16,
-        name,
-        value,
-        lenient: false,
-    }));
-}
 
 /// 0 pulse output (open loop, the default), 1 DA closed loop.
 fn mt_set_ctrl_mode(c: &mut Call<'_>) -> Result<(), Refusal> {
