@@ -334,3 +334,95 @@ fn python_ctypes_drives_the_library() {
         output_report("nmc_ctypes.py", &out)
     );
 }
+
+/// The axis-level additions (family 0x13xx): StsMulti, StsPack12Ex, the Pack8 moves, SetAxisPos,
+/// SetEncPos, ZeroPos, HomeSns and the electrical motion-I/O levels, SvClr, TV64.
+#[test]
+fn axis_additions_packed_status_and_moves_tv64() {
+    example("ax_status.c");
+}
+
+/// TV71: the watchdog stops the jog and writes DO group 0 once the host stops calling.
+#[test]
+fn watchdog_fires_when_the_host_goes_quiet_tv71() {
+    example("watchdog.c");
+}
+
+/// The E-stop inputs, DI1 (per axis, active low) and DI2 (advanced group, active high), which
+/// this harness drives through the control API between the program's steps.
+#[test]
+fn estop_inputs_stop_the_axes() {
+    let dir = fresh_dir(env!("CARGO_TARGET_TMPDIR"), "nmc-estop-di");
+    let exe = compile_example("estop_di.c", &dir, &[]);
+    let m = Mcemu::start(Some(&gaochuan()), &[]);
+    let di = |channel: u16, value: bool| {
+        m.post_ok(
+            "/commands",
+            &json!({"type": "force_digital_input", "channel": channel, "value": value}),
+        );
+    };
+    di(1, true);
+    di(2, false);
+    let mut child = Command::new(&exe)
+        .env("MCEMU_NMC", m.address("nmc"))
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stdin = child.stdin.take().unwrap();
+    let mut lines = BufReader::new(child.stdout.take().unwrap()).lines();
+    for (line, (channel, value)) in [
+        ("jogging", (1, false)),
+        ("release", (1, true)),
+        ("jogging2", (2, true)),
+    ] {
+        assert_eq!(lines.next().unwrap().unwrap(), line);
+        di(channel, value);
+        writeln!(stdin, "{line}").unwrap();
+    }
+    assert_eq!(lines.next().unwrap().unwrap(), "ok");
+    assert!(child.wait().unwrap().success());
+}
+
+/// S-FOLLOW with TV59: the slave waits for the master to cross 50000, then 40000 per 60000.
+#[test]
+fn s_follow_tv59() {
+    example("s_follow.c");
+}
+
+/// PTP compare, PT parameters read back, the 2-D status alias, the damping compensation.
+#[test]
+fn ptp_compare_pt_para_and_aliases() {
+    example("ax_extras.c");
+}
+
+/// Closed loop and profile configuration: PID sets, DAC, TV67, TV70, the encoder coefficient.
+#[test]
+fn closed_loop_and_profile_config_tv67_tv70() {
+    example("closed_loop.c");
+}
+
+/// NMC_SaveMotionConfig: saved, reloaded by NMC_DevReset, and there after mcemu restarts on the
+/// same state directory.
+#[test]
+fn saved_motion_config_survives_a_restart() {
+    let dir = fresh_dir(env!("CARGO_TARGET_TMPDIR"), "nmc-motion-config");
+    let exe = compile_example("motion_config.c", &dir, &[]);
+    let state = dir.join("state");
+    let state_arg = state.to_str().unwrap();
+    for mode in ["save", "check"] {
+        let m = Mcemu::start(Some(&gaochuan()), &["--state-dir", state_arg]);
+        let mut command = Command::new(&exe);
+        command.arg(mode).env("MCEMU_NMC", m.address("nmc"));
+        let out = run_with_timeout(command, b"", PROGRAM_TIMEOUT);
+        let stdout = String::from_utf8_lossy(&out.stdout).to_string();
+        assert!(
+            out.status.success() && stdout.lines().last() == Some("ok"),
+            "{}",
+            output_report(mode, &out)
+        );
+        let exit = m.terminate();
+        assert!(exit.status.success(), "{exit:?}");
+    }
+    assert!(state.join("nmc/nmc.json").is_file());
+}

@@ -11,16 +11,23 @@
 //!   families keep between calls;
 //! - `crd`: the coordinate systems' state the engine's groups do not keep;
 //! - `handlers`: one file per family of the function table (`mcemu_nmc::table`);
+//! - `ax_state`, `ax_watch`: the axis-level additions' settings (family 0x13xx), and the
+//!   watchdog and E-stop inputs, judged on the virtual clock by a task of their own;
+//! - `saved_config`: `NMC_SaveMotionConfig`'s file in the state directory, applied at start
+//!   and on `NMC_DevReset`;
 //! - `stored`: settings the engine has no model of, kept and read back;
 //! - `laser_state`: the laser, SHIO and PWM settings (kept in `stored`);
 //! - `serve`: the transports (the kit's bounded accept loop on TCP, the same table on the Unix
 //!   socket), the connection loop over `mcemu_nmc::session`, the control-API handle.
 
+pub mod ax_state;
+mod ax_watch;
 pub mod config;
 pub mod crd;
 pub mod faults;
 mod handlers;
 pub mod laser_state;
+pub mod saved_config;
 pub mod serve;
 pub mod service;
 pub mod stored;

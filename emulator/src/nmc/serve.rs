@@ -98,6 +98,7 @@ fn section(
     max_connections: usize,
 ) -> (Arc<NmcFrontend>, Arc<ConnectionTable>) {
     let service = NmcService::new(cx.handle.clone(), device.clone(), io_counts(cx));
+    service.set_saving(cx.state_dir.cloned(), name);
     let connections = Arc::new(ConnectionCounters::default());
     let table = ConnectionTable::new(
         Bound {
@@ -126,6 +127,11 @@ async fn start_sections(
     let mut started = Vec::new();
     if let Some(c) = f.nmc.as_ref().filter(|c| c.enabled) {
         let (frontend, table) = section(cx, "nmc", &c.device, c.max_connections);
+        super::saved_config::restore_at_start(&frontend.service).await;
+        tasks.spawn(super::ax_watch::watch(
+            Arc::clone(&frontend.service),
+            stopped(cx.shutdown),
+        ));
         let listener = bind("nmc", c.bind)
             .await
             .map_err(|e| FrontendError::new("nmc", e))?;
@@ -160,6 +166,11 @@ async fn start_sections(
     }
     if let Some(c) = f.nmc_local.as_ref().filter(|c| c.enabled) {
         let (frontend, table) = section(cx, "nmc_local", &c.device, c.max_connections);
+        super::saved_config::restore_at_start(&frontend.service).await;
+        tasks.spawn(super::ax_watch::watch(
+            Arc::clone(&frontend.service),
+            stopped(cx.shutdown),
+        ));
         // A socket file left by an earlier run would make the bind fail.
         if std::fs::symlink_metadata(&c.path).is_ok_and(|m| {
             use std::os::unix::fs::FileTypeExt;

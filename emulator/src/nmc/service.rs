@@ -148,8 +148,13 @@ pub struct NmcService {
     crd: Mutex<[CrdState; CRD_COUNT]>,
     /// Settings the engine has no model of (pulse mode, filters, encoder modes).
     stored: Mutex<Stored>,
+    /// The axis-level additions' settings, the watchdog and the E-stop inputs.
+    ax: Mutex<super::ax_state::AxState>,
     /// `TCardInfo` counts (digest 001 §1.1).
     pub io_counts: [i16; 4],
+    /// Where `NMC_SaveMotionConfig` saves (`saved_config`), and the section's name (the
+    /// file's); set once when the section starts.
+    saving: std::sync::OnceLock<(Option<crate::state_dir::StateDir>, &'static str)>,
 }
 
 /// What `GET /state` shows of a refused call.
@@ -171,7 +176,9 @@ impl NmcService {
             sync: Mutex::new(Default::default()),
             crd: Mutex::new(std::array::from_fn(|_| CrdState::fresh())),
             stored: Mutex::new(Stored::default()),
+            ax: Mutex::new(Default::default()),
             io_counts,
+            saving: std::sync::OnceLock::new(),
         };
         service.reset_settings();
         Arc::new(service)
@@ -204,6 +211,24 @@ impl NmcService {
 
     pub fn stored(&self) -> MutexGuard<'_, Stored> {
         self.stored.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+
+    /// Set where the saved motion configuration lives (once, at start).
+    pub fn set_saving(&self, dir: Option<crate::state_dir::StateDir>, section: &'static str) {
+        let _ = self.saving.set((dir, section));
+    }
+
+    pub fn state_dir(&self) -> Option<&crate::state_dir::StateDir> {
+        self.saving.get().and_then(|(d, _)| d.as_ref())
+    }
+
+    /// The front-end section's name (`nmc`, `nmc_local`).
+    pub fn section(&self) -> &'static str {
+        self.saving.get().map_or("nmc", |(_, s)| s)
+    }
+
+    pub fn ax(&self) -> MutexGuard<'_, super::ax_state::AxState> {
+        self.ax.lock().unwrap_or_else(PoisonError::into_inner)
     }
 
     /// Serve one request with `handler` (the function's, from the handler tables; `None` if it
@@ -245,9 +270,12 @@ impl NmcService {
         let mut reply = Writer::new();
         let mut plan = Plan::default();
         {
+            let snapshot = self.engine.snapshot();
+            // Any request keeps the watchdog quiet (digest 001 §2.20, TV71).
+            self.ax().heard(super::ax_state::seconds(&snapshot));
             let mut call = Call {
                 service: self,
-                snapshot: self.engine.snapshot(),
+                snapshot,
                 input: Reader::new(payload),
                 output: &mut reply,
                 plan: &mut plan,

@@ -216,6 +216,67 @@ typedef struct {
     long reserved5;
 } TSHIOPara;
 
+/* Packed PTP moves, NMC_MtMovePtpAbsPack8 / NMC_MtMovePtpRelPack8 (digest 001 §3.6). */
+typedef struct {
+    short axisMask;
+    short clrStsFlag;
+    short reserved[2];
+    double acc[8];
+    double dec[8];
+    double startVel[8];
+    double endVel[8];
+    double maxVel[8];
+    short smoothCoef[8];
+    long tgtPos[8];
+} TMovePtpPack8;
+
+/* Packed status of 12 axes, NMC_MtGetStsPack12Ex (digest 001 §3.4). */
+typedef struct {
+    short mtSts[12];
+    short mtMio[12];
+    short mtMioLog[12];
+    long mtPrfPos[12];
+    long mtEncPos[12];
+    float mtPrfVel[12];
+    short crdSts[2];
+    float crdPrfVel[2];
+    long crdUserSeg[2];
+    long crdFreeSpace[2];
+    long crdUsedSpace[2];
+    long gpi;
+    long gpo;
+    long crdLeftLen[2];
+    long crdAllCmdCnt[2];
+    long extDi[6];
+    long extDo[6];
+    short adc[4];
+    short adcAux[2];
+    short dac[4];
+    short dacAux[2];
+    long reserved[10];
+} TAxisStsPack12Ex;
+
+/* Advanced E-stop inputs, NMC_SetEstopDIEx (digest 001 §3.6); the group count is mcemu's. */
+#define ESTOP_DI_EX_CH_NUM 4
+typedef struct {
+    short axMask;
+    short diType;
+    short diIndex;
+    short filter;
+    long diSense;
+    long reserved[3];
+} TEstopExParam;
+
+/* Follow masters, NMC_MtFollowSetMaster (digest 001 §3.17). */
+#define PROFILE_FOLLOW_MASTER_NONE     (0)
+#define PROFILE_FOLLOW_MASTER_AXIS_PRF (1)
+#define PROFILE_FOLLOW_MASTER_AXIS_ENC (2)
+#define PROFILE_FOLLOW_MASTER_ENC      (3)
+
+/* Closed loop, NMC_MtSetCloseLoopDac / NMC_MtSetPIDPara (digest 001 §3.17). */
+typedef struct { short inverse; short bias; short dacLmt; } TDacMotor;
+typedef struct { float kp; float ki; float kd; float kvff; long integralLimit; long derivativeLimit; short outLimit; } TPidPara;
+
 /* Coordinate system (digest 001 §3.7, §3.8, §3.10). */
 #define BIT_CORD_BUSY           0x00000001
 #define BIT_CORD_MVERR          0x00000002
@@ -498,6 +559,59 @@ short NMC_Set2DCompensationTable(HAND devHandle, short tableIndex, T2DCompensati
 short NMC_Get2DCompensationTable(HAND devHandle, short tableIndex, T2DCompensationTable *pTable, TCompData *pData);
 short NMC_Set2DCompensation(HAND devHandle, T2DCompensation *pComp);
 short NMC_Get2DCompensation(HAND devHandle, T2DCompensation *pComp);
+short NMC_MtGetStsMulti(HAND firstAxisHandle, short *pStsArray, short count, unsigned long *pClock);
+short NMC_MtGetStsPack12Ex(HAND axisFirstHandle, TAxisStsPack12Ex *pPackSts);
+short NMC_MtMovePtpAbsPack8(HAND axisFirstHandle, TMovePtpPack8 *pPackData);
+short NMC_MtMovePtpRelPack8(HAND axisFirstHandle, TMovePtpPack8 *pPackData);
+short NMC_MtSetAxisPos(HAND axisHandle, long axisPos);
+short NMC_MtSetEncPos(HAND axisHandle, long encPos);
+short NMC_MtZeroPos(HAND axisHandle);
+short NMC_MtSetSvClr(HAND axisHandle, short swt);
+short NMC_MtHomeSns(HAND axisHandle, short sns);
+short NMC_MtSetEstopDI(HAND axisHandle, short gpiIndex, short sense);
+short NMC_MtGetEstopDI(HAND axisHandle, short *gpiIndex, short *sense);
+short NMC_MtGetMotionIOLogical(HAND axisHandle, long *pIoValue);
+short NMC_SetProfilePeriod(HAND devHandle, short period);
+short NMC_GetProfilePeriod(HAND devHandle, short *pPeriod);
+short NMC_SetWatchDog(HAND devHandle, long timeout, short stopMode, short groupID, long doValue);
+short NMC_SetEstopDIEx(HAND devHandle, TEstopExParam *pParam, short group);
+short NMC_GetEstopDIEx(HAND devHandle, TEstopExParam *pParam, short group);
+short NMC_ClrEstopDIEx(HAND devHandle, short group);
+short NMC_MtFollowSetMaster(HAND axisHandle, short masterNo, short masterType);
+short NMC_MtFollowGetMaster(HAND axisHandle, short *pMasterNo, short *pMasterType);
+short NMC_MtFollowSetEvent(HAND axisHandle, short eventType, short masterDir, long pos);
+short NMC_MtFollowGetEvent(HAND axisHandle, short *pEventType, short *pMasterDir, long *pPos);
+short NMC_MtFollowSetDir(HAND axisHandle, short dir);
+short NMC_MtFollowGetDir(HAND axisHandle, short *pDir);
+short NMC_MtFollowSetLoopCount(HAND axisHandle, long loopCnt);
+short NMC_MtFollowGetLoopCount(HAND axisHandle, long *pLoopCnt);
+short NMC_MtFollowPushData(HAND axisHandle, long masterPos, double slavePos, short segType, short fifoNo);
+short NMC_MtFollowGetSpace(HAND axisHandle, short *pSpace, short fifoNo);
+short NMC_MtFollowClear(HAND axisHandle, short fifoNo);
+short NMC_MtFollowStart(HAND axisHandle, short syncAxCnts, short *pSyncAxArray);
+short NMC_MtFollowSwitch(HAND axisHandle, short syncAxCnts, short *pSyncAxArray);
+short NMC_MtPtStartMtnEx(HAND axisHandle, short diIndex, short diSns);
+short NMC_MtPtGetPara(HAND axisHandle, TPtPara *pPara);
+short NMC_MtSetPtpComparePara(HAND axisHandle, short dir, long comparaPos, double upDateVel);
+short NMC_MtGetPtpCompareSts(HAND axisHandle, short *pIsCompareActive, short *pIsCompareOut);
+short NMC_Comp2DimensStatus(HAND devHandle, short group, TComp2DimensSts *pStatus, short chn);
+short NMC_MtSetAxisDampCompParam(HAND axisHandle, short enable, short param1, short param2);
+short NMC_MtSetCtrlMode(HAND axisHandle, short mode);
+short NMC_MtGetCtrlMode(HAND axisHandle, short *pMode);
+short NMC_MtSetPIDPara(HAND axisHandle, short index, TPidPara *pidPara);
+short NMC_MtGetPIDPara(HAND axisHandle, short index, TPidPara *pPidPara);
+short NMC_MtSetPIDIndex(HAND axisHandle, short index);
+short NMC_MtGetPIDIndex(HAND axisHandle, short *pIndex);
+short NMC_MtSetCloseLoopDac(HAND axisHandle, TDacMotor *pDacPara);
+short NMC_MtGetCloseLoopDac(HAND axisHandle, TDacMotor *pDacPara);
+short NMC_SetCloseLoopDac(HAND axisHandle, TDacMotor *pDacPara);
+short NMC_MtPrfConfig(HAND axisHandle, short mapAxisNo, short port, long startPos);
+short NMC_MtGetPrfConfig(HAND axisHandle, short *mapAxisNo, short *port, long *startPos);
+short NMC_MtSetPrfCoe(HAND axisHandle, double inCoe);
+short NMC_MtGetPrfCoe(HAND axisHandle, double *inCoe);
+short NMC_MtSetEncCoe(HAND axisHandle, double encCoe);
+short NMC_MtGetEncCoe(HAND axisHandle, double *pEncCoe);
+short NMC_SaveMotionConfig(HAND devHandle, short enable);
 short NMC_LaserSetMode(HAND devHandle, short mode, short ch);
 short NMC_LaserSetModes(HAND devHandle, short mode, short ch);
 short NMC_LaserSetOutputTypeEx(HAND devHandle, short outputType, short index, double optionVal, short ch);

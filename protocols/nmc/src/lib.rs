@@ -16,12 +16,16 @@
 //! - [`laser`]: the laser and SHIO structs (`TTimeArrayPara`, `TLaserPower`, `TSHIOPara`) and
 //!   their header text;
 //! - [`axis_config`]: `TSafePara` as the wire carries it;
+//! - [`ax_structs`], [`ax_header`]: the packed status and PTP structs and the advanced E-stop
+//!   input of the axis-level additions (family 0x13xx);
 //! - [`crd`]: the coordinate-system structs (`TCrdConfig` …) and their C declarations;
 //! - [`errors`]: the return codes of `mtn_lib20_err.h` (not in the manual: mcemu's, stable);
 //! - [`header`]: the C headers generated from the table (checked against the committed ones);
 //! - [`handle`]: what a `HAND` encodes (kind, library slot, axis number);
 //! - [`session`]: the server side of one connection (version negotiation, then requests).
 
+pub mod ax_header;
+pub mod ax_structs;
 pub mod axis_config;
 pub mod crd;
 pub mod errors;

@@ -8,7 +8,9 @@
 //! status and servo, 0x03xx PTP/JOG/stop, 0x04xx homing, 0x05xx I/O, 0x06xx coordinate
 //! systems, 0x07xx basic axis configuration, 0x08xx Appendix A aliases, 0x09xx analog I/O,
 //! 0x0Axx EtherCAT, 0x0Bxx user parameters, 0x0Cxx gear, 0x0Dxx PT/PVT, 0x0Exx capture, 0x0Fxx
-//! compare, 0x10xx gantry and handwheel, 0x11xx compensation, 0x15xx laser, SHIO and PWM).
+//! compare, 0x10xx gantry and handwheel, 0x11xx compensation, 0x13xx axis-level additions:
+//! packed status and moves, positions, E-stop inputs, watchdog, planning period, 0x15xx laser,
+//! SHIO and PWM).
 
 /// A C argument kind, as the manual writes it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -384,6 +386,66 @@ functions! {
     GET_2D_COMPENSATION_TABLE = 0x1106 Server Main NMC_Get2DCompensationTable(In Hand => devHandle, In Short => tableIndex, Out Struct("T2DCompensationTable") => pTable, Out StructArray("TCompData") => pData);
     SET_2D_COMPENSATION = 0x1107 Server Main NMC_Set2DCompensation(In Hand => devHandle, In Struct("T2DCompensation") => pComp);
     GET_2D_COMPENSATION = 0x1108 Server Main NMC_Get2DCompensation(In Hand => devHandle, Out Struct("T2DCompensation") => pComp);
+    // ---- axis-level additions: packed status and moves, positions, E-stop inputs, watchdog,
+    // planning period (digest 001 §2.3-§2.5, §2.8, §2.20, §3.4, §3.6) ----
+    MT_GET_STS_MULTI = 0x1301 Server Main NMC_MtGetStsMulti(In Hand => firstAxisHandle, Out ShortArray => pStsArray, In Short => count, Out ULong => pClock);
+    MT_GET_STS_PACK12_EX = 0x1302 Server Main NMC_MtGetStsPack12Ex(In Hand => axisFirstHandle, Out Struct("TAxisStsPack12Ex") => pPackSts);
+    MT_MOVE_PTP_ABS_PACK8 = 0x1303 Server Main NMC_MtMovePtpAbsPack8(In Hand => axisFirstHandle, In Struct("TMovePtpPack8") => pPackData);
+    MT_MOVE_PTP_REL_PACK8 = 0x1304 Server Main NMC_MtMovePtpRelPack8(In Hand => axisFirstHandle, In Struct("TMovePtpPack8") => pPackData);
+    MT_SET_AXIS_POS = 0x1305 Server Main NMC_MtSetAxisPos(In Hand => axisHandle, In Long => axisPos);
+    MT_SET_ENC_POS = 0x1306 Server Main NMC_MtSetEncPos(In Hand => axisHandle, In Long => encPos);
+    MT_ZERO_POS = 0x1307 Server Main NMC_MtZeroPos(In Hand => axisHandle);
+    MT_SET_SV_CLR = 0x1308 Server Main NMC_MtSetSvClr(In Hand => axisHandle, In Short => swt);
+    MT_HOME_SNS = 0x1309 Server Main NMC_MtHomeSns(In Hand => axisHandle, In Short => sns);
+    MT_SET_ESTOP_DI = 0x130A Server Main NMC_MtSetEstopDI(In Hand => axisHandle, In Short => gpiIndex, In Short => sense);
+    MT_GET_ESTOP_DI = 0x130B Server Main NMC_MtGetEstopDI(In Hand => axisHandle, Out Short => gpiIndex, Out Short => sense);
+    MT_GET_MOTION_IO_LOGICAL = 0x130C Server Main NMC_MtGetMotionIOLogical(In Hand => axisHandle, Out Long => pIoValue);
+    SET_PROFILE_PERIOD = 0x130D Server Main NMC_SetProfilePeriod(In Hand => devHandle, In Short => period);
+    GET_PROFILE_PERIOD = 0x130E Server Main NMC_GetProfilePeriod(In Hand => devHandle, Out Short => pPeriod);
+    SET_WATCH_DOG = 0x130F Server Main NMC_SetWatchDog(In Hand => devHandle, In Long => timeout, In Short => stopMode, In Short => groupID, In Long => doValue);
+    SET_ESTOP_DI_EX = 0x1310 Server Main NMC_SetEstopDIEx(In Hand => devHandle, In Struct("TEstopExParam") => pParam, In Short => group);
+    GET_ESTOP_DI_EX = 0x1311 Server Main NMC_GetEstopDIEx(In Hand => devHandle, Out Struct("TEstopExParam") => pParam, In Short => group);
+    CLR_ESTOP_DI_EX = 0x1312 Server Main NMC_ClrEstopDIEx(In Hand => devHandle, In Short => group);
+    // ---- electronic cam "Follow" (digest 001 §2.17, S-FOLLOW, TV59) ----
+    MT_FOLLOW_SET_MASTER = 0x1320 Server Main NMC_MtFollowSetMaster(In Hand => axisHandle, In Short => masterNo, In Short => masterType);
+    MT_FOLLOW_GET_MASTER = 0x1321 Server Main NMC_MtFollowGetMaster(In Hand => axisHandle, Out Short => pMasterNo, Out Short => pMasterType);
+    MT_FOLLOW_SET_EVENT = 0x1322 Server Main NMC_MtFollowSetEvent(In Hand => axisHandle, In Short => eventType, In Short => masterDir, In Long => pos);
+    MT_FOLLOW_GET_EVENT = 0x1323 Server Main NMC_MtFollowGetEvent(In Hand => axisHandle, Out Short => pEventType, Out Short => pMasterDir, Out Long => pPos);
+    MT_FOLLOW_SET_DIR = 0x1324 Server Main NMC_MtFollowSetDir(In Hand => axisHandle, In Short => dir);
+    MT_FOLLOW_GET_DIR = 0x1325 Server Main NMC_MtFollowGetDir(In Hand => axisHandle, Out Short => pDir);
+    MT_FOLLOW_SET_LOOP_COUNT = 0x1326 Server Main NMC_MtFollowSetLoopCount(In Hand => axisHandle, In Long => loopCnt);
+    MT_FOLLOW_GET_LOOP_COUNT = 0x1327 Server Main NMC_MtFollowGetLoopCount(In Hand => axisHandle, Out Long => pLoopCnt);
+    MT_FOLLOW_PUSH_DATA = 0x1328 Server Main NMC_MtFollowPushData(In Hand => axisHandle, In Long => masterPos, In Double => slavePos, In Short => segType, In Short => fifoNo);
+    MT_FOLLOW_GET_SPACE = 0x1329 Server Main NMC_MtFollowGetSpace(In Hand => axisHandle, Out Short => pSpace, In Short => fifoNo);
+    MT_FOLLOW_CLEAR = 0x132A Server Main NMC_MtFollowClear(In Hand => axisHandle, In Short => fifoNo);
+    MT_FOLLOW_START = 0x132B Server Main NMC_MtFollowStart(In Hand => axisHandle, In Short => syncAxCnts, In ShortArray => pSyncAxArray);
+    MT_FOLLOW_SWITCH = 0x132C Server Main NMC_MtFollowSwitch(In Hand => axisHandle, In Short => syncAxCnts, In ShortArray => pSyncAxArray);
+    // ---- PT start on an input, PT parameters read back, PTP compare, damping (digest 001
+    // §2.3, §2.5, §2.8, §2.11, §2.13; Appendix A) ----
+    MT_PT_START_MTN_EX = 0x1340 Server Main NMC_MtPtStartMtnEx(In Hand => axisHandle, In Short => diIndex, In Short => diSns);
+    MT_PT_GET_PARA = 0x1341 Server Main NMC_MtPtGetPara(In Hand => axisHandle, Out Struct("TPtPara") => pPara);
+    MT_SET_PTP_COMPARE_PARA = 0x1342 Server Main NMC_MtSetPtpComparePara(In Hand => axisHandle, In Short => dir, In Long => comparaPos, In Double => upDateVel);
+    MT_GET_PTP_COMPARE_STS = 0x1343 Server Main NMC_MtGetPtpCompareSts(In Hand => axisHandle, Out Short => pIsCompareActive, Out Short => pIsCompareOut);
+    COMP_2DIMENS_STATUS = 0x1344 Server Main NMC_Comp2DimensStatus(In Hand => devHandle, In Short => group, Out Struct("TComp2DimensSts") => pStatus, In Short => chn);
+    MT_SET_AXIS_DAMP_COMP_PARAM = 0x1345 Server Main NMC_MtSetAxisDampCompParam(In Hand => axisHandle, In Short => enable, In Short => param1, In Short => param2);
+    // ---- closed loop, profile configuration, saved motion configuration (digest 001 §1.5,
+    // §2.2, §2.15, §2.20) ----
+    MT_SET_CTRL_MODE = 0x1350 Server Main NMC_MtSetCtrlMode(In Hand => axisHandle, In Short => mode);
+    MT_GET_CTRL_MODE = 0x1351 Server Main NMC_MtGetCtrlMode(In Hand => axisHandle, Out Short => pMode);
+    MT_SET_PID_PARA = 0x1352 Server Main NMC_MtSetPIDPara(In Hand => axisHandle, In Short => index, In Struct("TPidPara") => pidPara);
+    MT_GET_PID_PARA = 0x1353 Server Main NMC_MtGetPIDPara(In Hand => axisHandle, In Short => index, Out Struct("TPidPara") => pPidPara);
+    MT_SET_PID_INDEX = 0x1354 Server Main NMC_MtSetPIDIndex(In Hand => axisHandle, In Short => index);
+    MT_GET_PID_INDEX = 0x1355 Server Main NMC_MtGetPIDIndex(In Hand => axisHandle, Out Short => pIndex);
+    MT_SET_CLOSE_LOOP_DAC = 0x1356 Server Main NMC_MtSetCloseLoopDac(In Hand => axisHandle, In Struct("TDacMotor") => pDacPara);
+    MT_GET_CLOSE_LOOP_DAC = 0x1357 Server Main NMC_MtGetCloseLoopDac(In Hand => axisHandle, Out Struct("TDacMotor") => pDacPara);
+    SET_CLOSE_LOOP_DAC = 0x1358 Server Main NMC_SetCloseLoopDac(In Hand => axisHandle, In Struct("TDacMotor") => pDacPara);
+    MT_PRF_CONFIG = 0x1359 Server Main NMC_MtPrfConfig(In Hand => axisHandle, In Short => mapAxisNo, In Short => port, In Long => startPos);
+    MT_GET_PRF_CONFIG = 0x135A Server Main NMC_MtGetPrfConfig(In Hand => axisHandle, Out Short => mapAxisNo, Out Short => port, Out Long => startPos);
+    MT_SET_PRF_COE = 0x135B Server Main NMC_MtSetPrfCoe(In Hand => axisHandle, In Double => inCoe);
+    MT_GET_PRF_COE = 0x135C Server Main NMC_MtGetPrfCoe(In Hand => axisHandle, Out Double => inCoe);
+    MT_SET_ENC_COE = 0x135D Server Main NMC_MtSetEncCoe(In Hand => axisHandle, In Double => encCoe);
+    MT_GET_ENC_COE = 0x135E Server Main NMC_MtGetEncCoe(In Hand => axisHandle, Out Double => pEncCoe);
+    SAVE_MOTION_CONFIG = 0x1360 Server Main NMC_SaveMotionConfig(In Hand => devHandle, In Short => enable);
     // ---- laser, SHIO and PWM (digest 001 §2.12, §3.20): N/A outputs, stored and echoed ----
     LASER_SET_MODE = 0x1501 Server Main NMC_LaserSetMode(In Hand => devHandle, In Short => mode, In Short => ch);
     LASER_SET_MODES = 0x1502 Server Main NMC_LaserSetModes(In Hand => devHandle, In Short => mode, In Short => ch);

@@ -76,9 +76,14 @@ fn mt_get_prf_pos(c: &mut Call<'_>) -> Result<(), Refusal> {
     position(c, |s| s.cmd_pos)
 }
 
-/// axisPos = prfPos + startPos; startPos (NMC_MtPrfConfig) is 0 until that family lands.
+/// axisPos = prfPos + startPos (`NMC_MtPrfConfig`, digest 001 §2.20, TV70).
 fn mt_get_axis_pos(c: &mut Call<'_>) -> Result<(), Refusal> {
-    position(c, |s| s.cmd_pos)
+    let axis = c.axis()?;
+    let scale = c.scale(axis);
+    let p = c.status(axis).map_or(0, |s| pulses(scale, s.cmd_pos));
+    let start = c.service.ax().axis_loop(axis).start_pos;
+    c.output.i64(p.saturating_add(start));
+    Ok(())
 }
 
 /// The pulses sent to the drive: planned position plus compensation (digest 001 §4.1).
@@ -86,10 +91,12 @@ fn mt_get_cmd_pos(c: &mut Call<'_>) -> Result<(), Refusal> {
     position(c, |s| s.output_pos)
 }
 
-/// The encoder counter (internal mode counts the axis's own pulses, digest 001 §4.1).
+/// The encoder counter (internal mode counts the axis's own pulses, digest 001 §4.1), as
+/// `NMC_MtSetEncPos` / `MtSetEncCoe` adjust its report (`ax_state::EncReport`).
 fn mt_get_enc_pos(c: &mut Call<'_>) -> Result<(), Refusal> {
     let axis = c.axis()?;
-    let p = c.status(axis).map_or(0, |s| s.encoder_counts);
+    let counts = c.status(axis).map_or(0, |s| s.encoder_counts);
+    let p = c.service.ax().enc_pos(axis, counts);
     c.output.i64(p);
     Ok(())
 }
@@ -122,6 +129,12 @@ fn mt_set_sv_off(c: &mut Call<'_>) -> Result<(), Refusal> {
 fn mt_get_motion_io(c: &mut Call<'_>) -> Result<(), Refusal> {
     let axis = c.axis()?;
     let f = c.status(axis).map_or(AxisFlags::empty(), |s| s.flags);
+    c.output.i64(motion_io(f));
+    Ok(())
+}
+
+/// The `NMC_MtGetMotionIO` bits of flags `f` (each input's active state).
+pub(super) fn motion_io(f: AxisFlags) -> i64 {
     let mut v = 0i64;
     for (bit, flag) in [
         (0, AxisFlags::HW_LIMIT_NEG),
@@ -135,6 +148,5 @@ fn mt_get_motion_io(c: &mut Call<'_>) -> Result<(), Refusal> {
             v |= 1 << bit;
         }
     }
-    c.output.i64(v);
-    Ok(())
+    v
 }

@@ -50,7 +50,7 @@ fn param(c: &Call<'_>, axis: usize, id: ParamId) -> f64 {
     c.snapshot.params.get(axis).map_or(0.0, |p| p.get(id))
 }
 
-fn set(c: &mut Call<'_>, axis: usize, name: ParamId, value: f64) {
+pub(super) fn set(c: &mut Call<'_>, axis: usize, name: ParamId, value: f64) {
     c.command(Command::from(SetParameter {
         axis: axis as u16,
         name,

@@ -227,7 +227,7 @@ fn onoff(c: &mut Call<'_>) -> Result<(), Refusal> {
 
 /// sts 1 busy / 0 idle, points not yet output, outputs so far; before a start the points
 /// written count as not yet output.
-fn status(c: &mut Call<'_>) -> Result<(), Refusal> {
+pub(super) fn status(c: &mut Call<'_>) -> Result<(), Refusal> {
     let g = group(c)?;
     chn(c)?;
     let k = c

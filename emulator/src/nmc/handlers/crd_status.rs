@@ -173,3 +173,21 @@ fn crd_get_buf_left_length(c: &mut Call<'_>) -> Result<(), Refusal> {
     c.output.f64(len);
     Ok(())
 }
+
+/// What `NMC_MtGetStsPack12Ex` shows of coordinate system `n` (digest 001 §3.4): status word,
+/// path velocity (pulse/ms), user segment, free and used entries, length left (pulses) and
+/// commands pushed.
+pub(super) fn packed(c: &Call<'_>, n: usize) -> (i16, f64, i64, i64, i64, i64, i64) {
+    let s = state(c, n);
+    let scale = path_scale(c, &s);
+    let g = group(c, n);
+    (
+        (word(c, n) & 0xFFF) as i16,
+        g.map_or(0.0, |g| velocity_from_engine(scale, g.path_velocity)),
+        user_seg(c, n),
+        free(c, n, &s) as i64,
+        used(c, n, &s) as i64,
+        g.map_or(0, |g| pulses(scale, g.remaining_length)),
+        s.pushed as i64,
+    )
+}

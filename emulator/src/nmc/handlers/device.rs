@@ -85,6 +85,9 @@ fn dev_reset(c: &mut Call<'_>) -> Result<(), Refusal> {
     });
     c.command(ResetAll {});
     c.service.reset_settings();
+    // "reset controller (reloads saved motion config)" (digest 001 §2.2).
+    let saved = crate::nmc::saved_config::restore(c.service);
+    c.plan.commands.extend(saved);
     Ok(())
 }
 

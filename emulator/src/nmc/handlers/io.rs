@@ -16,7 +16,7 @@ pub const HANDLERS: &[(Function, Handler)] = &[
 ];
 
 /// The first bit of group `group` of `count` bits.
-fn group_start(group: i16, count: usize) -> Result<usize, Refusal> {
+pub(super) fn group_start(group: i16, count: usize) -> Result<usize, Refusal> {
     let groups = count.div_ceil(32);
     usize::try_from(group)
         .ok()

@@ -31,8 +31,14 @@ mod pt;
 mod sync_args;
 
 mod user_para;
+// The axis-level additions (family 0x13xx).
+mod ax_guards;
+mod axis_ext;
+mod closed_loop;
+mod extras;
+mod follow;
 
-const FAMILIES: [&[(Function, Handler)]; 22] = [
+const FAMILIES: [&[(Function, Handler)]; 27] = [
     device::HANDLERS,
     axis::HANDLERS,
     motion::HANDLERS,
@@ -55,6 +61,11 @@ const FAMILIES: [&[(Function, Handler)]; 22] = [
     laser::HANDLERS,
     shio::HANDLERS,
     laser_buf::HANDLERS,
+    axis_ext::HANDLERS,
+    ax_guards::HANDLERS,
+    follow::HANDLERS,
+    extras::HANDLERS,
+    closed_loop::HANDLERS,
 ];
 
 /// The handler of function `id`.

@@ -286,9 +286,11 @@ fn smooth_stop(c: &Call<'_>, axis: usize) -> Command {
     .into()
 }
 
+/// On a Follow slave it ends the Follow (`follow_out`: the slave ramps to rest with its
+/// deceleration, digest 001 §2.17).
 fn mt_stop(c: &mut Call<'_>) -> Result<(), Refusal> {
     let axis = c.axis()?;
-    let stop = smooth_stop(c, axis);
+    let stop = super::follow::follow_out(c, axis).unwrap_or_else(|| smooth_stop(c, axis));
     c.command(stop);
     Ok(())
 }
@@ -339,8 +341,7 @@ fn read_ptp(c: &mut Call<'_>) -> Result<(PtpPara, f64), Refusal> {
         end_vel,
         smooth_coef: c.input.i16()?,
     };
-    check_ptp(&p)?;
-    non_negative("maxVel", vel)?;
+    check_ptp_move(&p, vel)?;
     Ok((p, vel))
 }
 
@@ -349,42 +350,63 @@ fn mt_move_ptp_abs(c: &mut Call<'_>) -> Result<(), Refusal> {
     let axis = c.axis()?;
     let (ptp, vel) = read_ptp(c)?;
     let target = c.input.i64()?;
-    let mut s = c.settings(axis);
-    (s.prf_mode, s.ptp, s.vel, s.target) = (MT_PTP_PRF_MODE, ptp, vel, target);
-    let commands = start(c, axis, &s)?;
-    c.update(axis, |now| *now = s);
+    let commands = ptp_move(c, axis, ptp, vel, target, false)?;
     c.plan.commands.extend(commands);
     Ok(())
 }
 
-/// The relative move runs as the engine's relative move (from where the plan is when the
-/// command applies); the stored target is that end point as seen now.
 fn mt_move_ptp_rel(c: &mut Call<'_>) -> Result<(), Refusal> {
     let axis = c.axis()?;
     let (ptp, vel) = read_ptp(c)?;
     let distance = c.input.i64()?;
-    let scale = c.scale(axis);
-    let mut s = c.settings(axis);
-    let here = c.status(axis).map_or(0, |st| pulses(scale, st.target_pos));
-    (s.prf_mode, s.ptp, s.vel) = (MT_PTP_PRF_MODE, ptp, vel);
-    s.target = here.saturating_add(distance);
-    let mut commands = start(c, axis, &s)?;
-    commands.pop();
-    commands.push(
-        MoveRelative {
-            axis: axis as u16,
-            distance: scale.to_engine(distance as f64),
-            velocity: Some(velocity_to_engine(scale, vel)),
-            acceleration: Some(acceleration_to_engine(scale, ptp.acc)),
-            deceleration: Some(acceleration_to_engine(scale, ptp.dec)),
-            jerk: None,
-            buffer_mode: BufferMode::Aborting,
-        }
-        .into(),
-    );
-    c.update(axis, |now| *now = s);
+    let commands = ptp_move(c, axis, ptp, vel, distance, true)?;
     c.plan.commands.extend(commands);
     Ok(())
+}
+
+/// The parameters of one PTP move as `NMC_MtMovePtpAbs/Rel` and the packed moves pass them.
+pub(super) fn check_ptp_move(p: &PtpPara, vel: f64) -> Result<(), Refusal> {
+    check_ptp(p)?;
+    non_negative("maxVel", vel)
+}
+
+/// The commands of one PTP move of axis `axis` to `pos` (`relative`: by `pos`), its settings
+/// kept as `NMC_MtGetPtpPara` / `GetPtpTgtPos` read them. The relative move runs as the
+/// engine's relative move (from where the plan is when the command applies); the stored target
+/// is that end point as seen now.
+pub(super) fn ptp_move(
+    c: &Call<'_>,
+    axis: usize,
+    ptp: PtpPara,
+    vel: f64,
+    pos: i64,
+    relative: bool,
+) -> Result<Vec<Command>, Refusal> {
+    let scale = c.scale(axis);
+    let mut s = c.settings(axis);
+    (s.prf_mode, s.ptp, s.vel, s.target) = (MT_PTP_PRF_MODE, ptp, vel, pos);
+    if relative {
+        let here = c.status(axis).map_or(0, |st| pulses(scale, st.target_pos));
+        s.target = here.saturating_add(pos);
+    }
+    let mut commands = start(c, axis, &s)?;
+    if relative {
+        commands.pop();
+        commands.push(
+            MoveRelative {
+                axis: axis as u16,
+                distance: scale.to_engine(pos as f64),
+                velocity: Some(velocity_to_engine(scale, vel)),
+                acceleration: Some(acceleration_to_engine(scale, ptp.acc)),
+                deceleration: Some(acceleration_to_engine(scale, ptp.dec)),
+                jerk: None,
+                buffer_mode: BufferMode::Aborting,
+            }
+            .into(),
+        );
+    }
+    c.update(axis, |now| *now = s);
+    Ok(commands)
 }
 
 /// acc, dec, maxVel (its sign the direction), smoothCoef, clrStsFlag (1: clear first).

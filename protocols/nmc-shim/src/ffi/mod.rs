@@ -19,13 +19,19 @@ use crate::last_error::report;
 use crate::registry;
 
 pub mod aliases;
+// The axis-level additions (packed status and moves, E-stop inputs, watchdog).
 pub mod analog;
+pub mod ax_types;
 pub mod axis;
 pub mod axis_config;
+pub mod axis_ext;
+pub mod closed_loop;
 pub mod crd;
 pub mod crd_types;
 pub mod device;
 pub mod ecat;
+pub mod extras;
+pub mod follow;
 pub mod home;
 pub mod io;
 pub mod laser;

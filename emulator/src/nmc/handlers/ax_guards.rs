@@ -1,0 +1,180 @@
+//! The guards that act without a call (digest 001 §2.3, §2.20): the per-axis E-stop input,
+//! the advanced E-stop input groups and the communication watchdog. The handlers only arm
+//! them in `ax_state`; `ax_watch` carries them out on the virtual clock (TV71).
+
+use mcemu_nmc::ax_structs::{EstopExParam, ESTOP_DI_EX_CH_NUM};
+use mcemu_nmc::table::{self, Function};
+
+use super::io::group_start;
+use crate::nmc::ax_state::{EstopDi, EstopEx, Watchdog};
+use crate::nmc::service::{Call, Handler, Refusal};
+
+pub const HANDLERS: &[(Function, Handler)] = &[
+    (table::MT_SET_ESTOP_DI, mt_set_estop_di),
+    (table::MT_GET_ESTOP_DI, mt_get_estop_di),
+    (table::SET_WATCH_DOG, set_watch_dog),
+    (table::SET_ESTOP_DI_EX, set_estop_di_ex),
+    (table::GET_ESTOP_DI_EX, get_estop_di_ex),
+    (table::CLR_ESTOP_DI_EX, clr_estop_di_ex),
+];
+
+fn level(name: &str, v: i64) -> Result<(), Refusal> {
+    if (0..=1).contains(&v) {
+        Ok(())
+    } else {
+        Err(Refusal::range(name, v, "{0 low, 1 high}"))
+    }
+}
+
+/// General input `gpiIndex` at level `sense` E-stops the axis (latching BIT_AXIS_ESTP);
+/// −1 cancels.
+fn mt_set_estop_di(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let axis = c.axis()?;
+    let (gpi, sense) = (c.input.i16()?, c.input.i16()?);
+    let inputs = c.snapshot.io.di.len();
+    if gpi == -1 {
+        c.service.ax().estop_di.remove(&axis);
+        return Ok(());
+    }
+    if usize::try_from(gpi).map_or(true, |i| i >= inputs) {
+        return Err(Refusal::range(
+            "gpiIndex",
+            gpi,
+            &format!("[0, {}] or −1 (none)", inputs.saturating_sub(1)),
+        ));
+    }
+    level("sense", i64::from(sense))?;
+    c.service.ax().estop_di.insert(
+        axis,
+        EstopDi {
+            gpi,
+            sense,
+            active: false,
+        },
+    );
+    Ok(())
+}
+
+/// −1 and 0 when none is set.
+fn mt_get_estop_di(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let axis = c.axis()?;
+    let e = c.service.ax().estop_di.get(&axis).copied();
+    let (gpi, sense) = e.map_or((-1, 0), |e| (e.gpi, e.sense));
+    c.output.i16(gpi).i16(sense);
+    Ok(())
+}
+
+/// timeout ms (≤ 0 off), stopMode 1 stop at once (the E-stop deceleration) / 0 stop with the
+/// axes' own deceleration (mcemu has no buffer to let run out, decisions.md), then doValue to
+/// DO group groupID. The countdown starts now; every request restarts it.
+fn set_watch_dog(c: &mut Call<'_>) -> Result<(), Refusal> {
+    c.device()?;
+    let (timeout, stop_mode) = (c.input.i64()?, c.input.i16()?);
+    let (group, do_value) = (c.input.i16()?, c.input.i64()?);
+    if timeout <= 0 {
+        c.service.ax().watchdog = None;
+        return Ok(());
+    }
+    if !(0..=1).contains(&stop_mode) {
+        return Err(Refusal::range(
+            "stopMode",
+            stop_mode,
+            "{0 after the buffer, 1 at once}",
+        ));
+    }
+    let do_start = group_start(group, c.snapshot.io.do_.len())?;
+    c.service.ax().watchdog = Some(Watchdog {
+        timeout: timeout as f64 / 1e3,
+        stop_mode,
+        do_start,
+        do_value,
+        fired: false,
+    });
+    Ok(())
+}
+
+fn ex_group(group: i16) -> Result<usize, Refusal> {
+    usize::try_from(group)
+        .ok()
+        .filter(|g| *g < ESTOP_DI_EX_CH_NUM)
+        .ok_or_else(|| {
+            Refusal::range(
+                "group",
+                group,
+                &format!("[0, {}] (ESTOP_DI_EX_CH_NUM − 1)", ESTOP_DI_EX_CH_NUM - 1),
+            )
+        })
+}
+
+/// An advanced E-stop input group: the axes of axMask stop (BIT_AXIS_ESTP) once the input has
+/// been at diSense for `filter` ms. diType 0 a general input; 1–4 the negative limit, positive
+/// limit, home or index input of axis diIndex, whose level is its active state.
+fn set_estop_di_ex(c: &mut Call<'_>) -> Result<(), Refusal> {
+    c.device()?;
+    let p = EstopExParam::read(&mut c.input)?;
+    let g = ex_group(c.input.i16()?)?;
+    let axes = c.snapshot.axes.len();
+    if p.ax_mask == 0 || (axes < 16 && (p.ax_mask as u16) >> axes != 0) {
+        return Err(Refusal::range(
+            "axMask",
+            format!("{:#x}", p.ax_mask),
+            &format!("bits 0 … {}, at least one", axes.saturating_sub(1)),
+        ));
+    }
+    let count = match p.di_type {
+        0 => c.snapshot.io.di.len(),
+        1..=4 => axes,
+        t => {
+            return Err(Refusal::range(
+                "diType",
+                t,
+                "{0 general, 1 negative limit, 2 positive limit, 3 home, 4 index}",
+            ))
+        }
+    };
+    if usize::try_from(p.di_index).map_or(true, |i| i >= count) {
+        return Err(Refusal::range(
+            "diIndex",
+            p.di_index,
+            &format!("[0, {}]", count.saturating_sub(1)),
+        ));
+    }
+    if !(0..=255).contains(&p.filter) {
+        return Err(Refusal::range("filter", p.filter, "[0, 255]"));
+    }
+    level("diSense", p.di_sense)?;
+    if let Some(slot) = c.service.ax().estop_ex.get_mut(g) {
+        *slot = Some(EstopEx {
+            param: p,
+            active_since: None,
+            fired: false,
+        });
+    }
+    Ok(())
+}
+
+/// All zeros for a group never set (or cleared).
+fn get_estop_di_ex(c: &mut Call<'_>) -> Result<(), Refusal> {
+    c.device()?;
+    let g = ex_group(c.input.i16()?)?;
+    let p = c
+        .service
+        .ax()
+        .estop_ex
+        .get(g)
+        .copied()
+        .flatten()
+        .map_or_else(EstopExParam::default, |e| e.param);
+    p.write(c.output);
+    Ok(())
+}
+
+/// Disarms the group; the axes' latched BIT_AXIS_ESTP stays until `NMC_MtClrError`.
+fn clr_estop_di_ex(c: &mut Call<'_>) -> Result<(), Refusal> {
+    c.device()?;
+    let g = ex_group(c.input.i16()?)?;
+    if let Some(slot) = c.service.ax().estop_ex.get_mut(g) {
+        *slot = None;
+    }
+    Ok(())
+}
