@@ -141,6 +141,7 @@ impl Groups {
             user_segment: 0,
             waiting: None,
             pending: None,
+            last_mergeable: false,
             staging: super::staging::Staging::new(self.config.spline_spans_per_tick),
             jog: None,
             last_error: None,
@@ -149,6 +150,10 @@ impl Groups {
             events: Vec::new(),
             interference: (InterferenceStatus::NotEnabled, 0.0),
         };
+        if g.result.is_some() {
+            // HMC's merge angles are on by default (digest 000 §3.4, TV 38: π/6 and π/2).
+            let _ = g.planner.set_corner_angles(Some(CornerAngles::HMC_DEFAULT));
+        }
         g.params_version = g
             .members
             .iter()
@@ -363,6 +368,7 @@ impl Group {
                         } else {
                             angles.stop = value;
                         }
+                        self.check_merge_angles(&angles)?;
                         self.planner.set_corner_angles(Some(angles)).map_err(|_| {
                             EngineError::InvalidArgument {
                                 name: "value",

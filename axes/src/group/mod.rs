@@ -15,7 +15,7 @@
 //! Files: `state` (the PLCopen Part 4 state machine and member checks), `queue` (the entries of
 //! the group queue), `segment` (commands → path segments), `staging` (splines under
 //! construction and the commands behind them), `commands` (each group command), `tick` (the
-//! per-tick work).
+//! per-tick work), `merge` (HMC merge from the result axis).
 
 use path::planner::{AxisLimits, PathLimits, PathPlanner, PlannerConfig};
 use path::{Point, MAX_AXES};
@@ -31,6 +31,7 @@ use crate::status::{
 mod commands;
 mod frames;
 mod jog;
+mod merge;
 mod protection;
 mod queue;
 mod segment;
@@ -143,6 +144,8 @@ pub struct Group {
     waiting: Option<Wait>,
     /// An aborting motion waiting for the path to come to rest.
     pending: Option<PendingMotion>,
+    /// The last motion queued is one HMC merges at its end (`merge`).
+    last_mergeable: bool,
     /// A spline under construction and the commands after it (`staging`).
     staging: staging::Staging,
     /// A jog in progress (the planner is idle meanwhile).

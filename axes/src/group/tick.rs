@@ -469,15 +469,18 @@ impl Group {
         } else {
             self.result_speed(env.axes)
         };
+        let join = self.merged_join(env.axes, request.join, &segment);
+        let mergeable = super::merge::mergeable(&segment);
         self.planner
             .push_motion(Motion {
                 segment,
                 limits: share.limits,
-                join: request.join,
+                join,
                 transition: request.transition,
                 tag: u64::from(id),
             })
             .map_err(|e| self.planner_error(e))?;
+        self.last_mergeable = mergeable;
         self.queue.push(Entry {
             id,
             item: Item::Motion {
