@@ -50,7 +50,7 @@ struct Building {
 enum Staged {
     Motion {
         id: CommandId,
-        request: PathRequest,
+        request: Box<PathRequest>,
     },
     Marker {
         id: CommandId,
@@ -117,7 +117,10 @@ impl Group {
         let take_id = |env: &mut Env| id.unwrap_or_else(|| env.ledger.allocate());
         if self.staging.is_busy() {
             let id = take_id(env);
-            self.staging.after.push_back(Staged::Motion { id, request });
+            self.staging.after.push_back(Staged::Motion {
+                id,
+                request: Box::new(request),
+            });
             return Ok(id);
         }
         self.sync_position(env)?;
@@ -215,7 +218,7 @@ impl Group {
                 Staged::Marker { id, item, kind } => {
                     self.push_marker(id, item, kind).map_err(|e| (id, e))
                 }
-                Staged::Motion { id, request } => self.release_motion(env, id, request),
+                Staged::Motion { id, request } => self.release_motion(env, id, *request),
             };
             match result {
                 Ok(()) if self.staging.is_busy() => return,
