@@ -74,6 +74,10 @@ pub struct GroupsConfig {
     /// Segments the look-ahead plans over when `group_create` gives no `lookahead`: 1 up to the
     /// queue capacity (default 64).
     pub lookahead: u32,
+    /// Spline spans a group constructs per servo tick, and at most per `move_spline` applied:
+    /// 1–1000 (default 8). A longer spline starts that many ticks later, so the tick's work
+    /// stays bounded.
+    pub spline_spans_per_tick: u32,
 }
 
 impl Default for GroupsConfig {
@@ -82,6 +86,7 @@ impl Default for GroupsConfig {
             max_groups: 8,
             queue_capacity: 512,
             lookahead: 64,
+            spline_spans_per_tick: 8,
         }
     }
 }
@@ -107,6 +112,12 @@ impl GroupsConfig {
                     "{} is outside 1 … queue_capacity ({})",
                     self.lookahead, self.queue_capacity
                 ),
+            ));
+        }
+        if !(1..=1000).contains(&self.spline_spans_per_tick) {
+            return Err(ConfigError::new(
+                "groups.spline_spans_per_tick",
+                format!("{} is outside 1 … 1000", self.spline_spans_per_tick),
             ));
         }
         Ok(())

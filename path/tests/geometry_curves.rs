@@ -6,7 +6,7 @@ mod common;
 use std::f64::consts::TAU;
 
 use path::frames::Transform;
-use path::geometry::{norm, sub, Curve, CurveKind, GeometryError, Segment, Turn};
+use path::geometry::{norm, sub, Curve, CurveKind, GeometryError, Segment, SplineBuild, Turn};
 use path::{Point, MAX_AXES};
 use proptest::prelude::*;
 
@@ -369,4 +369,41 @@ fn a_lifted_spline_moves_its_rise_in_proportion_to_the_length() {
     assert!(flat.lifted(&p(&[1.0, 0.0, 0.0, 0.0])).is_err());
     assert!(c.counted_share(&[true; 9]).is_none());
     assert!(c.lifted(&rise).is_err());
+}
+
+#[test]
+fn a_spline_built_in_steps_is_the_spline_built_at_once() {
+    // Issue 11: the construction spread over servo ticks changes no bit of the curve.
+    let points = zigzag(60);
+    let whole = Curve::spline(&points, 2).unwrap();
+    for chunk in [1, 3, 8, 59, 60, 1000] {
+        let mut build = SplineBuild::new(&points, 2).unwrap();
+        assert_eq!(build.remaining(), 60);
+        let mut calls = 0;
+        while !build.advance(chunk) {
+            calls += 1;
+        }
+        assert_eq!(calls, 60_usize.div_ceil(chunk) - 1, "chunk {chunk}");
+        assert_eq!(build.remaining(), 0);
+        let stepped = build.finish().unwrap();
+        assert_eq!(stepped.length().to_bits(), whole.length().to_bits());
+        for axis in 0..2 {
+            assert_eq!(stepped.max_tangent(axis), whole.max_tangent(axis));
+        }
+        assert_eq!(stepped.max_curvature(), whole.max_curvature());
+        let len = whole.length();
+        for i in 0..=200 {
+            let s = len * f64::from(i) / 200.0;
+            assert_eq!(stepped.sample(s), whole.sample(s), "chunk {chunk}, s {s}");
+        }
+    }
+    // Finished early, the rest is done by `finish`; collinear points are a line at once; a
+    // cusp is found only when the spans are visited.
+    let early = SplineBuild::new(&points, 2).unwrap().finish().unwrap();
+    assert_eq!(early.length().to_bits(), whole.length().to_bits());
+    let on_line = SplineBuild::new(&[p(&[0.0, 0.0]), p(&[1.0, 1.0]), p(&[5.0, 5.0])], 2).unwrap();
+    assert_eq!(on_line.remaining(), 0);
+    assert!(matches!(on_line.finish(), Ok(Segment::Line(_))));
+    let back = SplineBuild::new(&[p(&[0.0, 0.0]), p(&[5.0, 0.0]), p(&[2.0, 0.0])], 2).unwrap();
+    assert!(matches!(back.finish(), Err(GeometryError::Invalid(_))));
 }

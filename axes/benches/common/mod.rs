@@ -98,7 +98,19 @@ pub fn moving_engine(n: usize) -> Engine {
 
 /// A machine of `n` busy axes, enabled, at rest, all in group 1, enabled (Standby).
 pub fn grouped_engine(n: usize) -> Engine {
-    let mut e = engine(n);
+    grouped_engine_of(machine(n))
+}
+
+/// [`grouped_engine`] of the machine `config` (every axis in group 1).
+pub fn grouped_engine_of(config: EngineConfig) -> Engine {
+    let n = config.axes.len();
+    let mut e = match Engine::new(&config) {
+        Ok(engine) => engine,
+        Err(e) => {
+            eprintln!("bench machine refused: {e}");
+            std::process::exit(2);
+        }
+    };
     let setup = (0..n as u16)
         .map(|axis| Command::from(Enable { axis }))
         .chain([

@@ -5,7 +5,7 @@ use path::planner::{CornerAngles, MarkerKind, PathPlanner};
 use path::MAX_AXES;
 
 use super::frames::FrameMap;
-use super::queue::{Entry, GroupQueue, Item};
+use super::queue::{GroupQueue, Item};
 use super::segment::{self, CircularFields, PathRequest, PendingMotion};
 use super::{
     planner_config, Env, Group, GroupFrames, Groups, ResultAxis, DEFAULT_ANGULAR_LIMITS,
@@ -141,6 +141,8 @@ impl Groups {
             user_segment: 0,
             waiting: None,
             pending: None,
+            last_mergeable: false,
+            staging: super::staging::Staging::new(self.config.spline_spans_per_tick),
             jog: None,
             last_error: None,
             fault: None,
@@ -148,6 +150,10 @@ impl Groups {
             events: Vec::new(),
             interference: (InterferenceStatus::NotEnabled, 0.0),
         };
+        if g.result.is_some() {
+            // HMC's merge angles are on by default (digest 000 §3.4, TV 38: π/6 and π/2).
+            let _ = g.planner.set_corner_angles(Some(CornerAngles::HMC_DEFAULT));
+        }
         g.params_version = g
             .members
             .iter()
@@ -362,6 +368,7 @@ impl Group {
                         } else {
                             angles.stop = value;
                         }
+                        self.check_merge_angles(&angles)?;
                         self.planner.set_corner_angles(Some(angles)).map_err(|_| {
                             EngineError::InvalidArgument {
                                 name: "value",
@@ -481,10 +488,9 @@ impl Group {
         system: Option<CoordinateSystem>,
     ) -> Result<FrameMap, EngineError> {
         let system = system.unwrap_or(self.frames.selected());
-        let table = self
-            .frames
-            .table_axis()
-            .and_then(|axis| self.queue.last_axis_move(axis));
+        let table = self.frames.table_axis().and_then(|axis| {
+            (self.staging.last_axis_move(axis)).or_else(|| self.queue.last_axis_move(axis))
+        });
         self.frames
             .resolve(self.id, system, self.dims(), env.axes, table)
     }
@@ -519,11 +525,7 @@ impl Group {
             return Ok(Reply::Accepted { id });
         }
         self.check_room()?;
-        // Build the segment before taking an id: a refused motion uses none.
-        self.sync_position(env)?;
-        let (segment, share) = request.segment(self.id, self.planner.queue_end(), self.dims())?;
-        let id = env.ledger.allocate();
-        self.enqueue_segment(env, id, segment, share, &request)?;
+        let id = self.place_motion(env, None, request)?;
         if self.state == GroupState::Standby {
             self.state = GroupState::Moving;
         }
@@ -539,11 +541,7 @@ impl Group {
         self.require_accepts_motion()?;
         self.check_room()?;
         self.sync_position(env)?;
-        let id = env.ledger.allocate();
-        self.planner
-            .push_marker(u64::from(id), kind)
-            .map_err(|e| self.planner_error(e))?;
-        self.queue.push(Entry { id, item });
+        let id = self.accept_marker(env, item, kind)?;
         if self.state == GroupState::Standby {
             self.state = GroupState::Moving;
         }
@@ -577,6 +575,7 @@ impl Group {
         if let Some(p) = self.pending.take() {
             env.ledger.finish(p.id, CommandState::Aborted);
         }
+        self.abort_staged(env);
         self.planner.resume();
         // A deceleration over the counted coordinates, as the motion's limits are.
         self.planner.stop(deceleration / self.length_ratio);

@@ -13,8 +13,9 @@
 //! [`Groups::queued_state`]. Order: apply* → step → (status) → apply* → step …
 //!
 //! Files: `state` (the PLCopen Part 4 state machine and member checks), `queue` (the entries of
-//! the group queue), `segment` (commands → path segments), `commands` (each group command),
-//! `tick` (the per-tick work).
+//! the group queue), `segment` (commands → path segments), `staging` (splines under
+//! construction and the commands behind them), `commands` (each group command), `tick` (the
+//! per-tick work), `merge` (HMC merge from the result axis).
 
 use path::planner::{AxisLimits, PathLimits, PathPlanner, PlannerConfig};
 use path::{Point, MAX_AXES};
@@ -30,9 +31,11 @@ use crate::status::{
 mod commands;
 mod frames;
 mod jog;
+mod merge;
 mod protection;
 mod queue;
 mod segment;
+mod staging;
 mod state;
 mod tick;
 
@@ -141,6 +144,10 @@ pub struct Group {
     waiting: Option<Wait>,
     /// An aborting motion waiting for the path to come to rest.
     pending: Option<PendingMotion>,
+    /// The last motion queued is one HMC merges at its end (`merge`).
+    last_mergeable: bool,
+    /// A spline under construction and the commands after it (`staging`).
+    staging: staging::Staging,
     /// A jog in progress (the planner is idle meanwhile).
     jog: Option<jog::Jog>,
     last_error: Option<crate::command::ErrorKind>,
@@ -350,7 +357,10 @@ impl Group {
 
     /// Entries in the queue, the running one and a wait included.
     pub fn queued(&self) -> usize {
-        self.queue.len() + usize::from(self.waiting.is_some()) + usize::from(self.pending.is_some())
+        self.queue.len()
+            + self.staging.len()
+            + usize::from(self.waiting.is_some())
+            + usize::from(self.pending.is_some())
     }
 
     /// State of a command still owned by this group.
@@ -361,7 +371,10 @@ impl Group {
         {
             return Some(CommandState::Running);
         }
-        if self.queue.contains(id) || self.pending.as_ref().is_some_and(|p| p.id == id) {
+        if self.queue.contains(id)
+            || self.staging.contains(id)
+            || self.pending.as_ref().is_some_and(|p| p.id == id)
+        {
             return Some(CommandState::Waiting);
         }
         None

@@ -2,7 +2,7 @@
 //! `path::planner`). Everything a command carries is checked here, before anything is queued:
 //! coordinate counts, finite numbers, positive limits, and the geometry's own refusals.
 
-use path::geometry::{add, Arc, Curve, GeometryError, Line, Segment, Turn};
+use path::geometry::{add, Arc, Curve, GeometryError, Line, Segment, SplineBuild, Turn};
 use path::planner::{Join, PathLimits, Transition};
 use path::{Point, MAX_AXES};
 
@@ -229,37 +229,89 @@ fn counted_share(group: GroupId, segment: &Segment, counted: &Counted) -> Result
 /// along it: the shape goes through the nodes' counted coordinates (the others held at the
 /// start's), and the rest rise from the start to the last node's values in proportion to the
 /// length along the shape (`Curve::lifted`), as they would along a line or an arc (HMC
-/// MoveSplineND with independent axes, NMC D8).
-fn counted_spline(
-    nodes: &[Point],
-    counted: &Counted,
+/// MoveSplineND with independent axes, NMC D8). Built in steps ([`SplineBuild`]).
+#[derive(Clone, Debug)]
+pub(super) struct CountedSpline {
+    build: SplineBuild,
+    /// The independent coordinates' rise, if the motion has any.
+    rise: Option<Point>,
     dims: usize,
-) -> Result<Segment, GeometryError> {
-    let independent = |k: usize| k < dims && !counted.get(k).copied().unwrap_or(true);
-    let (Some(first), Some(last)) = (nodes.first().copied(), nodes.last().copied()) else {
-        return Curve::spline(nodes, dims);
-    };
-    if !(0..dims).any(independent) {
-        return Curve::spline(nodes, dims);
-    }
-    let mut rise = [0.0; MAX_AXES];
-    let mut shape = nodes.to_vec();
-    for k in (0..dims).filter(|&k| independent(k)) {
-        if let (Some(r), Some(a), Some(b)) = (rise.get_mut(k), first.get(k), last.get(k)) {
-            *r = b - a;
+}
+
+impl CountedSpline {
+    fn new(
+        nodes: &[Point],
+        counted: &Counted,
+        dims: usize,
+    ) -> Result<CountedSpline, GeometryError> {
+        let independent = |k: usize| k < dims && !counted.get(k).copied().unwrap_or(true);
+        let (Some(first), Some(last)) = (nodes.first().copied(), nodes.last().copied()) else {
+            return Ok(CountedSpline {
+                build: SplineBuild::new(nodes, dims)?,
+                rise: None,
+                dims,
+            });
+        };
+        if !(0..dims).any(independent) {
+            return Ok(CountedSpline {
+                build: SplineBuild::new(nodes, dims)?,
+                rise: None,
+                dims,
+            });
         }
-        for n in &mut shape {
-            if let (Some(x), Some(a)) = (n.get_mut(k), first.get(k)) {
-                *x = *a;
+        let mut rise = [0.0; MAX_AXES];
+        let mut shape = nodes.to_vec();
+        for k in (0..dims).filter(|&k| independent(k)) {
+            if let (Some(r), Some(a), Some(b)) = (rise.get_mut(k), first.get(k), last.get(k)) {
+                *r = b - a;
+            }
+            for n in &mut shape {
+                if let (Some(x), Some(a)) = (n.get_mut(k), first.get(k)) {
+                    *x = *a;
+                }
             }
         }
+        Ok(CountedSpline {
+            build: SplineBuild::new(&shape, dims)?,
+            rise: Some(rise),
+            dims,
+        })
     }
-    match Curve::spline(&shape, dims)? {
-        Segment::Curve(c) => c.lifted(&rise).map(Segment::Curve),
-        // Nodes on one line: the line with the rise is exactly proportional too.
-        Segment::Line(l) => Line::new(l.start(), add(&l.end(), &rise), dims).map(Segment::Line),
-        other => Ok(other),
+
+    /// Visit up to `spans` more spans; returns how many were visited and whether none is left.
+    pub fn advance(&mut self, spans: usize) -> (usize, bool) {
+        let before = self.build.remaining();
+        let done = self.build.advance(spans);
+        (before - self.build.remaining(), done)
     }
+
+    fn finish(self) -> Result<Segment, GeometryError> {
+        let segment = self.build.finish()?;
+        let Some(rise) = self.rise else {
+            return Ok(segment);
+        };
+        match segment {
+            Segment::Curve(c) => c.lifted(&rise).map(Segment::Curve),
+            // Nodes on one line: the line with the rise is exactly proportional too.
+            Segment::Line(l) => {
+                Line::new(l.start(), add(&l.end(), &rise), self.dims).map(Segment::Line)
+            }
+            other => Ok(other),
+        }
+    }
+}
+
+/// A motion's segment from its start: built, or (a spline) still to construct.
+pub(super) enum Construction {
+    Done(Segment, Share),
+    Spline(StagedSpline),
+}
+
+/// A spline under construction and the queue end it starts from.
+#[derive(Clone, Debug)]
+pub(super) struct StagedSpline {
+    pub spline: CountedSpline,
+    machine_start: Point,
 }
 
 /// An aborting motion accepted while the path was moving: it starts when the path is at rest.
@@ -733,19 +785,71 @@ impl PathRequest {
     /// then taken to group coordinates ([`FrameMap::segment_to_machine`]). The geometry's
     /// refusals (centre not equidistant, radius below half the chord,
     /// coincident points …) become `InvalidPath` with the geometry's reason.
-    pub fn segment(
+    ///
+    /// A spline's construction is only begun here (its checks and coefficients):
+    /// [`PathRequest::finish`] ends it, after `StagedSpline::spline` has been advanced as far
+    /// as wanted (`staging`).
+    pub fn begin(
         &self,
         group: GroupId,
         machine_start: Point,
         dims: usize,
-    ) -> Result<(Segment, Share), EngineError> {
+    ) -> Result<Construction, EngineError> {
         let start = self.frame.point_from_machine(&machine_start);
+        if let Geometry::Spline { points, relative } = &self.geometry {
+            let spline = self
+                .counted_spline(start, points, *relative, dims)
+                .map_err(|e| invalid_path(group, e))?;
+            return Ok(Construction::Spline(StagedSpline {
+                spline,
+                machine_start,
+            }));
+        }
         let built = self.segment_in_frame(group, start, dims)?;
+        let (segment, share) = self.to_machine(group, machine_start, built, dims)?;
+        Ok(Construction::Done(segment, share))
+    }
+
+    /// The segment of a spline begun by [`PathRequest::begin`] (what is left of its
+    /// construction done now), or the geometry's refusal (a cusp).
+    pub fn finish(
+        &self,
+        group: GroupId,
+        staged: StagedSpline,
+        dims: usize,
+    ) -> Result<(Segment, Share), EngineError> {
+        let built = staged.spline.finish().map_err(|e| invalid_path(group, e))?;
+        self.to_machine(group, staged.machine_start, built, dims)
+    }
+
+    /// A segment built in the command's coordinate system, taken to group coordinates
+    /// ([`FrameMap::segment_to_machine`]), with its counted share.
+    fn to_machine(
+        &self,
+        group: GroupId,
+        machine_start: Point,
+        built: Segment,
+        dims: usize,
+    ) -> Result<(Segment, Share), EngineError> {
         let segment = self
             .frame
             .segment_to_machine(group, machine_start, built, dims)?;
         let share = self.share(group, &segment)?;
         Ok((segment, share))
+    }
+
+    /// The spline through the start and `points` (offset from the start when `relative`).
+    fn counted_spline(
+        &self,
+        start: Point,
+        points: &[Point],
+        relative: bool,
+        dims: usize,
+    ) -> Result<CountedSpline, GeometryError> {
+        let mut nodes = Vec::with_capacity(points.len() + 1);
+        nodes.push(start);
+        nodes.extend(points.iter().map(|p| offset_from(&start, p, relative)));
+        CountedSpline::new(&nodes, &self.counted, dims)
     }
 
     /// The counted share of `segment` and its limits along the path. With an angular profile
@@ -803,17 +907,7 @@ impl PathRequest {
         start: Point,
         dims: usize,
     ) -> Result<Segment, EngineError> {
-        let offset = |p: &Point, relative: bool| -> Point {
-            if relative {
-                let mut out = *p;
-                for (o, s) in out.iter_mut().zip(&start) {
-                    *o += s;
-                }
-                out
-            } else {
-                *p
-            }
-        };
+        let offset = |p: &Point, relative: bool| offset_from(&start, p, relative);
         let built = match &self.geometry {
             Geometry::Linear { point, relative } => {
                 Line::new(start, offset(point, *relative), dims).map(Segment::Line)
@@ -847,12 +941,9 @@ impl PathRequest {
                     (CircleMode::Border, _) => Segment::through_points(start, aux, end, dims),
                 }
             }
-            Geometry::Spline { points, relative } => {
-                let mut nodes = Vec::with_capacity(points.len() + 1);
-                nodes.push(start);
-                nodes.extend(points.iter().map(|p| offset(p, *relative)));
-                counted_spline(&nodes, &self.counted, dims)
-            }
+            Geometry::Spline { points, relative } => self
+                .counted_spline(start, points, *relative, dims)
+                .and_then(CountedSpline::finish),
             Geometry::CenterAngle {
                 center,
                 angle,
@@ -875,9 +966,27 @@ impl PathRequest {
                 dims,
             ),
         };
-        built.map_err(|e| EngineError::InvalidPath {
-            group,
-            reason: e.to_string(),
-        })
+        built.map_err(|e| invalid_path(group, e))
+    }
+}
+
+/// `p`, or `start + p` when `relative`.
+fn offset_from(start: &Point, p: &Point, relative: bool) -> Point {
+    if relative {
+        let mut out = *p;
+        for (o, s) in out.iter_mut().zip(start) {
+            *o += s;
+        }
+        out
+    } else {
+        *p
+    }
+}
+
+/// The geometry's refusal as the engine's error.
+fn invalid_path(group: GroupId, e: GeometryError) -> EngineError {
+    EngineError::InvalidPath {
+        group,
+        reason: e.to_string(),
     }
 }

@@ -56,8 +56,13 @@ impl Group {
             return;
         }
         self.start_pending(env);
+        self.advance_staging(env);
         if self.is_idle() {
             self.settle(env);
+            return;
+        }
+        if self.staging.is_busy() && self.planner.is_idle() && !self.feeding {
+            // A spline accepted at rest is still under construction: nothing moves yet.
             return;
         }
         self.follow_live_speed(env.axes);
@@ -91,6 +96,7 @@ impl Group {
     /// Nothing queued, waited for or pending, and the path at rest.
     pub(super) fn is_idle(&self) -> bool {
         self.planner.is_idle()
+            && !self.staging.is_busy()
             && self.waiting.is_none()
             && self.pending.is_none()
             && self.jog.is_none()
@@ -441,28 +447,14 @@ impl Group {
         let Some(pending) = self.pending.take() else {
             return;
         };
-        if let Err(e) = self.enqueue(env, pending.id, &pending.request) {
+        if let Err(e) = self.place_motion(env, Some(pending.id), pending.request) {
             self.last_error = Some(e.kind());
             env.ledger.finish(pending.id, CommandState::Error(e.kind()));
         }
     }
 
-    /// Append a motion to the planner and the mirror. At rest, the planner is first told where
-    /// the members are (they may have been moved or re-based since).
-    pub(super) fn enqueue(
-        &mut self,
-        env: &Env,
-        id: CommandId,
-        request: &super::segment::PathRequest,
-    ) -> Result<(), EngineError> {
-        self.sync_position(env)?;
-        let start = self.planner.queue_end();
-        let (segment, share) = request.segment(self.id, start, self.dims())?;
-        self.enqueue_segment(env, id, segment, share, request)
-    }
-
-    /// [`Group::enqueue`] of a segment (and its counted length share) built from the queue's
-    /// end already (a spline's is the costly part of accepting it: built once).
+    /// Append a motion's segment (and its counted length share), built from the queue's end,
+    /// to the planner and the mirror.
     pub(super) fn enqueue_segment(
         &mut self,
         env: &Env,
@@ -477,15 +469,18 @@ impl Group {
         } else {
             self.result_speed(env.axes)
         };
+        let join = self.merged_join(env.axes, request.join, &segment);
+        let mergeable = super::merge::mergeable(&segment);
         self.planner
             .push_motion(Motion {
                 segment,
                 limits: share.limits,
-                join: request.join,
+                join,
                 transition: request.transition,
                 tag: u64::from(id),
             })
             .map_err(|e| self.planner_error(e))?;
+        self.last_mergeable = mergeable;
         self.queue.push(Entry {
             id,
             item: Item::Motion {
@@ -556,6 +551,7 @@ impl Group {
         if let Some(p) = self.pending.take() {
             env.ledger.finish(p.id, CommandState::Aborted);
         }
+        self.abort_staged(env);
         if let Some(jog) = self.jog.take() {
             env.ledger.finish(jog.id, running_state);
         }

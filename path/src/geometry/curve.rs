@@ -22,11 +22,14 @@ use std::f64::consts::TAU;
 use std::sync::{Arc as Shared, OnceLock};
 
 use super::{
-    add, check_dims, check_finite, check_number, dot, norm, scale, sub, GeometryError, Line,
-    PathPoint, Segment, Turn, POINT_TOLERANCE,
+    add, check_dims, check_finite, check_number, dot, norm, scale, sub, GeometryError, PathPoint,
+    Segment, Turn, POINT_TOLERANCE,
 };
 use crate::frames::Transform;
 use crate::{Point, MAX_AXES};
+
+mod build;
+pub use build::SplineBuild;
 
 /// Most points of one spline (HMC: `uiSplineNum` 1 to 1000 nodes after the start).
 pub const MAX_SPLINE_POINTS: usize = 1001;
@@ -439,6 +442,7 @@ impl Builder<'_> {
 }
 
 /// The bounds of a curve, gathered over evaluations in path order.
+#[derive(Clone, Debug)]
 struct Bounds {
     max_tangent: Point,
     max_curvature: f64,
@@ -584,71 +588,13 @@ fn hermite(a: &Row, b: &Row, s: f64) -> f64 {
 }
 
 /// The table's pieces `(u0, u1, steps, span)` with their lengths and the curve's bounds; the
-/// rows wait for their first sample (module doc).
+/// rows wait for their first sample (module doc). All at once: [`build::TableBuild`] does it
+/// piece by piece.
 fn build_table(
     shape: Shape,
     pieces: impl Iterator<Item = (f64, f64, usize, usize)>,
 ) -> Result<Table, GeometryError> {
-    let mut bounds = Bounds::new();
-    let mut built = Vec::new();
-    let mut s = 0.0;
-    let mut first_u = None;
-    let mut last = None;
-    for (u0, u1, steps, span) in pieces {
-        first_u.get_or_insert(u0);
-        bounds.visit_piece(&shape, (u0, u1), steps, span);
-        // Step by step, as the rows will be: shorter intervals converge in fewer halvings.
-        let length = (0..steps)
-            .map(|k| {
-                let (a, b) = step_bounds(u0, u1, steps, k);
-                arc_length(&shape, a, b, span)
-            })
-            .sum::<f64>();
-        built.push(Piece {
-            s0: s,
-            length,
-            u0,
-            u1,
-            steps,
-            span,
-            rows: OnceLock::new(),
-        });
-        s += length;
-        last = Some((u1, span));
-    }
-    let Some((u_end, span)) = last else {
-        return Err(GeometryError::Invalid("a curve needs at least one step"));
-    };
-    let e = shape.eval(u_end, span);
-    let min_speed = bounds.min_speed.min(norm(&e.d1));
-    // The parameter runs at about unit speed on average (chord length, or the ellipse's mean
-    // radius); a speed near 0 somewhere is a cusp.
-    let mean_speed = s / (u_end - first_u.unwrap_or(0.0));
-    let stalls = min_speed.is_nan() || min_speed <= 1e-3 * mean_speed;
-    if bounds.sharp || stalls || !s.is_finite() {
-        return Err(GeometryError::Invalid(
-            "the curve stops or turns back on itself (a cusp): no tangent there",
-        ));
-    }
-    // Between the evaluations the tangent turns by at most κ·Δs; pad both bounds for it
-    // (conservative, so the planner never under-estimates an axis's share of the speed).
-    let mut max_tangent = bounds.max_tangent;
-    let max_curvature = bounds.max_curvature;
-    for m in max_tangent.iter_mut().filter(|m| **m > 0.0) {
-        // An axis whose tangent is exactly 0 at every evaluation does not move (its
-        // coordinate's polynomial coefficients are 0): it stays 0, so the coordinates a curve
-        // leaves alone are known exactly (`Curve::lifted`).
-        *m = (*m + max_curvature * bounds.spacing).min(1.0);
-    }
-    Ok(Table {
-        shape,
-        pieces: built,
-        max_tangent,
-        max_curvature: max_curvature * 1.05,
-        // A difference quotient is the mean of the rate over its interval; the margin covers
-        // a peak between two evaluations of a smooth curve (64 per blend, 32 per span).
-        max_curvature_rate: bounds.max_curvature_rate * 1.25,
-    })
+    build::TableBuild::new(shape, pieces.collect()).finish()
 }
 
 /// The curvature vector `d²p/ds²` from the parameter derivatives.
@@ -669,73 +615,9 @@ impl Curve {
     /// points all on one line in order, give a [`Line`] (HMC: "collinear nodes → a straight
     /// line"; "a single node → the segment from the origin to it"). Consecutive equal points,
     /// fewer than 2 or more than [`MAX_SPLINE_POINTS`] points are refused.
+    /// [`SplineBuild`] does the same in steps.
     pub fn spline(points: &[Point], dims: usize) -> Result<Segment, GeometryError> {
-        check_dims(dims)?;
-        if points.len() < 2 {
-            return Err(GeometryError::Invalid(
-                "a spline needs its start and at least one more point",
-            ));
-        }
-        if points.len() > MAX_SPLINE_POINTS {
-            return Err(GeometryError::Invalid("a spline has at most 1001 points"));
-        }
-        for (k, p) in points.iter().enumerate() {
-            check_finite(if k == 0 { "start" } else { "spline point" }, p)?;
-            if p.iter().skip(dims).any(|&c| c != 0.0) {
-                return Err(GeometryError::Invalid(
-                    "a point has coordinates past the path's axes",
-                ));
-            }
-        }
-        let mut h = Vec::with_capacity(points.len() - 1);
-        for w in points.windows(2) {
-            let d = norm(&sub(&w[1], &w[0]));
-            if d <= POINT_TOLERANCE {
-                return Err(GeometryError::Coincident {
-                    first: "a spline point",
-                    second: "the next one",
-                });
-            }
-            h.push(d);
-        }
-        let (first, last) = (points[0], points[points.len() - 1]);
-        if collinear_in_order(points) {
-            return Ok(Segment::Line(Line::new(first, last, dims)?));
-        }
-        let m = natural_second_derivatives(points, &h);
-        let mut knots = Vec::with_capacity(points.len());
-        let mut u = 0.0;
-        knots.push(u);
-        let mut coefficients = Vec::with_capacity(h.len());
-        for (i, &hi) in h.iter().enumerate() {
-            let (p0, p1, m0, m1) = (points[i], points[i + 1], m[i], m[i + 1]);
-            let slope = scale(&sub(&p1, &p0), 1.0 / hi);
-            let b = sub(&slope, &scale(&add(&scale(&m0, 2.0), &m1), hi / 6.0));
-            let c = scale(&m0, 0.5);
-            let d = scale(&sub(&m1, &m0), 1.0 / (6.0 * hi));
-            coefficients.push([p0, b, c, d]);
-            u += hi;
-            knots.push(u);
-        }
-        let pieces: Vec<(f64, f64, usize, usize)> = knots
-            .windows(2)
-            .enumerate()
-            .map(|(span, k)| (k[0], k[1], STEPS_PER_SPAN, span))
-            .collect();
-        let table = build_table(
-            Shape::Spline {
-                knots,
-                active: active_axes(&coefficients),
-                coefficients,
-            },
-            pieces.into_iter(),
-        )?;
-        Ok(Segment::Curve(Curve::whole(
-            table,
-            CurveKind::Spline,
-            last,
-            dims,
-        )))
+        SplineBuild::new(points, dims)?.finish()
     }
 
     /// NMC `CrdEllipse` (digest 001 §4.4): the full ellipse from `start` around `center`

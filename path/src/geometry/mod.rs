@@ -35,7 +35,9 @@ mod three_points;
 
 pub use arc::{Arc, Turn};
 pub use arc_center::himc_turns_angle;
-pub use curve::{blend_control_points, Curve, CurveKind, ELLIPSE_RATIO, MAX_SPLINE_POINTS};
+pub use curve::{
+    blend_control_points, Curve, CurveKind, SplineBuild, ELLIPSE_RATIO, MAX_SPLINE_POINTS,
+};
 pub use line::Line;
 // Defined below both `geometry` and `frames` (which checks its input the same way), and
 // re-exported here where users look for them.
