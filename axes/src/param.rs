@@ -401,6 +401,11 @@ param_table! {
         "live value of the user output target" }
     OutDstDataType { "out_dst_data_type", ["OutDstDataType"], Enum(DATA_TYPES), Unit::None, 0.0, Any, RO, No,
         "data type of the user output target" }
+    // ---- Motor (HIMC §5.2.7 MoveTrq, §5.3.26 GetCurrFb) ----
+    RatedTorque { "rated_torque", [], Real, Unit::None, 1.27, Above(0.0), RW, No,
+        "motor rated (continuous) torque, N·m: a torque setpoint of 1.0 is this (HIMC MoveTrq)" }
+    RatedCurrent { "rated_current", [], Real, Unit::None, 2.6, Above(0.0), RW, No,
+        "motor current at rated torque, A (HIMC GetCurrFb)" }
     // ---- Reserved (HMC §2.10) ----
     SystemValue0 { "system_value0", ["SystemValue0"], Int, Unit::None, 0.0, Any, RO, No, "diagnostic value (HMC §1.4)" }
     SystemValue1 { "system_value1", ["SystemValue1"], Int, Unit::None, 0.0, Any, RO, No, "diagnostic value (HMC §1.4)" }

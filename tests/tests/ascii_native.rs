@@ -68,7 +68,8 @@ mod transcript {
         gear_gantry,
         group_settings,
         slaves,
-        tables_triggers
+        tables_triggers,
+        measured
     );
 }
 

@@ -16,6 +16,7 @@ mod compensation;
 pub mod fifo;
 mod gang;
 mod latch;
+mod move_timing;
 mod pvt;
 mod sampling;
 mod setup;
@@ -248,6 +249,8 @@ pub struct Axis {
     fe_over: u32,
     fe_ok: u32,
     in_window_for: f64,
+    /// The last move's duration and settling time (HIMC GetMoveTime, GetSettlingTime).
+    timing: move_timing::MoveTiming,
     direction: f64,
     params_version: u64,
     last_error: Option<ErrorKind>,
@@ -334,6 +337,7 @@ impl Axis {
             fe_over: 0,
             fe_ok: 0,
             in_window_for: 0.0,
+            timing: move_timing::MoveTiming::default(),
             direction: 1.0,
             params_version: 0,
             last_error: None,
@@ -551,6 +555,8 @@ impl Axis {
         // 9. In-position timing. The status record itself is assembled when someone reads it
         // (`status`): a snapshot, a drive, a dialect — not by every axis every tick.
         self.update_in_position();
+        self.timing
+            .update(ctx.tick, self.period, self.moving(), self.in_position());
     }
 
     /// Sample the command source for this tick.
@@ -997,6 +1003,40 @@ impl Axis {
         }
     }
 
+    /// HIMC IsInPos: motion done (or halted) and |FE| within the window for the window time.
+    fn in_position(&self) -> bool {
+        let running = matches!(self.activity, Activity::Running(_) | Activity::Streaming);
+        self.enabled
+            && (!running || self.halted)
+            && !self.moving()
+            && self.in_window_for >= self.params.get(ParamId::InPositionTime)
+    }
+
+    /// The drive's torque as a fraction of rated torque: the setpoint in torque mode, else
+    /// what the commanded acceleration takes, rated torque accelerating at `max_accel` (or
+    /// `accel`) as the torque setpoint does (`advance_source`).
+    fn torque(&self) -> f64 {
+        if let Source::External(Setpoint::Torque { torque }) = self.source {
+            return torque;
+        }
+        let rated = nonzero_or(self.param(ParamId::MaxAccel), self.param(ParamId::Accel));
+        if self.enabled && rated > 0.0 {
+            self.cmd.a / rated
+        } else {
+            0.0
+        }
+    }
+
+    /// Whole turns of a rollover (cyclic) axis's actual position past the range's start; 0 on
+    /// a finite axis.
+    fn rollover_turns(&self) -> i64 {
+        match self.setup.cyclic {
+            // `as` saturates: a position of ±1e300 reads as i64::MAX/MIN turns, never panics.
+            Some(c) if c.length > 0.0 => ((self.act_pos - c.low) / c.length).floor() as i64,
+            _ => 0,
+        }
+    }
+
     pub fn state(&self) -> AxisState {
         if !self.blocking.is_empty() {
             return AxisState::ErrorStop;
@@ -1035,21 +1075,14 @@ impl Axis {
     /// [`Axis::status`] written in place (snapshots refresh their records every tick).
     pub fn status_into(&self, out: &mut AxisStatus) {
         let moving = self.moving();
-        let (running, current) = match &self.activity {
-            Activity::Running(r) => (
-                true,
-                Some(CommandRef {
-                    id: r.id,
-                    kind: r.kind,
-                }),
-            ),
-            Activity::Streaming => (true, None),
-            _ => (false, None),
+        let current = match &self.activity {
+            Activity::Running(r) => Some(CommandRef {
+                id: r.id,
+                kind: r.kind,
+            }),
+            _ => None,
         };
-        let in_position = self.enabled
-            && (!running || self.halted)
-            && !moving
-            && self.in_window_for >= self.params.get(ParamId::InPositionTime);
+        let in_position = self.in_position();
         let mut flags = self.flags | self.latched;
         flags.put(AxisFlags::ENABLED, self.enabled);
         flags.put(AxisFlags::MOVING, moving);
@@ -1125,6 +1158,11 @@ impl Axis {
             compensation: self.correction,
             coupling: self.coupling_kind,
             gantry_deviation: self.gantry_deviation,
+            position_offset: self.cmd_offset,
+            rollover_turns: self.rollover_turns(),
+            move_time: self.timing.move_time(),
+            settling_time: self.timing.settling_time(),
+            torque: self.torque(),
         };
     }
 }

@@ -293,6 +293,25 @@ pub struct AxisStatus {
     /// engagement; gantry master: the largest of its slaves' by magnitude (issue 12 item 6).
     #[serde(default)]
     pub gantry_deviation: f64,
+    /// The user frame's origin offset: commanded position − motor command, moved by
+    /// `set_position` and homing (HIMC GetPosOffset, `pos_offset`).
+    #[serde(default)]
+    pub position_offset: f64,
+    /// Whole turns of a rollover (cyclic) axis past its range's start (HIMC GetRolloverTurns);
+    /// 0 on a finite axis.
+    #[serde(default)]
+    pub rollover_turns: i64,
+    /// Seconds the last finished move's commanded position changed (HIMC GetMoveTime).
+    #[serde(default)]
+    pub move_time: f64,
+    /// Seconds from the end of the last move until in position; 0 while not settled (HIMC
+    /// GetSettlingTime).
+    #[serde(default)]
+    pub settling_time: f64,
+    /// The drive's torque as a fraction of rated torque (`rated_torque`): the setpoint in
+    /// torque mode, else the commanded acceleration over the rated one (HIMC GetCurrFb).
+    #[serde(default)]
+    pub torque: f64,
 }
 
 /// An axis's PT/PVT buffer and run (NMC `MtPtGetSpace`, `MtPtGetStatic`).

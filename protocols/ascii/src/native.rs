@@ -374,7 +374,6 @@ mod tests {
         let r = &mut Registers::default();
         for (line, code) in [
             ("NoSuchFunction(1)", "5201"),
-            ("StartTask(0)", "5201"),
             ("movabs(0, 1)", "5201"),
             ("MoveAbs(0)", "5000"),
             ("MoveAbs(0, \"x\")", "5000"),
@@ -401,6 +400,117 @@ mod tests {
         assert_eq!(reply(&n, r, "MoveAbs(3, 1)"), "5007\r\n");
         assert_eq!(reply(&n, r, "GetPosFb(3)"), "0\r\n");
         assert_eq!(reply(&n, r, "GetSystemLastErr()"), "5007\r\n");
+    }
+
+    /// Two axes: axis 0 with the status the last getters read.
+    fn measured_snapshot() -> axes::Snapshot {
+        let axis = axes::AxisStatus {
+            state: axes::AxisState::Standstill,
+            flags: axes::AxisFlags::ENABLED,
+            move_time: 1.1,
+            settling_time: 0.015,
+            position_offset: -50.0,
+            rollover_turns: -3,
+            torque: 0.5,
+            ..axes::AxisStatus::default()
+        };
+        axes::Snapshot {
+            axes: vec![axis, axes::AxisStatus::default()],
+            params: Arc::new(vec![axes::param::ParamSet::default(); 2]),
+            ..axes::Snapshot::default()
+        }
+    }
+
+    fn reply_on(native: &Native, r: &mut Registers, s: &axes::Snapshot, line: &str) -> String {
+        match native.line(&Line::Text(line.into()), s, r) {
+            Step::Reply(t) => t,
+            Step::Engine(commands, _) => format!("engine: {}", serde_json::json!(commands)),
+        }
+    }
+
+    #[test]
+    fn the_measured_getters_read_the_snapshot_in_hmpl_units() {
+        let n = native(Options::default());
+        let r = &mut Registers::default();
+        let s = measured_snapshot();
+        for (call, want) in [
+            ("GetMoveTime(0)", "1100"),
+            ("GetSettlingTime(0)", "15"),
+            ("GetPosOffset(0)", "-50"),
+            ("GetRolloverTurns(0)", "-3"),
+            // Half the rated torque × the default rated current, 2.6 A.
+            ("GetCurrFb(0)", "1.3"),
+            ("GetCurrFb(1)", "0"),
+            ("GetMoveTime(5)", "0"),
+        ] {
+            assert_eq!(reply_on(&n, r, &s, call), format!("{want}\r\n"), "{call}");
+        }
+    }
+
+    #[test]
+    fn move_trq_needs_torque_mode_and_clamps_to_the_rated_torque() {
+        let n = native(Options::default());
+        let r = &mut Registers::default();
+        let s = measured_snapshot();
+        // 0x830000FA eERR_AXIS_CMD_INVALID_OP_MODE, as a signed int.
+        let invalid_op_mode = (0x8300_00fa_u32 as i32).to_string();
+        assert_eq!(
+            reply_on(&n, r, &s, "MoveTrq(0, 1)"),
+            format!("{invalid_op_mode}\r\n")
+        );
+        assert_eq!(reply_on(&n, r, &s, "SetOpMode(0, 10)"), "0\r\n");
+        let sent = reply_on(&n, r, &s, "MoveTrq(0, 0.635)");
+        assert!(sent.contains(r#""mode":"torque","torque":0.5"#), "{sent}");
+        let clamped = reply_on(&n, r, &s, "MoveTrq(0, -100)");
+        assert!(clamped.contains(r#""torque":-1.0"#), "{clamped}");
+    }
+
+    #[test]
+    fn tasks_are_empty_and_stopped() {
+        let n = native(Options::default());
+        let r = &mut Registers::default();
+        for (call, want) in [
+            ("StartTask(0)", "266"),
+            ("StartTaskFunc(63, \"main\")", "265"),
+            ("StopTask(1)", "267"),
+            ("StopTask(64)", "263"),
+            ("IsTaskStop(0)", "1"),
+            ("IsTaskStop(-1)", "263"),
+            ("StopAllTask()", "0"),
+        ] {
+            assert_eq!(reply(&n, r, call), format!("{want}\r\n"), "{call}");
+        }
+    }
+
+    #[test]
+    fn every_icon_marked_function_is_served() {
+        let n = native(Options {
+            strict: true,
+            ..Options::default()
+        });
+        let missing: Vec<&str> = ICON
+            .iter()
+            .map(|(name, _)| *name)
+            .filter(|name| n.function(name).is_none())
+            .collect();
+        assert!(missing.is_empty(), "not served: {missing:?}");
+    }
+
+    #[test]
+    fn set_comp_alg_type_1_makes_the_table_a_cubic_spline() {
+        let n = native(Options::default());
+        let r = &mut Registers::default();
+        let s = measured_snapshot();
+        assert_eq!(reply_on(&n, r, &s, "SetCompAlgType(1, 1)"), "0\r\n");
+        let table = reply_on(&n, r, &s, "SetupComp(1, 0, 0, 10, 4, 1)");
+        assert!(table.contains(r#""interpolation":"cubic""#), "{table}");
+        // Back to linear: the table set up is sent again.
+        let again = reply_on(&n, r, &s, "SetCompAlgType(1, 0)");
+        assert!(
+            again.contains("compensation_table") && !again.contains("cubic"),
+            "{again}"
+        );
+        assert!(reply_on(&n, r, &s, "SetCompAlgType(1, 2)").starts_with('-'));
     }
 
     #[test]

@@ -70,6 +70,10 @@ pub struct Registers {
     pub gantry_pairs: BTreeMap<u16, u16>,
     /// Axes `EnableComp` switched on (`IsCompActive`).
     pub compensating: std::collections::BTreeSet<u16>,
+    /// `SetCompAlgType(axis, 1)`: axes whose compensation is a cubic spline (§14.8).
+    pub compensation_cubic: std::collections::BTreeSet<u16>,
+    /// The last `SetupComp` table command by axis, re-sent when the algorithm changes.
+    pub compensation_tables: BTreeMap<u16, serde_json::Value>,
     /// `EnableGear` links, slave → master (§6.2); `DisableGear` removes them.
     pub gear_links: BTreeMap<u16, u16>,
     /// The last `GearIn` ratio by slave (`GetGearRatio` after `GearOut`).

@@ -43,6 +43,10 @@ pub static ROWS: &[Function] = &[
             json!({"type": "move_velocity", "velocity": a.double(1)}),
         )
     }),
+    // §5.2.7 (digest 004 §2.4, §3.10): torque mode only (op mode 10, the torque mode
+    // `SetOpMode` can select); N·m over the motor's rated torque, clamped to it, as the engine's
+    // torque setpoint (a fraction of rated torque). `Stop` ends it.
+    row("MoveTrq", "5.2.7", AD, Ret::Int, Axis, move_torque),
     // §5.2.9: stops and clears the plan, with the profile deceleration (digest 004 §3.4).
     row("Stop", "5.2.9", A, Ret::Int, Axis, |cx, a| {
         simple(cx, a, "stop")
@@ -118,4 +122,29 @@ fn motion(cx: &mut Ctx<'_>, args: &Args, mut command: Value) -> Plan {
         }
         Err(_) => Plan::Fail(mcemu_dialects::himc::system::HMPL_INTERNAL_ERROR),
     }
+}
+
+fn move_torque(cx: &mut Ctx<'_>, args: &Args) -> Plan {
+    let axis = match axis_of(cx, args) {
+        Ok((axis, _)) => axis,
+        Err(code) => return Plan::Fail(code),
+    };
+    if cx.registers.op_modes.get(&axis) != Some(&10) {
+        return Plan::Fail(super::axis_error(axis, "eERR_AXIS_CMD_INVALID_OP_MODE"));
+    }
+    let rated = super::param(cx, axis, axes::ParamId::RatedTorque);
+    if !(rated.is_finite() && rated > 0.0) {
+        return Plan::Fail(super::axis_error(
+            axis,
+            "eERR_AXIS_CMD_INVALID_FORCECONST_TRQMODE",
+        ));
+    }
+    let torque = args.double(1);
+    if !torque.is_finite() {
+        return Plan::Fail(super::axis_error(axis, "eERR_AXIS_CMD_INVALID_PARAMETER"));
+    }
+    let fraction = (torque / rated).clamp(-1.0, 1.0);
+    engine(json!({
+        "type": "setpoint", "axis": axis, "setpoint": {"mode": "torque", "torque": fraction},
+    }))
 }

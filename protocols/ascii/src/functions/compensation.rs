@@ -3,10 +3,11 @@
 //! `start_idx` into a 1-D `compensation_table` over the reference axis's planned position
 //! (linear between points, the end values held beyond), stored switched off; `EnableComp` and
 //! `DisableComp` switch it (only while the axis is disabled), `DisableComp` also clears it.
-//! The cubic-spline algorithm (`SetCompAlgType(axis, 1)`) has no engine counterpart.
+//! `SetCompAlgType(axis, 1)` makes the table a natural cubic spline (the engine's
+//! `interpolation: "cubic"`), `0` linear again: for the next `SetupComp`, and for the table
+//! already set up, which is sent again with the new interpolation.
 
 use axes::status::AxisFlags;
-use mcemu_dialects::himc::system::HMPL_NOT_SUPPORTED;
 use serde_json::json;
 
 use super::gear::axis_arg;
@@ -47,11 +48,44 @@ fn setup(cx: &mut Ctx<'_>, args: &Args) -> Plan {
     let values: Vec<f64> = (start..start + count)
         .map(|i| cx.registers.user_table.get(&i).copied().unwrap_or(0.0))
         .collect();
-    engine(json!({
+    let table = json!({
         "type": "compensation_table", "axis": a, "references": [{"axis": reference}],
         "start": [base], "step": [interval], "count": [count], "values": values,
-        "enable": false,
-    }))
+        "enable": false, "interpolation": interpolation(cx, a),
+    });
+    cx.registers.compensation_tables.insert(a, table.clone());
+    engine(table)
+}
+
+fn interpolation(cx: &Ctx<'_>, axis: u16) -> &'static str {
+    if cx.registers.compensation_cubic.contains(&axis) {
+        "cubic"
+    } else {
+        "linear"
+    }
+}
+
+/// §14.8: 0 first-order linear (the default), 1 cubic spline.
+fn set_algorithm(cx: &mut Ctx<'_>, args: &Args) -> Plan {
+    let a = match axis_of(cx, args) {
+        Ok((a, _)) => a,
+        Err(c) => return Plan::Fail(c),
+    };
+    match args.int(1) {
+        0 => cx.registers.compensation_cubic.remove(&a),
+        1 => cx.registers.compensation_cubic.insert(a),
+        _ => return Plan::Fail(axis_error(a, "eERR_AXIS_CMD_INVALID_PARAMETER")),
+    };
+    let algorithm = interpolation(cx, a);
+    let enabled = cx.registers.compensating.contains(&a);
+    match cx.registers.compensation_tables.get_mut(&a) {
+        Some(table) => {
+            table["interpolation"] = json!(algorithm);
+            table["enable"] = json!(enabled);
+            engine(table.clone())
+        }
+        None => Plan::Done(Outcome::Int(0)),
+    }
 }
 
 pub static ROWS: &[Function] = &[
@@ -78,6 +112,7 @@ pub static ROWS: &[Function] = &[
         |cx, a| match disabled_axis(cx, a) {
             Ok(x) => {
                 cx.registers.compensating.remove(&x);
+                cx.registers.compensation_tables.remove(&x);
                 let batch: Result<Vec<axes::Command>, _> =
                     ["compensation_disable", "compensation_clear"]
                         .iter()
@@ -108,18 +143,12 @@ pub static ROWS: &[Function] = &[
         Axis,
         |cx, a| super::get_status(cx, a, |s| s.compensation),
     ),
-    // 0 linear (the engine's); 1 cubic spline: not in the engine.
     row(
         "SetCompAlgType",
         "14.8",
         &[Ty::Int, Ty::Int],
         Ret::Int,
         Axis,
-        |cx, a| match axis_of(cx, a) {
-            Ok(_) if a.int(1) == 0 => Plan::Done(Outcome::Int(0)),
-            Ok(_) if a.int(1) == 1 => Plan::Fail(HMPL_NOT_SUPPORTED),
-            Ok((x, _)) => Plan::Fail(axis_error(x, "eERR_AXIS_CMD_INVALID_PARAMETER")),
-            Err(c) => Plan::Fail(c),
-        },
+        set_algorithm,
     ),
 ];

@@ -78,6 +78,30 @@ pub static ROWS: &[Function] = &[
         Controller,
         |cx, a| read(cx, a, false),
     ),
+    // Unmarked (digest 004 §1.6), accepted unless `strict`: pin N = bit N−1 of the mask, every
+    // output in one batch.
+    row(
+        "SetAllGPO",
+        "9.2.3",
+        &[Ty::Int],
+        Ret::Int,
+        Controller,
+        |cx, a| {
+            let mask = a.int(0) as u32;
+            let batch: Result<Vec<axes::Command>, _> = (0..cx.snapshot.io.do_.len().min(32))
+                .map(|c| {
+                    let on = mask >> c & 1 == 1;
+                    serde_json::from_value(
+                        json!({"type": "write_digital_output", "channel": c, "value": on}),
+                    )
+                })
+                .collect();
+            match batch {
+                Ok(b) => Plan::Engine(b, crate::table::Then::Succeed),
+                Err(_) => Plan::Fail(mcemu_dialects::himc::system::HMPL_INTERNAL_ERROR),
+            }
+        },
+    ),
     // Unmarked (digest 004 §1.6), accepted unless `strict`; TV 8–10.
     row("GetAllGPI", "9.4.3", &[], Ret::Int, Controller, |cx, _| {
         bits(&cx.snapshot.io.di)

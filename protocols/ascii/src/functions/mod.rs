@@ -30,6 +30,7 @@ pub mod status;
 pub mod strings;
 pub mod system;
 pub mod table_values;
+pub mod tasks;
 pub mod trigger;
 
 /// Every served function, in manual order.
@@ -52,6 +53,7 @@ pub fn all() -> impl Iterator<Item = &'static Function> {
         trigger::ROWS,
         compensation::ROWS,
         filters::ROWS,
+        tasks::ROWS,
         sdo::ROWS,
         errors::ROWS,
         homing::ROWS,

@@ -4,7 +4,7 @@
 
 use axes::{AxisState, ParamId};
 
-use super::{axis_error, axis_of, get_param, get_status, set_param};
+use super::{axis_error, axis_of, get_param, get_status, param, set_param};
 use crate::reply::Outcome;
 use crate::table::{row, Addresses::Axis, Args, Ctx, Function, Plan, Ret, Ty};
 
@@ -109,12 +109,29 @@ pub static ROWS: &[Function] = &[
         get_param(cx, a, ParamId::SmoothTime)
     }),
     row("SetSMTime", "5.3.16", AD, Ret::Int, Axis, set_sm_time),
+    // §5.3.17–18, digest 004 §3.7: the last move's profile time and its settling time (profile
+    // end → in position), measured on the engine's clock; ms.
+    row("GetMoveTime", "5.3.17", A, Ret::Double, Axis, |cx, a| {
+        get_status(cx, a, |s| s.move_time * 1000.0)
+    }),
+    row(
+        "GetSettlingTime",
+        "5.3.18",
+        A,
+        Ret::Double,
+        Axis,
+        |cx, a| get_status(cx, a, |s| s.settling_time * 1000.0),
+    ),
     row("SetPos", "5.3.19", AD, Ret::Int, Axis, set_pos),
     row("GetPosFb", "5.3.20", A, Ret::Double, Axis, |cx, a| {
         get_status(cx, a, |s| s.act_pos)
     }),
     row("GetPosFbComp", "5.3.21", A, Ret::Double, Axis, |cx, a| {
         get_status(cx, a, |s| s.act_pos + s.compensation)
+    }),
+    // §5.3.22, digest 004 §3.9: the origin offset `SetPos` moves.
+    row("GetPosOffset", "5.3.22", A, Ret::Double, Axis, |cx, a| {
+        get_status(cx, a, |s| s.position_offset)
     }),
     row("GetPosErr", "5.3.23", A, Ret::Double, Axis, |cx, a| {
         get_status(cx, a, |s| s.following_error)
@@ -125,6 +142,21 @@ pub static ROWS: &[Function] = &[
     row("GetVelErr", "5.3.25", A, Ret::Double, Axis, |cx, a| {
         get_status(cx, a, |s| s.cmd_vel - s.act_vel)
     }),
+    // §5.3.26: amperes, the drive's torque (a fraction of rated) × the motor's rated current.
+    row(
+        "GetCurrFb",
+        "5.3.26",
+        A,
+        Ret::Double,
+        Axis,
+        |cx, a| match axis_of(cx, a) {
+            Ok((axis, s)) => {
+                let amps = s.torque * param(cx, axis, ParamId::RatedCurrent);
+                Plan::Done(Outcome::Double(amps))
+            }
+            Err(code) => Plan::Fail(code),
+        },
+    ),
     row("GetRefPos", "5.3.27", A, Ret::Double, Axis, |cx, a| {
         get_status(cx, a, |s| s.cmd_pos)
     }),
@@ -178,6 +210,23 @@ pub static ROWS: &[Function] = &[
         get_param(cx, a, ParamId::VelScale)
     }),
     row("SetRollover", "5.3.39", AD, Ret::Int, Axis, set_rollover),
+    // §5.3.40, digest 004 §3.8: whole turns past 0 of the rollover axis's feedback.
+    row(
+        "GetRolloverTurns",
+        "5.3.40",
+        A,
+        Ret::Int,
+        Axis,
+        |cx, a| match axis_of(cx, a) {
+            Ok((_, s)) => {
+                let turns = s
+                    .rollover_turns
+                    .clamp(i64::from(i32::MIN), i64::from(i32::MAX));
+                Plan::Done(Outcome::Int(turns as i32))
+            }
+            Err(code) => Plan::Fail(code),
+        },
+    ),
     row("SetOpMode", "5.3.41", AI, Ret::Int, Axis, set_op_mode),
     row(
         "SetBufferMode",

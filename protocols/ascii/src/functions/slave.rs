@@ -174,6 +174,22 @@ pub static ROWS: &[Function] = &[
         Controller,
         |cx, a| set_output(cx, a, |now, _| !now),
     ),
+    // §9.3.3, unmarked (digest 004 §1.6), accepted unless `strict`: pin N = bit N−1 of the mask.
+    row(
+        "SetSlvAllGPO",
+        "9.3.3",
+        SS,
+        Ret::Status,
+        Controller,
+        |cx, a| match drive(cx, a) {
+            Ok(d) => {
+                let image = a.int(1) as u32;
+                cx.registers.slave_outputs.insert(d, image);
+                write_outputs(d, image)
+            }
+            Err(c) => minus_one(cx, c),
+        },
+    ),
     row("GetSlvGPI", "9.5.1", SS, Ret::Int, Controller, |cx, a| {
         get_pin(cx, a, true)
     }),

@@ -4,6 +4,11 @@
 //! between lines. Clients interleave at line boundaries: each is its own task.
 //!
 //! [`native::Server`] serves Native ASCII (port 3999), [`user::Server`] User ASCII (4000).
+//!
+//! The per-line path arms no timer (issue 14, Performance): the idle limit is one sleep per
+//! connection that, when it fires, re-arms itself from the last read's time unless the client
+//! has been silent for the whole limit; a reply is first written without waiting, and only a
+//! reply the socket cannot take at once waits, within the write limit.
 
 pub mod native;
 pub mod user;
@@ -17,6 +22,7 @@ use mcemu_frontend::bound::{self, AtLimit, Bound, Connection, ConnectionTable};
 use tokio::io::{AsyncReadExt, AsyncWriteExt};
 use tokio::net::{TcpListener, TcpStream};
 use tokio::sync::broadcast;
+use tokio::time::Instant;
 
 use crate::counters::StreamCounters;
 use crate::line::{Line, LineSplitter};
@@ -78,7 +84,9 @@ async fn within<T>(limit: Option<Duration>, work: impl Future<Output = T>) -> Op
 
 /// What woke a connection up.
 enum Event {
-    Read(Option<std::io::Result<usize>>),
+    Read(std::io::Result<usize>),
+    /// The idle sleep fired (the client may have sent something since it was armed).
+    IdleCheck,
     Broadcast(Arc<[u8]>),
     Stop,
 }
@@ -106,9 +114,14 @@ async fn connection<S: LineServer>(server: Arc<S>, mut c: Connection) {
     let mut splitter = LineSplitter::new(HMPL_STR_MAX_LEN);
     let mut buf = vec![0u8; 4096];
     let mut lines = Vec::new();
+    let mut last_read = Instant::now();
+    // Without a limit the sleep is never polled (the branch is disabled).
+    let idle_sleep = tokio::time::sleep(idle.unwrap_or(Duration::ZERO));
+    tokio::pin!(idle_sleep);
     loop {
         let event = tokio::select! {
-            r = within(idle, c.stream.read(&mut buf)) => Event::Read(r),
+            r = c.stream.read(&mut buf) => Event::Read(r),
+            () = &mut idle_sleep, if idle.is_some() => Event::IdleCheck,
             m = next_broadcast(&mut broadcasts) => Event::Broadcast(m),
             () = bound::stopping(&mut c.stop) => Event::Stop,
         };
@@ -120,20 +133,27 @@ async fn connection<S: LineServer>(server: Arc<S>, mut c: Connection) {
                 }
                 continue;
             }
-            Event::Read(None) => {
+            Event::IdleCheck => {
+                let Some(limit) = idle else { continue };
+                let due = last_read + limit;
+                if due > Instant::now() {
+                    idle_sleep.as_mut().reset(due);
+                    continue;
+                }
                 counters.idle_timeouts.inc();
                 tracing::info!("closed: idle for {} ms", limits.idle_timeout_ms);
                 return;
             }
-            Event::Read(Some(Ok(n))) if n > 0 => n,
+            Event::Read(Ok(n)) if n > 0 => n,
             // Closed or failed: a line it had begun is dropped, unanswered.
-            Event::Read(Some(_)) => {
+            Event::Read(_) => {
                 if splitter.in_line() {
                     counters.partial_lines.inc();
                 }
                 return;
             }
         };
+        last_read = Instant::now();
         c.activity.received();
         counters.bytes_in.add(n as u64);
         splitter.push(buf.get(..n).unwrap_or_default(), &mut lines);
@@ -149,13 +169,22 @@ async fn connection<S: LineServer>(server: Arc<S>, mut c: Connection) {
     }
 }
 
-/// Write `bytes` within the write limit; whether the connection lives on.
+/// Write `bytes` within the write limit; whether the connection lives on. What the socket
+/// takes at once is written without arming a timer (a reply line almost always fits).
 async fn write(
     c: &mut Connection,
-    bytes: &[u8],
+    mut bytes: &[u8],
     limit: Option<Duration>,
     counters: &StreamCounters,
 ) -> bool {
+    while !bytes.is_empty() {
+        match c.stream.try_write(bytes) {
+            Ok(0) => return false,
+            Ok(n) => bytes = bytes.get(n..).unwrap_or_default(),
+            Err(e) if e.kind() == std::io::ErrorKind::WouldBlock => break,
+            Err(_) => return false,
+        }
+    }
     if bytes.is_empty() {
         return true;
     }
