@@ -466,17 +466,17 @@ mod tests {
     }
 
     #[test]
-    fn tasks_are_empty_and_stopped() {
+    fn task_functions_are_not_supported_but_check_their_arguments() {
         let n = native(Options::default());
         let r = &mut Registers::default();
         for (call, want) in [
-            ("StartTask(0)", "266"),
-            ("StartTaskFunc(63, \"main\")", "265"),
-            ("StopTask(1)", "267"),
-            ("StopTask(64)", "263"),
-            ("IsTaskStop(0)", "1"),
-            ("IsTaskStop(-1)", "263"),
-            ("StopAllTask()", "0"),
+            ("StartTask(0)", "5201"),
+            ("StartTaskFunc(63, \"main\")", "5201"),
+            ("StopTask(1)", "5201"),
+            ("IsTaskStop(0)", "5201"),
+            ("StopAllTask()", "5201"),
+            ("GetSystemLastErr()", "5201"),
+            ("StartTask(\"x\")", "5000"),
         ] {
             assert_eq!(reply(&n, r, call), format!("{want}\r\n"), "{call}");
         }

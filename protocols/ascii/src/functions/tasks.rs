@@ -1,35 +1,15 @@
-//! Chapter 16, HMPL tasks (digest 004 §2.15): mcemu loads no HMPL programs, so the controller's
-//! 64 tasks (0–63) are all empty and stopped. Each function answers what the HIMC answers for
-//! an empty task: `StartTask` → `eERR_TASK_EMPTY`, `StartTaskFunc` → `eERR_FUNC_NOT_IN_TASK`,
-//! `StopTask` → `eERR_TASK_NOT_RUNNING`, `IsTaskStop` → TRUE, `StopAllTask` does nothing; a
-//! task id outside 0–63 is `eERR_NOT_VALID_TASKID`.
+//! Chapter 16, HMPL tasks (digest 004 §2.15): mcemu runs no HMPL programs, so, as issue 14
+//! says, each task function answers `eERR_HMPL_NOT_SUPPORTED` (latched in `GetSystemLastErr`)
+//! after its arguments are checked like any other call's. The rows are here so that a task call
+//! with wrong arguments gets the argument error a controller gives.
 
 use mcemu_dialects::himc::system::SystemError;
 
-use crate::reply::Outcome;
 use crate::table::{row, Addresses::Controller, Args, Ctx, Function, Plan, Ret, Ty};
 
-/// §16.1: 64 tasks.
-const TASKS: i64 = 64;
-
-/// The code of system error `name` (a name from the table: 0 would be a bug the tests catch).
-fn code(name: &str) -> u32 {
-    SystemError::by_name(name).map_or(0, SystemError::code)
-}
-
-/// `Err(eERR_NOT_VALID_TASKID)` unless argument 0 names one of the 64 tasks.
-fn task(args: &Args) -> Result<i64, u32> {
-    let id = args.int(0);
-    if (0..TASKS).contains(&id) {
-        Ok(id)
-    } else {
-        Err(code("eERR_NOT_VALID_TASKID"))
-    }
-}
-
-/// A valid task fails with `empty_task`, as every task here is empty.
-fn fails_with(args: &Args, empty_task: &str) -> Plan {
-    Plan::Fail(task(args).map_or_else(|c| c, |_| code(empty_task)))
+/// Every task function: not supported.
+fn not_supported(_: &mut Ctx<'_>, _: &Args) -> Plan {
+    Plan::Fail(SystemError::by_name("eERR_HMPL_NOT_SUPPORTED").map_or(0, SystemError::code))
 }
 
 pub static ROWS: &[Function] = &[
@@ -39,7 +19,7 @@ pub static ROWS: &[Function] = &[
         &[Ty::Int],
         Ret::Int,
         Controller,
-        |_, a| fails_with(a, "eERR_TASK_EMPTY"),
+        not_supported,
     ),
     row(
         "StartTaskFunc",
@@ -47,7 +27,7 @@ pub static ROWS: &[Function] = &[
         &[Ty::Int, Ty::Str],
         Ret::Int,
         Controller,
-        |_, a| fails_with(a, "eERR_FUNC_NOT_IN_TASK"),
+        not_supported,
     ),
     row(
         "StopTask",
@@ -55,41 +35,36 @@ pub static ROWS: &[Function] = &[
         &[Ty::Int],
         Ret::Int,
         Controller,
-        |_, a| fails_with(a, "eERR_TASK_NOT_RUNNING"),
+        not_supported,
     ),
-    row("StopAllTask", "16.5", &[], Ret::Void, Controller, |_, _| {
-        Plan::Done(Outcome::Void)
-    }),
+    // `void` in the manual; `Int` here so that the refusal is answered (a void call replies 0).
+    row(
+        "StopAllTask",
+        "16.5",
+        &[],
+        Ret::Int,
+        Controller,
+        not_supported,
+    ),
     row(
         "IsTaskStop",
         "16.6",
         &[Ty::Int],
         Ret::Int,
         Controller,
-        is_task_stop,
+        not_supported,
     ),
 ];
 
-fn is_task_stop(_: &mut Ctx<'_>, args: &Args) -> Plan {
-    match task(args) {
-        Ok(_) => Plan::Done(Outcome::bool(true)),
-        Err(c) => Plan::Fail(c),
-    }
-}
-
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use mcemu_dialects::himc::system::SystemError;
 
     #[test]
-    fn every_code_named_here_is_in_the_system_table() {
-        for name in [
-            "eERR_NOT_VALID_TASKID",
-            "eERR_TASK_EMPTY",
-            "eERR_FUNC_NOT_IN_TASK",
-            "eERR_TASK_NOT_RUNNING",
-        ] {
-            assert_ne!(code(name), 0, "{name}");
-        }
+    fn the_code_named_here_is_in_the_system_table() {
+        assert_eq!(
+            SystemError::by_name("eERR_HMPL_NOT_SUPPORTED").map(SystemError::code),
+            Some(0x1451)
+        );
     }
 }
