@@ -71,6 +71,12 @@ fn s_io_tv38() {
     example("s_io.c");
 }
 
+/// I/O by type, masked DO, encoder channels, extension module 2, identity (rows 0x12xx).
+#[test]
+fn io_by_type_encoders_modules_identity() {
+    example("io_ext.c");
+}
+
 #[test]
 fn s_gear_tv58() {
     example("s_gear.c");

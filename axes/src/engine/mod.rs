@@ -862,6 +862,7 @@ impl Engine {
             .status_into(&self.axes, &snapshot.axes, &mut snapshot.groups);
         self.couplings.status_into(&mut snapshot.couplings);
         self.couplings.handwheels_into(&mut snapshot.handwheels);
+        snapshot.external_encoders = self.couplings.external_encoders();
         self.couplings.follows_into(&mut snapshot.follows);
         self.stream_input_starts_into(&mut snapshot.stream_input_starts);
         self.triggers

@@ -11,6 +11,7 @@
 //!   families keep between calls;
 //! - `crd`: the coordinate systems' state the engine's groups do not keep;
 //! - `handlers`: one file per family of the function table (`mcemu_nmc::table`);
+//! - `io_state`: extension modules, dedicated outputs and the written ID (0x12xx families);
 //! - `stored`: settings the engine has no model of, kept and read back;
 //! - `serve`: the transports (the kit's bounded accept loop on TCP, the same table on the Unix
 //!   socket), the connection loop over `mcemu_nmc::session`, the control-API handle.
@@ -19,6 +20,7 @@ pub mod config;
 pub mod crd;
 pub mod faults;
 mod handlers;
+pub mod io_state;
 pub mod serve;
 pub mod service;
 pub mod stored;

@@ -148,6 +148,8 @@ pub struct NmcService {
     crd: Mutex<[CrdState; CRD_COUNT]>,
     /// Settings the engine has no model of (pulse mode, filters, encoder modes).
     stored: Mutex<Stored>,
+    /// Extension modules, dedicated outputs, the written ID (0x12xx families).
+    io: Mutex<super::io_state::IoState>,
     /// `TCardInfo` counts (digest 001 §1.1).
     pub io_counts: [i16; 4],
 }
@@ -171,6 +173,7 @@ impl NmcService {
             sync: Mutex::new(Default::default()),
             crd: Mutex::new(std::array::from_fn(|_| CrdState::fresh())),
             stored: Mutex::new(Stored::default()),
+            io: Mutex::new(Default::default()),
             io_counts,
         };
         service.reset_settings();
@@ -200,6 +203,10 @@ impl NmcService {
 
     pub fn crd(&self) -> MutexGuard<'_, [CrdState; CRD_COUNT]> {
         self.crd.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+
+    pub fn io(&self) -> MutexGuard<'_, super::io_state::IoState> {
+        self.io.lock().unwrap_or_else(PoisonError::into_inner)
     }
 
     pub fn stored(&self) -> MutexGuard<'_, Stored> {

@@ -173,6 +173,23 @@ typedef struct { short count[2]; short reserved[2]; long posBegin[2]; long step[
 typedef struct { long xDirComp; long yDirComp; long zDirComp; } TCompData;
 typedef struct { short enable; short tableIndex; short axisType[2]; short axisIndex[3]; } T2DCompensation;
 
+/* DO and DI types (digest 001 §2.8, §3.10), extension modules. */
+#define DO_TYPE_MOTOR_ENABLE 1
+#define DO_TYPE_MOTOR_CLEAR  2
+#define DO_TYPE_MOTOR_CLEA   DO_TYPE_MOTOR_CLEAR
+#define DO_TYPE_GPDO         3
+#define DO_TYPE_HSIO         4
+#define DI_TYPE_GPI     0
+#define DI_TYPE_LMTN    1
+#define DI_TYPE_LMTP    2
+#define DI_TYPE_HOME    3
+#define DI_TYPE_Z       4
+#define IOMODULE_TYPE_IO64    1
+#define IOMODULE_TYPE_IO32_DA 2
+
+/* NMC_GetMtLibVersion: not defined by the manual (digest 001 §8 item 3); mcemu's. */
+typedef struct { char strVer[16]; short major; short minor; short patch; short reserved; } TmLibVersion;
+
 /* Coordinate system (digest 001 §3.7, §3.8, §3.10). */
 #define BIT_CORD_BUSY           0x00000001
 #define BIT_CORD_MVERR          0x00000002
@@ -455,6 +472,25 @@ short NMC_Set2DCompensationTable(HAND devHandle, short tableIndex, T2DCompensati
 short NMC_Get2DCompensationTable(HAND devHandle, short tableIndex, T2DCompensationTable *pTable, TCompData *pData);
 short NMC_Set2DCompensation(HAND devHandle, T2DCompensation *pComp);
 short NMC_Get2DCompensation(HAND devHandle, T2DCompensation *pComp);
+short NMC_GetDIEx(HAND devHandle, short diType, short groupID, long *pDiValue);
+short NMC_GetDIRaw(HAND devHandle, short diType, short groupID, long *pDiValue);
+short NMC_GetDOEx(HAND devHandle, short doType, short groupID, long *pOutValue);
+short NMC_SetDOMask(HAND devHandle, long outMask, long outValue, short doType, short groupID);
+short NMC_GetEncPos(HAND devHandle, short encId, long *pPos);
+short NMC_GetEncVel(HAND devHandle, unsigned char encId, double *vel);
+short NMC_SetEncPos(HAND devHandle, short encId, long encPos);
+short NMC_IOModuleSetEn(HAND devHandle, unsigned char chDevId, short chDevType);
+short NMC_IOModuleGetType(HAND devHandle, unsigned char chDevId, short *pChDevType);
+short NMC_IOModuleRd16Bit(HAND devHandle, unsigned char chDevId, unsigned char offset, unsigned short *pData);
+short NMC_IOModuleRd32Bit(HAND devHandle, unsigned char chDevId, unsigned char offset, unsigned long *pData);
+short NMC_IOModuleRdOut16Bit(HAND devHandle, unsigned char chDevId, unsigned char offset, unsigned short *pData);
+short NMC_IOModuleRdOut32Bit(HAND devHandle, unsigned char chDevId, unsigned char offset, unsigned long *pData);
+short NMC_IOModuleWr16Bit(HAND devHandle, unsigned char chDevId, unsigned char offset, unsigned short data);
+short NMC_IOModuleWr32Bit(HAND devHandle, unsigned char chDevId, unsigned char offset, unsigned long data);
+short NMC_GetIOModuleSts(HAND devHandle, unsigned long *sts);
+short NMC_DevReadID(HAND devHandle, char *pIdStr);
+short NMC_GetUID(HAND devHandle, unsigned long *pUID);
+short NMC_GetMtLibVersion(HAND devHandle, TmLibVersion *pVersion);
 
 #ifdef __cplusplus
 }

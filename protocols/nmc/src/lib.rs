@@ -13,6 +13,8 @@
 //! - [`structs`]: the manual's structs (`TPtpPara` …) as the wire carries them;
 //! - [`sync_structs`], [`sync_header`]: the structs and header text of the gear, PT/PVT,
 //!   capture, compare, gantry, handwheel and compensation families;
+//! - [`io_structs`], [`io_header`]: the structs and header text of the I/O-by-type,
+//!   extension-module and controller-service families (0x12xx);
 //! - [`axis_config`]: `TSafePara` as the wire carries it;
 //! - [`crd`]: the coordinate-system structs (`TCrdConfig` …) and their C declarations;
 //! - [`errors`]: the return codes of `mtn_lib20_err.h` (not in the manual: mcemu's, stable);
@@ -26,6 +28,8 @@ pub mod errors;
 pub mod frame;
 pub mod handle;
 pub mod header;
+pub mod io_header;
+pub mod io_structs;
 pub mod payload;
 pub mod session;
 pub mod structs;

@@ -8,7 +8,8 @@
 //! status and servo, 0x03xx PTP/JOG/stop, 0x04xx homing, 0x05xx I/O, 0x06xx coordinate
 //! systems, 0x07xx basic axis configuration, 0x08xx Appendix A aliases, 0x09xx analog I/O,
 //! 0x0Axx EtherCAT, 0x0Bxx user parameters, 0x0Cxx gear, 0x0Dxx PT/PVT, 0x0Exx capture, 0x0Fxx
-//! compare, 0x10xx gantry and handwheel, 0x11xx compensation).
+//! compare, 0x10xx gantry and handwheel, 0x11xx compensation, 0x12xx I/O by type, encoders,
+//! extension modules and controller services).
 
 /// A C argument kind, as the manual writes it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -384,6 +385,26 @@ functions! {
     GET_2D_COMPENSATION_TABLE = 0x1106 Server Main NMC_Get2DCompensationTable(In Hand => devHandle, In Short => tableIndex, Out Struct("T2DCompensationTable") => pTable, Out StructArray("TCompData") => pData);
     SET_2D_COMPENSATION = 0x1107 Server Main NMC_Set2DCompensation(In Hand => devHandle, In Struct("T2DCompensation") => pComp);
     GET_2D_COMPENSATION = 0x1108 Server Main NMC_Get2DCompensation(In Hand => devHandle, Out Struct("T2DCompensation") => pComp);
+    // ---- I/O by type, encoders, extension modules, device identity (digest 001 §2.8, §2.20, §4.8) ----
+    GET_DI_EX = 0x1201 Server Main NMC_GetDIEx(In Hand => devHandle, In Short => diType, In Short => groupID, Out Long => pDiValue);
+    GET_DI_RAW = 0x1202 Server Main NMC_GetDIRaw(In Hand => devHandle, In Short => diType, In Short => groupID, Out Long => pDiValue);
+    GET_DO_EX = 0x1203 Server Main NMC_GetDOEx(In Hand => devHandle, In Short => doType, In Short => groupID, Out Long => pOutValue);
+    SET_DO_MASK = 0x1204 Server Main NMC_SetDOMask(In Hand => devHandle, In Long => outMask, In Long => outValue, In Short => doType, In Short => groupID);
+    GET_ENC_POS = 0x1205 Server Main NMC_GetEncPos(In Hand => devHandle, In Short => encId, Out Long => pPos);
+    GET_ENC_VEL = 0x1206 Server Main NMC_GetEncVel(In Hand => devHandle, In UChar => encId, Out Double => vel);
+    SET_ENC_POS = 0x1207 Server Main NMC_SetEncPos(In Hand => devHandle, In Short => encId, In Long => encPos);
+    IO_MODULE_SET_EN = 0x1208 Server Main NMC_IOModuleSetEn(In Hand => devHandle, In UChar => chDevId, In Short => chDevType);
+    IO_MODULE_GET_TYPE = 0x1209 Server Main NMC_IOModuleGetType(In Hand => devHandle, In UChar => chDevId, Out Short => pChDevType);
+    IO_MODULE_RD_16BIT = 0x120A Server Main NMC_IOModuleRd16Bit(In Hand => devHandle, In UChar => chDevId, In UChar => offset, Out UShort => pData);
+    IO_MODULE_RD_32BIT = 0x120B Server Main NMC_IOModuleRd32Bit(In Hand => devHandle, In UChar => chDevId, In UChar => offset, Out ULong => pData);
+    IO_MODULE_RD_OUT_16BIT = 0x120C Server Main NMC_IOModuleRdOut16Bit(In Hand => devHandle, In UChar => chDevId, In UChar => offset, Out UShort => pData);
+    IO_MODULE_RD_OUT_32BIT = 0x120D Server Main NMC_IOModuleRdOut32Bit(In Hand => devHandle, In UChar => chDevId, In UChar => offset, Out ULong => pData);
+    IO_MODULE_WR_16BIT = 0x120E Server Main NMC_IOModuleWr16Bit(In Hand => devHandle, In UChar => chDevId, In UChar => offset, In UShort => data);
+    IO_MODULE_WR_32BIT = 0x120F Server Main NMC_IOModuleWr32Bit(In Hand => devHandle, In UChar => chDevId, In UChar => offset, In ULong => data);
+    GET_IO_MODULE_STS = 0x1210 Server Main NMC_GetIOModuleSts(In Hand => devHandle, Out ULong => sts);
+    DEV_READ_ID = 0x1211 Server Main NMC_DevReadID(In Hand => devHandle, Out Str => pIdStr);
+    GET_UID = 0x1212 Server Main NMC_GetUID(In Hand => devHandle, Out ULong => pUID);
+    GET_MT_LIB_VERSION = 0x1213 Server Main NMC_GetMtLibVersion(In Hand => devHandle, Out Struct("TmLibVersion") => pVersion);
 }
 
 #[cfg(test)]

@@ -27,8 +27,13 @@ mod pt;
 mod sync_args;
 
 mod user_para;
+// I/O by type, encoders, extension modules, identity (0x12xx).
+mod encoders;
+mod identity;
+mod io_modules;
+mod io_typed;
 
-const FAMILIES: [&[(Function, Handler)]; 19] = [
+const FAMILIES: [&[(Function, Handler)]; 23] = [
     device::HANDLERS,
     axis::HANDLERS,
     motion::HANDLERS,
@@ -48,6 +53,10 @@ const FAMILIES: [&[(Function, Handler)]; 19] = [
     analog::HANDLERS,
     ecat::HANDLERS,
     user_para::HANDLERS,
+    io_typed::HANDLERS,
+    io_modules::HANDLERS,
+    encoders::HANDLERS,
+    identity::HANDLERS,
 ];
 
 /// The handler of function `id`.

@@ -28,6 +28,8 @@ pub mod device;
 pub mod ecat;
 pub mod home;
 pub mod io;
+pub mod io_ext;
+pub mod io_types;
 pub mod library;
 pub mod motion;
 pub mod types;

@@ -1,0 +1,52 @@
+//! The structs of the I/O-by-type, extension-module and controller-service families (0x12xx,
+//! digest 001 §3.12, §3.18, §3.19) as the wire carries them, in `crate::structs`' manner:
+//! fields in declaration order, `char[N]` as N bytes, `long` as i64, `reserved` not sent.
+
+use crate::payload::{PayloadError, Reader, Writer};
+use crate::structs::{get_chars, put_chars};
+
+/// `TmLibVersion` (NMC_GetMtLibVersion): the manual leaves it undefined (digest 001 §8 item 3);
+/// mcemu's: a version string and its three numbers.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct LibVersion {
+    pub str_ver: [u8; 16],
+    pub major: i16,
+    pub minor: i16,
+    pub patch: i16,
+}
+
+impl LibVersion {
+    pub fn write(&self, w: &mut Writer) {
+        put_chars(w, &self.str_ver);
+        w.i16(self.major).i16(self.minor).i16(self.patch);
+    }
+    pub fn read(r: &mut Reader<'_>) -> Result<LibVersion, PayloadError> {
+        Ok(LibVersion {
+            str_ver: get_chars(r)?,
+            major: r.i16()?,
+            minor: r.i16()?,
+            patch: r.i16()?,
+        })
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn structs_round_trip() {
+        let v = LibVersion {
+            str_ver: crate::structs::chars("mcemu 1"),
+            major: 1,
+            minor: 2,
+            patch: 3,
+        };
+        let mut w = Writer::new();
+        v.write(&mut w);
+        let mut r = Reader::new(&w.bytes);
+        assert_eq!(LibVersion::read(&mut r).unwrap(), v);
+        r.finish().unwrap();
+    }
+}
