@@ -3,7 +3,9 @@
 //! ID string written for the next power-up, the inverted bits. Shared by the device's
 //! connections.
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
+
+use mcemu_nmc::io_structs::DioMapping;
 
 /// Extension modules take ids 2 … 9 (digest 001 §2.8, §4.8).
 pub const MODULE_FIRST: u8 = 2;
@@ -32,7 +34,26 @@ pub struct IoState {
     pub di_revs: BTreeSet<usize>,
     /// General DO bits inverted by `NMC_SetDOBitRevs`: the terminal drives the opposite level.
     pub do_revs: BTreeSet<usize>,
+    /// `NMC_SetDOBitRevsEx` of the servo-enable (1) and alarm-clear (2) outputs, by (type,
+    /// axis): stored and read back (the machine models no terminal for them).
+    pub do_revs_ex: BTreeSet<(i16, usize)>,
+    /// `NMC_SetDIFilter` by (type, group, index), ms; unset = 3 (digest 001 §2.8).
+    pub di_filters: BTreeMap<(i16, i16, i16), i16>,
+    /// `NMC_SetDiReverseCount`: the engine's edge count of a general DI at which the counter
+    /// read 0 (wrapping), by bit.
+    pub edge_base: BTreeMap<usize, u32>,
+    /// `NMC_DoBitPulseEnable` channel → the DO bit its train drives.
+    pub pulse_channels: [Option<usize>; MAX_NUM_DOBIT_PULSE],
+    /// `NMC_SetDioMapping`, at most [`MAX_DIO_MAPPING`], in the order added.
+    pub dio_mappings: Vec<DioMapping>,
 }
+
+/// `MAX_NUM_DOBIT_PULSE` (mtn_lib20.h).
+pub const MAX_NUM_DOBIT_PULSE: usize = 8;
+/// Mappings `NMC_SetDioMapping` keeps (digest 001 §3.12: ≤ 8).
+pub const MAX_DIO_MAPPING: usize = 8;
+/// The DI filter of an input never set, ms (digest 001 §2.8).
+pub const DEFAULT_DI_FILTER: i16 = 3;
 
 impl Default for IoState {
     fn default() -> IoState {
@@ -43,6 +64,11 @@ impl Default for IoState {
             written_id: None,
             di_revs: BTreeSet::new(),
             do_revs: BTreeSet::new(),
+            do_revs_ex: BTreeSet::new(),
+            di_filters: BTreeMap::new(),
+            edge_base: BTreeMap::new(),
+            pulse_channels: [None; MAX_NUM_DOBIT_PULSE],
+            dio_mappings: Vec::new(),
         }
     }
 }
@@ -51,6 +77,13 @@ impl IoState {
     /// The inverted DI bits of the 32 from `start`, as a mask.
     pub fn di_revs_word(&self, start: usize) -> u32 {
         self.di_revs
+            .range(start..start + 32)
+            .fold(0, |v, b| v | 1 << (b - start))
+    }
+
+    /// The inverted DO bits of the 32 from `start`, as a mask.
+    pub fn do_revs_word(&self, start: usize) -> u32 {
+        self.do_revs
             .range(start..start + 32)
             .fold(0, |v, b| v | 1 << (b - start))
     }

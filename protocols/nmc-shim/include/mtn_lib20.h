@@ -187,6 +187,13 @@ typedef struct { short enable; short tableIndex; short axisType[2]; short axisIn
 #define IOMODULE_TYPE_IO64    1
 #define IOMODULE_TYPE_IO32_DA 2
 
+/* NMC_DoBitPulseEnable channels (digest 001 §2.7; the count is mcemu's, §8 item 3). */
+#define MAX_NUM_DOBIT_PULSE 8
+/* NMC_SetDioMapping: at most 8 mappings (digest 001 §3.12). */
+typedef struct { unsigned char enable; unsigned char pinGrp; unsigned char pinIndex;
+                 unsigned char outEnable; unsigned char newGrp; unsigned char newIndex; } TDioMappingCfg;
+#define MAX_DIO_MAPPING 8
+
 /* NMC_GetMtLibVersion: not defined by the manual (digest 001 §8 item 3); mcemu's. */
 typedef struct { char strVer[16]; short major; short minor; short patch; short reserved; } TmLibVersion;
 
@@ -491,6 +498,25 @@ short NMC_GetIOModuleSts(HAND devHandle, unsigned long *sts);
 short NMC_DevReadID(HAND devHandle, char *pIdStr);
 short NMC_GetUID(HAND devHandle, unsigned long *pUID);
 short NMC_GetMtLibVersion(HAND devHandle, TmLibVersion *pVersion);
+short NMC_GetDI(HAND devHandle, long *pInValue, short groupID);
+short NMC_GetDO(HAND devHandle, long *pDoValue, short groupID);
+short NMC_SetDO(HAND devHandle, long value, short groupID);
+short NMC_SetDIBitRevs(HAND devHandle, short bitIndex, short revs);
+short NMC_GetDIBitRevs(HAND devHandle, short bitIndex, short *pRevs);
+short NMC_SetDOBitRevs(HAND devHandle, short bitIndex, short revs);
+short NMC_GetDOBitRevs(HAND devHandle, short bitIndex, short *pRevs);
+short NMC_SetDOBitRevsEx(HAND devHandle, short doType, short group, short bitIndex, short revs);
+short NMC_GetDOBitRevsEx(HAND devHandle, short doType, short group, short bitIndex, short *pRevs);
+short NMC_SetDOBitAutoReverse(HAND devHandle, short bitIndex, short value, short reverseTime);
+short NMC_DoBitPulseEnable(HAND devHandle, short doType, short doIndex, long highLevelTime, long lowLevelTime, long outCount, short initialLevel, short ch);
+short NMC_DoBitPulseDisable(HAND devHandle, short ch);
+short NMC_SetDIFilter(HAND devHandle, short diType, short diGroup, short diIndex, short filtTime);
+short NMC_GetDIFilter(HAND devHandle, short diType, short diGroup, short diIndex, short *pFiltTime);
+short NMC_SetDiReverseCount(HAND devHandle, short diType, short diIndex, unsigned long *pReverseCountArray, short count);
+short NMC_GetDiReverseCount(HAND devHandle, short diType, short diIndex, unsigned long *pReverseCountArray, short count);
+short NMC_SetDioMapping(HAND devHandle, TDioMappingCfg *pDioCfg);
+short NMC_GetAllDioMapping(HAND devHandle, TDioMappingCfg *pDioCfg);
+short NMC_ClrAllDioMapping(HAND devHandle);
 
 #ifdef __cplusplus
 }

@@ -163,6 +163,7 @@ fn c_arg(a: &Arg) -> String {
         CType::Struct(s) | CType::StructArray(s) => return format!("{s} *{}", a.name),
         CType::ShortArray => return format!("short *{}", a.name),
         CType::LongArray => return format!("long *{}", a.name),
+        CType::ULongArray => return format!("unsigned long *{}", a.name),
         CType::DoubleArray => return format!("double *{}", a.name),
     };
     match (a.ty, a.dir) {

@@ -18,6 +18,13 @@ pub const IO_PREAMBLE: &str = r#"/* DO and DI types (digest 001 §2.8, §3.10), 
 #define IOMODULE_TYPE_IO64    1
 #define IOMODULE_TYPE_IO32_DA 2
 
+/* NMC_DoBitPulseEnable channels (digest 001 §2.7; the count is mcemu's, §8 item 3). */
+#define MAX_NUM_DOBIT_PULSE 8
+/* NMC_SetDioMapping: at most 8 mappings (digest 001 §3.12). */
+typedef struct { unsigned char enable; unsigned char pinGrp; unsigned char pinIndex;
+                 unsigned char outEnable; unsigned char newGrp; unsigned char newIndex; } TDioMappingCfg;
+#define MAX_DIO_MAPPING 8
+
 /* NMC_GetMtLibVersion: not defined by the manual (digest 001 §8 item 3); mcemu's. */
 typedef struct { char strVer[16]; short major; short minor; short patch; short reserved; } TmLibVersion;
 

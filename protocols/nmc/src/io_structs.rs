@@ -30,6 +30,42 @@ impl LibVersion {
     }
 }
 
+/// `TDioMappingCfg` (NMC_SetDioMapping, digest 001 §3.12): six bytes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct DioMapping {
+    pub enable: u8,
+    pub pin_grp: u8,
+    pub pin_index: u8,
+    pub out_enable: u8,
+    pub new_grp: u8,
+    pub new_index: u8,
+}
+
+impl DioMapping {
+    pub fn write(&self, w: &mut Writer) {
+        for b in [
+            self.enable,
+            self.pin_grp,
+            self.pin_index,
+            self.out_enable,
+            self.new_grp,
+            self.new_index,
+        ] {
+            w.u8(b);
+        }
+    }
+    pub fn read(r: &mut Reader<'_>) -> Result<DioMapping, PayloadError> {
+        Ok(DioMapping {
+            enable: r.u8()?,
+            pin_grp: r.u8()?,
+            pin_index: r.u8()?,
+            out_enable: r.u8()?,
+            new_grp: r.u8()?,
+            new_index: r.u8()?,
+        })
+    }
+}
+
 #[cfg(test)]
 #[allow(clippy::unwrap_used)]
 mod tests {
@@ -48,5 +84,16 @@ mod tests {
         let mut r = Reader::new(&w.bytes);
         assert_eq!(LibVersion::read(&mut r).unwrap(), v);
         r.finish().unwrap();
+        let m = DioMapping {
+            enable: 1,
+            pin_grp: 0,
+            pin_index: 3,
+            out_enable: 1,
+            new_grp: 1,
+            new_index: 7,
+        };
+        let mut w = Writer::new();
+        m.write(&mut w);
+        assert_eq!(DioMapping::read(&mut Reader::new(&w.bytes)).unwrap(), m);
     }
 }

@@ -40,6 +40,8 @@ pub enum CType {
     /// `short *` (`short *pSyncAxArray`), in or out; its length another argument's value. On
     /// the wire: u16 count, then i16 each.
     ShortArray,
+    /// `unsigned long *`: as [`CType::LongArray`], u16 count then u64 each.
+    ULongArray,
     /// `long *`: an array of the platform's `long`, its length the function's (the crd's
     /// coordinates, a mask's bits, `cnts`) or another argument's value. On the wire: u16 count,
     /// then i64 each.
@@ -405,6 +407,26 @@ functions! {
     DEV_READ_ID = 0x1211 Server Main NMC_DevReadID(In Hand => devHandle, Out Str => pIdStr);
     GET_UID = 0x1212 Server Main NMC_GetUID(In Hand => devHandle, Out ULong => pUID);
     GET_MT_LIB_VERSION = 0x1213 Server Main NMC_GetMtLibVersion(In Hand => devHandle, Out Struct("TmLibVersion") => pVersion);
+    // ---- the plain aliases, inversion, timed outputs, filters, edge counters, DIO mapping (digest 001 §2.8) ----
+    GET_DI = 0x1220 Server Main NMC_GetDI(In Hand => devHandle, Out Long => pInValue, In Short => groupID);
+    GET_DO = 0x1221 Server Main NMC_GetDO(In Hand => devHandle, Out Long => pDoValue, In Short => groupID);
+    SET_DO = 0x1222 Server Main NMC_SetDO(In Hand => devHandle, In Long => value, In Short => groupID);
+    SET_DI_BIT_REVS = 0x1223 Server Main NMC_SetDIBitRevs(In Hand => devHandle, In Short => bitIndex, In Short => revs);
+    GET_DI_BIT_REVS = 0x1224 Server Main NMC_GetDIBitRevs(In Hand => devHandle, In Short => bitIndex, Out Short => pRevs);
+    SET_DO_BIT_REVS = 0x1225 Server Main NMC_SetDOBitRevs(In Hand => devHandle, In Short => bitIndex, In Short => revs);
+    GET_DO_BIT_REVS = 0x1226 Server Main NMC_GetDOBitRevs(In Hand => devHandle, In Short => bitIndex, Out Short => pRevs);
+    SET_DO_BIT_REVS_EX = 0x1227 Server Main NMC_SetDOBitRevsEx(In Hand => devHandle, In Short => doType, In Short => group, In Short => bitIndex, In Short => revs);
+    GET_DO_BIT_REVS_EX = 0x1228 Server Main NMC_GetDOBitRevsEx(In Hand => devHandle, In Short => doType, In Short => group, In Short => bitIndex, Out Short => pRevs);
+    SET_DO_BIT_AUTO_REVERSE = 0x1229 Server Main NMC_SetDOBitAutoReverse(In Hand => devHandle, In Short => bitIndex, In Short => value, In Short => reverseTime);
+    DO_BIT_PULSE_ENABLE = 0x122A Server Main NMC_DoBitPulseEnable(In Hand => devHandle, In Short => doType, In Short => doIndex, In Long => highLevelTime, In Long => lowLevelTime, In Long => outCount, In Short => initialLevel, In Short => ch);
+    DO_BIT_PULSE_DISABLE = 0x122B Server Main NMC_DoBitPulseDisable(In Hand => devHandle, In Short => ch);
+    SET_DI_FILTER = 0x122C Server Main NMC_SetDIFilter(In Hand => devHandle, In Short => diType, In Short => diGroup, In Short => diIndex, In Short => filtTime);
+    GET_DI_FILTER = 0x122D Server Main NMC_GetDIFilter(In Hand => devHandle, In Short => diType, In Short => diGroup, In Short => diIndex, Out Short => pFiltTime);
+    SET_DI_REVERSE_COUNT = 0x122E Server Main NMC_SetDiReverseCount(In Hand => devHandle, In Short => diType, In Short => diIndex, In ULongArray => pReverseCountArray, In Short => count);
+    GET_DI_REVERSE_COUNT = 0x122F Server Main NMC_GetDiReverseCount(In Hand => devHandle, In Short => diType, In Short => diIndex, Out ULongArray => pReverseCountArray, In Short => count);
+    SET_DIO_MAPPING = 0x1230 Server Main NMC_SetDioMapping(In Hand => devHandle, In Struct("TDioMappingCfg") => pDioCfg);
+    GET_ALL_DIO_MAPPING = 0x1231 Server Main NMC_GetAllDioMapping(In Hand => devHandle, Out StructArray("TDioMappingCfg") => pDioCfg);
+    CLR_ALL_DIO_MAPPING = 0x1232 Server Main NMC_ClrAllDioMapping(In Hand => devHandle);
 }
 
 #[cfg(test)]

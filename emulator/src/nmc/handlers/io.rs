@@ -1,5 +1,6 @@
 //! Digital inputs and outputs by group of 32 and by bit (digest 001 §2.8, §4.8): group 0 is
-//! bits 0–31, group 1 bits 32–63, 2 … 9 the extension modules (`io_modules`).
+//! bits 0–31, group 1 bits 32–63, 2 … 9 the extension modules (`io_modules`). Reads and
+//! writes go through the bit inversions of `NMC_SetDIBitRevs` / `NMC_SetDOBitRevs` (`io_extras`).
 
 use axes::command::WriteDigitalOutput;
 use mcemu_nmc::table::{self, Function};
@@ -44,16 +45,33 @@ fn group_value(bits: &[bool], start: usize) -> i64 {
     i64::from(word(bits, start))
 }
 
+/// What a program reads of DO group `start`: the terminals' levels, un-inverted where
+/// `NMC_SetDOBitRevs` inverts them (the terminal drives the opposite of what was written).
+fn do_logical(c: &Call<'_>, start: usize) -> i64 {
+    group_value(&c.snapshot.io.do_, start) ^ i64::from(c.service.io().do_revs_word(start))
+}
+
+/// What a program reads of DI group `start`: inverted where `NMC_SetDIBitRevs` says.
+pub(super) fn di_logical(c: &Call<'_>, start: usize) -> i64 {
+    group_value(&c.snapshot.io.di, start) ^ i64::from(c.service.io().di_revs_word(start))
+}
+
+/// Drive DO `channel` so that it reads `value` (inverted at the terminal if so set).
+pub(super) fn drive(c: &mut Call<'_>, channel: usize, value: bool) {
+    let level = value ^ c.service.io().do_rev(channel);
+    c.command(WriteDigitalOutput {
+        channel: channel as u16,
+        value: level,
+    });
+}
+
 pub(super) fn set_do_group(c: &mut Call<'_>) -> Result<(), Refusal> {
     c.device()?;
     let (value, group) = (c.input.i64()?, c.input.i16()?);
     let count = c.snapshot.io.do_.len();
     let start = group_start(c, group, count)?;
     for i in 0..32.min(count.saturating_sub(start)) {
-        c.command(WriteDigitalOutput {
-            channel: (start + i) as u16,
-            value: value & (1 << i) != 0,
-        });
+        drive(c, start + i, value & (1 << i) != 0);
     }
     Ok(())
 }
@@ -62,15 +80,17 @@ pub(super) fn get_do_group(c: &mut Call<'_>) -> Result<(), Refusal> {
     c.device()?;
     let group = c.input.i16()?;
     let start = group_start(c, group, c.snapshot.io.do_.len())?;
-    c.output.i64(group_value(&c.snapshot.io.do_, start));
+    let v = do_logical(c, start);
+    c.output.i64(v);
     Ok(())
 }
 
-fn get_di_group(c: &mut Call<'_>) -> Result<(), Refusal> {
+pub(super) fn get_di_group(c: &mut Call<'_>) -> Result<(), Refusal> {
     c.device()?;
     let group = c.input.i16()?;
     let start = group_start(c, group, c.snapshot.io.di.len())?;
-    c.output.i64(group_value(&c.snapshot.io.di, start));
+    let v = di_logical(c, start);
+    c.output.i64(v);
     Ok(())
 }
 
@@ -81,10 +101,7 @@ fn set_do_bit(c: &mut Call<'_>) -> Result<(), Refusal> {
     if !(0..=1).contains(&value) {
         return Err(Refusal::range("value", value, "{0, 1}"));
     }
-    c.command(WriteDigitalOutput {
-        channel: channel as u16,
-        value: value == 1,
-    });
+    drive(c, channel, value == 1);
     Ok(())
 }
 
@@ -92,7 +109,7 @@ fn get_do_bit(c: &mut Call<'_>) -> Result<(), Refusal> {
     c.device()?;
     let bit = c.input.i16()?;
     let i = bit_index(c, bit, c.snapshot.io.do_.len())?;
-    let on = c.snapshot.io.do_.get(i).copied().unwrap_or(false);
+    let on = c.snapshot.io.do_.get(i).copied().unwrap_or(false) ^ c.service.io().do_rev(i);
     c.output.i16(i16::from(on));
     Ok(())
 }
@@ -101,7 +118,8 @@ fn get_di_bit(c: &mut Call<'_>) -> Result<(), Refusal> {
     c.device()?;
     let bit = c.input.i16()?;
     let i = bit_index(c, bit, c.snapshot.io.di.len())?;
-    let on = c.snapshot.io.di.get(i).copied().unwrap_or(false);
+    let on =
+        c.snapshot.io.di.get(i).copied().unwrap_or(false) ^ c.service.io().di_revs.contains(&i);
     c.output.i16(i16::from(on));
     Ok(())
 }

@@ -105,7 +105,8 @@ fn get_do_ex(c: &mut Call<'_>) -> Result<(), Refusal> {
         }
         3 => {
             let start = group_start(c, group, c.snapshot.io.do_.len())?;
-            i64::from(word(&c.snapshot.io.do_, start))
+            let revs = c.service.io().do_revs_word(start);
+            i64::from(word(&c.snapshot.io.do_, start) ^ revs)
         }
         4 => {
             axis_group(group)?;

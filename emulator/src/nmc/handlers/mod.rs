@@ -30,10 +30,11 @@ mod user_para;
 // I/O by type, encoders, extension modules, identity (0x12xx).
 mod encoders;
 mod identity;
+mod io_extras;
 mod io_modules;
 mod io_typed;
 
-const FAMILIES: [&[(Function, Handler)]; 23] = [
+const FAMILIES: [&[(Function, Handler)]; 24] = [
     device::HANDLERS,
     axis::HANDLERS,
     motion::HANDLERS,
@@ -55,6 +56,7 @@ const FAMILIES: [&[(Function, Handler)]; 23] = [
     user_para::HANDLERS,
     io_typed::HANDLERS,
     io_modules::HANDLERS,
+    io_extras::HANDLERS,
     encoders::HANDLERS,
     identity::HANDLERS,
 ];

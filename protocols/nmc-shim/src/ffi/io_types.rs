@@ -5,7 +5,7 @@
 
 use std::ffi::{c_char, c_short};
 
-use mcemu_nmc::io_structs::LibVersion;
+use mcemu_nmc::io_structs::{DioMapping, LibVersion};
 
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default)]
@@ -25,6 +25,43 @@ impl From<LibVersion> for TmLibVersion {
             minor: v.minor,
             patch: v.patch,
             reserved: 0,
+        }
+    }
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct TDioMappingCfg {
+    pub enable: u8,
+    pub pinGrp: u8,
+    pub pinIndex: u8,
+    pub outEnable: u8,
+    pub newGrp: u8,
+    pub newIndex: u8,
+}
+
+impl From<TDioMappingCfg> for DioMapping {
+    fn from(c: TDioMappingCfg) -> DioMapping {
+        DioMapping {
+            enable: c.enable,
+            pin_grp: c.pinGrp,
+            pin_index: c.pinIndex,
+            out_enable: c.outEnable,
+            new_grp: c.newGrp,
+            new_index: c.newIndex,
+        }
+    }
+}
+
+impl From<DioMapping> for TDioMappingCfg {
+    fn from(m: DioMapping) -> TDioMappingCfg {
+        TDioMappingCfg {
+            enable: m.enable,
+            pinGrp: m.pin_grp,
+            pinIndex: m.pin_index,
+            outEnable: m.out_enable,
+            newGrp: m.new_grp,
+            newIndex: m.new_index,
         }
     }
 }

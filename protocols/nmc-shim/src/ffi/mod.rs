@@ -29,6 +29,7 @@ pub mod ecat;
 pub mod home;
 pub mod io;
 pub mod io_ext;
+pub mod io_extras;
 pub mod io_types;
 pub mod library;
 pub mod motion;
