@@ -120,19 +120,20 @@ int main(void) {
     CHECK(NMC_SetDOBitAutoReverse(dev, 5, 1, 0) == RTN_ARG_RANGE, "reverseTime 0");
     CHECK(NMC_SetDOBitAutoReverse(dev, 5, 2, 10) == RTN_ARG_RANGE, "value 2");
 
-    /* A train of 3 pulses, 40 ms high / 40 ms low from high: 6 changes, ends high. */
+    /* A train of 3 pulses, 150 ms high / 150 ms low from high: 6 changes, ends high (levels
+     * long enough for a poller on a loaded host to see each). */
     OK(NMC_SetDOBit(dev, 6, 0));
-    OK(NMC_DoBitPulseEnable(dev, 0, 6, 40000, 40000, 3, 1, 0));
+    OK(NMC_DoBitPulseEnable(dev, 0, 6, 150000, 150000, 3, 1, 0));
     EVENTUALLY(NMC_GetDOBit(dev, 6, &b), b == 1);
-    n = transitions(6, 600, &last);
+    n = transitions(6, 1200, &last);
     CHECK(n == 6 && last == 1, "3 pulses: %d changes, last %d", n, last);
     /* Continuous until disabled; then it holds. */
-    OK(NMC_DoBitPulseEnable(dev, 0, 7, 20000, 20000, 0, 0, 1));
-    n = transitions(7, 200, &last);
-    CHECK(n >= 6, "continuous train: %d changes", n);
+    OK(NMC_DoBitPulseEnable(dev, 0, 7, 100000, 100000, 0, 0, 1));
+    n = transitions(7, 700, &last);
+    CHECK(n >= 3, "continuous train: %d changes", n);
     OK(NMC_DoBitPulseDisable(dev, 1));
     OK(NMC_GetDOBit(dev, 7, &b));
-    n = transitions(7, 100, &last);
+    n = transitions(7, 300, &last);
     CHECK(n == 0, "disabled train changed %d times", n);
     CHECK(NMC_DoBitPulseEnable(dev, 0, 7, 1000, 1000, 1, 0, MAX_NUM_DOBIT_PULSE) == RTN_ARG_RANGE, "ch");
     CHECK(NMC_DoBitPulseEnable(dev, 1, 7, 1000, 1000, 1, 0, 0) == RTN_ARG_RANGE, "doType 1");

@@ -83,6 +83,12 @@ fn io_aliases_inversion_timed_outputs_counters() {
     example("io_extras.c");
 }
 
+/// DevWriteID, system parameters, the RTC, the system password, backed variables.
+#[test]
+fn controller_services() {
+    example("dev_services.c");
+}
+
 /// S-HOST-C++ (digest 001 §5, C4): a C++ host program built with g++.
 #[test]
 fn s_host_cpp() {

@@ -40,8 +40,8 @@ pub struct WriteAnalogOutput {
 
 /// Write digital output `channel` to `level` now, then toggle it `toggles` times on the
 /// virtual clock: `level` holds `level_time` s, the opposite level `other_time` s, and so on
-/// (whole ticks, at least one). `toggles` 0 just writes and ends the channel's running train;
-/// `u32::MAX` toggles forever. A `write_digital_output` to the channel does not end it (NMC
+/// (whole ticks, at least one). `toggles` 0 ends the channel's running train and writes
+/// nothing (the output stays where the train left it); `u32::MAX` toggles forever. A `write_digital_output` to the channel does not end it (NMC
 /// SetDOBitAutoReverse, DoBitPulseEnable / Disable, digest 001 §2.8). JSON `type`:
 /// `pulse_digital_output`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

@@ -39,7 +39,8 @@ fn ticks(name: &'static str, seconds: f64, period: f64) -> Result<u64, EngineErr
 
 impl DoPulses {
     /// Check `c` against `outputs` (the channel exists), write its first level, and start its
-    /// train (or end the channel's train when `toggles` is 0).
+    /// train; `toggles` 0 ends the channel's train and leaves the output as the train left it
+    /// (in the tick the command arrives, so a stop never races a toggle).
     pub(super) fn start(
         &mut self,
         c: &PulseDigitalOutput,
@@ -58,9 +59,9 @@ impl DoPulses {
             ticks("level_time", c.level_time, period)?,
             ticks("other_time", c.other_time, period)?,
         ];
-        *out = c.level;
         self.stop(c.channel);
         if c.toggles > 0 {
+            *out = c.level;
             self.trains.push(Train {
                 channel: c.channel,
                 left: hold[0],
@@ -126,7 +127,23 @@ mod tests {
         }
         assert_eq!(levels, [true, true, false, true, true, true, false, false]);
         assert!(p.trains.is_empty());
-        let bad = PulseDigitalOutput { channel: 2, ..c };
+        let bad = PulseDigitalOutput {
+            channel: 2,
+            ..c.clone()
+        };
         assert!(p.start(&bad, &mut out, 0.001).is_err());
+        // Toggles 0 ends a train where it stands, without writing.
+        p.start(&c, &mut out, 0.001).unwrap();
+        p.step(&mut out);
+        p.step(&mut out);
+        p.step(&mut out);
+        assert!(!out[1]);
+        let stop = PulseDigitalOutput {
+            level: true,
+            toggles: 0,
+            ..c
+        };
+        p.start(&stop, &mut out, 0.001).unwrap();
+        assert!(!out[1] && p.trains.is_empty());
     }
 }

@@ -46,7 +46,19 @@ pub struct IoState {
     pub pulse_channels: [Option<usize>; MAX_NUM_DOBIT_PULSE],
     /// `NMC_SetDioMapping`, at most [`MAX_DIO_MAPPING`], in the order added.
     pub dio_mappings: Vec<DioMapping>,
+    /// The system password (`NMC_SetTime`, `NMC_ChangePassword`).
+    pub password: String,
+    /// `NMC_DevSetPara` values by id, and whether `PARA_WRITE_EN` persisted them.
+    pub para: BTreeMap<u64, i64>,
+    pub para_written: bool,
+    /// `NMC_SetTime`: the RTC minus the host's clock, seconds.
+    pub rtc_offset: i64,
+    /// `NMC_SetBackedVarOnOff` (default off).
+    pub backed: bool,
 }
+
+/// The system password of a fresh device (the manual gives none; mcemu's).
+pub const DEFAULT_PASSWORD: &str = "123456";
 
 /// `MAX_NUM_DOBIT_PULSE` (mtn_lib20.h).
 pub const MAX_NUM_DOBIT_PULSE: usize = 8;
@@ -69,6 +81,11 @@ impl Default for IoState {
             edge_base: BTreeMap::new(),
             pulse_channels: [None; MAX_NUM_DOBIT_PULSE],
             dio_mappings: Vec::new(),
+            password: DEFAULT_PASSWORD.to_string(),
+            para: BTreeMap::new(),
+            para_written: false,
+            rtc_offset: 0,
+            backed: false,
         }
     }
 }

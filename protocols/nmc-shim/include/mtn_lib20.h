@@ -194,6 +194,12 @@ typedef struct { unsigned char enable; unsigned char pinGrp; unsigned char pinIn
                  unsigned char outEnable; unsigned char newGrp; unsigned char newIndex; } TDioMappingCfg;
 #define MAX_DIO_MAPPING 8
 
+/* NMC_GetBackedVarGroup2 (digest 001 §3.18). */
+typedef struct { long crdSegNo[2]; long crdPrfPos[2][3]; long axPrfPos[12]; long axisPos[12]; long encPos[12]; } TBackGroup2;
+/* NMC_DevGetPara / NMC_DevSetPara ids (undefined by the manual, §8 item 3; mcemu's). */
+#define PARA_IP_ADDRESS 1
+#define PARA_WRITE_EN   0xFFFF
+
 /* NMC_GetMtLibVersion: not defined by the manual (digest 001 §8 item 3); mcemu's. */
 typedef struct { char strVer[16]; short major; short minor; short patch; short reserved; } TmLibVersion;
 
@@ -517,6 +523,16 @@ short NMC_GetDiReverseCount(HAND devHandle, short diType, short diIndex, unsigne
 short NMC_SetDioMapping(HAND devHandle, TDioMappingCfg *pDioCfg);
 short NMC_GetAllDioMapping(HAND devHandle, TDioMappingCfg *pDioCfg);
 short NMC_ClrAllDioMapping(HAND devHandle);
+short NMC_DevWriteID(HAND devHandle, char *pIdStr);
+short NMC_DevGetPara(HAND devHandle, unsigned long paraID, long *pValue);
+short NMC_DevSetPara(HAND devHandle, unsigned long paraID, long value);
+short NMC_GetTime(HAND devHandle, TNMCTime *pTime);
+short NMC_SetTime(HAND devHandle, TNMCTime *pTime, char *pPassword);
+short NMC_VerifyPassword(HAND devHandle, char *pPassword);
+short NMC_ChangePassword(HAND devHandle, char *pPasswordOld, char *pPasswordNew);
+short NMC_SetBackedVarOnOff(HAND devHandle, short en);
+short NMC_GetBackedVarOnOff(HAND devHandle, short *pEn);
+short NMC_GetBackedVarGroup2(HAND devHandle, TBackGroup2 *pBackVar);
 
 #ifdef __cplusplus
 }

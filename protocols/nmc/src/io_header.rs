@@ -25,6 +25,12 @@ typedef struct { unsigned char enable; unsigned char pinGrp; unsigned char pinIn
                  unsigned char outEnable; unsigned char newGrp; unsigned char newIndex; } TDioMappingCfg;
 #define MAX_DIO_MAPPING 8
 
+/* NMC_GetBackedVarGroup2 (digest 001 §3.18). */
+typedef struct { long crdSegNo[2]; long crdPrfPos[2][3]; long axPrfPos[12]; long axisPos[12]; long encPos[12]; } TBackGroup2;
+/* NMC_DevGetPara / NMC_DevSetPara ids (undefined by the manual, §8 item 3; mcemu's). */
+#define PARA_IP_ADDRESS 1
+#define PARA_WRITE_EN   0xFFFF
+
 /* NMC_GetMtLibVersion: not defined by the manual (digest 001 §8 item 3); mcemu's. */
 typedef struct { char strVer[16]; short major; short minor; short patch; short reserved; } TmLibVersion;
 

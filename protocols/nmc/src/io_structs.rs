@@ -66,6 +66,54 @@ impl DioMapping {
     }
 }
 
+/// `TNMCTime` (NMC_GetTime / SetTime, digest 001 §3.18): year ("ear" [sic]) … second.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct NmcTime(pub [i16; 6]);
+
+impl NmcTime {
+    pub fn write(&self, w: &mut Writer) {
+        for v in self.0 {
+            w.i16(v);
+        }
+    }
+    pub fn read(r: &mut Reader<'_>) -> Result<NmcTime, PayloadError> {
+        let mut t = [0i16; 6];
+        for v in &mut t {
+            *v = r.i16()?;
+        }
+        Ok(NmcTime(t))
+    }
+}
+
+/// `TBackGroup2` (NMC_GetBackedVarGroup2): 2 crd segment numbers, 2 × 3 crd planned
+/// positions, 12 axes' planned, axis and encoder positions; 56 `long`s in that order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BackGroup2(pub [i64; BACK_GROUP2_LONGS]);
+
+/// The `long`s of `TBackGroup2`.
+pub const BACK_GROUP2_LONGS: usize = 2 + 6 + 12 * 3;
+
+impl Default for BackGroup2 {
+    fn default() -> BackGroup2 {
+        BackGroup2([0; BACK_GROUP2_LONGS])
+    }
+}
+
+impl BackGroup2 {
+    pub fn write(&self, w: &mut Writer) {
+        for v in self.0 {
+            w.i64(v);
+        }
+    }
+    pub fn read(r: &mut Reader<'_>) -> Result<BackGroup2, PayloadError> {
+        let mut b = BackGroup2::default();
+        for v in &mut b.0 {
+            *v = r.i64()?;
+        }
+        Ok(b)
+    }
+}
+
 #[cfg(test)]
 #[allow(clippy::unwrap_used)]
 mod tests {

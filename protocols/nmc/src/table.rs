@@ -427,6 +427,17 @@ functions! {
     SET_DIO_MAPPING = 0x1230 Server Main NMC_SetDioMapping(In Hand => devHandle, In Struct("TDioMappingCfg") => pDioCfg);
     GET_ALL_DIO_MAPPING = 0x1231 Server Main NMC_GetAllDioMapping(In Hand => devHandle, Out StructArray("TDioMappingCfg") => pDioCfg);
     CLR_ALL_DIO_MAPPING = 0x1232 Server Main NMC_ClrAllDioMapping(In Hand => devHandle);
+    // ---- controller services: ID, system parameters, RTC, password, backed variables (digest 001 §2.20, §4.9) ----
+    DEV_WRITE_ID = 0x1240 Server Main NMC_DevWriteID(In Hand => devHandle, In Str => pIdStr);
+    DEV_GET_PARA = 0x1241 Server Main NMC_DevGetPara(In Hand => devHandle, In ULong => paraID, Out Long => pValue);
+    DEV_SET_PARA = 0x1242 Server Main NMC_DevSetPara(In Hand => devHandle, In ULong => paraID, In Long => value);
+    GET_TIME = 0x1243 Server Main NMC_GetTime(In Hand => devHandle, Out Struct("TNMCTime") => pTime);
+    SET_TIME = 0x1244 Server Main NMC_SetTime(In Hand => devHandle, In Struct("TNMCTime") => pTime, In Str => pPassword);
+    VERIFY_PASSWORD = 0x1245 Server Main NMC_VerifyPassword(In Hand => devHandle, In Str => pPassword);
+    CHANGE_PASSWORD = 0x1246 Server Main NMC_ChangePassword(In Hand => devHandle, In Str => pPasswordOld, In Str => pPasswordNew);
+    SET_BACKED_VAR_ON_OFF = 0x1247 Server Main NMC_SetBackedVarOnOff(In Hand => devHandle, In Short => en);
+    GET_BACKED_VAR_ON_OFF = 0x1248 Server Main NMC_GetBackedVarOnOff(In Hand => devHandle, Out Short => pEn);
+    GET_BACKED_VAR_GROUP2 = 0x1249 Server Main NMC_GetBackedVarGroup2(In Hand => devHandle, Out Struct("TBackGroup2") => pBackVar);
 }
 
 #[cfg(test)]

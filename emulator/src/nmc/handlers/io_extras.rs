@@ -269,10 +269,9 @@ fn do_bit_pulse_disable(c: &mut Call<'_>) -> Result<(), Refusal> {
         .get_mut(ch)
         .and_then(Option::take);
     if let Some(bit) = bit {
-        let level = c.snapshot.io.do_.get(bit).copied().unwrap_or(false);
         c.command(PulseDigitalOutput {
             channel: bit as u16,
-            level,
+            level: false,
             level_time: 0.0,
             other_time: 0.0,
             toggles: 0,

@@ -28,13 +28,14 @@ mod sync_args;
 
 mod user_para;
 // I/O by type, encoders, extension modules, identity (0x12xx).
+mod dev_services;
 mod encoders;
 mod identity;
 mod io_extras;
 mod io_modules;
 mod io_typed;
 
-const FAMILIES: [&[(Function, Handler)]; 24] = [
+const FAMILIES: [&[(Function, Handler)]; 25] = [
     device::HANDLERS,
     axis::HANDLERS,
     motion::HANDLERS,
@@ -59,6 +60,7 @@ const FAMILIES: [&[(Function, Handler)]; 24] = [
     io_extras::HANDLERS,
     encoders::HANDLERS,
     identity::HANDLERS,
+    dev_services::HANDLERS,
 ];
 
 /// The handler of function `id`.

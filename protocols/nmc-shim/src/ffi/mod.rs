@@ -24,6 +24,7 @@ pub mod axis;
 pub mod axis_config;
 pub mod crd;
 pub mod crd_types;
+pub mod dev_services;
 pub mod device;
 pub mod ecat;
 pub mod home;
