@@ -3,17 +3,6 @@
 #include <string.h>
 #include "check.h"
 
-/* Poll `call` (which sets `v`) until `cond` holds. */
-#define EVENTUALLY(call, cond)                                              \
-    do {                                                                    \
-        long n_ = 0;                                                        \
-        for (;;) {                                                          \
-            OK(call);                                                       \
-            if (cond) break;                                                \
-            CHECK(++n_ < 100000L, "never: %s", #cond);                     \
-        }                                                                   \
-    } while (0)
-
 int main(void) {
     HAND dev = 0, x = 0, z = 0;
     long v = -1, w = -1, io = 0;

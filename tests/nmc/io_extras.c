@@ -3,16 +3,6 @@
 #include <string.h>
 #include "check.h"
 
-#define EVENTUALLY(call, cond)                                              \
-    do {                                                                    \
-        long n_ = 0;                                                        \
-        for (;;) {                                                          \
-            OK(call);                                                       \
-            if (cond) break;                                                \
-            CHECK(++n_ < 1000000L, "never: %s", #cond);                    \
-        }                                                                   \
-    } while (0)
-
 static HAND dev;
 
 /* The controller clock in ms (125 µs ticks). */

@@ -8,7 +8,7 @@ use mcemu_nmc::io_structs::DioMapping;
 use mcemu_nmc::table::{self, Function};
 
 use super::io_types::TDioMappingCfg;
-use super::types::{to_long, to_ulong};
+use super::types::to_ulong;
 use super::{load, load_array, reply_list, require, served, store, store_array, HAND};
 
 /// Same as `NMC_GetDIGroup` (digest 001 §2.8).
@@ -23,19 +23,10 @@ pub extern "C" fn NMC_GetDO(devHandle: HAND, pDoValue: *mut c_long, groupID: c_s
     group_read(&table::GET_DO, devHandle, pDoValue, groupID)
 }
 
+/// `NMC_GetDOGroup`'s call on another row, its pointer checked.
 fn group_read(row: &Function, devHandle: HAND, out: *mut c_long, groupID: c_short) -> c_short {
     require!(*row, out);
-    served(
-        row,
-        devHandle,
-        |w| {
-            w.i16(groupID);
-        },
-        |r| {
-            store(out, to_long(r.i64()?));
-            Ok(())
-        },
-    )
+    super::io::get_group(row, devHandle, out, groupID)
 }
 
 /// Same as `NMC_SetDOGroup`.
