@@ -27,7 +27,7 @@ pub(super) struct DoPulses {
 
 /// Whole ticks of `seconds` (at least one: a toggle never happens in the tick it was asked).
 fn ticks(name: &'static str, seconds: f64, period: f64) -> Result<u64, EngineError> {
-    if !seconds.is_finite() || seconds < 0.0 || seconds > 1e6 {
+    if !seconds.is_finite() || !(0.0..=1e6).contains(&seconds) {
         return Err(EngineError::InvalidArgument {
             name,
             value: seconds,
