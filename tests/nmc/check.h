@@ -29,6 +29,18 @@
         }                                                                   \
     } while (0)
 
+/* Poll `call` (which sets what `cond` reads) until `cond` holds: a value the server shows from
+ * its next snapshot on. */
+#define EVENTUALLY(call, cond)                                              \
+    do {                                                                    \
+        long n_ = 0;                                                        \
+        for (;;) {                                                          \
+            OK(call);                                                       \
+            if (cond) break;                                                \
+            CHECK(++n_ < 1000000L, "never: %s", #cond);                    \
+        }                                                                   \
+    } while (0)
+
 /* Poll until the axis is still (the status word's BUSY bit clears). */
 static inline short wait_still(HAND ax) {
     short sts = 0;

@@ -10,7 +10,12 @@ int main(void) {
     OK(NMC_GetDIGroup(devHandle, &value, 0));
     OK(NMC_GetDIBit(devHandle, 0, &bit));
     CHECK((value & 1) == bit, "DI group bit 0 %ld vs bit %d", value & 1, bit);
-    CHECK(NMC_GetDIGroup(devHandle, &value, 2) == RTN_ARG_RANGE, "group 2 without modules");
+    CHECK(NMC_GetDIGroup(devHandle, &value, 2) == RTN_ARG_RANGE, "group 2 before IOModuleSetEn");
+    CHECK(NMC_SetDOBit(devHandle, 64, 1) == RTN_ARG_RANGE, "bit 64 before IOModuleSetEn");
+    OK(NMC_IOModuleSetEn(devHandle, 2, 1)); /* the example's optional step */
+    OK(NMC_GetDIGroup(devHandle, &value, 2));
+    OK(NMC_GetDIBit(devHandle, 64, &bit));
+    CHECK((value & 1) == bit, "DI group 2 bit 0 %ld vs bit 64 %d", value & 1, bit);
     /* TV38 */
     OK(NMC_SetDOGroup(devHandle, 0xFFFD, 0));
     OK(NMC_GetDOBit(devHandle, 1, &bit));
@@ -21,7 +26,11 @@ int main(void) {
     OK(NMC_SetDOBit(devHandle, 33, 1));
     OK(NMC_GetDOGroup(devHandle, &value, 1));
     CHECK(value == 2, "DO group 1 %#lx", value);
-    CHECK(NMC_SetDOBit(devHandle, 64, 1) == RTN_ARG_RANGE, "bit 64");
+    OK(NMC_SetDOBit(devHandle, 64, 1));
+    OK(NMC_GetDOGroup(devHandle, &value, 2));
+    CHECK(value == 1, "DO group 2 %#lx", value);
+    CHECK(NMC_SetDOBit(devHandle, 96, 1) == RTN_ARG_RANGE, "bit 96");
+    CHECK(NMC_GetDOGroup(devHandle, &value, 3) == RTN_ARG_RANGE, "group 3: no module 3");
     printf("ok\n");
     return 0;
 }

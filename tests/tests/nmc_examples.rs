@@ -71,6 +71,39 @@ fn s_io_tv38() {
     example("s_io.c");
 }
 
+/// I/O by type, masked DO, encoder channels, extension module 2, identity (rows 0x12xx).
+#[test]
+fn io_by_type_encoders_modules_identity() {
+    example("io_ext.c");
+}
+
+/// The plain aliases, inversions, timed outputs, filters, edge counters, DIO mappings.
+#[test]
+fn io_aliases_inversion_timed_outputs_counters() {
+    example("io_extras.c");
+}
+
+/// DevWriteID, system parameters, the RTC, the system password, backed variables.
+#[test]
+fn controller_services() {
+    example("dev_services.c");
+}
+
+/// S-HOST-C++ (digest 001 §5, C4): a C++ host program built with g++.
+#[test]
+fn s_host_cpp() {
+    let dir = fresh_dir(env!("CARGO_TARGET_TMPDIR"), "nmc-s_host");
+    let exe = compile_example("s_host.cpp", &dir, &["-xc++", "-std=c++11"]);
+    let m = Mcemu::start(Some(&gaochuan()), &[]);
+    let out = run_example(&exe, m.address("nmc"));
+    let stdout = String::from_utf8_lossy(&out.stdout).to_string();
+    assert!(
+        out.status.success() && stdout.lines().last() == Some("ok"),
+        "{}",
+        output_report("s_host.cpp", &out)
+    );
+}
+
 #[test]
 fn s_gear_tv58() {
     example("s_gear.c");

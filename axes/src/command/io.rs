@@ -38,6 +38,22 @@ pub struct WriteAnalogOutput {
     pub value: f64,
 }
 
+/// Write digital output `channel` to `level` now, then toggle it `toggles` times on the
+/// virtual clock: `level` holds `level_time` s, the opposite level `other_time` s, and so on
+/// (whole ticks, at least one). `toggles` 0 ends the channel's running train and writes
+/// nothing (the output stays where the train left it); `u32::MAX` toggles forever. A `write_digital_output` to the channel does not end it (NMC
+/// SetDOBitAutoReverse, DoBitPulseEnable / Disable, digest 001 §2.8). JSON `type`:
+/// `pulse_digital_output`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PulseDigitalOutput {
+    pub channel: u16,
+    pub level: bool,
+    pub level_time: f64,
+    pub other_time: f64,
+    pub toggles: u32,
+}
+
 /// A command on the machine's I/O image; it takes effect at once, between ticks.
 #[derive(Clone, Debug, PartialEq)]
 pub enum IoCommand {
@@ -45,6 +61,7 @@ pub enum IoCommand {
     ForceAnalogInput(ForceAnalogInput),
     WriteDigitalOutput(WriteDigitalOutput),
     WriteAnalogOutput(WriteAnalogOutput),
+    PulseDigitalOutput(PulseDigitalOutput),
 }
 
 command_from!(
@@ -55,5 +72,6 @@ command_from!(
         ForceAnalogInput => ForceAnalogInput,
         WriteDigitalOutput => WriteDigitalOutput,
         WriteAnalogOutput => WriteAnalogOutput,
+        PulseDigitalOutput => PulseDigitalOutput,
     ]
 );

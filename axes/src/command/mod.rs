@@ -145,7 +145,8 @@ pub use handwheel::{
     HANDWHEEL_EXTERNAL_BASE, HANDWHEEL_EXTERNAL_ENCODERS,
 };
 pub use io::{
-    ForceAnalogInput, ForceDigitalInput, IoCommand, WriteAnalogOutput, WriteDigitalOutput,
+    ForceAnalogInput, ForceDigitalInput, IoCommand, PulseDigitalOutput, WriteAnalogOutput,
+    WriteDigitalOutput,
 };
 pub use machine::{
     DisableAll, EmergencyStopAll, EnableAll, GetCommandState, MachineCommand, MoveTogether,

@@ -9,9 +9,9 @@ use super::{
     AxisCommand, Cancel, Disable, DisableAll, EmergencyStopAll, Enable, EnableAll,
     ForceAnalogInput, ForceDigitalInput, ForceInput, GetCommandState, GetParameter, Halt, Home,
     InjectFollowingError, IoCommand, MachineCommand, ModifyTarget, MoveAbsolute, MoveRelative,
-    MoveTogether, MoveVelocity, ReadObject, Reset, ResetAll, Resume, SetParameter, SetPosition,
-    SlaveCommand, Stop, StopAll, StopAxes, StreamSetpoint, WriteAnalogOutput, WriteDigitalOutput,
-    WriteObject,
+    MoveTogether, MoveVelocity, PulseDigitalOutput, ReadObject, Reset, ResetAll, Resume,
+    SetParameter, SetPosition, SlaveCommand, Stop, StopAll, StopAxes, StreamSetpoint,
+    WriteAnalogOutput, WriteDigitalOutput, WriteObject,
 };
 use super::{
     CamIn, CamOut, CamTableDefine, CouplingCommand, GantryDisable, GantryEnable, GearIn, GearOut,
@@ -176,6 +176,7 @@ pub(super) enum Command {
     CaptureArmThreshold(CaptureArmThreshold),
     // Issue 12 item 6, HMC_GantryInit.
     GantryHome(super::GantryHome),
+    PulseDigitalOutput(PulseDigitalOutput),
 }
 
 impl From<Command> for super::Command {
@@ -202,6 +203,7 @@ impl From<Command> for super::Command {
             Command::ForceAnalogInput(c) => super::Command::Io(IoCommand::ForceAnalogInput(c)),
             Command::WriteDigitalOutput(c) => super::Command::Io(IoCommand::WriteDigitalOutput(c)),
             Command::WriteAnalogOutput(c) => super::Command::Io(IoCommand::WriteAnalogOutput(c)),
+            Command::PulseDigitalOutput(c) => super::Command::Io(IoCommand::PulseDigitalOutput(c)),
             Command::InjectFollowingError(c) => {
                 super::Command::Axis(AxisCommand::InjectFollowingError(c))
             }
@@ -350,6 +352,7 @@ impl From<super::Command> for Command {
             super::Command::Io(IoCommand::ForceAnalogInput(c)) => Command::ForceAnalogInput(c),
             super::Command::Io(IoCommand::WriteDigitalOutput(c)) => Command::WriteDigitalOutput(c),
             super::Command::Io(IoCommand::WriteAnalogOutput(c)) => Command::WriteAnalogOutput(c),
+            super::Command::Io(IoCommand::PulseDigitalOutput(c)) => Command::PulseDigitalOutput(c),
             super::Command::Axis(AxisCommand::InjectFollowingError(c)) => {
                 Command::InjectFollowingError(c)
             }

@@ -344,6 +344,11 @@ impl Couplings {
         out.clear();
         out.extend(self.handwheels.iter().map(Handwheel::status));
     }
+
+    /// The external encoders' counts (256, 257), in input order (NMC_GetEncPos).
+    pub fn external_encoders(&self) -> [i64; HANDWHEEL_EXTERNAL_ENCODERS as usize] {
+        self.external
+    }
 }
 
 #[cfg(test)]

@@ -25,6 +25,7 @@ use std::sync::Arc;
 
 mod compensation;
 mod gantry_home;
+mod do_pulses;
 mod machine;
 mod planner;
 mod sampling;
@@ -43,6 +44,8 @@ struct Io {
     di_forced: Vec<Option<bool>>,
     ai_forced: Vec<Option<f64>>,
     bindings: Vec<InputBinding>,
+    /// Outputs toggling themselves on the virtual clock.
+    pulses: do_pulses::DoPulses,
 }
 
 /// One channel of an I/O image, or the error that names the image and its size.
@@ -66,7 +69,12 @@ impl Io {
     /// unwired input reads low (a bound one follows its signal from the next tick).
     fn force_digital_input(&mut self, ch: u16, value: Option<bool>) -> Result<(), EngineError> {
         *channel(&mut self.di_forced, ch, "digital inputs")? = value;
-        *channel(&mut self.image.di, ch, "digital inputs")? = value.unwrap_or(false);
+        let di = channel(&mut self.image.di, ch, "digital inputs")?;
+        let level = value.unwrap_or(false);
+        if *di != level {
+            *di = level;
+            self.count_edge(ch);
+        }
         self.version += 1;
         Ok(())
     }
@@ -85,6 +93,13 @@ impl Io {
         *channel(&mut self.image.do_, ch, "digital outputs")? = value;
         self.version += 1;
         Ok(())
+    }
+
+    /// One more change of digital input `ch` (NMC GetDiReverseCount).
+    fn count_edge(&mut self, ch: u16) {
+        if let Some(n) = self.image.di_edges.get_mut(usize::from(ch)) {
+            *n = n.wrapping_add(1);
+        }
     }
 
     fn write_analog_output(&mut self, ch: u16, value: f64) -> Result<(), EngineError> {
@@ -194,10 +209,12 @@ impl Engine {
                     do_: vec![false; io.digital_outputs as usize],
                     ai: vec![0.0; io.analog_inputs as usize],
                     ao: vec![0.0; io.analog_outputs as usize],
+                    di_edges: vec![0; io.digital_inputs as usize],
                 },
                 di_forced: vec![None; io.digital_inputs as usize],
                 ai_forced: vec![None; io.analog_inputs as usize],
                 bindings: io.bindings.clone(),
+                pulses: Default::default(),
             },
             ledger: Ledger::default(),
             slaves,
@@ -626,6 +643,11 @@ impl Engine {
             IoCommand::WriteAnalogOutput(WriteAnalogOutput { channel, value }) => {
                 io.write_analog_output(channel, value)
             }
+            IoCommand::PulseDigitalOutput(c) => {
+                let started = io.pulses.start(&c, &mut io.image.do_, self.period);
+                io.version += 1;
+                started
+            }
         }
         .map(|()| Reply::Done)
     }
@@ -669,7 +691,8 @@ impl Engine {
     /// Advance one servo period, in stages (the order of operations inside a tick is fixed:
     /// traces compare bit for bit):
     ///
-    /// 1. `read_inputs`: the I/O image's inputs from last tick's sensors;
+    /// 1. `read_inputs`: the I/O image's inputs from last tick's sensors, and the timed
+    ///    outputs (`pulse_digital_output`) that toggle this tick;
     /// 2. `run_planners`: the axis groups (issue 11), in group-number order, then the other
     ///    machine-level planners, feed their axes this tick's setpoints;
     /// 3. `step_axes`: every axis, in index order, or with couplings (issue 12) masters before
@@ -679,7 +702,8 @@ impl Engine {
     ///    the compare channels fire their outputs (issue 12 items 4–5);
     /// 4. `step_drives`: the CiA 402 drives see their axes and answer with commands;
     /// 5. `sample`: armed and recording data samplers read the machine as the tick left it;
-    /// 6. outputs and status: no per-tick work. Outputs change only by command, and status is
+    /// 6. outputs and status: no per-tick work. Outputs change only by command (or a timed
+    ///    output's train, stage 1), and status is
     ///    assembled when it is read ([`Engine::snapshot_into`], [`Engine::axis_status`]).
     ///
     /// Commands ([`Engine::apply`]) arrive between steps and act on the state the last step
@@ -850,8 +874,14 @@ impl Engine {
                 if *di != level {
                     *di = level;
                     io.version += 1;
+                    if let Some(n) = io.image.di_edges.get_mut(ch) {
+                        *n = n.wrapping_add(1);
+                    }
                 }
             }
+        }
+        if io.pulses.step(&mut io.image.do_) {
+            io.version += 1;
         }
     }
 
@@ -867,6 +897,7 @@ impl Engine {
             .status_into(&self.axes, &snapshot.axes, &mut snapshot.groups);
         self.couplings.status_into(&mut snapshot.couplings);
         self.couplings.handwheels_into(&mut snapshot.handwheels);
+        snapshot.external_encoders = self.couplings.external_encoders();
         self.couplings.follows_into(&mut snapshot.follows);
         self.stream_input_starts_into(&mut snapshot.stream_input_starts);
         self.gantry_homes_into(&mut snapshot.gantry_homes);

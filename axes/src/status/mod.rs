@@ -341,6 +341,9 @@ pub struct IoImage {
     pub do_: Vec<bool>,
     pub ai: Vec<f64>,
     pub ao: Vec<f64>,
+    /// Changes of each digital input since start, wrapping (NMC GetDiReverseCount).
+    #[serde(default)]
+    pub di_edges: Vec<u32>,
 }
 
 impl Clone for IoImage {
@@ -350,6 +353,7 @@ impl Clone for IoImage {
             do_: self.do_.clone(),
             ai: self.ai.clone(),
             ao: self.ao.clone(),
+            di_edges: self.di_edges.clone(),
         }
     }
 
@@ -360,6 +364,7 @@ impl Clone for IoImage {
         self.do_.clone_from(&source.do_);
         self.ai.clone_from(&source.ai);
         self.ao.clone_from(&source.ao);
+        self.di_edges.clone_from(&source.di_edges);
     }
 }
 

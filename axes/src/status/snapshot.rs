@@ -51,6 +51,9 @@ pub struct Snapshot {
     /// The handwheels (issue 12 item 7), by axis.
     #[serde(default)]
     pub handwheels: Vec<HandwheelStatus>,
+    /// The external encoders' counts (inputs 256 and 257), which `handwheel_turn` turns.
+    #[serde(default)]
+    pub external_encoders: [i64; 2],
     /// The NMC Follow slaves (issue 12 item 2: FIFOs, loops, start event), by axis.
     #[serde(default)]
     pub follows: Vec<FollowStatus>,

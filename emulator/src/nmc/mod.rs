@@ -15,6 +15,7 @@
 //!   watchdog and E-stop inputs, judged on the virtual clock by a task of their own;
 //! - `saved_config`: `NMC_SaveMotionConfig`'s file in the state directory, applied at start
 //!   and on `NMC_DevReset`;
+//! - `io_state`: extension modules, dedicated outputs and the written ID (0x12xx families);
 //! - `stored`: settings the engine has no model of, kept and read back;
 //! - `laser_state`: the laser, SHIO and PWM settings (kept in `stored`);
 //! - `serve`: the transports (the kit's bounded accept loop on TCP, the same table on the Unix
@@ -28,6 +29,7 @@ pub mod faults;
 mod handlers;
 pub mod laser_state;
 pub mod saved_config;
+pub mod io_state;
 pub mod serve;
 pub mod service;
 pub mod stored;

@@ -80,11 +80,14 @@ pub fn start<'a>(cx: &'a FrontendContext<'a>, tasks: &'a mut JoinSet<()>) -> Sta
     Box::pin(async move { Ok(handles(start_sections(cx, tasks).await?)) })
 }
 
+/// `TCardInfo`'s counts: the local DI/DO (64 at most; the channels beyond are extension
+/// modules, digest 001 §4.8), ADC, DAC.
 fn io_counts(cx: &FrontendContext<'_>) -> [i16; 4] {
     let io = &cx.config.io;
+    let local = crate::nmc::io_state::LOCAL_BITS as u16;
     [
-        io.digital_inputs,
-        io.digital_outputs,
+        io.digital_inputs.min(local),
+        io.digital_outputs.min(local),
         io.analog_inputs,
         io.analog_outputs,
     ]

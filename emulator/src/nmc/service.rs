@@ -150,6 +150,8 @@ pub struct NmcService {
     stored: Mutex<Stored>,
     /// The axis-level additions' settings, the watchdog and the E-stop inputs.
     ax: Mutex<super::ax_state::AxState>,
+    /// Extension modules, dedicated outputs, the written ID (0x12xx families).
+    io: Mutex<super::io_state::IoState>,
     /// `TCardInfo` counts (digest 001 §1.1).
     pub io_counts: [i16; 4],
     /// Where `NMC_SaveMotionConfig` saves (`saved_config`), and the section's name (the
@@ -177,6 +179,7 @@ impl NmcService {
             crd: Mutex::new(std::array::from_fn(|_| CrdState::fresh())),
             stored: Mutex::new(Stored::default()),
             ax: Mutex::new(Default::default()),
+            io: Mutex::new(Default::default()),
             io_counts,
             saving: std::sync::OnceLock::new(),
         };
@@ -207,6 +210,10 @@ impl NmcService {
 
     pub fn crd(&self) -> MutexGuard<'_, [CrdState; CRD_COUNT]> {
         self.crd.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+
+    pub fn io(&self) -> MutexGuard<'_, super::io_state::IoState> {
+        self.io.lock().unwrap_or_else(PoisonError::into_inner)
     }
 
     pub fn stored(&self) -> MutexGuard<'_, Stored> {

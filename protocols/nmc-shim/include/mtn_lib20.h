@@ -277,6 +277,36 @@ typedef struct {
 typedef struct { short inverse; short bias; short dacLmt; } TDacMotor;
 typedef struct { float kp; float ki; float kd; float kvff; long integralLimit; long derivativeLimit; short outLimit; } TPidPara;
 
+/* DO and DI types (digest 001 §2.8, §3.10), extension modules. */
+#define DO_TYPE_MOTOR_ENABLE 1
+#define DO_TYPE_MOTOR_CLEAR  2
+#define DO_TYPE_MOTOR_CLEA   DO_TYPE_MOTOR_CLEAR
+#define DO_TYPE_GPDO         3
+#define DO_TYPE_HSIO         4
+#define DI_TYPE_GPI     0
+#define DI_TYPE_LMTN    1
+#define DI_TYPE_LMTP    2
+#define DI_TYPE_HOME    3
+#define DI_TYPE_Z       4
+#define IOMODULE_TYPE_IO64    1
+#define IOMODULE_TYPE_IO32_DA 2
+
+/* NMC_DoBitPulseEnable channels (digest 001 §2.7; the count is mcemu's, §8 item 3). */
+#define MAX_NUM_DOBIT_PULSE 8
+/* NMC_SetDioMapping: at most 8 mappings (digest 001 §3.12). */
+typedef struct { unsigned char enable; unsigned char pinGrp; unsigned char pinIndex;
+                 unsigned char outEnable; unsigned char newGrp; unsigned char newIndex; } TDioMappingCfg;
+#define MAX_DIO_MAPPING 8
+
+/* NMC_GetBackedVarGroup2 (digest 001 §3.18). */
+typedef struct { long crdSegNo[2]; long crdPrfPos[2][3]; long axPrfPos[12]; long axisPos[12]; long encPos[12]; } TBackGroup2;
+/* NMC_DevGetPara / NMC_DevSetPara ids (undefined by the manual, §8 item 3; mcemu's). */
+#define PARA_IP_ADDRESS 1
+#define PARA_WRITE_EN   0xFFFF
+
+/* NMC_GetMtLibVersion: not defined by the manual (digest 001 §8 item 3); mcemu's. */
+typedef struct { char strVer[16]; short major; short minor; short patch; short reserved; } TmLibVersion;
+
 /* Coordinate system (digest 001 §3.7, §3.8, §3.10). */
 #define BIT_CORD_BUSY           0x00000001
 #define BIT_CORD_MVERR          0x00000002
@@ -559,6 +589,54 @@ short NMC_Set2DCompensationTable(HAND devHandle, short tableIndex, T2DCompensati
 short NMC_Get2DCompensationTable(HAND devHandle, short tableIndex, T2DCompensationTable *pTable, TCompData *pData);
 short NMC_Set2DCompensation(HAND devHandle, T2DCompensation *pComp);
 short NMC_Get2DCompensation(HAND devHandle, T2DCompensation *pComp);
+short NMC_GetDIEx(HAND devHandle, short diType, short groupID, long *pDiValue);
+short NMC_GetDIRaw(HAND devHandle, short diType, short groupID, long *pDiValue);
+short NMC_GetDOEx(HAND devHandle, short doType, short groupID, long *pOutValue);
+short NMC_SetDOMask(HAND devHandle, long outMask, long outValue, short doType, short groupID);
+short NMC_GetEncPos(HAND devHandle, short encId, long *pPos);
+short NMC_GetEncVel(HAND devHandle, unsigned char encId, double *vel);
+short NMC_SetEncPos(HAND devHandle, short encId, long encPos);
+short NMC_IOModuleSetEn(HAND devHandle, unsigned char chDevId, short chDevType);
+short NMC_IOModuleGetType(HAND devHandle, unsigned char chDevId, short *pChDevType);
+short NMC_IOModuleRd16Bit(HAND devHandle, unsigned char chDevId, unsigned char offset, unsigned short *pData);
+short NMC_IOModuleRd32Bit(HAND devHandle, unsigned char chDevId, unsigned char offset, unsigned long *pData);
+short NMC_IOModuleRdOut16Bit(HAND devHandle, unsigned char chDevId, unsigned char offset, unsigned short *pData);
+short NMC_IOModuleRdOut32Bit(HAND devHandle, unsigned char chDevId, unsigned char offset, unsigned long *pData);
+short NMC_IOModuleWr16Bit(HAND devHandle, unsigned char chDevId, unsigned char offset, unsigned short data);
+short NMC_IOModuleWr32Bit(HAND devHandle, unsigned char chDevId, unsigned char offset, unsigned long data);
+short NMC_GetIOModuleSts(HAND devHandle, unsigned long *sts);
+short NMC_DevReadID(HAND devHandle, char *pIdStr);
+short NMC_GetUID(HAND devHandle, unsigned long *pUID);
+short NMC_GetMtLibVersion(HAND devHandle, TmLibVersion *pVersion);
+short NMC_GetDI(HAND devHandle, long *pInValue, short groupID);
+short NMC_GetDO(HAND devHandle, long *pDoValue, short groupID);
+short NMC_SetDO(HAND devHandle, long value, short groupID);
+short NMC_SetDIBitRevs(HAND devHandle, short bitIndex, short revs);
+short NMC_GetDIBitRevs(HAND devHandle, short bitIndex, short *pRevs);
+short NMC_SetDOBitRevs(HAND devHandle, short bitIndex, short revs);
+short NMC_GetDOBitRevs(HAND devHandle, short bitIndex, short *pRevs);
+short NMC_SetDOBitRevsEx(HAND devHandle, short doType, short group, short bitIndex, short revs);
+short NMC_GetDOBitRevsEx(HAND devHandle, short doType, short group, short bitIndex, short *pRevs);
+short NMC_SetDOBitAutoReverse(HAND devHandle, short bitIndex, short value, short reverseTime);
+short NMC_DoBitPulseEnable(HAND devHandle, short doType, short doIndex, long highLevelTime, long lowLevelTime, long outCount, short initialLevel, short ch);
+short NMC_DoBitPulseDisable(HAND devHandle, short ch);
+short NMC_SetDIFilter(HAND devHandle, short diType, short diGroup, short diIndex, short filtTime);
+short NMC_GetDIFilter(HAND devHandle, short diType, short diGroup, short diIndex, short *pFiltTime);
+short NMC_SetDiReverseCount(HAND devHandle, short diType, short diIndex, unsigned long *pReverseCountArray, short count);
+short NMC_GetDiReverseCount(HAND devHandle, short diType, short diIndex, unsigned long *pReverseCountArray, short count);
+short NMC_SetDioMapping(HAND devHandle, TDioMappingCfg *pDioCfg);
+short NMC_GetAllDioMapping(HAND devHandle, TDioMappingCfg *pDioCfg);
+short NMC_ClrAllDioMapping(HAND devHandle);
+short NMC_DevWriteID(HAND devHandle, char *pIdStr);
+short NMC_DevGetPara(HAND devHandle, unsigned long paraID, long *pValue);
+short NMC_DevSetPara(HAND devHandle, unsigned long paraID, long value);
+short NMC_GetTime(HAND devHandle, TNMCTime *pTime);
+short NMC_SetTime(HAND devHandle, TNMCTime *pTime, char *pPassword);
+short NMC_VerifyPassword(HAND devHandle, char *pPassword);
+short NMC_ChangePassword(HAND devHandle, char *pPasswordOld, char *pPasswordNew);
+short NMC_SetBackedVarOnOff(HAND devHandle, short en);
+short NMC_GetBackedVarOnOff(HAND devHandle, short *pEn);
+short NMC_GetBackedVarGroup2(HAND devHandle, TBackGroup2 *pBackVar);
 short NMC_MtGetStsMulti(HAND firstAxisHandle, short *pStsArray, short count, unsigned long *pClock);
 short NMC_MtGetStsPack12Ex(HAND axisFirstHandle, TAxisStsPack12Ex *pPackSts);
 short NMC_MtMovePtpAbsPack8(HAND axisFirstHandle, TMovePtpPack8 *pPackData);

@@ -40,6 +40,7 @@ pub const RTN_NULL_POINTER: i16 = 32;
 pub const RTN_ARG_RANGE: i16 = 33;
 pub const RTN_NO_DEVICE: i16 = 34;
 pub const RTN_NOT_ON_THIS_CARD: i16 = 35;
+pub const RTN_PASSWORD: i16 = 36;
 pub const RTN_UNKNOWN_FUNCTION: i16 = 40;
 pub const RTN_VERSION: i16 = 41;
 pub const RTN_BAD_PAYLOAD: i16 = 42;
@@ -86,6 +87,7 @@ pub const CODES: &[Code] = &[
     c(RTN_ARG_RANGE, "RTN_ARG_RANGE", Argument, "an argument is outside its allowed range"),
     c(RTN_NO_DEVICE, "RTN_NO_DEVICE", Argument, "no device with this index, ID or IP address"),
     c(RTN_NOT_ON_THIS_CARD, "RTN_NOT_ON_THIS_CARD", Unsupported, "not available on this kind of card (e.g. NMC_DevOpenByIP on a PCIe card)"),
+    c(RTN_PASSWORD, "RTN_PASSWORD", Argument, "wrong system password (NMC_SetTime, NMC_ChangePassword, NMC_VerifyPassword)"),
     c(RTN_UNKNOWN_FUNCTION, "RTN_UNKNOWN_FUNCTION", Protocol, "the server does not know this function"),
     c(RTN_VERSION, "RTN_VERSION", Protocol, "library and server share no protocol version"),
     c(RTN_BAD_PAYLOAD, "RTN_BAD_PAYLOAD", Protocol, "malformed request or reply payload"),

@@ -163,6 +163,7 @@ fn c_arg(a: &Arg) -> String {
         CType::Struct(s) | CType::StructArray(s) => return format!("{s} *{}", a.name),
         CType::ShortArray => return format!("short *{}", a.name),
         CType::LongArray => return format!("long *{}", a.name),
+        CType::ULongArray => return format!("unsigned long *{}", a.name),
         CType::DoubleArray => return format!("double *{}", a.name),
     };
     match (a.ty, a.dir) {
@@ -190,10 +191,11 @@ fn prototypes(file: HeaderFile) -> String {
 /// `mtn_lib20.h`.
 pub fn main_header() -> String {
     format!(
-        "{MAIN_PREAMBLE}{}{}{}{}{}{MAIN_END}",
+        "{MAIN_PREAMBLE}{}{}{}{}{}{}{MAIN_END}",
         crate::sync_header::SYNC_PREAMBLE,
         crate::laser::LASER_PREAMBLE,
         crate::ax_header::AX_PREAMBLE,
+        crate::io_header::IO_PREAMBLE,
         crate::crd::C_DECLARATIONS,
         prototypes(HeaderFile::Main)
     )

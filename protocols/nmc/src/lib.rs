@@ -15,6 +15,8 @@
 //!   capture, compare, gantry, handwheel and compensation families;
 //! - [`laser`]: the laser and SHIO structs (`TTimeArrayPara`, `TLaserPower`, `TSHIOPara`) and
 //!   their header text;
+//! - [`io_structs`], [`io_header`]: the structs and header text of the I/O-by-type,
+//!   extension-module and controller-service families (0x12xx);
 //! - [`axis_config`]: `TSafePara` as the wire carries it;
 //! - [`ax_structs`], [`ax_header`]: the packed status and PTP structs and the advanced E-stop
 //!   input of the axis-level additions (family 0x13xx);
@@ -33,6 +35,8 @@ pub mod frame;
 pub mod handle;
 pub mod header;
 pub mod laser;
+pub mod io_header;
+pub mod io_structs;
 pub mod payload;
 pub mod session;
 pub mod structs;

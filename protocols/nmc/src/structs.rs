@@ -5,11 +5,11 @@
 use crate::payload::{PayloadError, Reader, Writer};
 
 /// A fixed `char[N]` field: N bytes on the wire.
-fn put_chars<const N: usize>(w: &mut Writer, s: &[u8; N]) {
+pub(crate) fn put_chars<const N: usize>(w: &mut Writer, s: &[u8; N]) {
     w.bytes.extend_from_slice(s);
 }
 
-fn get_chars<const N: usize>(r: &mut Reader<'_>) -> Result<[u8; N], PayloadError> {
+pub(crate) fn get_chars<const N: usize>(r: &mut Reader<'_>) -> Result<[u8; N], PayloadError> {
     let mut out = [0u8; N];
     for b in &mut out {
         *b = r.u8()?;

@@ -8,9 +8,9 @@
 //! status and servo, 0x03xx PTP/JOG/stop, 0x04xx homing, 0x05xx I/O, 0x06xx coordinate
 //! systems, 0x07xx basic axis configuration, 0x08xx Appendix A aliases, 0x09xx analog I/O,
 //! 0x0Axx EtherCAT, 0x0Bxx user parameters, 0x0Cxx gear, 0x0Dxx PT/PVT, 0x0Exx capture, 0x0Fxx
-//! compare, 0x10xx gantry and handwheel, 0x11xx compensation, 0x13xx axis-level additions:
-//! packed status and moves, positions, E-stop inputs, watchdog, planning period, 0x15xx laser,
-//! SHIO and PWM).
+//! compare, 0x10xx gantry and handwheel, 0x11xx compensation, 0x12xx I/O by type, encoders,
+//! extension modules and controller services, 0x13xx axis-level additions: packed status and
+//! moves, positions, E-stop inputs, watchdog, planning period, 0x15xx laser, SHIO and PWM).
 
 /// A C argument kind, as the manual writes it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -41,6 +41,8 @@ pub enum CType {
     /// `short *` (`short *pSyncAxArray`), in or out; its length another argument's value. On
     /// the wire: u16 count, then i16 each.
     ShortArray,
+    /// `unsigned long *`: as [`CType::LongArray`], u16 count then u64 each.
+    ULongArray,
     /// `long *`: an array of the platform's `long`, its length the function's (the crd's
     /// coordinates, a mask's bits, `cnts`) or another argument's value. On the wire: u16 count,
     /// then i64 each.
@@ -386,6 +388,57 @@ functions! {
     GET_2D_COMPENSATION_TABLE = 0x1106 Server Main NMC_Get2DCompensationTable(In Hand => devHandle, In Short => tableIndex, Out Struct("T2DCompensationTable") => pTable, Out StructArray("TCompData") => pData);
     SET_2D_COMPENSATION = 0x1107 Server Main NMC_Set2DCompensation(In Hand => devHandle, In Struct("T2DCompensation") => pComp);
     GET_2D_COMPENSATION = 0x1108 Server Main NMC_Get2DCompensation(In Hand => devHandle, Out Struct("T2DCompensation") => pComp);
+    // ---- I/O by type, encoders, extension modules, device identity (digest 001 §2.8, §2.20, §4.8) ----
+    GET_DI_EX = 0x1201 Server Main NMC_GetDIEx(In Hand => devHandle, In Short => diType, In Short => groupID, Out Long => pDiValue);
+    GET_DI_RAW = 0x1202 Server Main NMC_GetDIRaw(In Hand => devHandle, In Short => diType, In Short => groupID, Out Long => pDiValue);
+    GET_DO_EX = 0x1203 Server Main NMC_GetDOEx(In Hand => devHandle, In Short => doType, In Short => groupID, Out Long => pOutValue);
+    SET_DO_MASK = 0x1204 Server Main NMC_SetDOMask(In Hand => devHandle, In Long => outMask, In Long => outValue, In Short => doType, In Short => groupID);
+    GET_ENC_POS = 0x1205 Server Main NMC_GetEncPos(In Hand => devHandle, In Short => encId, Out Long => pPos);
+    GET_ENC_VEL = 0x1206 Server Main NMC_GetEncVel(In Hand => devHandle, In UChar => encId, Out Double => vel);
+    SET_ENC_POS = 0x1207 Server Main NMC_SetEncPos(In Hand => devHandle, In Short => encId, In Long => encPos);
+    IO_MODULE_SET_EN = 0x1208 Server Main NMC_IOModuleSetEn(In Hand => devHandle, In UChar => chDevId, In Short => chDevType);
+    IO_MODULE_GET_TYPE = 0x1209 Server Main NMC_IOModuleGetType(In Hand => devHandle, In UChar => chDevId, Out Short => pChDevType);
+    IO_MODULE_RD_16BIT = 0x120A Server Main NMC_IOModuleRd16Bit(In Hand => devHandle, In UChar => chDevId, In UChar => offset, Out UShort => pData);
+    IO_MODULE_RD_32BIT = 0x120B Server Main NMC_IOModuleRd32Bit(In Hand => devHandle, In UChar => chDevId, In UChar => offset, Out ULong => pData);
+    IO_MODULE_RD_OUT_16BIT = 0x120C Server Main NMC_IOModuleRdOut16Bit(In Hand => devHandle, In UChar => chDevId, In UChar => offset, Out UShort => pData);
+    IO_MODULE_RD_OUT_32BIT = 0x120D Server Main NMC_IOModuleRdOut32Bit(In Hand => devHandle, In UChar => chDevId, In UChar => offset, Out ULong => pData);
+    IO_MODULE_WR_16BIT = 0x120E Server Main NMC_IOModuleWr16Bit(In Hand => devHandle, In UChar => chDevId, In UChar => offset, In UShort => data);
+    IO_MODULE_WR_32BIT = 0x120F Server Main NMC_IOModuleWr32Bit(In Hand => devHandle, In UChar => chDevId, In UChar => offset, In ULong => data);
+    GET_IO_MODULE_STS = 0x1210 Server Main NMC_GetIOModuleSts(In Hand => devHandle, Out ULong => sts);
+    DEV_READ_ID = 0x1211 Server Main NMC_DevReadID(In Hand => devHandle, Out Str => pIdStr);
+    GET_UID = 0x1212 Server Main NMC_GetUID(In Hand => devHandle, Out ULong => pUID);
+    GET_MT_LIB_VERSION = 0x1213 Server Main NMC_GetMtLibVersion(In Hand => devHandle, Out Struct("TmLibVersion") => pVersion);
+    // ---- the plain aliases, inversion, timed outputs, filters, edge counters, DIO mapping (digest 001 §2.8) ----
+    GET_DI = 0x1220 Server Main NMC_GetDI(In Hand => devHandle, Out Long => pInValue, In Short => groupID);
+    GET_DO = 0x1221 Server Main NMC_GetDO(In Hand => devHandle, Out Long => pDoValue, In Short => groupID);
+    SET_DO = 0x1222 Server Main NMC_SetDO(In Hand => devHandle, In Long => value, In Short => groupID);
+    SET_DI_BIT_REVS = 0x1223 Server Main NMC_SetDIBitRevs(In Hand => devHandle, In Short => bitIndex, In Short => revs);
+    GET_DI_BIT_REVS = 0x1224 Server Main NMC_GetDIBitRevs(In Hand => devHandle, In Short => bitIndex, Out Short => pRevs);
+    SET_DO_BIT_REVS = 0x1225 Server Main NMC_SetDOBitRevs(In Hand => devHandle, In Short => bitIndex, In Short => revs);
+    GET_DO_BIT_REVS = 0x1226 Server Main NMC_GetDOBitRevs(In Hand => devHandle, In Short => bitIndex, Out Short => pRevs);
+    SET_DO_BIT_REVS_EX = 0x1227 Server Main NMC_SetDOBitRevsEx(In Hand => devHandle, In Short => doType, In Short => group, In Short => bitIndex, In Short => revs);
+    GET_DO_BIT_REVS_EX = 0x1228 Server Main NMC_GetDOBitRevsEx(In Hand => devHandle, In Short => doType, In Short => group, In Short => bitIndex, Out Short => pRevs);
+    SET_DO_BIT_AUTO_REVERSE = 0x1229 Server Main NMC_SetDOBitAutoReverse(In Hand => devHandle, In Short => bitIndex, In Short => value, In Short => reverseTime);
+    DO_BIT_PULSE_ENABLE = 0x122A Server Main NMC_DoBitPulseEnable(In Hand => devHandle, In Short => doType, In Short => doIndex, In Long => highLevelTime, In Long => lowLevelTime, In Long => outCount, In Short => initialLevel, In Short => ch);
+    DO_BIT_PULSE_DISABLE = 0x122B Server Main NMC_DoBitPulseDisable(In Hand => devHandle, In Short => ch);
+    SET_DI_FILTER = 0x122C Server Main NMC_SetDIFilter(In Hand => devHandle, In Short => diType, In Short => diGroup, In Short => diIndex, In Short => filtTime);
+    GET_DI_FILTER = 0x122D Server Main NMC_GetDIFilter(In Hand => devHandle, In Short => diType, In Short => diGroup, In Short => diIndex, Out Short => pFiltTime);
+    SET_DI_REVERSE_COUNT = 0x122E Server Main NMC_SetDiReverseCount(In Hand => devHandle, In Short => diType, In Short => diIndex, In ULongArray => pReverseCountArray, In Short => count);
+    GET_DI_REVERSE_COUNT = 0x122F Server Main NMC_GetDiReverseCount(In Hand => devHandle, In Short => diType, In Short => diIndex, Out ULongArray => pReverseCountArray, In Short => count);
+    SET_DIO_MAPPING = 0x1230 Server Main NMC_SetDioMapping(In Hand => devHandle, In Struct("TDioMappingCfg") => pDioCfg);
+    GET_ALL_DIO_MAPPING = 0x1231 Server Main NMC_GetAllDioMapping(In Hand => devHandle, Out StructArray("TDioMappingCfg") => pDioCfg);
+    CLR_ALL_DIO_MAPPING = 0x1232 Server Main NMC_ClrAllDioMapping(In Hand => devHandle);
+    // ---- controller services: ID, system parameters, RTC, password, backed variables (digest 001 §2.20, §4.9) ----
+    DEV_WRITE_ID = 0x1240 Server Main NMC_DevWriteID(In Hand => devHandle, In Str => pIdStr);
+    DEV_GET_PARA = 0x1241 Server Main NMC_DevGetPara(In Hand => devHandle, In ULong => paraID, Out Long => pValue);
+    DEV_SET_PARA = 0x1242 Server Main NMC_DevSetPara(In Hand => devHandle, In ULong => paraID, In Long => value);
+    GET_TIME = 0x1243 Server Main NMC_GetTime(In Hand => devHandle, Out Struct("TNMCTime") => pTime);
+    SET_TIME = 0x1244 Server Main NMC_SetTime(In Hand => devHandle, In Struct("TNMCTime") => pTime, In Str => pPassword);
+    VERIFY_PASSWORD = 0x1245 Server Main NMC_VerifyPassword(In Hand => devHandle, In Str => pPassword);
+    CHANGE_PASSWORD = 0x1246 Server Main NMC_ChangePassword(In Hand => devHandle, In Str => pPasswordOld, In Str => pPasswordNew);
+    SET_BACKED_VAR_ON_OFF = 0x1247 Server Main NMC_SetBackedVarOnOff(In Hand => devHandle, In Short => en);
+    GET_BACKED_VAR_ON_OFF = 0x1248 Server Main NMC_GetBackedVarOnOff(In Hand => devHandle, Out Short => pEn);
+    GET_BACKED_VAR_GROUP2 = 0x1249 Server Main NMC_GetBackedVarGroup2(In Hand => devHandle, Out Struct("TBackGroup2") => pBackVar);
     // ---- axis-level additions: packed status and moves, positions, E-stop inputs, watchdog,
     // planning period (digest 001 §2.3-§2.5, §2.8, §2.20, §3.4, §3.6) ----
     MT_GET_STS_MULTI = 0x1301 Server Main NMC_MtGetStsMulti(In Hand => firstAxisHandle, Out ShortArray => pStsArray, In Short => count, Out ULong => pClock);

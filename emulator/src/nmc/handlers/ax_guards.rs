@@ -5,7 +5,7 @@
 use mcemu_nmc::ax_structs::{EstopExParam, ESTOP_DI_EX_CH_NUM};
 use mcemu_nmc::table::{self, Function};
 
-use super::io::group_start;
+use super::io_modules::group_start;
 use crate::nmc::ax_state::{EstopDi, EstopEx, Watchdog};
 use crate::nmc::service::{Call, Handler, Refusal};
 
@@ -82,7 +82,7 @@ fn set_watch_dog(c: &mut Call<'_>) -> Result<(), Refusal> {
             "{0 after the buffer, 1 at once}",
         ));
     }
-    let do_start = group_start(group, c.snapshot.io.do_.len())?;
+    let do_start = group_start(c, group, c.snapshot.io.do_.len())?;
     c.service.ax().watchdog = Some(Watchdog {
         timeout: timeout as f64 / 1e3,
         stop_mode,

@@ -109,7 +109,7 @@ fn get_card_info(c: &mut Call<'_>) -> Result<(), Refusal> {
         shio_num: 0,
         ipv4: d.ip.octets(),
         id_str: chars(&d.id),
-        uid: [0; 4],
+        uid: super::identity::device_uid(d),
     };
     info.write(c.output);
     Ok(())

@@ -31,6 +31,14 @@ mod pt;
 mod sync_args;
 
 mod user_para;
+// I/O by type, encoders, extension modules, identity (0x12xx).
+mod dev_services;
+mod encoders;
+mod identity;
+mod io_extras;
+mod io_modules;
+mod io_typed;
+
 // The axis-level additions (family 0x13xx).
 mod ax_guards;
 mod axis_ext;
@@ -38,7 +46,7 @@ mod closed_loop;
 mod extras;
 mod follow;
 
-const FAMILIES: [&[(Function, Handler)]; 27] = [
+const FAMILIES: [&[(Function, Handler)]; 33] = [
     device::HANDLERS,
     axis::HANDLERS,
     motion::HANDLERS,
@@ -58,6 +66,12 @@ const FAMILIES: [&[(Function, Handler)]; 27] = [
     analog::HANDLERS,
     ecat::HANDLERS,
     user_para::HANDLERS,
+    io_typed::HANDLERS,
+    io_modules::HANDLERS,
+    io_extras::HANDLERS,
+    encoders::HANDLERS,
+    identity::HANDLERS,
+    dev_services::HANDLERS,
     laser::HANDLERS,
     shio::HANDLERS,
     laser_buf::HANDLERS,

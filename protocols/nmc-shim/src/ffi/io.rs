@@ -19,7 +19,12 @@ pub extern "C" fn NMC_SetDOGroup(devHandle: HAND, value: c_long, groupID: c_shor
     )
 }
 
-fn get_group(row: &Function, devHandle: HAND, out: *mut c_long, groupID: c_short) -> c_short {
+pub(super) fn get_group(
+    row: &Function,
+    devHandle: HAND,
+    out: *mut c_long,
+    groupID: c_short,
+) -> c_short {
     served(
         row,
         devHandle,

@@ -42,6 +42,9 @@ fn read_outputs(f: &table::Function, r: &mut Reader<'_>) -> Result<(), PayloadEr
             CType::LongArray => {
                 read_array(r, |r| r.i64())?;
             }
+            CType::ULongArray => {
+                read_array(r, |r| r.u64())?;
+            }
             CType::DoubleArray => {
                 read_array(r, |r| r.f64())?;
             }

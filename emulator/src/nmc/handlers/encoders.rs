@@ -1,0 +1,95 @@
+//! Encoder channels by number (digest 001 §2.4, §2.20): [0, n) an axis's encoder, 256 and 257
+//! the external encoders (the handwheel inputs that `handwheel_turn` turns).
+
+use axes::command::{HandwheelTurn, PositionFrame, SetPosition, HANDWHEEL_EXTERNAL_BASE};
+use mcemu_nmc::table::{self, Function};
+
+use crate::nmc::service::{pulses, Call, Handler, Refusal};
+
+pub const HANDLERS: &[(Function, Handler)] = &[
+    (table::GET_ENC_POS, get_enc_pos),
+    (table::GET_ENC_VEL, get_enc_vel),
+    (table::SET_ENC_POS, set_enc_pos),
+];
+
+/// An encoder channel.
+enum Channel {
+    Axis(usize),
+    /// Index into `Snapshot::external_encoders`.
+    External(usize),
+}
+
+fn channel(c: &Call<'_>, enc_id: i16) -> Result<Channel, Refusal> {
+    let axes = c.snapshot.axes.len();
+    let external = c.snapshot.external_encoders.len();
+    match usize::try_from(enc_id) {
+        Ok(a) if a < axes => Ok(Channel::Axis(a)),
+        Ok(e)
+            if e >= usize::from(HANDWHEEL_EXTERNAL_BASE)
+                && e < usize::from(HANDWHEEL_EXTERNAL_BASE) + external =>
+        {
+            Ok(Channel::External(e - usize::from(HANDWHEEL_EXTERNAL_BASE)))
+        }
+        _ => Err(Refusal::range(
+            "encId",
+            enc_id,
+            &format!(
+                "[0, {}] (an axis's encoder) or {HANDWHEEL_EXTERNAL_BASE} … {}",
+                axes.saturating_sub(1),
+                usize::from(HANDWHEEL_EXTERNAL_BASE) + external.saturating_sub(1)
+            ),
+        )),
+    }
+}
+
+/// An axis encoder's position is the axis's actual position in pulses (1 count per pulse on
+/// the Gaochuan fixture), so that `NMC_SetEncPos` redefines it as the engine's `actual` frame.
+fn get_enc_pos(c: &mut Call<'_>) -> Result<(), Refusal> {
+    c.device()?;
+    let enc_id = c.input.i16()?;
+    let p = match channel(c, enc_id)? {
+        Channel::Axis(a) => c.status(a).map_or(0, |s| pulses(c.scale(a), s.act_pos)),
+        Channel::External(e) => c.snapshot.external_encoders.get(e).copied().unwrap_or(0),
+    };
+    c.output.i64(p);
+    Ok(())
+}
+
+/// pulse/ms. `encId` is an `unsigned char` as the manual writes it: axis encoders only.
+fn get_enc_vel(c: &mut Call<'_>) -> Result<(), Refusal> {
+    c.device()?;
+    let enc_id = c.input.u8()?;
+    let v = match channel(c, i16::from(enc_id))? {
+        Channel::Axis(a) => c.status(a).map_or(0.0, |s| {
+            mcemu_dialects::nmc::velocity_from_engine(c.scale(a), s.act_vel)
+        }),
+        Channel::External(_) => 0.0,
+    };
+    c.output.f64(v);
+    Ok(())
+}
+
+/// An axis's encoder: the axis's actual position is redefined (the motor does not move); an
+/// external encoder's count is turned to `encPos`.
+fn set_enc_pos(c: &mut Call<'_>) -> Result<(), Refusal> {
+    c.device()?;
+    let (enc_id, pos) = (c.input.i16()?, c.input.i64()?);
+    match channel(c, enc_id)? {
+        Channel::Axis(a) => {
+            let position = c.scale(a).to_engine(pos as f64);
+            c.command(SetPosition {
+                axis: a as u16,
+                position,
+                frame: PositionFrame::Actual,
+            });
+        }
+        Channel::External(e) => {
+            let now = c.snapshot.external_encoders.get(e).copied().unwrap_or(0);
+            c.command(HandwheelTurn {
+                input: HANDWHEEL_EXTERNAL_BASE + e as u16,
+                counts: pos.wrapping_sub(now),
+            });
+        }
+    }
+    Ok(())
+}
