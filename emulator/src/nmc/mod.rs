@@ -17,6 +17,7 @@
 
 pub mod config;
 pub mod crd;
+pub mod crd_length;
 pub mod faults;
 mod handlers;
 pub mod serve;

@@ -229,6 +229,53 @@ typedef struct {
     short reserved;
 } TCrdLineXYZD8Unit;
 
+/* Coordinate system: look-ahead and packed status (digest 001 §3.4, §3.9). */
+#define CRD_MAX_DIMENSION 4
+#define CRD_WAIT_POS_LE 0
+#define CRD_WAIT_POS_GE 1
+typedef struct {
+    short lookAheadSwitch;
+    short centAccEn;
+    short crossEn;
+    short eventTime;
+    double accMax;
+    double T;
+    double slowAng;
+    double stopAng;
+    double crossProp;
+    double centAcc;
+    double dvMax[CRD_MAX_DIMENSION];
+    double daMax[CRD_MAX_DIMENSION];
+    double radiusCoef;
+    double radiusErr;
+    double radiusAng;
+    double radiusAngMax;
+    double radiusAngMin;
+    short axPropTimeUnitProp;
+    short preHandleEn;
+    short reserved;
+    float preHandleDisAngMin;
+    float preHandleDisAngMax;
+    float preHandleTol;
+    float minCornerVel;
+    float axProp[CRD_MAX_DIMENSION];
+} TLookaheadPara;
+typedef struct {
+    short crdSts;
+    short axSts[4];
+    long prfPos[4];
+    long axisPos[4];
+    long encPos[4];
+    long userSeg;
+    double prfVel;
+    long gpDi;
+    long gpDo;
+    short motDi[4];
+    short reserved;
+    long crdFreeSpace;
+    long crdUsedSpace;
+} TPackedCrdSts4;
+
 short NMC_GetDllVersion(char *pVersion);
 short NMC_SetCommPara(HAND devHandle, unsigned long waitTimeInUs, unsigned long retryTimes);
 short NMC_GetLastErr(void);
@@ -455,6 +502,14 @@ short NMC_Set2DCompensationTable(HAND devHandle, short tableIndex, T2DCompensati
 short NMC_Get2DCompensationTable(HAND devHandle, short tableIndex, T2DCompensationTable *pTable, TCompData *pData);
 short NMC_Set2DCompensation(HAND devHandle, T2DCompensation *pComp);
 short NMC_Get2DCompensation(HAND devHandle, T2DCompensation *pComp);
+short NMC_CrdSetLookaheadPara(HAND crdHandle, TLookaheadPara *lkhPara);
+short NMC_CrdGetLookaheadPara(HAND crdHandle, TLookaheadPara *lkhPara, short defaultFlag);
+short NMC_CrdGetStsPack4(HAND crdHandle, TPackedCrdSts4 *pPackSts);
+short NMC_CrdBufWaitPos(HAND crdHandle, long segNo, short axisNo, short condition, long pos, short posSrc, long overTime);
+short NMC_CrdCircle3DEx(HAND crdHandle, long segNo, long *pMidPos, long *pTgPos, double velEnd, double vel, double synAcc, short lookaheadDis);
+short NMC_CrdCirclePPP(HAND crdHandle, long segNo, short planeIdx, long *pStPos, long *pMidPosArray, long *pTgPosArray, double endVel, double vel, double synAcc, short lookaheadDis);
+short NMC_CrdSetBufLengthFlag(HAND crdHandle, short flag);
+short NMC_CrdGetBufLength(HAND crdHandle, double *pLen);
 
 #ifdef __cplusplus
 }

@@ -190,9 +190,10 @@ fn prototypes(file: HeaderFile) -> String {
 /// `mtn_lib20.h`.
 pub fn main_header() -> String {
     format!(
-        "{MAIN_PREAMBLE}{}{}{}{MAIN_END}",
+        "{MAIN_PREAMBLE}{}{}{}{}{MAIN_END}",
         crate::sync_header::SYNC_PREAMBLE,
         crate::crd::C_DECLARATIONS,
+        crate::crd_lookahead::C_DECLARATIONS,
         prototypes(HeaderFile::Main)
     )
 }

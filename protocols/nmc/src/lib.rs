@@ -22,6 +22,7 @@
 
 pub mod axis_config;
 pub mod crd;
+pub mod crd_lookahead;
 pub mod errors;
 pub mod frame;
 pub mod handle;

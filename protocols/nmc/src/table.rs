@@ -8,7 +8,8 @@
 //! status and servo, 0x03xx PTP/JOG/stop, 0x04xx homing, 0x05xx I/O, 0x06xx coordinate
 //! systems, 0x07xx basic axis configuration, 0x08xx Appendix A aliases, 0x09xx analog I/O,
 //! 0x0Axx EtherCAT, 0x0Bxx user parameters, 0x0Cxx gear, 0x0Dxx PT/PVT, 0x0Exx capture, 0x0Fxx
-//! compare, 0x10xx gantry and handwheel, 0x11xx compensation).
+//! compare, 0x10xx gantry and handwheel, 0x11xx compensation, 0x14xx coordinate systems:
+//! look-ahead, packed status, position waits, full circles, buffer length).
 
 /// A C argument kind, as the manual writes it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -384,6 +385,15 @@ functions! {
     GET_2D_COMPENSATION_TABLE = 0x1106 Server Main NMC_Get2DCompensationTable(In Hand => devHandle, In Short => tableIndex, Out Struct("T2DCompensationTable") => pTable, Out StructArray("TCompData") => pData);
     SET_2D_COMPENSATION = 0x1107 Server Main NMC_Set2DCompensation(In Hand => devHandle, In Struct("T2DCompensation") => pComp);
     GET_2D_COMPENSATION = 0x1108 Server Main NMC_Get2DCompensation(In Hand => devHandle, Out Struct("T2DCompensation") => pComp);
+    // ---- coordinate systems, 0x14xx family (digest 001 §2.7, §3.4, §3.9) ----
+    CRD_SET_LOOKAHEAD_PARA = 0x1401 Server Main NMC_CrdSetLookaheadPara(In Hand => crdHandle, In Struct("TLookaheadPara") => lkhPara);
+    CRD_GET_LOOKAHEAD_PARA = 0x1402 Server Main NMC_CrdGetLookaheadPara(In Hand => crdHandle, Out Struct("TLookaheadPara") => lkhPara, In Short => defaultFlag);
+    CRD_GET_STS_PACK4 = 0x1403 Server Main NMC_CrdGetStsPack4(In Hand => crdHandle, Out Struct("TPackedCrdSts4") => pPackSts);
+    CRD_BUF_WAIT_POS = 0x1404 Server Main NMC_CrdBufWaitPos(In Hand => crdHandle, In Long => segNo, In Short => axisNo, In Short => condition, In Long => pos, In Short => posSrc, In Long => overTime);
+    CRD_CIRCLE_3D_EX = 0x1405 Server Main NMC_CrdCircle3DEx(In Hand => crdHandle, In Long => segNo, In LongArray => pMidPos, In LongArray => pTgPos, In Double => velEnd, In Double => vel, In Double => synAcc, In Short => lookaheadDis);
+    CRD_CIRCLE_PPP = 0x1406 Server Main NMC_CrdCirclePPP(In Hand => crdHandle, In Long => segNo, In Short => planeIdx, In LongArray => pStPos, In LongArray => pMidPosArray, In LongArray => pTgPosArray, In Double => endVel, In Double => vel, In Double => synAcc, In Short => lookaheadDis);
+    CRD_SET_BUF_LENGTH_FLAG = 0x1407 Server Main NMC_CrdSetBufLengthFlag(In Hand => crdHandle, In Short => flag);
+    CRD_GET_BUF_LENGTH = 0x1408 Server Main NMC_CrdGetBufLength(In Hand => crdHandle, Out Double => pLen);
 }
 
 #[cfg(test)]

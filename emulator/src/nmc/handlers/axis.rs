@@ -122,6 +122,12 @@ fn mt_set_sv_off(c: &mut Call<'_>) -> Result<(), Refusal> {
 fn mt_get_motion_io(c: &mut Call<'_>) -> Result<(), Refusal> {
     let axis = c.axis()?;
     let f = c.status(axis).map_or(AxisFlags::empty(), |s| s.flags);
+    c.output.i64(motion_io(f));
+    Ok(())
+}
+
+/// The motion-IO word of `f` (digest 001 §3.3), as `mt_get_motion_io` reads it.
+pub(super) fn motion_io(f: AxisFlags) -> i64 {
     let mut v = 0i64;
     for (bit, flag) in [
         (0, AxisFlags::HW_LIMIT_NEG),
@@ -135,6 +141,5 @@ fn mt_get_motion_io(c: &mut Call<'_>) -> Result<(), Refusal> {
             v |= 1 << bit;
         }
     }
-    c.output.i64(v);
-    Ok(())
+    v
 }

@@ -212,6 +212,9 @@ fn crd_config(c: &mut Call<'_>) -> Result<(), Refusal> {
         let centri = centri_command(c, n, &s);
         c.command(centri);
     }
+    for command in super::crd_lookahead::corner_commands(c, n, &s) {
+        c.command(command);
+    }
     s.pending.clear();
     s.started = false;
     s.end = here(c, &s);
@@ -246,7 +249,7 @@ fn positive(name: &str, v: f64, unit: &str) -> Result<(), Refusal> {
     }
 }
 
-fn non_negative(name: &str, v: f64, unit: &str) -> Result<(), Refusal> {
+pub(super) fn non_negative(name: &str, v: f64, unit: &str) -> Result<(), Refusal> {
     if v.is_finite() && v >= 0.0 {
         Ok(())
     } else {
@@ -443,6 +446,7 @@ fn crd_buf_clr(c: &mut Call<'_>) -> Result<(), Refusal> {
     s.pending.clear();
     s.started = false;
     s.pushed = 0;
+    s.pushed_length = 0.0;
     s.end = here(c, &s);
     s.ext_end.clear();
     update(c, n, |now| *now = s);
@@ -474,7 +478,7 @@ fn crd_get_override(c: &mut Call<'_>) -> Result<(), Refusal> {
 
 /// The engine's `arc_acceleration` (v ≤ √(A·r) on arcs) in the first member's units;
 /// isUsingSetAcc 0 turns it off.
-fn centri_command(c: &Call<'_>, n: usize, s: &CrdState) -> Command {
+pub(super) fn centri_command(c: &Call<'_>, n: usize, s: &CrdState) -> Command {
     let scale = s.axes().first().map_or(
         mcemu_dialects::PulseScale {
             pulses_per_unit: 1.0,

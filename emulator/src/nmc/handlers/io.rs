@@ -45,7 +45,7 @@ fn bit_index(bit: i16, count: usize) -> Result<usize, Refusal> {
 }
 
 /// The 32 bits of a group, bit 0 the group's first (1 = high, digest 001 §4.8).
-fn group_value(bits: &[bool], start: usize) -> i64 {
+pub(super) fn group_value(bits: &[bool], start: usize) -> i64 {
     bits.iter()
         .skip(start)
         .take(32)

@@ -10,6 +10,8 @@ mod analog;
 mod axis;
 mod axis_config;
 mod crd;
+mod crd_circle;
+mod crd_lookahead;
 mod crd_segment;
 mod crd_status;
 mod device;
@@ -28,7 +30,7 @@ mod sync_args;
 
 mod user_para;
 
-const FAMILIES: [&[(Function, Handler)]; 19] = [
+const FAMILIES: [&[(Function, Handler)]; 21] = [
     device::HANDLERS,
     axis::HANDLERS,
     motion::HANDLERS,
@@ -48,6 +50,8 @@ const FAMILIES: [&[(Function, Handler)]; 19] = [
     analog::HANDLERS,
     ecat::HANDLERS,
     user_para::HANDLERS,
+    crd_lookahead::HANDLERS,
+    crd_circle::HANDLERS,
 ];
 
 /// The handler of function `id`.

@@ -23,6 +23,7 @@ pub mod analog;
 pub mod axis;
 pub mod axis_config;
 pub mod crd;
+pub mod crd_lookahead;
 pub mod crd_types;
 pub mod device;
 pub mod ecat;
