@@ -212,7 +212,7 @@ fn crd_config(c: &mut Call<'_>) -> Result<(), Refusal> {
         let centri = centri_command(c, n, &s);
         c.command(centri);
     }
-    for command in super::crd_lookahead::corner_commands(c, n, &s) {
+    for command in corner_commands(c, n, &s) {
         c.command(command);
     }
     s.pending.clear();
@@ -509,4 +509,44 @@ fn crd_set_look_ahead_centri_acc(c: &mut Call<'_>) -> Result<(), Refusal> {
     }
     update(c, n, |now| *now = s);
     Ok(())
+}
+
+fn parameter(n: usize, name: GroupParameter, value: f64) -> Command {
+    GroupSetParameter {
+        group: n as GroupId,
+        name,
+        value,
+    }
+    .into()
+}
+
+/// The engine's corner rules for `s`'s look-ahead parameters (none until
+/// `NMC_CrdSetLookaheadPara`): accMax is the corner acceleration, slowAng/stopAng the corner
+/// angles (degrees → radians; both 0: no slowing, only a reversal stops). stopAng goes to π
+/// first so that every step keeps slow ≤ stop, as the engine requires.
+pub(super) fn corner_commands(c: &Call<'_>, n: usize, s: &CrdState) -> Vec<Command> {
+    let Some(p) = s.lookahead else {
+        return Vec::new();
+    };
+    let scale = s.axes().first().map_or(
+        mcemu_dialects::PulseScale {
+            pulses_per_unit: 1.0,
+        },
+        |a| c.scale(*a),
+    );
+    let (slow, stop) = if p.stop_ang == 0.0 {
+        (180.0, 180.0)
+    } else {
+        (p.slow_ang, p.stop_ang)
+    };
+    vec![
+        parameter(
+            n,
+            GroupParameter::CornerAcceleration,
+            acceleration_to_engine(scale, p.acc_max),
+        ),
+        parameter(n, GroupParameter::CornerStopAngle, std::f64::consts::PI),
+        parameter(n, GroupParameter::CornerSlowAngle, slow.to_radians()),
+        parameter(n, GroupParameter::CornerStopAngle, stop.to_radians()),
+    ]
 }

@@ -40,8 +40,8 @@ fn circumcircle(p0: V3, p1: V3, p2: V3) -> Option<(V3, V3)> {
     let n = cross(a, b);
     let nn = dot(n, n);
     let scale = dot(a, a).max(dot(b, b));
-    // Collinear within a part in 10¹² of the points' spread: no circle.
-    if !(nn > 1e-12 * scale * scale) {
+    // Collinear within a part in 10¹² of the points' spread (or not finite): no circle.
+    if nn.is_nan() || nn <= 1e-12 * scale * scale {
         return None;
     }
     let w = cross(

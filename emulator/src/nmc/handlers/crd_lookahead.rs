@@ -2,21 +2,17 @@
 //! mapped onto the engine group's look-ahead rules, the packed status, the buffered position
 //! wait and the pushed path length.
 
-use axes::command::{
-    Command, GroupId, GroupParameter, GroupSetParameter, GroupWaitPosition, PositionCondition,
-    PositionSource,
-};
-use mcemu_dialects::nmc::{acceleration_to_engine, axis_status, velocity_from_engine, AxisExtra};
+use axes::command::{GroupWaitPosition, PositionCondition, PositionSource};
+use mcemu_dialects::nmc::{axis_status, velocity_from_engine, AxisExtra};
 use mcemu_nmc::crd::CRD_MAX_AXES;
 use mcemu_nmc::crd_lookahead::{LookaheadPara, PackedCrdSts4};
 use mcemu_nmc::table::{self, Function};
 
 use super::axis::motion_io;
-use super::crd::{centri_command, crd, group, non_negative, state, update};
+use super::crd::{centri_command, corner_commands, crd, group, non_negative, state, update};
 use super::crd_segment::{marker, Push};
 use super::crd_status::{free, path_scale, used, user_seg, word};
 use super::io::group_value;
-use crate::nmc::crd::CrdState;
 use crate::nmc::service::{pulses, Call, Handler, Refusal};
 
 pub const HANDLERS: &[(Function, Handler)] = &[
@@ -95,41 +91,6 @@ fn check(p: &LookaheadPara) -> Result<(), Refusal> {
         ));
     }
     Ok(())
-}
-
-fn parameter(n: usize, name: GroupParameter, value: f64) -> Command {
-    GroupSetParameter {
-        group: n as GroupId,
-        name,
-        value,
-    }
-    .into()
-}
-
-/// The engine's corner rules for `s`'s look-ahead parameters (none until
-/// `NMC_CrdSetLookaheadPara`): accMax is the corner acceleration, slowAng/stopAng the corner
-/// angles (degrees → radians; both 0: no slowing, only a reversal stops). stopAng goes to π
-/// first so that every step keeps slow ≤ stop, as the engine requires.
-pub(super) fn corner_commands(c: &Call<'_>, n: usize, s: &CrdState) -> Vec<Command> {
-    let Some(p) = s.lookahead else {
-        return Vec::new();
-    };
-    let scale = path_scale(c, s);
-    let (slow, stop) = if p.stop_ang == 0.0 {
-        (180.0, 180.0)
-    } else {
-        (p.slow_ang, p.stop_ang)
-    };
-    vec![
-        parameter(
-            n,
-            GroupParameter::CornerAcceleration,
-            acceleration_to_engine(scale, p.acc_max),
-        ),
-        parameter(n, GroupParameter::CornerStopAngle, std::f64::consts::PI),
-        parameter(n, GroupParameter::CornerSlowAngle, slow.to_radians()),
-        parameter(n, GroupParameter::CornerStopAngle, stop.to_radians()),
-    ]
 }
 
 /// lookAheadSwitch, T and eventTime are `TExtCrdPara`'s (one setting, either call writes it);
