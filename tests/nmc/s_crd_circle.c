@@ -47,7 +47,7 @@ int main(void) {
     TCrdConfig crdConfig = {0};
     TCrdPara crdPara = {0};
     long st[2] = {1000, 0}, mid[2] = {2000, 1000}, tg[2] = {3000, 0}, line[2] = {5000, 0};
-    long mid3[3] = {2000, 0, 1000}, tg3[3] = {1000, 0, 2000}, on_line[3] = {2000, 0, 0}, end3[3] = {3000, 0, 0};
+    long origin[3] = {0, 0, 0}, mid3[3] = {2000, 0, 1000}, tg3[3] = {1000, 0, 2000}, on_line[3] = {2000, 0, 0}, end3[3] = {3000, 0, 0};
     double len = -1, circle = 2 * 3.14159265358979 * 1000;
     short i;
     Box box;
@@ -70,6 +70,11 @@ int main(void) {
     crdPara.synVelMax = 800;
     OK(NMC_CrdSetPara(crdHandle, &crdPara));
     OK(NMC_CrdClrError(crdHandle));
+    OK(NMC_CrdBufClr(crdHandle));
+    /* From the origin. */
+    OK(NMC_CrdLineXYZEx(crdHandle, 0, 0x7, origin, 0, 50, 1, 0));
+    run(&box);
+    at(0, 0, 0);
     OK(NMC_CrdBufClr(crdHandle));
 
     /* Bad arguments. */
