@@ -237,6 +237,8 @@ fn s_trans_rotate_the_table_turns_between_segments_and_later_points_follow_it() 
             position: -2.5,
             tolerance: Some(1e-9),
             timeout: None,
+            condition: Default::default(),
+            source: Default::default(),
         }),
     );
     ok(&mut e, Command::from(line_in(1, &[50.0, 30.0], None)));

@@ -12,7 +12,7 @@ use axes::command::{
     GroupEnable, GroupHalt, GroupParameter, GroupReset, GroupSetOrigin, GroupSetOutput,
     GroupSetOverride, GroupSetParameter, GroupStop, GroupWaitInput, GroupWaitPosition,
     MoveCircularAbsolute, MoveCircularAngle, MoveCircularRelative, MoveEllipse, MoveLinearAbsolute,
-    MoveLinearRelative, MoveSpline, TransitionMode,
+    MoveLinearRelative, MoveSpline, PositionCondition, PositionSource, TransitionMode,
 };
 use axes::command::{
     CoordinateSystem, GroupDeleteTransform, GroupJog, GroupJogAxis, GroupSetCoordinateSystem,
@@ -200,10 +200,12 @@ fn full() -> Vec<(Command, &'static str)> {
                 group: 1,
                 axis: 3,
                 position: 50.0,
-                tolerance: Some(0.01),
-                timeout: None,
+                tolerance: None,
+                timeout: Some(2.0),
+                condition: PositionCondition::AtLeast,
+                source: Some(PositionSource::Commanded),
             }),
-            r#"{"type":"group_wait_position","group":1,"axis":3,"position":50.0,"tolerance":0.01,"timeout":null}"#,
+            r#"{"type":"group_wait_position","group":1,"axis":3,"position":50.0,"tolerance":null,"timeout":2.0,"condition":"at_least","source":"commanded"}"#,
         ),
         (
             Command::from(GroupAxisMove {

@@ -495,6 +495,8 @@ fn bad_motion_input_is_refused_with_a_typed_error_and_nothing_is_queued() {
                 position: 0.0,
                 tolerance: None,
                 timeout: None,
+                condition: Default::default(),
+                source: Default::default(),
             }),
             ErrorKind::InvalidAxis,
             "axis 9 does not exist (the machine has 3 axes)",

@@ -458,6 +458,8 @@ fn a_buffered_axis_move_starts_with_the_next_segment_and_a_position_wait_follows
             position: 20.0,
             tolerance: Some(0.01),
             timeout: None,
+            condition: Default::default(),
+            source: Default::default(),
         },
     );
     send(&mut e, line(&[0.0, 10.0]));

@@ -188,6 +188,16 @@ fn s_crd_examples_tv42_tv54() {
 }
 
 #[test]
+fn s_crd_lookahead_pack4_wait_pos() {
+    example_with("s_crd_lookahead.c", &["--clock", "scaled:5"]);
+}
+
+#[test]
+fn s_crd_circles_and_buffer_length() {
+    example_with("s_crd_circle.c", &["--clock", "scaled:5"]);
+}
+
+#[test]
 fn eight_threads_on_one_handle_each_get_their_reply() {
     example("threads.c");
 }

@@ -9,6 +9,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::status::PositionSource;
 use crate::types::MAX_GROUP_AXES;
 
 /// A set of group coordinates (indices 0–8 into a group's `axes`, as `plane`); in JSON a list
@@ -469,8 +470,8 @@ pub struct GroupWaitInput {
 }
 
 /// Buffered: stop here until `axis`'s actual position is within `tolerance` of `position`
-/// (default: the axis's `in_position_window`); past `timeout` seconds the group goes to
-/// ErrorStop.
+/// (default: the axis's `in_position_window`), or with `condition` at most / at least
+/// `position` (NMC CrdBufWaitPos); past `timeout` seconds the group goes to ErrorStop.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct GroupWaitPosition {
@@ -481,6 +482,28 @@ pub struct GroupWaitPosition {
     pub tolerance: Option<f64>,
     #[serde(default)]
     pub timeout: Option<f64>,
+    #[serde(default, skip_serializing_if = "is_default")]
+    pub condition: PositionCondition,
+    /// Which position is compared (default: the actual one).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub source: Option<PositionSource>,
+}
+
+fn is_default<T: Default + PartialEq>(v: &T) -> bool {
+    *v == T::default()
+}
+
+/// When a position wait is met.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PositionCondition {
+    /// Within the tolerance of the position.
+    #[default]
+    Within,
+    /// At or below the position.
+    AtMost,
+    /// At or above the position.
+    AtLeast,
 }
 
 /// Buffered: a single-axis absolute move of an axis outside the group that starts when the

@@ -132,7 +132,7 @@ pub use group::{
     GroupEnable, GroupHalt, GroupParameter, GroupReset, GroupSetOrigin, GroupSetOutput,
     GroupSetOverride, GroupSetParameter, GroupStop, GroupWaitInput, GroupWaitPosition,
     MoveCircularAbsolute, MoveCircularAngle, MoveCircularRelative, MoveEllipse, MoveLinearAbsolute,
-    MoveLinearRelative, MoveSpline, TransitionMode,
+    MoveLinearRelative, MoveSpline, PositionCondition, TransitionMode,
 };
 pub use group_frames::{
     GroupDeleteTransform, GroupSetCoordinateSystem, GroupSetCoordinateTransform,

@@ -788,5 +788,7 @@ fn wait_position_item(env: &Env, c: &GroupWaitPosition) -> Result<Item, EngineEr
         position,
         tolerance,
         timeout: timeout_ticks(env, c.timeout)?,
+        condition: c.condition,
+        source: c.source,
     })
 }

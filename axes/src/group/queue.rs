@@ -4,7 +4,7 @@
 
 use std::collections::VecDeque;
 
-use crate::command::{AxisIndex, CommandId, GroupAxisMove};
+use crate::command::{AxisIndex, CommandId, GroupAxisMove, PositionCondition, PositionSource};
 
 /// A buffered non-motion command, or a motion.
 #[derive(Clone, Debug, PartialEq)]
@@ -28,12 +28,15 @@ pub(super) enum Item {
         level: bool,
         timeout: Option<u64>,
     },
-    /// Stand until the axis's actual position is within the tolerance.
+    /// Stand until the axis's position meets the condition.
     WaitPosition {
         axis: AxisIndex,
         position: f64,
         tolerance: f64,
         timeout: Option<u64>,
+        condition: PositionCondition,
+        /// `None`: the actual position.
+        source: Option<PositionSource>,
     },
     /// Start a single-axis move of a non-member axis (NMC CrdBufAxMoveEx).
     AxisMove(GroupAxisMove),

@@ -7,7 +7,10 @@ use path::MAX_AXES;
 use super::queue::{Entry, Item, Wait};
 use super::{axis_limits, Env, Group, ResultAxis};
 use crate::axis::{Feed, MotionAction, MotionSubmission, Overrides};
-use crate::command::{CommandId, CommandKind, CommandState, EngineError, ErrorKind, StopMode};
+use crate::command::{
+    CommandId, CommandKind, CommandState, EngineError, ErrorKind, PositionCondition,
+    PositionSource, StopMode,
+};
 use crate::profile::MotionState;
 use crate::status::{AxisState, GroupFault, GroupState};
 
@@ -421,10 +424,20 @@ impl Group {
                 position,
                 tolerance,
                 timeout,
+                condition,
+                source,
             } => (
-                env.axes
-                    .get(*axis as usize)
-                    .is_some_and(|a| (a.actual_position() - position).abs() <= *tolerance),
+                env.axes.get(*axis as usize).is_some_and(|a| {
+                    let at = match source {
+                        Some(PositionSource::Commanded) => a.commanded().p,
+                        Some(PositionSource::Actual) | None => a.actual_position(),
+                    };
+                    match condition {
+                        PositionCondition::Within => (at - position).abs() <= *tolerance,
+                        PositionCondition::AtMost => at <= *position,
+                        PositionCondition::AtLeast => at >= *position,
+                    }
+                }),
                 *timeout,
             ),
             Item::Motion { .. } | Item::SetOutput { .. } | Item::AxisMove(_) => (true, None),

@@ -5,6 +5,7 @@
 
 use axes::command::Command;
 use mcemu_nmc::crd::{CrdConfig, CrdPara, CrdSafePara, ExtCrdPara, CRD_MAX_AXES};
+use mcemu_nmc::crd_lookahead::LookaheadPara;
 
 /// Coordinate systems a device has (`NMC_CrdOpenEx` itemNo ∈ [0, 1], TV04).
 pub const CRD_COUNT: usize = 2;
@@ -37,6 +38,13 @@ pub struct CrdState {
     pub axis_ptp: Vec<(usize, f64, f64)>,
     /// `NMC_CrdSetLookAheadCentriAcc`: the arcs' centripetal acceleration, pulse/ms² (0 off).
     pub centri_acc: f64,
+    /// `NMC_CrdSetLookaheadPara`'s last parameters; `None` until it is called (the engine's
+    /// corner rules stay off).
+    pub lookahead: Option<LookaheadPara>,
+    /// `NMC_CrdSetBufLengthFlag` 1: the path length of what is pushed is summed.
+    pub length_flag: bool,
+    /// The path length pushed since the last `NMC_CrdBufClr` (while `length_flag`), pulses.
+    pub pushed_length: f64,
 }
 
 impl CrdState {

@@ -25,6 +25,7 @@ pub mod ax_state;
 mod ax_watch;
 pub mod config;
 pub mod crd;
+pub mod crd_length;
 pub mod faults;
 mod handlers;
 pub mod laser_state;

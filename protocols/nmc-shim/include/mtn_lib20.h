@@ -363,6 +363,53 @@ typedef struct {
     short reserved;
 } TCrdLineXYZD8Unit;
 
+/* Coordinate system: look-ahead and packed status (digest 001 §3.4, §3.9). */
+#define CRD_MAX_DIMENSION 4
+#define CRD_WAIT_POS_LE 0
+#define CRD_WAIT_POS_GE 1
+typedef struct {
+    short lookAheadSwitch;
+    short centAccEn;
+    short crossEn;
+    short eventTime;
+    double accMax;
+    double T;
+    double slowAng;
+    double stopAng;
+    double crossProp;
+    double centAcc;
+    double dvMax[CRD_MAX_DIMENSION];
+    double daMax[CRD_MAX_DIMENSION];
+    double radiusCoef;
+    double radiusErr;
+    double radiusAng;
+    double radiusAngMax;
+    double radiusAngMin;
+    short axPropTimeUnitProp;
+    short preHandleEn;
+    short reserved;
+    float preHandleDisAngMin;
+    float preHandleDisAngMax;
+    float preHandleTol;
+    float minCornerVel;
+    float axProp[CRD_MAX_DIMENSION];
+} TLookaheadPara;
+typedef struct {
+    short crdSts;
+    short axSts[4];
+    long prfPos[4];
+    long axisPos[4];
+    long encPos[4];
+    long userSeg;
+    double prfVel;
+    long gpDi;
+    long gpDo;
+    short motDi[4];
+    short reserved;
+    long crdFreeSpace;
+    long crdUsedSpace;
+} TPackedCrdSts4;
+
 short NMC_GetDllVersion(char *pVersion);
 short NMC_SetCommPara(HAND devHandle, unsigned long waitTimeInUs, unsigned long retryTimes);
 short NMC_GetLastErr(void);
@@ -690,6 +737,14 @@ short NMC_MtGetPrfCoe(HAND axisHandle, double *inCoe);
 short NMC_MtSetEncCoe(HAND axisHandle, double encCoe);
 short NMC_MtGetEncCoe(HAND axisHandle, double *pEncCoe);
 short NMC_SaveMotionConfig(HAND devHandle, short enable);
+short NMC_CrdSetLookaheadPara(HAND crdHandle, TLookaheadPara *lkhPara);
+short NMC_CrdGetLookaheadPara(HAND crdHandle, TLookaheadPara *lkhPara, short defaultFlag);
+short NMC_CrdGetStsPack4(HAND crdHandle, TPackedCrdSts4 *pPackSts);
+short NMC_CrdBufWaitPos(HAND crdHandle, long segNo, short axisNo, short condition, long pos, short posSrc, long overTime);
+short NMC_CrdCircle3DEx(HAND crdHandle, long segNo, long *pMidPos, long *pTgPos, double velEnd, double vel, double synAcc, short lookaheadDis);
+short NMC_CrdCirclePPP(HAND crdHandle, long segNo, short planeIdx, long *pStPos, long *pMidPosArray, long *pTgPosArray, double endVel, double vel, double synAcc, short lookaheadDis);
+short NMC_CrdSetBufLengthFlag(HAND crdHandle, short flag);
+short NMC_CrdGetBufLength(HAND crdHandle, double *pLen);
 short NMC_LaserSetMode(HAND devHandle, short mode, short ch);
 short NMC_LaserSetModes(HAND devHandle, short mode, short ch);
 short NMC_LaserSetOutputTypeEx(HAND devHandle, short outputType, short index, double optionVal, short ch);

@@ -30,6 +30,7 @@ pub mod ax_header;
 pub mod ax_structs;
 pub mod axis_config;
 pub mod crd;
+pub mod crd_lookahead;
 pub mod errors;
 pub mod frame;
 pub mod handle;

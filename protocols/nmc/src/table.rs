@@ -10,7 +10,9 @@
 //! 0x0Axx EtherCAT, 0x0Bxx user parameters, 0x0Cxx gear, 0x0Dxx PT/PVT, 0x0Exx capture, 0x0Fxx
 //! compare, 0x10xx gantry and handwheel, 0x11xx compensation, 0x12xx I/O by type, encoders,
 //! extension modules and controller services, 0x13xx axis-level additions: packed status and
-//! moves, positions, E-stop inputs, watchdog, planning period, 0x15xx laser, SHIO and PWM).
+//! moves, positions, E-stop inputs, watchdog, planning period, 0x14xx coordinate systems:
+//! look-ahead, packed status, position waits, full circles, buffer length, 0x15xx laser, SHIO
+//! and PWM).
 
 /// A C argument kind, as the manual writes it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -499,6 +501,15 @@ functions! {
     MT_SET_ENC_COE = 0x135D Server Main NMC_MtSetEncCoe(In Hand => axisHandle, In Double => encCoe);
     MT_GET_ENC_COE = 0x135E Server Main NMC_MtGetEncCoe(In Hand => axisHandle, Out Double => pEncCoe);
     SAVE_MOTION_CONFIG = 0x1360 Server Main NMC_SaveMotionConfig(In Hand => devHandle, In Short => enable);
+    // ---- coordinate systems, 0x14xx family (digest 001 §2.7, §3.4, §3.9) ----
+    CRD_SET_LOOKAHEAD_PARA = 0x1401 Server Main NMC_CrdSetLookaheadPara(In Hand => crdHandle, In Struct("TLookaheadPara") => lkhPara);
+    CRD_GET_LOOKAHEAD_PARA = 0x1402 Server Main NMC_CrdGetLookaheadPara(In Hand => crdHandle, Out Struct("TLookaheadPara") => lkhPara, In Short => defaultFlag);
+    CRD_GET_STS_PACK4 = 0x1403 Server Main NMC_CrdGetStsPack4(In Hand => crdHandle, Out Struct("TPackedCrdSts4") => pPackSts);
+    CRD_BUF_WAIT_POS = 0x1404 Server Main NMC_CrdBufWaitPos(In Hand => crdHandle, In Long => segNo, In Short => axisNo, In Short => condition, In Long => pos, In Short => posSrc, In Long => overTime);
+    CRD_CIRCLE_3D_EX = 0x1405 Server Main NMC_CrdCircle3DEx(In Hand => crdHandle, In Long => segNo, In LongArray => pMidPos, In LongArray => pTgPos, In Double => velEnd, In Double => vel, In Double => synAcc, In Short => lookaheadDis);
+    CRD_CIRCLE_PPP = 0x1406 Server Main NMC_CrdCirclePPP(In Hand => crdHandle, In Long => segNo, In Short => planeIdx, In LongArray => pStPos, In LongArray => pMidPosArray, In LongArray => pTgPosArray, In Double => endVel, In Double => vel, In Double => synAcc, In Short => lookaheadDis);
+    CRD_SET_BUF_LENGTH_FLAG = 0x1407 Server Main NMC_CrdSetBufLengthFlag(In Hand => crdHandle, In Short => flag);
+    CRD_GET_BUF_LENGTH = 0x1408 Server Main NMC_CrdGetBufLength(In Hand => crdHandle, Out Double => pLen);
     // ---- laser, SHIO and PWM (digest 001 §2.12, §3.20): N/A outputs, stored and echoed ----
     LASER_SET_MODE = 0x1501 Server Main NMC_LaserSetMode(In Hand => devHandle, In Short => mode, In Short => ch);
     LASER_SET_MODES = 0x1502 Server Main NMC_LaserSetModes(In Hand => devHandle, In Short => mode, In Short => ch);

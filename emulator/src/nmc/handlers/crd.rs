@@ -212,6 +212,9 @@ fn crd_config(c: &mut Call<'_>) -> Result<(), Refusal> {
         let centri = centri_command(c, n, &s);
         c.command(centri);
     }
+    for command in corner_commands(c, n, &s) {
+        c.command(command);
+    }
     s.pending.clear();
     s.started = false;
     s.end = here(c, &s);
@@ -246,7 +249,7 @@ fn positive(name: &str, v: f64, unit: &str) -> Result<(), Refusal> {
     }
 }
 
-fn non_negative(name: &str, v: f64, unit: &str) -> Result<(), Refusal> {
+pub(super) fn non_negative(name: &str, v: f64, unit: &str) -> Result<(), Refusal> {
     if v.is_finite() && v >= 0.0 {
         Ok(())
     } else {
@@ -443,6 +446,7 @@ fn crd_buf_clr(c: &mut Call<'_>) -> Result<(), Refusal> {
     s.pending.clear();
     s.started = false;
     s.pushed = 0;
+    s.pushed_length = 0.0;
     s.end = here(c, &s);
     s.ext_end.clear();
     update(c, n, |now| *now = s);
@@ -474,7 +478,7 @@ fn crd_get_override(c: &mut Call<'_>) -> Result<(), Refusal> {
 
 /// The engine's `arc_acceleration` (v ≤ √(A·r) on arcs) in the first member's units;
 /// isUsingSetAcc 0 turns it off.
-fn centri_command(c: &Call<'_>, n: usize, s: &CrdState) -> Command {
+pub(super) fn centri_command(c: &Call<'_>, n: usize, s: &CrdState) -> Command {
     let scale = s.axes().first().map_or(
         mcemu_dialects::PulseScale {
             pulses_per_unit: 1.0,
@@ -505,4 +509,44 @@ fn crd_set_look_ahead_centri_acc(c: &mut Call<'_>) -> Result<(), Refusal> {
     }
     update(c, n, |now| *now = s);
     Ok(())
+}
+
+fn parameter(n: usize, name: GroupParameter, value: f64) -> Command {
+    GroupSetParameter {
+        group: n as GroupId,
+        name,
+        value,
+    }
+    .into()
+}
+
+/// The engine's corner rules for `s`'s look-ahead parameters (none until
+/// `NMC_CrdSetLookaheadPara`): accMax is the corner acceleration, slowAng/stopAng the corner
+/// angles (degrees → radians; both 0: no slowing, only a reversal stops). stopAng goes to π
+/// first so that every step keeps slow ≤ stop, as the engine requires.
+pub(super) fn corner_commands(c: &Call<'_>, n: usize, s: &CrdState) -> Vec<Command> {
+    let Some(p) = s.lookahead else {
+        return Vec::new();
+    };
+    let scale = s.axes().first().map_or(
+        mcemu_dialects::PulseScale {
+            pulses_per_unit: 1.0,
+        },
+        |a| c.scale(*a),
+    );
+    let (slow, stop) = if p.stop_ang == 0.0 {
+        (180.0, 180.0)
+    } else {
+        (p.slow_ang, p.stop_ang)
+    };
+    vec![
+        parameter(
+            n,
+            GroupParameter::CornerAcceleration,
+            acceleration_to_engine(scale, p.acc_max),
+        ),
+        parameter(n, GroupParameter::CornerStopAngle, std::f64::consts::PI),
+        parameter(n, GroupParameter::CornerSlowAngle, slow.to_radians()),
+        parameter(n, GroupParameter::CornerStopAngle, stop.to_radians()),
+    ]
 }

@@ -55,14 +55,14 @@ const ZX: [usize; 2] = [2, 0];
 
 /// endVel, vel, synAcc and lookaheadDis (0 for the legacy forms): every segment's tail.
 #[derive(Clone, Copy, Debug)]
-struct Tail {
+pub(super) struct Tail {
     end_vel: f64,
     vel: f64,
     syn_acc: f64,
     lookahead_dis: i16,
 }
 
-fn read_tail(c: &mut Call<'_>, with_lookahead: bool) -> Result<Tail, Refusal> {
+pub(super) fn read_tail(c: &mut Call<'_>, with_lookahead: bool) -> Result<Tail, Refusal> {
     let t = Tail {
         end_vel: c.input.f64()?,
         vel: c.input.f64()?,
@@ -90,7 +90,7 @@ fn check_tail(t: &Tail) -> Result<(), Refusal> {
 }
 
 /// An array argument: u16 count, then i64s (at most 64: no manual array is longer).
-fn read_longs(c: &mut Call<'_>) -> Result<Vec<i64>, Refusal> {
+pub(super) fn read_longs(c: &mut Call<'_>) -> Result<Vec<i64>, Refusal> {
     let n = usize::from(c.input.u16()?);
     if n > 64 {
         return Err(Refusal::range("array length", n, "[0, 64]"));
@@ -101,23 +101,25 @@ fn read_longs(c: &mut Call<'_>) -> Result<Vec<i64>, Refusal> {
 }
 
 /// `a[k]`, or a refusal naming the short array.
-fn at(a: &[i64], k: usize, name: &str) -> Result<i64, Refusal> {
+pub(super) fn at(a: &[i64], k: usize, name: &str) -> Result<i64, Refusal> {
     a.get(k)
         .copied()
         .ok_or_else(|| Refusal::range(name, format!("{} values", a.len()), "the manual's length"))
 }
 
 /// The user segment number the engine reports (`NMC_CrdGetUserSegNo`): negative ones read 0.
-fn user_segment(seg_no: i64) -> Option<u32> {
+pub(super) fn user_segment(seg_no: i64) -> Option<u32> {
     Some(u32::try_from(seg_no).unwrap_or(0))
 }
 
 /// One coordinate system's segment being built: its members and their scales.
 pub(super) struct Push {
-    n: usize,
-    s: CrdState,
-    axes: Vec<usize>,
-    scales: Vec<PulseScale>,
+    pub(super) n: usize,
+    pub(super) s: CrdState,
+    pub(super) axes: Vec<usize>,
+    pub(super) scales: Vec<PulseScale>,
+    /// Where the path stands before this push (user coordinates, pulses).
+    start: [i64; CRD_MAX_AXES],
 }
 
 impl Push {
@@ -131,7 +133,14 @@ impl Push {
             s.ext_end.clear();
         }
         let scales = axes.iter().map(|a| c.scale(*a)).collect();
-        Ok(Push { n, s, axes, scales })
+        let start = s.end;
+        Ok(Push {
+            n,
+            s,
+            axes,
+            scales,
+            start,
+        })
     }
 
     pub(super) fn group(&self) -> GroupId {
@@ -150,7 +159,7 @@ impl Push {
     }
 
     /// The user coordinates `p` (pulses) in engine units, one per member.
-    fn engine(&self, p: &[i64; CRD_MAX_AXES]) -> Vec<f64> {
+    pub(super) fn engine(&self, p: &[i64; CRD_MAX_AXES]) -> Vec<f64> {
         self.scales
             .iter()
             .zip(p)
@@ -159,7 +168,7 @@ impl Push {
     }
 
     /// The coordinate system must have `needed` coordinates for `what`.
-    fn need(&self, needed: usize, what: &str) -> Result<(), Refusal> {
+    pub(super) fn need(&self, needed: usize, what: &str) -> Result<(), Refusal> {
         if self.dims() >= needed {
             Ok(())
         } else {
@@ -176,7 +185,7 @@ impl Push {
     /// Velocity, acceleration and buffer mode of a segment: `vel` and `synAcc` within
     /// synVelMax/synAccMax and the safety limits; blended unless look-ahead is off or the
     /// segment asks to end at rest (lookaheadDis 1, endVel 0).
-    fn kinematics(&self, t: &Tail) -> (f64, f64, GroupBufferMode) {
+    pub(super) fn kinematics(&self, t: &Tail) -> (f64, f64, GroupBufferMode) {
         let v = t.vel.min(self.s.para.syn_vel_max).min(self.s.safe.max_vel);
         let a = t
             .syn_acc
@@ -196,7 +205,12 @@ impl Push {
         )
     }
 
-    fn line(&self, seg_no: i64, target: &[i64; CRD_MAX_AXES], t: &Tail) -> Option<Command> {
+    pub(super) fn line(
+        &self,
+        seg_no: i64,
+        target: &[i64; CRD_MAX_AXES],
+        t: &Tail,
+    ) -> Option<Command> {
         if *target == self.s.end {
             // No displacement: nothing for the path to do (the engine refuses empty lines).
             return None;
@@ -262,13 +276,18 @@ impl Push {
     }
 
     /// Queue `commands` (pending before the start, to the engine after it) and remember where
-    /// the path ends.
-    fn finish(
+    /// the path ends (and, with `NMC_CrdSetBufLengthFlag` 1, how long it is).
+    pub(super) fn finish(
         mut self,
         c: &mut Call<'_>,
         commands: Vec<Command>,
         end: [i64; CRD_MAX_AXES],
     ) -> Result<(), Refusal> {
+        if self.s.length_flag {
+            let start = self.engine(&self.start);
+            let length = crate::nmc::crd_length::total(&start, &commands);
+            self.s.pushed_length += self.path_scale().from_engine(length);
+        }
         if self.s.started {
             c.plan.commands.extend(commands);
         } else {
@@ -915,6 +934,8 @@ fn axis_moves(
                     position: scale.to_engine(to as f64),
                     tolerance: None,
                     timeout: None,
+                    condition: Default::default(),
+                    source: Default::default(),
                 }
                 .into(),
             );
@@ -1040,6 +1061,8 @@ fn crd_buf_wait_enc_in_position(c: &mut Call<'_>) -> Result<(), Refusal> {
                 position: c.scale(axis).to_engine(at as f64),
                 tolerance: None,
                 timeout: (time > 0).then_some(time as f64 / 1e3),
+                condition: Default::default(),
+                source: Default::default(),
             }
             .into(),
         );

@@ -27,17 +27,17 @@ pub const HANDLERS: &[(Function, Handler)] = &[
 ];
 
 /// Entries used: the engine queue's and the pending ones.
-fn used(c: &Call<'_>, n: usize, s: &CrdState) -> usize {
+pub(super) fn used(c: &Call<'_>, n: usize, s: &CrdState) -> usize {
     group(c, n).map_or(0, |g| g.queue_used as usize) + s.pending.len()
 }
 
-fn free(c: &Call<'_>, n: usize, s: &CrdState) -> usize {
+pub(super) fn free(c: &Call<'_>, n: usize, s: &CrdState) -> usize {
     let engine_free = group(c, n).map_or(CRD_BUFFER, |g| g.queue_free as usize);
     engine_free.saturating_sub(s.pending.len())
 }
 
 /// The whole word (bits 0-11); `NMC_CrdGetSts` shows bits 0-5.
-fn word(c: &Call<'_>, n: usize) -> u32 {
+pub(super) fn word(c: &Call<'_>, n: usize) -> u32 {
     let s = state(c, n);
     let extra = CrdExtra {
         pending: s.pending.len(),
@@ -52,7 +52,7 @@ fn crd_get_sts(c: &mut Call<'_>) -> Result<(), Refusal> {
     Ok(())
 }
 
-fn user_seg(c: &Call<'_>, n: usize) -> i64 {
+pub(super) fn user_seg(c: &Call<'_>, n: usize) -> i64 {
     group(c, n).map_or(0, |g| i64::from(g.user_segment))
 }
 
@@ -115,7 +115,7 @@ fn crd_get_enc_pos(c: &mut Call<'_>) -> Result<(), Refusal> {
 }
 
 /// The path scale: the first member's (decisions.md).
-fn path_scale(c: &Call<'_>, s: &CrdState) -> PulseScale {
+pub(super) fn path_scale(c: &Call<'_>, s: &CrdState) -> PulseScale {
     s.axes().first().map_or(
         PulseScale {
             pulses_per_unit: 1.0,

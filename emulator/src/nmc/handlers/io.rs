@@ -41,7 +41,7 @@ pub(super) fn bit_index(c: &Call<'_>, bit: i16, count: usize) -> Result<usize, R
 }
 
 /// The 32 bits of a group, bit 0 the group's first (1 = high, digest 001 §4.8).
-fn group_value(bits: &[bool], start: usize) -> i64 {
+pub(super) fn group_value(bits: &[bool], start: usize) -> i64 {
     i64::from(word(bits, start))
 }
 

@@ -10,6 +10,8 @@ mod analog;
 mod axis;
 mod axis_config;
 mod crd;
+mod crd_circle;
+mod crd_lookahead;
 mod crd_segment;
 mod crd_status;
 mod device;
@@ -46,7 +48,7 @@ mod closed_loop;
 mod extras;
 mod follow;
 
-const FAMILIES: [&[(Function, Handler)]; 33] = [
+const FAMILIES: [&[(Function, Handler)]; 35] = [
     device::HANDLERS,
     axis::HANDLERS,
     motion::HANDLERS,
@@ -80,6 +82,8 @@ const FAMILIES: [&[(Function, Handler)]; 33] = [
     follow::HANDLERS,
     extras::HANDLERS,
     closed_loop::HANDLERS,
+    crd_lookahead::HANDLERS,
+    crd_circle::HANDLERS,
 ];
 
 /// The handler of function `id`.

@@ -94,7 +94,7 @@ struct_setter!(
     CrdSafePara
 );
 
-fn put_longs(w: &mut Writer, values: &[c_long]) {
+pub(super) fn put_longs(w: &mut Writer, values: &[c_long]) {
     w.u16(values.len() as u16);
     for v in values {
         w.i64(i64::from(*v));
@@ -103,11 +103,11 @@ fn put_longs(w: &mut Writer, values: &[c_long]) {
 
 /// endVel, vel, synAcc and (the Ex forms) lookaheadDis: the tail of every segment.
 #[derive(Clone, Copy)]
-struct Tail {
-    end_vel: f64,
-    vel: f64,
-    syn_acc: f64,
-    lookahead_dis: c_short,
+pub(super) struct Tail {
+    pub(super) end_vel: f64,
+    pub(super) vel: f64,
+    pub(super) syn_acc: f64,
+    pub(super) lookahead_dis: c_short,
 }
 
 impl Tail {
@@ -117,7 +117,7 @@ impl Tail {
 }
 
 /// A segment call: the handle and segNo, then what `body` writes, then the tail.
-fn segment(
+pub(super) fn segment(
     row: &Function,
     crdHandle: HAND,
     segNo: c_long,
@@ -439,7 +439,7 @@ arc_radius_ex!(NMC_CrdArcRadiusYZEx, table::CRD_ARC_RADIUS_YZ_EX);
 arc_radius_ex!(NMC_CrdArcRadiusZXEx, table::CRD_ARC_RADIUS_ZX_EX);
 
 #[allow(clippy::too_many_arguments)]
-fn through(
+pub(super) fn through(
     row: &Function,
     crdHandle: HAND,
     segNo: c_long,

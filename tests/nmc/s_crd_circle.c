@@ -1,0 +1,127 @@
+/* Full circles through three points (NMC_CrdCirclePPP in XY, NMC_CrdCircle3DEx in space) and
+ * the pushed path length (NMC_CrdSetBufLengthFlag / NMC_CrdGetBufLength), digest 001 §2.7, on
+ * the GCN400 fixture on a scaled clock. */
+#include "check.h"
+
+static HAND devHandle, crdHandle, ax[4];
+
+static double dabs(double v) { return v < 0 ? -v : v; }
+
+/* Extremes of X, Y and Z while the coordinate system runs. */
+typedef struct { long lo[3], hi[3]; } Box;
+
+static void run(Box *box) {
+    short sts = 0;
+    long pos[3], k;
+    for (k = 0; k < 3; k++) {
+        box->lo[k] = 2147483647L;
+        box->hi[k] = -2147483647L;
+    }
+    OK(NMC_CrdEndMtn(crdHandle));
+    OK(NMC_CrdStartMtn(crdHandle));
+    do {
+        OK(NMC_CrdGetSts(crdHandle, &sts));
+        OK(NMC_CrdGetPrfPos(crdHandle, 3, pos));
+        for (k = 0; k < 3; k++) {
+            if (pos[k] < box->lo[k]) box->lo[k] = pos[k];
+            if (pos[k] > box->hi[k]) box->hi[k] = pos[k];
+        }
+        CHECK(!(sts & BIT_CORD_MVERR), "MVERR at (%ld,%ld,%ld)", pos[0], pos[1], pos[2]);
+    } while (sts & BIT_CORD_BUSY);
+}
+
+static void at(long x, long y, long z) {
+    long pos[3];
+    OK(NMC_CrdGetPrfPos(crdHandle, 3, pos));
+    CHECK(pos[0] == x && pos[1] == y && pos[2] == z, "at (%ld,%ld,%ld), expected (%ld,%ld,%ld)", pos[0], pos[1],
+          pos[2], x, y, z);
+}
+
+/* lo/hi of coordinate k within 30 pulses of the expected values. */
+static void spans(const Box *b, int k, long lo, long hi) {
+    CHECK(labs(b->lo[k] - lo) <= 30 && labs(b->hi[k] - hi) <= 30, "coordinate %d in [%ld, %ld], expected [%ld, %ld]",
+          k, b->lo[k], b->hi[k], lo, hi);
+}
+
+int main(void) {
+    TCrdConfig crdConfig = {0};
+    TCrdPara crdPara = {0};
+    long st[2] = {1000, 0}, mid[2] = {2000, 1000}, tg[2] = {3000, 0}, line[2] = {5000, 0};
+    long origin[3] = {0, 0, 0}, mid3[3] = {2000, 0, 1000}, tg3[3] = {1000, 0, 2000}, on_line[3] = {2000, 0, 0}, end3[3] = {3000, 0, 0};
+    double len = -1, circle = 2 * 3.14159265358979 * 1000;
+    short i;
+    Box box;
+
+    OK(NMC_DevOpen(0, &devHandle));
+    for (i = 0; i < 4; i++) {
+        OK(NMC_MtOpen(devHandle, i, &ax[i]));
+        OK(NMC_MtClrError(ax[i]));
+        OK(NMC_MtSetSvOn(ax[i]));
+    }
+    OK(NMC_CrdOpen(devHandle, &crdHandle));
+    crdConfig.axCnts = 3;
+    crdConfig.pAxArray[0] = 0;
+    crdConfig.pAxArray[1] = 1;
+    crdConfig.pAxArray[2] = 2;
+    crdConfig.pAxArray[3] = -1;
+    OK(NMC_CrdConfig(crdHandle, &crdConfig));
+    crdPara.orgFlag = 1;
+    crdPara.synAccMax = 50;
+    crdPara.synVelMax = 800;
+    OK(NMC_CrdSetPara(crdHandle, &crdPara));
+    OK(NMC_CrdClrError(crdHandle));
+    OK(NMC_CrdBufClr(crdHandle));
+    /* From the origin. */
+    OK(NMC_CrdLineXYZEx(crdHandle, 0, 0x7, origin, 0, 50, 1, 0));
+    run(&box);
+    at(0, 0, 0);
+    OK(NMC_CrdBufClr(crdHandle));
+
+    /* Bad arguments. */
+    CHECK(NMC_CrdCirclePPP(crdHandle, 1, 1, st, mid, tg, 0, 10, 1, 0) == RTN_ARG_RANGE, "planeIdx 1 (YZ)");
+    CHECK(NMC_CrdCirclePPP(crdHandle, 1, 0, st, line, tg, 0, 10, 1, 0) == RTN_ARG_RANGE, "three points on a line");
+    CHECK(NMC_CrdCirclePPP(crdHandle, 1, 0, NULL, mid, tg, 0, 10, 1, 0) == RTN_NULL_POINTER, "NULL pStPos");
+    CHECK(NMC_CrdCirclePPP(crdHandle, 1, 0, st, mid, tg, 0, 0, 1, 0) == RTN_ARG_RANGE, "vel 0");
+    CHECK(NMC_CrdCircle3DEx(crdHandle, 1, on_line, end3, 0, 10, 1, 0) == RTN_ARG_RANGE, "3-D: points on a line");
+    CHECK(NMC_CrdCircle3DEx(crdHandle, 1, NULL, tg3, 0, 10, 1, 0) == RTN_NULL_POINTER, "3-D: NULL pMidPos");
+    CHECK(NMC_CrdSetBufLengthFlag(crdHandle, 2) == RTN_ARG_RANGE, "flag 2");
+    CHECK(NMC_CrdGetBufLength(crdHandle, NULL) == RTN_NULL_POINTER, "NULL pLen");
+    OK(NMC_CrdBufClr(crdHandle));
+
+    /* Flag 0 (the default): nothing is summed. */
+    OK(NMC_CrdCirclePPP(crdHandle, 1, 0, st, mid, tg, 0, 10, 1, 0));
+    OK(NMC_CrdGetBufLength(crdHandle, &len));
+    CHECK(len == 0, "flag 0: length %f", len);
+    OK(NMC_CrdBufClr(crdHandle));
+
+    /* PPP: a line (0,0) → (1000,0), then the clockwise circle about (2000,0) through (2000,1000)
+     * and (3000,0) back to (1000,0): 1000 + 2π·1000 pulses. */
+    OK(NMC_CrdSetBufLengthFlag(crdHandle, 1));
+    OK(NMC_CrdCirclePPP(crdHandle, 1, 0, st, mid, tg, 0, 10, 1, 0));
+    OK(NMC_CrdGetBufLength(crdHandle, &len));
+    CHECK(dabs(len - (1000 + circle)) < 1, "PPP length %f", len);
+    run(&box);
+    at(1000, 0, 0);
+    spans(&box, 0, 0, 3000);
+    spans(&box, 1, -1000, 1000);
+    spans(&box, 2, 0, 0);
+
+    /* 3-D: from (1000,0,0) through (2000,0,1000) and (1000,0,2000): the circle about (1000,0,1000)
+     * in the XZ plane. */
+    OK(NMC_CrdBufClr(crdHandle));
+    OK(NMC_CrdGetBufLength(crdHandle, &len));
+    CHECK(len == 0, "after BufClr: length %f", len);
+    OK(NMC_CrdCircle3DEx(crdHandle, 2, mid3, tg3, 0, 10, 1, 0));
+    OK(NMC_CrdGetBufLength(crdHandle, &len));
+    CHECK(dabs(len - circle) < 1, "3-D length %f", len);
+    run(&box);
+    at(1000, 0, 0);
+    spans(&box, 0, 0, 2000);
+    spans(&box, 1, 0, 0);
+    spans(&box, 2, 0, 2000);
+    OK(NMC_CrdSetBufLengthFlag(crdHandle, 0));
+
+    OK(NMC_CrdClose(&crdHandle));
+    printf("ok\n");
+    return 0;
+}
