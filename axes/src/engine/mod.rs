@@ -24,8 +24,8 @@ use crate::trigger::{Env as TriggerEnv, Triggers};
 use std::sync::Arc;
 
 mod compensation;
-mod gantry_home;
 mod do_pulses;
+mod gantry_home;
 mod machine;
 mod planner;
 mod sampling;
