@@ -7,6 +7,7 @@ use mcemu_nmc::table::{self, Function};
 
 use super::io_modules::group_start;
 use crate::nmc::ax_state::{EstopDi, EstopEx, Watchdog};
+use crate::nmc::io_state::LOCAL_BITS;
 use crate::nmc::service::{Call, Handler, Refusal};
 
 pub const HANDLERS: &[(Function, Handler)] = &[
@@ -36,13 +37,17 @@ fn mt_set_estop_di(c: &mut Call<'_>) -> Result<(), Refusal> {
         c.service.ax().estop_di.remove(&axis);
         return Ok(());
     }
-    if usize::try_from(gpi).map_or(true, |i| i >= inputs) {
-        return Err(Refusal::range(
+    // A local input, or one of an enabled extension module (the I/O functions' rule).
+    super::io::bit_index(c, gpi, inputs).map_err(|_| {
+        Refusal::range(
             "gpiIndex",
             gpi,
-            &format!("[0, {}] or −1 (none)", inputs.saturating_sub(1)),
-        ));
-    }
+            &format!(
+                "[0, {}], an input of an enabled extension module, or −1 (none)",
+                inputs.min(LOCAL_BITS).saturating_sub(1)
+            ),
+        )
+    })?;
     level("sense", i64::from(sense))?;
     c.service.ax().estop_di.insert(
         axis,
@@ -132,12 +137,26 @@ fn set_estop_di_ex(c: &mut Call<'_>) -> Result<(), Refusal> {
             ))
         }
     };
-    if usize::try_from(p.di_index).map_or(true, |i| i >= count) {
-        return Err(Refusal::range(
+    let refusal = || {
+        let last = if p.di_type == 0 {
+            count.min(LOCAL_BITS)
+        } else {
+            count
+        };
+        Refusal::range(
             "diIndex",
             p.di_index,
-            &format!("[0, {}]", count.saturating_sub(1)),
-        ));
+            &format!("[0, {}]", last.saturating_sub(1)),
+        )
+    };
+    let index = usize::try_from(p.di_index).map_err(|_| refusal())?;
+    if index >= count {
+        return Err(refusal());
+    }
+    if p.di_type == 0 {
+        // General inputs: local, or of an enabled extension module.
+        let bit = i16::try_from(index).map_err(|_| refusal())?;
+        super::io::bit_index(c, bit, count).map_err(|_| refusal())?;
     }
     if !(0..=255).contains(&p.filter) {
         return Err(Refusal::range("filter", p.filter, "[0, 255]"));
