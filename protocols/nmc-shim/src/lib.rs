@@ -44,6 +44,14 @@ mod tests {
             include_str!("ffi/ecat.rs"),
             include_str!("ffi/user_para.rs"),
             include_str!("ffi/laser.rs"),
+            include_str!("ffi/io_ext.rs"),
+            include_str!("ffi/io_extras.rs"),
+            include_str!("ffi/dev_services.rs"),
+            include_str!("ffi/axis_ext.rs"),
+            include_str!("ffi/follow.rs"),
+            include_str!("ffi/extras.rs"),
+            include_str!("ffi/closed_loop.rs"),
+            include_str!("ffi/crd_lookahead.rs"),
         ]
         .concat();
         for f in FUNCTIONS {

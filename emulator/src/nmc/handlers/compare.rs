@@ -44,7 +44,7 @@ fn stored(c: &Call<'_>, g: usize) -> CompareGroup {
 fn output(c: &Call<'_>, g: usize, p: &Comp2DimensParam) -> Result<u16, Refusal> {
     let outputs = c.snapshot.io.do_.len();
     let channel = if p.chn_type == 1 {
-        (outputs + g).checked_sub(2)
+        (super::io_modules::local_outputs(c) + g).checked_sub(2)
     } else {
         usize::try_from(p.output_chn).ok()
     };

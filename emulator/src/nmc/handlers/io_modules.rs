@@ -244,3 +244,9 @@ fn get_io_module_sts(c: &mut Call<'_>) -> Result<(), Refusal> {
     c.output.u64(sts);
     Ok(())
 }
+
+/// The controller's own outputs (the first 64 of the machine's; extension modules follow):
+/// the dedicated pins counted from the end (HSIO, the laser switches) are counted from here.
+pub(super) fn local_outputs(c: &Call<'_>) -> usize {
+    c.snapshot.io.do_.len().min(LOCAL_BITS)
+}

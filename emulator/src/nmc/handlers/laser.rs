@@ -3,7 +3,8 @@
 //! card drives are echoed on the machine's I/O image (docs/decisions.md "NMC laser, SHIO and
 //! PWM"):
 //! - the channel's switch (its PWM / enable pin) is a digital output, high while the laser is
-//!   on: by default output `outputs − 4 + ch`; general output `portIdx` after
+//!   on: by default output `outputs − 4 + ch` (`outputs`: the controller's own, at most 64;
+//!   extension modules come after them); general output `portIdx` after
 //!   `NMC_SetPWMPort(1, portIdx, ch)`; the gate pin (`outputs − 2`, the HSIO shared with
 //!   compare group 0) after `NMC_SetPwmToGate(0, 0, 1)`. `NMC_LaserGetOnOff` reads that output,
 //!   so buffered on/off reads back in path order. `LASER_NONE` has no output image;
@@ -86,7 +87,9 @@ fn update_channel(c: &Call<'_>, ch: usize, f: impl FnOnce(&mut LaserChannel)) {
 /// The gate pin (SHIO channel 0): the machine's output `outputs − 2`, the HSIO compare group
 /// 0's GATE drives too (docs/decisions.md).
 pub(super) fn gate_output(c: &Call<'_>) -> Option<u16> {
-    c.snapshot.io.do_.len().checked_sub(2).map(|o| o as u16)
+    super::io_modules::local_outputs(c)
+        .checked_sub(2)
+        .map(|o| o as u16)
 }
 
 /// The digital output that shows channel `ch` on or off, if it has one (module doc).
@@ -96,12 +99,13 @@ pub(super) fn switch_output(c: &Call<'_>, l: &LaserState, ch: usize) -> Option<u
         return None;
     }
     let outputs = c.snapshot.io.do_.len();
+    let local = super::io_modules::local_outputs(c);
     let o = if ch == 0 && l.shio.pwm_to_gate {
-        outputs.checked_sub(2)
+        local.checked_sub(2)
     } else if k.pwm_port_type == 1 {
         usize::try_from(k.pwm_port_idx).ok()
     } else {
-        (outputs + ch).checked_sub(4)
+        (local + ch).checked_sub(4)
     };
     o.filter(|o| *o < outputs).map(|o| o as u16)
 }

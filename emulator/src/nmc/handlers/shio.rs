@@ -240,7 +240,9 @@ fn pwm_pulse_out(c: &mut Call<'_>) -> Result<(), Refusal> {
     let l = laser(c);
     let out = switch_output(c, &l, 0).or_else(|| {
         // LASER_NONE: the PWM pin itself.
-        c.snapshot.io.do_.len().checked_sub(4).map(|o| o as u16)
+        super::io_modules::local_outputs(c)
+            .checked_sub(4)
+            .map(|o| o as u16)
     });
     update(c, |l| {
         if let Some(k) = l.channels.first_mut() {
@@ -256,8 +258,8 @@ fn pwm_pulse_out(c: &mut Call<'_>) -> Result<(), Refusal> {
     Ok(())
 }
 
-/// portType 0 (the channel's own pin) or 1 (general output portIdx, one of the machine's);
-/// ch the PWM channel [0, 1].
+/// portType 0 (the channel's own pin) or 1 (general output portIdx, one of the controller's
+/// own 64, not an extension module's); ch the PWM channel [0, 1].
 fn set_pwm_port(c: &mut Call<'_>) -> Result<(), Refusal> {
     c.device()?;
     let (port_type, idx) = (c.input.i16()?, c.input.i16()?);
@@ -265,7 +267,7 @@ fn set_pwm_port(c: &mut Call<'_>) -> Result<(), Refusal> {
     match port_type {
         0 => {}
         1 => {
-            let n = c.snapshot.io.do_.len();
+            let n = super::io_modules::local_outputs(c);
             if !usize::try_from(idx).is_ok_and(|i| i < n) {
                 return Err(Refusal::range(
                     "portIdx",
