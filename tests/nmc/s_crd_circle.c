@@ -10,6 +10,16 @@ static double dabs(double v) { return v < 0 ? -v : v; }
 /* Extremes of X, Y and Z while the coordinate system runs. */
 typedef struct { long lo[3], hi[3]; } Box;
 
+static void widen(Box *box, const long *pos) {
+    long k;
+    for (k = 0; k < 3; k++) {
+        if (pos[k] < box->lo[k]) box->lo[k] = pos[k];
+        if (pos[k] > box->hi[k]) box->hi[k] = pos[k];
+    }
+}
+
+/* The start and end positions are in the box whatever the polling saw: on a loaded host the
+ * first poll may come after the path has left its start. */
 static void run(Box *box) {
     short sts = 0;
     long pos[3], k;
@@ -17,17 +27,18 @@ static void run(Box *box) {
         box->lo[k] = 2147483647L;
         box->hi[k] = -2147483647L;
     }
+    OK(NMC_CrdGetPrfPos(crdHandle, 3, pos));
+    widen(box, pos);
     OK(NMC_CrdEndMtn(crdHandle));
     OK(NMC_CrdStartMtn(crdHandle));
     do {
         OK(NMC_CrdGetSts(crdHandle, &sts));
         OK(NMC_CrdGetPrfPos(crdHandle, 3, pos));
-        for (k = 0; k < 3; k++) {
-            if (pos[k] < box->lo[k]) box->lo[k] = pos[k];
-            if (pos[k] > box->hi[k]) box->hi[k] = pos[k];
-        }
+        widen(box, pos);
         CHECK(!(sts & BIT_CORD_MVERR), "MVERR at (%ld,%ld,%ld)", pos[0], pos[1], pos[2]);
     } while (sts & BIT_CORD_BUSY);
+    OK(NMC_CrdGetPrfPos(crdHandle, 3, pos));
+    widen(box, pos);
 }
 
 static void at(long x, long y, long z) {
