@@ -10,7 +10,6 @@ use crate::nmc::service::{Call, Handler, Refusal};
 
 pub const HANDLERS: &[(Function, Handler)] = &[
     (table::MT_PT_START_MTN_EX, mt_pt_start_mtn_ex),
-    (table::MT_PT_GET_PARA, mt_pt_get_para),
     (table::MT_SET_PTP_COMPARE_PARA, mt_set_ptp_compare_para),
     (table::MT_GET_PTP_COMPARE_STS, mt_get_ptp_compare_sts),
     // "NMC_Comp2DimensStatus" of the manual's comments is NMC_Comp2DimensStatusEx (digest 001
@@ -46,21 +45,6 @@ fn mt_pt_start_mtn_ex(c: &mut Call<'_>) -> Result<(), Refusal> {
         edge,
     });
     c.update(axis, |s| s.prf_mode = MT_PT_PRF_MODE);
-    Ok(())
-}
-
-/// What `NMC_MtPtSetPara` wrote (digest 001 App. A: the C1 table lists it, no section
-/// documents it; it reads back `TPtPara`).
-fn mt_pt_get_para(c: &mut Call<'_>) -> Result<(), Refusal> {
-    let axis = c.axis()?;
-    let p = c
-        .service
-        .sync()
-        .axes
-        .get(axis)
-        .map(|s| s.pt)
-        .unwrap_or_default();
-    p.write(c.output);
     Ok(())
 }
 

@@ -20,6 +20,7 @@ pub const HANDLERS: &[(Function, Handler)] = &[
     (table::MT_PT_BUF_CLR, mt_stream_clear),
     (table::MT_PT_START_MTN, mt_stream_start),
     (table::MT_PT_SET_PARA, mt_pt_set_para),
+    (table::MT_PT_GET_PARA, mt_pt_get_para),
     (table::MT_PVT_SET_PARA, mt_pvt_set_para),
     (table::MT_PVT_GET_PARA, mt_pvt_get_para),
     (table::MT_PVT_DATA, mt_pvt_data),
@@ -184,6 +185,21 @@ fn mt_pvt_set_para(c: &mut Call<'_>) -> Result<(), Refusal> {
     if let Some(s) = c.service.sync().axes.get_mut(axis) {
         s.pvt = p;
     }
+    Ok(())
+}
+
+/// What `NMC_MtPtSetPara` wrote (digest 001 App. A: the C1 table lists it, no section
+/// documents it; it reads back `TPtPara`).
+fn mt_pt_get_para(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let axis = c.axis()?;
+    let p = c
+        .service
+        .sync()
+        .axes
+        .get(axis)
+        .map(|s| s.pt)
+        .unwrap_or_default();
+    p.write(c.output);
     Ok(())
 }
 
