@@ -7,8 +7,8 @@
 mod common;
 
 use axes::command::{
-    CamIn, CamInterpolation, CamOut, CamPoint, CamTableDefine, Command, Direction, EngineError,
-    FollowSegment, ForceDigitalInput, MasterSource,
+    CamIn, CamInterpolation, CamOut, CamPoint, CamTableDefine, CamTableLink, Command, Direction,
+    EngineError, FollowSegment, ForceDigitalInput, MasterSource,
 };
 use axes::coupling::table::CamTable;
 use axes::status::{CouplingKind, CouplingPhase};
@@ -450,4 +450,55 @@ proptest! {
             }
         }
     }
+}
+
+#[test]
+fn hmc_move_link_cyclic_from_a_link_table_tv28() {
+    // HMC_MoveLink(500, 1000, 200, 200, 0, 1, 0, 4, 0) (manual §4.3.6.7, cyclic immediate): per
+    // 1000 of master the slave travels 500, its ratio ramping 0 → 0.625 over 200 and back over
+    // the last 200. A cam on the link table, relative and periodic.
+    let mut e = machine(2);
+    let link = CamTableLink {
+        table: 3,
+        slave_distance: 500.0,
+        master_distance: 1000.0,
+        master_acceleration_distance: 200.0,
+        master_deceleration_distance: 200.0,
+        s_ratio: 0.0,
+        slave_base_distance: 0.0,
+        master_before_distance: 0.0,
+        master_after_distance: 0.0,
+    };
+    ok(&mut e, Command::from(link.clone()));
+    ok(
+        &mut e,
+        Command::from(CamIn {
+            periodic: true,
+            ..cam(0, 1, 3)
+        }),
+    );
+    for (d, want) in [(1000.0, 500.0), (2500.0, 1750.0), (-500.0, 1500.0)] {
+        master_by(&mut e, d);
+        assert!((cmd(&e, 1) - want).abs() < 1e-9, "{}", cmd(&e, 1));
+    }
+    // A table a running cam uses is not replaced; accelerating and decelerating beyond the
+    // master distance is refused (TV 28: 600 + 500 > 1000).
+    let err = refused(&mut e, Command::from(link.clone()));
+    assert!(
+        matches!(err, EngineError::CamTableInUse { table: 3, .. }),
+        "{err}"
+    );
+    let err = refused(
+        &mut e,
+        Command::from(CamTableLink {
+            table: 4,
+            master_acceleration_distance: 600.0,
+            master_deceleration_distance: 500.0,
+            ..link
+        }),
+    );
+    assert!(
+        matches!(err, EngineError::InvalidCamTable { table: 4, .. }),
+        "{err}"
+    );
 }

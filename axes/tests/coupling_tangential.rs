@@ -10,8 +10,9 @@ mod common;
 type Expected = fn(&EngineError) -> bool;
 
 use axes::command::{
-    ArcDirection, Command, EngineError, GroupCreate, MoveCircularAbsolute, MoveLinearAbsolute,
-    TangentialIn, TangentialOut, TransitionMode,
+    ArcDirection, Command, EngineError, GroupBufferMode, GroupCreate, GroupDwell,
+    MoveCircularAbsolute, MoveLinearAbsolute, TangentialCornerContinue, TangentialCornerFollowNext,
+    TangentialCornerMode, TangentialCornerModeKind, TangentialIn, TangentialOut, TransitionMode,
 };
 use axes::status::{CouplingKind, CouplingPhase, CouplingStatus, GroupState};
 use axes::{AxisFlags, AxisState, Engine, ParamId};
@@ -267,4 +268,167 @@ fn bad_input_is_refused() {
     );
     assert!(e.snapshot().couplings.is_empty());
     assert_eq!(e.snapshot().groups[0].state, GroupState::Standby);
+}
+
+fn corner_mode(mode: TangentialCornerModeKind, angle_limit: f64) -> Command {
+    Command::from(TangentialCornerMode {
+        axis: 2,
+        mode,
+        angle_limit,
+    })
+}
+
+/// A line blended into the one before (HMC merge): without a corner stop the path would not
+/// stop at a junction below the corner rule.
+fn blended(to: [f64; 2]) -> Command {
+    Command::from(MoveLinearAbsolute {
+        buffer_mode: GroupBufferMode::BlendingLow,
+        ..group_line(1, &to)
+    })
+}
+
+/// Step until the path stands at a corner stop (corner state 2); the ticks it took.
+fn until_corner_stop(e: &mut Engine) -> u32 {
+    for tick in 0..100_000 {
+        e.step();
+        if coupling(e).corner_state == 2 {
+            return tick;
+        }
+    }
+    panic!("no corner stop: {:?}", e.snapshot().groups[0]);
+}
+
+#[test]
+fn manual_corner_mode_stops_the_path_at_a_sharp_corner_until_continued() {
+    // HMC_MoveTangConfigCornerMode(C, 1, π/4, …), manual §4.4.9.2: the path stops at a 90°
+    // junction and waits (state 2); HMC_MoveTangCornerFollowNextCmd turns C to the next
+    // motion's start direction; HMC_MoveTangCornerContinue lets the path go on (state 1). The
+    // 5.7° junction after it is below the limit: no stop.
+    let mut e = machine(90.0, 1000.0);
+    ok(&mut e, tangential(360.0, 0.0));
+    ok(
+        &mut e,
+        corner_mode(
+            TangentialCornerModeKind::Manual,
+            std::f64::consts::FRAC_PI_4,
+        ),
+    );
+    assert_eq!(coupling(&e).corner_state, 1);
+    ok(&mut e, blended([100.0, 0.0]));
+    ok(&mut e, blended([100.0, 100.0]));
+    ok(&mut e, blended([110.0, 200.0]));
+    until_corner_stop(&mut e);
+    for _ in 0..2000 {
+        e.step();
+        let g = e.snapshot().groups[0];
+        assert_eq!((g.coordinates[0], g.coordinates[1]), (100.0, 0.0));
+        assert_eq!(g.path_velocity, 0.0);
+        assert_eq!(coupling(&e).corner_state, 2);
+    }
+    assert_eq!(
+        e.axis_status(2).unwrap().cmd_pos,
+        0.0,
+        "C holds at the corner"
+    );
+    ok(
+        &mut e,
+        Command::from(TangentialCornerFollowNext { axis: 2 }),
+    );
+    // 90° at 90 units/s within 1000 units/s²: about a second; C ends on the new direction
+    // exactly while the path still stands.
+    let mut top_speed: f64 = 0.0;
+    for _ in 0..3000 {
+        e.step();
+        let c = e.axis_status(2).unwrap();
+        top_speed = top_speed.max(c.cmd_vel.abs());
+        assert_eq!(e.snapshot().groups[0].coordinates[1], 0.0);
+    }
+    assert_eq!(e.axis_status(2).unwrap().cmd_pos, 90.0);
+    assert!(top_speed <= 90.0 * (1.0 + 1e-9), "{top_speed}");
+    ok(&mut e, Command::from(TangentialCornerContinue { axis: 2 }));
+    let mut stops = 0;
+    let mut was = 2;
+    run_path(&mut e, 20.0, |e, _| {
+        let state = coupling(e).corner_state;
+        stops += u32::from(state == 2 && was != 2);
+        was = state;
+    });
+    assert_eq!(stops, 0, "the 5.7° junction does not stop");
+    assert_eq!(coupling(&e).corner_state, 1);
+    let g = e.snapshot().groups[0];
+    assert_eq!((g.coordinates[0], g.coordinates[1]), (110.0, 200.0));
+}
+
+#[test]
+fn no_corner_stop_across_a_buffered_command_or_without_the_mode() {
+    // Manual §4.4.9.2: a non-interpolation command between two motions — its start tangent
+    // cannot be judged in advance — is a junction without a lift.
+    let mut e = machine(1e4, 1e6);
+    ok(&mut e, tangential(360.0, 0.0));
+    ok(
+        &mut e,
+        corner_mode(
+            TangentialCornerModeKind::Manual,
+            std::f64::consts::FRAC_PI_4,
+        ),
+    );
+    ok(&mut e, blended([100.0, 0.0]));
+    ok(
+        &mut e,
+        Command::from(GroupDwell {
+            group: 1,
+            seconds: 0.01,
+        }),
+    );
+    ok(&mut e, blended([100.0, 100.0]));
+    run_path(&mut e, 20.0, |e, _| assert_ne!(coupling(e).corner_state, 2));
+    // Mode none (0): state 0, no stop.
+    ok(&mut e, corner_mode(TangentialCornerModeKind::None, 0.0));
+    assert_eq!(coupling(&e).corner_state, 0);
+    ok(&mut e, blended([0.0, 100.0]));
+    ok(&mut e, blended([0.0, 0.0]));
+    run_path(&mut e, 20.0, |e, _| assert_eq!(coupling(e).corner_state, 0));
+    // Decoupling clears the group's corner stops.
+    ok(
+        &mut e,
+        corner_mode(
+            TangentialCornerModeKind::Manual,
+            std::f64::consts::FRAC_PI_4,
+        ),
+    );
+    ok(&mut e, Command::from(TangentialOut { axis: 2 }));
+    ok(&mut e, blended([100.0, 0.0]));
+    ok(&mut e, blended([100.0, 100.0]));
+    run_path(&mut e, 20.0, |_, _| {});
+}
+
+#[test]
+fn corner_commands_out_of_place_are_refused() {
+    let mut e = machine(1e4, 1e6);
+    // Not a tangential axis yet.
+    let err = refused(&mut e, corner_mode(TangentialCornerModeKind::Manual, 0.5));
+    assert!(
+        matches!(err, EngineError::NotCoupled { axis: 2, .. }),
+        "{err}"
+    );
+    ok(&mut e, tangential(360.0, 0.0));
+    for limit in [f64::NAN, -0.1, 4.0] {
+        let err = refused(&mut e, corner_mode(TangentialCornerModeKind::Manual, limit));
+        assert!(matches!(err, EngineError::InvalidArgument { .. }), "{err}");
+    }
+    // Mode none: the manual commands are refused.
+    let err = refused(&mut e, Command::from(TangentialCornerContinue { axis: 2 }));
+    assert!(matches!(err, EngineError::InvalidArgument { .. }), "{err}");
+    // Manual, but the path does not stand at a corner.
+    ok(&mut e, corner_mode(TangentialCornerModeKind::Manual, 0.5));
+    for c in [
+        Command::from(TangentialCornerFollowNext { axis: 2 }),
+        Command::from(TangentialCornerContinue { axis: 2 }),
+    ] {
+        let err = refused(&mut e, c);
+        assert!(
+            matches!(err, EngineError::InvalidGroup { group: 1, .. }),
+            "{err}"
+        );
+    }
 }

@@ -259,3 +259,134 @@ fn tv20_a_spherical_arc_through_three_points_ends_on_its_end_and_feeds_the_arc_l
     let arc = radius * 4.0 * PI / 3.0;
     assert!((travelled - arc).abs() < 1e-6, "{travelled} vs {arc}");
 }
+
+fn set(name: GroupParameter, value: f64) -> Command {
+    Command::from(GroupSetParameter {
+        group: 1,
+        name,
+        value,
+    })
+}
+
+/// Run the path to its end; the lowest path velocity while the first coordinate is within
+/// half a unit of `x`.
+fn velocity_near(e: &mut Engine, x: f64) -> f64 {
+    let mut lowest = f64::INFINITY;
+    for _ in 0..100_000 {
+        e.step();
+        let g = group(e);
+        if (g.coordinates[0] - x).abs() < 0.5 {
+            lowest = lowest.min(g.path_velocity);
+        }
+        if g.state == GroupState::Standby {
+            return lowest;
+        }
+    }
+    panic!("the path did not end");
+}
+
+#[test]
+fn a_merge_the_next_tiny_move_cannot_take_is_a_normal_stop() {
+    // Manual §10.6 (8): "如 Merge 的下条指令为 HMC_MoveEx(1) 时，Merge 无效，正常减速". From 50
+    // the path needs 50²/(2·1000) = 1.25 to stop: a next move of 1 cannot take the merge
+    // velocity, so the first line decelerates to rest at its end (not to √2000 ≈ 44.7).
+    let mut e = machine(2, 1.0);
+    ok(&mut e, line(&[100.0, 0.0]));
+    ok(&mut e, line(&[1.0, 0.0]));
+    let v = velocity_near(&mut e, 100.0);
+    assert!(v < 1e-9, "{v}");
+    // Deep look-ahead reaches it when a long move follows the tiny one: no stop.
+    let mut e = machine(2, 1.0);
+    for d in [100.0, 1.0, 100.0] {
+        ok(&mut e, line(&[d, 0.0]));
+    }
+    let v = junction_velocity(&mut e);
+    assert!((v - SPEED).abs() <= ONE_TICK, "{v}");
+    // A next move long enough to stop in: the merge holds.
+    let mut e = machine(2, 1.0);
+    ok(&mut e, line(&[100.0, 0.0]));
+    ok(&mut e, line(&[2.0, 0.0]));
+    assert!(velocity_near(&mut e, 100.0) > SPEED - ONE_TICK);
+}
+
+#[test]
+fn the_speed_tolerance_ratio_passes_a_corner_whose_factor_is_within_it_at_full_speed() {
+    // HMC_SetMergeSpeedTolerRatio (manual §4.4.7.6): 45° with the default angles is k = 0.75
+    // (TV 38). A ratio of 0.3 suppresses that dip; 0.2 does not; 63.43° (k 0.443) stays.
+    for (ratio, degrees, k) in [
+        (0.3, 45.0, 1.0),
+        (0.2, 45.0, 0.75),
+        (0.3, 63.43, (63.43 - 90.0) / (30.0 - 90.0)),
+    ] {
+        let mut e = machine(2, 1.0);
+        ok(&mut e, set(GroupParameter::MergeSpeedTolerance, ratio));
+        assert_eq!(group(&e).merge_speed_tolerance, ratio);
+        let (s, c) = f64::to_radians(degrees).sin_cos();
+        ok(&mut e, line(&[100.0, 0.0]));
+        ok(&mut e, line(&[100.0 * c, 100.0 * s]));
+        let v = junction_velocity(&mut e);
+        assert!((v - k * SPEED).abs() <= ONE_TICK, "{ratio} {degrees}°: {v}");
+    }
+}
+
+#[test]
+fn move3d_lines_do_not_merge_at_either_end() {
+    // HMC_Move3D (manual §4.3.1.5–4.3.1.8): "本指令目前暂不支持 merge 功能". A front-end marks
+    // its lines `mergeable` 0; MoveND lines on the same axes (1) merge.
+    let mut e = machine(3, 1.0);
+    assert!(group(&e).mergeable);
+    ok(&mut e, line(&[100.0, 0.0, 0.0]));
+    ok(&mut e, line(&[100.0, 0.0, 0.0]));
+    assert!((junction_velocity(&mut e) - SPEED).abs() <= ONE_TICK);
+    let mut e = machine(3, 1.0);
+    ok(&mut e, set(GroupParameter::Mergeable, 0.0));
+    assert!(!group(&e).mergeable);
+    ok(&mut e, line(&[100.0, 0.0, 0.0]));
+    ok(&mut e, line(&[100.0, 0.0, 0.0]));
+    // Back to MoveND: it does not merge into the Move3D line before it either.
+    ok(&mut e, set(GroupParameter::Mergeable, 1.0));
+    ok(&mut e, line(&[100.0, 0.0, 0.0]));
+    // Each line cruises, then comes down to (almost) rest: three dips.
+    let mut stops = 0;
+    let mut cruised = false;
+    for _ in 0..100_000 {
+        e.step();
+        let g = group(&e);
+        if g.path_velocity >= SPEED * (1.0 - 1e-9) {
+            cruised = true;
+        } else if cruised && g.path_velocity < ONE_TICK {
+            stops += 1;
+            cruised = false;
+        }
+        if g.state == GroupState::Standby {
+            break;
+        }
+    }
+    assert_eq!(stops, 3, "each of the three lines ends at rest");
+}
+
+#[test]
+fn merge_parameters_out_of_range_or_without_a_result_axis_are_refused() {
+    let mut e = machine(2, 1.0);
+    for (name, value) in [
+        (GroupParameter::MergeSpeedTolerance, 1.5),
+        (GroupParameter::MergeSpeedTolerance, -0.1),
+        (GroupParameter::MergeSpeedTolerance, f64::NAN),
+        (GroupParameter::Mergeable, 0.5),
+    ] {
+        let err = refused(&mut e, set(name, value));
+        assert_eq!(err.kind(), ErrorKind::InvalidArgument, "{name:?} {value}");
+    }
+    assert_eq!(group(&e).merge_speed_tolerance, 0.0);
+    let mut free = common::with_group(
+        Engine::new(&EngineConfig {
+            axes: (0..2).map(|_| common::stepper_mm()).collect(),
+            ..EngineConfig::default()
+        })
+        .unwrap(),
+        &[0, 1],
+    );
+    let err = refused(&mut free, set(GroupParameter::MergeSpeedTolerance, 0.1));
+    assert_eq!(err.kind(), ErrorKind::InvalidArgument);
+    assert!(!group(&free).mergeable);
+}

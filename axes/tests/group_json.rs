@@ -463,6 +463,14 @@ fn the_safety_acceleration_and_angular_parameters_have_their_pinned_names() {
             GroupParameter::AngularJerk,
             r#"{"type":"group_set_parameter","group":1,"name":"angular_jerk","value":1.0}"#,
         ),
+        (
+            GroupParameter::MergeSpeedTolerance,
+            r#"{"type":"group_set_parameter","group":1,"name":"merge_speed_tolerance","value":1.0}"#,
+        ),
+        (
+            GroupParameter::Mergeable,
+            r#"{"type":"group_set_parameter","group":1,"name":"mergeable","value":1.0}"#,
+        ),
     ] {
         let c = Command::from(GroupSetParameter {
             group: 1,

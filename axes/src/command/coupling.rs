@@ -5,7 +5,8 @@
 use serde::{Deserialize, Serialize};
 
 use super::superimpose::{
-    SuperimposeIn, SuperimposeOut, SuperimposeSetRatios, TangentialIn, TangentialOut,
+    SuperimposeIn, SuperimposeOut, SuperimposeSetRatios, TangentialCornerContinue,
+    TangentialCornerFollowNext, TangentialCornerMode, TangentialIn, TangentialOut,
 };
 use super::{
     command_from, AxisIndex, Direction, FollowClear, FollowConfig, FollowOut, FollowPush,
@@ -199,6 +200,40 @@ pub struct CamIn {
     pub start_capture: Option<u8>,
 }
 
+/// Define cam table `table` as HMC's link profile (HMC_MoveLink / HMC_MoveFlexLink, digest 000
+/// §4.3, §3.2; manual §4.3.6.4, §4.3.6.7–4.3.6.8): over master 0..`master_distance` the slave
+/// travels `slave_base_distance` at a constant ratio plus `slave_distance` whose ratio ramps up
+/// over `master_acceleration_distance`, holds, and ramps down over
+/// `master_deceleration_distance`, between the master's first `master_before_distance` and
+/// last `master_after_distance` (`crate::coupling` `link`). `s_ratio` 0 ramps linearly, (0, 1]
+/// with HMC's S-curve fractions. HMC MoveLink is this table and `cam_in` with relative master
+/// and slave and the mode's start. JSON `type`: `cam_table_link`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CamTableLink {
+    pub table: u16,
+    /// dSlaveDistance (FlexLink: dSlaveAddDist).
+    pub slave_distance: f64,
+    /// dMasterDistance (FlexLink: dMasterSumDist), > 0.
+    pub master_distance: f64,
+    /// dMasterDistAcc, ≥ 0.
+    pub master_acceleration_distance: f64,
+    /// dMasterDistDec, ≥ 0.
+    pub master_deceleration_distance: f64,
+    /// dSRatio, [0, 1].
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub s_ratio: f64,
+    /// FlexLink dSlaveBaseDist.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub slave_base_distance: f64,
+    /// FlexLink dMasterBeforeDist, ≥ 0.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub master_before_distance: f64,
+    /// FlexLink dMasterAfterDist, ≥ 0.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub master_after_distance: f64,
+}
+
 /// Decouple a cam's slave (PLCopen MC_CamOut): as `gear_out`. JSON `type`: `cam_out`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -233,6 +268,11 @@ pub enum CouplingCommand {
     FollowSwitch(FollowSwitch),
     FollowOut(FollowOut),
     HandwheelSetRatio(HandwheelSetRatio),
+    // HMC MoveTang corner mode (engine-level: they touch the group too).
+    TangentialCornerMode(TangentialCornerMode),
+    TangentialCornerFollowNext(TangentialCornerFollowNext),
+    TangentialCornerContinue(TangentialCornerContinue),
+    CamTableLink(CamTableLink),
 }
 
 impl CouplingCommand {
@@ -262,6 +302,10 @@ impl CouplingCommand {
             CouplingCommand::FollowSwitch(c) => c.axes.first().copied(),
             CouplingCommand::FollowOut(c) => Some(c.axis),
             CouplingCommand::HandwheelSetRatio(c) => c.axis,
+            CouplingCommand::TangentialCornerMode(c) => Some(c.axis),
+            CouplingCommand::TangentialCornerFollowNext(c) => Some(c.axis),
+            CouplingCommand::TangentialCornerContinue(c) => Some(c.axis),
+            CouplingCommand::CamTableLink(_) => None,
         }
     }
 }
@@ -293,5 +337,9 @@ command_from!(
         FollowSwitch => FollowSwitch,
         FollowOut => FollowOut,
         HandwheelSetRatio => HandwheelSetRatio,
+        TangentialCornerMode => TangentialCornerMode,
+        TangentialCornerFollowNext => TangentialCornerFollowNext,
+        TangentialCornerContinue => TangentialCornerContinue,
+        CamTableLink => CamTableLink,
     ]
 );

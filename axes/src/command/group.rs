@@ -429,6 +429,15 @@ pub enum GroupParameter {
     AngularDeceleration,
     /// 0 = trapezoid.
     AngularJerk,
+    /// HMC_SetMergeSpeedTolerRatio, [0, 1], default 0 (digest 000 §3.4; manual §4.4.7.6): a
+    /// corner-angle factor of at least 1 − value counts as 1, so short lines drawn from coarse
+    /// points no longer make the merged path's speed ripple. Groups with a result axis only.
+    MergeSpeedTolerance,
+    /// 1 (default): motions queued from now on take the result axis's merge (lines, arcs in a
+    /// coordinate plane); 0: they do not, at either end (HMC_Move3D/MoveAbs3D(Ex), manual
+    /// §4.3.1.5–4.3.1.8: "本指令目前暂不支持 merge 功能", this command does not support merge).
+    /// Groups with a result axis only.
+    Mergeable,
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

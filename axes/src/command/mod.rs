@@ -116,8 +116,8 @@ pub use compensation::{
     CompensationLeadScrew, CompensationReference, CompensationTable, ReferenceSource,
 };
 pub use coupling::{
-    CamIn, CamInterpolation, CamOut, CamPoint, CamTableDefine, CouplingCommand, FollowSegment,
-    GearIn, GearOut, GearSetRatio,
+    CamIn, CamInterpolation, CamOut, CamPoint, CamTableDefine, CamTableLink, CouplingCommand,
+    FollowSegment, GearIn, GearOut, GearSetRatio,
 };
 pub use follow::{
     FollowClear, FollowConfig, FollowDirection, FollowEvent, FollowOut, FollowPush, FollowStart,
@@ -163,7 +163,9 @@ pub use stream::{
     StreamStart, StreamStartOnInput, MAX_PUSH_POINTS, MAX_PVT_MOVE_POINTS,
 };
 pub use superimpose::{
-    SuperimposeIn, SuperimposeOut, SuperimposeSetRatios, TangentialIn, TangentialOut,
+    SuperimposeIn, SuperimposeOut, SuperimposeSetRatios, TangentialCornerContinue,
+    TangentialCornerFollowNext, TangentialCornerMode, TangentialCornerModeKind, TangentialIn,
+    TangentialOut,
 };
 pub use trigger::{
     CaptureArm, CaptureArmThreshold, CaptureClear, CaptureEdge, CaptureSource, CaptureWindow,

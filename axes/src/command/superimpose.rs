@@ -86,3 +86,48 @@ pub struct TangentialIn {
 pub struct TangentialOut {
     pub axis: AxisIndex,
 }
+
+/// How a tangential axis handles corners (HMC_MoveTangConfigCornerMode `ucCornerMode`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TangentialCornerModeKind {
+    /// 0, no lift: a jump of the tangent is turned the shortest way while the path runs on.
+    #[default]
+    None,
+    /// 1, manual lift: the path stops at every junction that turns by more than
+    /// `angle_limit` and waits for `tangential_corner_continue`.
+    Manual,
+}
+
+/// Set a tangential axis's corner mode (HMC_MoveTangConfigCornerMode, manual §4.4.9.2): with
+/// `manual`, the group stops exactly at each junction of two motions whose direction in the
+/// tracked plane turns by more than `angle_limit` radians (judged when the second motion is
+/// queued; a buffered non-motion command between them means no stop), and waits there. The
+/// rule applies to motions queued afterwards. HMC's automatic lift (mode 2) is not modelled.
+/// JSON `type`: `tangential_corner_mode`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TangentialCornerMode {
+    pub axis: AxisIndex,
+    pub mode: TangentialCornerModeKind,
+    /// Radians, [0, π] (HMC dCornerAngleLimit).
+    #[serde(default)]
+    pub angle_limit: f64,
+}
+
+/// At a corner stop: turn the tangential axis (within its own limits) to the direction the
+/// next motion starts in (HMC_MoveTangCornerFollowNextCmd). JSON `type`:
+/// `tangential_corner_follow_next`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TangentialCornerFollowNext {
+    pub axis: AxisIndex,
+}
+
+/// At a corner stop: let the group's path go on (HMC_MoveTangCornerContinue). JSON `type`:
+/// `tangential_corner_continue`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TangentialCornerContinue {
+    pub axis: AxisIndex,
+}

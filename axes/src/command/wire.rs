@@ -177,6 +177,12 @@ pub(super) enum Command {
     // Issue 12 item 6, HMC_GantryInit.
     GantryHome(super::GantryHome),
     PulseDigitalOutput(PulseDigitalOutput),
+    // HMC MoveTang corner mode (digest 000 §4.4).
+    TangentialCornerMode(super::TangentialCornerMode),
+    TangentialCornerFollowNext(super::TangentialCornerFollowNext),
+    TangentialCornerContinue(super::TangentialCornerContinue),
+    // HMC MoveLink / MoveFlexLink profiles (digest 000 §4.3).
+    CamTableLink(super::CamTableLink),
 }
 
 impl From<Command> for super::Command {
@@ -324,6 +330,10 @@ impl From<Command> for super::Command {
             Command::SamplingTrigger(c) => super::Command::from(c),
             Command::SamplingStop(c) => super::Command::from(c),
             Command::SamplingRead(c) => super::Command::from(c),
+            Command::TangentialCornerMode(c) => super::Command::from(c),
+            Command::TangentialCornerFollowNext(c) => super::Command::from(c),
+            Command::TangentialCornerContinue(c) => super::Command::from(c),
+            Command::CamTableLink(c) => super::Command::from(c),
         }
     }
 }
@@ -463,6 +473,16 @@ impl From<super::Command> for Command {
             super::Command::Coupling(CouplingCommand::HandwheelSetRatio(c)) => {
                 Command::HandwheelSetRatio(c)
             }
+            super::Command::Coupling(CouplingCommand::TangentialCornerMode(c)) => {
+                Command::TangentialCornerMode(c)
+            }
+            super::Command::Coupling(CouplingCommand::TangentialCornerFollowNext(c)) => {
+                Command::TangentialCornerFollowNext(c)
+            }
+            super::Command::Coupling(CouplingCommand::TangentialCornerContinue(c)) => {
+                Command::TangentialCornerContinue(c)
+            }
+            super::Command::Coupling(CouplingCommand::CamTableLink(c)) => Command::CamTableLink(c),
             super::Command::Trigger(TriggerCommand::CaptureArm(c)) => Command::CaptureArm(c),
             super::Command::Trigger(TriggerCommand::CaptureClear(c)) => Command::CaptureClear(c),
             super::Command::Trigger(TriggerCommand::CompareStart(c)) => Command::CompareStart(c),

@@ -20,9 +20,11 @@ mod follow;
 mod gantry;
 mod gear;
 mod handwheel;
+mod link;
 mod superimpose;
 pub mod table;
 mod tangential;
+mod tangential_corner;
 
 use std::collections::BTreeMap;
 use std::sync::Arc;
@@ -44,7 +46,7 @@ pub use gear::{Clutch, Gear};
 pub use handwheel::Handwheel;
 pub use superimpose::Superimpose;
 pub use table::CamTable;
-pub use tangential::{Tangential, TurnLimits};
+pub use tangential::{CornerMode, Tangential, TurnLimits};
 
 /// Most cam tables defined at once.
 pub const MAX_CAM_TABLES: usize = 256;
@@ -104,7 +106,12 @@ impl Coupling {
             Law::Tangential(t) => (0.0, t.angle(), t.deviation()),
             _ => (0.0, 0.0, 0.0),
         };
+        let corner_state = match &self.law {
+            Law::Tangential(t) => t.corner_state(),
+            _ => 0,
+        };
         CouplingStatus {
+            corner_state,
             master2: self.master2,
             ratio2,
             angle,
@@ -161,8 +168,8 @@ pub struct Couplings {
 /// What a coupling command may touch.
 pub(crate) struct Env<'a, 'b> {
     pub axes: &'a mut [Axis],
-    /// For `tangential_in`: the group whose path is tracked.
-    pub groups: &'a Groups,
+    /// For `tangential_in`: the group whose path is tracked (and its corner stops).
+    pub groups: &'a mut Groups,
     pub ctx: &'a mut Context<'b>,
     pub period: f64,
 }
@@ -240,6 +247,13 @@ impl Couplings {
                 self.decouple(env, c.slave, CouplingKind::Superimpose)
             }
             CouplingCommand::TangentialIn(c) => self.tangential_in(env, &c),
+            CouplingCommand::CamTableLink(c) => {
+                let table = link::link_table(&c)?;
+                self.install_table(c.table, table)
+            }
+            CouplingCommand::TangentialCornerMode(_)
+            | CouplingCommand::TangentialCornerFollowNext(_)
+            | CouplingCommand::TangentialCornerContinue(_) => self.tangential_corner(env, &command),
             CouplingCommand::TangentialOut(c) => {
                 self.decouple(env, c.axis, CouplingKind::Tangential)
             }
@@ -471,7 +485,7 @@ impl Couplings {
         let source = MasterSource::Commanded;
         let (px, axis) = positions(env, x, c.axis, source)?;
         let (py, _) = positions(env, y, c.axis, source)?;
-        let law = Law::Tangential(Tangential::new(turn, offset, axis));
+        let law = Law::Tangential(Tangential::new(turn, offset, axis, c.group, c.coordinates));
         self.insert_two(env, c.axis, [x, y], source, law, [px, py]);
         Ok(Reply::Done)
     }
@@ -501,24 +515,29 @@ impl Couplings {
 
     /// Define (or replace) a cam table: `cam_table`, and the config's `[[cam_tables]]`.
     pub(crate) fn define_table(&mut self, c: CamTableDefine) -> Result<Reply, EngineError> {
+        let table = CamTable::new(c.table, &c.points, c.interpolation)?;
+        self.install_table(c.table, table)
+    }
+
+    /// Put `table` under number `id` unless a running cam uses that number or there is no room.
+    fn install_table(&mut self, id: u16, table: CamTable) -> Result<Reply, EngineError> {
         if let Some(user) = self
             .list
             .iter()
-            .find(|k| matches!(&k.law, Law::Cam(cam) if cam.table_id == c.table))
+            .find(|k| matches!(&k.law, Law::Cam(cam) if cam.table_id == id))
         {
             return Err(EngineError::CamTableInUse {
-                table: c.table,
+                table: id,
                 slave: user.slave,
             });
         }
-        if !self.tables.contains_key(&c.table) && self.tables.len() >= MAX_CAM_TABLES {
+        if !self.tables.contains_key(&id) && self.tables.len() >= MAX_CAM_TABLES {
             return Err(EngineError::InvalidCamTable {
-                table: c.table,
+                table: id,
                 reason: format!("no room: at most {MAX_CAM_TABLES} tables"),
             });
         }
-        let table = CamTable::new(c.table, &c.points, c.interpolation)?;
-        self.tables.insert(c.table, Arc::new(table));
+        self.tables.insert(id, Arc::new(table));
         Ok(Reply::Done)
     }
 
@@ -615,6 +634,9 @@ impl Couplings {
         if !matches {
             return Err(EngineError::NotCoupled { axis: slave, what });
         }
+        if let Some(Law::Tangential(t)) = self.list.get(i).map(|c| &c.law) {
+            Self::clear_corner_stop(env.groups, t);
+        }
         self.list.remove(i);
         if kind == CouplingKind::Follow {
             self.follow_ended(slave);
@@ -678,6 +700,7 @@ impl Couplings {
     /// with each slave fed from its master just before it steps; then the couplings that ended
     /// are dropped.
     pub(crate) fn step_axes(&mut self, env: &mut Env) {
+        self.refresh_corner_waits(env.groups);
         let Env {
             axes, ctx, period, ..
         } = env;

@@ -139,6 +139,25 @@ impl CamTable {
         })
     }
 
+    /// A table from knots `(master, slave, slope)` whose spans are exact polynomials of degree
+    /// ≤ 3 (HMC's link profiles, `link`): each span is the Hermite piece of its end values and
+    /// slopes. The caller gives at least 2 knots, master strictly increasing, all finite.
+    pub(super) fn from_knots(knots: &[(f64, f64, f64)]) -> CamTable {
+        let pieces = knots
+            .windows(2)
+            .filter_map(|w| match w {
+                [(x0, y0, m0), (x1, y1, m1)] => Some(Piece::new(*x0, *x1, *y0, *y1, *m0, *m1)),
+                _ => None,
+            })
+            .collect();
+        let ys: Vec<f64> = knots.iter().map(|k| k.1).collect();
+        CamTable {
+            xs: knots.iter().map(|k| k.0).collect(),
+            y_ends: (first(&ys), last(&ys)),
+            pieces,
+        }
+    }
+
     /// The first and last master coordinates.
     pub fn master_range(&self) -> (f64, f64) {
         (first(&self.xs), last(&self.xs))

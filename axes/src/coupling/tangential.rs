@@ -16,9 +16,17 @@
 //! to `speed` and changed by at most `accel`·dt; once the exact angle is reachable within the
 //! limits again the axis is back in sync. While the path stands (at rest, or stopped at a
 //! corner) the angle holds. Closed-form work per tick.
+//!
+//! Corner mode (HMC_MoveTangConfigCornerMode, manual §4.4.9.2): in `manual` mode the group
+//! stops at every junction that turns by more than the angle limit (`group::corner`) and waits;
+//! `follow_next` (HMC_MoveTangCornerFollowNextCmd) turns the axis, within its limits, to the
+//! direction the next motion starts in, and the group's release (HMC_MoveTangCornerContinue)
+//! lets the path go on. The engine tells the axis each tick whether its group stands at such a
+//! stop (`set_corner_wait`).
 
 use std::f64::consts::{PI, TAU};
 
+use crate::command::GroupId;
 use crate::profile::MotionState;
 use crate::status::CouplingPhase;
 
@@ -43,6 +51,22 @@ pub struct Tangential {
     /// The axis's setpoint of the last tick.
     last: MotionState,
     phase: CouplingPhase,
+    group: GroupId,
+    plane: [u8; 2],
+    /// The corner mode, and the next motion's direction while the group stands at a corner
+    /// stop.
+    corner: CornerMode,
+    corner_wait: Option<f64>,
+}
+
+/// How the tangential axis handles corners (HMC_MoveTangConfigCornerMode `ucCornerMode`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum CornerMode {
+    /// 0: no lift; a jump of the tangent is chased the shortest way.
+    #[default]
+    None,
+    /// 1: manual lift: the path stops at corners above the angle limit and waits.
+    Manual,
 }
 
 /// `d` into (−π, π]: the shortest way round.
@@ -57,8 +81,17 @@ fn shortest(d: f64) -> f64 {
 
 impl Tangential {
     /// Tracking from the axis's commanded state `axis`; it holds until the path moves.
-    pub fn new(units_per_turn: f64, offset: f64, axis: MotionState) -> Tangential {
+    /// `group` and `plane` (its two coordinates) are the path tracked (for the corner mode).
+    pub fn new(
+        units_per_turn: f64,
+        offset: f64,
+        axis: MotionState,
+        group: GroupId,
+        plane: [u8; 2],
+    ) -> Tangential {
         Tangential {
+            group,
+            plane,
             scale: units_per_turn / TAU,
             offset,
             direction: None,
@@ -66,7 +99,56 @@ impl Tangential {
             target_velocity: 0.0,
             last: axis,
             phase: CouplingPhase::Waiting,
+            corner: CornerMode::None,
+            corner_wait: None,
         }
+    }
+
+    pub fn group(&self) -> GroupId {
+        self.group
+    }
+
+    pub fn plane(&self) -> [u8; 2] {
+        self.plane
+    }
+
+    pub fn corner_mode(&self) -> CornerMode {
+        self.corner
+    }
+
+    pub fn set_corner_mode(&mut self, mode: CornerMode) {
+        self.corner = mode;
+        if mode == CornerMode::None {
+            self.corner_wait = None;
+        }
+    }
+
+    /// Whether the group stands at a corner stop, and the next motion's direction (radians).
+    pub fn set_corner_wait(&mut self, next_direction: Option<f64>) {
+        self.corner_wait = next_direction;
+    }
+
+    /// HMC_GetMoveTangCornerState: 0 no lift, 1 manual and the path running, 2 manual and the
+    /// path standing at a corner (3 and 4, auto lift, are not modelled).
+    pub fn corner_state(&self) -> u8 {
+        match (self.corner, self.corner_wait) {
+            (CornerMode::None, _) => 0,
+            (CornerMode::Manual, None) => 1,
+            (CornerMode::Manual, Some(_)) => 2,
+        }
+    }
+
+    /// HMC_MoveTangCornerFollowNextCmd: track the direction the next motion starts in (the
+    /// shortest way round from the last one); the axis turns to it within its limits while
+    /// the path stands. Refused (`false`) unless the group stands at a corner stop.
+    pub fn follow_next(&mut self) -> bool {
+        let Some(next) = self.corner_wait else {
+            return false;
+        };
+        self.target = self.angle_toward(next);
+        self.direction = Some(next);
+        self.target_velocity = 0.0;
+        true
     }
 
     pub fn phase(&self) -> CouplingPhase {
@@ -127,20 +209,26 @@ impl Tangential {
         }
         let direction = y.v.atan2(x.v);
         let rate = (x.v * y.a - y.v * x.a) / speed2;
-        self.target = match self.direction {
-            Some(previous) => self.target + shortest(direction - previous) * self.scale,
-            None => {
-                let angle = direction * self.scale + self.offset;
-                let turn = TAU * self.scale;
-                angle + ((self.last.p - angle) / turn).round() * turn
-            }
-        };
+        self.target = self.angle_toward(direction);
         self.direction = Some(direction);
         self.target_velocity = if rate.is_finite() {
             rate * self.scale
         } else {
             0.0
         };
+    }
+
+    /// The unwrapped angle (units) for the path direction `direction` (radians): the shortest
+    /// way from the last direction, or the first one at the turn nearest the axis.
+    fn angle_toward(&self, direction: f64) -> f64 {
+        match self.direction {
+            Some(previous) => self.target + shortest(direction - previous) * self.scale,
+            None => {
+                let angle = direction * self.scale + self.offset;
+                let turn = TAU * self.scale;
+                angle + ((self.last.p - angle) / turn).round() * turn
+            }
+        }
     }
 
     /// One tick toward the angle within the limits (see the module doc).

@@ -1,7 +1,7 @@
 //! Group commands (issue 11 items 1, 3, 5, 8): each checked completely before it changes
 //! anything, so a refused command leaves the group (and every other) as it was.
 
-use path::planner::{CornerAngles, MarkerKind, PathPlanner};
+use path::planner::{CornerAngles, MarkerKind, MergeRule, PathPlanner};
 use path::MAX_AXES;
 
 use super::frames::FrameMap;
@@ -142,6 +142,10 @@ impl Groups {
             waiting: None,
             pending: None,
             last_mergeable: false,
+            merge_eligible: true,
+            corner_stop: None,
+            last_direction: None,
+            corner_released: false,
             staging: super::staging::Staging::new(self.config.spline_spans_per_tick),
             jog: None,
             last_error: None,
@@ -151,8 +155,10 @@ impl Groups {
             interference: (InterferenceStatus::NotEnabled, 0.0),
         };
         if g.result.is_some() {
-            // HMC's merge angles are on by default (digest 000 §3.4, TV 38: π/6 and π/2).
+            // HMC's merge angles are on by default (digest 000 §3.4, TV 38: π/6 and π/2), and
+            // its merge rules (§10.6 (8), no ripple suppression).
             let _ = g.planner.set_corner_angles(Some(CornerAngles::HMC_DEFAULT));
+            let _ = g.planner.set_merge_rule(Some(MergeRule::HMC_DEFAULT));
         }
         g.params_version = g
             .members
@@ -391,6 +397,9 @@ impl Group {
                         }
                         self.smallest_acceleration = value == 1.0;
                         self.push_axis_limits(env.axes);
+                    }
+                    GroupParameter::MergeSpeedTolerance | GroupParameter::Mergeable => {
+                        self.set_merge_parameter(c.name, c.value)?
                     }
                     GroupParameter::CornerAcceleration
                     | GroupParameter::ArcAcceleration

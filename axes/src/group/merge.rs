@@ -9,13 +9,19 @@
 //! it buffered. An explicit blending mode is kept. Merge does not round corners (no
 //! transition): the path passes through the junction point, slowed by the corner angles
 //! (HMC_SetMergeAngle, on by default for these groups at HMC's π/6, π/2).
+//!
+//! HMC's further rules (the planner's `MergeRule`, on for these groups): a merge whose
+//! velocity the motions after the junction cannot take is dropped for an exact stop (manual
+//! §10.6 (8): the next command is `HMC_MoveEx(1)`), and the speed-ripple suppression ratio
+//! (`merge_speed_tolerance`, HMC_SetMergeSpeedTolerRatio, §4.4.7.6). `mergeable` 0 marks the
+//! motions queued next as not merging at either end (HMC_Move3D/MoveAbs3D(Ex)).
 
 use path::geometry::Segment;
-use path::planner::{CornerAngles, Join};
+use path::planner::{CornerAngles, Join, MergeRule};
 
 use super::Group;
 use crate::axis::Axis;
-use crate::command::EngineError;
+use crate::command::{EngineError, GroupParameter};
 use crate::param::ParamId;
 
 /// HMC_SetMergeAngle's bounds (digest 000 §3.4, TV 38): decel angle ≤ π/6, stop angle ≤ π/2.
@@ -50,7 +56,11 @@ impl Group {
     /// The join a motion gets: `requested`, or with a result axis whose `merge` is on, a
     /// `buffered` motion behind a mergeable one (both mergeable) takes the merge's blending.
     pub(super) fn merged_join(&self, axes: &[Axis], requested: Join, segment: &Segment) -> Join {
-        if requested != Join::Buffered || !self.last_mergeable || !mergeable(segment) {
+        if requested != Join::Buffered
+            || !self.last_mergeable
+            || !self.merge_eligible
+            || !mergeable(segment)
+        {
             return requested;
         }
         let Some(axis) = self.result_axis().and_then(|a| axes.get(usize::from(a))) else {
@@ -63,6 +73,47 @@ impl Group {
             4 => Join::BlendingHigh,
             _ => requested,
         }
+    }
+
+    /// `merge_speed_tolerance` (HMC_SetMergeSpeedTolerRatio, [0, 1]) or `mergeable` (0 or 1)
+    /// of a group with a result axis.
+    pub(super) fn set_merge_parameter(
+        &mut self,
+        name: GroupParameter,
+        value: f64,
+    ) -> Result<(), EngineError> {
+        if self.result.is_none() {
+            return Err(EngineError::InvalidArgument {
+                name: "name",
+                value,
+                reason: "HMC's merge parameters need a group with a result axis",
+            });
+        }
+        if name == GroupParameter::Mergeable {
+            if value != 0.0 && value != 1.0 {
+                return Err(EngineError::InvalidArgument {
+                    name: "value",
+                    value,
+                    reason: "must be 0 (motions do not merge) or 1 (they may)",
+                });
+            }
+            self.merge_eligible = value == 1.0;
+            return Ok(());
+        }
+        // NaN fails the range check too.
+        if !(0.0..=1.0).contains(&value) {
+            return Err(EngineError::InvalidArgument {
+                name: "value",
+                value,
+                reason: "HMC's merge speed tolerance ratio is 0 to 1",
+            });
+        }
+        let rule = MergeRule {
+            speed_tolerance: value,
+        };
+        // In range, so the planner accepts it.
+        let _ = self.planner.set_merge_rule(Some(rule));
+        Ok(())
     }
 
     /// HMC's merge-angle bounds for a group with a result axis (TV 38: `(0.6, 1.0)` and

@@ -29,6 +29,9 @@ use crate::status::{
 };
 
 mod commands;
+mod corner;
+pub(crate) use corner::not_at_corner;
+pub use corner::{CornerStop, CornerWait};
 mod frames;
 mod jog;
 mod merge;
@@ -146,6 +149,13 @@ pub struct Group {
     pending: Option<PendingMotion>,
     /// The last motion queued is one HMC merges at its end (`merge`).
     last_mergeable: bool,
+    /// Motions queued from now on may merge (`mergeable`, 0 for HMC_Move3D).
+    merge_eligible: bool,
+    /// A tangential axis's corner stops (`corner`), the plane direction the last queued
+    /// motion ends in, and a release of the corner stop the path stands at.
+    corner_stop: Option<corner::CornerStop>,
+    last_direction: Option<f64>,
+    corner_released: bool,
     /// A spline under construction and the commands after it (`staging`).
     staging: staging::Staging,
     /// A jog in progress (the planner is idle meanwhile).
@@ -352,6 +362,8 @@ impl Group {
             override_factor: self.override_factor,
             last_error: self.last_error,
             fault: self.fault,
+            merge_speed_tolerance: self.planner.merge_rule().map_or(0.0, |r| r.speed_tolerance),
+            mergeable: self.result.is_some() && self.merge_eligible,
         }
     }
 

@@ -40,6 +40,9 @@ pub(super) enum Item {
     },
     /// Start a single-axis move of a non-member axis (NMC CrdBufAxMoveEx).
     AxisMove(GroupAxisMove),
+    /// Stand at a tangential axis's corner stop until released (`corner`); the next motion
+    /// starts in `next_direction` (radians, in the tracked plane).
+    CornerStop { next_direction: f64 },
 }
 
 #[derive(Clone, Debug, PartialEq)]

@@ -166,12 +166,14 @@ impl Group {
         Ok(id)
     }
 
-    fn push_marker(
+    pub(super) fn push_marker(
         &mut self,
         id: CommandId,
         item: Item,
         kind: MarkerKind,
     ) -> Result<(), EngineError> {
+        // A buffered command between two motions: no corner stop at that junction (`corner`).
+        self.last_direction = None;
         self.planner
             .push_marker(u64::from(id), kind)
             .map_err(|e| self.planner_error(e))?;

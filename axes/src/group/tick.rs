@@ -387,7 +387,11 @@ impl Group {
                     None => Err(ErrorKind::InvalidAxis),
                 }
             }
-            Item::Dwell { .. } | Item::WaitInput { .. } | Item::WaitPosition { .. } => {
+            Item::Dwell { .. }
+            | Item::WaitInput { .. }
+            | Item::WaitPosition { .. }
+            | Item::CornerStop { .. } => {
+                self.corner_released = false;
                 self.waiting = Some(Wait {
                     id,
                     item: entry.item,
@@ -440,6 +444,7 @@ impl Group {
                 }),
                 *timeout,
             ),
+            Item::CornerStop { .. } => (std::mem::take(&mut self.corner_released), None),
             Item::Motion { .. } | Item::SetOutput { .. } | Item::AxisMove(_) => (true, None),
         };
         let id = wait.id;
@@ -470,20 +475,21 @@ impl Group {
     /// to the planner and the mirror.
     pub(super) fn enqueue_segment(
         &mut self,
-        env: &Env,
+        env: &mut Env,
         id: CommandId,
         segment: path::geometry::Segment,
         share: super::segment::Share,
         request: &super::segment::PathRequest,
     ) -> Result<(), EngineError> {
         self.refresh_limits(env.axes);
+        self.queue_corner_stop(env, &segment)?;
         let speed_basis = if request.velocity_given {
             None
         } else {
             self.result_speed(env.axes)
         };
         let join = self.merged_join(env.axes, request.join, &segment);
-        let mergeable = super::merge::mergeable(&segment);
+        let mergeable = self.merge_eligible && super::merge::mergeable(&segment);
         self.planner
             .push_motion(Motion {
                 segment,

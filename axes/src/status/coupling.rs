@@ -93,4 +93,8 @@ pub struct CouplingStatus {
     /// Gear: servo periods the slave runs behind (HMC_GetGearPhaseOffset).
     #[serde(default)]
     pub phase_offset: u32,
+    /// Tangential: HMC_GetMoveTangCornerState, 0 no lift, 1 manual corner mode and the path
+    /// running, 2 manual and the path standing at a corner stop.
+    #[serde(default)]
+    pub corner_state: u8,
 }

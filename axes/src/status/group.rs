@@ -141,6 +141,14 @@ pub struct GroupStatus {
     pub last_error: Option<ErrorKind>,
     /// Why the group is in ErrorStop (kept until a successful `group_reset`).
     pub fault: Option<GroupFault>,
+    /// HMC's merge speed tolerance ratio (HMC_GetMergeSpeedTolerRatio, digest 000 §3.4); 0
+    /// without a result axis.
+    #[serde(default)]
+    pub merge_speed_tolerance: f64,
+    /// Motions queued now may take the result axis's merge (`mergeable`; false for a group
+    /// without a result axis, which never merges).
+    #[serde(default)]
+    pub mergeable: bool,
 }
 
 impl GroupStatus {

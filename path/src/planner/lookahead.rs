@@ -12,6 +12,7 @@
 //! (`reach`), so a push costs O(lookahead) in the worst case and O(1) typically.
 
 use super::junction::mode_velocity;
+use super::merge::junction_preference;
 use super::queue::Entry;
 use super::reach::reach;
 use super::{MarkerKind, PathPlanner};
@@ -70,11 +71,11 @@ impl PathPlanner {
                 Some(_) if hold_between => (0.0, 0.0),
                 Some(n) => {
                     let junction = m.end_cap.min(cap).min(n.cap);
+                    let requested =
+                        junction.min(mode_velocity(n.join, cruise, n.cruise) * n.factor);
                     (
                         junction.min(n.start_phys),
-                        junction
-                            .min(mode_velocity(n.join, cruise, n.cruise) * n.factor)
-                            .min(n.start_pref),
+                        junction_preference(self.merge_rule, requested, n.start_pref),
                     )
                 }
             };

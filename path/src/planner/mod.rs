@@ -6,7 +6,8 @@
 //! [`PathPlanner::push_marker`] (append to the queue), [`PathPlanner::set_override`],
 //! [`PathPlanner::halt`] / [`PathPlanner::resume`], [`PathPlanner::stop`],
 //! [`PathPlanner::abort`], [`PathPlanner::release_hold`], [`PathPlanner::reset_position`],
-//! [`PathPlanner::set_axis_limits`].
+//! [`PathPlanner::set_axis_limits`], and the vendor rules [`PathPlanner::set_corner_angles`],
+//! [`PathPlanner::set_lookahead_limits`], [`PathPlanner::set_merge_rule`].
 //! Output: [`PathPlanner::step`] advances one period, returns the new [`PathState`] and appends
 //! what happened during the period ([`PathEvent`]s, in order) to the caller's vector.
 //! Queries: [`PathPlanner::state`], [`PathPlanner::queued`], [`PathPlanner::queue_end`],
@@ -35,6 +36,7 @@ mod execution;
 mod junction;
 mod limits;
 mod lookahead;
+mod merge;
 mod push;
 mod queue;
 mod reach;
@@ -42,6 +44,7 @@ mod reach;
 pub use braking::braking_distance;
 use execution::Execution;
 pub use execution::MAX_STARTS_PER_STEP;
+pub use merge::MergeRule;
 use queue::Entry;
 
 /// One axis's own limits, in the path's units (user units of the axis). `jerk = ∞`: none.
@@ -320,6 +323,8 @@ pub struct PathPlanner {
     lookahead_visits: usize,
     /// HMC merge angles / NMC slow and stop angles, if set.
     corner_angles: Option<CornerAngles>,
+    /// HMC's merge rules, if set (`merge`).
+    merge_rule: Option<MergeRule>,
     lookahead_limits: LookaheadLimits,
 }
 
@@ -369,6 +374,7 @@ impl PathPlanner {
             halt: None,
             at_rest_reported: false,
             corner_angles: None,
+            merge_rule: None,
             lookahead_limits: LookaheadLimits::default(),
             hold_released: false,
             starts_last_step: 0,

@@ -153,7 +153,8 @@ impl PathPlanner {
             }
         }
         if let Some(angles) = self.corner_angles {
-            new.entry_factor = angles.factor(direction_change(&before.t, &after.t));
+            let k = angles.factor(direction_change(&before.t, &after.t));
+            new.entry_factor = self.merge_rule.map_or(k, |r| r.suppress(k));
         }
         self.queue.push_back(Entry::Motion(Box::new(new)));
         pi
