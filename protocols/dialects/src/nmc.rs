@@ -347,7 +347,10 @@ mod tests {
     #[test]
     fn the_stepper_bit_comes_from_the_axis_configuration() {
         let s = status(AxisState::Standstill, AxisFlags::ENABLED);
-        let stepper = AxisExtra { stepper: true };
+        let stepper = AxisExtra {
+            stepper: true,
+            ..AxisExtra::default()
+        };
         assert_eq!(axis_status(&s, stepper), BIT_AXIS_SVON | BIT_AXIS_STEP);
     }
 

@@ -208,7 +208,10 @@ impl DriveHoming {
 
 /// Interrupt `bus`'s drive homing: bit 4 falls. Only a drive in Operation enabled is written
 /// (a controlword written to a drive the engine is powering up or down would take it over).
+/// A start the drive may not have stepped with yet also leaves homing mode (0x6060 = 0): the
+/// drive would otherwise see bit 4's rise and fall in one step as a start.
 pub fn stop_drive_homing(c: &mut Call<'_>, bus: BusAxis) {
+    let pending = c.service.bus().homing_pending(bus.k, c.snapshot.tick);
     c.service.bus().homing_requested(bus.k, None);
     let operating = c
         .snapshot
@@ -222,5 +225,13 @@ pub fn stop_drive_homing(c: &mut Call<'_>, bus: BusAxis) {
             subindex: 0,
             value: Value::U16(ENABLE_OPERATION),
         });
+        if pending {
+            c.command(WriteObject {
+                slave: bus.drive.slave,
+                index: MODES_OF_OPERATION,
+                subindex: 0,
+                value: Value::I8(0),
+            });
+        }
     }
 }
