@@ -13,7 +13,7 @@ use std::sync::OnceLock;
 
 use axes::cia402::{object_table, DriveConfig, State};
 use axes::command::{ErrorKind, WriteObject};
-use axes::od::{DecodeError, EntryDef, OdError, Value};
+use axes::od::{ObjectDictionary, OdError, Value};
 use axes::AxisFlags;
 use mcemu_dialects::nmc::{acceleration_to_engine, code_for_kind, velocity_to_engine};
 use mcemu_nmc::errors::RTN_NOT_ON_THIS_CARD;
@@ -69,43 +69,20 @@ pub fn sdo_abort(code: u32, detail: &str) -> Refusal {
     )
 }
 
-fn table() -> &'static [EntryDef] {
-    static TABLE: OnceLock<Vec<EntryDef>> = OnceLock::new();
-    TABLE.get_or_init(|| object_table(&DriveConfig::default()))
+/// The drives' object dictionary as built (mcemu's drives share one object table), for
+/// decoding SDO download data into each object's type.
+fn dictionary() -> Option<&'static ObjectDictionary> {
+    static OD: OnceLock<Option<ObjectDictionary>> = OnceLock::new();
+    OD.get_or_init(|| ObjectDictionary::from_defs(object_table(&DriveConfig::default())).ok())
+        .as_ref()
 }
 
-/// SDO download data as a value of the object's type (the drives' object table).
+/// SDO download data as a value of the object's type: the dictionary's own checks (object,
+/// sub-index, access, length).
 pub fn decode_object(index: u16, subindex: u8, bytes: &[u8]) -> Result<Value, OdError> {
-    let entries = table();
-    let entry = entries
-        .iter()
-        .find(|e| e.index == index && e.subindex == subindex)
-        .ok_or_else(|| {
-            if entries.iter().any(|e| e.index == index) {
-                OdError::NoSubindex { index, subindex }
-            } else {
-                OdError::NoObject { index }
-            }
-        })?;
-    Value::from_le_bytes(entry.data_type, bytes).map_err(|e| match e {
-        DecodeError::TooLong { expected, found } => OdError::LengthTooHigh {
-            index,
-            subindex,
-            expected,
-            found,
-        },
-        DecodeError::TooShort { expected, found } => OdError::LengthTooLow {
-            index,
-            subindex,
-            expected,
-            found,
-        },
-        DecodeError::Invalid(detail) => OdError::InvalidValue {
-            index,
-            subindex,
-            detail: detail.to_string(),
-        },
-    })
+    dictionary()
+        .ok_or(OdError::NoObject { index })?
+        .decode(index, subindex, bytes)
 }
 
 /// A homing for a drive to run, in the NMC's units: method (CiA 402), pulse/ms, pulse/ms²,
