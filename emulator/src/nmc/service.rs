@@ -170,7 +170,7 @@ pub struct NmcService {
     /// Where `NMC_SaveMotionConfig` saves (`saved_config`), and the section's name (the
     /// file's); set once when the section starts.
     saving: std::sync::OnceLock<(Option<crate::state_dir::StateDir>, &'static str)>,
-    /// ---- EtherCAT bus (nmcecat) ----
+    // ---- EtherCAT bus (nmcecat) ----
     /// An `ecat` card's bus: axis numbers from 16, SDO slaves (set once at start).
     bus: std::sync::OnceLock<super::ecat_bus::EcatBus>,
 }
@@ -251,7 +251,7 @@ impl NmcService {
         self.saving.get().map_or("nmc", |(_, s)| s)
     }
 
-    /// ---- EtherCAT bus (nmcecat) ----
+    // ---- EtherCAT bus (nmcecat) ----
     /// Set the card's bus (once, at start).
     pub fn set_bus(&self, bus: super::ecat_bus::EcatBus) {
         let _ = self.bus.set(bus);
