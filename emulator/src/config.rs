@@ -33,6 +33,10 @@ pub const SHIPPED_MACHINES: &[(&str, &str)] = &[
         "gaochuan-gcn",
         include_str!("../../fixtures/gaochuan-gcn.toml"),
     ),
+    (
+        "gaochuan-gcn-ecat",
+        include_str!("../../fixtures/gaochuan-gcn-ecat.toml"),
+    ),
     ("himc", include_str!("../../fixtures/himc.toml")),
     (
         "hollysys-mc",
@@ -530,7 +534,11 @@ mod tests {
         }
         let e = shipped_machine("gcn").unwrap_err();
         assert_eq!(e.key, "--machine");
-        assert!(e.reason.contains("gaochuan-gcn, himc"), "{}", e.reason);
+        assert!(
+            e.reason.contains("gaochuan-gcn, gaochuan-gcn-ecat, himc"),
+            "{}",
+            e.reason
+        );
         assert_eq!(
             shipped_machine("himc").unwrap().1,
             "fixtures/himc.toml (embedded)"

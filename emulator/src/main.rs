@@ -28,7 +28,7 @@ enum Cmd {
         #[arg(long)]
         config: Option<PathBuf>,
         /// A shipped machine by name, embedded in the binary: default, cia402-can, cpu226h,
-        /// gaochuan-gcn, himc, hollysys-mc (the files of `fixtures/`).
+        /// gaochuan-gcn, gaochuan-gcn-ecat, himc, hollysys-mc (the files of `fixtures/`).
         #[arg(long, conflicts_with = "config")]
         machine: Option<String>,
         /// Override the config's clock: realtime, virtual or scaled:K.

@@ -21,6 +21,7 @@ const FIXTURES: &[&str] = &[
     "cpu226h.toml",
     "default.toml",
     "gaochuan-gcn.toml",
+    "gaochuan-gcn-ecat.toml",
     "himc.toml",
     "hollysys-mc.toml",
 ];
@@ -212,6 +213,28 @@ fn home(e: &mut Engine, axis: usize) -> AxisStatus {
     assert!(s.flags.contains(AxisFlags::HOMED), "axis {axis}: {s:?}");
     assert!(healthy(&s), "axis {axis}: {s:?}");
     s
+}
+
+/// The GCN400E-xA: local pulse axes 0, 1 and engine-mastered drives on axes 2, 3 (the NMC
+/// card's 16, 17); the drives power their axes and home with the manual's method 21 on the home
+/// sensor at −3000 (digest 001 §3.14, C5§4(2)), the home point reading 0.
+#[test]
+fn gaochuan_gcn400e_ecat() {
+    let (config, mut e) = load("gaochuan-gcn-ecat.toml");
+    assert_eq!(config.axes.len(), 4);
+    assert_eq!(config.drives.len(), 2);
+    let nmc = config.frontends.nmc.as_ref().map(|n| n.device.io_slaves);
+    assert_eq!(nmc, Some(1));
+    for axis in 2..4 {
+        enable(&mut e, axis);
+        let s = move_to(&mut e, axis, 2000.0, 0.01);
+        assert!((s.act_pos - 2000.0).abs() < 1.0, "{s:?}");
+        let s = home(&mut e, axis);
+        assert!(
+            s.cmd_pos.abs() < 50.0,
+            "rests just past the home point: {s:?}"
+        );
+    }
 }
 
 #[test]

@@ -73,8 +73,8 @@ class Machine:
     """One ``mcemu run`` process.
 
     Which machine: ``config`` (a path), or ``machine`` (a shipped one by name: ``default``,
-    ``himc``, ``gaochuan-gcn``, ``hollysys-mc``, ``cpu226h``, ``cia402-can``), else the
-    default. ``set`` overrides config keys (``{"machine.period": 0.0005}``). ``clock`` is
+    ``himc``, ``gaochuan-gcn``, ``gaochuan-gcn-ecat``, ``hollysys-mc``, ``cpu226h``,
+    ``cia402-can``), else the default. ``set`` overrides config keys (``{"machine.period": 0.0005}``). ``clock`` is
     ``virtual`` unless told (``realtime``, ``scaled:K``, or ``None`` for the config's own).
     Every TCP listener binds a free port (``mcemu run --any-port``), and the state directory is
     a fresh temporary one unless ``state_dir`` is given, so machines run side by side.

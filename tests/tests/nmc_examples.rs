@@ -28,9 +28,14 @@ fn example(name: &str) -> String {
 
 /// [`example`] with extra `mcemu run` arguments (a scaled clock for the long paths).
 fn example_with(name: &str, args: &[&str]) -> String {
+    example_on(&gaochuan(), name, args)
+}
+
+/// [`example_with`] on the machine `config`.
+fn example_on(config: &std::path::Path, name: &str, args: &[&str]) -> String {
     let dir = fresh_dir(env!("CARGO_TARGET_TMPDIR"), &format!("nmc-{name}"));
     let exe = compile_example(name, &dir, &[]);
-    let m = Mcemu::start(Some(&gaochuan()), args);
+    let m = Mcemu::start(Some(config), args);
     let out = run_example(&exe, m.address("nmc"));
     let stdout = String::from_utf8_lossy(&out.stdout).to_string();
     assert!(
@@ -160,6 +165,15 @@ fn s_ecat_start_tv33() {
         "{}",
         output_report("s_ecat.c pulse", &out)
     );
+}
+
+/// TV34–TV36 on the EtherCAT fixture: bus axes 16 and 17 on CiA 402 drives (servo through the
+/// state machine, motion, fault as alarm and fault reset, drive homing by NMC_EcatStartHome and
+/// by NMC_MtHome mode 1021, SDO with abort codes), and the documented codes for bad arguments.
+#[test]
+fn ecat_bus_axes_tv34_tv36() {
+    let fixture = workspace_root().join("fixtures/gaochuan-gcn-ecat.toml");
+    example_on(&fixture, "ecat_bus.c", &[]);
 }
 
 /// S-LASER (digest 001 §5, C3§2.2–2.3): settings read back, the switch and DA echoes, buffered

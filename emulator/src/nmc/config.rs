@@ -35,6 +35,10 @@ pub struct NmcDevice {
     pub ip: Ipv4Addr,
     /// `NMC_DevOpen`'s index.
     pub index: i16,
+    /// EtherCAT I/O slaves on an `ecat` card's bus after its drives (`NMC_EcatGetResource`'s
+    /// IO count; each is a 32-bit DI/DO group from 2 up, digest 001 §2.1). The bus drives are
+    /// the machine's `[[drives]]` with `master = "engine"`, in order: axes 16, 17, …
+    pub io_slaves: u16,
 }
 
 impl Default for NmcDevice {
@@ -44,6 +48,7 @@ impl Default for NmcDevice {
             id: "CARD1".into(),
             ip: Ipv4Addr::new(192, 168, 1, 110),
             index: 0,
+            io_slaves: 0,
         }
     }
 }
@@ -120,6 +125,13 @@ pub fn check(
         return Err((
             format!("frontends.{section}.idle_timeout"),
             format!("{idle_timeout} is not a number of seconds ≥ 0"),
+        ));
+    }
+    // Groups 2 … 9 (the extension modules' ids, digest 001 §2.8).
+    if device.io_slaves > 8 {
+        return Err((
+            format!("frontends.{section}.device.io_slaves"),
+            format!("{} is outside 0 … 8 (DI/DO groups 2 … 9)", device.io_slaves),
         ));
     }
     if device.id.is_empty() || device.id.len() > 15 {

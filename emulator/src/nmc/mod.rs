@@ -16,6 +16,8 @@
 //! - `saved_config`: `NMC_SaveMotionConfig`'s file in the state directory, applied at start
 //!   and on `NMC_DevReset`;
 //! - `io_state`: extension modules, dedicated outputs and the written ID (0x12xx families);
+//! - `ecat_bus`: an `ecat` card's EtherCAT bus: NMC axis numbers (local, bus drives from 16)
+//!   → engine axes, SDO slaves, the drive homings it started;
 //! - `stored`: settings the engine has no model of, kept and read back;
 //! - `laser_state`: the laser, SHIO and PWM settings (kept in `stored`);
 //! - `serve`: the transports (the kit's bounded accept loop on TCP, the same table on the Unix
@@ -26,6 +28,7 @@ mod ax_watch;
 pub mod config;
 pub mod crd;
 pub mod crd_length;
+pub mod ecat_bus;
 pub mod faults;
 mod handlers;
 pub mod io_state;

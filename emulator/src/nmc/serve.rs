@@ -102,6 +102,11 @@ fn section(
 ) -> (Arc<NmcFrontend>, Arc<ConnectionTable>) {
     let service = NmcService::new(cx.handle.clone(), device.clone(), io_counts(cx));
     service.set_saving(cx.state_dir.cloned(), name);
+    service.set_bus(crate::nmc::ecat_bus::EcatBus::new(
+        device.kind,
+        &cx.config.drives,
+        device.io_slaves,
+    ));
     let connections = Arc::new(ConnectionCounters::default());
     let table = ConnectionTable::new(
         Bound {

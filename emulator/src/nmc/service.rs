@@ -60,12 +60,25 @@ impl From<PayloadError> for Refusal {
 }
 
 /// What a handler leaves to the transport.
-#[derive(Debug, Default)]
+#[derive(Default)]
 pub struct Plan {
     /// Applied in one batch (between the same two ticks), all or none; a refusal becomes the
     /// reply's code.
     pub commands: Vec<Command>,
+    /// Reads the batch's outcome into the reply (an SDO's value, a drive's answer) once the
+    /// commands are applied, or turns their refusal into the call's; `None`: replies unread.
+    pub then: Option<Then>,
 }
+
+/// See [`Plan::then`]: given the service, the batch's replies or refusal, the reply's writer.
+pub type Then = Box<
+    dyn FnOnce(
+            &NmcService,
+            Result<&[axes::command::Reply], &EngineError>,
+            &mut Writer,
+        ) -> Result<(), Refusal>
+        + Send,
+>;
 
 pub type Handler = fn(&mut Call<'_>) -> Result<(), Refusal>;
 
@@ -157,6 +170,9 @@ pub struct NmcService {
     /// Where `NMC_SaveMotionConfig` saves (`saved_config`), and the section's name (the
     /// file's); set once when the section starts.
     saving: std::sync::OnceLock<(Option<crate::state_dir::StateDir>, &'static str)>,
+    // ---- EtherCAT bus (nmcecat) ----
+    /// An `ecat` card's bus: axis numbers from 16, SDO slaves (set once at start).
+    bus: std::sync::OnceLock<super::ecat_bus::EcatBus>,
 }
 
 /// What `GET /state` shows of a refused call.
@@ -182,6 +198,7 @@ impl NmcService {
             io: Mutex::new(Default::default()),
             io_counts,
             saving: std::sync::OnceLock::new(),
+            bus: std::sync::OnceLock::new(),
         };
         service.reset_settings();
         Arc::new(service)
@@ -232,6 +249,17 @@ impl NmcService {
     /// The front-end section's name (`nmc`, `nmc_local`).
     pub fn section(&self) -> &'static str {
         self.saving.get().map_or("nmc", |(_, s)| s)
+    }
+
+    // ---- EtherCAT bus (nmcecat) ----
+    /// Set the card's bus (once, at start).
+    pub fn set_bus(&self, bus: super::ecat_bus::EcatBus) {
+        let _ = self.bus.set(bus);
+    }
+
+    /// The card's bus (none until set).
+    pub fn bus(&self) -> &super::ecat_bus::EcatBus {
+        self.bus.get_or_init(Default::default)
     }
 
     pub fn ax(&self) -> MutexGuard<'_, super::ax_state::AxState> {
@@ -293,8 +321,17 @@ impl NmcService {
         if !plan.commands.is_empty() {
             let result = self.engine.call_batch_async(plan.commands).await;
             match result {
-                Ok(_) => {}
-                Err(axes::runtime::CallError::Engine(e)) => return Err(Refusal::engine(&e)),
+                Ok(replies) => {
+                    if let Some(then) = plan.then {
+                        then(self, Ok(&replies), &mut reply)?;
+                    }
+                }
+                Err(axes::runtime::CallError::Engine(e)) => {
+                    if let Some(then) = plan.then {
+                        then(self, Err(&e), &mut reply)?;
+                    }
+                    return Err(Refusal::engine(&e));
+                }
                 Err(e) => {
                     return Err(Refusal::new(
                         mcemu_dialects::nmc::code_for_kind(axes::command::ErrorKind::Fault),
@@ -352,19 +389,21 @@ impl Call<'_> {
     pub fn axis(&mut self) -> Result<usize, Refusal> {
         let h = self.input.u16()?;
         match Handle::decode(h) {
+            // Local axes and, on an `ecat` card, bus drives from 16 (`ecat_bus`).
             Some(a) if a.kind == HandleKind::Axis => {
-                let axis = usize::from(a.item);
-                if axis < self.snapshot.axes.len() {
-                    Ok(axis)
-                } else {
-                    Err(Refusal::new(
+                let bus = self.service.bus();
+                let n = self.snapshot.axes.len();
+                bus.engine_axis(a.item, n).ok_or_else(|| {
+                    Refusal::new(
                         RTN_INVALID_HANDLE,
                         format!(
-                            "{h:#06x} names axis {axis}; the device has {}",
-                            self.snapshot.axes.len()
+                            "{h:#06x} names axis {}; the device has {} local axes and {} bus drives",
+                            a.item,
+                            bus.local_count(n),
+                            bus.drives().len()
                         ),
-                    ))
-                }
+                    )
+                })
             }
             Some(_) => Err(Refusal::new(
                 RTN_WRONG_HANDLE_KIND,

@@ -32,6 +32,10 @@ pub struct AxisExtra {
     /// The axis drives a stepper (`BIT_AXIS_STEP`, digest 001 §3.1: 1 stepper, 0 servo): a
     /// property of the configured axis, not of its motion.
     pub stepper: bool,
+    /// An EtherCAT bus axis whose CiA 402 drive is in Fault or Fault reaction active
+    /// (statusword bit 3): `BIT_AXIS_ALM` (digest 001 §3.1 "驱动器报警"), cleared by
+    /// `NMC_MtClrError`'s fault reset.
+    pub drive_fault: bool,
 }
 
 /// The axis status word of `NMC_MtGetSts` (digest 001 §3.1; bit 15 undefined, always 0). The C
@@ -69,7 +73,10 @@ pub fn axis_status(s: &AxisStatus, extra: AxisExtra) -> u16 {
         (f.contains(AxisFlags::HW_LIMIT_NEG), BIT_AXIS_LMTN),
         (f.contains(AxisFlags::SW_LIMIT_POS), BIT_AXIS_SOFTPOSLMT),
         (f.contains(AxisFlags::SW_LIMIT_NEG), BIT_AXIS_SOFTNEGLMT),
-        (f.contains(AxisFlags::DRIVE_ALARM), BIT_AXIS_ALM),
+        (
+            f.contains(AxisFlags::DRIVE_ALARM) || extra.drive_fault,
+            BIT_AXIS_ALM,
+        ),
         (f.contains(AxisFlags::FE_FAULT), BIT_AXIS_POSERR),
         (f.contains(AxisFlags::ESTOP), BIT_AXIS_ESTP),
         (f.contains(AxisFlags::ENCODER_LOSS), BIT_AXIS_HWERR),
@@ -80,6 +87,19 @@ pub fn axis_status(s: &AxisStatus, extra: AxisExtra) -> u16 {
         }
     }
     w
+}
+
+/// `NMC_EcatGetHomeSts` (digest 001 §3.14) from a bus drive's statusword (0x6041) and mode
+/// display (0x6061): in homing mode (6) bits 13/12/10 (homing error, attained, target
+/// reached) packed into bits 2/1/0 — 000 searching, 010 found and stopping, 011 done, 100
+/// failed and stopping, 101 failed, 001 interrupted; in any other mode 001 (not started).
+pub fn ecat_home_status(statusword: u16, mode: i8) -> u8 {
+    const HOMING_MODE: i8 = 6;
+    if mode != HOMING_MODE {
+        return 0b001;
+    }
+    let bit = |n: u16| u8::from(statusword & (1 << n) != 0);
+    bit(13) << 2 | bit(12) << 1 | bit(10)
 }
 
 /// `NMC_MtGetAdvCaptPos`'s `captSts` (digest 001 §2.18): bit 0 the leading edge latched, bit 1
@@ -270,6 +290,35 @@ mod tests {
         );
     }
 
+    /// A bus drive in Fault shows as the drive alarm (TV34's bus axes, decisions.md).
+    #[test]
+    fn a_faulted_bus_drive_is_the_alarm_bit() {
+        let s = status(AxisState::Standstill, AxisFlags::empty());
+        let extra = AxisExtra {
+            drive_fault: true,
+            ..AxisExtra::default()
+        };
+        assert_eq!(axis_status(&s, extra), BIT_AXIS_ALM);
+    }
+
+    /// Digest 001 §3.14: statusword bits 13/12/10 in homing mode; 001 outside it.
+    #[test]
+    fn ecat_home_status_packs_bits_13_12_10() {
+        for (sw, mode, want) in [
+            (0x0000, 6, 0b000),
+            (0x0400, 6, 0b001),
+            (0x1000, 6, 0b010),
+            (0x1400, 6, 0b011),
+            (0x2000, 6, 0b100),
+            (0x2400, 6, 0b101),
+            (0x1637, 6, 0b011),
+            (0x1400, 0, 0b001),
+            (0x0000, 8, 0b001),
+        ] {
+            assert_eq!(ecat_home_status(sw, mode), want, "{sw:#06x} mode {mode}");
+        }
+    }
+
     #[test]
     fn busy_while_moving_or_in_a_motion_state() {
         let none = AxisExtra::default();
@@ -298,7 +347,10 @@ mod tests {
     #[test]
     fn the_stepper_bit_comes_from_the_axis_configuration() {
         let s = status(AxisState::Standstill, AxisFlags::ENABLED);
-        let stepper = AxisExtra { stepper: true };
+        let stepper = AxisExtra {
+            stepper: true,
+            ..AxisExtra::default()
+        };
         assert_eq!(axis_status(&s, stepper), BIT_AXIS_SVON | BIT_AXIS_STEP);
     }
 

@@ -21,6 +21,7 @@
 //! - [`ax_structs`], [`ax_header`]: the packed status and PTP structs and the advanced E-stop
 //!   input of the axis-level additions (family 0x13xx);
 //! - [`crd`]: the coordinate-system structs (`TCrdConfig` …) and their C declarations;
+//! - [`sdo`]: the CiA 301 abort code in an SDO refusal's text (`NMC_EcatSdoRead`/`Write`);
 //! - [`errors`]: the return codes of `mtn_lib20_err.h` (not in the manual: mcemu's, stable);
 //! - [`header`]: the C headers generated from the table (checked against the committed ones);
 //! - [`handle`]: what a `HAND` encodes (kind, library slot, axis number);
@@ -39,6 +40,7 @@ pub mod io_header;
 pub mod io_structs;
 pub mod laser;
 pub mod payload;
+pub mod sdo;
 pub mod session;
 pub mod structs;
 pub mod sync_header;

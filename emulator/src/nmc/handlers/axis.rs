@@ -24,14 +24,23 @@ pub const HANDLERS: &[(Function, Handler)] = &[
     (table::MT_GET_MOTION_IO, mt_get_motion_io),
 ];
 
+/// Local axes from 0; on an `ecat` card the bus drives from 16 (digest 001 §2.3, TV34).
 fn mt_open(c: &mut Call<'_>) -> Result<(), Refusal> {
     c.device()?;
     let item = c.input.i16()?;
     let n = c.snapshot.axes.len();
+    let bus = c.service.bus();
     let axis = u8::try_from(item)
         .ok()
-        .filter(|a| usize::from(*a) < n)
-        .ok_or_else(|| Refusal::range("itemNo", item, &format!("[0, {}]", n.saturating_sub(1))))?;
+        .filter(|a| bus.engine_axis(*a, n).is_some())
+        .ok_or_else(|| {
+            let local = format!("[0, {}]", bus.local_count(n).saturating_sub(1));
+            let allowed = match bus.drives().len() {
+                0 => local,
+                d => format!("{local} or [16, {}] (the bus drives)", 15 + d),
+            };
+            Refusal::range("itemNo", item, &allowed)
+        })?;
     c.output.u16(Handle::axis(0, axis).encode());
     Ok(())
 }
@@ -39,9 +48,18 @@ fn mt_open(c: &mut Call<'_>) -> Result<(), Refusal> {
 /// The §3.1 word from the dialect (the same 16 bits as a `short`).
 fn mt_get_sts(c: &mut Call<'_>) -> Result<(), Refusal> {
     let axis = c.axis()?;
-    let word = c
-        .status(axis)
-        .map_or(0, |s| axis_status(s, AxisExtra::default()));
+    // A bus drive in Fault is the drive alarm (ecat_bus).
+    let drive_fault = c
+        .service
+        .bus()
+        .drive_of_axis(axis)
+        .and_then(|(_, d)| c.snapshot.drives.get(usize::from(d.slave)))
+        .is_some_and(|d| d.statusword & axes::cia402::sw::FAULT != 0);
+    let extra = AxisExtra {
+        drive_fault,
+        ..AxisExtra::default()
+    };
+    let word = c.status(axis).map_or(0, |s| axis_status(s, extra));
     c.output.i16(word as i16);
     Ok(())
 }

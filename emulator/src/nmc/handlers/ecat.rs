@@ -1,11 +1,15 @@
-//! EtherCAT (digest 001 §2.1): the master's state on a GCE card (`device.kind = "ecat"`), and
-//! the drive and SDO functions. mcemu's machines have no EtherCAT slaves: the slave counts are
-//! 0, every axis is a pulse axis (EtherCAT axes would be numbered from 16) and no `devId`
-//! names a slave, so those calls answer the code of what is missing (decisions.md).
+//! EtherCAT (digest 001 §2.1): the master's state on a GCE card (`device.kind = "ecat"`), its
+//! bus (`ecat_bus`: the machine's engine-mastered CiA 402 drives as axes 16, 17, … and SDO
+//! slaves 0, 1, …, then `device.io_slaves` I/O slaves), drive homing and SDO access. Cards of
+//! other kinds have no bus: their axes are pulse axes and the drive functions say so.
 
+use axes::command::{EngineError, ErrorKind, ReadObject, Reply, WriteObject};
+use axes::od::{OdError, Value};
+use mcemu_dialects::nmc::{code_for_kind, ecat_home_status};
 use mcemu_nmc::errors::RTN_NOT_ON_THIS_CARD;
 use mcemu_nmc::table::{self, Function};
 
+use super::ecat_drive::{bus_axis, decode_object, sdo_abort, stop_drive_homing, DriveHoming};
 use crate::nmc::config::DeviceKind;
 use crate::nmc::service::{Call, Handler, Refusal};
 
@@ -18,14 +22,17 @@ pub const HANDLERS: &[(Function, Handler)] = &[
     (table::ECAT_STOP, ecat_stop),
     (table::ECAT_GET_STS, ecat_get_sts),
     (table::ECAT_GET_RESOURCE, ecat_get_resource),
-    (table::ECAT_START_HOME, not_a_drive),
-    (table::ECAT_GET_HOME_STS, not_a_drive),
-    (table::ECAT_STOP_HOME, not_a_drive),
+    (table::ECAT_START_HOME, ecat_start_home),
+    (table::ECAT_GET_HOME_STS, ecat_get_home_sts),
+    (table::ECAT_STOP_HOME, ecat_stop_home),
     (table::ECAT_SDO_READ, ecat_sdo_read),
     (table::ECAT_SDO_WRITE, ecat_sdo_write),
-    (table::ECAT_AXIS_GET_ERROR_CODE, not_a_drive),
-    (table::ECAT_AXIS_GET_DI, not_a_drive),
+    (table::ECAT_AXIS_GET_ERROR_CODE, ecat_axis_get_error_code),
+    (table::ECAT_AXIS_GET_DI, ecat_axis_get_di),
 ];
+
+/// 0x60FD digital inputs (CiA 402; the manual's "驱动器的数字量输入", inferred in the digest).
+const DIGITAL_INPUTS: u16 = 0x60FD;
 
 /// The master exists on GCE cards only ("GCE\\ GCNxx0E-xA 系列", digest 001 §2.1).
 fn bus_card(c: &mut Call<'_>) -> Result<(), Refusal> {
@@ -73,51 +80,188 @@ fn ecat_get_sts(c: &mut Call<'_>) -> Result<(), Refusal> {
     Ok(())
 }
 
-/// Online slaves: total, drives, I/O — none in mcemu's machines.
+/// Online slaves: total, drives, I/O (TV34). Nothing is online before `NMC_EcatStart`.
 fn ecat_get_resource(c: &mut Call<'_>) -> Result<(), Refusal> {
     bus_card(c)?;
-    c.output.i16(0).i16(0).i16(0);
+    let (drives, io) = if c.service.stored().ecat_started {
+        let bus = c.service.bus();
+        (bus.drives().len(), usize::from(bus.io_slaves()))
+    } else {
+        (0, 0)
+    };
+    let count = |n: usize| i16::try_from(n).unwrap_or(i16::MAX);
+    c.output
+        .i16(count(drives + io))
+        .i16(count(drives))
+        .i16(count(io));
     Ok(())
 }
 
-/// Every axis mcemu serves over NMC is a pulse axis: EtherCAT drive functions are refused
-/// (the arguments after the handle are not read).
-fn not_a_drive(c: &mut Call<'_>) -> Result<(), Refusal> {
-    let axis = c.axis()?;
-    Err(Refusal::new(
-        RTN_NOT_ON_THIS_CARD,
-        format!("axis {axis} is a pulse axis, not an EtherCAT drive (those are numbered from 16)"),
-    ))
+/// Drive-side CiA 402 homing (TV35): method per CiA 402 (1–35, 37), velSwitch and velZero in
+/// pulse/ms (> 0), acc in pulse/ms² (> 0), prmEx reserved (not read for anything).
+fn ecat_start_home(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let bus = bus_axis(c)?;
+    let method = c.input.i32()?;
+    let switch = c.input.i32()?;
+    let zero = c.input.i32()?;
+    let acc = c.input.i32()?;
+    let _reserved = c.input.i32()?;
+    DriveHoming::checked(method, switch.into(), zero.into(), acc.into(), 0)?.start(c, bus)
 }
 
-/// No slave answers an SDO: `devId` names none (the master must run first).
-fn no_slave(c: &mut Call<'_>, dev_id: i16) -> Result<(), Refusal> {
+/// bit2..bit0 = statusword bits 13/12/10 in homing mode (digest 001 §3.14); "in progress"
+/// (000) from the request until the drive has stepped.
+fn ecat_get_home_sts(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let bus = bus_axis(c)?;
+    let status = if c.service.bus().homing_pending(bus.k, c.snapshot.tick) {
+        0b000
+    } else {
+        c.snapshot
+            .drives
+            .get(usize::from(bus.drive.slave))
+            .map_or(0b001, |d| ecat_home_status(d.statusword, d.mode))
+    };
+    c.output.u8(status);
+    Ok(())
+}
+
+fn ecat_stop_home(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let bus = bus_axis(c)?;
+    stop_drive_homing(c, bus);
+    Ok(())
+}
+
+/// 0x603F of the axis's drive (digest 001 §2.1, inferred there).
+fn ecat_axis_get_error_code(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let bus = bus_axis(c)?;
+    let code = c
+        .snapshot
+        .drives
+        .get(usize::from(bus.drive.slave))
+        .map_or(0, |d| d.error_code);
+    c.output.u16(code);
+    Ok(())
+}
+
+/// 0x60FD of the axis's drive: bit 0 negative limit, 1 positive limit, 2 home switch.
+fn ecat_axis_get_di(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let bus = bus_axis(c)?;
+    c.command(ReadObject {
+        slave: bus.drive.slave,
+        index: DIGITAL_INPUTS,
+        subindex: 0,
+    });
+    c.plan.then = Some(Box::new(|_, result, out| {
+        let value = object_value(result)?;
+        out.i64(value.as_i64().unwrap_or(0));
+        Ok(())
+    }));
+    Ok(())
+}
+
+/// The value a `read_object` batch answered.
+fn object_value(result: Result<&[Reply], &EngineError>) -> Result<Value, Refusal> {
+    match result {
+        Ok([Reply::Object { value }]) => Ok(value.clone()),
+        Ok(_) => Err(Refusal::new(
+            code_for_kind(ErrorKind::Fault),
+            "the engine answered a read_object without a value",
+        )),
+        Err(e) => Err(sdo_refusal(e)),
+    }
+}
+
+/// A drive's refusal of an object access: its CiA 301 abort code in the text (a batch wraps
+/// each command's refusal as an item).
+fn sdo_refusal(e: &EngineError) -> Refusal {
+    match e {
+        EngineError::Object { error, .. } => sdo_abort(error.sdo_abort_code(), &error.to_string()),
+        EngineError::Item { error, .. } => sdo_refusal(error),
+        other => Refusal::engine(other),
+    }
+}
+
+/// The slave `devId` names: Ok(drive's engine slave number). The master must run; an I/O slave
+/// has no CoE dictionary (abort 0x06020000).
+fn sdo_slave(c: &mut Call<'_>, dev_id: i16) -> Result<u16, Refusal> {
     if !c.service.stored().ecat_started {
         return Err(Refusal::new(
-            mcemu_dialects::nmc::code_for_kind(axes::command::ErrorKind::InvalidState),
+            code_for_kind(ErrorKind::InvalidState),
             "the EtherCAT master is not started (NMC_EcatStart)",
         ));
     }
-    Err(Refusal::new(
-        mcemu_dialects::nmc::code_for_kind(axes::command::ErrorKind::InvalidSlave),
-        format!("devId {dev_id}: the bus has no slaves"),
-    ))
+    let bus = c.service.bus();
+    let drives = bus.drives().len();
+    let slaves = drives + usize::from(bus.io_slaves());
+    match usize::try_from(dev_id) {
+        Ok(k) if k < drives => bus.drive(k).map(|d| d.slave).ok_or_else(|| {
+            Refusal::new(
+                code_for_kind(ErrorKind::InvalidSlave),
+                format!("devId {dev_id}"),
+            )
+        }),
+        Ok(k) if k < slaves => Err(sdo_abort(
+            0x0602_0000,
+            &format!("devId {dev_id} is an I/O slave: it has no CoE object dictionary"),
+        )),
+        _ => Err(Refusal::new(
+            code_for_kind(ErrorKind::InvalidSlave),
+            format!(
+                "devId {dev_id} is outside [0, {}]: the bus has {slaves} slaves",
+                slaves as i64 - 1
+            ),
+        )),
+    }
 }
 
+/// SDO upload: the object's little-endian bytes, the first `len` of them (fewer if the object
+/// is shorter: the rest of `val` is left as it was).
 fn ecat_sdo_read(c: &mut Call<'_>) -> Result<(), Refusal> {
     bus_card(c)?;
     let dev_id = c.input.i16()?;
-    let (_index, _sub, _len) = (c.input.u16()?, c.input.u8()?, c.input.u32()?);
-    no_slave(c, dev_id)
+    let (index, subindex, len) = (c.input.u16()?, c.input.u8()?, c.input.u32()?);
+    let slave = sdo_slave(c, dev_id)?;
+    c.command(ReadObject {
+        slave,
+        index,
+        subindex,
+    });
+    c.plan.then = Some(Box::new(move |_, result, out| {
+        let bytes = object_value(result)?.to_le_bytes();
+        let n = bytes.len().min(usize::try_from(len).unwrap_or(usize::MAX));
+        out.u16(n as u16);
+        for b in bytes.iter().take(n) {
+            out.u8(*b);
+        }
+        out.u32(0);
+        Ok(())
+    }));
+    Ok(())
 }
 
+/// SDO download: `len` bytes, exactly the object's size, little-endian.
 fn ecat_sdo_write(c: &mut Call<'_>) -> Result<(), Refusal> {
     bus_card(c)?;
     let dev_id = c.input.i16()?;
-    let (_index, _sub, _len) = (c.input.u16()?, c.input.u8()?, c.input.u32()?);
+    let (index, subindex, _len) = (c.input.u16()?, c.input.u8()?, c.input.u32()?);
     let n = usize::from(c.input.u16()?);
+    let mut bytes = Vec::with_capacity(n);
     for _ in 0..n {
-        c.input.u8()?;
+        bytes.push(c.input.u8()?);
     }
-    no_slave(c, dev_id)
+    let slave = sdo_slave(c, dev_id)?;
+    let value = decode_object(index, subindex, &bytes)
+        .map_err(|e: OdError| sdo_abort(e.sdo_abort_code(), &e.to_string()))?;
+    c.command(WriteObject {
+        slave,
+        index,
+        subindex,
+        value,
+    });
+    c.plan.then = Some(Box::new(|_, result, out| {
+        result.map_err(sdo_refusal)?;
+        out.u32(0);
+        Ok(())
+    }));
+    Ok(())
 }

@@ -5,13 +5,14 @@
 use axes::command::{BufferMode, Home, Stop, StopMode};
 use axes::homing::vendor::{
     nmc, NmcHomeSetting, NMC_HOME_ERR_MV, NMC_HOME_ERR_SWT, NMC_HOME_FAIL, NMC_HOME_OK,
-    NMC_HOME_RUNNING,
+    NMC_HOME_RUNNING, NMC_PASS_THROUGH,
 };
 use axes::{AxisFlags, AxisState};
 use mcemu_dialects::nmc::{acceleration_to_engine, velocity_to_engine};
 use mcemu_nmc::structs::HomeSetting;
 use mcemu_nmc::table::{self, Function};
 
+use super::ecat_drive::{bus_axis_of, stop_drive_homing, DriveHoming};
 use crate::nmc::service::{Call, Handler, Refusal};
 
 pub const HANDLERS: &[(Function, Handler)] = &[
@@ -41,6 +42,18 @@ fn mt_get_home_para(c: &mut Call<'_>) -> Result<(), Refusal> {
 fn home(c: &mut Call<'_>, trial: bool) -> Result<(), Refusal> {
     let axis = c.axis()?;
     let h = c.settings(axis).home;
+    // `1000 + method` on a bus axis: the drive's own homing, as NMC_EcatStartHome (TV36).
+    if let (Some(bus), false, true) = (bus_axis_of(c, axis), trial, h.mode > NMC_PASS_THROUGH) {
+        let homing = DriveHoming::checked(
+            i32::from(h.mode - NMC_PASS_THROUGH),
+            h.scan1st_vel,
+            h.scan2nd_vel,
+            h.acc,
+            h.offset,
+        );
+        c.update(axis, |s| s.home_param_error = homing.is_err());
+        return homing?.start(c, bus);
+    }
     let scale = c.scale(axis);
     let setting = NmcHomeSetting {
         mode: h.mode,
@@ -95,6 +108,9 @@ fn mt_try_home(c: &mut Call<'_>) -> Result<(), Refusal> {
 
 fn mt_home_stop(c: &mut Call<'_>) -> Result<(), Refusal> {
     let axis = c.axis()?;
+    if let Some(bus) = bus_axis_of(c, axis) {
+        stop_drive_homing(c, bus);
+    }
     c.command(Stop {
         axis: axis as u16,
         mode: StopMode::Smooth,
@@ -109,8 +125,12 @@ fn mt_home_stop(c: &mut Call<'_>) -> Result<(), Refusal> {
 fn mt_get_home_sts(c: &mut Call<'_>) -> Result<(), Refusal> {
     let axis = c.axis()?;
     let param_error = c.settings(axis).home_param_error;
+    // A drive homing requested and not yet seen by the drive (ecat_drive).
+    let pending =
+        bus_axis_of(c, axis).is_some_and(|b| c.service.bus().homing_pending(b.k, c.snapshot.tick));
     let word = match c.status(axis) {
         _ if param_error => NMC_HOME_FAIL | NMC_HOME_ERR_MV,
+        _ if pending => NMC_HOME_RUNNING,
         Some(s) if s.state == AxisState::Homing => NMC_HOME_RUNNING,
         Some(s) if s.flags.contains(AxisFlags::HOMING_FAILED) => NMC_HOME_FAIL | NMC_HOME_ERR_SWT,
         Some(s) if s.flags.contains(AxisFlags::HOMED) => NMC_HOME_OK,

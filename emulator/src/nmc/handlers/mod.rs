@@ -16,6 +16,7 @@ mod crd_segment;
 mod crd_status;
 mod device;
 mod ecat;
+mod ecat_drive;
 mod home;
 mod io;
 // The laser, SHIO and PWM families (stored, echoed on the I/O image).

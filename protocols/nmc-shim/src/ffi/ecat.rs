@@ -2,11 +2,15 @@
 
 use std::ffi::{c_char, c_int, c_long, c_short, c_uchar, c_uint, c_ushort};
 
+use mcemu_nmc::payload::{PayloadError, Reader, Writer};
 use mcemu_nmc::table::{self, Function};
+
+use crate::last_error::report;
 
 use super::types::to_long;
 use super::{
-    action, c_string, getter, load_array, reply_list, require, served, store, store_array, HAND,
+    action, c_string, call, getter, load_array, reply_list, require, served, store, store_array,
+    HAND,
 };
 
 /// A file name the manual bounds at no length: at most this many bytes travel.
@@ -96,6 +100,27 @@ getter!(
 );
 action!(NMC_EcatStopHome, table::ECAT_STOP_HOME);
 
+/// [`served`] for an SDO: a call the slave aborted still writes `abort_code` (the manual:
+/// "指令出错时返回详细错误代码"), read from the refusal's text (`mcemu_nmc::sdo`); other
+/// failures leave it as it was.
+fn sdo_served(
+    row: &Function,
+    abort_code: *mut c_uint,
+    handle: HAND,
+    input: impl FnOnce(&mut Writer),
+    output: impl FnOnce(&mut Reader<'_>) -> Result<(), PayloadError>,
+) -> c_short {
+    let result = call(row, handle, input, output);
+    if let Some(code) = result
+        .as_ref()
+        .err()
+        .and_then(|e| mcemu_nmc::sdo::abort_in(&e.description))
+    {
+        store(abort_code, code);
+    }
+    report(result)
+}
+
 fn sdo_len(len: c_uint) -> usize {
     usize::try_from(len).unwrap_or(usize::MAX).min(SDO_MAX)
 }
@@ -114,8 +139,9 @@ pub extern "C" fn NMC_EcatSdoRead(
     let row: &Function = &table::ECAT_SDO_READ;
     require!(*row, val, abort_code);
     let wanted = sdo_len(len);
-    served(
+    sdo_served(
         row,
+        abort_code,
         devHandle,
         |w| {
             w.i16(devId).u16(idx).u8(sub_idx).u32(len);
@@ -143,8 +169,9 @@ pub extern "C" fn NMC_EcatSdoWrite(
     let row: &Function = &table::ECAT_SDO_WRITE;
     require!(*row, val, abort_code);
     let bytes = load_array(val.cast_const(), sdo_len(len));
-    served(
+    sdo_served(
         row,
+        abort_code,
         devHandle,
         |w| {
             w.i16(devId)
