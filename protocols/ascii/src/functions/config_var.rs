@@ -38,12 +38,12 @@ const AXIS: &[(u16, Variable)] = &[
     (0x0034, Variable::Setter("SetPosWindowTime")),
     (0x0065, Variable::Setter("SetSWRL")),
     (0x0066, Variable::Setter("SetSWLL")),
-    (0x0067, Variable::Unmodelled), // vel_lim
-    (0x0068, Variable::Unmodelled), // acc_lim
-    (0x0069, Variable::Unmodelled), // dec_lim
+    (0x0067, Variable::Unmodelled),              // vel_lim
+    (0x0068, Variable::Unmodelled),              // acc_lim
+    (0x0069, Variable::Unmodelled),              // dec_lim
     (0x0079, Variable::Param(ParamId::FeLimit)), // max_pos_err
-    (0x007a, Variable::Unmodelled), // max_comp_lim (no such limit in the engine)
-    (0x00a0, Variable::ReadOnly),   // home_status
+    (0x007a, Variable::Unmodelled),              // max_comp_lim (no such limit in the engine)
+    (0x00a0, Variable::ReadOnly),                // home_status
     (0x00a1, Variable::Setter("SetHomeMethod")),
     (0x00a2, Variable::Setter("SetHomeSwitchVel")),
     (0x00a3, Variable::Setter("SetHomeZeroVel")),
@@ -66,7 +66,7 @@ const AXIS: &[(u16, Variable)] = &[
     (0x00e9, Variable::Unmodelled), // map_io_type
     (0x0117, Variable::ReadOnly),   // rollover_turns
     (0x0119, Variable::Setter("SetRollover")),
-    (0x0193, Variable::ReadOnly), // gant_pair
+    (0x0193, Variable::ReadOnly),   // gant_pair
     (0x01f7, Variable::Unmodelled), // en_delay
     (0x01ff, Variable::Unmodelled), // fb_ratio_pos …
     (0x0200, Variable::Unmodelled),
@@ -182,9 +182,7 @@ fn set_config_var(cx: &mut Ctx<'_>, args: &Args) -> Plan {
         Some(Variable::Param(p)) => {
             let axis_args = Args(vec![Value::Int(i64::from(id))]);
             match axis_of(cx, &axis_args) {
-                Ok(_) if !(value.is_finite() && value >= 0.0) => {
-                    Plan::Fail(HCV_VALUE_OUT_OF_RANGE)
-                }
+                Ok(_) if !(value.is_finite() && value >= 0.0) => Plan::Fail(HCV_VALUE_OUT_OF_RANGE),
                 Ok((axis, _)) => set_param(axis, p, value),
                 Err(code) => Plan::Fail(code),
             }

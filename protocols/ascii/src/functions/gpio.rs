@@ -111,9 +111,7 @@ fn bind_emo(cx: &mut Ctx<'_>, args: &Args) -> Plan {
 
 /// Pins 1 … 32 of `set` as bits 0 … 31.
 fn pin_bits(set: &std::collections::BTreeSet<usize>) -> Plan {
-    let mask = set
-        .range(1..=32)
-        .fold(0u32, |m, pin| m | 1 << (pin - 1));
+    let mask = set.range(1..=32).fold(0u32, |m, pin| m | 1 << (pin - 1));
     Plan::Done(Outcome::Int(mask as i32))
 }
 
@@ -204,13 +202,30 @@ pub static ROWS: &[Function] = &[
         Controller,
         set_gpo_invert,
     ),
-    row("BindEMO", "9.2.6", &[Ty::Int], Ret::Int, Controller, bind_emo),
-    row("GetAllGPIInvertSt", "9.4.5", &[], Ret::Int, Controller, |cx, _| {
-        pin_bits(&cx.registers.gpi_inverted)
-    }),
-    row("GetAllGPOInvertSt", "9.4.6", &[], Ret::Int, Controller, |cx, _| {
-        pin_bits(&cx.registers.gpo_inverted)
-    }),
+    row(
+        "BindEMO",
+        "9.2.6",
+        &[Ty::Int],
+        Ret::Int,
+        Controller,
+        bind_emo,
+    ),
+    row(
+        "GetAllGPIInvertSt",
+        "9.4.5",
+        &[],
+        Ret::Int,
+        Controller,
+        |cx, _| pin_bits(&cx.registers.gpi_inverted),
+    ),
+    row(
+        "GetAllGPOInvertSt",
+        "9.4.6",
+        &[],
+        Ret::Int,
+        Controller,
+        |cx, _| pin_bits(&cx.registers.gpo_inverted),
+    ),
 ];
 
 /// HMPL levels of pins 1 … 32 as bits 0 … 31.

@@ -9,7 +9,9 @@ use axes::types::Direction;
 use axes::AxisState;
 
 use super::group_errors::GroupErrorRow;
-use super::system::{HCV_ID_NOT_FOUND, HCV_IS_READ_ONLY, HMPL_ARG_OUT_OF_RANGE, HMPL_NOT_SUPPORTED};
+use super::system::{
+    HCV_ID_NOT_FOUND, HCV_IS_READ_ONLY, HMPL_ARG_OUT_OF_RANGE, HMPL_NOT_SUPPORTED,
+};
 use super::{code_for, compose, AxisError, AXIS_CLASS, GROUP_CLASS};
 
 /// What an HMPL call addressed: its first argument's axis or group, or the controller.
