@@ -8,7 +8,10 @@
 //! Then `output_pos` and `compensation` (item 8), `gantry_deviation` (item 6, 0 off a gantry),
 //! and the coupling and stream columns: the kind of the coupling whose slave the axis is
 //! (`gear`, `cam`, `superimpose`, `tangential`, `gantry`; empty when none), whether it is in
-//! sync (0/1), and the points held in its PT/PVT buffer.
+//! sync (0/1), and the points held in its PT/PVT buffer. Last, the HIMC status quantities
+//! (issue 14, digest 004 §3.7, §5.3): `move_time` and `settling_time` of the last finished move
+//! (s), `position_offset` (the user frame's origin offset), `rollover_turns` and `torque` (a
+//! fraction of rated torque).
 //!
 //! Numbers are written in their shortest round-trip form (`zmij`, `itoa`): a reader that parses
 //! them gets back the exact f64 the engine had. Integral floats drop the `.0` (`100`, not
@@ -20,7 +23,7 @@ use std::io::{self, Write};
 use axes::{AxisFlags, AxisStatus, Engine};
 
 /// The header row, in column order.
-pub const HEADER: &str = "time_s,axis,state,cmd_pos,cmd_vel,cmd_acc,act_pos,act_vel,following_error,pulses,encoder_counts,limit_pos,limit_neg,home_switch,homed,error,group,path_velocity,segment,user_segment,captures,capture_position,compare_outputs,output_pos,compensation,gantry_deviation,coupling,in_sync,stream_used";
+pub const HEADER: &str = "time_s,axis,state,cmd_pos,cmd_vel,cmd_acc,act_pos,act_vel,following_error,pulses,encoder_counts,limit_pos,limit_neg,home_switch,homed,error,group,path_velocity,segment,user_segment,captures,capture_position,compare_outputs,output_pos,compensation,gantry_deviation,coupling,in_sync,stream_used,move_time,settling_time,position_offset,rollover_turns,torque";
 
 /// The group columns of a member axis's row (issue 11 item 7).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -148,6 +151,16 @@ fn format_fields(buf: &mut Vec<u8>, axis: usize, s: &AxisStatus, group: Option<&
     });
     buf.push(b',');
     buf.extend_from_slice(ints.format(s.stream.used).as_bytes());
+    // HIMC status quantities (issue 14): GetMoveTime, GetSettlingTime, GetPosOffset,
+    // GetRolloverTurns, the torque behind GetCurrFb.
+    for v in [s.move_time, s.settling_time, s.position_offset] {
+        buf.push(b',');
+        push_f64(buf, &mut floats, v);
+    }
+    buf.push(b',');
+    buf.extend_from_slice(ints.format(s.rollover_turns).as_bytes());
+    buf.push(b',');
+    push_f64(buf, &mut floats, s.torque);
     buf.push(b'\n');
 }
 
@@ -303,7 +316,7 @@ mod tests {
         let line = row(&s, 0.035);
         assert_eq!(
             line,
-            "0.035,3,discrete_motion,0.30000000000000004,-1234.5,1e-7,100,-0,2.5e+20,-42,9223372036854775807,0,1,0,1,limit_reached,,,,,0,0,0,0,0,0,,0,0
+            "0.035,3,discrete_motion,0.30000000000000004,-1234.5,1e-7,100,-0,2.5e+20,-42,9223372036854775807,0,1,0,1,limit_reached,,,,,0,0,0,0,0,0,,0,0,0,0,0,0,0
 "
         );
         assert_eq!(
@@ -331,7 +344,7 @@ mod tests {
         let idle = row(&AxisStatus::default(), 0.0);
         assert_eq!(
             idle,
-            "0,3,disabled,0,0,0,0,0,0,0,0,0,0,0,0,,,,,,0,0,0,0,0,0,,0,0
+            "0,3,disabled,0,0,0,0,0,0,0,0,0,0,0,0,,,,,,0,0,0,0,0,0,,0,0,0,0,0,0,0
 "
         );
         let mut member = Vec::new();
@@ -344,8 +357,35 @@ mod tests {
         write_member_row(&mut member, 0.0, 1, &AxisStatus::default(), Some(&g)).unwrap();
         assert_eq!(
             String::from_utf8(member).unwrap(),
-            "0,1,disabled,0,0,0,0,0,0,0,0,0,0,0,0,,2,12.5,3,40,0,0,0,0,0,0,,0,0
+            "0,1,disabled,0,0,0,0,0,0,0,0,0,0,0,0,,2,12.5,3,40,0,0,0,0,0,0,,0,0,0,0,0,0,0
 "
+        );
+    }
+
+    #[test]
+    fn the_himc_status_quantities_are_the_last_columns() {
+        let s = AxisStatus {
+            move_time: 0.125,
+            settling_time: 0.012,
+            position_offset: -100.0,
+            rollover_turns: -3,
+            torque: 0.5,
+            ..AxisStatus::default()
+        };
+        let line = row(&s, 1.0);
+        let columns: Vec<&str> = line.trim_end().split(',').collect();
+        let names: Vec<&str> = HEADER.split(',').collect();
+        assert_eq!(columns.len(), names.len());
+        let tail: Vec<(&str, &str)> = names.iter().copied().zip(columns).skip(29).collect();
+        assert_eq!(
+            tail,
+            [
+                ("move_time", "0.125"),
+                ("settling_time", "0.012"),
+                ("position_offset", "-100"),
+                ("rollover_turns", "-3"),
+                ("torque", "0.5")
+            ]
         );
     }
 

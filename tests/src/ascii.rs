@@ -76,7 +76,8 @@ impl AsciiClient {
 ///
 /// Each line of the request file is sent as one call, and its reply is one line of the output;
 /// blank lines and lines starting with `#` are skipped; `@advance {json}` posts the JSON to
-/// `/time/advance` (virtual clock) and replies nothing. On a mismatch, panics with both
+/// `/time/advance` (virtual clock) and `@command {json}` to `/commands` (forcing an input …),
+/// and neither replies. On a mismatch, panics with both
 /// transcripts side by side, line by line.
 pub fn run_transcript(mcemu: &Mcemu, dir: &Path, name: &str) {
     let request = std::fs::read_to_string(dir.join(format!("{name}.in")))
@@ -94,6 +95,12 @@ pub fn run_transcript(mcemu: &Mcemu, dir: &Path, name: &str) {
             let body: Value =
                 serde_json::from_str(body).unwrap_or_else(|e| panic!("{name}.in: `{line}`: {e}"));
             mcemu.advance(&body);
+            continue;
+        }
+        if let Some(body) = line.strip_prefix("@command ") {
+            let body: Value =
+                serde_json::from_str(body).unwrap_or_else(|e| panic!("{name}.in: `{line}`: {e}"));
+            mcemu.post_ok("/commands", &body);
             continue;
         }
         got.push_str(&client.call(line));

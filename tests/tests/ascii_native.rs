@@ -69,7 +69,8 @@ mod transcript {
         group_settings,
         slaves,
         tables_triggers,
-        measured
+        measured,
+        gpio_invert_estop_config
     );
 }
 

@@ -17,16 +17,16 @@ use super::error::ApiError;
 use crate::trace::GroupColumns;
 
 /// Default of `[frontends.control] trace_max_rows`: the row cap when a start request gives
-/// none, and the largest it may give — about 140 MB of buffer and about 150 MB of CSV at most.
+/// none, and the largest it may give — about 180 MB of buffer and about 170 MB of CSV at most.
 pub const MAX_TRACE_ROWS: usize = 1_000_000;
 
 /// Rows copied out of the buffer per lock while a trace is read, so a long read never holds
 /// the servo thread up for more than a few microseconds at a time.
 const READ_CHUNK: usize = 8192;
 
-/// One recorded axis at one tick: what a trace row needs, and no more (136 bytes: the group
+/// One recorded axis at one tick: what a trace row needs, and no more (176 bytes: the group
 /// columns are kept with an `in_group` flag rather than as an `Option`, whose tag would cost 8
-/// bytes, so the coupling kind and stream count fit).
+/// bytes, so the coupling kind and stream count fit; the HIMC status quantities take 40).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TraceRow {
     pub tick: u64,
@@ -54,6 +54,13 @@ pub struct TraceRow {
     pub compensation: f64,
     /// The group columns of a member axis (see `in_group`).
     group: GroupColumns,
+    /// The HIMC status quantities (issue 14): the last move's and settling times, the user
+    /// frame's offset, rollover turns, torque.
+    pub move_time: f64,
+    pub settling_time: f64,
+    pub position_offset: f64,
+    pub rollover_turns: i64,
+    pub torque: f64,
 }
 
 impl TraceRow {
@@ -80,6 +87,11 @@ impl TraceRow {
             stream_used: s.stream.used,
             in_group: group.is_some(),
             group: group.unwrap_or_default(),
+            move_time: s.move_time,
+            settling_time: s.settling_time,
+            position_offset: s.position_offset,
+            rollover_turns: s.rollover_turns,
+            torque: s.torque,
         }
     }
 
@@ -113,6 +125,11 @@ impl TraceRow {
                 used: self.stream_used,
                 ..StreamStatus::default()
             },
+            move_time: self.move_time,
+            settling_time: self.settling_time,
+            position_offset: self.position_offset,
+            rollover_turns: self.rollover_turns,
+            torque: self.torque,
             ..AxisStatus::default()
         }
     }
@@ -516,7 +533,7 @@ mod tests {
 
     #[test]
     fn rows_are_compact_and_round_trip_the_columns() {
-        assert!(std::mem::size_of::<TraceRow>() <= 136);
+        assert!(std::mem::size_of::<TraceRow>() <= 176);
         let s = AxisStatus {
             state: AxisState::DiscreteMotion,
             flags: AxisFlags::HOMED | AxisFlags::HW_LIMIT_NEG,
@@ -531,6 +548,11 @@ mod tests {
                 used: 17,
                 ..StreamStatus::default()
             },
+            move_time: 0.25,
+            settling_time: 0.01,
+            position_offset: -100.0,
+            rollover_turns: 2,
+            torque: -0.5,
             ..AxisStatus::default()
         };
         let (mut a, mut b) = (Vec::new(), Vec::new());

@@ -104,6 +104,16 @@ pub(super) enum Quantity {
     Compensation,
     /// A gantry axis's deviation from its master (issue 12 item 6).
     GantryDeviation,
+    /// Seconds the last finished move's command changed (HIMC GetMoveTime, digest 004 §3.7).
+    MoveTime,
+    /// Seconds from its end until in position (HIMC GetSettlingTime).
+    SettlingTime,
+    /// The user frame's origin offset (HIMC GetPosOffset, TV 32).
+    PositionOffset,
+    /// Whole turns of a rollover axis (HIMC GetRolloverTurns).
+    RolloverTurns,
+    /// The drive's torque, a fraction of rated torque (HIMC MoveTrq, GetCurrFb).
+    Torque,
 }
 
 impl Quantity {
@@ -120,6 +130,11 @@ impl Quantity {
             Quantity::OutputPosition => "output_position",
             Quantity::Compensation => "compensation",
             Quantity::GantryDeviation => "gantry_deviation",
+            Quantity::MoveTime => "move_time",
+            Quantity::SettlingTime => "settling_time",
+            Quantity::PositionOffset => "position_offset",
+            Quantity::RolloverTurns => "rollover_turns",
+            Quantity::Torque => "torque",
         }
     }
 
@@ -136,6 +151,11 @@ impl Quantity {
             Quantity::OutputPosition => s.output_pos,
             Quantity::Compensation => s.compensation,
             Quantity::GantryDeviation => s.gantry_deviation,
+            Quantity::MoveTime => s.move_time,
+            Quantity::SettlingTime => s.settling_time,
+            Quantity::PositionOffset => s.position_offset,
+            Quantity::RolloverTurns => s.rollover_turns as f64,
+            Quantity::Torque => s.torque,
         }
     }
 }
@@ -256,6 +276,11 @@ impl Expectation {
             (Quantity::OutputPosition, spec.output_position),
             (Quantity::Compensation, spec.compensation),
             (Quantity::GantryDeviation, spec.gantry_deviation),
+            (Quantity::MoveTime, spec.move_time),
+            (Quantity::SettlingTime, spec.settling_time),
+            (Quantity::PositionOffset, spec.position_offset),
+            (Quantity::RolloverTurns, spec.rollover_turns),
+            (Quantity::Torque, spec.torque),
         ] {
             if let Some(v) = v {
                 if !v.is_finite() {
@@ -290,8 +315,8 @@ impl Expectation {
                 "tolerance",
                 "applies to position, velocity, command_position, command_velocity, \
                  following_error, captures, capture_position, compare_outputs, output_position, \
-                 compensation, tangent_angle, gantry_deviation or group_position, and none is \
-                 given"
+                 compensation, tangent_angle, gantry_deviation, move_time, settling_time, \
+                 position_offset, rollover_turns, torque or group_position, and none is given"
                     .into(),
             ));
         }
@@ -370,8 +395,8 @@ impl Expectation {
                 "axis",
                 "no condition on it: give state, position, velocity, command_position, \
                  command_velocity, following_error, captures, capture_position, \
-                 compare_outputs, output_position, compensation, gantry_deviation, flags, \
-                 not_flags, error, coupling, coupling_kind, tangent_angle, stream_space, \
+                 compare_outputs, output_position, compensation, gantry_deviation, move_time, \
+                 settling_time, position_offset, rollover_turns, torque, flags, not_flags, error, coupling, coupling_kind, tangent_angle, stream_space, \
                  stream_used, stream_running or stream_underruns"
                     .into(),
             ));

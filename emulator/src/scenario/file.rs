@@ -97,6 +97,21 @@ pub(super) struct ExpectSpec {
     /// A gantry axis's deviation from its master (`gantry_deviation`, issue 12 item 6).
     #[serde(default)]
     pub gantry_deviation: Option<f64>,
+    /// Seconds the last finished move's command changed (`move_time`; HIMC GetMoveTime).
+    #[serde(default)]
+    pub move_time: Option<f64>,
+    /// Seconds from the end of that move until in position (HIMC GetSettlingTime).
+    #[serde(default)]
+    pub settling_time: Option<f64>,
+    /// The user frame's origin offset: commanded − motor position (HIMC GetPosOffset).
+    #[serde(default)]
+    pub position_offset: Option<f64>,
+    /// Whole turns of a rollover axis past its range's start (HIMC GetRolloverTurns).
+    #[serde(default)]
+    pub rollover_turns: Option<f64>,
+    /// The drive's torque as a fraction of rated torque (HIMC MoveTrq, GetCurrFb).
+    #[serde(default)]
+    pub torque: Option<f64>,
     /// Allowed |seen − expected| of the numbers above; 0 (exact) when absent.
     #[serde(default)]
     pub tolerance: Option<f64>,

@@ -387,3 +387,51 @@ period = 0.001
     assert_eq!(r.expectations, 4);
     assert!(r.failures.is_empty(), "{:#?}", r.failures);
 }
+
+#[test]
+fn the_himc_status_quantities_are_expect_keys() {
+    // A 10 mm move at 1000 mm/s² and at most 100 mm/s is a triangle of 0.2 s (HIMC GetMoveTime,
+    // digest 004 §3.7); set_position 0 at 10 mm moves the user frame's origin by −10 (TV 32's
+    // sign, GetPosOffset); a stepper axis, finite, takes no torque at rest.
+    let s = parse(&with_machine(
+        r#"
+end = 1.0
+[[step]]
+at = 0.0
+command = { type = "enable", axis = 0 }
+[[step]]
+at = 0.01
+command = { type = "move_absolute", axis = 0, position = 10 }
+[[step]]
+at = 0.5
+expect = { axis = 0, move_time = 0.2, tolerance = 0.0015 }
+[[step]]
+at = 0.5
+expect = { axis = 0, rollover_turns = 0, torque = 0, position_offset = 0 }
+[[step]]
+at = 0.6
+command = { type = "set_position", axis = 0, position = 0 }
+[[step]]
+at = 0.7
+expect = { axis = 0, position_offset = -10 }
+[[step]]
+at = 0.7
+expect = { axis = 0, position_offset = -9, settling_time = 99, tolerance = 0.5 }
+"#,
+    ))
+    .unwrap();
+    let r = s.run(None).unwrap();
+    assert_eq!(r.expectations, 4);
+    let failed = |what: &str| r.failures.iter().any(|f| f.contains(what));
+    assert_eq!(r.failures.len(), 2, "{:#?}", r.failures);
+    assert!(
+        failed("axis 0 position_offset: expected -9 ± 0.5, saw -10"),
+        "{:#?}",
+        r.failures
+    );
+    assert!(
+        failed("axis 0 settling_time: expected 99 ± 0.5"),
+        "{:#?}",
+        r.failures
+    );
+}

@@ -17,6 +17,7 @@
 
 pub mod config;
 pub mod counters;
+pub mod estop;
 pub mod functions;
 pub mod line;
 pub mod native;

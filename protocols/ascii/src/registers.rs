@@ -78,6 +78,14 @@ pub struct Registers {
     pub gear_links: BTreeMap<u16, u16>,
     /// The last `GearIn` ratio by slave (`GetGearRatio` after `GearOut`).
     pub gear_ratios: BTreeMap<u16, f64>,
+    /// `SetGPIInvert` / `SetGPOInvert`: the controller pins (1-based) inverted (§9.2.4–5).
+    pub gpi_inverted: std::collections::BTreeSet<usize>,
+    pub gpo_inverted: std::collections::BTreeSet<usize>,
+    /// `BindEMO`'s pin (§9.2.6): absent = never called, the default GPI 8; 0 = none.
+    pub emo_pin: Option<usize>,
+    /// `SetConfigVar` of the free variables `HCV_ID_ltest0…9`, `HCV_ID_dtest0…9` by id
+    /// (digest 004 §1.11; an absent one is 0).
+    pub free_variables: BTreeMap<u32, f64>,
 }
 
 impl Registers {
@@ -94,6 +102,11 @@ impl Registers {
             }
             _ => self.system_error = code,
         }
+    }
+
+    /// The E-stop input's channel (pin − 1), if one is bound.
+    pub fn emo_channel(&self) -> Option<usize> {
+        self.emo_pin.unwrap_or(8).checked_sub(1)
     }
 }
 

@@ -13,6 +13,7 @@ use crate::table::{Args, Ctx, Function, Plan, Then};
 pub mod analog;
 pub mod axis;
 pub mod compensation;
+pub mod config_var;
 pub mod errors;
 pub mod filters;
 pub mod gantry;
@@ -55,6 +56,7 @@ pub fn all() -> impl Iterator<Item = &'static Function> {
         filters::ROWS,
         tasks::ROWS,
         sdo::ROWS,
+        config_var::ROWS,
         errors::ROWS,
         homing::ROWS,
     ]

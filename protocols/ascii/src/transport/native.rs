@@ -5,12 +5,15 @@
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::Duration;
 
+use axes::command::{Command, EmergencyStopAll};
 use axes::runtime::{CallError, EngineHandle};
-use axes::AxisState;
+use axes::{AxisState, Engine};
+use mcemu_dialects::himc::system::EMERGENCY_STOP;
 
 use super::{Limits, LineServer};
 use crate::config::NativeConfig;
 use crate::counters::{Counters, StreamCounters};
+use crate::estop::{EstopBinding, EstopInput};
 use crate::line::Line;
 use crate::native::{Native, Pending, Step};
 use crate::registers::Registers;
@@ -25,6 +28,8 @@ pub struct Server {
     registers: Mutex<Registers>,
     engine: EngineHandle,
     config: NativeConfig,
+    /// The E-stop input the registers bind (`BindEMO`), for the servo-tick observer.
+    estop: Arc<EstopBinding>,
 }
 
 impl Server {
@@ -35,7 +40,26 @@ impl Server {
             registers: Mutex::new(Registers::default()),
             engine,
             config,
+            estop: Arc::new(EstopBinding::new()),
         })
+    }
+
+    /// The engine observer that carries out the E-stop input (digest 004 §1.10): after every
+    /// tick, a rising edge of the bound GPI applies `emergency_stop_all` (at the next tick, as
+    /// `EStop` would) and the next line latches `eERR_EMERGENCY_STOP`. Install it with
+    /// `EngineHandle::add_observer_async`.
+    pub fn estop_observer(&self) -> impl FnMut(&Engine) -> bool + Send + 'static {
+        let binding = Arc::clone(&self.estop);
+        let engine = self.engine.clone();
+        let mut input = EstopInput::default();
+        move |e: &Engine| {
+            if input.tick(&binding, &e.io().di) {
+                // Queued without waiting (this is the servo thread); a full queue drops it,
+                // which the latch still reports.
+                let _ = engine.submit(Command::from(EmergencyStopAll {}));
+            }
+            true
+        }
     }
 
     pub fn counters(&self) -> &Counters {
@@ -50,7 +74,17 @@ impl Server {
     /// The reply to one line, after the engine if the call needs it.
     pub async fn handle(&self, line: &Line) -> String {
         let snapshot = self.engine.snapshot();
-        let step = self.native.line(line, &snapshot, &mut self.registers());
+        let step = {
+            let mut registers = self.registers();
+            if self.estop.take_tripped() {
+                registers.latch(EMERGENCY_STOP);
+            }
+            let step = self.native.line(line, &snapshot, &mut registers);
+            let channel = registers.emo_channel();
+            let inverted = channel.is_some_and(|c| registers.gpi_inverted.contains(&(c + 1)));
+            self.estop.publish(channel, inverted);
+            step
+        };
         let (commands, pending) = match step {
             Step::Reply(text) => return text,
             Step::Engine(commands, pending) => (commands, pending),

@@ -9,7 +9,9 @@ use axes::types::Direction;
 use axes::AxisState;
 
 use super::group_errors::GroupErrorRow;
-use super::system::{HCV_ID_NOT_FOUND, HMPL_ARG_OUT_OF_RANGE, HMPL_NOT_SUPPORTED};
+use super::system::{
+    HCV_ID_NOT_FOUND, HCV_IS_READ_ONLY, HMPL_ARG_OUT_OF_RANGE, HMPL_NOT_SUPPORTED,
+};
 use super::{code_for, compose, AxisError, AXIS_CLASS, GROUP_CLASS};
 
 /// What an HMPL call addressed: its first argument's axis or group, or the controller.
@@ -20,8 +22,6 @@ pub enum Subject {
     Group(u16),
 }
 
-/// `eERR_HCV_IS_READ_ONLY`.
-const HCV_IS_READ_ONLY: u32 = 0x0000_0003;
 /// `eERR_DATA_EXCEEDED`.
 const DATA_EXCEEDED: u32 = 0x0000_0002;
 

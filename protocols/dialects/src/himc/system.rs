@@ -32,6 +32,12 @@ impl SystemError {
 
 /// `eERR_HCV_ID_NOT_FOUND`: no controller variable with this id (TV 69).
 pub const HCV_ID_NOT_FOUND: u32 = 0x0000_0001;
+/// `eERR_HCV_IS_READ_ONLY`: a controller variable that cannot be written.
+pub const HCV_IS_READ_ONLY: u32 = 0x0000_0003;
+/// `eERR_HCV_VALUE_OUT_OF_RANGE`: a value the variable cannot take.
+pub const HCV_VALUE_OUT_OF_RANGE: u32 = 0x0000_0004;
+/// `eERR_EMERGENCY_STOP`: the E-stop input fired (digest 004 §1.10).
+pub const EMERGENCY_STOP: u32 = 0x0000_0064;
 /// `eERR_HMPL_INVALID_ARG`: wrong argument count or type.
 pub const HMPL_INVALID_ARG: u32 = 0x0000_1388;
 /// `eERR_HMPL_STR_TOO_LONG`: a line (or string) over `HMPL_STR_MAX_LEN`.
