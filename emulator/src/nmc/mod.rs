@@ -17,6 +17,8 @@
 //!   and on `NMC_DevReset`;
 //! - `io_state`: extension modules, dedicated outputs and the written ID (0x12xx families);
 //! - `stored`: settings the engine has no model of, kept and read back;
+//! - `sys_state`: the system family's data collection, user login and execution-time
+//!   calculation (0x18xx);
 //! - `laser_state`: the laser, SHIO and PWM settings (kept in `stored`);
 //! - `serve`: the transports (the kit's bounded accept loop on TCP, the same table on the Unix
 //!   socket), the connection loop over `mcemu_nmc::session`, the control-API handle.
@@ -35,3 +37,4 @@ pub mod serve;
 pub mod service;
 pub mod stored;
 pub mod sync_state;
+pub mod sys_state;

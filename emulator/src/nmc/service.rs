@@ -60,12 +60,29 @@ impl From<PayloadError> for Refusal {
 }
 
 /// What a handler leaves to the transport.
-#[derive(Debug, Default)]
+#[derive(Default)]
 pub struct Plan {
     /// Applied in one batch (between the same two ticks), all or none; a refusal becomes the
     /// reply's code.
     pub commands: Vec<Command>,
+    /// Writes the reply from the engine's replies to `commands`, once they are applied (a
+    /// handler that reads what the engine answers: `NMC_GetCollectData`).
+    pub after: Option<AfterBatch>,
 }
+
+impl std::fmt::Debug for Plan {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Plan")
+            .field("commands", &self.commands)
+            .field("after", &self.after.is_some())
+            .finish()
+    }
+}
+
+/// See [`Plan::after`].
+pub type AfterBatch = Box<
+    dyn FnOnce(&NmcService, &[axes::command::Reply], &mut Writer) -> Result<(), Refusal> + Send,
+>;
 
 pub type Handler = fn(&mut Call<'_>) -> Result<(), Refusal>;
 
@@ -152,6 +169,8 @@ pub struct NmcService {
     ax: Mutex<super::ax_state::AxState>,
     /// Extension modules, dedicated outputs, the written ID (0x12xx families).
     io: Mutex<super::io_state::IoState>,
+    /// Data collection, users, the execution-time calculation (0x18xx).
+    sys: Mutex<super::sys_state::SysState>,
     /// `TCardInfo` counts (digest 001 §1.1).
     pub io_counts: [i16; 4],
     /// Where `NMC_SaveMotionConfig` saves (`saved_config`), and the section's name (the
@@ -180,6 +199,7 @@ impl NmcService {
             stored: Mutex::new(Stored::default()),
             ax: Mutex::new(Default::default()),
             io: Mutex::new(Default::default()),
+            sys: Mutex::new(Default::default()),
             io_counts,
             saving: std::sync::OnceLock::new(),
         };
@@ -214,6 +234,10 @@ impl NmcService {
 
     pub fn io(&self) -> MutexGuard<'_, super::io_state::IoState> {
         self.io.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+
+    pub fn sys(&self) -> MutexGuard<'_, super::sys_state::SysState> {
+        self.sys.lock().unwrap_or_else(PoisonError::into_inner)
     }
 
     pub fn stored(&self) -> MutexGuard<'_, Stored> {
@@ -290,10 +314,12 @@ impl NmcService {
             handler(&mut call)?;
             call.input.finish()?;
         }
+        let after = plan.after.take();
+        let mut replies = Vec::new();
         if !plan.commands.is_empty() {
             let result = self.engine.call_batch_async(plan.commands).await;
             match result {
-                Ok(_) => {}
+                Ok(r) => replies = r,
                 Err(axes::runtime::CallError::Engine(e)) => return Err(Refusal::engine(&e)),
                 Err(e) => {
                     return Err(Refusal::new(
@@ -302,6 +328,9 @@ impl NmcService {
                     ))
                 }
             }
+        }
+        if let Some(after) = after {
+            after(self, &replies, &mut reply)?;
         }
         Ok(reply.bytes)
     }
