@@ -156,7 +156,7 @@ int main(void) {
     CHECK(counts[1] == 102, "DI15 changes %lu", counts[1]);
     CHECK(NMC_GetDiReverseCount(dev, 0, 15, counts, 2) == RTN_ARG_RANGE, "index 15 + 2 > 16");
     CHECK(NMC_GetDiReverseCount(dev, 0, 0, counts, 0) == RTN_ARG_RANGE, "count 0");
-    CHECK(NMC_GetDiReverseCount(dev, 1, 0, counts, 1) == RTN_UNSUPPORTED, "limit counters");
+    CHECK(NMC_GetDiReverseCount(dev, 5, 0, counts, 1) == RTN_ARG_RANGE, "diType 5");
     CHECK(NMC_SetDiReverseCount(dev, 0, 0, NULL, 1) == RTN_NULL_POINTER, "NULL");
 
     /* DIO mappings: up to 8, read back, cleared. */

@@ -46,6 +46,36 @@ fn example_on(config: &std::path::Path, name: &str, args: &[&str]) -> String {
     stdout
 }
 
+/// S-COLLECT: data collection sampled every planning period, a rising trigger, bad arguments.
+#[test]
+fn s_collect() {
+    example("s_collect.c");
+}
+
+/// USER1's login and password, command debugging to a file, NMC_UserPrint.
+#[test]
+fn users_and_command_debugging() {
+    example("s_users.c");
+}
+
+/// The configuration saved to and loaded from a file on the host; bad paths and files.
+#[test]
+fn configuration_file() {
+    example("s_config_file.c");
+}
+
+/// The change counters of the dedicated inputs (limits, home, Z).
+#[test]
+fn dedicated_input_change_counters() {
+    example("di_dedicated_counts.c");
+}
+
+/// The execution time of a pushed program, computed and not run.
+#[test]
+fn crd_execution_time() {
+    example("s_exe_time.c");
+}
+
 #[test]
 fn s_open_tv01_tv03_tv25_and_bad_handles() {
     example("s_open.c");

@@ -238,6 +238,8 @@ pub struct Axis {
     /// The limits the running command was planned with, to notice live parameter changes.
     planned_limits: Option<Limits>,
     limits_dirty: bool,
+    /// Changes of the dedicated inputs (negative limit, positive limit, home, index).
+    input_edges: [u32; 4],
 
     // State.
     enabled: bool,
@@ -329,6 +331,7 @@ impl Axis {
             zero_length_id: None,
             planned_limits: None,
             limits_dirty: false,
+            input_edges: [0; 4],
             enabled: false,
             flags: AxisFlags::empty(),
             latched: AxisFlags::empty(),
@@ -742,7 +745,7 @@ impl Axis {
             // HMC_HoldConfig: the hold input changes the speed of the running command.
             self.limits_dirty = true;
         }
-        self.inputs = Inputs {
+        let next = Inputs {
             limit_pos: w
                 .limit_pos
                 .read(lp_level, di)
@@ -768,6 +771,17 @@ impl Axis {
             limit_neg_edge: ln_edge,
             index_at: encoder.index_at,
         };
+        let was = &self.inputs;
+        let changed = [
+            was.limit_neg != next.limit_neg,
+            was.limit_pos != next.limit_pos,
+            was.home != next.home,
+            was.index != next.index,
+        ];
+        for (n, c) in self.input_edges.iter_mut().zip(changed) {
+            *n = n.wrapping_add(u32::from(c));
+        }
+        self.inputs = next;
         self.encoder.set_lost(f.encoder_loss.unwrap_or(false));
     }
 
@@ -1163,6 +1177,7 @@ impl Axis {
             move_time: self.timing.move_time(),
             settling_time: self.timing.settling_time(),
             torque: self.torque(),
+            input_edges: self.input_edges,
         };
     }
 }

@@ -312,6 +312,10 @@ pub struct AxisStatus {
     /// torque mode, else the commanded acceleration over the rated one (HIMC GetCurrFb).
     #[serde(default)]
     pub torque: f64,
+    /// Changes of the dedicated inputs as the controller reads them, wrapping: negative limit,
+    /// positive limit, home, index (NMC GetDiReverseCount types 1–4).
+    #[serde(default)]
+    pub input_edges: [u32; 4],
 }
 
 /// An axis's PT/PVT buffer and run (NMC `MtPtGetSpace`, `MtPtGetStatic`).

@@ -19,6 +19,8 @@
 //! - `ecat_bus`: an `ecat` card's EtherCAT bus: NMC axis numbers (local, bus drives from 16)
 //!   → engine axes, SDO slaves, the drive homings it started;
 //! - `stored`: settings the engine has no model of, kept and read back;
+//! - `sys_state`: the system family's data collection, user login and execution-time
+//!   calculation (0x18xx);
 //! - `laser_state`: the laser, SHIO and PWM settings (kept in `stored`);
 //! - `serve`: the transports (the kit's bounded accept loop on TCP, the same table on the Unix
 //!   socket), the connection loop over `mcemu_nmc::session`, the control-API handle.
@@ -38,3 +40,4 @@ pub mod serve;
 pub mod service;
 pub mod stored;
 pub mod sync_state;
+pub mod sys_state;

@@ -1,7 +1,9 @@
 //! `NMC_SaveMotionConfig` (digest 001 §1.5, §2.2): the basic axis configuration — alarm,
 //! limits, home level, soft limits, safety, following error, in-position band, pulse mode,
 //! filters, encoder modes — saved in the machine's state directory (`nmc/<section>.json`,
-//! replaced atomically) and applied again when mcemu starts and on `NMC_DevReset`.
+//! replaced atomically) and applied again when mcemu starts and on `NMC_DevReset`. The same
+//! text is what `NMC_SaveConfigToFile` writes and `NMC_LoadConfigFromFile` reads on the host
+//! (`handlers/config_file.rs`).
 
 use std::collections::BTreeMap;
 
@@ -45,7 +47,7 @@ struct SavedAxis {
 
 /// The file.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-struct SavedConfig {
+pub struct SavedConfig {
     axes: Vec<SavedAxis>,
     enc_mode: BTreeMap<u8, u16>,
 }
@@ -54,11 +56,8 @@ fn file(service: &NmcService) -> String {
     format!("nmc/{}.json", service.section())
 }
 
-/// Save the configuration as `snapshot` and the service show it. An error names the file.
-pub fn save(service: &NmcService, snapshot: &Snapshot) -> Result<(), String> {
-    let dir = service
-        .state_dir()
-        .ok_or("mcemu has no state directory (--state-dir) to save to")?;
+/// The configuration as `snapshot` and the service show it.
+fn current(service: &NmcService, snapshot: &Snapshot) -> SavedConfig {
     let stored = service.stored();
     let axes = (0..snapshot.axes.len())
         .map(|a| {
@@ -76,12 +75,24 @@ pub fn save(service: &NmcService, snapshot: &Snapshot) -> Result<(), String> {
             }
         })
         .collect();
-    let saved = SavedConfig {
+    SavedConfig {
         axes,
         enc_mode: stored.enc_mode.clone(),
-    };
-    drop(stored);
-    let text = serde_json::to_string_pretty(&saved).map_err(|e| e.to_string())?;
+    }
+}
+
+/// The configuration as text, the file's format (`NMC_SaveConfigToFile` writes the same, on
+/// the host: digest 001 §1.5).
+pub fn text(service: &NmcService, snapshot: &Snapshot) -> Result<String, String> {
+    serde_json::to_string_pretty(&current(service, snapshot)).map_err(|e| e.to_string())
+}
+
+/// Save the configuration as `snapshot` and the service show it. An error names the file.
+pub fn save(service: &NmcService, snapshot: &Snapshot) -> Result<(), String> {
+    let dir = service
+        .state_dir()
+        .ok_or("mcemu has no state directory (--state-dir) to save to")?;
+    let text = text(service, snapshot)?;
     let name = file(service);
     dir.write(&name, text.as_bytes())
         .map_err(|e| format!("cannot write {}: {e}", dir.display(&name)))
@@ -108,20 +119,50 @@ pub fn restore(service: &NmcService) -> Vec<Command> {
         return Vec::new();
     };
     let name = file(service);
-    let saved: SavedConfig = match dir.read(&name) {
+    let bytes = match dir.read(&name) {
         Ok(None) => return Vec::new(),
-        Ok(Some(bytes)) => match serde_json::from_slice(&bytes) {
-            Ok(s) => s,
-            Err(e) => {
-                tracing::warn!(file = %dir.display(&name), "saved NMC motion config not restored: {e}");
-                return Vec::new();
-            }
-        },
+        Ok(Some(bytes)) => bytes,
         Err(e) => {
             tracing::warn!(file = %dir.display(&name), "saved NMC motion config not read: {e}");
             return Vec::new();
         }
     };
+    let count = service.engine.snapshot().axes.len();
+    match parse(&bytes, count) {
+        Ok(saved) => apply(service, saved),
+        Err(e) => {
+            tracing::warn!(file = %dir.display(&name), "saved NMC motion config not restored: {e}");
+            Vec::new()
+        }
+    }
+}
+
+/// A configuration text checked for a machine of `axes` axes: the format, an axis count that
+/// fits, finite known parameters.
+pub fn parse(bytes: &[u8], axes: usize) -> Result<SavedConfig, String> {
+    let saved: SavedConfig = serde_json::from_slice(bytes)
+        .map_err(|e| format!("not an mcemu NMC configuration: {e}"))?;
+    if saved.axes.len() > axes {
+        return Err(format!(
+            "the configuration has {} axes; the device has {axes}",
+            saved.axes.len()
+        ));
+    }
+    for (axis, a) in saved.axes.iter().enumerate() {
+        for (name, value) in &a.params {
+            if !ParamId::from_name(name).is_some_and(|id| SAVED_PARAMS.contains(&id)) {
+                return Err(format!("axis {axis}: {name} is not a saved parameter"));
+            }
+            if !value.is_finite() {
+                return Err(format!("axis {axis}: {name} = {value} is not finite"));
+            }
+        }
+    }
+    Ok(saved)
+}
+
+/// `saved`'s engine commands, its kept settings put into the service on the way.
+pub fn apply(service: &NmcService, saved: SavedConfig) -> Vec<Command> {
     let count = service.engine.snapshot().axes.len();
     let mut stored = service.stored();
     let mut commands = Vec::new();

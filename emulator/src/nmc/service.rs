@@ -65,9 +65,19 @@ pub struct Plan {
     /// Applied in one batch (between the same two ticks), all or none; a refusal becomes the
     /// reply's code.
     pub commands: Vec<Command>,
-    /// Reads the batch's outcome into the reply (an SDO's value, a drive's answer) once the
-    /// commands are applied, or turns their refusal into the call's; `None`: replies unread.
+    /// Reads the batch's outcome into the reply (an SDO's value, a drive's answer, the
+    /// samples of `NMC_GetCollectData`) once the commands are applied, or turns their refusal
+    /// into the call's; `None`: replies unread. Runs only when `commands` is not empty.
     pub then: Option<Then>,
+}
+
+impl std::fmt::Debug for Plan {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Plan")
+            .field("commands", &self.commands)
+            .field("then", &self.then.is_some())
+            .finish()
+    }
 }
 
 /// See [`Plan::then`]: given the service, the batch's replies or refusal, the reply's writer.
@@ -165,6 +175,8 @@ pub struct NmcService {
     ax: Mutex<super::ax_state::AxState>,
     /// Extension modules, dedicated outputs, the written ID (0x12xx families).
     io: Mutex<super::io_state::IoState>,
+    /// Data collection, users, the execution-time calculation (0x18xx).
+    sys: Mutex<super::sys_state::SysState>,
     /// `TCardInfo` counts (digest 001 §1.1).
     pub io_counts: [i16; 4],
     /// Where `NMC_SaveMotionConfig` saves (`saved_config`), and the section's name (the
@@ -196,6 +208,7 @@ impl NmcService {
             stored: Mutex::new(Stored::default()),
             ax: Mutex::new(Default::default()),
             io: Mutex::new(Default::default()),
+            sys: Mutex::new(Default::default()),
             io_counts,
             saving: std::sync::OnceLock::new(),
             bus: std::sync::OnceLock::new(),
@@ -231,6 +244,10 @@ impl NmcService {
 
     pub fn io(&self) -> MutexGuard<'_, super::io_state::IoState> {
         self.io.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+
+    pub fn sys(&self) -> MutexGuard<'_, super::sys_state::SysState> {
+        self.sys.lock().unwrap_or_else(PoisonError::into_inner)
     }
 
     pub fn stored(&self) -> MutexGuard<'_, Stored> {

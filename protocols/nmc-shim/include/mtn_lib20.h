@@ -410,6 +410,45 @@ typedef struct {
     long crdUsedSpace;
 } TPackedCrdSts4;
 
+/* Data collection (digest 001 §3.19). COLLECT_LIST_MAX, the trigger modes and the status
+ * bits are not in the manual (§8 item 3): mcemu's. Every value is 8 bytes, a little-endian
+ * double (pulses, pulse/ms, 0/1), as the manual's example reads them into a double array. */
+#define COLLECT_ADDRESS_PRF_POS (0)
+#define COLLECT_ADDRESS_AXIS_POS (1)
+#define COLLECT_ADDRESS_ENC_POS (2)
+#define COLLECT_ADDRESS_CMD_POS (3)
+#define COLLECT_ADDRESS_AXIS_VEL (4)
+#define COLLECT_ADDRESS_CRD_POS (5)
+#define COLLECT_ADDRESS_CRD_VEL (6)
+#define COLLECT_ADDRESS_CRD_POS0 (5)
+#define COLLECT_ADDRESS_CRD_VELO (6)
+#define COLLECT_ADDRESS_CRD_VEL0 (6)
+#define COLLECT_ADDRESS_ENC_VEL (7)
+#define COLLECT_ADDRESS_CMD_VEL (8)
+#define COLLECT_ADDRESS_CRD_POS1 (9)
+#define COLLECT_ADDRESS_CRD_VEL1 (10)
+#define COLLECT_ADDRESS_LASER_OUTPUT (11)
+#define COLLECT_ADDRESS_LASER_GATE (12)
+#define COLLECT_ADDRESS_LASER_POWER (13)
+#define COLLECT_ADDRESS_DI (14)
+#define COLLECT_ADDRESS_DO (15)
+#define COLLECT_LIST_MAX 8
+#define COLLECT_DATA_MAX 1440
+/* TCollectTrig.mode: NONE records at once; RISE / FALL when channel source1 of the list
+ * crosses value upwards / downwards. */
+#define COLLECT_MODE_NONE 0
+#define COLLECT_MODE_RISE 1
+#define COLLECT_MODE_FALL 2
+/* NMC_GetCollectSts bits. */
+#define COLLECT_STS_ON        0x1
+#define COLLECT_STS_TRIGGERED 0x2
+#define COLLECT_STS_FULL      0x4
+/* NMC_DevGetConfigText (mtn_lib20_ext.h, mcemu's) writes at most this many bytes. */
+#define NMC_CONFIG_TEXT_MAX 16320
+typedef struct { short count; short interval; unsigned long address[COLLECT_LIST_MAX];
+                 short length[COLLECT_LIST_MAX]; } TCollectCfg;
+typedef struct { short mode; short source1; short source2; short startDelay; double value; } TCollectTrig;
+
 short NMC_GetDllVersion(char *pVersion);
 short NMC_SetCommPara(HAND devHandle, unsigned long waitTimeInUs, unsigned long retryTimes);
 short NMC_GetLastErr(void);
@@ -791,6 +830,22 @@ short NMC_CrdBufSHIOSetMinFrg(HAND crdHandle, long segment, long minFrq, short c
 short NMC_CrdBufSHIOClrMinFrg(HAND crdHandle, long segment, short ch);
 short NMC_BufSHIOGateOn(HAND crdHandle, long segNo, short ch);
 short NMC_BufSHIOGateOff(HAND crdHandle, long segNo, short ch);
+short NMC_GetCollectDataAddr(HAND devHandle, short index, short dataType, unsigned long *pAddr, short *pDataLen);
+short NMC_ConfigCollect(HAND devHandle, TCollectCfg *pCollect, TCollectTrig *pTrig);
+short NMC_CollectOnOff(HAND devHandle, short en);
+short NMC_GetCollectSts(HAND devHandle, short *pSts, long *pDataLen);
+short NMC_GetCollectData(HAND devHandle, short len, unsigned char *pData);
+short NMC_ClearCollectSts(HAND devHandle);
+short NMC_UserSetPassword(HAND devHandle, char *pUserName, char *pPasswordOld, char *pPasswordNew);
+short NMC_UserLogin(HAND devHandle, char *pUserName, char *pPassword);
+short NMC_UserLogout(HAND devHandle, char *pUserName);
+short NMC_SetCmdDebug(short enable, char *debugOutputFile);
+short NMC_UserPrint(char *msg);
+short NMC_SaveConfigToFile(HAND devHandle, char *pFilePath);
+short NMC_LoadConfigFromFile(HAND devHandle, char *pFilePath);
+short NMC_CrdStartExeTimeCalc(void);
+short NMC_CrdGetExeTime(double *pTime);
+short _NMC_CrdGetExeTime(double *pTime);
 
 #ifdef __cplusplus
 }

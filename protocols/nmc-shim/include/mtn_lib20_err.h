@@ -33,6 +33,7 @@
 #define RTN_NO_DEVICE (34) /* no device with this index, ID or IP address */
 #define RTN_NOT_ON_THIS_CARD (35) /* not available on this kind of card (e.g. NMC_DevOpenByIP on a PCIe card) */
 #define RTN_PASSWORD (36) /* wrong system password (NMC_SetTime, NMC_ChangePassword, NMC_VerifyPassword) */
+#define RTN_FILE (37) /* the file cannot be read or written, or is not an mcemu NMC configuration (NMC_LoadConfigFromFile, NMC_SaveConfigToFile, NMC_SetCmdDebug) */
 #define RTN_UNKNOWN_FUNCTION (40) /* the server does not know this function */
 #define RTN_VERSION (41) /* library and server share no protocol version */
 #define RTN_BAD_PAYLOAD (42) /* malformed request or reply payload */

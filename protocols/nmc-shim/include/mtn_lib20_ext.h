@@ -10,6 +10,10 @@ extern "C" {
 #endif
 
 short NMC_DevClose(PHAND pDevHandle);
+short NMC_DevGetConfigText(HAND devHandle, char *pText);
+short NMC_DevSetConfigText(HAND devHandle, char *pText);
+short NMC_CrdStartExeTimeCalcEx(HAND devHandle);
+short NMC_CrdGetExeTimeEx(HAND devHandle, double *pTime);
 
 #ifdef __cplusplus
 }

@@ -6,11 +6,13 @@
 //! - [`connection`]: one connection per device handle, requests matched by sequence number,
 //!   any thread, every call bounded by the timeout, reconnect after a loss;
 //! - [`registry`]: the open devices by handle slot;
+//! - [`cmd_debug`]: `NMC_SetCmdDebug`'s output (stderr or a file) and `NMC_UserPrint`;
 //! - [`last_error`]: `NMC_GetLastErr`, `NMC_GetErrDesc`, `NMC_SetErrCodeMode`;
 //! - [`ffi`]: the exported functions, one file per family, each made from its row of the
 //!   function table (`mcemu_nmc::table`). `unsafe` lives only in `ffi`'s pointer helpers.
 
 pub mod address;
+pub mod cmd_debug;
 pub mod connection;
 pub mod ffi;
 pub mod last_error;
@@ -52,6 +54,7 @@ mod tests {
             include_str!("ffi/extras.rs"),
             include_str!("ffi/closed_loop.rs"),
             include_str!("ffi/crd_lookahead.rs"),
+            include_str!("ffi/sys.rs"),
         ]
         .concat();
         for f in FUNCTIONS {

@@ -28,3 +28,12 @@ pub fn remove(slot: u8) -> bool {
         .and_then(Option::take)
         .is_some()
 }
+
+/// The open slots, in order (`NMC_CrdStartExeTimeCalc` asks every open device).
+pub fn open_slots() -> Vec<u8> {
+    let d = DEVICES.lock().unwrap_or_else(PoisonError::into_inner);
+    (0..SLOTS)
+        .filter(|s| d.get(*s).is_some_and(Option::is_some))
+        .filter_map(|s| u8::try_from(s).ok())
+        .collect()
+}

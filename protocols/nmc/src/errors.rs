@@ -34,6 +34,7 @@ pub struct Code {
 pub const RTN_CMD_SUCCESS: i16 = 0;
 pub const RTN_COMM_ERROR: i16 = -1;
 pub const RTN_UNSUPPORTED: i16 = 10;
+pub const RTN_INVALID_STATE: i16 = 11;
 pub const RTN_INVALID_HANDLE: i16 = 30;
 pub const RTN_WRONG_HANDLE_KIND: i16 = 31;
 pub const RTN_NULL_POINTER: i16 = 32;
@@ -41,6 +42,7 @@ pub const RTN_ARG_RANGE: i16 = 33;
 pub const RTN_NO_DEVICE: i16 = 34;
 pub const RTN_NOT_ON_THIS_CARD: i16 = 35;
 pub const RTN_PASSWORD: i16 = 36;
+pub const RTN_FILE: i16 = 37;
 pub const RTN_UNKNOWN_FUNCTION: i16 = 40;
 pub const RTN_VERSION: i16 = 41;
 pub const RTN_BAD_PAYLOAD: i16 = 42;
@@ -70,7 +72,7 @@ pub const CODES: &[Code] = &[
     c(8, "RTN_LIMIT_ACTIVE", State, "a limit blocks motion in this direction"),
     c(9, "RTN_QUEUE_FULL", State, "the command queue is full"),
     c(RTN_UNSUPPORTED, "RTN_UNSUPPORTED", Unsupported, "not supported by this axis or device"),
-    c(11, "RTN_INVALID_STATE", State, "not allowed in the axis's present state"),
+    c(RTN_INVALID_STATE, "RTN_INVALID_STATE", State, "not allowed in the axis's present state"),
     c(12, "RTN_CAUSE_STILL_PRESENT", State, "the error's cause is still present"),
     c(13, "RTN_UNKNOWN_COMMAND", Unsupported, "unknown command"),
     c(14, "RTN_HOMING", State, "homing failed or is running"),
@@ -88,6 +90,7 @@ pub const CODES: &[Code] = &[
     c(RTN_NO_DEVICE, "RTN_NO_DEVICE", Argument, "no device with this index, ID or IP address"),
     c(RTN_NOT_ON_THIS_CARD, "RTN_NOT_ON_THIS_CARD", Unsupported, "not available on this kind of card (e.g. NMC_DevOpenByIP on a PCIe card)"),
     c(RTN_PASSWORD, "RTN_PASSWORD", Argument, "wrong system password (NMC_SetTime, NMC_ChangePassword, NMC_VerifyPassword)"),
+    c(RTN_FILE, "RTN_FILE", Argument, "the file cannot be read or written, or is not an mcemu NMC configuration (NMC_LoadConfigFromFile, NMC_SaveConfigToFile, NMC_SetCmdDebug)"),
     c(RTN_UNKNOWN_FUNCTION, "RTN_UNKNOWN_FUNCTION", Protocol, "the server does not know this function"),
     c(RTN_VERSION, "RTN_VERSION", Protocol, "library and server share no protocol version"),
     c(RTN_BAD_PAYLOAD, "RTN_BAD_PAYLOAD", Protocol, "malformed request or reply payload"),

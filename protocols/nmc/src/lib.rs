@@ -22,6 +22,7 @@
 //!   input of the axis-level additions (family 0x13xx);
 //! - [`crd`]: the coordinate-system structs (`TCrdConfig` …) and their C declarations;
 //! - [`sdo`]: the CiA 301 abort code in an SDO refusal's text (`NMC_EcatSdoRead`/`Write`);
+//! - [`sys`]: the data-collection structs and header text of the system family (0x18xx);
 //! - [`errors`]: the return codes of `mtn_lib20_err.h` (not in the manual: mcemu's, stable);
 //! - [`header`]: the C headers generated from the table (checked against the committed ones);
 //! - [`handle`]: what a `HAND` encodes (kind, library slot, axis number);
@@ -45,4 +46,5 @@ pub mod session;
 pub mod structs;
 pub mod sync_header;
 pub mod sync_structs;
+pub mod sys;
 pub mod table;

@@ -12,7 +12,8 @@
 //! extension modules and controller services, 0x13xx axis-level additions: packed status and
 //! moves, positions, E-stop inputs, watchdog, planning period, 0x14xx coordinate systems:
 //! look-ahead, packed status, position waits, full circles, buffer length, 0x15xx laser, SHIO
-//! and PWM).
+//! and PWM, 0x18xx system: data collection, users, the configuration file, execution time,
+//! command debugging).
 
 /// A C argument kind, as the manual writes it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -559,6 +560,33 @@ functions! {
     CRD_BUF_SHIO_CLR_MIN_FRG = 0x154C Server Main NMC_CrdBufSHIOClrMinFrg(In Hand => crdHandle, In Long => segment, In Short => ch);
     BUF_SHIO_GATE_ON = 0x154D Server Main NMC_BufSHIOGateOn(In Hand => crdHandle, In Long => segNo, In Short => ch);
     BUF_SHIO_GATE_OFF = 0x154E Server Main NMC_BufSHIOGateOff(In Hand => crdHandle, In Long => segNo, In Short => ch);
+    // ---- system family 0x18xx (helper nmcsys): data collection (digest 001 §2.20, §3.19,
+    // S-COLLECT), users (§4.9), the configuration file on the host (§1.5), the execution-time
+    // calculation (§2.7), command debugging ----
+    GET_COLLECT_DATA_ADDR = 0x1801 Server Main NMC_GetCollectDataAddr(In Hand => devHandle, In Short => index, In Short => dataType, Out ULong => pAddr, Out Short => pDataLen);
+    CONFIG_COLLECT = 0x1802 Server Main NMC_ConfigCollect(In Hand => devHandle, In Struct("TCollectCfg") => pCollect, In Struct("TCollectTrig") => pTrig);
+    COLLECT_ON_OFF = 0x1803 Server Main NMC_CollectOnOff(In Hand => devHandle, In Short => en);
+    GET_COLLECT_STS = 0x1804 Server Main NMC_GetCollectSts(In Hand => devHandle, Out Short => pSts, Out Long => pDataLen);
+    GET_COLLECT_DATA = 0x1805 Server Main NMC_GetCollectData(In Hand => devHandle, In Short => len, Out Bytes => pData);
+    CLEAR_COLLECT_STS = 0x1806 Server Main NMC_ClearCollectSts(In Hand => devHandle);
+    USER_SET_PASSWORD = 0x1810 Server Main NMC_UserSetPassword(In Hand => devHandle, In Str => pUserName, In Str => pPasswordOld, In Str => pPasswordNew);
+    USER_LOGIN = 0x1811 Server Main NMC_UserLogin(In Hand => devHandle, In Str => pUserName, In Str => pPassword);
+    USER_LOGOUT = 0x1812 Server Main NMC_UserLogout(In Hand => devHandle, In Str => pUserName);
+    SET_CMD_DEBUG = 0x1813 Library Main NMC_SetCmdDebug(In Short => enable, In Str => debugOutputFile);
+    USER_PRINT = 0x1814 Library Main NMC_UserPrint(In Str => msg);
+    // The file lives on the host (the manual: "in the current project directory"): the
+    // library reads and writes it and carries its text with the two Ext rows.
+    SAVE_CONFIG_TO_FILE = 0x1820 Library Main NMC_SaveConfigToFile(In Hand => devHandle, In Str => pFilePath);
+    LOAD_CONFIG_FROM_FILE = 0x1821 Library Main NMC_LoadConfigFromFile(In Hand => devHandle, In Str => pFilePath);
+    DEV_GET_CONFIG_TEXT = 0x1822 Server Ext NMC_DevGetConfigText(In Hand => devHandle, Out Str => pText);
+    DEV_SET_CONFIG_TEXT = 0x1823 Server Ext NMC_DevSetConfigText(In Hand => devHandle, In Str => pText);
+    // No handle (the manual's host look-ahead): the library asks every device it has open
+    // through the Ext rows. `_NMC_CrdGetExeTime` as the detailed text prints it (App. A).
+    CRD_START_EXE_TIME_CALC = 0x1830 Library Main NMC_CrdStartExeTimeCalc();
+    CRD_GET_EXE_TIME = 0x1831 Library Main NMC_CrdGetExeTime(Out Double => pTime);
+    CRD_GET_EXE_TIME_SIC = 0x1832 Library Main _NMC_CrdGetExeTime(Out Double => pTime);
+    CRD_START_EXE_TIME_CALC_EX = 0x1833 Server Ext NMC_CrdStartExeTimeCalcEx(In Hand => devHandle);
+    CRD_GET_EXE_TIME_EX = 0x1834 Server Ext NMC_CrdGetExeTimeEx(In Hand => devHandle, Out Double => pTime);
 }
 
 #[cfg(test)]
@@ -579,7 +607,10 @@ mod tests {
         names.sort_unstable();
         names.dedup();
         assert_eq!(names.len(), FUNCTIONS.len());
-        assert!(FUNCTIONS.iter().all(|f| f.name.starts_with("NMC_")));
+        // `_NMC_CrdGetExeTime` as the manual prints it (digest 001 App. A).
+        assert!(FUNCTIONS
+            .iter()
+            .all(|f| f.name.trim_start_matches('_').starts_with("NMC_")));
         assert!(by_id(0).is_none(), "id 0 is the hello");
     }
 

@@ -340,40 +340,82 @@ fn get_di_filter(c: &mut Call<'_>) -> Result<(), Refusal> {
     Ok(())
 }
 
-/// The general inputs `diIndex` … + `count` − 1 (0 … 15, count [1, 16]); the dedicated inputs'
-/// counters (types 1 − 4) are not modelled.
-fn counter_bits(
-    c: &Call<'_>,
-    t: i16,
-    index: i16,
-    count: i16,
-) -> Result<std::ops::Range<usize>, Refusal> {
-    match t {
-        0 => {}
-        1..=4 => {
-            return Err(Refusal::new(
-                code_for_kind(ErrorKind::Unsupported),
-                format!("diType {t}: mcemu counts the changes of general inputs (diType 0) only"),
+/// Which counters `diType`, `diIndex`, `count` name: general inputs 0 … 15 (diType 0), or the
+/// dedicated inputs of axes 0 … 7 (1 negative limit, 2 positive limit, 3 home, 4 Z: the
+/// engine's `AxisStatus::input_edges`); count [1, 16] and within those.
+#[derive(Clone, Debug, PartialEq, Eq)]
+enum Counters {
+    General(std::ops::Range<usize>),
+    /// The `input_edges` slot (diType − 1) and the axes.
+    Dedicated(usize, std::ops::Range<usize>),
+}
+
+fn counters(c: &Call<'_>, t: i16, index: i16, count: i16) -> Result<Counters, Refusal> {
+    let (limit, present) = match t {
+        0 => (16, c.snapshot.io.di.len()),
+        1..=4 => (8, c.snapshot.axes.len()),
+        _ => {
+            return Err(Refusal::range(
+                "diType",
+                t,
+                "{0 general, 1 negative limit, 2 positive limit, 3 home, 4 Z}",
             ))
         }
-        _ => return Err(Refusal::range("diType", t, "{0 general}")),
-    }
+    };
     if !(1..=16).contains(&count) {
         return Err(Refusal::range("count", count, "[1, 16]"));
     }
+    let n = count as usize;
     let first = usize::try_from(index)
         .ok()
-        .filter(|i| {
-            i + usize::from(count as u16) <= 16 && i + (count as usize) <= c.snapshot.io.di.len()
-        })
+        .filter(|i| i + n <= limit && i + n <= present)
         .ok_or_else(|| {
             Refusal::range(
                 "diIndex",
                 index,
-                &format!("[0, {}] (diIndex + count ≤ 16)", 16 - count),
+                &format!(
+                    "[0, {}] (diIndex + count ≤ {})",
+                    limit.min(present).saturating_sub(n),
+                    limit.min(present)
+                ),
             )
         })?;
-    Ok(first..first + count as usize)
+    let range = first..first + n;
+    Ok(match t {
+        0 => Counters::General(range),
+        _ => Counters::Dedicated(t as usize - 1, range),
+    })
+}
+
+/// The engine's change count of each counter, and where each counter's 0 is.
+fn counts(c: &Call<'_>, which: &Counters) -> Vec<(u32, u32)> {
+    match which {
+        Counters::General(bits) => bits
+            .clone()
+            .map(|bit| {
+                let edges = c.snapshot.io.di_edges.get(bit).copied().unwrap_or(0);
+                let base = c.service.io().edge_base.get(&bit).copied().unwrap_or(0);
+                (edges, base)
+            })
+            .collect(),
+        Counters::Dedicated(k, axes) => axes
+            .clone()
+            .map(|a| {
+                let edges = c
+                    .status(a)
+                    .and_then(|s| s.input_edges.get(*k).copied())
+                    .unwrap_or(0);
+                let base = c
+                    .service
+                    .sys()
+                    .dedicated_edge_base
+                    .get(&(*k, a))
+                    .copied()
+                    .unwrap_or(0);
+                (edges, base)
+            })
+            .collect(),
+    }
 }
 
 fn set_di_reverse_count(c: &mut Call<'_>) -> Result<(), Refusal> {
@@ -385,11 +427,22 @@ fn set_di_reverse_count(c: &mut Call<'_>) -> Result<(), Refusal> {
         values.push(c.input.u64()?);
     }
     let count = c.input.i16()?;
-    let bits = counter_bits(c, t, index, count)?;
-    let mut io = c.service.io();
-    for (bit, v) in bits.zip(values) {
-        let edges = c.snapshot.io.di_edges.get(bit).copied().unwrap_or(0);
-        io.edge_base.insert(bit, edges.wrapping_sub(v as u32));
+    let which = counters(c, t, index, count)?;
+    let now = counts(c, &which);
+    match which {
+        Counters::General(bits) => {
+            let mut io = c.service.io();
+            for ((bit, v), (edges, _)) in bits.zip(values).zip(now) {
+                io.edge_base.insert(bit, edges.wrapping_sub(v as u32));
+            }
+        }
+        Counters::Dedicated(k, axes) => {
+            let mut sys = c.service.sys();
+            for ((a, v), (edges, _)) in axes.zip(values).zip(now) {
+                sys.dedicated_edge_base
+                    .insert((k, a), edges.wrapping_sub(v as u32));
+            }
+        }
     }
     Ok(())
 }
@@ -397,11 +450,10 @@ fn set_di_reverse_count(c: &mut Call<'_>) -> Result<(), Refusal> {
 fn get_di_reverse_count(c: &mut Call<'_>) -> Result<(), Refusal> {
     c.device()?;
     let (t, index, count) = (c.input.i16()?, c.input.i16()?, c.input.i16()?);
-    let bits = counter_bits(c, t, index, count)?;
-    c.output.u16(bits.len() as u16);
-    for bit in bits {
-        let edges = c.snapshot.io.di_edges.get(bit).copied().unwrap_or(0);
-        let base = c.service.io().edge_base.get(&bit).copied().unwrap_or(0);
+    let which = counters(c, t, index, count)?;
+    let now = counts(c, &which);
+    c.output.u16(now.len() as u16);
+    for (edges, base) in now {
         c.output.u64(u64::from(edges.wrapping_sub(base)));
     }
     Ok(())

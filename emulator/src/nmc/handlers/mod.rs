@@ -49,7 +49,13 @@ mod closed_loop;
 mod extras;
 mod follow;
 
-const FAMILIES: [&[(Function, Handler)]; 35] = [
+// The system family (0x18xx): data collection, users, the configuration text.
+mod collect;
+mod config_file;
+mod exe_time;
+mod users;
+
+const FAMILIES: [&[(Function, Handler)]; 39] = [
     device::HANDLERS,
     axis::HANDLERS,
     motion::HANDLERS,
@@ -85,6 +91,10 @@ const FAMILIES: [&[(Function, Handler)]; 35] = [
     closed_loop::HANDLERS,
     crd_lookahead::HANDLERS,
     crd_circle::HANDLERS,
+    collect::HANDLERS,
+    users::HANDLERS,
+    config_file::HANDLERS,
+    exe_time::HANDLERS,
 ];
 
 /// The handler of function `id`.

@@ -42,6 +42,7 @@ pub mod io_types;
 pub mod laser;
 pub mod library;
 pub mod motion;
+pub mod sys;
 pub mod types;
 // The synchronised-motion families (gear, PT/PVT, capture, compare, gantry and handwheel,
 // compensation) and their arrays and structs.
@@ -135,6 +136,20 @@ pub(crate) fn served(
 }
 
 pub(crate) fn call(
+    f: &Function,
+    handle: HAND,
+    input: impl FnOnce(&mut Writer),
+    output: impl FnOnce(&mut Reader<'_>) -> Result<(), PayloadError>,
+) -> Result<(), CallError> {
+    let result = call_device(f, handle, input, output);
+    if crate::cmd_debug::on() {
+        let code = result.as_ref().map_or_else(|e| e.code, |()| 0);
+        crate::cmd_debug::write_line(&format!("{}({handle:#06x}) = {code}", f.name), false);
+    }
+    result
+}
+
+fn call_device(
     f: &Function,
     handle: HAND,
     input: impl FnOnce(&mut Writer),

@@ -1,0 +1,150 @@
+/* S-COLLECT (digest 001 §5, C3§10.4.3; §2.20 data collection, §3.19): the manual's example —
+ * stop, clear, the addresses of axis 0's planned position and command velocity, count 2,
+ * interval 0, no trigger, start, MtMovePtpAbs(ax,1,1,0,0,10,0,10000), wait, stop, read in
+ * 1440-byte chunks into a double array — then what the data say: one sample per planning
+ * period (1 ms), positions 0 … 10000, velocity 10 pulse/ms in the cruise. Then a rising
+ * trigger, clearing, and the documented codes of bad arguments. */
+#include <string.h>
+#include "check.h"
+
+static double fabs_(double v) { return v < 0 ? -v : v; }
+
+/* Read dataLen bytes the way the manual does: 1440-byte chunks, then the rest. */
+static double *read_all(HAND dev, long dataLen) {
+    double *data = (double *)calloc((size_t)dataLen / 8 + 1, sizeof(double));
+    short count = (short)(dataLen / 1440);
+    int i;
+    CHECK(data != NULL, "out of memory");
+    for (i = 0; i < count; i++) OK(NMC_GetCollectData(dev, 1440, (unsigned char *)(data + i * 180)));
+    OK(NMC_GetCollectData(dev, (short)(dataLen % 1440), (unsigned char *)(data + count * 180)));
+    return data;
+}
+
+int main(void) {
+    HAND devHandle = 0, axisHandle = 0;
+    unsigned long addr[8];
+    short len[8], cltSts = 0;
+    long dataLen = 0, k, cruise = 0;
+    TCollectCfg g_cltCfg, bad;
+    TCollectTrig cltTrig, badTrig;
+    double *data, vmax = 0;
+    unsigned char one[8];
+
+    OK(NMC_DevOpen(0, &devHandle));
+    OK(NMC_MtOpen(devHandle, 0, &axisHandle));
+    OK(NMC_MtSetSvOn(axisHandle));
+
+    /* Nothing configured yet: nothing to start; stopping is harmless (the example does). */
+    CHECK(NMC_CollectOnOff(devHandle, 1) == RTN_INVALID_STATE, "start before ConfigCollect");
+    OK(NMC_ClearCollectSts(devHandle));
+    OK(NMC_GetCollectSts(devHandle, &cltSts, &dataLen));
+    CHECK(cltSts == 0 && dataLen == 0, "fresh status %#x %ld", cltSts, dataLen);
+
+    OK(NMC_GetCollectDataAddr(devHandle, 0, COLLECT_ADDRESS_PRF_POS, &addr[0], &len[0]));
+    OK(NMC_GetCollectDataAddr(devHandle, 0, COLLECT_ADDRESS_CMD_VEL, &addr[1], &len[1]));
+    CHECK(len[0] == 8 && len[1] == 8, "lengths %d %d", len[0], len[1]);
+    CHECK(addr[0] != addr[1] && addr[0] != 0, "addresses %#lx %#lx", addr[0], addr[1]);
+
+    /* Bad addresses. */
+    CHECK(NMC_GetCollectDataAddr(devHandle, 0, 16, &addr[2], &len[2]) == RTN_ARG_RANGE, "dataType 16");
+    CHECK(NMC_GetCollectDataAddr(devHandle, 0, -1, &addr[2], &len[2]) == RTN_ARG_RANGE, "dataType -1");
+    CHECK(NMC_GetCollectDataAddr(devHandle, 4, COLLECT_ADDRESS_PRF_POS, &addr[2], &len[2]) == RTN_ARG_RANGE, "axis 4");
+    CHECK(NMC_GetCollectDataAddr(devHandle, 0, COLLECT_ADDRESS_CRD_POS, &addr[2], &len[2]) == RTN_UNSUPPORTED, "crd pos");
+    CHECK(NMC_GetCollectDataAddr(devHandle, 0, COLLECT_ADDRESS_LASER_POWER, &addr[2], &len[2]) == RTN_UNSUPPORTED, "laser");
+    CHECK(NMC_GetCollectDataAddr(devHandle, 0, COLLECT_ADDRESS_PRF_POS, NULL, &len[2]) == RTN_NULL_POINTER, "NULL pAddr");
+    CHECK(NMC_GetCollectDataAddr(axisHandle, 0, COLLECT_ADDRESS_PRF_POS, &addr[2], &len[2]) == RTN_WRONG_HANDLE_KIND, "axis handle");
+
+    memset(&g_cltCfg, 0, sizeof(TCollectCfg));
+    g_cltCfg.count = 2;
+    g_cltCfg.interval = 0;
+    g_cltCfg.address[0] = addr[0];
+    g_cltCfg.length[0] = len[0];
+    g_cltCfg.address[1] = addr[1];
+    g_cltCfg.length[1] = len[1];
+    memset(&cltTrig, 0, sizeof(TCollectTrig));
+    cltTrig.mode = COLLECT_MODE_NONE;
+
+    /* Bad configurations. */
+    bad = g_cltCfg; bad.count = 0;
+    CHECK(NMC_ConfigCollect(devHandle, &bad, &cltTrig) == RTN_ARG_RANGE, "count 0");
+    bad = g_cltCfg; bad.count = COLLECT_LIST_MAX + 1;
+    CHECK(NMC_ConfigCollect(devHandle, &bad, &cltTrig) == RTN_ARG_RANGE, "count 9");
+    bad = g_cltCfg; bad.address[1] = 0x1234;
+    CHECK(NMC_ConfigCollect(devHandle, &bad, &cltTrig) == RTN_ARG_RANGE, "foreign address");
+    bad = g_cltCfg; bad.length[0] = 4;
+    CHECK(NMC_ConfigCollect(devHandle, &bad, &cltTrig) == RTN_ARG_RANGE, "length 4");
+    bad = g_cltCfg; bad.interval = -1;
+    CHECK(NMC_ConfigCollect(devHandle, &bad, &cltTrig) == RTN_ARG_RANGE, "interval -1");
+    badTrig = cltTrig; badTrig.mode = 7;
+    CHECK(NMC_ConfigCollect(devHandle, &g_cltCfg, &badTrig) == RTN_ARG_RANGE, "mode 7");
+    badTrig = cltTrig; badTrig.mode = COLLECT_MODE_RISE; badTrig.source1 = 2;
+    CHECK(NMC_ConfigCollect(devHandle, &g_cltCfg, &badTrig) == RTN_ARG_RANGE, "source1 2 of 2 channels");
+    badTrig = cltTrig; badTrig.startDelay = 10;
+    CHECK(NMC_ConfigCollect(devHandle, &g_cltCfg, &badTrig) == RTN_UNSUPPORTED, "startDelay");
+    CHECK(NMC_ConfigCollect(devHandle, NULL, &cltTrig) == RTN_NULL_POINTER, "NULL pCollect");
+
+    /* The manual's example. */
+    OK(NMC_CollectOnOff(devHandle, 0));
+    OK(NMC_ClearCollectSts(devHandle));
+    OK(NMC_ConfigCollect(devHandle, &g_cltCfg, &cltTrig));
+    CHECK(NMC_CollectOnOff(devHandle, 2) == RTN_ARG_RANGE, "en 2");
+    OK(NMC_CollectOnOff(devHandle, 1));
+    EVENTUALLY(NMC_GetCollectSts(devHandle, &cltSts, &dataLen), (cltSts & COLLECT_STS_TRIGGERED) != 0);
+    CHECK(cltSts & COLLECT_STS_ON, "running %#x", cltSts);
+    OK(NMC_MtMovePtpAbs(axisHandle, 1, 1, 0, 0, 10, 0, 10000));
+    wait_still(axisHandle);
+    OK(NMC_CollectOnOff(devHandle, 0));
+    OK(NMC_GetCollectSts(devHandle, &cltSts, &dataLen));
+    CHECK(!(cltSts & COLLECT_STS_ON) && (cltSts & COLLECT_STS_TRIGGERED), "stopped %#x", cltSts);
+    CHECK(dataLen % 16 == 0, "dataLen %ld is whole samples", dataLen);
+    /* 10 ms up, 990 cruising, 10 down: at least 1010 samples of 1 ms. */
+    CHECK(dataLen / 16 >= 1010, "samples %ld", dataLen / 16);
+    CHECK(NMC_GetCollectData(devHandle, 1441, one) == RTN_ARG_RANGE, "len 1441");
+
+    data = read_all(devHandle, dataLen);
+    CHECK(data[0] >= 0 && data[0] < 1, "first position %g", data[0]);
+    CHECK(data[dataLen / 8 - 2] == 10000, "last position %g", data[dataLen / 8 - 2]);
+    for (k = 0; k + 1 < dataLen / 16; k++) {
+        double p0 = data[2 * k], v0 = data[2 * k + 1], p1 = data[2 * k + 2], v1 = data[2 * k + 3];
+        CHECK(p1 >= p0, "position falls at sample %ld: %g → %g", k, p0, p1);
+        CHECK(v1 >= -1e-9 && v1 <= 10 + 1e-9, "velocity %g at sample %ld", v1, k);
+        /* One planning period between samples: the step is the mean velocity × 1 ms. */
+        CHECK(fabs_((p1 - p0) - (v0 + v1) / 2) <= 0.5 + 1e-9, "sample %ld: step %g, velocities %g %g",
+              k, p1 - p0, v0, v1);
+        if (v1 > vmax) vmax = v1;
+        if (fabs_(v1 - 10) < 1e-9) cruise++;
+    }
+    CHECK(fabs_(vmax - 10) < 1e-9, "top velocity %g", vmax);
+    CHECK(cruise >= 980, "cruise samples %ld", cruise);
+    free(data);
+    /* Everything is read: one byte more is refused. */
+    CHECK(NMC_GetCollectData(devHandle, 1, one) == RTN_ARG_RANGE, "read past the end");
+
+    OK(NMC_ClearCollectSts(devHandle));
+    OK(NMC_GetCollectSts(devHandle, &cltSts, &dataLen));
+    CHECK(cltSts == 0 && dataLen == 0, "cleared %#x %ld", cltSts, dataLen);
+
+    /* A rising trigger on channel 0 (the planned position) at 15000: nothing before it. */
+    cltTrig.mode = COLLECT_MODE_RISE;
+    cltTrig.source1 = 0;
+    cltTrig.value = 15000;
+    g_cltCfg.interval = 2;
+    OK(NMC_ConfigCollect(devHandle, &g_cltCfg, &cltTrig));
+    OK(NMC_CollectOnOff(devHandle, 1));
+    OK(NMC_GetCollectSts(devHandle, &cltSts, &dataLen));
+    CHECK(cltSts == COLLECT_STS_ON && dataLen == 0, "armed %#x %ld", cltSts, dataLen);
+    OK(NMC_MtMovePtpAbs(axisHandle, 1, 1, 0, 0, 10, 0, 20000));
+    wait_still(axisHandle);
+    OK(NMC_CollectOnOff(devHandle, 0));
+    OK(NMC_GetCollectSts(devHandle, &cltSts, &dataLen));
+    CHECK(cltSts & COLLECT_STS_TRIGGERED, "triggered %#x", cltSts);
+    /* 5000 pulses at 10 pulse/ms every 2 ms: about 250 samples. */
+    CHECK(dataLen / 16 >= 250 && dataLen / 16 < 400, "samples %ld", dataLen / 16);
+    data = read_all(devHandle, dataLen);
+    CHECK(data[0] >= 15000 && data[0] < 15010, "first sample %g", data[0]);
+    CHECK(fabs_((data[2] - data[0]) - 20) < 1e-9, "2 ms between samples: %g", data[2] - data[0]);
+    free(data);
+
+    printf("ok\n");
+    return 0;
+}
