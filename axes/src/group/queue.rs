@@ -40,6 +40,11 @@ pub(super) enum Item {
     },
     /// Start a single-axis move of a non-member axis (NMC CrdBufAxMoveEx).
     AxisMove(GroupAxisMove),
+    /// Buffered I/O or a stop, here or at a path distance from here (`buffered_io`).
+    Io {
+        action: super::buffered_io::IoAction,
+        at: super::buffered_io::PathPoint,
+    },
 }
 
 #[derive(Clone, Debug, PartialEq)]

@@ -43,7 +43,7 @@ pub const HANDLERS: &[(Function, Handler)] = &[
     (table::CLR_ALL_DIO_MAPPING, clr_all_dio_mapping),
 ];
 
-fn flag(name: &str, v: i16) -> Result<bool, Refusal> {
+pub(super) fn flag(name: &str, v: i16) -> Result<bool, Refusal> {
     match v {
         0 | 1 => Ok(v == 1),
         _ => Err(Refusal::range(name, v, "{0, 1}")),
@@ -196,7 +196,7 @@ fn set_do_bit_auto_reverse(c: &mut Call<'_>) -> Result<(), Refusal> {
     Ok(())
 }
 
-fn pulse_channel(ch: i16) -> Result<usize, Refusal> {
+pub(super) fn pulse_channel(ch: i16) -> Result<usize, Refusal> {
     usize::try_from(ch)
         .ok()
         .filter(|c| *c < MAX_NUM_DOBIT_PULSE)
@@ -210,7 +210,7 @@ fn pulse_channel(ch: i16) -> Result<usize, Refusal> {
 }
 
 /// µs in (0, 1e9].
-fn micros(name: &str, v: i64) -> Result<f64, Refusal> {
+pub(super) fn micros(name: &str, v: i64) -> Result<f64, Refusal> {
     if v > 0 && v <= 1_000_000_000 {
         Ok(v as f64 / 1e6)
     } else {

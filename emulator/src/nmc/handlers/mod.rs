@@ -12,6 +12,10 @@ mod axis_config;
 mod crd;
 mod crd_circle;
 mod crd_lookahead;
+// Buffered I/O, stops and packs, advanced buffered I/O (0x16xx).
+mod adv_buf_io;
+mod crd_buf_io;
+mod crd_pack;
 mod crd_segment;
 mod crd_status;
 mod device;
@@ -48,7 +52,7 @@ mod closed_loop;
 mod extras;
 mod follow;
 
-const FAMILIES: [&[(Function, Handler)]; 35] = [
+const FAMILIES: [&[(Function, Handler)]; 38] = [
     device::HANDLERS,
     axis::HANDLERS,
     motion::HANDLERS,
@@ -84,6 +88,9 @@ const FAMILIES: [&[(Function, Handler)]; 35] = [
     closed_loop::HANDLERS,
     crd_lookahead::HANDLERS,
     crd_circle::HANDLERS,
+    crd_buf_io::HANDLERS,
+    adv_buf_io::HANDLERS,
+    crd_pack::HANDLERS,
 ];
 
 /// The handler of function `id`.
