@@ -16,12 +16,12 @@
 //! [`STOP_INPUT_SLOTS`] watches.
 
 use crate::command::{
-    bounded, finite, CommandId, CommandState, EngineError, ErrorKind, GroupBufferedHalt, GroupId,
+    bounded, finite, CommandId, CommandState, EngineError, ErrorKind, GroupBufferedHalt,
     GroupPulseOutput, GroupSetAnalogOutput, GroupStopInput, PulseDigitalOutput,
 };
 use crate::status::{GroupFault, GroupState};
 
-use super::queue::Item;
+use super::queue::{IoAction, Item, PathPoint};
 use super::{Env, Group};
 
 /// Watches a group keeps (`group_stop_input` slots 0 … 63).
@@ -29,43 +29,6 @@ pub const STOP_INPUT_SLOTS: u16 = 64;
 /// Outputs that may wait for their path distance at once; one more is refused (its command
 /// ends with `queue_full`).
 pub const MAX_DISTANCE_OUTPUTS: usize = 256;
-
-/// What a buffered I/O marker does.
-#[derive(Clone, Debug, PartialEq)]
-pub(super) enum IoAction {
-    /// `level` written (if any), then `toggles` toggles, or (0) the end of a running train.
-    Digital {
-        channel: u16,
-        level: Option<bool>,
-        level_time: f64,
-        other_time: f64,
-        toggles: u32,
-    },
-    Analog {
-        channel: u16,
-        value: f64,
-    },
-    /// Watch `slot` set to (input, level), or ended.
-    StopInput {
-        slot: u16,
-        watch: Option<(u16, bool)>,
-    },
-    Halt {
-        target: GroupId,
-        deceleration: Option<f64>,
-    },
-}
-
-/// Where on the path a marker acts.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) enum PathPoint {
-    /// Where the marker stands.
-    Here,
-    /// This much path length past it.
-    After(f64),
-    /// This much path length before the end of the motion queued when the path reaches it.
-    BeforeEnd(f64),
-}
 
 /// A pulse train or an analog write a group asks the engine for (it owns the timed outputs and
 /// the analog image).

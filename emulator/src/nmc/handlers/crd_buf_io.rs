@@ -16,7 +16,7 @@ use mcemu_nmc::table::{self, Function};
 use super::adv_buf_io::{configured, pulse_toggles};
 use super::crd::{members, state};
 use super::crd_segment::{marker, Push};
-use super::io_extras::{flag, micros, pulse_channel};
+use super::io_extras::{flag, pulse_channel, pulse_train};
 use crate::nmc::crd::CRD_COUNT;
 use crate::nmc::service::{Call, Handler, Refusal};
 
@@ -236,26 +236,15 @@ fn crd_buf_estop_di_ex_on_off(c: &mut Call<'_>) -> Result<(), Refusal> {
 fn crd_buf_do_bit_pulse_enable(c: &mut Call<'_>) -> Result<(), Refusal> {
     let p = Push::begin(c)?;
     let _seg_no = c.input.i64()?;
-    let (do_type, index) = (c.input.i16()?, c.input.i16()?);
-    let (high, low, count) = (c.input.i64()?, c.input.i64()?, c.input.i64()?);
-    let (initial, ch) = (c.input.i16()?, c.input.i16()?);
-    if do_type != 0 {
-        return Err(Refusal::range("doType", do_type, "{0 general}"));
-    }
-    let bit = super::io::bit_index(c, index, c.snapshot.io.do_.len())?;
-    let (high, low) = (micros("highLevelTime", high)?, micros("lowLevelTime", low)?);
-    let toggles = pulse_toggles("outCount", count)?;
-    let initial = flag("initialLevel", initial)?;
-    let ch = pulse_channel(ch)?;
-    let level = initial ^ c.service.io().do_rev(bit);
-    let (level_time, other_time) = if initial { (high, low) } else { (low, high) };
+    let (train, ch) = pulse_train(c)?;
+    let bit = usize::from(train.channel);
     let command = GroupPulseOutput {
         group: p.group(),
-        channel: bit as u16,
-        level: Some(level),
-        level_time,
-        other_time,
-        toggles,
+        channel: train.channel,
+        level: Some(train.level),
+        level_time: train.level_time,
+        other_time: train.other_time,
+        toggles: train.toggles,
         after_length: None,
         before_end: None,
     };

@@ -218,10 +218,9 @@ pub(super) fn micros(name: &str, v: i64) -> Result<f64, Refusal> {
     }
 }
 
-/// `outCount` pulses of `highLevelTime` high and `lowLevelTime` low on general DO `doIndex`,
-/// starting at `initialLevel` and ending there; `outCount` 0 runs until disabled.
-fn do_bit_pulse_enable(c: &mut Call<'_>) -> Result<(), Refusal> {
-    c.device()?;
+/// `NMC_DoBitPulseEnable`'s arguments after the handle, checked: the train, its channel `ch`
+/// and the DO bit (shared with the buffered form).
+pub(super) fn pulse_train(c: &mut Call<'_>) -> Result<(PulseDigitalOutput, usize), Refusal> {
     let (do_type, index) = (c.input.i16()?, c.input.i16()?);
     let (high, low, count) = (c.input.i64()?, c.input.i64()?, c.input.i64()?);
     let (initial, ch) = (c.input.i16()?, c.input.i16()?);
@@ -245,13 +244,25 @@ fn do_bit_pulse_enable(c: &mut Call<'_>) -> Result<(), Refusal> {
     let ch = pulse_channel(ch)?;
     let level = initial ^ c.service.io().do_rev(bit);
     let (level_time, other_time) = if initial { (high, low) } else { (low, high) };
-    c.command(PulseDigitalOutput {
-        channel: bit as u16,
-        level,
-        level_time,
-        other_time,
-        toggles,
-    });
+    Ok((
+        PulseDigitalOutput {
+            channel: bit as u16,
+            level,
+            level_time,
+            other_time,
+            toggles,
+        },
+        ch,
+    ))
+}
+
+/// `outCount` pulses of `highLevelTime` high and `lowLevelTime` low on general DO `doIndex`,
+/// starting at `initialLevel` and ending there; `outCount` 0 runs until disabled.
+fn do_bit_pulse_enable(c: &mut Call<'_>) -> Result<(), Refusal> {
+    c.device()?;
+    let (train, ch) = pulse_train(c)?;
+    let bit = usize::from(train.channel);
+    c.command(train);
     if let Some(slot) = c.service.io().pulse_channels.get_mut(ch) {
         *slot = Some(bit);
     }
