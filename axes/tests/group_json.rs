@@ -19,6 +19,7 @@ use axes::command::{
     GroupSetCoordinateTransform, GroupSetRotaryTransform, GroupSetXyzaTransform,
     MoveProtectionDisable, MoveProtectionEnable, ProtectionMode,
 };
+use axes::command::{GroupBufferedHalt, GroupPulseOutput, GroupSetAnalogOutput, GroupStopInput};
 
 fn full() -> Vec<(Command, &'static str)> {
     vec![
@@ -220,6 +221,44 @@ fn full() -> Vec<(Command, &'static str)> {
             r#"{"type":"group_axis_move","group":1,"axis":3,"position":-5.0,"velocity":10.0,"acceleration":null,"deceleration":null,"jerk":null}"#,
         ),
         (
+            Command::from(GroupPulseOutput {
+                group: 1,
+                channel: 2,
+                level: Some(true),
+                level_time: 0.005,
+                other_time: 0.003,
+                toggles: 6,
+                after_length: Some(30.0),
+                before_end: None,
+            }),
+            r#"{"type":"group_pulse_output","group":1,"channel":2,"level":true,"level_time":0.005,"other_time":0.003,"toggles":6,"after_length":30.0}"#,
+        ),
+        (
+            Command::from(GroupSetAnalogOutput {
+                group: 1,
+                channel: 1,
+                value: 2.5,
+            }),
+            r#"{"type":"group_set_analog_output","group":1,"channel":1,"value":2.5}"#,
+        ),
+        (
+            Command::from(GroupStopInput {
+                group: 1,
+                slot: 3,
+                channel: Some(7),
+                level: true,
+            }),
+            r#"{"type":"group_stop_input","group":1,"slot":3,"channel":7,"level":true}"#,
+        ),
+        (
+            Command::from(GroupBufferedHalt {
+                group: 1,
+                target: 2,
+                deceleration: Some(100.0),
+            }),
+            r#"{"type":"group_buffered_halt","group":1,"target":2,"deceleration":100.0}"#,
+        ),
+        (
             Command::from(MoveSpline {
                 group: 1,
                 points: vec![vec![1.0, 2.0], vec![3.0, -1.5]],
@@ -353,7 +392,7 @@ fn full() -> Vec<(Command, &'static str)> {
 #[test]
 fn every_group_command_serializes_to_its_pinned_json_and_back() {
     let cases = full();
-    assert_eq!(cases.len(), 33, "one case per group command");
+    assert_eq!(cases.len(), 37, "one case per group command");
     common::assert_pinned(cases);
 }
 

@@ -513,3 +513,29 @@ fn saved_motion_config_survives_a_restart() {
     }
     assert!(state.join("nmc/nmc.json").is_file());
 }
+
+/// Buffered I/O, stops and packs, advanced buffered I/O (digest 001 §2.7, §3.11, §3.12): the
+/// program checks the outputs, counts and stops in path order; here DI3 and DI4 are high
+/// before it starts (its buffered E-stop inputs) and DA 0 holds what `NMC_CrdBufOut` wrote
+/// (16384 raw on ±10 V: 5 V) once it has finished.
+#[test]
+fn crd_buffered_io_stops_and_packs() {
+    let dir = fresh_dir(env!("CARGO_TARGET_TMPDIR"), "nmc-crd-buf-io");
+    let exe = compile_example("crd_buf_io.c", &dir, &[]);
+    let m = Mcemu::start(Some(&gaochuan()), &["--clock", "scaled:5"]);
+    for channel in [3, 4] {
+        m.post_ok(
+            "/commands",
+            &json!({"type": "force_digital_input", "channel": channel, "value": true}),
+        );
+    }
+    let out = run_example(&exe, m.address("nmc"));
+    let stdout = String::from_utf8_lossy(&out.stdout).to_string();
+    assert!(
+        out.status.success() && stdout.lines().last() == Some("ok"),
+        "{}",
+        output_report("crd_buf_io.c", &out)
+    );
+    let ao = m.state()["io"]["ao"][0].as_f64().unwrap();
+    assert!((ao - 5.0).abs() < 1e-3, "DA 0 = {ao} V");
+}

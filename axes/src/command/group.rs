@@ -62,6 +62,7 @@ use super::{
     GroupSetCoordinateSystem, GroupSetCoordinateTransform, GroupSetRotaryTransform,
     GroupSetXyzaTransform, MoveProtectionDisable, MoveProtectionEnable,
 };
+use super::{GroupBufferedHalt, GroupPulseOutput, GroupSetAnalogOutput, GroupStopInput};
 use super::{GroupJog, GroupJogAxis};
 
 /// Make a group of 1–9 axes (PLCopen MC_AddAxisToGroup ×n; HIMC SetupGroup without the enable;
@@ -676,6 +677,10 @@ pub enum GroupCommand {
     DeleteTransform(GroupDeleteTransform),
     Jog(GroupJog),
     JogAxis(GroupJogAxis),
+    PulseOutput(GroupPulseOutput),
+    SetAnalogOutput(GroupSetAnalogOutput),
+    StopInput(GroupStopInput),
+    BufferedHalt(GroupBufferedHalt),
     /// Between two groups.
     ProtectionEnable(MoveProtectionEnable),
     ProtectionDisable(MoveProtectionDisable),
@@ -716,6 +721,10 @@ impl GroupCommand {
             GroupCommand::DeleteTransform(c) => c.group,
             GroupCommand::Jog(c) => c.group,
             GroupCommand::JogAxis(c) => c.group,
+            GroupCommand::PulseOutput(c) => c.group,
+            GroupCommand::SetAnalogOutput(c) => c.group,
+            GroupCommand::StopInput(c) => c.group,
+            GroupCommand::BufferedHalt(c) => c.group,
             GroupCommand::ProtectionEnable(_) | GroupCommand::ProtectionDisable(_) => return None,
         })
     }
@@ -753,6 +762,10 @@ command_from!(GroupCommand, Group, [
     GroupDeleteTransform => DeleteTransform,
     GroupJog => Jog,
     GroupJogAxis => JogAxis,
+    GroupPulseOutput => PulseOutput,
+    GroupSetAnalogOutput => SetAnalogOutput,
+    GroupStopInput => StopInput,
+    GroupBufferedHalt => BufferedHalt,
     MoveProtectionEnable => ProtectionEnable,
     MoveProtectionDisable => ProtectionDisable,
 ]);

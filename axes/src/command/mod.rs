@@ -94,6 +94,7 @@ mod follow;
 mod gantry;
 mod group;
 mod group_frames;
+mod group_io;
 mod group_jog;
 mod handwheel;
 mod io;
@@ -139,6 +140,7 @@ pub use group_frames::{
     GroupSetRotaryTransform, GroupSetXyzaTransform, MoveProtectionDisable, MoveProtectionEnable,
     ProtectionMode,
 };
+pub use group_io::{GroupBufferedHalt, GroupPulseOutput, GroupSetAnalogOutput, GroupStopInput};
 pub use group_jog::{GroupJog, GroupJogAxis};
 pub use handwheel::{
     HandwheelExcess, HandwheelIn, HandwheelOut, HandwheelSetRatio, HandwheelTurn,

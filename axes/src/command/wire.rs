@@ -35,6 +35,7 @@ use super::{
     MoveCircularAbsolute, MoveCircularAngle, MoveCircularRelative, MoveEllipse, MoveLinearAbsolute,
     MoveLinearRelative, MoveSpline,
 };
+use super::{GroupBufferedHalt, GroupPulseOutput, GroupSetAnalogOutput, GroupStopInput};
 use super::{
     GroupDeleteTransform, GroupSetCoordinateSystem, GroupSetCoordinateTransform,
     GroupSetRotaryTransform, GroupSetXyzaTransform, MoveProtectionDisable, MoveProtectionEnable,
@@ -183,6 +184,11 @@ pub(super) enum Command {
     TangentialCornerContinue(super::TangentialCornerContinue),
     // HMC MoveLink / MoveFlexLink profiles (digest 000 §4.3).
     CamTableLink(super::CamTableLink),
+    // NMC buffered I/O and stops (issue 13).
+    GroupPulseOutput(GroupPulseOutput),
+    GroupSetAnalogOutput(GroupSetAnalogOutput),
+    GroupStopInput(GroupStopInput),
+    GroupBufferedHalt(GroupBufferedHalt),
 }
 
 impl From<Command> for super::Command {
@@ -210,6 +216,12 @@ impl From<Command> for super::Command {
             Command::WriteDigitalOutput(c) => super::Command::Io(IoCommand::WriteDigitalOutput(c)),
             Command::WriteAnalogOutput(c) => super::Command::Io(IoCommand::WriteAnalogOutput(c)),
             Command::PulseDigitalOutput(c) => super::Command::Io(IoCommand::PulseDigitalOutput(c)),
+            Command::GroupPulseOutput(c) => super::Command::Group(GroupCommand::PulseOutput(c)),
+            Command::GroupSetAnalogOutput(c) => {
+                super::Command::Group(GroupCommand::SetAnalogOutput(c))
+            }
+            Command::GroupStopInput(c) => super::Command::Group(GroupCommand::StopInput(c)),
+            Command::GroupBufferedHalt(c) => super::Command::Group(GroupCommand::BufferedHalt(c)),
             Command::InjectFollowingError(c) => {
                 super::Command::Axis(AxisCommand::InjectFollowingError(c))
             }
@@ -363,6 +375,12 @@ impl From<super::Command> for Command {
             super::Command::Io(IoCommand::WriteDigitalOutput(c)) => Command::WriteDigitalOutput(c),
             super::Command::Io(IoCommand::WriteAnalogOutput(c)) => Command::WriteAnalogOutput(c),
             super::Command::Io(IoCommand::PulseDigitalOutput(c)) => Command::PulseDigitalOutput(c),
+            super::Command::Group(GroupCommand::PulseOutput(c)) => Command::GroupPulseOutput(c),
+            super::Command::Group(GroupCommand::SetAnalogOutput(c)) => {
+                Command::GroupSetAnalogOutput(c)
+            }
+            super::Command::Group(GroupCommand::StopInput(c)) => Command::GroupStopInput(c),
+            super::Command::Group(GroupCommand::BufferedHalt(c)) => Command::GroupBufferedHalt(c),
             super::Command::Axis(AxisCommand::InjectFollowingError(c)) => {
                 Command::InjectFollowingError(c)
             }

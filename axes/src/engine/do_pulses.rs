@@ -78,8 +78,9 @@ impl DoPulses {
         self.trains.retain(|t| t.channel != channel);
     }
 
-    /// One tick: toggle the outputs whose level has held its time. Whether an output changed.
-    pub(super) fn step(&mut self, outputs: &mut [bool]) -> bool {
+    /// One tick: toggle the outputs whose level has held its time, counting in `pulses` each
+    /// hold of a train's first level that ends. Whether an output changed.
+    pub(super) fn step(&mut self, outputs: &mut [bool], pulses: &mut [u32]) -> bool {
         if self.trains.is_empty() {
             return false;
         }
@@ -92,6 +93,11 @@ impl DoPulses {
             if let Some(o) = outputs.get_mut(usize::from(t.channel)) {
                 *o = !*o;
                 changed = true;
+            }
+            if t.phase == 0 {
+                if let Some(n) = pulses.get_mut(usize::from(t.channel)) {
+                    *n = n.wrapping_add(1);
+                }
             }
             if t.toggles != u32::MAX {
                 t.toggles -= 1;
@@ -112,6 +118,7 @@ mod tests {
     fn a_train_toggles_on_whole_ticks_and_ends() {
         let mut p = DoPulses::default();
         let mut out = vec![false; 2];
+        let mut counts = vec![0u32; 2];
         let c = PulseDigitalOutput {
             channel: 1,
             level: true,
@@ -122,10 +129,12 @@ mod tests {
         p.start(&c, &mut out, 0.001).unwrap();
         let mut levels = Vec::new();
         for _ in 0..8 {
-            p.step(&mut out);
+            p.step(&mut out, &mut counts);
             levels.push(out[1]);
         }
         assert_eq!(levels, [true, true, false, true, true, true, false, false]);
+        // Two holds of the first level ended (toggles 1 and 3).
+        assert_eq!(counts, [0, 2]);
         assert!(p.trains.is_empty());
         let bad = PulseDigitalOutput {
             channel: 2,
@@ -134,9 +143,9 @@ mod tests {
         assert!(p.start(&bad, &mut out, 0.001).is_err());
         // Toggles 0 ends a train where it stands, without writing.
         p.start(&c, &mut out, 0.001).unwrap();
-        p.step(&mut out);
-        p.step(&mut out);
-        p.step(&mut out);
+        p.step(&mut out, &mut counts);
+        p.step(&mut out, &mut counts);
+        p.step(&mut out, &mut counts);
         assert!(!out[1]);
         let stop = PulseDigitalOutput {
             level: true,

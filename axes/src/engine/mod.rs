@@ -13,7 +13,7 @@ use crate::command::{
 };
 use crate::config::{ConfigError, EngineConfig, InputBinding};
 use crate::coupling::{Couplings, Env as CouplingEnv};
-use crate::group::{Env as GroupEnv, Groups};
+use crate::group::{Env as GroupEnv, Groups, IoRequest as GroupIoRequest};
 use crate::homing::HomingSpec;
 use crate::od::Value;
 use crate::param::ParamId;
@@ -210,6 +210,7 @@ impl Engine {
                     ai: vec![0.0; io.analog_inputs as usize],
                     ao: vec![0.0; io.analog_outputs as usize],
                     di_edges: vec![0; io.digital_inputs as usize],
+                    do_pulses: vec![0; io.digital_outputs as usize],
                 },
                 di_forced: vec![None; io.digital_inputs as usize],
                 ai_forced: vec![None; io.analog_inputs as usize],
@@ -342,9 +343,20 @@ impl Engine {
             di: &io.image.di,
             outputs: &mut io.image.do_,
             outputs_changed: false,
+            analog_outputs: io.image.ao.len(),
+            io_requests: Vec::new(),
+            halts: Vec::new(),
         };
         let result = f(groups, &mut env);
         if env.outputs_changed {
+            io.version += 1;
+        }
+        // The groups checked the channels and times when the commands were queued.
+        for request in std::mem::take(&mut env.io_requests) {
+            let _ = match request {
+                GroupIoRequest::Pulse(c) => io.pulses.start(&c, &mut io.image.do_, *period),
+                GroupIoRequest::Analog { channel, value } => io.write_analog_output(channel, value),
+            };
             io.version += 1;
         }
         result
@@ -880,7 +892,7 @@ impl Engine {
                 }
             }
         }
-        if io.pulses.step(&mut io.image.do_) {
+        if io.pulses.step(&mut io.image.do_, &mut io.image.do_pulses) {
             io.version += 1;
         }
     }

@@ -36,6 +36,9 @@ impl Groups {
             GroupCommand::Delete(c) => self.delete(env, c.group),
             GroupCommand::ProtectionEnable(c) => self.enable_protection(c),
             GroupCommand::ProtectionDisable(c) => self.disable_protection(c.protection),
+            GroupCommand::BufferedHalt(c) if self.get(c.target).is_none() => {
+                Err(EngineError::UnknownGroup { group: c.target })
+            }
             other => {
                 let Some(id) = id else {
                     return Ok(Reply::Done);
@@ -153,6 +156,7 @@ impl Groups {
             params_version: 0,
             events: Vec::new(),
             interference: (InterferenceStatus::NotEnabled, 0.0),
+            buffered_io: Default::default(),
         };
         if g.result.is_some() {
             // HMC's merge angles are on by default (digest 000 §3.4, TV 38: π/6 and π/2), and
@@ -439,6 +443,22 @@ impl Group {
                 let item = self.axis_move_item(env, c)?;
                 self.submit_marker(env, item, MarkerKind::PassThrough)
             }
+            GroupCommand::PulseOutput(c) => {
+                let item = self.pulse_output_item(env, &c)?;
+                self.submit_marker(env, item, MarkerKind::PassThrough)
+            }
+            GroupCommand::SetAnalogOutput(c) => {
+                let item = self.analog_output_item(env, &c)?;
+                self.submit_marker(env, item, MarkerKind::PassThrough)
+            }
+            GroupCommand::StopInput(c) => {
+                let item = self.stop_input_item(env, &c)?;
+                self.submit_marker(env, item, MarkerKind::PassThrough)
+            }
+            GroupCommand::BufferedHalt(c) => {
+                let item = self.buffered_halt_item(&c)?;
+                self.submit_marker(env, item, MarkerKind::PassThrough)
+            }
         }
     }
 
@@ -485,6 +505,8 @@ impl Group {
         self.state = target;
         self.fault = None;
         self.last_error = None;
+        // Buffered E-stop inputs were armed by the program that ended here.
+        self.clear_stop_inputs();
         Ok(Reply::Done)
     }
 
@@ -577,6 +599,7 @@ impl Group {
     /// dropped); a wait in progress and an aborting motion not yet started end `aborted`. A
     /// halted path stops too: the halt gives way to the stop.
     fn stop_path(&mut self, env: &mut Env, deceleration: f64) {
+        self.drop_distance_outputs(env, CommandState::Aborted);
         if let Some(wait) = self.waiting.take() {
             self.planner.release_hold();
             env.ledger.finish(wait.id, CommandState::Aborted);

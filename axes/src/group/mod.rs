@@ -28,6 +28,8 @@ use crate::status::{
     AxisFlags, AxisStatus, GroupFault, GroupState, GroupStatus, InterferenceStatus,
 };
 
+mod buffered_io;
+pub(crate) use buffered_io::IoRequest;
 mod commands;
 mod corner;
 pub(crate) use corner::not_at_corner;
@@ -57,6 +59,13 @@ pub(crate) struct Env<'a> {
     pub outputs: &'a mut [bool],
     /// Set when an output changed (the engine bumps its I/O version).
     pub outputs_changed: bool,
+    /// Analog outputs of the machine (buffered analog writes are checked against it).
+    pub analog_outputs: usize,
+    /// Pulse trains and analog writes the groups ask for; the engine applies them after the
+    /// groups, in order (`buffered_io`).
+    pub io_requests: Vec<buffered_io::IoRequest>,
+    /// Buffered halts (target, deceleration), applied by [`Groups::step`] after every group.
+    pub halts: Vec<(GroupId, Option<f64>)>,
 }
 
 impl Env<'_> {
@@ -168,6 +177,8 @@ pub struct Group {
     events: Vec<path::planner::PathEvent>,
     /// The move protection's view of this group, written by [`Groups::step`].
     interference: (InterferenceStatus, f64),
+    /// Outputs waiting for a path distance, watched stop inputs (`buffered_io`).
+    buffered_io: buffered_io::BufferedIo,
 }
 
 impl Group {
@@ -380,6 +391,7 @@ impl Group {
         if self.running == Some(id)
             || self.waiting.as_ref().is_some_and(|w| w.id == id)
             || self.jog.as_ref().is_some_and(|j| j.id == id)
+            || self.waits_for_distance(id)
         {
             return Some(CommandState::Running);
         }
@@ -476,6 +488,14 @@ impl Groups {
         self.guard(env);
         for g in &mut self.groups {
             g.step(env);
+        }
+        // Buffered halts (NMC CrdBufStopMtn) after every group, so one may halt another: a
+        // target that cannot halt now (stopping, in error) is left as it is.
+        for (target, deceleration) in std::mem::take(&mut env.halts) {
+            if let Ok(g) = self.get_mut(target) {
+                let defaults = g.motion_defaults(env.axes).deceleration;
+                let _ = g.halt(deceleration, defaults);
+            }
         }
     }
 

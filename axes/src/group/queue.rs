@@ -4,7 +4,9 @@
 
 use std::collections::VecDeque;
 
-use crate::command::{AxisIndex, CommandId, GroupAxisMove, PositionCondition, PositionSource};
+use crate::command::{
+    AxisIndex, CommandId, GroupAxisMove, GroupId, PositionCondition, PositionSource,
+};
 
 /// A buffered non-motion command, or a motion.
 #[derive(Clone, Debug, PartialEq)]
@@ -43,6 +45,45 @@ pub(super) enum Item {
     /// Stand at a tangential axis's corner stop until released (`corner`); the next motion
     /// starts in `next_direction` (radians, in the tracked plane).
     CornerStop { next_direction: f64 },
+    /// Buffered I/O or a stop, here or at a path distance from here (`buffered_io`).
+    Io { action: IoAction, at: PathPoint },
+}
+
+/// What a buffered I/O marker does.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) enum IoAction {
+    /// `level` written (if any), then `toggles` toggles, or (0) the end of a running train.
+    Digital {
+        channel: u16,
+        level: Option<bool>,
+        level_time: f64,
+        other_time: f64,
+        toggles: u32,
+    },
+    Analog {
+        channel: u16,
+        value: f64,
+    },
+    /// Watch `slot` set to (input, level), or ended.
+    StopInput {
+        slot: u16,
+        watch: Option<(u16, bool)>,
+    },
+    Halt {
+        target: GroupId,
+        deceleration: Option<f64>,
+    },
+}
+
+/// Where on the path a marker acts.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum PathPoint {
+    /// Where the marker stands.
+    Here,
+    /// This much path length past it.
+    After(f64),
+    /// This much path length before the end of the motion queued when the path reaches it.
+    BeforeEnd(f64),
 }
 
 #[derive(Clone, Debug, PartialEq)]

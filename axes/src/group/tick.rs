@@ -50,6 +50,9 @@ impl Group {
             }
             return;
         }
+        if self.watch_stop_inputs(env) {
+            return;
+        }
         self.check_wait(env);
         if self.state == GroupState::ErrorStop {
             return;
@@ -78,6 +81,7 @@ impl Group {
             self.on_event(env, event);
         }
         self.events = events;
+        self.fire_distance_outputs(env);
         if let Err((k, axis, error)) = self.feed(env) {
             let cause = GroupFault::Member {
                 axis,
@@ -400,6 +404,12 @@ impl Group {
                 return;
             }
             Item::Motion { .. } => Ok(()),
+            Item::Io { .. } => {
+                if let Item::Io { action, at } = entry.item {
+                    self.reach_io(env, id, action, at);
+                }
+                return;
+            }
         };
         match result {
             Ok(()) => env.ledger.finish(id, CommandState::Done),
@@ -445,7 +455,9 @@ impl Group {
                 *timeout,
             ),
             Item::CornerStop { .. } => (std::mem::take(&mut self.corner_released), None),
-            Item::Motion { .. } | Item::SetOutput { .. } | Item::AxisMove(_) => (true, None),
+            Item::Motion { .. } | Item::SetOutput { .. } | Item::AxisMove(_) | Item::Io { .. } => {
+                (true, None)
+            }
         };
         let id = wait.id;
         if met {
@@ -574,6 +586,7 @@ impl Group {
         if let Some(jog) = self.jog.take() {
             env.ledger.finish(jog.id, running_state);
         }
+        self.drop_distance_outputs(env, CommandState::Aborted);
     }
 
     /// The whole group stops and goes to ErrorStop with `cause` (issue 11 item 3). The path is

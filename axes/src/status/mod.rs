@@ -348,6 +348,11 @@ pub struct IoImage {
     /// Changes of each digital input since start, wrapping (NMC GetDiReverseCount).
     #[serde(default)]
     pub di_edges: Vec<u32>,
+    /// Pulses the timed-output trains (`pulse_digital_output`, `group_pulse_output`) have
+    /// completed on each digital output since start, wrapping: a pulse is one hold of the
+    /// level a train starts at (NMC AdvBufIoGetPulseCnt).
+    #[serde(default)]
+    pub do_pulses: Vec<u32>,
 }
 
 impl Clone for IoImage {
@@ -358,6 +363,7 @@ impl Clone for IoImage {
             ai: self.ai.clone(),
             ao: self.ao.clone(),
             di_edges: self.di_edges.clone(),
+            do_pulses: self.do_pulses.clone(),
         }
     }
 
@@ -369,6 +375,7 @@ impl Clone for IoImage {
         self.ai.clone_from(&source.ai);
         self.ao.clone_from(&source.ao);
         self.di_edges.clone_from(&source.di_edges);
+        self.do_pulses.clone_from(&source.do_pulses);
     }
 }
 

@@ -5,6 +5,7 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
+use mcemu_nmc::buf_pack::{AdvBufIoParam, MAX_ADV_BUFIO_GROUP};
 use mcemu_nmc::io_structs::DioMapping;
 
 /// Extension modules take ids 2 … 9 (digest 001 §2.8, §4.8).
@@ -55,6 +56,18 @@ pub struct IoState {
     pub rtc_offset: i64,
     /// `NMC_SetBackedVarOnOff` (default off).
     pub backed: bool,
+    /// `NMC_AdvBufIoSetParam` by channel (`MAX_ADV_BUFIO_GROUP`), none until set.
+    pub adv_buf_io: [Option<AdvBufIoChannel>; MAX_ADV_BUFIO_GROUP],
+}
+
+/// One advanced buffered I/O channel: its parameters, the digital output they name, and the
+/// engine's pulse count of that output when they were set (`NMC_AdvBufIoGetPulseCnt` counts
+/// from there).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AdvBufIoChannel {
+    pub param: AdvBufIoParam,
+    pub output: u16,
+    pub pulse_base: u32,
 }
 
 /// The system password of a fresh device (the manual gives none; mcemu's).
@@ -80,6 +93,7 @@ impl Default for IoState {
             di_filters: BTreeMap::new(),
             edge_base: BTreeMap::new(),
             pulse_channels: [None; MAX_NUM_DOBIT_PULSE],
+            adv_buf_io: [None; MAX_ADV_BUFIO_GROUP],
             dio_mappings: Vec::new(),
             password: DEFAULT_PASSWORD.to_string(),
             para: BTreeMap::new(),

@@ -643,6 +643,12 @@ impl PathPlanner {
         total - self.exec.as_ref().map_or(0.0, |e| e.s)
     }
 
+    /// Path length the executing motion has covered (0 when none executes): how far past a
+    /// marker reached during the last step the path is (the motion after it is the one executing).
+    pub fn executed_length(&self) -> f64 {
+        self.exec.as_ref().map_or(0.0, |e| e.s)
+    }
+
     /// Motions started during the last step (bounded by [`MAX_STARTS_PER_STEP`]).
     pub fn starts_last_step(&self) -> usize {
         self.starts_last_step

@@ -410,6 +410,67 @@ typedef struct {
     long crdUsedSpace;
 } TPackedCrdSts4;
 
+/* Advanced buffered I/O, NMC_AdvBufIoSetParam (digest 001 §3.12). */
+#define MAX_ADV_BUFIO_GROUP 2
+#define BUF_OUT_GROUP_DA  0
+#define BUF_OUT_GROUP_PWM 1
+typedef struct {
+    short outType;
+    short outGroup;
+    short outIndex;
+    short outSns;
+    short pulseMode;
+    short reserved1;
+    long pulseOnTime;
+    long pulseOffTime;
+    unsigned char reserved[32];
+} TAdvBufIoParam;
+
+/* NMC_CrdBufDataPack (digest 001 §3.11): [short cmdType][struct] repeated, at most 1000
+ * bytes. The structs are mcemu's (the manual defines none): each holds the arguments of
+ * the function its type stands for, after the handle, in order. */
+#define BUF_LINE 0
+#define BUF_DO 1
+#define BUF_OUT 2
+#define BUF_DELAY 3
+#define BUF_AXMOVE 4
+#define BUF_DOEX 5
+#define BUF_ARC_R 6
+#define BUF_ARC_C 7
+#define BUF_LASER_SETPOWER 8
+#define BUF_LASER_ONOFF 9
+#define BUF_LASER_SETFOLLOW 10
+#define BUF_LASER_SETPARAM 11
+#define BUF_LINEXYZA 12
+#define BUF_SHIO_GATEPULSE 13
+#define BUF_DOBITPULSE 14
+#define BUF_XYZD8 15
+#define BUF_SHIOMINFRQ 16
+#define BUF_SHIOSETPARAM 17
+#define BUF_SHIOGATEONOFF 18
+#define BUF_WAITENCINPOS 19
+#define BUF_WAITDI 20
+typedef struct { long segNo; short mask; long tgPos[3]; double endVel; double vel; double synAcc; short lookaheadDis; } TCrdBufLine;
+typedef struct { long segNo; short doType; long ch; long value; } TCrdBufDo;
+typedef struct { long segNo; short group; short ch; long value; } TCrdBufOut;
+typedef struct { long segNo; short scale; long count; } TCrdBufDelay;
+typedef struct { long segNo; short axisMask; long tgPos[8]; double vel; double acc; short blockEn; short synEn; } TCrdBufAxMove;
+typedef struct { long segNo; short group; long doMask; long doValue; } TCrdBufDoEx;
+typedef struct { long segNo; long tgPos[2]; double radius; short circleDir; double endVel; double vel; double synAcc; short lookaheadDis; } TCrdBufArcR;
+typedef struct { long segNo; long tgPos[2]; long centerPos[2]; short circleDir; double endVel; double vel; double synAcc; short lookaheadDis; } TCrdBufArcC;
+typedef struct { long segNo; long power; short ch; } TCrdBufLaserPower;
+typedef struct { long segNo; short onOff; short ch; } TCrdBufLaserOnOff;
+typedef struct { long segNo; double overRide; short followType; short ch; } TCrdBufLaserFollow;
+typedef struct { long segNo; long onDelay; long offDelay; long minValue; long maxValue; long standbyPower; short ch; } TCrdBufLaserParam;
+typedef struct { long segNo; short mask; long tgPos[4]; double endVel; double vel; double synAcc; short lookaheadDis; } TCrdBufLineXYZA;
+typedef struct { long segNo; double gateTime; double gateFrq; long outCount; short ch; } TCrdBufShioGatePulse;
+typedef struct { long segNo; short doType; short doIndex; long highLevelTime; long lowLevelTime; long outCount; short initialLevel; short ch; } TCrdBufDoBitPulse;
+typedef struct { long segNo; long minFrq; short ch; } TCrdBufShioMinFrq;
+typedef struct { long segNo; double delay; double gateTime; double gateDistance; short ch; } TCrdBufShioParam;
+typedef struct { long segNo; short onOff; short ch; } TCrdBufShioGateOnOff;
+typedef struct { long segNo; long axisMask; long overTime; } TCrdBufWaitEncInPos;
+typedef struct { long segNo; short index; short diValue; long waitLastTime; } TCrdBufWaitDI;
+
 /* Data collection (digest 001 §3.19). COLLECT_LIST_MAX, the trigger modes and the status
  * bits are not in the manual (§8 item 3): mcemu's. Every value is 8 bytes, a little-endian
  * double (pulses, pulse/ms, 0/1), as the manual's example reads them into a double array. */
@@ -830,6 +891,20 @@ short NMC_CrdBufSHIOSetMinFrg(HAND crdHandle, long segment, long minFrq, short c
 short NMC_CrdBufSHIOClrMinFrg(HAND crdHandle, long segment, short ch);
 short NMC_BufSHIOGateOn(HAND crdHandle, long segNo, short ch);
 short NMC_BufSHIOGateOff(HAND crdHandle, long segNo, short ch);
+short NMC_CrdBufOut(HAND crdHandle, long segNo, short group, short ch, long value);
+short NMC_CrdBufStopMtn(HAND crdHandle, long segNo, short crdIdx);
+short NMC_CrdBufSetEstopDI(HAND crdHandle, long segNo, short axis, short gpiIndex, short sense);
+short NMC_CrdBufEstopDIExOnOff(HAND crdHandle, long segNo, short onOff, short group);
+short NMC_CrdBufDoBitPulseEnable(HAND crdHandle, long segNo, short doType, short doIndex, long highLevelTime, long lowLevelTime, long outCount, short initialLevel, short ch);
+short NMC_CrdBufDoBitPulseDisable(HAND crdHandle, long segNo, short ch);
+short NMC_CrdBufBeforeAxSyncMove(HAND crdHandle, long segNo, short axis, long relDistance, double vel);
+short NMC_CrdBufDataPack(HAND crdHandle, unsigned char *pBufData, short dataLen);
+short NMC_AdvBufIoSetParam(HAND devHandle, TAdvBufIoParam *pPrm, short ch);
+short NMC_AdvBufIoGetParam(HAND devHandle, TAdvBufIoParam *pPrm, short ch);
+short NMC_AdvBufIoOut(HAND devHandle, long value, short ch);
+short NMC_AdvBufIoGetPulseCnt(HAND devHandle, long *pOutCout, short ch);
+short NMC_CrdAdvBufIoOnAfterLen(HAND crdHandle, long segNo, long outLength, long value, short ch);
+short NMC_CrdAdvBufIoOffBeforeLen(HAND crdHandle, long segNo, long outLength, short ch);
 short NMC_GetCollectDataAddr(HAND devHandle, short index, short dataType, unsigned long *pAddr, short *pDataLen);
 short NMC_ConfigCollect(HAND devHandle, TCollectCfg *pCollect, TCollectTrig *pTrig);
 short NMC_CollectOnOff(HAND devHandle, short en);

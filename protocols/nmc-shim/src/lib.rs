@@ -55,6 +55,7 @@ mod tests {
             include_str!("ffi/closed_loop.rs"),
             include_str!("ffi/crd_lookahead.rs"),
             include_str!("ffi/sys.rs"),
+            include_str!("ffi/crd_buf_io.rs"),
         ]
         .concat();
         for f in FUNCTIONS {

@@ -20,6 +20,7 @@
 //! - [`axis_config`]: `TSafePara` as the wire carries it;
 //! - [`ax_structs`], [`ax_header`]: the packed status and PTP structs and the advanced E-stop
 //!   input of the axis-level additions (family 0x13xx);
+//! - [`buf_pack`]: `TAdvBufIoParam` and the `NMC_CrdBufDataPack` stream (family 0x16xx);
 //! - [`crd`]: the coordinate-system structs (`TCrdConfig` …) and their C declarations;
 //! - [`sdo`]: the CiA 301 abort code in an SDO refusal's text (`NMC_EcatSdoRead`/`Write`);
 //! - [`sys`]: the data-collection structs and header text of the system family (0x18xx);
@@ -31,6 +32,7 @@
 pub mod ax_header;
 pub mod ax_structs;
 pub mod axis_config;
+pub mod buf_pack;
 pub mod crd;
 pub mod crd_lookahead;
 pub mod errors;

@@ -12,8 +12,9 @@
 //! extension modules and controller services, 0x13xx axis-level additions: packed status and
 //! moves, positions, E-stop inputs, watchdog, planning period, 0x14xx coordinate systems:
 //! look-ahead, packed status, position waits, full circles, buffer length, 0x15xx laser, SHIO
-//! and PWM, 0x18xx system: data collection, users, the configuration file, execution time,
-//! command debugging).
+//! and PWM, 0x16xx coordinate-system buffered I/O, stops and packs, advanced buffered I/O,
+//! 0x18xx system: data collection, users, the configuration file, execution time, command
+//! debugging).
 
 /// A C argument kind, as the manual writes it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -560,6 +561,21 @@ functions! {
     CRD_BUF_SHIO_CLR_MIN_FRG = 0x154C Server Main NMC_CrdBufSHIOClrMinFrg(In Hand => crdHandle, In Long => segment, In Short => ch);
     BUF_SHIO_GATE_ON = 0x154D Server Main NMC_BufSHIOGateOn(In Hand => crdHandle, In Long => segNo, In Short => ch);
     BUF_SHIO_GATE_OFF = 0x154E Server Main NMC_BufSHIOGateOff(In Hand => crdHandle, In Long => segNo, In Short => ch);
+    // ---- coordinate-system buffered I/O, stops and packs; advanced buffered I/O (digest 001 §2.7, §3.11, §3.12) ----
+    CRD_BUF_OUT = 0x1601 Server Main NMC_CrdBufOut(In Hand => crdHandle, In Long => segNo, In Short => group, In Short => ch, In Long => value);
+    CRD_BUF_STOP_MTN = 0x1602 Server Main NMC_CrdBufStopMtn(In Hand => crdHandle, In Long => segNo, In Short => crdIdx);
+    CRD_BUF_SET_ESTOP_DI = 0x1603 Server Main NMC_CrdBufSetEstopDI(In Hand => crdHandle, In Long => segNo, In Short => axis, In Short => gpiIndex, In Short => sense);
+    CRD_BUF_ESTOP_DI_EX_ON_OFF = 0x1604 Server Main NMC_CrdBufEstopDIExOnOff(In Hand => crdHandle, In Long => segNo, In Short => onOff, In Short => group);
+    CRD_BUF_DO_BIT_PULSE_ENABLE = 0x1605 Server Main NMC_CrdBufDoBitPulseEnable(In Hand => crdHandle, In Long => segNo, In Short => doType, In Short => doIndex, In Long => highLevelTime, In Long => lowLevelTime, In Long => outCount, In Short => initialLevel, In Short => ch);
+    CRD_BUF_DO_BIT_PULSE_DISABLE = 0x1606 Server Main NMC_CrdBufDoBitPulseDisable(In Hand => crdHandle, In Long => segNo, In Short => ch);
+    CRD_BUF_BEFORE_AX_SYNC_MOVE = 0x1607 Server Main NMC_CrdBufBeforeAxSyncMove(In Hand => crdHandle, In Long => segNo, In Short => axis, In Long => relDistance, In Double => vel);
+    CRD_BUF_DATA_PACK = 0x1608 Server Main NMC_CrdBufDataPack(In Hand => crdHandle, In Bytes => pBufData, In Short => dataLen);
+    ADV_BUF_IO_SET_PARAM = 0x1609 Server Main NMC_AdvBufIoSetParam(In Hand => devHandle, In Struct("TAdvBufIoParam") => pPrm, In Short => ch);
+    ADV_BUF_IO_GET_PARAM = 0x160A Server Main NMC_AdvBufIoGetParam(In Hand => devHandle, Out Struct("TAdvBufIoParam") => pPrm, In Short => ch);
+    ADV_BUF_IO_OUT = 0x160B Server Main NMC_AdvBufIoOut(In Hand => devHandle, In Long => value, In Short => ch);
+    ADV_BUF_IO_GET_PULSE_CNT = 0x160C Server Main NMC_AdvBufIoGetPulseCnt(In Hand => devHandle, Out Long => pOutCout, In Short => ch);
+    CRD_ADV_BUF_IO_ON_AFTER_LEN = 0x160D Server Main NMC_CrdAdvBufIoOnAfterLen(In Hand => crdHandle, In Long => segNo, In Long => outLength, In Long => value, In Short => ch);
+    CRD_ADV_BUF_IO_OFF_BEFORE_LEN = 0x160E Server Main NMC_CrdAdvBufIoOffBeforeLen(In Hand => crdHandle, In Long => segNo, In Long => outLength, In Short => ch);
     // ---- system family 0x18xx (helper nmcsys): data collection (digest 001 §2.20, §3.19,
     // S-COLLECT), users (§4.9), the configuration file on the host (§1.5), the execution-time
     // calculation (§2.7), command debugging ----

@@ -90,7 +90,7 @@ fn adc_channel(c: &mut Call<'_>) -> Result<usize, Refusal> {
     })
 }
 
-fn dac(c: &Call<'_>, ch: usize) -> DacStored {
+pub(super) fn dac(c: &Call<'_>, ch: usize) -> DacStored {
     c.service.stored().dac.get(&ch).copied().unwrap_or_default()
 }
 

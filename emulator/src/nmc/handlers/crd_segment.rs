@@ -148,7 +148,7 @@ impl Push {
     }
 
     /// Path units: the first member's (decisions.md).
-    fn path_scale(&self) -> PulseScale {
+    pub(super) fn path_scale(&self) -> PulseScale {
         self.scales.first().copied().unwrap_or(PulseScale {
             pulses_per_unit: 1.0,
         })
@@ -307,7 +307,7 @@ impl Push {
     }
 
     /// Where an axis outside the coordinate system ends after what was pushed.
-    fn ext_end(&self, c: &Call<'_>, axis: usize) -> i64 {
+    pub(super) fn ext_end(&self, c: &Call<'_>, axis: usize) -> i64 {
         self.s
             .ext_end
             .iter()
@@ -319,13 +319,13 @@ impl Push {
             })
     }
 
-    fn set_ext_end(&mut self, axis: usize, p: i64) {
+    pub(super) fn set_ext_end(&mut self, axis: usize, p: i64) {
         self.s.ext_end.retain(|(a, _)| *a != axis);
         self.s.ext_end.push((axis, p));
     }
 
     /// An axis outside the coordinate system (by number), checked.
-    fn outside(&self, c: &Call<'_>, axis: usize, name: &str) -> Result<(), Refusal> {
+    pub(super) fn outside(&self, c: &Call<'_>, axis: usize, name: &str) -> Result<(), Refusal> {
         if axis >= c.snapshot.axes.len() || self.axes.contains(&axis) {
             return Err(Refusal::range(
                 name,
@@ -757,7 +757,7 @@ pub(super) fn marker(c: &mut Call<'_>, p: Push, commands: Vec<Command>) -> Resul
 /// The output channel of `doType` bit `ch` (digest 001 §3.10): GPDO1 bits 0–31, GPDO2 32–63,
 /// extension module k 64 + 32·(k − 1) …; the motor enable/clear outputs are not buffered
 /// outputs in mcemu (refused).
-fn do_channel(c: &Call<'_>, do_type: i16, ch: i64) -> Result<u16, Refusal> {
+pub(super) fn do_channel(c: &Call<'_>, do_type: i16, ch: i64) -> Result<u16, Refusal> {
     if !(0..32).contains(&ch) {
         return Err(Refusal::range("ch", ch, "[0, 31]"));
     }

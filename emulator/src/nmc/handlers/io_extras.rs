@@ -43,7 +43,7 @@ pub const HANDLERS: &[(Function, Handler)] = &[
     (table::CLR_ALL_DIO_MAPPING, clr_all_dio_mapping),
 ];
 
-fn flag(name: &str, v: i16) -> Result<bool, Refusal> {
+pub(super) fn flag(name: &str, v: i16) -> Result<bool, Refusal> {
     match v {
         0 | 1 => Ok(v == 1),
         _ => Err(Refusal::range(name, v, "{0, 1}")),
@@ -196,7 +196,7 @@ fn set_do_bit_auto_reverse(c: &mut Call<'_>) -> Result<(), Refusal> {
     Ok(())
 }
 
-fn pulse_channel(ch: i16) -> Result<usize, Refusal> {
+pub(super) fn pulse_channel(ch: i16) -> Result<usize, Refusal> {
     usize::try_from(ch)
         .ok()
         .filter(|c| *c < MAX_NUM_DOBIT_PULSE)
@@ -210,7 +210,7 @@ fn pulse_channel(ch: i16) -> Result<usize, Refusal> {
 }
 
 /// µs in (0, 1e9].
-fn micros(name: &str, v: i64) -> Result<f64, Refusal> {
+pub(super) fn micros(name: &str, v: i64) -> Result<f64, Refusal> {
     if v > 0 && v <= 1_000_000_000 {
         Ok(v as f64 / 1e6)
     } else {
@@ -218,10 +218,9 @@ fn micros(name: &str, v: i64) -> Result<f64, Refusal> {
     }
 }
 
-/// `outCount` pulses of `highLevelTime` high and `lowLevelTime` low on general DO `doIndex`,
-/// starting at `initialLevel` and ending there; `outCount` 0 runs until disabled.
-fn do_bit_pulse_enable(c: &mut Call<'_>) -> Result<(), Refusal> {
-    c.device()?;
+/// `NMC_DoBitPulseEnable`'s arguments after the handle, checked: the train, its channel `ch`
+/// and the DO bit (shared with the buffered form).
+pub(super) fn pulse_train(c: &mut Call<'_>) -> Result<(PulseDigitalOutput, usize), Refusal> {
     let (do_type, index) = (c.input.i16()?, c.input.i16()?);
     let (high, low, count) = (c.input.i64()?, c.input.i64()?, c.input.i64()?);
     let (initial, ch) = (c.input.i16()?, c.input.i16()?);
@@ -245,13 +244,25 @@ fn do_bit_pulse_enable(c: &mut Call<'_>) -> Result<(), Refusal> {
     let ch = pulse_channel(ch)?;
     let level = initial ^ c.service.io().do_rev(bit);
     let (level_time, other_time) = if initial { (high, low) } else { (low, high) };
-    c.command(PulseDigitalOutput {
-        channel: bit as u16,
-        level,
-        level_time,
-        other_time,
-        toggles,
-    });
+    Ok((
+        PulseDigitalOutput {
+            channel: bit as u16,
+            level,
+            level_time,
+            other_time,
+            toggles,
+        },
+        ch,
+    ))
+}
+
+/// `outCount` pulses of `highLevelTime` high and `lowLevelTime` low on general DO `doIndex`,
+/// starting at `initialLevel` and ending there; `outCount` 0 runs until disabled.
+fn do_bit_pulse_enable(c: &mut Call<'_>) -> Result<(), Refusal> {
+    c.device()?;
+    let (train, ch) = pulse_train(c)?;
+    let bit = usize::from(train.channel);
+    c.command(train);
     if let Some(slot) = c.service.io().pulse_channels.get_mut(ch) {
         *slot = Some(bit);
     }

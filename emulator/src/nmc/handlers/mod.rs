@@ -12,6 +12,10 @@ mod axis_config;
 mod crd;
 mod crd_circle;
 mod crd_lookahead;
+// Buffered I/O, stops and packs, advanced buffered I/O (0x16xx).
+mod adv_buf_io;
+mod crd_buf_io;
+mod crd_pack;
 mod crd_segment;
 mod crd_status;
 mod device;
@@ -55,7 +59,7 @@ mod config_file;
 mod exe_time;
 mod users;
 
-const FAMILIES: [&[(Function, Handler)]; 39] = [
+const FAMILIES: [&[(Function, Handler)]; 42] = [
     device::HANDLERS,
     axis::HANDLERS,
     motion::HANDLERS,
@@ -95,6 +99,9 @@ const FAMILIES: [&[(Function, Handler)]; 39] = [
     users::HANDLERS,
     config_file::HANDLERS,
     exe_time::HANDLERS,
+    crd_buf_io::HANDLERS,
+    adv_buf_io::HANDLERS,
+    crd_pack::HANDLERS,
 ];
 
 /// The handler of function `id`.
