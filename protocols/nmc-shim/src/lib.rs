@@ -52,6 +52,7 @@ mod tests {
             include_str!("ffi/extras.rs"),
             include_str!("ffi/closed_loop.rs"),
             include_str!("ffi/crd_lookahead.rs"),
+            include_str!("ffi/crd_frames.rs"),
         ]
         .concat();
         for f in FUNCTIONS {

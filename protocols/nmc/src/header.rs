@@ -191,13 +191,14 @@ fn prototypes(file: HeaderFile) -> String {
 /// `mtn_lib20.h`.
 pub fn main_header() -> String {
     format!(
-        "{MAIN_PREAMBLE}{}{}{}{}{}{}{}{MAIN_END}",
+        "{MAIN_PREAMBLE}{}{}{}{}{}{}{}{}{MAIN_END}",
         crate::sync_header::SYNC_PREAMBLE,
         crate::laser::LASER_PREAMBLE,
         crate::ax_header::AX_PREAMBLE,
         crate::io_header::IO_PREAMBLE,
         crate::crd::C_DECLARATIONS,
         crate::crd_lookahead::C_DECLARATIONS,
+        crate::crd_frames::C_DECLARATIONS,
         prototypes(HeaderFile::Main)
     )
 }

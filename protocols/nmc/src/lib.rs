@@ -21,6 +21,7 @@
 //! - [`ax_structs`], [`ax_header`]: the packed status and PTP structs and the advanced E-stop
 //!   input of the axis-level additions (family 0x13xx);
 //! - [`crd`]: the coordinate-system structs (`TCrdConfig` …) and their C declarations;
+//! - [`crd_frames`]: the structs of the transforms, arc sections and move protection (0x17xx);
 //! - [`errors`]: the return codes of `mtn_lib20_err.h` (not in the manual: mcemu's, stable);
 //! - [`header`]: the C headers generated from the table (checked against the committed ones);
 //! - [`handle`]: what a `HAND` encodes (kind, library slot, axis number);
@@ -30,6 +31,7 @@ pub mod ax_header;
 pub mod ax_structs;
 pub mod axis_config;
 pub mod crd;
+pub mod crd_frames;
 pub mod crd_lookahead;
 pub mod errors;
 pub mod frame;

@@ -169,7 +169,7 @@ fn check_config(c: &Call<'_>, config: &CrdConfig) -> Result<Vec<usize>, Refusal>
 }
 
 /// The engine origin of `s` for its `n` members (pulses → each member's units).
-fn origin_command(c: &Call<'_>, n: usize, s: &CrdState, axes: &[usize]) -> Command {
+pub(super) fn origin_command(c: &Call<'_>, n: usize, s: &CrdState, axes: &[usize]) -> Command {
     let origin = s.origin();
     GroupSetOrigin {
         group: n as GroupId,
@@ -215,6 +215,9 @@ fn crd_config(c: &mut Call<'_>) -> Result<(), Refusal> {
     for command in corner_commands(c, n, &s) {
         c.command(command);
     }
+    for command in super::crd_frames::on_config(c, n) {
+        c.command(command);
+    }
     s.pending.clear();
     s.started = false;
     s.end = here(c, &s);
@@ -238,6 +241,7 @@ fn crd_delete(c: &mut Call<'_>) -> Result<(), Refusal> {
         });
     }
     update(c, n, |s| *s = CrdState::fresh());
+    super::crd_frames::on_delete(c, n);
     Ok(())
 }
 
@@ -403,6 +407,7 @@ fn crd_stop_mtn(c: &mut Call<'_>) -> Result<(), Refusal> {
 fn crd_estop_mtn(c: &mut Call<'_>) -> Result<(), Refusal> {
     let n = crd(c)?;
     if group(c, n).is_some_and(|g| g.state != GroupState::Disabled) {
+        super::crd_frames::note_break(c, n);
         c.command(GroupEmergencyStop {
             group: n as GroupId,
         });

@@ -11,6 +11,8 @@ mod axis;
 mod axis_config;
 mod crd;
 mod crd_circle;
+// Transforms, arc sections, break point, move protection (0x17xx).
+mod crd_frames;
 mod crd_lookahead;
 mod crd_segment;
 mod crd_status;
@@ -18,6 +20,7 @@ mod device;
 mod ecat;
 mod home;
 mod io;
+mod mv_protect;
 // The laser, SHIO and PWM families (stored, echoed on the I/O image).
 mod laser;
 mod laser_buf;
@@ -48,7 +51,7 @@ mod closed_loop;
 mod extras;
 mod follow;
 
-const FAMILIES: [&[(Function, Handler)]; 35] = [
+const FAMILIES: [&[(Function, Handler)]; 37] = [
     device::HANDLERS,
     axis::HANDLERS,
     motion::HANDLERS,
@@ -84,6 +87,8 @@ const FAMILIES: [&[(Function, Handler)]; 35] = [
     closed_loop::HANDLERS,
     crd_lookahead::HANDLERS,
     crd_circle::HANDLERS,
+    crd_frames::HANDLERS,
+    mv_protect::HANDLERS,
 ];
 
 /// The handler of function `id`.
