@@ -82,3 +82,54 @@ pub struct FramesState {
     pub crd: [CrdFrames; CRD_COUNT],
     pub protect: MvProtect,
 }
+
+impl FramesState {
+    /// `NMC_CrdConfig` of coordinate system `n`: the new group has no transform and no break
+    /// point, a protection guarding the old group ended with it; the arc-section table to
+    /// give the new group.
+    pub fn on_config(&mut self, n: usize) -> ArcSecSetting {
+        if self.protect.guards(n) {
+            self.protect.mode = None;
+        }
+        match self.crd.get_mut(n) {
+            Some(f) => {
+                f.transform = CrdTransform::None;
+                f.break_point = None;
+                f.arc_sec
+            }
+            None => ArcSecSetting::default(),
+        }
+    }
+
+    /// `NMC_CrdDelete`: the family's settings of `n` back to their defaults.
+    pub fn on_delete(&mut self, n: usize) {
+        if self.protect.guards(n) {
+            self.protect.mode = None;
+        }
+        if let Some(f) = self.crd.get_mut(n) {
+            *f = CrdFrames::default();
+        }
+    }
+
+    /// `NMC_CrdEstopMtn`: the path of `n` was at `at` (user coordinates, pulses).
+    pub fn note_break(&mut self, n: usize, at: [i64; CRD_MAX_AXES]) {
+        if let Some(f) = self.crd.get_mut(n) {
+            f.break_point = Some(at);
+        }
+    }
+}
+
+/// The engine's chord error for the table `a`, pulses: the smallest positive error (the
+/// engine keeps one chord error for every arc, not one per radius band: the strictest band
+/// holds on every arc; decisions.md); 0 (off) when the radii are all 0.
+pub fn chord_error(a: &ArcSecSetting) -> f64 {
+    if a.r.iter().all(|r| *r == 0.0) {
+        return 0.0;
+    }
+    a.err
+        .iter()
+        .copied()
+        .filter(|e| *e > 0.0)
+        .reduce(f64::min)
+        .unwrap_or(0.0)
+}

@@ -23,7 +23,7 @@ use super::crd::{crd, group, here, members, origin_command, state, update};
 use super::crd_segment::read_longs;
 use super::crd_status::path_scale;
 use super::motion::ptp_move;
-use crate::nmc::crd_frames::{CrdFrames, CrdTransform};
+use crate::nmc::crd_frames::{chord_error, CrdFrames, CrdTransform};
 use crate::nmc::service::{pulses, Call, Handler, Refusal};
 
 pub const HANDLERS: &[(Function, Handler)] = &[
@@ -505,22 +505,7 @@ fn check_arc_sec(a: &ArcSecSetting) -> Result<(), Refusal> {
     Ok(())
 }
 
-/// The engine's chord error for `a`: the smallest positive error of the table (the engine
-/// keeps one chord error for every arc, not one per radius band: the strictest band holds on
-/// every arc; decisions.md); 0 (off) when the radii are all 0.
-fn chord_error(a: &ArcSecSetting) -> f64 {
-    if a.r.iter().all(|r| *r == 0.0) {
-        return 0.0;
-    }
-    a.err
-        .iter()
-        .copied()
-        .filter(|e| *e > 0.0)
-        .reduce(f64::min)
-        .unwrap_or(0.0)
-}
-
-fn chord_command(c: &Call<'_>, n: usize, a: &ArcSecSetting) -> Command {
+pub(super) fn chord_command(c: &Call<'_>, n: usize, a: &ArcSecSetting) -> Command {
     let scale = path_scale(c, &state(c, n));
     GroupSetParameter {
         group: n as GroupId,
@@ -557,35 +542,6 @@ fn crd_set_fourth_axis_to_turn_vel(c: &mut Call<'_>) -> Result<(), Refusal> {
     }
     set_frames(c, n, |f| f.fourth_axis_turn_vel = v);
     Ok(())
-}
-
-/// What `NMC_CrdConfig` does to this family: a new group has no transform (set it again) and
-/// takes the arc-section table; a protection guarding the old group ended with it.
-pub(super) fn on_config(c: &Call<'_>, n: usize) -> Vec<Command> {
-    let a = frames(c, n).arc_sec;
-    set_frames(c, n, |f| {
-        f.transform = CrdTransform::None;
-        f.break_point = None;
-    });
-    super::mv_protect::forget(c, n);
-    if chord_error(&a) > 0.0 {
-        vec![chord_command(c, n, &a)]
-    } else {
-        Vec::new()
-    }
-}
-
-/// What `NMC_CrdDelete` does: the family's settings back to their defaults.
-pub(super) fn on_delete(c: &Call<'_>, n: usize) {
-    set_frames(c, n, |f| *f = CrdFrames::default());
-    super::mv_protect::forget(c, n);
-}
-
-/// `NMC_CrdEstopMtn`: where the path is now is the break point `NMC_CrdGotoBreak` returns to
-/// (the members then stop each with its own deceleration, off the path).
-pub(super) fn note_break(c: &Call<'_>, n: usize) {
-    let at = here(c, &state(c, n));
-    set_frames(c, n, |f| f.break_point = Some(at));
 }
 
 /// Back to the break point, a line at `vel` and `acc` in user coordinates. After

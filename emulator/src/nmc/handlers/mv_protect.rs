@@ -109,7 +109,7 @@ fn enable_command(
     check(p)?;
     let mut axes = [0usize; 2];
     let mut scales = Vec::with_capacity(2);
-    for k in 0..2 {
+    for (k, slot) in axes.iter_mut().enumerate() {
         let n = usize::try_from(p.crd_no[k]).unwrap_or(0);
         let members = members(&state(c, n))?;
         if group(c, n).is_none() {
@@ -126,7 +126,7 @@ fn enable_command(
                 &format!("the {} coordinates of coordinate system {n}", members.len()),
             )
         })?;
-        axes[k] = coordinate;
+        *slot = coordinate;
         scales.push(c.scale(axis));
     }
     let scale = scales
@@ -254,12 +254,4 @@ fn get_mv_protect_sts(c: &mut Call<'_>) -> Result<(), Refusal> {
     };
     c.output.i16(sts);
     Ok(())
-}
-
-/// Coordinate system `n` is re-made or deleted: the engine dropped the protection guarding it.
-pub(super) fn forget(c: &Call<'_>, n: usize) {
-    let mut frames = c.service.frames();
-    if frames.protect.guards(n) {
-        frames.protect.mode = None;
-    }
 }
