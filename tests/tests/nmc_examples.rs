@@ -241,6 +241,25 @@ fn s_crd_circles_and_buffer_length() {
     example_with("s_crd_circle.c", &["--clock", "scaled:5"]);
 }
 
+/// Family 0x17xx: S-TRANS-ROTATE, the polar machine, S-TRANS-XYZA, the buffer offset, arc
+/// sections, the A axis's corner velocity and the break point.
+#[test]
+fn crd_transforms_offset_arc_sections_and_break_point() {
+    example_with("crd_frames.c", &["--clock", "scaled:5"]);
+}
+
+/// NMC_SetMvProtect and TmvProtectPara: mode 0 stops, mode 1 retreats, read-back, refusals.
+#[test]
+fn crd_move_protection() {
+    example_with("mv_protect.c", &["--clock", "scaled:5"]);
+}
+
+/// TV51–TV53: the override's range, at most 4 axes, D8Pack's count.
+#[test]
+fn crd_refusals_tv51_tv53() {
+    example("crd_refusals.c");
+}
+
 #[test]
 fn eight_threads_on_one_handle_each_get_their_reply() {
     example("threads.c");

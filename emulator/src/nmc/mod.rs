@@ -10,6 +10,8 @@
 //! - `sync_state`: what the gear, PT, capture, compare, gantry, handwheel and compensation
 //!   families keep between calls;
 //! - `crd`: the coordinate systems' state the engine's groups do not keep;
+//! - `crd_frames`: the transforms, arc sections, break points and move protection as the
+//!   manual's calls wrote them (family 0x17xx);
 //! - `handlers`: one file per family of the function table (`mcemu_nmc::table`);
 //! - `ax_state`, `ax_watch`: the axis-level additions' settings (family 0x13xx), and the
 //!   watchdog and E-stop inputs, judged on the virtual clock by a task of their own;
@@ -29,6 +31,7 @@ pub mod ax_state;
 mod ax_watch;
 pub mod config;
 pub mod crd;
+pub mod crd_frames;
 pub mod crd_length;
 pub mod ecat_bus;
 pub mod faults;

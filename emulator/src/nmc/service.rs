@@ -171,6 +171,8 @@ pub struct NmcService {
     crd: Mutex<[CrdState; CRD_COUNT]>,
     /// Settings the engine has no model of (pulse mode, filters, encoder modes).
     stored: Mutex<Stored>,
+    /// Coordinate transforms, arc sections, break points, move protection (0x17xx family).
+    frames: Mutex<super::crd_frames::FramesState>,
     /// The axis-level additions' settings, the watchdog and the E-stop inputs.
     ax: Mutex<super::ax_state::AxState>,
     /// Extension modules, dedicated outputs, the written ID (0x12xx families).
@@ -206,6 +208,7 @@ impl NmcService {
             sync: Mutex::new(Default::default()),
             crd: Mutex::new(std::array::from_fn(|_| CrdState::fresh())),
             stored: Mutex::new(Stored::default()),
+            frames: Mutex::new(Default::default()),
             ax: Mutex::new(Default::default()),
             io: Mutex::new(Default::default()),
             sys: Mutex::new(Default::default()),
@@ -248,6 +251,10 @@ impl NmcService {
 
     pub fn sys(&self) -> MutexGuard<'_, super::sys_state::SysState> {
         self.sys.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+
+    pub fn frames(&self) -> MutexGuard<'_, super::crd_frames::FramesState> {
+        self.frames.lock().unwrap_or_else(PoisonError::into_inner)
     }
 
     pub fn stored(&self) -> MutexGuard<'_, Stored> {

@@ -471,6 +471,28 @@ typedef struct { long segNo; short onOff; short ch; } TCrdBufShioGateOnOff;
 typedef struct { long segNo; long axisMask; long overTime; } TCrdBufWaitEncInPos;
 typedef struct { long segNo; short index; short diValue; long waitLastTime; } TCrdBufWaitDI;
 
+/* Coordinate transforms, arc sections, move protection (digest 001 §2.7, §3.7). */
+#define MAX_ERR_TABLE_SECTION 2
+typedef struct {
+    double minSectionLen;
+    double maxArcDiff;
+    double r[MAX_ERR_TABLE_SECTION];
+    double err[MAX_ERR_TABLE_SECTION + 1];
+} TArcSecSetting;
+typedef struct {
+    short crdNo[2];
+    short crdAxNo[2];
+    short moveDir[2];
+    long orgDis;
+    long mvProtectDis;
+    long safeWaitPos;
+    double mvToSafeAcc;
+    double mvToSafeVel;
+    short stopCrdNo;
+    short reserved[3];
+} TmvProtectPara;
+typedef TmvProtectPara TMvProtectPara;
+
 /* Data collection (digest 001 §3.19). COLLECT_LIST_MAX, the trigger modes and the status
  * bits are not in the manual (§8 item 3): mcemu's. Every value is 8 bytes, a little-endian
  * double (pulses, pulse/ms, 0/1), as the manual's example reads them into a double array. */
@@ -905,6 +927,27 @@ short NMC_AdvBufIoOut(HAND devHandle, long value, short ch);
 short NMC_AdvBufIoGetPulseCnt(HAND devHandle, long *pOutCout, short ch);
 short NMC_CrdAdvBufIoOnAfterLen(HAND crdHandle, long segNo, long outLength, long value, short ch);
 short NMC_CrdAdvBufIoOffBeforeLen(HAND crdHandle, long segNo, long outLength, short ch);
+short NMC_CrdSetTransRotate(HAND crdHandle, short rotAxisNo, double angleRadEqual, long firstAxisInitPos, long secAxisInitPos);
+short NMC_CrdDelTransRotate(HAND crdHandle);
+short NMC_CrdSetTransPolar(HAND crdHandle, short rotAxNo, short transAxNo, double rotEquiv);
+short NMC_CrdRunToPolarPos(HAND crdHandle, double xPos, double yPos, double rotVel, double transVel);
+short NMC_CrdRunToPolarTheta(HAND crdHandle, double theta, double vel, short clrRoundFlag);
+short NMC_CrdDelTransPolar(HAND crdHandle);
+short NMC_CrdSetTransXYZA(HAND crdHandle, short *pAxisMapArray);
+short NMC_CrdDelTransXYZA(HAND crdHandle);
+short NMC_CrdSetXYZAToolCalc(HAND crdHandle, double deltaTheta, long deltaX, long deltaY, long *pToolX, long *pToolY);
+short NMC_CrdSetXYZAPara(HAND crdHandle, double pulse2Rad, long toolX, long toolY);
+short NMC_CrdGetXYZAPara(HAND crdHandle, double *pPulse2Rad, long *ToolX, long *pToolY);
+short NMC_CrdSetOffset(HAND crdHandle, short count, long *pOffsetArray);
+short NMC_CrdSetArcSecPara(HAND crdHandle, TArcSecSetting *pSetting);
+short NMC_CrdGetArcSecPara(HAND crdHandle, TArcSecSetting *pSetting);
+short NMC_CrdSetFourthAxisToTurnVel(HAND crdHandle, double tolVel);
+short NMC_CrdGotoBreak(HAND crdHandle, double acc, double vel);
+short NMC_SetMvProtect(HAND devHandle, short groupNo, short mode);
+short NMC_DelMvProtect(HAND devHandle, short groupNo);
+short NMC_SetMvProtectMode01Para(HAND devHandle, short groupNo, TMvProtectPara *pMvProtectPara);
+short NMC_GetMvProtectMode01Para(HAND devHandle, short groupNo, TmvProtectPara *pMvProtectPara);
+short NMC_GetMvProtectSts(HAND devHandle, short groupNo, short *pSts);
 short NMC_GetCollectDataAddr(HAND devHandle, short index, short dataType, unsigned long *pAddr, short *pDataLen);
 short NMC_ConfigCollect(HAND devHandle, TCollectCfg *pCollect, TCollectTrig *pTrig);
 short NMC_CollectOnOff(HAND devHandle, short en);

@@ -56,6 +56,7 @@ mod tests {
             include_str!("ffi/crd_lookahead.rs"),
             include_str!("ffi/sys.rs"),
             include_str!("ffi/crd_buf_io.rs"),
+            include_str!("ffi/crd_frames.rs"),
         ]
         .concat();
         for f in FUNCTIONS {

@@ -191,7 +191,7 @@ fn prototypes(file: HeaderFile) -> String {
 /// `mtn_lib20.h`.
 pub fn main_header() -> String {
     format!(
-        "{MAIN_PREAMBLE}{}{}{}{}{}{}{}{}{}{MAIN_END}",
+        "{MAIN_PREAMBLE}{}{}{}{}{}{}{}{}{}{}{MAIN_END}",
         crate::sync_header::SYNC_PREAMBLE,
         crate::laser::LASER_PREAMBLE,
         crate::ax_header::AX_PREAMBLE,
@@ -199,6 +199,7 @@ pub fn main_header() -> String {
         crate::crd::C_DECLARATIONS,
         crate::crd_lookahead::C_DECLARATIONS,
         crate::buf_pack::c_declarations(),
+        crate::crd_frames::C_DECLARATIONS,
         crate::sys::SYS_PREAMBLE,
         prototypes(HeaderFile::Main)
     )

@@ -24,6 +24,7 @@
 //! - [`crd`]: the coordinate-system structs (`TCrdConfig` …) and their C declarations;
 //! - [`sdo`]: the CiA 301 abort code in an SDO refusal's text (`NMC_EcatSdoRead`/`Write`);
 //! - [`sys`]: the data-collection structs and header text of the system family (0x18xx);
+//! - [`crd_frames`]: the structs of the transforms, arc sections and move protection (0x17xx);
 //! - [`errors`]: the return codes of `mtn_lib20_err.h` (not in the manual: mcemu's, stable);
 //! - [`header`]: the C headers generated from the table (checked against the committed ones);
 //! - [`handle`]: what a `HAND` encodes (kind, library slot, axis number);
@@ -34,6 +35,7 @@ pub mod ax_structs;
 pub mod axis_config;
 pub mod buf_pack;
 pub mod crd;
+pub mod crd_frames;
 pub mod crd_lookahead;
 pub mod errors;
 pub mod frame;

@@ -13,8 +13,8 @@
 //! moves, positions, E-stop inputs, watchdog, planning period, 0x14xx coordinate systems:
 //! look-ahead, packed status, position waits, full circles, buffer length, 0x15xx laser, SHIO
 //! and PWM, 0x16xx coordinate-system buffered I/O, stops and packs, advanced buffered I/O,
-//! 0x18xx system: data collection, users, the configuration file, execution time, command
-//! debugging).
+//! 0x17xx coordinate transforms, arc sections, break point and move protection, 0x18xx system:
+//! data collection, users, the configuration file, execution time, command debugging).
 
 /// A C argument kind, as the manual writes it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -576,6 +576,29 @@ functions! {
     ADV_BUF_IO_GET_PULSE_CNT = 0x160C Server Main NMC_AdvBufIoGetPulseCnt(In Hand => devHandle, Out Long => pOutCout, In Short => ch);
     CRD_ADV_BUF_IO_ON_AFTER_LEN = 0x160D Server Main NMC_CrdAdvBufIoOnAfterLen(In Hand => crdHandle, In Long => segNo, In Long => outLength, In Long => value, In Short => ch);
     CRD_ADV_BUF_IO_OFF_BEFORE_LEN = 0x160E Server Main NMC_CrdAdvBufIoOffBeforeLen(In Hand => crdHandle, In Long => segNo, In Long => outLength, In Short => ch);
+    // ---- coordinate transforms, arc sections, break point, move protection, 0x17xx family
+    // (digest 001 §2.7, §2.20 C3§10.5, §3.7) ----
+    CRD_SET_TRANS_ROTATE = 0x1701 Server Main NMC_CrdSetTransRotate(In Hand => crdHandle, In Short => rotAxisNo, In Double => angleRadEqual, In Long => firstAxisInitPos, In Long => secAxisInitPos);
+    CRD_DEL_TRANS_ROTATE = 0x1702 Server Main NMC_CrdDelTransRotate(In Hand => crdHandle);
+    CRD_SET_TRANS_POLAR = 0x1703 Server Main NMC_CrdSetTransPolar(In Hand => crdHandle, In Short => rotAxNo, In Short => transAxNo, In Double => rotEquiv);
+    CRD_RUN_TO_POLAR_POS = 0x1704 Server Main NMC_CrdRunToPolarPos(In Hand => crdHandle, In Double => xPos, In Double => yPos, In Double => rotVel, In Double => transVel);
+    CRD_RUN_TO_POLAR_THETA = 0x1705 Server Main NMC_CrdRunToPolarTheta(In Hand => crdHandle, In Double => theta, In Double => vel, In Short => clrRoundFlag);
+    CRD_DEL_TRANS_POLAR = 0x1706 Server Main NMC_CrdDelTransPolar(In Hand => crdHandle);
+    CRD_SET_TRANS_XYZA = 0x1707 Server Main NMC_CrdSetTransXYZA(In Hand => crdHandle, In ShortArray => pAxisMapArray);
+    CRD_DEL_TRANS_XYZA = 0x1708 Server Main NMC_CrdDelTransXYZA(In Hand => crdHandle);
+    CRD_SET_XYZA_TOOL_CALC = 0x1709 Server Main NMC_CrdSetXYZAToolCalc(In Hand => crdHandle, In Double => deltaTheta, In Long => deltaX, In Long => deltaY, Out Long => pToolX, Out Long => pToolY);
+    CRD_SET_XYZA_PARA = 0x170A Server Main NMC_CrdSetXYZAPara(In Hand => crdHandle, In Double => pulse2Rad, In Long => toolX, In Long => toolY);
+    CRD_GET_XYZA_PARA = 0x170B Server Main NMC_CrdGetXYZAPara(In Hand => crdHandle, Out Double => pPulse2Rad, Out Long => ToolX, Out Long => pToolY);
+    CRD_SET_OFFSET = 0x170C Server Main NMC_CrdSetOffset(In Hand => crdHandle, In Short => count, In LongArray => pOffsetArray);
+    CRD_SET_ARC_SEC_PARA = 0x170D Server Main NMC_CrdSetArcSecPara(In Hand => crdHandle, In Struct("TArcSecSetting") => pSetting);
+    CRD_GET_ARC_SEC_PARA = 0x170E Server Main NMC_CrdGetArcSecPara(In Hand => crdHandle, Out Struct("TArcSecSetting") => pSetting);
+    CRD_SET_FOURTH_AXIS_TO_TURN_VEL = 0x170F Server Main NMC_CrdSetFourthAxisToTurnVel(In Hand => crdHandle, In Double => tolVel);
+    CRD_GOTO_BREAK = 0x1710 Server Main NMC_CrdGotoBreak(In Hand => crdHandle, In Double => acc, In Double => vel);
+    SET_MV_PROTECT = 0x1711 Server Main NMC_SetMvProtect(In Hand => devHandle, In Short => groupNo, In Short => mode);
+    DEL_MV_PROTECT = 0x1712 Server Main NMC_DelMvProtect(In Hand => devHandle, In Short => groupNo);
+    SET_MV_PROTECT_MODE01_PARA = 0x1713 Server Main NMC_SetMvProtectMode01Para(In Hand => devHandle, In Short => groupNo, In Struct("TMvProtectPara") => pMvProtectPara);
+    GET_MV_PROTECT_MODE01_PARA = 0x1714 Server Main NMC_GetMvProtectMode01Para(In Hand => devHandle, In Short => groupNo, Out Struct("TmvProtectPara") => pMvProtectPara);
+    GET_MV_PROTECT_STS = 0x1715 Server Main NMC_GetMvProtectSts(In Hand => devHandle, In Short => groupNo, Out Short => pSts);
     // ---- system family 0x18xx (helper nmcsys): data collection (digest 001 §2.20, §3.19,
     // S-COLLECT), users (§4.9), the configuration file on the host (§1.5), the execution-time
     // calculation (§2.7), command debugging ----

@@ -169,7 +169,7 @@ fn check_config(c: &Call<'_>, config: &CrdConfig) -> Result<Vec<usize>, Refusal>
 }
 
 /// The engine origin of `s` for its `n` members (pulses → each member's units).
-fn origin_command(c: &Call<'_>, n: usize, s: &CrdState, axes: &[usize]) -> Command {
+pub(super) fn origin_command(c: &Call<'_>, n: usize, s: &CrdState, axes: &[usize]) -> Command {
     let origin = s.origin();
     GroupSetOrigin {
         group: n as GroupId,
@@ -215,6 +215,23 @@ fn crd_config(c: &mut Call<'_>) -> Result<(), Refusal> {
     for command in corner_commands(c, n, &s) {
         c.command(command);
     }
+    // The 0x17xx family: transforms and the break point go with the old group; the
+    // arc-section table is the new group's chord error.
+    let table = c.service.frames().on_config(n);
+    let chord = crate::nmc::crd_frames::chord_error(&table);
+    if chord > 0.0 {
+        let scale = axes.first().map_or(
+            mcemu_dialects::PulseScale {
+                pulses_per_unit: 1.0,
+            },
+            |a| c.scale(*a),
+        );
+        c.command(parameter(
+            n,
+            GroupParameter::ChordError,
+            scale.to_engine(chord),
+        ));
+    }
     s.pending.clear();
     s.started = false;
     s.end = here(c, &s);
@@ -238,6 +255,7 @@ fn crd_delete(c: &mut Call<'_>) -> Result<(), Refusal> {
         });
     }
     update(c, n, |s| *s = CrdState::fresh());
+    c.service.frames().on_delete(n);
     Ok(())
 }
 
@@ -403,6 +421,9 @@ fn crd_stop_mtn(c: &mut Call<'_>) -> Result<(), Refusal> {
 fn crd_estop_mtn(c: &mut Call<'_>) -> Result<(), Refusal> {
     let n = crd(c)?;
     if group(c, n).is_some_and(|g| g.state != GroupState::Disabled) {
+        // Where NMC_CrdGotoBreak returns to (0x17xx family).
+        let at = here(c, &state(c, n));
+        c.service.frames().note_break(n, at);
         c.command(GroupEmergencyStop {
             group: n as GroupId,
         });

@@ -11,6 +11,8 @@ mod axis;
 mod axis_config;
 mod crd;
 mod crd_circle;
+// Transforms, arc sections, break point, move protection (0x17xx).
+mod crd_frames;
 mod crd_lookahead;
 // Buffered I/O, stops and packs, advanced buffered I/O (0x16xx).
 mod adv_buf_io;
@@ -23,6 +25,7 @@ mod ecat;
 mod ecat_drive;
 mod home;
 mod io;
+mod mv_protect;
 // The laser, SHIO and PWM families (stored, echoed on the I/O image).
 mod laser;
 mod laser_buf;
@@ -59,7 +62,7 @@ mod config_file;
 mod exe_time;
 mod users;
 
-const FAMILIES: [&[(Function, Handler)]; 42] = [
+const FAMILIES: [&[(Function, Handler)]; 44] = [
     device::HANDLERS,
     axis::HANDLERS,
     motion::HANDLERS,
@@ -102,6 +105,8 @@ const FAMILIES: [&[(Function, Handler)]; 42] = [
     crd_buf_io::HANDLERS,
     adv_buf_io::HANDLERS,
     crd_pack::HANDLERS,
+    crd_frames::HANDLERS,
+    mv_protect::HANDLERS,
 ];
 
 /// The handler of function `id`.

@@ -28,6 +28,7 @@ pub mod axis_ext;
 pub mod closed_loop;
 pub mod crd;
 pub mod crd_buf_io;
+pub mod crd_frames;
 pub mod crd_lookahead;
 pub mod crd_types;
 pub mod dev_services;

@@ -1,0 +1,635 @@
+//! Coordinate transforms, arc sections, the A axis's corner velocity, the buffer offset and the
+//! break point, family 0x17xx (digest 001 §2.7, §2.20 C3§10.5, §3.7; S-TRANS-ROTATE,
+//! S-TRANS-XYZA). The rotary and XYZA transforms are the engine group's (`group/frames.rs`):
+//! set, then selected for the moves that follow. The polar transform is the front-end's: the
+//! engine has no non-linear kinematics, so it moves the two axes by single-axis PTP
+//! (`NMC_CrdRunToPolarPos/Theta`, as the manual says it does) and leaves paths untransformed
+//! (decisions.md, "NMC coordinate transforms and move protection").
+
+use std::f64::consts::TAU;
+
+use axes::command::{
+    Command, CoordinateSystem, ErrorKind, GroupDeleteTransform, GroupEnable, GroupId,
+    GroupParameter, GroupSetCoordinateSystem, GroupSetParameter, GroupSetRotaryTransform,
+    GroupSetXyzaTransform, MoveLinearAbsolute, PositionFrame, SetPosition,
+};
+use axes::status::GroupState;
+use mcemu_dialects::nmc::{acceleration_to_engine, code_for_kind, velocity_to_engine};
+use mcemu_nmc::crd::CRD_MAX_AXES;
+use mcemu_nmc::crd_frames::ArcSecSetting;
+use mcemu_nmc::table::{self, Function};
+
+use super::crd::{crd, group, here, members, origin_command, state, update};
+use super::crd_segment::read_longs;
+use super::crd_status::path_scale;
+use super::motion::ptp_move;
+use crate::nmc::crd_frames::{chord_error, CrdFrames, CrdTransform};
+use crate::nmc::service::{pulses, Call, Handler, Refusal};
+
+pub const HANDLERS: &[(Function, Handler)] = &[
+    (table::CRD_SET_TRANS_ROTATE, crd_set_trans_rotate),
+    (table::CRD_DEL_TRANS_ROTATE, crd_del_trans_rotate),
+    (table::CRD_SET_TRANS_POLAR, crd_set_trans_polar),
+    (table::CRD_RUN_TO_POLAR_POS, crd_run_to_polar_pos),
+    (table::CRD_RUN_TO_POLAR_THETA, crd_run_to_polar_theta),
+    (table::CRD_DEL_TRANS_POLAR, crd_del_trans_polar),
+    (table::CRD_SET_TRANS_XYZA, crd_set_trans_xyza),
+    (table::CRD_DEL_TRANS_XYZA, crd_del_trans_xyza),
+    (table::CRD_SET_XYZA_TOOL_CALC, crd_set_xyza_tool_calc),
+    (table::CRD_SET_XYZA_PARA, crd_set_xyza_para),
+    (table::CRD_GET_XYZA_PARA, crd_get_xyza_para),
+    (table::CRD_SET_OFFSET, crd_set_offset),
+    (table::CRD_SET_ARC_SEC_PARA, crd_set_arc_sec_para),
+    (table::CRD_GET_ARC_SEC_PARA, crd_get_arc_sec_para),
+    (
+        table::CRD_SET_FOURTH_AXIS_TO_TURN_VEL,
+        crd_set_fourth_axis_to_turn_vel,
+    ),
+    (table::CRD_GOTO_BREAK, crd_goto_break),
+];
+
+fn frames(c: &Call<'_>, n: usize) -> CrdFrames {
+    c.service.frames().crd.get(n).copied().unwrap_or_default()
+}
+
+fn set_frames(c: &Call<'_>, n: usize, f: impl FnOnce(&mut CrdFrames)) {
+    if let Some(x) = c.service.frames().crd.get_mut(n) {
+        f(x);
+    }
+}
+
+/// Send `commands` in push order: behind what waits for `NMC_CrdStartMtn` if anything does
+/// (the segments pushed before a transform call keep the frame they were pushed in), else now.
+fn send(c: &mut Call<'_>, n: usize, commands: Vec<Command>) {
+    let s = state(c, n);
+    if !s.started && !s.pending.is_empty() {
+        update(c, n, |now| now.pending.extend(commands));
+    } else {
+        c.plan.commands.extend(commands);
+    }
+}
+
+/// The engine group must exist (`NMC_CrdConfig` made it).
+fn configured(c: &Call<'_>, n: usize) -> Result<Vec<usize>, Refusal> {
+    let axes = members(&state(c, n))?;
+    if group(c, n).is_none() {
+        return Err(Refusal::new(
+            code_for_kind(ErrorKind::InvalidGroup),
+            "the coordinate system has no group yet: NMC_CrdConfig first",
+        ));
+    }
+    Ok(axes)
+}
+
+/// An axis number of the device.
+fn device_axis(c: &Call<'_>, name: &str, a: i16) -> Result<usize, Refusal> {
+    let count = c.snapshot.axes.len();
+    usize::try_from(a)
+        .ok()
+        .filter(|a| *a < count)
+        .ok_or_else(|| Refusal::range(name, a, &format!("[0, {}]", count.saturating_sub(1))))
+}
+
+fn finite(name: &str, v: f64) -> Result<f64, Refusal> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(Refusal::range(name, v, "finite numbers"))
+    }
+}
+
+fn positive(name: &str, v: f64, unit: &str) -> Result<f64, Refusal> {
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(Refusal::range(name, v, &format!("(0, ∞) {unit}")))
+    }
+}
+
+/// Drop the engine group's transform (if it has one) and select the machine coordinates.
+fn delete_transform(c: &mut Call<'_>, n: usize) {
+    let had = frames(c, n).transform;
+    if matches!(had, CrdTransform::Rotary { .. } | CrdTransform::Xyza { .. })
+        && group(c, n).is_some()
+    {
+        send(
+            c,
+            n,
+            vec![GroupDeleteTransform {
+                group: n as GroupId,
+            }
+            .into()],
+        );
+    }
+    set_frames(c, n, |f| f.transform = CrdTransform::None);
+}
+
+/// `NMC_CrdSetTransRotate(crd, rotAxisNo, angleRadEqual, firstAxisInitPos, secAxisInitPos)`:
+/// the workpiece on a table (axis rotAxisNo, not a member: S-TRANS-ROTATE turns it with buffered
+/// axis moves between segments) turning about (X, Y) = the centre, user coordinates. Segments
+/// pushed from now on are placed on the table at the angle the pushed table moves leave it.
+fn crd_set_trans_rotate(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let n = crd(c)?;
+    let axis = c.input.i16()?;
+    let rad = c.input.f64()?;
+    let (cx, cy) = (c.input.i64()?, c.input.i64()?);
+    let axes = configured(c, n)?;
+    let axis = device_axis(c, "rotAxisNo", axis)?;
+    if axes.contains(&axis) {
+        return Err(Refusal::range(
+            "rotAxisNo",
+            axis,
+            "the axes outside the coordinate system (the table turns between segments, S-TRANS-ROTATE)",
+        ));
+    }
+    let (Some(&x), Some(&y)) = (axes.first(), axes.get(1)) else {
+        return Err(Refusal::new(
+            code_for_kind(ErrorKind::InvalidGroup),
+            "the rotary transform turns X and Y: the coordinate system needs 2 axes",
+        ));
+    };
+    if !(rad.is_finite() && rad != 0.0 && rad.abs() <= TAU) {
+        return Err(Refusal::range(
+            "angleRadEqual",
+            rad,
+            "[-2π, 0) ∪ (0, 2π] rad/pulse",
+        ));
+    }
+    let rotary = GroupSetRotaryTransform {
+        group: n as GroupId,
+        rotary_axis: axis as u16,
+        rad_per_unit: rad * c.scale(axis).pulses_per_unit,
+        center: [
+            c.scale(x).to_engine(cx as f64),
+            c.scale(y).to_engine(cy as f64),
+        ],
+        plane: None,
+    };
+    let select = GroupSetCoordinateSystem {
+        group: n as GroupId,
+        coordinate_system: CoordinateSystem::Rotary,
+    };
+    send(c, n, vec![rotary.into(), select.into()]);
+    set_frames(c, n, |f| {
+        f.transform = CrdTransform::Rotary {
+            axis,
+            rad_per_pulse: rad,
+            center: [cx, cy],
+        }
+    });
+    Ok(())
+}
+
+fn crd_del_trans_rotate(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let n = crd(c)?;
+    if matches!(frames(c, n).transform, CrdTransform::Rotary { .. }) {
+        delete_transform(c, n);
+    }
+    Ok(())
+}
+
+/// `NMC_CrdSetTransPolar(crd, rotAxNo, transAxNo, rotEquiv)`: which axis turns (rotEquiv rad per
+/// pulse, 2π / pulses per turn) and which moves along the radius. Replaces another transform.
+fn crd_set_trans_polar(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let n = crd(c)?;
+    let (rot, trans, equiv) = (c.input.i16()?, c.input.i16()?, c.input.f64()?);
+    let rot = device_axis(c, "rotAxNo", rot)?;
+    let trans = device_axis(c, "transAxNo", trans)?;
+    if rot == trans {
+        return Err(Refusal::range(
+            "transAxNo",
+            trans,
+            "an axis other than rotAxNo",
+        ));
+    }
+    if !(equiv.is_finite() && equiv > 0.0 && equiv <= TAU) {
+        return Err(Refusal::range(
+            "rotEquiv",
+            equiv,
+            "(0, 2π] rad/pulse (2π / pulses per turn)",
+        ));
+    }
+    delete_transform(c, n);
+    set_frames(c, n, |f| {
+        f.transform = CrdTransform::Polar {
+            rot_axis: rot,
+            trans_axis: trans,
+            rot_equiv: equiv,
+        }
+    });
+    Ok(())
+}
+
+fn crd_del_trans_polar(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let n = crd(c)?;
+    if matches!(frames(c, n).transform, CrdTransform::Polar { .. }) {
+        set_frames(c, n, |f| f.transform = CrdTransform::None);
+    }
+    Ok(())
+}
+
+/// The polar transform's axes and rad/pulse, or a refusal naming the missing call.
+fn polar(c: &Call<'_>, n: usize) -> Result<(usize, usize, f64), Refusal> {
+    match frames(c, n).transform {
+        CrdTransform::Polar {
+            rot_axis,
+            trans_axis,
+            rot_equiv,
+        } => Ok((rot_axis, trans_axis, rot_equiv)),
+        _ => Err(Refusal::new(
+            code_for_kind(ErrorKind::InvalidState),
+            "no polar transform: NMC_CrdSetTransPolar first",
+        )),
+    }
+}
+
+/// "圈数清零": the rotary axis's commanded position less its whole turns, in [0, one turn).
+fn clear_turns(c: &Call<'_>, axis: usize, equiv: f64) -> Option<Command> {
+    let scale = c.scale(axis);
+    let turn = TAU / equiv;
+    let now = pulses(scale, c.status(axis)?.cmd_pos) as f64;
+    let kept = now.rem_euclid(turn).round();
+    (kept != now).then(|| {
+        SetPosition {
+            axis: axis as u16,
+            position: scale.to_engine(kept),
+            frame: PositionFrame::Commanded,
+        }
+        .into()
+    })
+}
+
+/// One PTP of `axis` to `target` pulses at `vel` pulse/ms, with the axis's own PTP parameters.
+fn ptp(c: &Call<'_>, axis: usize, target: f64, vel: f64) -> Result<Vec<Command>, Refusal> {
+    let target = target.round();
+    if target.abs() > 2_147_483_647.0 {
+        return Err(Refusal::range(
+            "position",
+            target,
+            "[-2147483647, 2147483647] pulses",
+        ));
+    }
+    let para = c.settings(axis).ptp;
+    ptp_move(c, axis, para, vel, target as i64, false)
+}
+
+/// (xPos, yPos) in polar coordinates: the rotary axis, its turns cleared first, to the angle
+/// atan2(y, x) ∈ [0, 2π) and the linear axis to the radius √(x² + y²) (digest 001 C3§10.5:
+/// (5000, 5000) → 45°, √2·5000), each a single-axis PTP at its velocity.
+fn crd_run_to_polar_pos(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let n = crd(c)?;
+    let x = finite("xPos", c.input.f64()?)?;
+    let y = finite("yPos", c.input.f64()?)?;
+    let rot_vel = positive("rotVel", c.input.f64()?, "pulse/ms")?;
+    let trans_vel = positive("transVel", c.input.f64()?, "pulse/ms")?;
+    let (rot, trans, equiv) = polar(c, n)?;
+    let theta = y.atan2(x).rem_euclid(TAU);
+    let mut commands: Vec<Command> = clear_turns(c, rot, equiv).into_iter().collect();
+    commands.extend(ptp(c, rot, theta / equiv, rot_vel)?);
+    commands.extend(ptp(c, trans, x.hypot(y), trans_vel)?);
+    c.plan.commands.extend(commands);
+    Ok(())
+}
+
+/// The rotary axis to angle `theta` (rad), turns cleared first when clrRoundFlag is 1.
+fn crd_run_to_polar_theta(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let n = crd(c)?;
+    let theta = finite("theta", c.input.f64()?)?;
+    let vel = positive("vel", c.input.f64()?, "pulse/ms")?;
+    let clear = c.input.i16()?;
+    if !(0..=1).contains(&clear) {
+        return Err(Refusal::range("clrRoundFlag", clear, "{0, 1}"));
+    }
+    let (rot, _, equiv) = polar(c, n)?;
+    let mut commands: Vec<Command> = if clear == 1 {
+        clear_turns(c, rot, equiv).into_iter().collect()
+    } else {
+        Vec::new()
+    };
+    commands.extend(ptp(c, rot, theta / equiv, vel)?);
+    c.plan.commands.extend(commands);
+    Ok(())
+}
+
+/// The engine's XYZA transform of `f`'s parameters for the members `axes` (X, Y, Z, A).
+fn xyza_command(c: &Call<'_>, n: usize, f: &CrdFrames, axes: &[usize]) -> Command {
+    let scale = |k: usize| {
+        axes.get(k).map_or(
+            mcemu_dialects::PulseScale {
+                pulses_per_unit: 1.0,
+            },
+            |a| c.scale(*a),
+        )
+    };
+    GroupSetXyzaTransform {
+        group: n as GroupId,
+        rad_per_unit: f.pulse2rad * scale(3).pulses_per_unit,
+        tool: [
+            scale(0).to_engine(f.tool[0] as f64),
+            scale(1).to_engine(f.tool[1] as f64),
+        ],
+    }
+    .into()
+}
+
+/// `pAxisMapArray` = X, Y, Z, A: the coordinate system's 4 axes in their order (the engine's
+/// XYZA is group coordinates 0–3), with the parameters of `NMC_CrdSetXYZAPara`.
+fn crd_set_trans_xyza(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let n = crd(c)?;
+    let count = usize::from(c.input.u16()?);
+    let mut map = Vec::with_capacity(count.min(CRD_MAX_AXES));
+    for _ in 0..count {
+        let a = c.input.i16()?;
+        if map.len() < CRD_MAX_AXES {
+            map.push(a);
+        }
+    }
+    let axes = configured(c, n)?;
+    let same = map.len() == CRD_MAX_AXES
+        && map
+            .iter()
+            .zip(&axes)
+            .all(|(m, a)| usize::try_from(*m).ok() == Some(*a));
+    let axes_in_order = match <[usize; CRD_MAX_AXES]>::try_from(axes.as_slice()) {
+        Ok(a) if same => a,
+        _ => {
+            return Err(Refusal::range(
+                "pAxisMapArray",
+                format!("{map:?}"),
+                &format!(
+                    "the coordinate system's 4 axes in order, X Y Z A ({axes:?}, NMC_CrdConfig)"
+                ),
+            ))
+        }
+    };
+    let mut f = frames(c, n);
+    f.transform = CrdTransform::Xyza { map: axes_in_order };
+    let commands = vec![
+        xyza_command(c, n, &f, &axes),
+        GroupSetCoordinateSystem {
+            group: n as GroupId,
+            coordinate_system: CoordinateSystem::Xyza,
+        }
+        .into(),
+    ];
+    send(c, n, commands);
+    set_frames(c, n, |now| *now = f);
+    Ok(())
+}
+
+fn crd_del_trans_xyza(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let n = crd(c)?;
+    if matches!(frames(c, n).transform, CrdTransform::Xyza { .. }) {
+        delete_transform(c, n);
+    }
+    Ok(())
+}
+
+/// The tool offset from a measurement: A turned by deltaTheta from 0, then X and Y moved by
+/// (deltaX, deltaY) to bring the tip back to the same point. That move is −(R(Δθ) − I)·tool,
+/// the engine's XYZA compensation, so tool = −(R − I)⁻¹·Δ (decisions.md). Computed only; the
+/// manual's example passes the result to `NMC_CrdSetXYZAPara`.
+fn crd_set_xyza_tool_calc(c: &mut Call<'_>) -> Result<(), Refusal> {
+    crd(c)?;
+    let theta = c.input.f64()?;
+    let (dx, dy) = (c.input.i64()?, c.input.i64()?);
+    let (tx, ty) = path::frames::xyza_tool_offset(theta, dx as f64, dy as f64).map_err(|e| {
+        Refusal::range(
+            "deltaTheta",
+            theta,
+            &format!("a finite angle that is not a whole number of turns ({e})"),
+        )
+    })?;
+    c.output.i64(-tx.round() as i64).i64(-ty.round() as i64);
+    Ok(())
+}
+
+/// Stored; a set XYZA transform takes them for the moves pushed afterwards.
+fn crd_set_xyza_para(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let n = crd(c)?;
+    let rad = c.input.f64()?;
+    let tool = [c.input.i64()?, c.input.i64()?];
+    if !(rad.is_finite() && rad.abs() <= TAU) {
+        return Err(Refusal::range("pulse2Rad", rad, "[-2π, 2π] rad/pulse"));
+    }
+    let mut f = frames(c, n);
+    f.pulse2rad = rad;
+    f.tool = tool;
+    if let CrdTransform::Xyza { map } = f.transform {
+        if group(c, n).is_some() {
+            let command = xyza_command(c, n, &f, &map);
+            send(c, n, vec![command]);
+        }
+    }
+    set_frames(c, n, |now| *now = f);
+    Ok(())
+}
+
+fn crd_get_xyza_para(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let n = crd(c)?;
+    let f = frames(c, n);
+    c.output.f64(f.pulse2rad).i64(f.tool[0]).i64(f.tool[1]);
+    Ok(())
+}
+
+/// The buffered motion's offset of the first `count` coordinates: `TCrdPara.offset` with
+/// orgFlag 1 (the user origin, `group_set_origin`), as `NMC_CrdSetPara` sets it; the other
+/// coordinates keep theirs (decisions.md).
+fn crd_set_offset(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let n = crd(c)?;
+    let count = c.input.i16()?;
+    let values = read_longs(c)?;
+    let mut s = state(c, n);
+    let axes = members(&s)?;
+    let k = usize::try_from(count)
+        .ok()
+        .filter(|k| (1..=axes.len()).contains(k))
+        .ok_or_else(|| {
+            Refusal::range(
+                "count",
+                count,
+                &format!("[1, {}] (the coordinate system's axes)", axes.len()),
+            )
+        })?;
+    if values.len() != k {
+        return Err(Refusal::range(
+            "pOffsetArray",
+            format!("{} values", values.len()),
+            &format!("{k} values"),
+        ));
+    }
+    let old = s.origin();
+    s.para.org_flag = 1;
+    for (o, v) in s.para.offset.iter_mut().zip(&values) {
+        *o = *v;
+    }
+    let new = s.origin();
+    for j in 0..CRD_MAX_AXES {
+        s.end[j] = s.end[j].saturating_add(old[j]).saturating_sub(new[j]);
+    }
+    if group(c, n).is_some() && old != new {
+        let command = origin_command(c, n, &s, &axes);
+        c.command(command);
+    }
+    update(c, n, |now| *now = s);
+    Ok(())
+}
+
+/// minSectionLen ∈ [1, 10000] pulses; maxArcDiff, the radii and errors finite and ≥ 0; the
+/// radii ascending (all 0: the table is off).
+fn check_arc_sec(a: &ArcSecSetting) -> Result<(), Refusal> {
+    if !(a.min_section_len.is_finite() && (1.0..=10000.0).contains(&a.min_section_len)) {
+        return Err(Refusal::range(
+            "minSectionLen",
+            a.min_section_len,
+            "[1, 10000] pulses",
+        ));
+    }
+    let values = [("maxArcDiff", a.max_arc_diff)]
+        .into_iter()
+        .chain(a.r.iter().map(|v| ("r", *v)))
+        .chain(a.err.iter().map(|v| ("err", *v)));
+    for (name, v) in values {
+        if !(v.is_finite() && v >= 0.0) {
+            return Err(Refusal::range(name, v, "[0, ∞) pulses"));
+        }
+    }
+    let on = a.r.iter().any(|r| *r > 0.0);
+    if on && a.r.windows(2).any(|w| w[0] >= w[1]) {
+        return Err(Refusal::range(
+            "r",
+            format!("{:?}", a.r),
+            "ascending radii r0 < r1 (all 0: off)",
+        ));
+    }
+    Ok(())
+}
+
+pub(super) fn chord_command(c: &Call<'_>, n: usize, a: &ArcSecSetting) -> Command {
+    let scale = path_scale(c, &state(c, n));
+    GroupSetParameter {
+        group: n as GroupId,
+        name: GroupParameter::ChordError,
+        value: scale.to_engine(chord_error(a)),
+    }
+    .into()
+}
+
+fn crd_set_arc_sec_para(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let n = crd(c)?;
+    let a = ArcSecSetting::read(&mut c.input)?;
+    check_arc_sec(&a)?;
+    if group(c, n).is_some() {
+        let command = chord_command(c, n, &a);
+        c.command(command);
+    }
+    set_frames(c, n, |f| f.arc_sec = a);
+    Ok(())
+}
+
+fn crd_get_arc_sec_para(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let n = crd(c)?;
+    frames(c, n).arc_sec.write(c.output);
+    Ok(())
+}
+
+/// Stored only: the engine's corner rules have no per-axis corner velocity (decisions.md).
+fn crd_set_fourth_axis_to_turn_vel(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let n = crd(c)?;
+    let v = c.input.f64()?;
+    if !(v.is_finite() && v >= 0.0) {
+        return Err(Refusal::range("tolVel", v, "[0, ∞) pulse/ms"));
+    }
+    set_frames(c, n, |f| f.fourth_axis_turn_vel = v);
+    Ok(())
+}
+
+/// Back to the break point, a line at `vel` and `acc` in user coordinates. After
+/// `NMC_CrdStopMtn` the members stand on the path where it halted: that is the break point and
+/// `NMC_CrdStartMtn` goes on from it, so there is nothing to move. After `NMC_CrdEstopMtn`
+/// (and `NMC_CrdClrError`) the line goes back to where the path was when it was stopped; the
+/// engine dropped the rest of the path (decisions.md).
+fn crd_goto_break(c: &mut Call<'_>) -> Result<(), Refusal> {
+    let n = crd(c)?;
+    let acc = positive("acc", c.input.f64()?, "pulse/ms²")?;
+    let vel = positive("vel", c.input.f64()?, "pulse/ms")?;
+    let axes = configured(c, n)?;
+    let state_now = group(c, n).map(|g| g.state);
+    let refuse = |text: &str| -> Result<(), Refusal> {
+        Err(Refusal::new(code_for_kind(ErrorKind::GroupState), text))
+    };
+    match state_now {
+        Some(GroupState::Moving | GroupState::Stopping) => {
+            return refuse("the coordinate system is moving: NMC_CrdStopMtn first")
+        }
+        Some(GroupState::ErrorStop) => return refuse("NMC_CrdClrError first"),
+        Some(GroupState::Halted) => return Ok(()),
+        _ => {}
+    }
+    let mut s = state(c, n);
+    let Some(point) = frames(c, n).break_point else {
+        return refuse(
+            "no break point: the path was not stopped (NMC_CrdStopMtn, NMC_CrdEstopMtn)",
+        );
+    };
+    let dims = axes.len().min(CRD_MAX_AXES);
+    if here(c, &s).get(..dims) == point.get(..dims) {
+        set_frames(c, n, |f| f.break_point = None);
+        return Ok(());
+    }
+    if state_now == Some(GroupState::Disabled) {
+        c.command(GroupEnable {
+            group: n as GroupId,
+        });
+    }
+    let scale = path_scale(c, &s);
+    let position = axes
+        .iter()
+        .zip(&point)
+        .map(|(a, p)| c.scale(*a).to_engine(*p as f64))
+        .collect();
+    c.command(MoveLinearAbsolute {
+        group: n as GroupId,
+        position,
+        velocity: Some(velocity_to_engine(scale, vel)),
+        acceleration: Some(acceleration_to_engine(scale, acc)),
+        deceleration: Some(acceleration_to_engine(scale, acc)),
+        jerk: None,
+        buffer_mode: Default::default(),
+        transition: Default::default(),
+        user_segment: None,
+        independent: Default::default(),
+        coordinate_system: Some(CoordinateSystem::MCS),
+    });
+    s.end = point;
+    update(c, n, |now| now.end = s.end);
+    set_frames(c, n, |f| f.break_point = None);
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use mcemu_nmc::crd_frames::MAX_ERR_TABLE_SECTION;
+
+    #[test]
+    fn the_strictest_band_is_the_chord_error_and_all_zero_radii_turn_it_off() {
+        let mut a = ArcSecSetting {
+            r: [100.0, 1000.0],
+            err: [0.5, 0.2, 2.0],
+            ..ArcSecSetting::default()
+        };
+        assert_eq!(chord_error(&a), 0.2);
+        a.err = [0.0; MAX_ERR_TABLE_SECTION + 1];
+        assert_eq!(chord_error(&a), 0.0);
+        a.r = [0.0; MAX_ERR_TABLE_SECTION];
+        a.err = [1.0; MAX_ERR_TABLE_SECTION + 1];
+        assert_eq!(chord_error(&a), 0.0);
+        assert!(check_arc_sec(&a).is_ok());
+        a.r = [1000.0, 100.0];
+        assert!(check_arc_sec(&a).is_err());
+        a.r = [100.0, 1000.0];
+        a.min_section_len = 0.5;
+        assert!(check_arc_sec(&a).is_err());
+    }
+}
