@@ -1163,6 +1163,7 @@ impl Axis {
             move_time: self.timing.move_time(),
             settling_time: self.timing.settling_time(),
             torque: self.torque(),
+            z_output: self.triggers.z_output,
         };
     }
 }

@@ -9,8 +9,8 @@ use super::superimpose::{
 };
 use super::{
     command_from, AxisIndex, Direction, FollowClear, FollowConfig, FollowOut, FollowPush,
-    FollowStart, FollowSwitch, GantryDisable, GantryEnable, HandwheelIn, HandwheelOut,
-    HandwheelSetRatio, HandwheelTurn, MasterSource,
+    FollowStart, FollowSwitch, GantryDisable, GantryEnable, GantrySetPid, GantrySetPosition,
+    HandwheelIn, HandwheelOut, HandwheelSetRatio, HandwheelTurn, MasterSource,
 };
 
 /// Couple `slave` to `master` through a gear: slave travel = numerator / denominator × master
@@ -233,6 +233,9 @@ pub enum CouplingCommand {
     FollowSwitch(FollowSwitch),
     FollowOut(FollowOut),
     HandwheelSetRatio(HandwheelSetRatio),
+    // HMC_GantryGroupDefPos and HMC_SetGantryAxisPID (digest 000 §4.4), `command/gantry.rs`.
+    GantrySetPosition(GantrySetPosition),
+    GantrySetPid(GantrySetPid),
 }
 
 impl CouplingCommand {
@@ -262,6 +265,8 @@ impl CouplingCommand {
             CouplingCommand::FollowSwitch(c) => c.axes.first().copied(),
             CouplingCommand::FollowOut(c) => Some(c.axis),
             CouplingCommand::HandwheelSetRatio(c) => c.axis,
+            CouplingCommand::GantrySetPosition(c) => Some(c.master),
+            CouplingCommand::GantrySetPid(c) => Some(c.axis),
         }
     }
 }
@@ -293,5 +298,7 @@ command_from!(
         FollowSwitch => FollowSwitch,
         FollowOut => FollowOut,
         HandwheelSetRatio => HandwheelSetRatio,
+        GantrySetPosition => GantrySetPosition,
+        GantrySetPid => GantrySetPid,
     ]
 );

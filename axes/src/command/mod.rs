@@ -124,7 +124,8 @@ pub use follow::{
     FollowSwitch, FOLLOW_FIFOS, FOLLOW_FIFO_SEGMENTS,
 };
 pub use gantry::{
-    GantryDisable, GantryEnable, GantryHome, MAX_GANTRY_HOME_AXES, MAX_GANTRY_SLAVES,
+    GantryDisable, GantryEnable, GantryHome, GantrySetPid, GantrySetPosition, MAX_GANTRY_HOME_AXES,
+    MAX_GANTRY_SLAVES,
 };
 pub use group::{
     ArcDirection, CircleMode, CoordinateSet, GroupAxisMove, GroupBufferMode, GroupCommand,
@@ -168,6 +169,7 @@ pub use superimpose::{
 pub use trigger::{
     CaptureArm, CaptureArmThreshold, CaptureClear, CaptureEdge, CaptureSource, CaptureWindow,
     CompareFire, CompareOutputMode, CompareStart, CompareStop, PositionSource, TriggerCommand,
+    ZCompareStart, ZCompareStop,
 };
 
 /// A command into the engine, by family: what it addresses decides which stage of the engine
@@ -219,8 +221,13 @@ impl Command {
             Command::Trigger(TriggerCommand::CaptureClear(c)) => Some(c.axis),
             Command::Trigger(TriggerCommand::CompareStart(c)) => Some(c.axis),
             Command::Trigger(TriggerCommand::CaptureArmThreshold(c)) => Some(c.axis),
+            Command::Trigger(TriggerCommand::ZCompareStart(c)) => Some(c.axis),
             Command::Compensation(c) => Some(c.axis()),
-            Command::Trigger(TriggerCommand::CompareStop(_) | TriggerCommand::CompareFire(_))
+            Command::Trigger(
+                TriggerCommand::CompareStop(_)
+                | TriggerCommand::CompareFire(_)
+                | TriggerCommand::ZCompareStop(_),
+            )
             | Command::Sampling(_)
             | Command::Group(_)
             | Command::Io(_)

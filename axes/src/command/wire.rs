@@ -177,6 +177,12 @@ pub(super) enum Command {
     // Issue 12 item 6, HMC_GantryInit.
     GantryHome(super::GantryHome),
     PulseDigitalOutput(PulseDigitalOutput),
+    // Issue 12 item 5, HMC SwitchTZ (Z-phase outputs).
+    ZCompareStart(super::ZCompareStart),
+    ZCompareStop(super::ZCompareStop),
+    // Issue 12 item 6, HMC_GantryGroupDefPos and HMC_SetGantryAxisPID.
+    GantrySetPosition(super::GantrySetPosition),
+    GantrySetPid(super::GantrySetPid),
 }
 
 impl From<Command> for super::Command {
@@ -324,6 +330,10 @@ impl From<Command> for super::Command {
             Command::SamplingTrigger(c) => super::Command::from(c),
             Command::SamplingStop(c) => super::Command::from(c),
             Command::SamplingRead(c) => super::Command::from(c),
+            Command::ZCompareStart(c) => super::Command::from(c),
+            Command::ZCompareStop(c) => super::Command::from(c),
+            Command::GantrySetPosition(c) => super::Command::from(c),
+            Command::GantrySetPid(c) => super::Command::from(c),
         }
     }
 }
@@ -463,6 +473,10 @@ impl From<super::Command> for Command {
             super::Command::Coupling(CouplingCommand::HandwheelSetRatio(c)) => {
                 Command::HandwheelSetRatio(c)
             }
+            super::Command::Coupling(CouplingCommand::GantrySetPosition(c)) => {
+                Command::GantrySetPosition(c)
+            }
+            super::Command::Coupling(CouplingCommand::GantrySetPid(c)) => Command::GantrySetPid(c),
             super::Command::Trigger(TriggerCommand::CaptureArm(c)) => Command::CaptureArm(c),
             super::Command::Trigger(TriggerCommand::CaptureClear(c)) => Command::CaptureClear(c),
             super::Command::Trigger(TriggerCommand::CompareStart(c)) => Command::CompareStart(c),
@@ -471,6 +485,8 @@ impl From<super::Command> for Command {
             super::Command::Trigger(TriggerCommand::CaptureArmThreshold(c)) => {
                 Command::CaptureArmThreshold(c)
             }
+            super::Command::Trigger(TriggerCommand::ZCompareStart(c)) => Command::ZCompareStart(c),
+            super::Command::Trigger(TriggerCommand::ZCompareStop(c)) => Command::ZCompareStop(c),
             super::Command::Stream(StreamCommand::Config(c)) => Command::StreamConfig(c),
             super::Command::Stream(StreamCommand::PtPush(c)) => Command::PtPush(c),
             super::Command::Stream(StreamCommand::PvtPush(c)) => Command::PvtPush(c),

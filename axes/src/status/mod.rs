@@ -25,7 +25,7 @@ pub use group::{GroupFault, GroupState, GroupStatus, InterferenceStatus};
 pub use snapshot::Snapshot;
 pub use trigger::{
     CaptureEdge, CaptureSource, CaptureState, CaptureStatus, CaptureWindow, CompareOutputMode,
-    CompareState, CompareStatus, Latch, PositionSource,
+    CompareState, CompareStatus, Latch, PositionSource, ZCompareStatus,
 };
 
 /// PLCopen axis state.
@@ -312,6 +312,11 @@ pub struct AxisStatus {
     /// torque mode, else the commanded acceleration over the rated one (HIMC GetCurrFb).
     #[serde(default)]
     pub torque: f64,
+    /// The level of the axis's Z-phase output (the encoder-output port's Z line, which HMC
+    /// SwitchTZ and Switch ucOutputMode 1 drive as a fast output; issue 12 item 5). Low unless
+    /// a `z_compare` channel drives it.
+    #[serde(default)]
+    pub z_output: bool,
 }
 
 /// An axis's PT/PVT buffer and run (NMC `MtPtGetSpace`, `MtPtGetStatic`).
