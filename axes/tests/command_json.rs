@@ -665,7 +665,7 @@ fn minimal() -> Vec<(&'static str, Command, &'static str)> {
 
 /// Inputs whose error serde reports, and the text it reports today.
 const ERRORS: &[(&str, &str)] = &[
-    (r#"{"type":"teleport","axis":0}"#, "unknown variant `teleport`, expected one of `enable`, `disable`, `reset`, `move_absolute`, `move_relative`, `move_velocity`, `stop`, `halt`, `resume`, `home`, `set_position`, `set_parameter`, `get_parameter`, `modify_target`, `cancel`, `command_state`, `force_input`, `force_digital_input`, `force_analog_input`, `write_digital_output`, `write_analog_output`, `inject_following_error`, `setpoint`, `read_object`, `write_object`, `move_together`, `stop_axes`, `stop_all`, `enable_all`, `disable_all`, `emergency_stop_all`, `reset_all`, `group_create`, `group_delete`, `group_enable`, `group_disable`, `group_reset`, `move_linear_absolute`, `move_linear_relative`, `move_circular_absolute`, `move_circular_relative`, `group_stop`, `group_halt`, `group_continue`, `group_emergency_stop`, `group_set_override`, `group_set_origin`, `group_set_parameter`, `group_set_output`, `group_dwell`, `group_wait_input`, `group_wait_position`, `group_axis_move`, `move_spline`, `move_ellipse`, `group_set_coordinate_transform`, `group_set_coordinate_system`, `group_set_rotary_transform`, `group_set_xyza_transform`, `group_delete_transform`, `move_protection_enable`, `move_protection_disable`, `move_circular_angle`, `group_jog`, `group_jog_axis`, `gear_in`, `gear_set_ratio`, `gear_out`, `cam_table`, `cam_in`, `cam_out`, `capture_arm`, `capture_clear`, `compare_start`, `compare_stop`, `stream_config`, `pt_push`, `pvt_push`, `stream_clear`, `stream_start`, `pvt_move`, `compensation_lead_screw`, `compensation_backlash`, `compensation_table`, `compensation_enable`, `compensation_disable`, `compensation_clear`, `sampling_configure`, `sampling_start`, `sampling_trigger`, `sampling_stop`, `sampling_read`, `superimpose_in`, `superimpose_set_ratios`, `superimpose_out`, `tangential_in`, `tangential_out`, `gantry_enable`, `gantry_disable`, `handwheel_in`, `handwheel_out`, `handwheel_turn`, `compare_fire`, `follow_config`, `follow_push`, `follow_clear`, `follow_start`, `follow_switch`, `follow_out`, `handwheel_set_ratio`, `stream_start_on_input`, `capture_arm_threshold`, `gantry_home`, `pulse_digital_output`, `z_compare_start`, `z_compare_stop`, `gantry_set_position`, `gantry_set_pid` at line 1 column 18"),
+    (r#"{"type":"teleport","axis":0}"#, "unknown variant `teleport`, expected one of `enable`, `disable`, `reset`, `move_absolute`, `move_relative`, `move_velocity`, `stop`, `halt`, `resume`, `home`, `set_position`, `set_parameter`, `get_parameter`, `modify_target`, `cancel`, `command_state`, `force_input`, `force_digital_input`, `force_analog_input`, `write_digital_output`, `write_analog_output`, `inject_following_error`, `setpoint`, `read_object`, `write_object`, `move_together`, `stop_axes`, `stop_all`, `enable_all`, `disable_all`, `emergency_stop_all`, `reset_all`, `group_create`, `group_delete`, `group_enable`, `group_disable`, `group_reset`, `move_linear_absolute`, `move_linear_relative`, `move_circular_absolute`, `move_circular_relative`, `group_stop`, `group_halt`, `group_continue`, `group_emergency_stop`, `group_set_override`, `group_set_origin`, `group_set_parameter`, `group_set_output`, `group_dwell`, `group_wait_input`, `group_wait_position`, `group_axis_move`, `move_spline`, `move_ellipse`, `group_set_coordinate_transform`, `group_set_coordinate_system`, `group_set_rotary_transform`, `group_set_xyza_transform`, `group_delete_transform`, `move_protection_enable`, `move_protection_disable`, `move_circular_angle`, `group_jog`, `group_jog_axis`, `gear_in`, `gear_set_ratio`, `gear_out`, `cam_table`, `cam_in`, `cam_out`, `capture_arm`, `capture_clear`, `compare_start`, `compare_stop`, `stream_config`, `pt_push`, `pvt_push`, `stream_clear`, `stream_start`, `pvt_move`, `compensation_lead_screw`, `compensation_backlash`, `compensation_table`, `compensation_enable`, `compensation_disable`, `compensation_clear`, `sampling_configure`, `sampling_start`, `sampling_trigger`, `sampling_stop`, `sampling_read`, `superimpose_in`, `superimpose_set_ratios`, `superimpose_out`, `tangential_in`, `tangential_out`, `gantry_enable`, `gantry_disable`, `handwheel_in`, `handwheel_out`, `handwheel_turn`, `compare_fire`, `follow_config`, `follow_push`, `follow_clear`, `follow_start`, `follow_switch`, `follow_out`, `handwheel_set_ratio`, `stream_start_on_input`, `capture_arm_threshold`, `gantry_home`, `pulse_digital_output`, `z_compare_start`, `z_compare_stop`, `gantry_set_position`, `gantry_set_pid`, `compensation_offset_amount`, `compensation_offset_profile`, `compensation_offset_trigger`, `compensation_offset_stop` at line 1 column 18"),
     (r#"{"axis":0}"#, "missing field `type` at line 1 column 10"),
     (r#"{"type":"move_absolute","axis":0}"#, "missing field `position`"),
     (r#"{"type":"move_absolute","axis":0,"positon":10}"#, "unknown field `positon`, expected one of `axis`, `position`, `velocity`, `acceleration`, `deceleration`, `jerk`, `buffer_mode`"),
@@ -1159,7 +1159,7 @@ fn follow_and_handwheel_ratio_commands_keep_their_json() {
 }
 
 #[test]
-fn hmc_z_compare_disturbance_and_gantry_commands_keep_their_json() {
+fn hmc_z_compare_disturbance_gantry_and_offset_commands_keep_their_json() {
     use axes::command::{
         CompareOutputMode, CompareStart, GantryEnable, GantrySetPid, GantrySetPosition,
         PositionSource, ZCompareStart, ZCompareStop,
@@ -1235,6 +1235,42 @@ fn hmc_z_compare_disturbance_and_gantry_commands_keep_their_json() {
         ),
     ];
     assert_pinned(cases);
+    {
+        use axes::command::{
+            CompensationOffsetAmount, CompensationOffsetProfile, CompensationOffsetStop,
+            CompensationOffsetTrigger,
+        };
+        assert_pinned(vec![
+            (
+                // HMC_SetAxisCompenPos(2, -0.25).
+                Command::from(CompensationOffsetAmount {
+                    axis: 2,
+                    amount: -0.25,
+                }),
+                r#"{"type":"compensation_offset_amount","axis":2,"amount":-0.25}"#,
+            ),
+            (
+                // HMC_SetAxisCompenPara(2, 1, 10, 100, 200, 5000).
+                Command::from(CompensationOffsetProfile {
+                    axis: 2,
+                    s_curve: true,
+                    velocity: 10.0,
+                    acceleration: 100.0,
+                    deceleration: 200.0,
+                    jerk: 5000.0,
+                }),
+                r#"{"type":"compensation_offset_profile","axis":2,"s_curve":true,"velocity":10.0,"acceleration":100.0,"deceleration":200.0,"jerk":5000.0}"#,
+            ),
+            (
+                Command::from(CompensationOffsetTrigger { axis: 2 }),
+                r#"{"type":"compensation_offset_trigger","axis":2}"#,
+            ),
+            (
+                Command::from(CompensationOffsetStop { axis: 2 }),
+                r#"{"type":"compensation_offset_stop","axis":2}"#,
+            ),
+        ]);
+    }
     // A Z compare toggles on the actual position by default (SwitchTZ ucTimeMode 0, MPos).
     let minimal: Command = serde_json::from_str(
         r#"{"type":"z_compare_start","axis":0,"positions":[5],"output_axis":0}"#,

@@ -113,7 +113,9 @@ pub use axis::{
 pub use compensation::{
     BacklashDirection, CompensationBacklash, CompensationClear, CompensationCommand,
     CompensationDisable, CompensationEnable, CompensationInterpolation, CompensationKind,
-    CompensationLeadScrew, CompensationReference, CompensationTable, ReferenceSource,
+    CompensationLeadScrew, CompensationOffsetAmount, CompensationOffsetProfile,
+    CompensationOffsetStop, CompensationOffsetTrigger, CompensationReference, CompensationTable,
+    ReferenceSource,
 };
 pub use coupling::{
     CamIn, CamInterpolation, CamOut, CamPoint, CamTableDefine, CouplingCommand, FollowSegment,

@@ -183,6 +183,11 @@ pub(super) enum Command {
     // Issue 12 item 6, HMC_GantryGroupDefPos and HMC_SetGantryAxisPID.
     GantrySetPosition(super::GantrySetPosition),
     GantrySetPid(super::GantrySetPid),
+    // Issue 12 item 8, HMC axis position compensation.
+    CompensationOffsetAmount(super::CompensationOffsetAmount),
+    CompensationOffsetProfile(super::CompensationOffsetProfile),
+    CompensationOffsetTrigger(super::CompensationOffsetTrigger),
+    CompensationOffsetStop(super::CompensationOffsetStop),
 }
 
 impl From<Command> for super::Command {
@@ -334,6 +339,10 @@ impl From<Command> for super::Command {
             Command::ZCompareStop(c) => super::Command::from(c),
             Command::GantrySetPosition(c) => super::Command::from(c),
             Command::GantrySetPid(c) => super::Command::from(c),
+            Command::CompensationOffsetAmount(c) => super::Command::from(c),
+            Command::CompensationOffsetProfile(c) => super::Command::from(c),
+            Command::CompensationOffsetTrigger(c) => super::Command::from(c),
+            Command::CompensationOffsetStop(c) => super::Command::from(c),
         }
     }
 }
@@ -503,6 +512,10 @@ impl From<super::Command> for Command {
                 CompensationCommand::Enable(c) => Command::CompensationEnable(c),
                 CompensationCommand::Disable(c) => Command::CompensationDisable(c),
                 CompensationCommand::Clear(c) => Command::CompensationClear(c),
+                CompensationCommand::OffsetAmount(c) => Command::CompensationOffsetAmount(c),
+                CompensationCommand::OffsetProfile(c) => Command::CompensationOffsetProfile(c),
+                CompensationCommand::OffsetTrigger(c) => Command::CompensationOffsetTrigger(c),
+                CompensationCommand::OffsetStop(c) => Command::CompensationOffsetStop(c),
             },
             super::Command::Sampling(c) => match c {
                 SamplingCommand::Configure(c) => Command::SamplingConfigure(c),

@@ -317,6 +317,13 @@ pub struct AxisStatus {
     /// a `z_compare` channel drives it.
     #[serde(default)]
     pub z_output: bool,
+    /// The HMC axis position compensation offset: the part of `compensation` that
+    /// `compensation_offset_trigger` moves (issue 12 item 8).
+    #[serde(default)]
+    pub compensation_offset: f64,
+    /// That offset's move is in progress (HMC GetAxisCompenState 1; 0 done).
+    #[serde(default)]
+    pub compensation_offset_moving: bool,
 }
 
 /// An axis's PT/PVT buffer and run (NMC `MtPtGetSpace`, `MtPtGetStatic`).
