@@ -348,13 +348,7 @@ impl Couplings {
         master: AxisIndex,
     ) -> Result<Reply, EngineError> {
         axis_ref(env.axes, master)?;
-        let slaves: Vec<AxisIndex> = self.gantry_slaves(master).collect();
-        if slaves.is_empty() {
-            return Err(EngineError::NotCoupled {
-                axis: master,
-                what: "the master of a gantry",
-            });
-        }
+        let slaves = self.slaves_of_master(master)?;
         self.list
             .retain(|c| !(c.master == master && matches!(c.law, Law::Gantry(_))));
         for slave in slaves {
@@ -382,14 +376,8 @@ impl Couplings {
         let master = c.master;
         axis_ref(env.axes, master)?;
         let position = bounded("position", c.position)?;
-        let slaves: Vec<AxisIndex> = self.gantry_slaves(master).collect();
-        if slaves.is_empty() {
-            // HMC: "当前指令不为龙门同步指令时，返回错误".
-            return Err(EngineError::NotCoupled {
-                axis: master,
-                what: "the master of a gantry",
-            });
-        }
+        // HMC: "当前指令不为龙门同步指令时，返回错误".
+        let slaves = self.slaves_of_master(master)?;
         let mut master_shift = 0.0;
         for &a in std::iter::once(&master).chain(&slaves) {
             if let Some(axis) = env.axes.get_mut(a as usize) {
@@ -439,6 +427,18 @@ impl Couplings {
     /// enables both).
     pub(crate) fn gantry_power_gang(&self, master: AxisIndex) -> Vec<AxisIndex> {
         self.gantry_slaves(master).collect()
+    }
+
+    /// The slaves of `master`'s gantry, or `not_coupled` when it is no gantry's master.
+    fn slaves_of_master(&self, master: AxisIndex) -> Result<Vec<AxisIndex>, EngineError> {
+        let slaves: Vec<AxisIndex> = self.gantry_slaves(master).collect();
+        if slaves.is_empty() {
+            return Err(EngineError::NotCoupled {
+                axis: master,
+                what: "the master of a gantry",
+            });
+        }
+        Ok(slaves)
     }
 
     fn gantry_slaves(&self, master: AxisIndex) -> impl Iterator<Item = AxisIndex> + '_ {

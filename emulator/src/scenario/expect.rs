@@ -104,6 +104,10 @@ pub(super) enum Quantity {
     Compensation,
     /// A gantry axis's deviation from its master (issue 12 item 6).
     GantryDeviation,
+    /// The Z-phase output's level, 0 or 1 (HMC SwitchTZ).
+    ZOutput,
+    /// The HMC position-compensation offset.
+    CompensationOffset,
 }
 
 impl Quantity {
@@ -120,6 +124,8 @@ impl Quantity {
             Quantity::OutputPosition => "output_position",
             Quantity::Compensation => "compensation",
             Quantity::GantryDeviation => "gantry_deviation",
+            Quantity::ZOutput => "z_output",
+            Quantity::CompensationOffset => "compensation_offset",
         }
     }
 
@@ -136,6 +142,8 @@ impl Quantity {
             Quantity::OutputPosition => s.output_pos,
             Quantity::Compensation => s.compensation,
             Quantity::GantryDeviation => s.gantry_deviation,
+            Quantity::ZOutput => f64::from(u8::from(s.z_output)),
+            Quantity::CompensationOffset => s.compensation_offset,
         }
     }
 }
@@ -256,6 +264,8 @@ impl Expectation {
             (Quantity::OutputPosition, spec.output_position),
             (Quantity::Compensation, spec.compensation),
             (Quantity::GantryDeviation, spec.gantry_deviation),
+            (Quantity::ZOutput, spec.z_output),
+            (Quantity::CompensationOffset, spec.compensation_offset),
         ] {
             if let Some(v) = v {
                 if !v.is_finite() {
@@ -290,8 +300,8 @@ impl Expectation {
                 "tolerance",
                 "applies to position, velocity, command_position, command_velocity, \
                  following_error, captures, capture_position, compare_outputs, output_position, \
-                 compensation, tangent_angle, gantry_deviation or group_position, and none is \
-                 given"
+                 compensation, tangent_angle, gantry_deviation, z_output, compensation_offset \
+                 or group_position, and none is given"
                     .into(),
             ));
         }
@@ -370,8 +380,8 @@ impl Expectation {
                 "axis",
                 "no condition on it: give state, position, velocity, command_position, \
                  command_velocity, following_error, captures, capture_position, \
-                 compare_outputs, output_position, compensation, gantry_deviation, flags, \
-                 not_flags, error, coupling, coupling_kind, tangent_angle, stream_space, \
+                 compare_outputs, output_position, compensation, gantry_deviation, z_output, \
+                 compensation_offset, flags, not_flags, error, coupling, coupling_kind, tangent_angle, stream_space, \
                  stream_used, stream_running or stream_underruns"
                     .into(),
             ));

@@ -97,6 +97,12 @@ pub(super) struct ExpectSpec {
     /// A gantry axis's deviation from its master (`gantry_deviation`, issue 12 item 6).
     #[serde(default)]
     pub gantry_deviation: Option<f64>,
+    /// The level of the axis's Z-phase output, 0 or 1 (`z_compare_start`, HMC SwitchTZ).
+    #[serde(default)]
+    pub z_output: Option<f64>,
+    /// The HMC position-compensation offset (`compensation_offset_trigger`).
+    #[serde(default)]
+    pub compensation_offset: Option<f64>,
     /// Allowed |seen − expected| of the numbers above; 0 (exact) when absent.
     #[serde(default)]
     pub tolerance: Option<f64>,
