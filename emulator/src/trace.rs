@@ -8,9 +8,7 @@
 //! Then `output_pos` and `compensation` (item 8), `gantry_deviation` (item 6, 0 off a gantry),
 //! and the coupling and stream columns: the kind of the coupling whose slave the axis is
 //! (`gear`, `cam`, `superimpose`, `tangential`, `gantry`; empty when none), whether it is in
-//! sync (0/1), and the points held in its PT/PVT buffer. Last, the level of the axis's Z-phase
-//! output (0/1, driven by a `z_compare` channel, HMC SwitchTZ) and the HMC position-compensation
-//! offset (the part of `compensation` that `compensation_offset_trigger` moves).
+//! sync (0/1), and the points held in its PT/PVT buffer.
 //!
 //! Numbers are written in their shortest round-trip form (`zmij`, `itoa`): a reader that parses
 //! them gets back the exact f64 the engine had. Integral floats drop the `.0` (`100`, not
@@ -22,7 +20,7 @@ use std::io::{self, Write};
 use axes::{AxisFlags, AxisStatus, Engine};
 
 /// The header row, in column order.
-pub const HEADER: &str = "time_s,axis,state,cmd_pos,cmd_vel,cmd_acc,act_pos,act_vel,following_error,pulses,encoder_counts,limit_pos,limit_neg,home_switch,homed,error,group,path_velocity,segment,user_segment,captures,capture_position,compare_outputs,output_pos,compensation,gantry_deviation,coupling,in_sync,stream_used,z_output,compensation_offset";
+pub const HEADER: &str = "time_s,axis,state,cmd_pos,cmd_vel,cmd_acc,act_pos,act_vel,following_error,pulses,encoder_counts,limit_pos,limit_neg,home_switch,homed,error,group,path_velocity,segment,user_segment,captures,capture_position,compare_outputs,output_pos,compensation,gantry_deviation,coupling,in_sync,stream_used";
 
 /// The group columns of a member axis's row (issue 11 item 7).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -150,11 +148,6 @@ fn format_fields(buf: &mut Vec<u8>, axis: usize, s: &AxisStatus, group: Option<&
     });
     buf.push(b',');
     buf.extend_from_slice(ints.format(s.stream.used).as_bytes());
-    // HMC SwitchTZ and axis position compensation (issue 12 items 5 and 8).
-    buf.push(b',');
-    buf.push(if s.z_output { b'1' } else { b'0' });
-    buf.push(b',');
-    push_f64(buf, &mut floats, s.compensation_offset);
     buf.push(b'\n');
 }
 
@@ -310,7 +303,7 @@ mod tests {
         let line = row(&s, 0.035);
         assert_eq!(
             line,
-            "0.035,3,discrete_motion,0.30000000000000004,-1234.5,1e-7,100,-0,2.5e+20,-42,9223372036854775807,0,1,0,1,limit_reached,,,,,0,0,0,0,0,0,,0,0,0,0
+            "0.035,3,discrete_motion,0.30000000000000004,-1234.5,1e-7,100,-0,2.5e+20,-42,9223372036854775807,0,1,0,1,limit_reached,,,,,0,0,0,0,0,0,,0,0
 "
         );
         assert_eq!(

@@ -48,9 +48,6 @@ pub struct TraceRow {
     /// The coupling the axis is the slave of, and the points in its PT/PVT buffer.
     pub coupling: Option<CouplingKind>,
     pub stream_used: u16,
-    /// The Z-phase output's level and the HMC position-compensation offset.
-    pub z_output: bool,
-    pub compensation_offset: f64,
     /// `group` holds a member axis's group columns.
     in_group: bool,
     /// The output position is `cmd_pos + compensation` (as the status computes it).
@@ -81,8 +78,6 @@ impl TraceRow {
             compensation: s.compensation,
             coupling: s.coupling,
             stream_used: s.stream.used,
-            z_output: s.z_output,
-            compensation_offset: s.compensation_offset,
             in_group: group.is_some(),
             group: group.unwrap_or_default(),
         }
@@ -118,8 +113,6 @@ impl TraceRow {
                 used: self.stream_used,
                 ..StreamStatus::default()
             },
-            z_output: self.z_output,
-            compensation_offset: self.compensation_offset,
             ..AxisStatus::default()
         }
     }

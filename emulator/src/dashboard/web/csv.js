@@ -6,7 +6,7 @@ export const HEADER = [
   "following_error", "pulses", "encoder_counts", "limit_pos", "limit_neg", "home_switch",
   "homed", "error", "group", "path_velocity", "segment", "user_segment", "captures",
   "capture_position", "compare_outputs", "output_pos", "compensation", "gantry_deviation",
-  "coupling", "in_sync", "stream_used", "z_output", "compensation_offset",
+  "coupling", "in_sync", "stream_used",
 ];
 
 /** Channels that are trace columns of the same name. */
