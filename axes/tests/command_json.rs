@@ -335,6 +335,7 @@ fn full() -> Vec<(Command, &'static str)> {
                 end: None,
                 points: vec![[100.0, 100.0], [200.0, 200.0]],
                 error_zone: 10.0,
+                disturbance: 0.0,
                 output: 5,
                 mode: CompareOutputMode::Toggle,
                 level: false,
@@ -623,6 +624,7 @@ fn minimal() -> Vec<(&'static str, Command, &'static str)> {
                 end: Some(50.0),
                 points: vec![],
                 error_zone: 0.0,
+                disturbance: 0.0,
                 output: 0,
                 mode: CompareOutputMode::Pulse,
                 level: true,
@@ -663,7 +665,7 @@ fn minimal() -> Vec<(&'static str, Command, &'static str)> {
 
 /// Inputs whose error serde reports, and the text it reports today.
 const ERRORS: &[(&str, &str)] = &[
-    (r#"{"type":"teleport","axis":0}"#, "unknown variant `teleport`, expected one of `enable`, `disable`, `reset`, `move_absolute`, `move_relative`, `move_velocity`, `stop`, `halt`, `resume`, `home`, `set_position`, `set_parameter`, `get_parameter`, `modify_target`, `cancel`, `command_state`, `force_input`, `force_digital_input`, `force_analog_input`, `write_digital_output`, `write_analog_output`, `inject_following_error`, `setpoint`, `read_object`, `write_object`, `move_together`, `stop_axes`, `stop_all`, `enable_all`, `disable_all`, `emergency_stop_all`, `reset_all`, `group_create`, `group_delete`, `group_enable`, `group_disable`, `group_reset`, `move_linear_absolute`, `move_linear_relative`, `move_circular_absolute`, `move_circular_relative`, `group_stop`, `group_halt`, `group_continue`, `group_emergency_stop`, `group_set_override`, `group_set_origin`, `group_set_parameter`, `group_set_output`, `group_dwell`, `group_wait_input`, `group_wait_position`, `group_axis_move`, `move_spline`, `move_ellipse`, `group_set_coordinate_transform`, `group_set_coordinate_system`, `group_set_rotary_transform`, `group_set_xyza_transform`, `group_delete_transform`, `move_protection_enable`, `move_protection_disable`, `move_circular_angle`, `group_jog`, `group_jog_axis`, `gear_in`, `gear_set_ratio`, `gear_out`, `cam_table`, `cam_in`, `cam_out`, `capture_arm`, `capture_clear`, `compare_start`, `compare_stop`, `stream_config`, `pt_push`, `pvt_push`, `stream_clear`, `stream_start`, `pvt_move`, `compensation_lead_screw`, `compensation_backlash`, `compensation_table`, `compensation_enable`, `compensation_disable`, `compensation_clear`, `sampling_configure`, `sampling_start`, `sampling_trigger`, `sampling_stop`, `sampling_read`, `superimpose_in`, `superimpose_set_ratios`, `superimpose_out`, `tangential_in`, `tangential_out`, `gantry_enable`, `gantry_disable`, `handwheel_in`, `handwheel_out`, `handwheel_turn`, `compare_fire`, `follow_config`, `follow_push`, `follow_clear`, `follow_start`, `follow_switch`, `follow_out`, `handwheel_set_ratio`, `stream_start_on_input`, `capture_arm_threshold`, `gantry_home`, `pulse_digital_output`, `tangential_corner_mode`, `tangential_corner_follow_next`, `tangential_corner_continue`, `cam_table_link`, `group_pulse_output`, `group_set_analog_output`, `group_stop_input`, `group_buffered_halt` at line 1 column 18"),
+    (r#"{"type":"teleport","axis":0}"#, "unknown variant `teleport`, expected one of `enable`, `disable`, `reset`, `move_absolute`, `move_relative`, `move_velocity`, `stop`, `halt`, `resume`, `home`, `set_position`, `set_parameter`, `get_parameter`, `modify_target`, `cancel`, `command_state`, `force_input`, `force_digital_input`, `force_analog_input`, `write_digital_output`, `write_analog_output`, `inject_following_error`, `setpoint`, `read_object`, `write_object`, `move_together`, `stop_axes`, `stop_all`, `enable_all`, `disable_all`, `emergency_stop_all`, `reset_all`, `group_create`, `group_delete`, `group_enable`, `group_disable`, `group_reset`, `move_linear_absolute`, `move_linear_relative`, `move_circular_absolute`, `move_circular_relative`, `group_stop`, `group_halt`, `group_continue`, `group_emergency_stop`, `group_set_override`, `group_set_origin`, `group_set_parameter`, `group_set_output`, `group_dwell`, `group_wait_input`, `group_wait_position`, `group_axis_move`, `move_spline`, `move_ellipse`, `group_set_coordinate_transform`, `group_set_coordinate_system`, `group_set_rotary_transform`, `group_set_xyza_transform`, `group_delete_transform`, `move_protection_enable`, `move_protection_disable`, `move_circular_angle`, `group_jog`, `group_jog_axis`, `gear_in`, `gear_set_ratio`, `gear_out`, `cam_table`, `cam_in`, `cam_out`, `capture_arm`, `capture_clear`, `compare_start`, `compare_stop`, `stream_config`, `pt_push`, `pvt_push`, `stream_clear`, `stream_start`, `pvt_move`, `compensation_lead_screw`, `compensation_backlash`, `compensation_table`, `compensation_enable`, `compensation_disable`, `compensation_clear`, `sampling_configure`, `sampling_start`, `sampling_trigger`, `sampling_stop`, `sampling_read`, `superimpose_in`, `superimpose_set_ratios`, `superimpose_out`, `tangential_in`, `tangential_out`, `gantry_enable`, `gantry_disable`, `handwheel_in`, `handwheel_out`, `handwheel_turn`, `compare_fire`, `follow_config`, `follow_push`, `follow_clear`, `follow_start`, `follow_switch`, `follow_out`, `handwheel_set_ratio`, `stream_start_on_input`, `capture_arm_threshold`, `gantry_home`, `pulse_digital_output`, `tangential_corner_mode`, `tangential_corner_follow_next`, `tangential_corner_continue`, `cam_table_link`, `group_pulse_output`, `group_set_analog_output`, `group_stop_input`, `group_buffered_halt`, `z_compare_start`, `z_compare_stop`, `gantry_set_position`, `gantry_set_pid`, `compensation_offset_amount`, `compensation_offset_profile`, `compensation_offset_trigger`, `compensation_offset_stop` at line 1 column 18"),
     (r#"{"axis":0}"#, "missing field `type` at line 1 column 10"),
     (r#"{"type":"move_absolute","axis":0}"#, "missing field `position`"),
     (r#"{"type":"move_absolute","axis":0,"positon":10}"#, "unknown field `positon`, expected one of `axis`, `position`, `velocity`, `acceleration`, `deceleration`, `jerk`, `buffer_mode`"),
@@ -1028,6 +1030,7 @@ fn gantry_and_handwheel_commands_keep_their_json() {
                 warning_limit: 0.5,
                 fault_limit: 2.0,
                 require_disabled: false,
+                closed_loop: false,
             }),
             r#"{"type":"gantry_enable","master":0,"slaves":[1,2],"warning_limit":0.5,"fault_limit":2.0}"#,
         ),
@@ -1039,6 +1042,7 @@ fn gantry_and_handwheel_commands_keep_their_json() {
                 warning_limit: 0.0,
                 fault_limit: 0.0,
                 require_disabled: true,
+                closed_loop: false,
             }),
             r#"{"type":"gantry_enable","master":0,"slaves":[1],"warning_limit":0.0,"fault_limit":0.0,"require_disabled":true}"#,
         ),
@@ -1184,4 +1188,134 @@ fn follow_and_handwheel_ratio_commands_keep_their_json() {
         let c: Command = serde_json::from_str(minimal).unwrap();
         assert_eq!(serde_json::to_string(&c).unwrap(), minimal);
     }
+}
+
+#[test]
+fn hmc_z_compare_disturbance_gantry_and_offset_commands_keep_their_json() {
+    use axes::command::{
+        CompareOutputMode, CompareStart, GantryEnable, GantrySetPid, GantrySetPosition,
+        PositionSource, ZCompareStart, ZCompareStop,
+    };
+    let cases = vec![
+        (
+            // HMC_SwitchTZConfig(1, 2, 0, 1, 50 µs, 1, targets, 2).
+            Command::from(ZCompareStart {
+                channel: 1,
+                axis: 0,
+                source: PositionSource::Actual,
+                positions: vec![100.0, 200.0],
+                output_axis: 2,
+                mode: CompareOutputMode::Pulse,
+                level: true,
+                pulse_width: 5e-5,
+            }),
+            r#"{"type":"z_compare_start","channel":1,"axis":0,"source":"actual","positions":[100.0,200.0],"output_axis":2,"mode":"pulse","level":true,"pulse_width":0.00005}"#,
+        ),
+        (
+            Command::from(ZCompareStop { channel: 1 }),
+            r#"{"type":"z_compare_stop","channel":1}"#,
+        ),
+        (
+            // HMC NormalSwitch2D with dDisturbValue 0.5.
+            Command::from(CompareStart {
+                channel: 2,
+                axis: 0,
+                axis_y: Some(1),
+                source: PositionSource::Actual,
+                positions: vec![],
+                start: None,
+                interval: None,
+                end: None,
+                points: vec![[10.0, 20.0]],
+                error_zone: 2.0,
+                disturbance: 0.5,
+                output: 3,
+                mode: CompareOutputMode::Pulse,
+                level: true,
+                pulse_width: 0.001,
+                min_interval: 0.0,
+            }),
+            r#"{"type":"compare_start","channel":2,"axis":0,"axis_y":1,"source":"actual","points":[[10.0,20.0]],"error_zone":2.0,"disturbance":0.5,"output":3,"mode":"pulse","level":true,"pulse_width":0.001,"min_interval":0.0}"#,
+        ),
+        (
+            // HMC_GantrySynchro ucMode 1.
+            Command::from(GantryEnable {
+                master: 0,
+                slaves: vec![1],
+                warning_limit: 100.0,
+                fault_limit: 500.0,
+                require_disabled: false,
+                closed_loop: true,
+            }),
+            r#"{"type":"gantry_enable","master":0,"slaves":[1],"warning_limit":100.0,"fault_limit":500.0,"closed_loop":true}"#,
+        ),
+        (
+            Command::from(GantrySetPosition {
+                master: 0,
+                position: -1000.0,
+            }),
+            r#"{"type":"gantry_set_position","master":0,"position":-1000.0}"#,
+        ),
+        (
+            Command::from(GantrySetPid {
+                axis: 1,
+                kp: 20.0,
+                ki: 5.0,
+                kd: 0.1,
+            }),
+            r#"{"type":"gantry_set_pid","axis":1,"kp":20.0,"ki":5.0,"kd":0.1}"#,
+        ),
+    ];
+    assert_pinned(cases);
+    {
+        use axes::command::{
+            CompensationOffsetAmount, CompensationOffsetProfile, CompensationOffsetStop,
+            CompensationOffsetTrigger,
+        };
+        assert_pinned(vec![
+            (
+                // HMC_SetAxisCompenPos(2, -0.25).
+                Command::from(CompensationOffsetAmount {
+                    axis: 2,
+                    amount: -0.25,
+                }),
+                r#"{"type":"compensation_offset_amount","axis":2,"amount":-0.25}"#,
+            ),
+            (
+                // HMC_SetAxisCompenPara(2, 1, 10, 100, 200, 5000).
+                Command::from(CompensationOffsetProfile {
+                    axis: 2,
+                    s_curve: true,
+                    velocity: 10.0,
+                    acceleration: 100.0,
+                    deceleration: 200.0,
+                    jerk: 5000.0,
+                }),
+                r#"{"type":"compensation_offset_profile","axis":2,"s_curve":true,"velocity":10.0,"acceleration":100.0,"deceleration":200.0,"jerk":5000.0}"#,
+            ),
+            (
+                Command::from(CompensationOffsetTrigger { axis: 2 }),
+                r#"{"type":"compensation_offset_trigger","axis":2}"#,
+            ),
+            (
+                Command::from(CompensationOffsetStop { axis: 2 }),
+                r#"{"type":"compensation_offset_stop","axis":2}"#,
+            ),
+        ]);
+    }
+    // A Z compare toggles on the actual position by default (SwitchTZ ucTimeMode 0, MPos).
+    let minimal: Command = serde_json::from_str(
+        r#"{"type":"z_compare_start","axis":0,"positions":[5],"output_axis":0}"#,
+    )
+    .unwrap();
+    assert_eq!(
+        serde_json::to_string(&minimal).unwrap(),
+        r#"{"type":"z_compare_start","channel":0,"axis":0,"source":"actual","positions":[5.0],"output_axis":0,"mode":"toggle","level":true,"pulse_width":0.0}"#
+    );
+    let minimal: Command =
+        serde_json::from_str(r#"{"type":"gantry_set_pid","axis":1,"kp":1}"#).unwrap();
+    assert_eq!(
+        serde_json::to_string(&minimal).unwrap(),
+        r#"{"type":"gantry_set_pid","axis":1,"kp":1.0,"ki":0.0,"kd":0.0}"#
+    );
 }

@@ -45,6 +45,7 @@ fn list(positions: &[f64]) -> CompareStart {
         end: None,
         points: vec![],
         error_zone: 0.0,
+        disturbance: 0.0,
         output: 0,
         mode: CompareOutputMode::Pulse,
         level: true,
@@ -176,6 +177,7 @@ fn tv63_s_cmp_2d_fires_100_pulses_along_the_diagonal() {
             source: PositionSource::Actual,
             points: points.clone(),
             error_zone: 10.0,
+            disturbance: 0.0,
             pulse_width: 10e-6,
             ..list(&[])
         }),
@@ -238,6 +240,7 @@ fn a_2d_point_off_the_path_fires_at_the_closest_approach_and_one_outside_the_zon
             axis_y: Some(1),
             points: vec![[50.0, 3.0], [80.0, 20.0]],
             error_zone: 5.0,
+            disturbance: 0.0,
             ..list(&[])
         }),
     );
@@ -397,6 +400,7 @@ fn compares_are_deterministic() {
                 axis_y: Some(1),
                 points,
                 error_zone: 1.0,
+                disturbance: 0.0,
                 pulse_width: 0.002,
                 ..list(&[])
             }),

@@ -24,6 +24,7 @@ fn machine() -> Engine {
             .map(|i| [100.0 * f64::from(i) + 100.0; 2])
             .collect(),
         error_zone: 10.0,
+        disturbance: 0.0,
         output: 2,
         mode: CompareOutputMode::Pulse,
         level: true,

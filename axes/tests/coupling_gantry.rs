@@ -28,6 +28,7 @@ fn gantry(master: u16, slaves: &[u16], warning_limit: f64, fault_limit: f64) -> 
         warning_limit,
         fault_limit,
         require_disabled: false,
+        closed_loop: false,
     })
 }
 

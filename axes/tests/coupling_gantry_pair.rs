@@ -17,6 +17,7 @@ fn pair(require_disabled: bool) -> Command {
         warning_limit: 0.0,
         fault_limit: 1.0,
         require_disabled,
+        closed_loop: false,
     })
 }
 
@@ -93,6 +94,7 @@ fn a_pair_made_at_rest_still_refuses_bad_axes() {
         warning_limit: 0.0,
         fault_limit: 0.0,
         require_disabled: true,
+        closed_loop: false,
     });
     assert_eq!(
         refused(&mut e, again),
@@ -104,6 +106,7 @@ fn a_pair_made_at_rest_still_refuses_bad_axes() {
         warning_limit: 0.0,
         fault_limit: 0.0,
         require_disabled: true,
+        closed_loop: false,
     });
     assert_eq!(
         refused(&mut e, own),

@@ -29,6 +29,8 @@ pub struct TriggerCounts {
     pub captures: u32,
     pub capture_position: f64,
     pub compare_outputs: u32,
+    /// The Z-phase output's level (`AxisStatus::z_output`).
+    pub z_output: bool,
 }
 
 /// A change of one of the axis's signals during the last tick.
@@ -183,6 +185,14 @@ impl Axis {
 
     /// What the capture and compare channels on this axis report in its status.
     pub(crate) fn set_trigger_counts(&mut self, counts: TriggerCounts) {
-        self.triggers = counts;
+        self.triggers = TriggerCounts {
+            z_output: self.triggers.z_output,
+            ..counts
+        };
+    }
+
+    /// Drive the axis's Z-phase output (a `z_compare` channel).
+    pub(crate) fn set_z_output(&mut self, level: bool) {
+        self.triggers.z_output = level;
     }
 }

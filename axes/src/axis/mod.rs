@@ -1139,6 +1139,10 @@ impl Axis {
                 c.wrap(self.target_pos),
             ),
         };
+        let (compensation_offset, compensation_offset_moving) = self
+            .compensation
+            .as_deref()
+            .map_or((0.0, false), |c| c.offset());
         *out = AxisStatus {
             state: self.state(),
             flags,
@@ -1178,6 +1182,9 @@ impl Axis {
             settling_time: self.timing.settling_time(),
             torque: self.torque(),
             input_edges: self.input_edges,
+            z_output: self.triggers.z_output,
+            compensation_offset,
+            compensation_offset_moving,
         };
     }
 }

@@ -161,6 +161,10 @@ pub enum CompensationCommand {
     Enable(CompensationEnable),
     Disable(CompensationDisable),
     Clear(CompensationClear),
+    OffsetAmount(CompensationOffsetAmount),
+    OffsetProfile(CompensationOffsetProfile),
+    OffsetTrigger(CompensationOffsetTrigger),
+    OffsetStop(CompensationOffsetStop),
 }
 
 impl CompensationCommand {
@@ -172,6 +176,10 @@ impl CompensationCommand {
             CompensationCommand::Enable(c) => c.axis,
             CompensationCommand::Disable(c) => c.axis,
             CompensationCommand::Clear(c) => c.axis,
+            CompensationCommand::OffsetAmount(c) => c.axis,
+            CompensationCommand::OffsetProfile(c) => c.axis,
+            CompensationCommand::OffsetTrigger(c) => c.axis,
+            CompensationCommand::OffsetStop(c) => c.axis,
         }
     }
 }
@@ -186,5 +194,58 @@ command_from!(
         CompensationEnable => Enable,
         CompensationDisable => Disable,
         CompensationClear => Clear,
+        CompensationOffsetAmount => OffsetAmount,
+        CompensationOffsetProfile => OffsetProfile,
+        CompensationOffsetTrigger => OffsetTrigger,
+        CompensationOffsetStop => OffsetStop,
     ]
 );
+
+// HMC axis position compensation (manual §4.4.12, digest 000 §4.4 "Axis position
+// compensation"): an offset added after the planner, moved by its own profile on command.
+
+/// The amount the next `compensation_offset_trigger` moves the axis's offset by (HMC
+/// `HMC_SetAxisCompenPos`): a move in progress keeps the amount it started with. JSON `type`:
+/// `compensation_offset_amount`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CompensationOffsetAmount {
+    pub axis: AxisIndex,
+    /// User units, signed.
+    pub amount: f64,
+}
+
+/// The offset's move profile (HMC `HMC_SetAxisCompenPara`): `velocity`, `acceleration` and
+/// `deceleration` > 0; `s_curve` (ucJerkMode 1) with `jerk` > 0, else a trapezoid. Takes effect
+/// at once: a move in progress is replanned to its target from where it stands. JSON `type`:
+/// `compensation_offset_profile`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CompensationOffsetProfile {
+    pub axis: AxisIndex,
+    #[serde(default)]
+    pub s_curve: bool,
+    pub velocity: f64,
+    pub acceleration: f64,
+    pub deceleration: f64,
+    #[serde(default)]
+    pub jerk: f64,
+}
+
+/// Move the offset by the amount set (HMC `HMC_TrigAxisCompens`): the target is the offset
+/// now plus the amount; a move in progress is abandoned where it stands and the new one
+/// starts from there, with its velocity. Needs a profile. JSON `type`:
+/// `compensation_offset_trigger`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CompensationOffsetTrigger {
+    pub axis: AxisIndex,
+}
+
+/// Stop the offset's move at once where it stands (HMC `HMC_StopAxisCompens`, "立即停止").
+/// JSON `type`: `compensation_offset_stop`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CompensationOffsetStop {
+    pub axis: AxisIndex,
+}

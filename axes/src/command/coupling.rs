@@ -10,8 +10,8 @@ use super::superimpose::{
 };
 use super::{
     command_from, AxisIndex, Direction, FollowClear, FollowConfig, FollowOut, FollowPush,
-    FollowStart, FollowSwitch, GantryDisable, GantryEnable, HandwheelIn, HandwheelOut,
-    HandwheelSetRatio, HandwheelTurn, MasterSource,
+    FollowStart, FollowSwitch, GantryDisable, GantryEnable, GantrySetPid, GantrySetPosition,
+    HandwheelIn, HandwheelOut, HandwheelSetRatio, HandwheelTurn, MasterSource,
 };
 
 /// Couple `slave` to `master` through a gear: slave travel = numerator / denominator × master
@@ -273,6 +273,9 @@ pub enum CouplingCommand {
     TangentialCornerFollowNext(TangentialCornerFollowNext),
     TangentialCornerContinue(TangentialCornerContinue),
     CamTableLink(CamTableLink),
+    // HMC_GantryGroupDefPos and HMC_SetGantryAxisPID (digest 000 §4.4), `command/gantry.rs`.
+    GantrySetPosition(GantrySetPosition),
+    GantrySetPid(GantrySetPid),
 }
 
 impl CouplingCommand {
@@ -306,6 +309,8 @@ impl CouplingCommand {
             CouplingCommand::TangentialCornerFollowNext(c) => Some(c.axis),
             CouplingCommand::TangentialCornerContinue(c) => Some(c.axis),
             CouplingCommand::CamTableLink(_) => None,
+            CouplingCommand::GantrySetPosition(c) => Some(c.master),
+            CouplingCommand::GantrySetPid(c) => Some(c.axis),
         }
     }
 }
@@ -341,5 +346,7 @@ command_from!(
         TangentialCornerFollowNext => TangentialCornerFollowNext,
         TangentialCornerContinue => TangentialCornerContinue,
         CamTableLink => CamTableLink,
+        GantrySetPosition => GantrySetPosition,
+        GantrySetPid => GantrySetPid,
     ]
 );

@@ -30,6 +30,11 @@ pub struct GantryEnable {
     /// slaves too (TV 39), as it does on any gantry.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub require_disabled: bool,
+    /// HMC GantrySynchro ucMode 1, "closed-loop (cross-coupling) sync" (manual §4.4.11.1):
+    /// each slave's command is also corrected by a PID on its deviation, gains per slave by
+    /// `gantry_set_pid` (default Kp 1, Ki 0, Kd 0, §4.4.11.3). Off: open loop (ucMode 0).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub closed_loop: bool,
 }
 
 /// Release the slaves of `master`'s gantry: each decelerates to rest with its `decel` from the
@@ -70,4 +75,33 @@ pub struct GantryHome {
 
 fn default_instruction() -> crate::homing::vendor::HmcInstruction {
     crate::homing::vendor::HmcInstruction::Home
+}
+
+/// Redefine the positions of every axis of `master`'s gantry at once: the master and each
+/// slave read `position` (commanded position; the actual position moves with it, the following
+/// error kept), nothing moves, and the slaves' offsets become 0 (HMC_GantryGroupDefPos, manual
+/// §4.4.11.5, digest 000 §4.4 "Gantry"). Refused unless `master` is a gantry's master. JSON
+/// `type`: `gantry_set_position`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GantrySetPosition {
+    pub master: AxisIndex,
+    pub position: f64,
+}
+
+/// The gains of gantry slave `axis`'s deviation correction (HMC_SetGantryAxisPID, manual
+/// §4.4.11.3): in a `closed_loop` gantry the slave's command moves by a correction whose rate
+/// (units/s) is −(kp·e + ki·∫e dt + kd·de/dt), e its deviation; so kp is per second (default
+/// 1), ki per second², kd dimensionless. Refused unless `axis` is a gantry slave; allowed on an
+/// open-loop gantry, where it takes effect only if the gantry is made closed-loop again. The
+/// integral and the correction so far are kept. JSON `type`: `gantry_set_pid`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GantrySetPid {
+    pub axis: AxisIndex,
+    pub kp: f64,
+    #[serde(default)]
+    pub ki: f64,
+    #[serde(default)]
+    pub kd: f64,
 }

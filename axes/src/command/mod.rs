@@ -114,7 +114,9 @@ pub use axis::{
 pub use compensation::{
     BacklashDirection, CompensationBacklash, CompensationClear, CompensationCommand,
     CompensationDisable, CompensationEnable, CompensationInterpolation, CompensationKind,
-    CompensationLeadScrew, CompensationReference, CompensationTable, ReferenceSource,
+    CompensationLeadScrew, CompensationOffsetAmount, CompensationOffsetProfile,
+    CompensationOffsetStop, CompensationOffsetTrigger, CompensationReference, CompensationTable,
+    ReferenceSource,
 };
 pub use coupling::{
     CamIn, CamInterpolation, CamOut, CamPoint, CamTableDefine, CamTableLink, CouplingCommand,
@@ -125,7 +127,8 @@ pub use follow::{
     FollowSwitch, FOLLOW_FIFOS, FOLLOW_FIFO_SEGMENTS,
 };
 pub use gantry::{
-    GantryDisable, GantryEnable, GantryHome, MAX_GANTRY_HOME_AXES, MAX_GANTRY_SLAVES,
+    GantryDisable, GantryEnable, GantryHome, GantrySetPid, GantrySetPosition, MAX_GANTRY_HOME_AXES,
+    MAX_GANTRY_SLAVES,
 };
 pub use group::{
     ArcDirection, CircleMode, CoordinateSet, GroupAxisMove, GroupBufferMode, GroupCommand,
@@ -172,6 +175,7 @@ pub use superimpose::{
 pub use trigger::{
     CaptureArm, CaptureArmThreshold, CaptureClear, CaptureEdge, CaptureSource, CaptureWindow,
     CompareFire, CompareOutputMode, CompareStart, CompareStop, PositionSource, TriggerCommand,
+    ZCompareStart, ZCompareStop,
 };
 
 /// A command into the engine, by family: what it addresses decides which stage of the engine
@@ -223,8 +227,13 @@ impl Command {
             Command::Trigger(TriggerCommand::CaptureClear(c)) => Some(c.axis),
             Command::Trigger(TriggerCommand::CompareStart(c)) => Some(c.axis),
             Command::Trigger(TriggerCommand::CaptureArmThreshold(c)) => Some(c.axis),
+            Command::Trigger(TriggerCommand::ZCompareStart(c)) => Some(c.axis),
             Command::Compensation(c) => Some(c.axis()),
-            Command::Trigger(TriggerCommand::CompareStop(_) | TriggerCommand::CompareFire(_))
+            Command::Trigger(
+                TriggerCommand::CompareStop(_)
+                | TriggerCommand::CompareFire(_)
+                | TriggerCommand::ZCompareStop(_),
+            )
             | Command::Sampling(_)
             | Command::Group(_)
             | Command::Io(_)

@@ -80,6 +80,14 @@ pub struct CompareStart {
     /// 2-D: the radius around a point within which the closest approach fires.
     #[serde(default)]
     pub error_zone: f64,
+    /// 2-D on the `actual` position: the anti-jitter threshold (HMC NormalSwitch2D
+    /// `dDisturbValue`, NMC `vibrateRange`): once the path entered the zone a point fires when
+    /// the distance has grown more than this beyond the least distance seen (the approach is
+    /// over; leaving the zone counts once it is this far beyond the least), or when both axes'
+    /// commands stand still; 0 = the exact closest approach of each tick's travel. Ignored on
+    /// the commanded position, which does not jitter.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub disturbance: f64,
     /// The digital output channel.
     pub output: u16,
     #[serde(default)]
@@ -98,6 +106,10 @@ pub struct CompareStart {
 
 fn high() -> bool {
     true
+}
+
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
 }
 
 /// Stop compare channel `channel` and drop it; a pulse in progress ends (NMC `Comp2DimensOnoff`
@@ -128,6 +140,8 @@ pub enum TriggerCommand {
     CompareStop(CompareStop),
     CompareFire(CompareFire),
     CaptureArmThreshold(CaptureArmThreshold),
+    ZCompareStart(ZCompareStart),
+    ZCompareStop(ZCompareStop),
 }
 
 command_from!(
@@ -140,6 +154,8 @@ command_from!(
         CompareStop => CompareStop,
         CompareFire => CompareFire,
         CaptureArmThreshold => CaptureArmThreshold,
+        ZCompareStart => ZCompareStart,
+        ZCompareStop => ZCompareStop,
     ]
 );
 
@@ -167,4 +183,55 @@ pub struct CaptureArmThreshold {
     pub repeat: u16,
     #[serde(default)]
     pub continuous: bool,
+}
+
+/// Start Z-phase compare channel `channel` (0–7): each time `axis`'s `source` position passes
+/// the next of `positions`, in order, drive the Z-phase output of `output_axis` (HMC
+/// `HMC_SwitchTZConfig`, manual §4.4.3.4, digest 000 §4.4 "High-speed position compare"; also
+/// HMC `HMC_SwitchConfig` with ucOutputMode 1, "axis Z-phase output"). `mode` `toggle` (SwitchTZ
+/// ucTimeMode 0, as Switch): the output toggles at each position, to `level` at the first.
+/// `pulse` (ucTimeMode 1): `level` for exactly `pulse_width` seconds from the moment of the
+/// crossing (HMC dTime, 1–100 000 µs), then back; a position passed while a pulse is still on
+/// is missed (manual §4.4.3.4 note 5: targets closer than V·T are not answered), counted in
+/// `missed`. The level a pulse shows in the axis status is on for every tick the pulse
+/// overlaps. One channel per output axis. Restarting a channel replaces it. JSON `type`:
+/// `z_compare_start`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ZCompareStart {
+    #[serde(default)]
+    pub channel: u8,
+    /// The trigger axis (HMC ucTrigAxis).
+    pub axis: AxisIndex,
+    /// HMC compares MPos: default `actual`.
+    #[serde(default = "actual")]
+    pub source: PositionSource,
+    pub positions: Vec<f64>,
+    /// The axis whose Z-phase output is driven (HMC ucOutputAxis).
+    pub output_axis: AxisIndex,
+    #[serde(default = "toggle")]
+    pub mode: CompareOutputMode,
+    /// A pulse's level; a toggle's level at the first position (HMC bSwitchValue).
+    #[serde(default = "high")]
+    pub level: bool,
+    /// Seconds, exact (not rounded to servo periods); mode `pulse` only.
+    #[serde(default)]
+    pub pulse_width: f64,
+}
+
+fn actual() -> PositionSource {
+    PositionSource::Actual
+}
+
+fn toggle() -> CompareOutputMode {
+    CompareOutputMode::Toggle
+}
+
+/// Stop Z-phase compare channel `channel` and drop it; a pulse in progress ends (HMC
+/// `HMC_CloseSwitchTZ`). JSON `type`: `z_compare_stop`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ZCompareStop {
+    #[serde(default)]
+    pub channel: u8,
 }

@@ -189,6 +189,17 @@ pub(super) enum Command {
     GroupSetAnalogOutput(GroupSetAnalogOutput),
     GroupStopInput(GroupStopInput),
     GroupBufferedHalt(GroupBufferedHalt),
+    // Issue 12 item 5, HMC SwitchTZ (Z-phase outputs).
+    ZCompareStart(super::ZCompareStart),
+    ZCompareStop(super::ZCompareStop),
+    // Issue 12 item 6, HMC_GantryGroupDefPos and HMC_SetGantryAxisPID.
+    GantrySetPosition(super::GantrySetPosition),
+    GantrySetPid(super::GantrySetPid),
+    // Issue 12 item 8, HMC axis position compensation.
+    CompensationOffsetAmount(super::CompensationOffsetAmount),
+    CompensationOffsetProfile(super::CompensationOffsetProfile),
+    CompensationOffsetTrigger(super::CompensationOffsetTrigger),
+    CompensationOffsetStop(super::CompensationOffsetStop),
 }
 
 impl From<Command> for super::Command {
@@ -346,6 +357,14 @@ impl From<Command> for super::Command {
             Command::TangentialCornerFollowNext(c) => super::Command::from(c),
             Command::TangentialCornerContinue(c) => super::Command::from(c),
             Command::CamTableLink(c) => super::Command::from(c),
+            Command::ZCompareStart(c) => super::Command::from(c),
+            Command::ZCompareStop(c) => super::Command::from(c),
+            Command::GantrySetPosition(c) => super::Command::from(c),
+            Command::GantrySetPid(c) => super::Command::from(c),
+            Command::CompensationOffsetAmount(c) => super::Command::from(c),
+            Command::CompensationOffsetProfile(c) => super::Command::from(c),
+            Command::CompensationOffsetTrigger(c) => super::Command::from(c),
+            Command::CompensationOffsetStop(c) => super::Command::from(c),
         }
     }
 }
@@ -501,6 +520,10 @@ impl From<super::Command> for Command {
                 Command::TangentialCornerContinue(c)
             }
             super::Command::Coupling(CouplingCommand::CamTableLink(c)) => Command::CamTableLink(c),
+            super::Command::Coupling(CouplingCommand::GantrySetPosition(c)) => {
+                Command::GantrySetPosition(c)
+            }
+            super::Command::Coupling(CouplingCommand::GantrySetPid(c)) => Command::GantrySetPid(c),
             super::Command::Trigger(TriggerCommand::CaptureArm(c)) => Command::CaptureArm(c),
             super::Command::Trigger(TriggerCommand::CaptureClear(c)) => Command::CaptureClear(c),
             super::Command::Trigger(TriggerCommand::CompareStart(c)) => Command::CompareStart(c),
@@ -509,6 +532,8 @@ impl From<super::Command> for Command {
             super::Command::Trigger(TriggerCommand::CaptureArmThreshold(c)) => {
                 Command::CaptureArmThreshold(c)
             }
+            super::Command::Trigger(TriggerCommand::ZCompareStart(c)) => Command::ZCompareStart(c),
+            super::Command::Trigger(TriggerCommand::ZCompareStop(c)) => Command::ZCompareStop(c),
             super::Command::Stream(StreamCommand::Config(c)) => Command::StreamConfig(c),
             super::Command::Stream(StreamCommand::PtPush(c)) => Command::PtPush(c),
             super::Command::Stream(StreamCommand::PvtPush(c)) => Command::PvtPush(c),
@@ -525,6 +550,10 @@ impl From<super::Command> for Command {
                 CompensationCommand::Enable(c) => Command::CompensationEnable(c),
                 CompensationCommand::Disable(c) => Command::CompensationDisable(c),
                 CompensationCommand::Clear(c) => Command::CompensationClear(c),
+                CompensationCommand::OffsetAmount(c) => Command::CompensationOffsetAmount(c),
+                CompensationCommand::OffsetProfile(c) => Command::CompensationOffsetProfile(c),
+                CompensationCommand::OffsetTrigger(c) => Command::CompensationOffsetTrigger(c),
+                CompensationCommand::OffsetStop(c) => Command::CompensationOffsetStop(c),
             },
             super::Command::Sampling(c) => match c {
                 SamplingCommand::Configure(c) => Command::SamplingConfigure(c),

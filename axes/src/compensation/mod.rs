@@ -7,6 +7,7 @@
 //! finds its cell by division, the backlash moves one bounded step.
 
 mod grid;
+mod offset;
 mod spline;
 mod table;
 
@@ -37,6 +38,8 @@ pub struct Compensation {
     inputs: [f64; MAX_DIMENSIONS],
     /// The correction of the last tick.
     correction: f64,
+    /// HMC axis position compensation: an offset moved by its own profile.
+    offset: offset::Offset,
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -71,6 +74,12 @@ pub struct CompensationStatus {
     /// NMC MtGetBacklash: (amount, step, direction).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub backlash_setting: Option<(f64, f64, BacklashDirection)>,
+    /// The HMC position-compensation offset part of `correction`.
+    #[serde(default)]
+    pub offset: f64,
+    /// Its move is in progress (HMC GetAxisCompenState 1; 0 done).
+    #[serde(default)]
+    pub offset_moving: bool,
 }
 
 impl Compensation {
@@ -173,13 +182,15 @@ impl Compensation {
         } else if velocity < 0.0 {
             self.direction = -1.0;
         }
+        // The HMC offset is commanded on its own, apart from the tables' enable.
+        let offset = self.offset.step();
         if !self.enabled {
             // Disabled: the backlash is taken back at its rate, the tables drop out at once.
             self.backlash_now = self.step_backlash(0.0);
-            self.correction = self.backlash_now;
+            self.correction = self.backlash_now + offset;
             return self.correction;
         }
-        let mut c = 0.0;
+        let mut c = offset;
         if let Some(ls) = self.lead_screw.as_mut() {
             c += if self.direction < 0.0 {
                 ls.negative.value_at(planned)
@@ -241,6 +252,36 @@ impl Compensation {
             correction: self.correction,
             backlash: self.backlash_now,
             backlash_setting: self.backlash.map(|b| (b.amount, b.step, b.direction)),
+            offset: self.offset.position(),
+            offset_moving: self.offset.is_moving(),
         }
+    }
+
+    /// `compensation_offset_amount` (HMC_SetAxisCompenPos).
+    pub fn set_offset_amount(&mut self, axis: AxisIndex, amount: f64) -> Result<(), EngineError> {
+        self.offset.set_amount(u32::from(axis), amount)
+    }
+
+    /// `compensation_offset_profile` (HMC_SetAxisCompenPara).
+    pub fn set_offset_profile(
+        &mut self,
+        c: &crate::command::CompensationOffsetProfile,
+    ) -> Result<(), EngineError> {
+        self.offset.set_profile(u32::from(c.axis), c)
+    }
+
+    /// `compensation_offset_trigger` (HMC_TrigAxisCompens), ticks of `period` seconds.
+    pub fn trigger_offset(&mut self, axis: AxisIndex, period: f64) -> Result<(), EngineError> {
+        self.offset.trigger(u32::from(axis), period)
+    }
+
+    /// `compensation_offset_stop` (HMC_StopAxisCompens).
+    pub fn stop_offset(&mut self) {
+        self.offset.stop();
+    }
+
+    /// The HMC offset now, and whether it moves.
+    pub fn offset(&self) -> (f64, bool) {
+        (self.offset.position(), self.offset.is_moving())
     }
 }

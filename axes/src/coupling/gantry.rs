@@ -16,8 +16,8 @@ use super::{axis_ref, Coupling, Couplings, Env, Law};
 use crate::axis::Axis;
 use crate::axis::Context;
 use crate::command::{
-    bounded, nonnegative, AxisIndex, EngineError, GantryEnable, MasterSource, Reply,
-    MAX_GANTRY_SLAVES,
+    bounded, nonnegative, AxisIndex, EngineError, GantryEnable, GantrySetPid, GantrySetPosition,
+    MasterSource, Reply, MAX_GANTRY_SLAVES,
 };
 use crate::profile::MotionState;
 use crate::status::{AxisFlags, GantryStatus};
@@ -71,6 +71,69 @@ pub struct GantrySlave {
     warning: bool,
     linear: f64,
     yaw: f64,
+    /// HMC GantrySynchro ucMode 1: the deviation correction below runs.
+    closed_loop: bool,
+    pid: Pid,
+    period: f64,
+}
+
+/// A slave's deviation correction (HMC_SetGantryAxisPID, manual §4.4.11.3, defaults Kp 1,
+/// Ki 0, Kd 0): the correction added to the slave's command moves at the rate
+/// −(kp·e + ki·∫e dt + kd·de/dt), e the deviation after the last tick. A rate, not a position:
+/// so kp alone takes a steady deviation to 0 (the manual's "消除偏差", eliminate it) and the
+/// loop is stable for kp·period < 2 whatever the one-tick measuring delay; a positional P
+/// (correction = −kp·e) would leave e/(1 + kp) and ring at kp = 1. Closed form, per tick.
+#[derive(Clone, Copy, Debug)]
+struct Pid {
+    kp: f64,
+    ki: f64,
+    kd: f64,
+    integral: f64,
+    /// The deviation of the tick before (for the derivative); `None` until one was measured.
+    last: Option<f64>,
+    /// Added to the slave's command, motor frame.
+    correction: f64,
+    /// Its rate this tick, units/s (the setpoint's velocity feed-forward).
+    rate: f64,
+}
+
+impl Pid {
+    fn new() -> Pid {
+        Pid {
+            kp: 1.0,
+            ki: 0.0,
+            kd: 0.0,
+            integral: 0.0,
+            last: None,
+            correction: 0.0,
+            rate: 0.0,
+        }
+    }
+
+    /// One measurement `e` after a tick of `dt`: the correction the next tick applies.
+    fn update(&mut self, e: f64, dt: f64) {
+        self.integral += e * dt;
+        let derivative = self.last.map_or(0.0, |l| (e - l) / dt);
+        self.last = Some(e);
+        let rate = -(self.kp * e + self.ki * self.integral + self.kd * derivative);
+        // A non-finite rate (absurd gains overflowing) leaves the correction where it was.
+        if rate.is_finite() && (self.correction + rate * dt).is_finite() {
+            self.rate = rate;
+            self.correction += rate * dt;
+        } else {
+            self.rate = 0.0;
+        }
+    }
+
+    /// Start again from no correction (re-anchored, re-engaged).
+    fn restart(&mut self) {
+        *self = Pid {
+            kp: self.kp,
+            ki: self.ki,
+            kd: self.kd,
+            ..Pid::new()
+        };
+    }
 }
 
 /// What the deviation check found for one slave.
@@ -83,7 +146,14 @@ pub struct Supervision {
 
 impl GantrySlave {
     /// A slave ganged to `master` where both stand now, with limits already checked (0 = none).
-    pub fn new(master: &Axis, slave: &Axis, warning_limit: f64, fault_limit: f64) -> GantrySlave {
+    pub fn new(
+        master: &Axis,
+        slave: &Axis,
+        limits: [f64; 2],
+        closed_loop: bool,
+        period: f64,
+    ) -> GantrySlave {
+        let [warning_limit, fault_limit] = limits;
         let view = MasterView::read(master);
         GantrySlave {
             offset: slave.commanded_motor_frame() - view.motor.p,
@@ -97,6 +167,9 @@ impl GantrySlave {
             warning: false,
             linear: 0.0,
             yaw: 0.0,
+            closed_loop,
+            pid: Pid::new(),
+            period,
         }
     }
 
@@ -111,11 +184,17 @@ impl GantrySlave {
         self.master_frame = master.frame;
         self.master_homed = master.homed;
         if std::mem::take(&mut self.refused) {
+            self.pid.restart();
             self.offset = slave.commanded_motor_frame() - master.motor.p;
         }
+        let (correction, rate) = if self.closed_loop {
+            (self.pid.correction, self.pid.rate)
+        } else {
+            (0.0, 0.0)
+        };
         MotionState {
-            p: master.motor.p + self.offset + slave.commanded_frame_offset(),
-            v: master.motor.v,
+            p: master.motor.p + self.offset + correction + slave.commanded_frame_offset(),
+            v: master.motor.v + rate,
             a: master.motor.a,
         }
     }
@@ -126,10 +205,19 @@ impl GantrySlave {
     }
 
     /// After both have stepped: the deviation (slave − master actual, less the offset) =
-    /// master's following error − slave's, since the slave's command is the master's plus
-    /// the offset; frame-free. A limit of 0 is none.
+    /// master's following error − slave's + the correction, since the slave's command is the
+    /// master's plus the offset and the correction; frame-free. A limit of 0 is none. A
+    /// closed-loop gantry then updates the correction for the next tick.
     pub fn supervise(&mut self, master: &Axis, slave: &Axis) -> Supervision {
-        let deviation = master.following_error() - slave.following_error();
+        let applied = if self.closed_loop {
+            self.pid.correction
+        } else {
+            0.0
+        };
+        let deviation = master.following_error() - slave.following_error() + applied;
+        if self.closed_loop && master.is_enabled() && slave.is_enabled() {
+            self.pid.update(deviation, self.period);
+        }
         let over = |limit: f64| limit > 0.0 && deviation.abs() > limit;
         self.deviation = deviation;
         self.warning = over(self.warning_limit);
@@ -152,7 +240,30 @@ impl GantrySlave {
             warning: self.warning,
             linear: self.linear,
             yaw: self.yaw,
+            closed_loop: self.closed_loop,
+            kp: self.pid.kp,
+            ki: self.pid.ki,
+            kd: self.pid.kd,
+            correction: if self.closed_loop {
+                self.pid.correction
+            } else {
+                0.0
+            },
         }
+    }
+
+    /// New gains; the integral and the correction so far are kept.
+    fn set_gains(&mut self, kp: f64, ki: f64, kd: f64) {
+        self.pid.kp = kp;
+        self.pid.ki = ki;
+        self.pid.kd = kd;
+    }
+
+    /// Every axis of the gantry was redefined (`gantry_set_position`): the master's frame moved
+    /// by `master_shift` (not to be passed on again) and the slave's user offset is now 0.
+    fn redefined(&mut self, master_shift: f64) {
+        self.master_frame += master_shift;
+        self.user_offset = 0.0;
     }
 }
 
@@ -215,8 +326,9 @@ impl Couplings {
             let law = GantrySlave::new(
                 axis_ref(env.axes, master)?,
                 axis_ref(env.axes, slave)?,
-                warning_limit,
-                fault_limit,
+                [warning_limit, fault_limit],
+                c.closed_loop,
+                env.period,
             );
             self.insert(
                 env,
@@ -236,13 +348,7 @@ impl Couplings {
         master: AxisIndex,
     ) -> Result<Reply, EngineError> {
         axis_ref(env.axes, master)?;
-        let slaves: Vec<AxisIndex> = self.gantry_slaves(master).collect();
-        if slaves.is_empty() {
-            return Err(EngineError::NotCoupled {
-                axis: master,
-                what: "the master of a gantry",
-            });
-        }
+        let slaves = self.slaves_of_master(master)?;
         self.list
             .retain(|c| !(c.master == master && matches!(c.law, Law::Gantry(_))));
         for slave in slaves {
@@ -259,11 +365,80 @@ impl Couplings {
         Ok(Reply::Done)
     }
 
+    /// `gantry_set_position` (HMC_GantryGroupDefPos): every axis of the gantry reads
+    /// `position`, its actual position shifted with it; the master's shift is not passed on
+    /// again by the slaves' next step.
+    pub(super) fn gantry_set_position(
+        &mut self,
+        env: &mut Env,
+        c: &GantrySetPosition,
+    ) -> Result<Reply, EngineError> {
+        let master = c.master;
+        axis_ref(env.axes, master)?;
+        let position = bounded("position", c.position)?;
+        // HMC: "当前指令不为龙门同步指令时，返回错误".
+        let slaves = self.slaves_of_master(master)?;
+        let mut master_shift = 0.0;
+        for &a in std::iter::once(&master).chain(&slaves) {
+            if let Some(axis) = env.axes.get_mut(a as usize) {
+                let shift = position - axis.commanded().p;
+                axis.shift_frames(shift, false);
+                if a == master {
+                    master_shift = shift;
+                }
+            }
+        }
+        for k in self.list.iter_mut().filter(|k| k.master == master) {
+            if let Law::Gantry(g) = &mut k.law {
+                g.redefined(master_shift);
+            }
+        }
+        Ok(Reply::Done)
+    }
+
+    /// `gantry_set_pid` (HMC_SetGantryAxisPID): gains of a gantry slave's correction.
+    pub(super) fn gantry_set_pid(
+        &mut self,
+        env: &mut Env,
+        c: &GantrySetPid,
+    ) -> Result<Reply, EngineError> {
+        axis_ref(env.axes, c.axis)?;
+        let kp = nonnegative("kp", bounded("kp", c.kp)?)?;
+        let ki = nonnegative("ki", bounded("ki", c.ki)?)?;
+        let kd = nonnegative("kd", bounded("kd", c.kd)?)?;
+        let slave = self
+            .list
+            .iter_mut()
+            .filter(|k| k.slave == c.axis)
+            .find_map(|k| match &mut k.law {
+                Law::Gantry(g) => Some(g),
+                _ => None,
+            })
+            .ok_or(EngineError::NotCoupled {
+                axis: c.axis,
+                what: "a gantry slave",
+            })?;
+        slave.set_gains(kp, ki, kd);
+        Ok(Reply::Done)
+    }
+
     /// The slaves of `master`'s gantry, if it is a gantry master: a power command on the
     /// master (`enable`, `disable`) applies to them too (HIMC §7.1.1, TV 39: enabling the RHS
     /// enables both).
     pub(crate) fn gantry_power_gang(&self, master: AxisIndex) -> Vec<AxisIndex> {
         self.gantry_slaves(master).collect()
+    }
+
+    /// The slaves of `master`'s gantry, or `not_coupled` when it is no gantry's master.
+    fn slaves_of_master(&self, master: AxisIndex) -> Result<Vec<AxisIndex>, EngineError> {
+        let slaves: Vec<AxisIndex> = self.gantry_slaves(master).collect();
+        if slaves.is_empty() {
+            return Err(EngineError::NotCoupled {
+                axis: master,
+                what: "the master of a gantry",
+            });
+        }
+        Ok(slaves)
     }
 
     fn gantry_slaves(&self, master: AxisIndex) -> impl Iterator<Item = AxisIndex> + '_ {

@@ -269,6 +269,8 @@ impl Couplings {
             CouplingCommand::FollowSwitch(c) => self.follow_switch(env, &c),
             CouplingCommand::FollowOut(c) => self.decouple(env, c.axis, CouplingKind::Follow),
             CouplingCommand::HandwheelSetRatio(c) => self.handwheel_set_ratio(env, &c),
+            CouplingCommand::GantrySetPosition(c) => self.gantry_set_position(env, &c),
+            CouplingCommand::GantrySetPid(c) => self.gantry_set_pid(env, &c),
         }
     }
 

@@ -13,6 +13,7 @@ impl Engine {
         command: CompensationCommand,
     ) -> Result<Reply, EngineError> {
         let count = self.axes.len() as u32;
+        let period = self.period;
         let index = command.axis();
         let axis = self
             .axes
@@ -23,6 +24,21 @@ impl Engine {
             })?;
         // A table is built on a copy, so that a refusal changes nothing.
         let mut next = axis.compensation().cloned().unwrap_or_default();
+        let offset = match &command {
+            CompensationCommand::OffsetAmount(c) => Some(next.set_offset_amount(index, c.amount)),
+            CompensationCommand::OffsetProfile(c) => Some(next.set_offset_profile(c)),
+            CompensationCommand::OffsetTrigger(_) => Some(next.trigger_offset(index, period)),
+            CompensationCommand::OffsetStop(_) => {
+                next.stop_offset();
+                Some(Ok(()))
+            }
+            _ => None,
+        };
+        if let Some(result) = offset {
+            result?;
+            *axis.compensation_mut() = next;
+            return Ok(Reply::Done);
+        }
         let enable = match &command {
             CompensationCommand::LeadScrew(c) => next.set_lead_screw(c).map(|()| c.enable)?,
             CompensationCommand::Backlash(c) => next.set_backlash(c).map(|()| c.enable)?,
@@ -41,6 +57,10 @@ impl Engine {
             CompensationCommand::Enable(_) => axis.enable_compensation(true)?,
             CompensationCommand::Disable(_) => axis.enable_compensation(false)?,
             CompensationCommand::Clear(_) => axis.clear_compensation(),
+            CompensationCommand::OffsetAmount(_)
+            | CompensationCommand::OffsetProfile(_)
+            | CompensationCommand::OffsetTrigger(_)
+            | CompensationCommand::OffsetStop(_) => {}
         }
         Ok(Reply::Done)
     }

@@ -192,6 +192,7 @@ impl Engine {
                 warning_limit: 0.0,
                 fault_limit: 0.0,
                 require_disabled: false,
+                closed_loop: false,
             }
             .into(),
         )?;

@@ -913,8 +913,11 @@ impl Engine {
         self.couplings.follows_into(&mut snapshot.follows);
         self.stream_input_starts_into(&mut snapshot.stream_input_starts);
         self.gantry_homes_into(&mut snapshot.gantry_homes);
-        self.triggers
-            .status_into(&mut snapshot.captures, &mut snapshot.compares);
+        self.triggers.status_into(
+            &mut snapshot.captures,
+            &mut snapshot.compares,
+            &mut snapshot.z_compares,
+        );
         if snapshot.io_version != self.io.version {
             snapshot.io.clone_from(&self.io.image);
             snapshot.io_version = self.io.version;

@@ -20,6 +20,19 @@ pub struct GantryStatus {
     /// (RHS + LHS) / 2 and (RHS − LHS) / 2 of the actual positions.
     pub linear: f64,
     pub yaw: f64,
+    /// HMC GantrySynchro ucMode 1: the slave's command is corrected by its PID.
+    #[serde(default)]
+    pub closed_loop: bool,
+    /// The correction's gains (HMC_GetGantryAxisPID): kp per second, ki per second², kd.
+    #[serde(default)]
+    pub kp: f64,
+    #[serde(default)]
+    pub ki: f64,
+    #[serde(default)]
+    pub kd: f64,
+    /// What the correction adds to the slave's command next tick (0 in open loop).
+    #[serde(default)]
+    pub correction: f64,
 }
 
 /// One handwheel and the axis it drives (`Snapshot::handwheels`).

@@ -25,7 +25,7 @@ pub use group::{GroupFault, GroupState, GroupStatus, InterferenceStatus};
 pub use snapshot::Snapshot;
 pub use trigger::{
     CaptureEdge, CaptureSource, CaptureState, CaptureStatus, CaptureWindow, CompareOutputMode,
-    CompareState, CompareStatus, Latch, PositionSource,
+    CompareState, CompareStatus, Latch, PositionSource, ZCompareStatus,
 };
 
 /// PLCopen axis state.
@@ -316,6 +316,18 @@ pub struct AxisStatus {
     /// positive limit, home, index (NMC GetDiReverseCount types 1–4).
     #[serde(default)]
     pub input_edges: [u32; 4],
+    /// The level of the axis's Z-phase output (the encoder-output port's Z line, which HMC
+    /// SwitchTZ and Switch ucOutputMode 1 drive as a fast output; issue 12 item 5). Low unless
+    /// a `z_compare` channel drives it.
+    #[serde(default)]
+    pub z_output: bool,
+    /// The HMC axis position compensation offset: the part of `compensation` that
+    /// `compensation_offset_trigger` moves (issue 12 item 8).
+    #[serde(default)]
+    pub compensation_offset: f64,
+    /// That offset's move is in progress (HMC GetAxisCompenState 1; 0 done).
+    #[serde(default)]
+    pub compensation_offset_moving: bool,
 }
 
 /// An axis's PT/PVT buffer and run (NMC `MtPtGetSpace`, `MtPtGetStatic`).

@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use super::{
     AxisStatus, CaptureStatus, CompareStatus, CouplingStatus, DriveStatus, FollowStatus,
-    GroupStatus, HandwheelStatus, IoImage,
+    GroupStatus, HandwheelStatus, IoImage, ZCompareStatus,
 };
 use crate::param::ParamSet;
 use crate::sampling::SamplerStatus;
@@ -63,6 +63,9 @@ pub struct Snapshot {
     /// The gantry homings (HMC_GantryInit), running or ended, by start order.
     #[serde(default)]
     pub gantry_homes: Vec<super::GantryHomeStatus>,
+    /// The Z-phase compare channels (HMC SwitchTZ), by channel.
+    #[serde(default)]
+    pub z_compares: Vec<ZCompareStatus>,
 }
 
 impl Snapshot {

@@ -183,3 +183,24 @@ pub struct CompareStatus {
     /// Positions in all.
     pub total: u32,
 }
+
+/// A Z-phase compare channel (`z_compare_start` until `z_compare_stop`; HMC SwitchTZ).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct ZCompareStatus {
+    pub channel: u8,
+    /// The trigger axis.
+    pub axis: AxisIndex,
+    pub source: PositionSource,
+    /// The axis whose Z-phase output the channel drives.
+    pub output_axis: AxisIndex,
+    pub mode: CompareOutputMode,
+    /// `done` (HMC GetSwitchTZState 3) once every position was passed.
+    pub state: CompareState,
+    /// Outputs made so far (HMC GetSwitchTZNum).
+    pub count: u32,
+    /// Positions passed while a pulse was still on, so not answered (manual §4.4.3.4 note 5).
+    pub missed: u32,
+    /// Positions not yet passed.
+    pub remaining: u32,
+    pub total: u32,
+}

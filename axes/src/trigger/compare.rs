@@ -11,7 +11,7 @@
 
 use super::{channel_in_range, invalid, Env, COMPARE_CHANNELS, MAX_COMPARE_POSITIONS};
 use crate::command::{bounded, nonnegative, positive, CompareStart, EngineError};
-use crate::status::{CompareOutputMode, CompareState, CompareStatus};
+use crate::status::{CompareOutputMode, CompareState, CompareStatus, PositionSource};
 
 /// The positions of a channel.
 #[derive(Clone, Debug)]
@@ -20,8 +20,12 @@ enum Targets {
     List(Vec<f64>),
     /// 1-D, `start + k·step` for k < count (HIMC PT trigger: start, end, interval).
     Grid { start: f64, step: f64, count: u32 },
-    /// 2-D.
-    Points { points: Vec<[f64; 2]>, zone: f64 },
+    /// 2-D; `disturbance` > 0 only on the actual position.
+    Points {
+        points: Vec<[f64; 2]>,
+        zone: f64,
+        disturbance: f64,
+    },
 }
 
 impl Targets {
@@ -60,6 +64,9 @@ pub(super) struct Compare {
     pulse_end: Option<u64>,
     /// The level the next toggle writes.
     toggle_level: bool,
+    /// 2-D with a disturbance: the least distance to the next point seen since the path
+    /// entered its zone.
+    closest: Option<f64>,
 }
 
 /// Whole servo periods in `seconds`, rounded up (a duration shorter than a period lasts one:
@@ -126,6 +133,7 @@ impl Compare {
             last_fire: None,
             pulse_end: None,
             toggle_level: c.level,
+            closest: None,
         };
         if compare.mode == CompareOutputMode::Pulse {
             env.write_output(c.output, !c.level);
@@ -178,7 +186,7 @@ impl Compare {
     }
 
     /// How many positions, from the next one on, the last tick's motion reached.
-    fn passed(&self, env: &Env) -> u32 {
+    fn passed(&mut self, env: &Env) -> u32 {
         let s = &self.status;
         let next = s.total - s.remaining;
         let Some(x) = env.axes.get(s.axis as usize) else {
@@ -186,33 +194,28 @@ impl Compare {
         };
         let [x0, x1] = x.swept(s.source);
         match &self.targets {
-            Targets::Points { points, zone } => {
+            Targets::Points {
+                points,
+                zone,
+                disturbance,
+            } => {
                 let Some(y) = s.axis_y.and_then(|y| env.axes.get(y as usize)) else {
                     return 0;
                 };
                 let [y0, y1] = y.swept(s.source);
-                closest_approaches(points, next, [x0, y0], [x1, y1], *zone)
-            }
-            targets => {
-                let mut k = next;
-                // The first in (x0, x1]: at x0 it was reached the tick before. Each further one
-                // from where the last was reached on, that included (a repeated position fires
-                // with the one before it).
-                let first = targets.position(k);
-                if !first.is_some_and(|p| (x0 < p && p <= x1) || (x0 > p && p >= x1)) {
-                    return 0;
+                if *disturbance > 0.0 {
+                    let resting = x.commanded().v == 0.0 && y.commanded().v == 0.0;
+                    let zone = Zone {
+                        radius: *zone,
+                        disturbance: *disturbance,
+                    };
+                    let travel = [[x0, y0], [x1, y1]];
+                    zone.settled_approaches(points, next, travel, resting, &mut self.closest)
+                } else {
+                    closest_approaches(points, next, [x0, y0], [x1, y1], *zone)
                 }
-                let mut from = first.unwrap_or(x0);
-                k += 1;
-                while let Some(p) = targets.position(k) {
-                    if !((from <= p && p <= x1) || (from >= p && p >= x1)) {
-                        break;
-                    }
-                    from = p;
-                    k += 1;
-                }
-                k - next
             }
+            targets => passed_1d(|k| targets.position(k), next, [x0, x1]),
         }
     }
 
@@ -239,29 +242,104 @@ impl Compare {
     }
 }
 
+/// How many positions, from `next` on, the travel `x[0]` → `x[1]` passes, in order. The first
+/// must lie in (x0, x1]: at x0 it was reached the tick before. Each further one is looked for
+/// from where the last was reached on, that included (a repeated position fires with the one
+/// before it).
+pub(super) fn passed_1d(position: impl Fn(u32) -> Option<f64>, next: u32, x: [f64; 2]) -> u32 {
+    let [x0, x1] = x;
+    let mut k = next;
+    let first = position(k);
+    if !first.is_some_and(|p| (x0 < p && p <= x1) || (x0 > p && p >= x1)) {
+        return 0;
+    }
+    let mut from = first.unwrap_or(x0);
+    k += 1;
+    while let Some(p) = position(k) {
+        if !((from <= p && p <= x1) || (from >= p && p >= x1)) {
+            break;
+        }
+        from = p;
+        k += 1;
+    }
+    k - next
+}
+
 /// How many points from `next` on the straight travel `a` → `b` passes at its closest within
 /// `zone`, each searched from where the one before was reached.
 fn closest_approaches(points: &[[f64; 2]], next: u32, a: [f64; 2], b: [f64; 2], zone: f64) -> u32 {
     let mut from = a;
     let mut k = next;
     while let Some(p) = points.get(k as usize) {
-        let u = [b[0] - from[0], b[1] - from[1]];
-        let uu = u[0] * u[0] + u[1] * u[1];
-        let t = if uu > 0.0 {
-            (((p[0] - from[0]) * u[0] + (p[1] - from[1]) * u[1]) / uu).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        let c = [from[0] + t * u[0], from[1] + t * u[1]];
-        let d = (p[0] - c[0]).hypot(p[1] - c[1]);
+        let (c, d, t) = closest_point(from, b, *p);
+        let still = from == b;
         // Still closing in at the tick's end (t = 1): the closest approach is in a later tick.
-        if !(d <= zone && (t < 1.0 || uu == 0.0)) {
+        if !(d <= zone && (t < 1.0 || still)) {
             break;
         }
         from = c;
         k += 1;
     }
     k - next
+}
+
+/// A 2-D zone with an anti-jitter threshold (HMC NormalSwitch2D `dDisturbValue`, manual
+/// §4.4.4.2: "when the compare source is the actual feedback position, jitter is filtered with
+/// dDisturbValue"; "once the zone was entered the output always fires").
+struct Zone {
+    radius: f64,
+    disturbance: f64,
+}
+
+impl Zone {
+    /// How many points from `next` on the travel `travel[0]` → `travel[1]` settles: the path
+    /// entered a point's zone (now or in an earlier tick, `closest` keeps the least distance
+    /// since), and its distance at the travel's end exceeds that least distance by more than
+    /// the disturbance (it recedes beyond what jitter explains; so a path that leaves the zone
+    /// fires once it is the disturbance beyond it, "always fires"), or the axes' commands rest
+    /// (no closer approach comes). Leaving is debounced too: a noisy sample just outside the
+    /// zone's edge is not leaving. A point fired, the next is looked for from the fired one's
+    /// closest point on.
+    fn settled_approaches(
+        &self,
+        points: &[[f64; 2]],
+        next: u32,
+        travel: [[f64; 2]; 2],
+        resting: bool,
+        closest: &mut Option<f64>,
+    ) -> u32 {
+        let [mut from, b] = travel;
+        let mut k = next;
+        while let Some(p) = points.get(k as usize) {
+            let (c, d, _) = closest_point(from, b, *p);
+            if d <= self.radius {
+                *closest = Some(closest.map_or(d, |m| m.min(d)));
+            }
+            let Some(least) = *closest else { break };
+            let end = (p[0] - b[0]).hypot(p[1] - b[1]);
+            if !(end > least + self.disturbance || resting) {
+                break;
+            }
+            *closest = None;
+            from = c;
+            k += 1;
+        }
+        k - next
+    }
+}
+
+/// The point of the straight travel `a` → `b` closest to `p`, its distance from `p`, and where
+/// on the travel it lies (0 = `a`, 1 = `b`).
+fn closest_point(a: [f64; 2], b: [f64; 2], p: [f64; 2]) -> ([f64; 2], f64, f64) {
+    let u = [b[0] - a[0], b[1] - a[1]];
+    let uu = u[0] * u[0] + u[1] * u[1];
+    let t = if uu > 0.0 {
+        (((p[0] - a[0]) * u[0] + (p[1] - a[1]) * u[1]) / uu).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let c = [a[0] + t * u[0], a[1] + t * u[1]];
+    (c, (p[0] - c[0]).hypot(p[1] - c[1]), t)
 }
 
 /// The positions `c` gives, checked: exactly one of a list, a grid or 2-D points.
@@ -295,9 +373,15 @@ fn targets(c: &CompareStart) -> Result<Targets, EngineError> {
             bounded("points", p[0])?;
             bounded("points", p[1])?;
         }
+        let disturbance = nonnegative("disturbance", c.disturbance)?;
         return Ok(Targets::Points {
             points: c.points.clone(),
             zone: nonnegative("error_zone", c.error_zone)?,
+            // The commanded position does not jitter (manual: "valid only on MPos").
+            disturbance: match c.source {
+                PositionSource::Actual => disturbance,
+                PositionSource::Commanded => 0.0,
+            },
         });
     }
     if grid {

@@ -9,15 +9,18 @@
 
 mod capture;
 mod compare;
+mod z_compare;
 
 use crate::axis::{Axis, TriggerCounts};
 use crate::command::{EngineError, Reply, TriggerCommand};
 use crate::config::InputBinding;
-use crate::status::{CaptureStatus, CompareStatus};
+use crate::status::{CaptureStatus, CompareStatus, ZCompareStatus};
 use crate::types::AxisIndex;
 
 use capture::Capture;
 use compare::Compare;
+use z_compare::ZCompare;
+pub use z_compare::Z_COMPARE_CHANNELS;
 
 /// Capture channels per axis (HMC has 8 on the machine, NMC 1 + 4 advanced, HIMC 2 touch
 /// probes per axis).
@@ -70,6 +73,8 @@ pub struct Triggers {
     captures: Vec<Capture>,
     /// By channel.
     compares: Vec<Compare>,
+    /// Z-phase compares (HMC SwitchTZ), by channel.
+    z_compares: Vec<ZCompare>,
 }
 
 impl Triggers {
@@ -114,6 +119,17 @@ impl Triggers {
                 let axis = compare.status().axis;
                 self.refresh_counts(env, axis);
             }
+            TriggerCommand::ZCompareStart(c) => {
+                let others = self.z_compares.iter().filter(|k| k.channel() != c.channel);
+                let z = ZCompare::start(env, &c, others)?;
+                self.stop_z_compare(env, c.channel);
+                let i = self.z_compares.partition_point(|k| k.channel() < c.channel);
+                self.z_compares.insert(i, z);
+            }
+            TriggerCommand::ZCompareStop(c) => {
+                channel_in_range("z_compare", c.channel, Z_COMPARE_CHANNELS)?;
+                self.stop_z_compare(env, c.channel);
+            }
         }
         Ok(Reply::Done)
     }
@@ -138,6 +154,12 @@ impl Triggers {
             let axis = compare.status().axis;
             compare.stop(env);
             self.refresh_counts(env, axis);
+        }
+    }
+
+    fn stop_z_compare(&mut self, env: &mut Env, channel: u8) {
+        if let Some(i) = self.z_compares.iter().position(|k| k.channel() == channel) {
+            self.z_compares.remove(i).stop(env);
         }
     }
 
@@ -187,6 +209,9 @@ impl Triggers {
                 }
             }
         }
+        for z in &mut self.z_compares {
+            z.step(env);
+        }
     }
 
     /// A command changed digital input `channel` to `level`: the edge happens at the tick
@@ -233,12 +258,20 @@ impl Triggers {
         self.compares().find(|c| c.channel == channel)
     }
 
+    /// The Z-phase compare channels' records, by channel.
+    pub fn z_compares(&self) -> impl Iterator<Item = &ZCompareStatus> {
+        self.z_compares.iter().map(ZCompare::status)
+    }
+
     /// Copy the records into a snapshot's lists, reusing their allocations.
     pub(crate) fn status_into(
         &self,
         captures: &mut Vec<CaptureStatus>,
         compares: &mut Vec<CompareStatus>,
+        z_compares: &mut Vec<ZCompareStatus>,
     ) {
+        z_compares.clear();
+        z_compares.extend(self.z_compares().cloned());
         captures.truncate(self.captures.len());
         for (i, c) in self.captures.iter().enumerate() {
             match captures.get_mut(i) {

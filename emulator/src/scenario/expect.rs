@@ -114,6 +114,10 @@ pub(super) enum Quantity {
     RolloverTurns,
     /// The drive's torque, a fraction of rated torque (HIMC MoveTrq, GetCurrFb).
     Torque,
+    /// The Z-phase output's level, 0 or 1 (HMC SwitchTZ).
+    ZOutput,
+    /// The HMC position-compensation offset.
+    CompensationOffset,
 }
 
 impl Quantity {
@@ -135,6 +139,8 @@ impl Quantity {
             Quantity::PositionOffset => "position_offset",
             Quantity::RolloverTurns => "rollover_turns",
             Quantity::Torque => "torque",
+            Quantity::ZOutput => "z_output",
+            Quantity::CompensationOffset => "compensation_offset",
         }
     }
 
@@ -156,6 +162,8 @@ impl Quantity {
             Quantity::PositionOffset => s.position_offset,
             Quantity::RolloverTurns => s.rollover_turns as f64,
             Quantity::Torque => s.torque,
+            Quantity::ZOutput => f64::from(u8::from(s.z_output)),
+            Quantity::CompensationOffset => s.compensation_offset,
         }
     }
 }
@@ -281,6 +289,8 @@ impl Expectation {
             (Quantity::PositionOffset, spec.position_offset),
             (Quantity::RolloverTurns, spec.rollover_turns),
             (Quantity::Torque, spec.torque),
+            (Quantity::ZOutput, spec.z_output),
+            (Quantity::CompensationOffset, spec.compensation_offset),
         ] {
             if let Some(v) = v {
                 if !v.is_finite() {
@@ -316,7 +326,8 @@ impl Expectation {
                 "applies to position, velocity, command_position, command_velocity, \
                  following_error, captures, capture_position, compare_outputs, output_position, \
                  compensation, tangent_angle, gantry_deviation, move_time, settling_time, \
-                 position_offset, rollover_turns, torque or group_position, and none is given"
+                 position_offset, rollover_turns, torque, z_output, compensation_offset \
+                 or group_position, and none is given"
                     .into(),
             ));
         }
@@ -396,7 +407,7 @@ impl Expectation {
                 "no condition on it: give state, position, velocity, command_position, \
                  command_velocity, following_error, captures, capture_position, \
                  compare_outputs, output_position, compensation, gantry_deviation, move_time, \
-                 settling_time, position_offset, rollover_turns, torque, flags, not_flags, error, coupling, coupling_kind, tangent_angle, stream_space, \
+                 settling_time, position_offset, rollover_turns, torque, z_output, compensation_offset, flags, not_flags, error, coupling, coupling_kind, tangent_angle, stream_space, \
                  stream_used, stream_running or stream_underruns"
                     .into(),
             ));

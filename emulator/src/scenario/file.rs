@@ -112,6 +112,12 @@ pub(super) struct ExpectSpec {
     /// The drive's torque as a fraction of rated torque (HIMC MoveTrq, GetCurrFb).
     #[serde(default)]
     pub torque: Option<f64>,
+    /// The level of the axis's Z-phase output, 0 or 1 (`z_compare_start`, HMC SwitchTZ).
+    #[serde(default)]
+    pub z_output: Option<f64>,
+    /// The HMC position-compensation offset (`compensation_offset_trigger`).
+    #[serde(default)]
+    pub compensation_offset: Option<f64>,
     /// Allowed |seen − expected| of the numbers above; 0 (exact) when absent.
     #[serde(default)]
     pub tolerance: Option<f64>,

@@ -435,3 +435,53 @@ expect = { axis = 0, position_offset = -9, settling_time = 99, tolerance = 0.5 }
         r.failures
     );
 }
+
+#[test]
+fn hmc_switch_tz_and_the_position_compensation_offset_are_checked_by_expect() {
+    // Axis 0 passes 10 and 30 units; each toggles axis 1's Z-phase output (SwitchTZ mode 0).
+    // Axis 1's offset moves by 2 on a trigger (HMC_TrigAxisCompens).
+    let axis = "[[axes]]\n[axes.params]\naxis_type = \"stepper\"\nunits = 1000\nrep_mode = \"finite\"\nspeed = 100\naccel = 1000\ndecel = 1000\n";
+    let text = format!(
+        r#"
+end = 1.5
+[[step]]
+at = 0
+command = {{ type = "enable_all" }}
+[[step]]
+at = 0
+command = {{ type = "z_compare_start", axis = 0, positions = [10, 30], output_axis = 1 }}
+[[step]]
+at = 0
+command = {{ type = "compensation_offset_profile", axis = 1, velocity = 10, acceleration = 100, deceleration = 100 }}
+[[step]]
+at = 0
+command = {{ type = "compensation_offset_amount", axis = 1, amount = 2 }}
+[[step]]
+at = 0
+command = {{ type = "compensation_offset_trigger", axis = 1 }}
+[[step]]
+at = 0
+command = {{ type = "move_absolute", axis = 0, position = 20 }}
+[[step]]
+at = 0.1
+expect = {{ axis = 1, z_output = 0, compensation_offset = 0.5, tolerance = 1e-6 }}
+[[step]]
+at = 0.5
+expect = {{ axis = 1, z_output = 1, compensation_offset = 2, output_position = 2, command_position = 0 }}
+[[step]]
+at = 0.5
+command = {{ type = "move_absolute", axis = 0, position = 40 }}
+[[step]]
+at = 1.2
+expect = {{ axis = 1, z_output = 0 }}
+
+[machine]
+period = 0.001
+{axis}{axis}
+"#
+    );
+    let s = parse(&text).unwrap();
+    let r = s.run(None).unwrap();
+    assert_eq!(r.expectations, 3);
+    assert!(r.failures.is_empty(), "{:#?}", r.failures);
+}

@@ -190,6 +190,8 @@ fn onoff(c: &mut Call<'_>) -> Result<(), Refusal> {
                     Vec::new()
                 },
                 error_zone: f64::from(p.err_zone) / px,
+                // vibrateRange, "jitter filter range" (digest 001 §3.16): HMC's dDisturbValue.
+                disturbance: f64::from(p.vibrate_range.max(0)) / px,
                 output: out,
                 mode: if p.output_type == 1 {
                     CompareOutputMode::Toggle

@@ -110,6 +110,7 @@ fn set_gantry_slave(c: &mut Call<'_>) -> Result<(), Refusal> {
         warning_limit: 0.0,
         fault_limit: fault as f64 / c.scale(master).pulses_per_unit,
         require_disabled: false,
+        closed_loop: false,
     });
     for (a, _) in &slaves {
         c.update(*a, |s| s.prf_mode = MT_GANTRY_MODE);
