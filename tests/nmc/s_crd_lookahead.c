@@ -180,8 +180,10 @@ int main(void) {
     CHECK(pack.prfPos[0] == 3000 && pack.prfPos[1] == -2000 && pack.prfPos[2] == 0 && pack.prfPos[3] == 0,
           "prfPos %ld %ld %ld", pack.prfPos[0], pack.prfPos[1], pack.prfPos[2]);
     CHECK(pack.axisPos[0] == 3000 && pack.axisPos[1] == -2000, "axisPos %ld %ld", pack.axisPos[0], pack.axisPos[1]);
-    /* Read a call apart: the encoder may still settle by a count. */
-    CHECK(iabs(pack.encPos[0] - enc[0]) <= 2 && iabs(pack.encPos[1] - enc[1]) <= 2 && iabs(enc[0] - 3000) <= 10,
+    /* Read a call apart: the encoder may still be settling onto the target (by a few counts
+     * on a loaded host, where calls are milliseconds apart), within the same 10 counts. */
+    CHECK(iabs(pack.encPos[0] - enc[0]) <= 10 && iabs(pack.encPos[1] - enc[1]) <= 10 && iabs(enc[0] - 3000) <= 10 &&
+              iabs(pack.encPos[0] - 3000) <= 10,
           "encPos %ld/%ld", pack.encPos[0], enc[0]);
     CHECK(pack.userSeg == seg && seg == 7, "userSeg %ld %ld", pack.userSeg, seg);
     CHECK(pack.crdUsedSpace == used && pack.crdFreeSpace == free_ && free_ > 0, "used %ld/%ld free %ld/%ld",
