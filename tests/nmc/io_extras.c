@@ -131,7 +131,9 @@ int main(void) {
     CHECK(NMC_DoBitPulseEnable(dev, 0, 7, 1000, 1000, -1, 0, 0) == RTN_ARG_RANGE, "count -1");
     CHECK(NMC_DoBitPulseDisable(dev, -1) == RTN_ARG_RANGE, "disable ch -1");
 
-    /* DI filters: default 3 ms, [0, 32]. */
+    /* DI filters: default 3 ms (TV74: GPI group 0 bit 0), [0, 32]. */
+    OK(NMC_GetDIFilter(dev, 0, 0, 0, &c));
+    CHECK(c == 3, "TV74: default filter of DI0 %d", c);
     OK(NMC_GetDIFilter(dev, 0, 0, 5, &c));
     CHECK(c == 3, "default filter %d", c);
     OK(NMC_SetDIFilter(dev, 0, 0, 5, 10));

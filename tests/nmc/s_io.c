@@ -1,4 +1,5 @@
-/* S-IO (digest 001 §5, C2§8.3) with TV38–TV39: DI groups and bits, DO group and bits. */
+/* S-IO (digest 001 §5, C2§8.3) with TV37–TV39: DI groups and bits, DO group and bits. TV37's
+ * I/O slave is here the fixture's extension module 2, which holds group 2 (bits 64–95). */
 #include "check.h"
 
 int main(void) {
@@ -26,6 +27,7 @@ int main(void) {
     OK(NMC_SetDOBit(devHandle, 33, 1));
     OK(NMC_GetDOGroup(devHandle, &value, 1));
     CHECK(value == 2, "DO group 1 %#lx", value);
+    /* TV37 */
     OK(NMC_SetDOBit(devHandle, 64, 1));
     OK(NMC_GetDOGroup(devHandle, &value, 2));
     CHECK(value == 1, "DO group 2 %#lx", value);

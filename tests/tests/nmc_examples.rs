@@ -102,7 +102,7 @@ fn s_home_1_tv29_tv30() {
 }
 
 #[test]
-fn s_io_tv38() {
+fn s_io_tv37_tv38() {
     example("s_io.c");
 }
 
@@ -112,9 +112,9 @@ fn io_by_type_encoders_modules_identity() {
     example("io_ext.c");
 }
 
-/// The plain aliases, inversions, timed outputs, filters, edge counters, DIO mappings.
+/// The plain aliases, inversions, timed outputs, filters (TV74), edge counters, DIO mappings.
 #[test]
-fn io_aliases_inversion_timed_outputs_counters() {
+fn io_aliases_inversion_timed_outputs_counters_tv74() {
     example("io_extras.c");
 }
 
@@ -557,4 +557,42 @@ fn crd_buffered_io_stops_and_packs() {
     );
     let ao = m.state()["io"]["ao"][0].as_f64().unwrap();
     assert!((ao - 5.0).abs() < 1e-3, "DA 0 = {ao} V");
+}
+
+/// TV27, TV28, TV31, TV32, TV65: UpdateMulti in one cycle, Pack8's offsets, safeLen, TryHome,
+/// the 125 µs clock against the controller's loop count.
+#[test]
+fn tv27_tv28_tv31_tv32_tv65_moves_homing_clock() {
+    example("tv_motion.c");
+}
+
+/// TV21, TV23, TV24, TV40 on inputs this harness forces: the program prints
+/// `post {json}` lines, each posted to the control API and answered `done`.
+#[test]
+fn tv21_tv23_tv24_tv40_forced_inputs() {
+    let dir = fresh_dir(env!("CARGO_TARGET_TMPDIR"), "nmc-tv-inputs");
+    let exe = compile_example("tv_inputs.c", &dir, &[]);
+    let m = Mcemu::start(Some(&gaochuan()), &[]);
+    let mut child = Command::new(&exe)
+        .env("MCEMU_NMC", m.address("nmc"))
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stdin = child.stdin.take().unwrap();
+    let mut last = String::new();
+    for line in BufReader::new(child.stdout.take().unwrap()).lines() {
+        let line = line.unwrap();
+        if let Some(body) = line.strip_prefix("post ") {
+            let body: serde_json::Value = serde_json::from_str(body).unwrap();
+            m.post_ok("/commands", &body);
+            writeln!(stdin, "done").unwrap();
+        }
+        last = line;
+    }
+    let status = child.wait().unwrap();
+    assert!(
+        status.success() && last == "ok",
+        "exit {status}, last line {last:?}"
+    );
 }
