@@ -9,13 +9,11 @@
 
 pub mod user;
 
-use std::future::Future;
 use std::sync::Arc;
 
 use mcemu_ascii::transport::native::Server;
 use mcemu_ascii::transport::serve;
 use serde_json::Value;
-use tokio::net::TcpListener;
 use tokio::task::JoinSet;
 
 use crate::frontend::{bind, handles, Frontend, FrontendContext, FrontendError, StartFuture};
@@ -60,47 +58,15 @@ pub fn start<'a>(cx: &'a FrontendContext<'a>, tasks: &'a mut JoinSet<()>) -> Sta
             .map_err(|e| FrontendError::new("ascii_native", e))?;
         let mut shutdown = cx.shutdown.clone();
         let serving = Arc::clone(&server);
-        let done = on_own_thread("mcemu-ascii", listener, move |listener| async move {
+        // On the shared runtime: a thread of its own with a current-thread runtime was never
+        // faster in the release bench (docs/decisions.md, "Native ASCII stays on the shared
+        // runtime").
+        tasks.spawn(async move {
             let stop = async move {
                 let _ = shutdown.wait_for(|stop| *stop).await;
             };
             serve(listener, serving, stop).await;
-        })
-        .map_err(|e| FrontendError::new("ascii_native", e))?;
-        tasks.spawn(async move {
-            let _ = done.await;
         });
         Ok(handles([Arc::new(AsciiNativeFrontend { server })]))
     })
-}
-
-/// Run `serve(listener)` on a new thread `name` with a single-threaded runtime (the listener
-/// moves to that runtime's reactor, so every connection's readiness is that thread's). The
-/// receiver resolves when the serving has ended.
-fn on_own_thread<F, Fut>(
-    name: &str,
-    listener: TcpListener,
-    serve: F,
-) -> std::io::Result<tokio::sync::oneshot::Receiver<()>>
-where
-    F: FnOnce(TcpListener) -> Fut + Send + 'static,
-    Fut: Future<Output = ()>,
-{
-    let listener = listener.into_std()?;
-    let runtime = tokio::runtime::Builder::new_current_thread()
-        .enable_all()
-        .build()?;
-    let (done, ended) = tokio::sync::oneshot::channel();
-    std::thread::Builder::new()
-        .name(name.into())
-        .spawn(move || {
-            runtime.block_on(async move {
-                match TcpListener::from_std(listener) {
-                    Ok(listener) => serve(listener).await,
-                    Err(e) => tracing::error!("cannot serve on its own thread: {e}"),
-                }
-            });
-            let _ = done.send(());
-        })?;
-    Ok(ended)
 }
