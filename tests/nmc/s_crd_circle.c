@@ -11,7 +11,7 @@ static double dabs(double v) { return v < 0 ? -v : v; }
  * polls, and how many polled points were on the circle about `center` of radius `radius`. */
 typedef struct {
     long lo[3], hi[3], last[3];
-    double max_step;
+    double max_step2; /* the longest chord between two polls, squared */
     const long *center;
     double radius;
     long off_circle;
@@ -28,12 +28,7 @@ static void widen(Box *box, const long *pos, int first) {
         if (pos[k] > box->hi[k]) box->hi[k] = pos[k];
         box->last[k] = pos[k];
     }
-    if (!first && step > box->max_step * box->max_step) {
-        /* sqrt without libm: the step only sets a tolerance, so Newton from above suffices. */
-        double s = step, g = step > 1 ? step : 1;
-        for (k = 0; k < 40; k++) g = 0.5 * (g + s / g);
-        box->max_step = g;
-    }
+    if (!first && step > box->max_step2) box->max_step2 = step;
     /* Off the circle by more than 30 pulses, and not on the lead-in line along y = z = 0
      * (radius 0: no circle to check). */
     if (r > 0 && (d2 < (r - 30) * (r - 30) || d2 > (r + 30) * (r + 30)) && !(pos[1] == 0 && pos[2] == 0 && pos[0] <= 1000))
@@ -49,7 +44,7 @@ static void run(Box *box, const long *center, double radius) {
         box->lo[k] = 2147483647L;
         box->hi[k] = -2147483647L;
     }
-    box->max_step = 0;
+    box->max_step2 = 0;
     box->center = center;
     box->radius = radius;
     box->off_circle = 0;
@@ -75,10 +70,10 @@ static void at(long x, long y, long z) {
           pos[2], x, y, z);
 }
 
-/* lo/hi of coordinate k within 30 pulses of the expected values, plus what polls `max_step`
+/* lo/hi of coordinate k within 30 pulses of the expected values, plus what polls a chord c
  * apart can miss of a circle of radius R at its extreme: R(1 − cos(c/2R)) ≤ c²/8R. */
 static void spans(const Box *b, int k, long lo, long hi) {
-    long tol = 30 + (long)(b->max_step * b->max_step / (8 * b->radius));
+    long tol = 30 + (long)(b->max_step2 / (8 * b->radius));
     CHECK(labs(b->lo[k] - lo) <= tol && labs(b->hi[k] - hi) <= tol,
           "coordinate %d in [%ld, %ld], expected [%ld, %ld] within %ld", k, b->lo[k], b->hi[k], lo, hi, tol);
 }
