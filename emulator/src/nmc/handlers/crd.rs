@@ -153,14 +153,16 @@ fn check_config(c: &Call<'_>, config: &CrdConfig) -> Result<Vec<usize>, Refusal>
     let count = c.snapshot.axes.len();
     let mut axes = Vec::with_capacity(n);
     for (k, a) in config.ax.iter().take(n).enumerate() {
-        let axis = usize::try_from(*a)
+        // Local axes, or bus drives from 16 on an `ecat` card (`ecat_bus`).
+        let axis = u8::try_from(*a)
             .ok()
-            .filter(|a| *a < count && !axes.contains(a))
+            .and_then(|a| c.service.bus().engine_axis(a, count))
+            .filter(|a| !axes.contains(a))
             .ok_or_else(|| {
                 Refusal::range(
                     &format!("pAxArray[{k}]"),
                     a,
-                    &format!("a distinct axis of [0, {}]", count.saturating_sub(1)),
+                    &format!("a distinct axis of {}", c.service.bus().numbers_text(count)),
                 )
             })?;
         axes.push(axis);

@@ -23,6 +23,7 @@ use super::crd::{crd, group, here, members, origin_command, state, update};
 use super::crd_segment::read_longs;
 use super::crd_status::path_scale;
 use super::motion::ptp_move;
+use super::sync_args::axis_number;
 use crate::nmc::crd_frames::{chord_error, CrdFrames, CrdTransform};
 use crate::nmc::service::{pulses, Call, Handler, Refusal};
 
@@ -81,13 +82,9 @@ fn configured(c: &Call<'_>, n: usize) -> Result<Vec<usize>, Refusal> {
     Ok(axes)
 }
 
-/// An axis number of the device.
+/// The engine axis of NMC axis number `a` (local, or a bus drive from 16).
 fn device_axis(c: &Call<'_>, name: &str, a: i16) -> Result<usize, Refusal> {
-    let count = c.snapshot.axes.len();
-    usize::try_from(a)
-        .ok()
-        .filter(|a| *a < count)
-        .ok_or_else(|| Refusal::range(name, a, &format!("[0, {}]", count.saturating_sub(1))))
+    axis_number(c, name, i64::from(a))
 }
 
 fn finite(name: &str, v: f64) -> Result<f64, Refusal> {
@@ -349,7 +346,7 @@ fn crd_set_trans_xyza(c: &mut Call<'_>) -> Result<(), Refusal> {
         && map
             .iter()
             .zip(&axes)
-            .all(|(m, a)| usize::try_from(*m).ok() == Some(*a));
+            .all(|(m, a)| axis_number(c, "pAxisMapArray[i]", i64::from(*m)).ok() == Some(*a));
     let axes_in_order = match <[usize; CRD_MAX_AXES]>::try_from(axes.as_slice()) {
         Ok(a) if same => a,
         _ => {
