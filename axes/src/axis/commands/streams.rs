@@ -79,7 +79,23 @@ impl Axis {
     /// Take this tick's setpoint from a machine-level planner (engine stage 2), or let go of
     /// the planner. Same rules as a `setpoint` stream: a fed axis is in SynchronizedMotion, its
     /// FIFO waits, and a setpoint into an active limit is refused.
+    #[inline]
     pub(crate) fn feed(&mut self, ctx: &mut Context, feed: Feed) -> Result<(), EngineError> {
+        if let Feed::Follow(state) = feed {
+            if self.follows_freely(&state) {
+                if let Source::Fed(fed) = &mut self.source {
+                    *fed = state;
+                    return Ok(());
+                }
+            }
+        }
+        self.feed_checked(ctx, feed)
+    }
+
+    /// [`Axis::feed`] past its common tick: a release, the first setpoint, or one that some
+    /// check may refuse. Out of line, so the common tick inlines into the caller's loop.
+    #[inline(never)]
+    fn feed_checked(&mut self, ctx: &mut Context, feed: Feed) -> Result<(), EngineError> {
         let state = match feed {
             Feed::Follow(state) => state,
             Feed::Release => {
@@ -89,12 +105,6 @@ impl Axis {
                 return Ok(());
             }
         };
-        if self.follows_freely(&state) {
-            if let Source::Fed(fed) = &mut self.source {
-                *fed = state;
-                return Ok(());
-            }
-        }
         for (name, value) in [
             ("position", state.p),
             ("velocity", state.v),
@@ -119,6 +129,7 @@ impl Axis {
     /// on no limit in either direction. The common tick of a running path, decided without
     /// building a `Result` per check (a group tick's largest cost, once per member); anything
     /// else takes the checks, which give the same outcome and name the refusal.
+    #[inline]
     fn follows_freely(&self, state: &MotionState) -> bool {
         let limits = AxisFlags::SW_LIMIT_POS
             | AxisFlags::SW_LIMIT_NEG
