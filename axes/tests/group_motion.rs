@@ -2,7 +2,8 @@
 //! goes): paths reach their end exactly, members stay within their own limits, buffered
 //! outputs, dwells, waits and single-axis moves happen where the path reaches them, stop / halt
 //! / continue / override, a member's fault stops the whole group, the queue bound, command
-//! states, a one-axis group against the axis's own profile, determinism.
+//! states, a one-axis group against the axis's own profile, determinism, LinuxCNC #3773's small
+//! blended arcs within the members' acceleration limit.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 mod common;
