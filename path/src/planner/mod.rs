@@ -595,25 +595,41 @@ impl PathPlanner {
         &self.state
     }
 
-    /// An upper bound on the path length a [`PathPlanner::stop`] with `deceleration` issued
-    /// now travels before rest: from the current velocity and acceleration, with the lowest
-    /// deceleration and jerk of every queued motion (a stop never brakes harder than a
-    /// motion allows, and it may cross motion ends). Closed form over the queue: O(queued).
-    /// A guard between two paths uses it (issue 11, NMC `SetMvProtect`).
-    pub fn stopping_distance(&self, deceleration: f64) -> f64 {
+    /// An upper bound on the path length travelled from now to rest when a
+    /// [`PathPlanner::stop`] with `deceleration` is issued `delay` seconds from now (a guard
+    /// that checks once a period passes the period): until then the path may still speed up,
+    /// at its acceleration now and, with a jerk limit, by `jerk·delay` more (never above the
+    /// largest queued acceleration), up to the fastest queued cruise velocity; then it brakes with the lowest deceleration and jerk of
+    /// every queued motion (a stop never brakes harder than a motion allows, and it may cross
+    /// motion ends). Closed form over the queue: O(queued). A guard between two paths uses it
+    /// (issue 11, NMC `SetMvProtect`).
+    pub fn stopping_distance(&self, delay: f64, deceleration: f64) -> f64 {
         let v = self.state.path_velocity.max(0.0);
         let a = self.state.path_acceleration;
         if v <= 0.0 && a <= 0.0 {
             return 0.0;
         }
-        let (mut dec, mut jerk) = (deceleration, f64::INFINITY);
+        let (mut dec, mut jerk, mut acc, mut top) = (deceleration, f64::INFINITY, 0.0_f64, v);
         for entry in &self.queue {
             if let Entry::Motion(m) = entry {
                 dec = dec.min(m.limits.deceleration);
                 jerk = jerk.min(m.limits.jerk);
+                acc = acc.max(m.limits.acceleration);
+                top = top.max(m.cruise(self.override_factor));
             }
         }
-        braking_distance(v, a, dec, jerk)
+        let delay = delay.max(0.0);
+        // The acceleration at the stop, and the speed then: v grows by at most that times
+        // the delay (the acceleration only rises toward it), and not past the fastest queued
+        // cruise velocity (a junction is never faster than both its motions').
+        let a1 = if jerk.is_finite() {
+            (a.max(0.0) + jerk * delay).min(acc.max(a))
+        } else {
+            a.max(0.0)
+        };
+        let v1 = (v + a1 * delay).min(top);
+        let a1 = if v1 >= top { 0.0 } else { a1 };
+        v1 * delay + braking_distance(v1, a1, dec, jerk)
     }
 
     pub fn state(&self) -> &PathState {
