@@ -206,6 +206,7 @@ static void arc_sections(void) {
     OK(NMC_CrdSetFourthAxisToTurnVel(crdHandle, 5));
     CHECK(NMC_CrdSetFourthAxisToTurnVel(crdHandle, -1) == RTN_ARG_RANGE, "tolVel −1");
     CHECK(NMC_CrdSetFourthAxisToTurnVel(crdHandle, NAN) == RTN_ARG_RANGE, "tolVel NaN");
+    OK(NMC_CrdSetFourthAxisToTurnVel(crdHandle, 0)); /* off again */
 }
 
 /* The break point: an E-stop with a slow estpDec carries the axes past where the path was

@@ -413,6 +413,10 @@ pub enum GroupParameter {
     ArcAcceleration,
     /// Largest chord error per servo period on arcs (HIMC prm 2); 0 = off.
     ChordError,
+    /// The speed the fourth coordinate (index 3, NMC's A) may have at a corner: where the
+    /// direction turns at an unblended junction the path slows so that it is not exceeded
+    /// (NMC `NMC_CrdSetFourthAxisToTurnVel`, digest 001 §2.7); 0 = off (the default).
+    FourthCoordinateCornerVelocity,
     /// HMC's stop after a member's limit or fault (digest 000 §4.3, §6.1 (b)/(c)): the path
     /// decelerates to rest with max(`deceleration`, this value) — the result axis's FastDecel —
     /// and the members still on the path stay on it. 0 = off (the default, NMC and HIMC: the

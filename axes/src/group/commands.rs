@@ -420,6 +420,13 @@ impl Group {
                         // Positive and finite here, so the planner accepts it.
                         let _ = self.planner.set_lookahead_limits(limits);
                     }
+                    GroupParameter::FourthCoordinateCornerVelocity => {
+                        let setting = off_or_positive(c.value)?;
+                        let mut limits = self.planner.lookahead_limits();
+                        limits.corner_coordinate_velocity = setting.map(|v| (3, v));
+                        // Positive and finite here, so the planner accepts it.
+                        let _ = self.planner.set_lookahead_limits(limits);
+                    }
                 }
                 Ok(Reply::Done)
             }

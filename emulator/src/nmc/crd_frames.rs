@@ -101,6 +101,11 @@ impl FramesState {
         }
     }
 
+    /// `NMC_CrdSetFourthAxisToTurnVel`'s tolVel of `n` (0: off).
+    pub fn crd_turn_vel(&self, n: usize) -> f64 {
+        self.crd.get(n).map_or(0.0, |f| f.fourth_axis_turn_vel)
+    }
+
     /// `NMC_CrdDelete`: the family's settings of `n` back to their defaults.
     pub fn on_delete(&mut self, n: usize) {
         if self.protect.guards(n) {

@@ -174,6 +174,11 @@ pub struct LookaheadLimits {
     /// Largest chord error ε of one servo period's chord on a curve (HIMC, off by default):
     /// `v ≤ 2·r·acos(1 − ε/r)/T`.
     pub chord_error: Option<f64>,
+    /// The speed one coordinate may have at a corner: `(coordinate, speed)` (NMC
+    /// `NMC_CrdSetFourthAxisToTurnVel`, the A axis of 4-D interpolation: "若大于该速度，则需要进行
+    /// 降速处理"). Where the direction turns at a junction without a blend, the junction
+    /// speed is at most `speed / max(|t₁[k]|, |t₂[k]|)`.
+    pub corner_coordinate_velocity: Option<(usize, f64)>,
 }
 
 impl LookaheadLimits {
@@ -182,6 +187,7 @@ impl LookaheadLimits {
         corner_acceleration: Some(5000.0),
         arc_acceleration: Some(100.0),
         chord_error: None,
+        corner_coordinate_velocity: None,
     };
 
     /// Cap on the path speed of a segment whose largest curvature is `curvature`.
@@ -207,6 +213,7 @@ impl LookaheadLimits {
             self.corner_acceleration,
             self.arc_acceleration,
             self.chord_error,
+            self.corner_coordinate_velocity.map(|(_, v)| v),
         ]
         .into_iter()
         .flatten()

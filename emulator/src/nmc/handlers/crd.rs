@@ -235,6 +235,11 @@ fn crd_config(c: &mut Call<'_>) -> Result<(), Refusal> {
             scale.to_engine(chord),
         ));
     }
+    let turn_vel = c.service.frames().crd_turn_vel(n);
+    if turn_vel > 0.0 {
+        let command = super::crd_frames::turn_vel_command(c, n, &axes, turn_vel);
+        c.command(command);
+    }
     s.pending.clear();
     s.started = false;
     s.end = here(c, &s);

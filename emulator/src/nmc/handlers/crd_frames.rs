@@ -533,12 +533,37 @@ fn crd_get_arc_sec_para(c: &mut Call<'_>) -> Result<(), Refusal> {
     Ok(())
 }
 
-/// Stored only: the engine's corner rules have no per-axis corner velocity (decisions.md).
+/// The engine's corner speed of the fourth coordinate (the A axis) for tolVel of the
+/// coordinate system of `axes` (0: off), in the A axis's units.
+pub(super) fn turn_vel_command(c: &Call<'_>, n: usize, axes: &[usize], tol_vel: f64) -> Command {
+    let scale = axes.get(3).map_or(
+        mcemu_dialects::PulseScale {
+            pulses_per_unit: 1.0,
+        },
+        |a| c.scale(*a),
+    );
+    GroupSetParameter {
+        group: n as GroupId,
+        name: GroupParameter::FourthCoordinateCornerVelocity,
+        value: velocity_to_engine(scale, tol_vel),
+    }
+    .into()
+}
+
+/// "设置 4 维插补下，A 轴的最大容忍转弯速度，若大于该速度，则需要进行降速处理": where the path
+/// turns at a junction, it slows so that the A axis (the fourth coordinate) is no faster than
+/// tolVel pulse/ms there (the engine's `fourth_coordinate_corner_velocity`; 0 = off, the
+/// default). Kept across `NMC_CrdConfig`; a coordinate system of fewer than 4 axes has no A.
 fn crd_set_fourth_axis_to_turn_vel(c: &mut Call<'_>) -> Result<(), Refusal> {
     let n = crd(c)?;
     let v = c.input.f64()?;
     if !(v.is_finite() && v >= 0.0) {
-        return Err(Refusal::range("tolVel", v, "[0, ∞) pulse/ms"));
+        return Err(Refusal::range("tolVel", v, "[0, ∞) pulse/ms (0: off)"));
+    }
+    if group(c, n).is_some() {
+        let axes = state(c, n).axes();
+        let command = turn_vel_command(c, n, &axes, v);
+        c.command(command);
     }
     set_frames(c, n, |f| f.fourth_axis_turn_vel = v);
     Ok(())
