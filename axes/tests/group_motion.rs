@@ -1166,3 +1166,40 @@ fn bad_splines_and_ellipses_are_refused_and_nothing_is_queued() {
     }
     assert_eq!(group(&e).queue_used, 0);
 }
+
+/// Issue 13 (NMC arc sections, `TArcSecSetting` → `chord_error`): every tick's commanded
+/// point lies on the arc, and the chord between two ticks leaves it by at most the chord
+/// error (its sagitta r − |midpoint − centre|): the error is between samples, never of them.
+#[test]
+fn chord_error_samples_lie_on_the_arc_and_chords_stay_within_the_error() {
+    let mut e = machine(2, &[0, 1]);
+    let epsilon = 1e-6;
+    common::group_parameter(&mut e, GroupParameter::ChordError, epsilon);
+    // A full circle of radius 10 about (10, 0) from the origin, at 100 mm/s requested: the
+    // chord error caps it at 2·r·acos(1 − ε/r)/T = 8.94 mm/s (the axes allow 100).
+    common::group_parameter(&mut e, GroupParameter::Velocity, 100.0);
+    send(&mut e, circle(&[10.0, 0.0], &[0.0, 0.0], ArcDirection::Ccw));
+    let mut last = positions(&e, 2);
+    let mut worst_sagitta = 0.0_f64;
+    let n = (20.0 / e.period()).round() as u64;
+    for _ in 0..n {
+        e.step();
+        let p = positions(&e, 2);
+        let r = ((p[0] - 10.0).powi(2) + p[1].powi(2)).sqrt();
+        assert!((r - 10.0).abs() < 1e-9, "a sample off the arc: r {r}");
+        let mid = [(p[0] + last[0]) / 2.0, (p[1] + last[1]) / 2.0];
+        let sagitta = 10.0 - ((mid[0] - 10.0).powi(2) + mid[1].powi(2)).sqrt();
+        worst_sagitta = worst_sagitta.max(sagitta);
+        last = p;
+        if group(&e).state == GroupState::Standby {
+            break;
+        }
+    }
+    assert_eq!(group(&e).state, GroupState::Standby);
+    // The cap binds (the chords come within 1 % of ε) and holds.
+    assert!(
+        worst_sagitta <= epsilon * (1.0 + 1e-6),
+        "sagitta {worst_sagitta}"
+    );
+    assert!(worst_sagitta > 0.99 * epsilon, "sagitta {worst_sagitta}");
+}
