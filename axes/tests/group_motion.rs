@@ -1203,3 +1203,59 @@ fn chord_error_samples_lie_on_the_arc_and_chords_stay_within_the_error() {
     );
     assert!(worst_sagitta > 0.99 * epsilon, "sagitta {worst_sagitta}");
 }
+
+/// NMC `NMC_CrdSetFourthAxisToTurnVel` (issue 13): `fourth_coordinate_corner_velocity` limits
+/// the fourth coordinate's speed where the path turns; a junction without it runs faster.
+#[test]
+fn the_fourth_coordinate_corner_velocity_slows_a_turning_junction() {
+    fn slowest_at_the_corner(limit: Option<f64>) -> f64 {
+        let mut e = machine(4, &[0, 1, 2, 3]);
+        if let Some(v) = limit {
+            common::group_parameter(&mut e, GroupParameter::FourthCoordinateCornerVelocity, v);
+        }
+        send(&mut e, line(&[40.0, 0.0, 0.0, 40.0]));
+        send(
+            &mut e,
+            MoveLinearAbsolute {
+                buffer_mode: GroupBufferMode::BlendingPrevious,
+                // A slight turn in XY (0.01 rad), which the axes' own corner rule lets pass
+                // at full speed.
+                ..line(&[80.0, 0.4, 0.0, 80.0])
+            },
+        );
+        let mut slowest = f64::INFINITY;
+        let n = (20.0 / e.period()).round() as u64;
+        for _ in 0..n {
+            e.step();
+            let g = group(&e);
+            let p = positions(&e, 4);
+            if (p[0] - 40.0).abs() < 1.0 {
+                slowest = slowest.min(g.path_velocity);
+            }
+            if g.state == GroupState::Standby {
+                break;
+            }
+        }
+        slowest
+    }
+    // A moves at about v/√2 on both lines: at most 5 mm/s at the corner is a path speed of
+    // 7.07 (plus at most one tick of path acceleration).
+    let capped = slowest_at_the_corner(Some(5.0));
+    assert!(capped <= 5.0 * 2f64.sqrt() + 1.0 + 1e-9, "{capped}");
+    assert!(capped > 0.0, "a blended corner does not stop");
+    let free = slowest_at_the_corner(None);
+    assert!(free > capped + 5.0, "{free} vs {capped}");
+    // Negative or non-finite: refused; 0: off.
+    let mut e = machine(4, &[0, 1, 2, 3]);
+    for bad in [-1.0, f64::NAN] {
+        refused(
+            &mut e,
+            Command::from(GroupSetParameter {
+                group: 1,
+                name: GroupParameter::FourthCoordinateCornerVelocity,
+                value: bad,
+            }),
+        );
+    }
+    common::group_parameter(&mut e, GroupParameter::FourthCoordinateCornerVelocity, 0.0);
+}
