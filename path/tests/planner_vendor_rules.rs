@@ -7,7 +7,8 @@ mod common;
 use common::*;
 use path::geometry::{Arc, Segment, Turn};
 use path::planner::{
-    CornerAngles, Join, LookaheadLimits, PathEvent, PathPlanner, PlannerConfig, Transition,
+    ChordErrorBands, CornerAngles, Join, LookaheadLimits, PathEvent, PathPlanner, PlannerConfig,
+    Transition,
 };
 
 /// Two lines of 100 with a turn of `angle` between them, blended at the previous motion's
@@ -266,4 +267,44 @@ fn nmc_fourth_axis_turn_velocity_caps_the_corner_where_the_path_turns() {
         "{}",
         states[index].path_velocity
     );
+}
+
+#[test]
+fn nmc_arc_section_bands_pick_the_chord_error_by_radius() {
+    // TArcSecSetting: [0, r0] → err0, [r0, r1] → err1, beyond → err2. The circle's radius is
+    // 10: with r0 = 5, r1 = 50 it takes err1; with r0 = 20 err0; with r1 = 8 err2.
+    let peak_for = |edges: [f64; 2]| {
+        circle_peak(LookaheadLimits {
+            chord_error: Some(0.001),
+            chord_error_bands: Some(ChordErrorBands {
+                edges,
+                errors: [Some(0.004), Some(0.0001)],
+            }),
+            ..LookaheadLimits::default()
+        })
+    };
+    let expected = |e: f64| 2.0 * 10.0 * (1.0 - e / 10.0).acos() / 1e-3;
+    for (edges, e) in [
+        ([5.0, 50.0], 0.004),
+        ([20.0, 50.0], 0.001),
+        ([5.0, 8.0], 0.0001),
+    ] {
+        let peak = peak_for(edges);
+        assert!(
+            (peak - expected(e)).abs() < 1e-6,
+            "{edges:?}: {peak} vs {}",
+            expected(e)
+        );
+    }
+    // Both edges 0: no bands, the chord error everywhere; a band without an error: no limit.
+    assert!((peak_for([0.0, 0.0]) - expected(0.001)).abs() < 1e-6);
+    let free = circle_peak(LookaheadLimits {
+        chord_error: Some(0.001),
+        chord_error_bands: Some(ChordErrorBands {
+            edges: [5.0, 50.0],
+            errors: [None, None],
+        }),
+        ..LookaheadLimits::default()
+    });
+    assert!(free > 900.0, "{free}");
 }

@@ -221,19 +221,10 @@ fn crd_config(c: &mut Call<'_>) -> Result<(), Refusal> {
     // The 0x17xx family: transforms and the break point go with the old group; the
     // arc-section table is the new group's chord error.
     let table = c.service.frames().on_config(n);
-    let chord = crate::nmc::crd_frames::chord_error(&table);
-    if chord > 0.0 {
-        let scale = axes.first().map_or(
-            mcemu_dialects::PulseScale {
-                pulses_per_unit: 1.0,
-            },
-            |a| c.scale(*a),
-        );
-        c.command(parameter(
-            n,
-            GroupParameter::ChordError,
-            scale.to_engine(chord),
-        ));
+    if crate::nmc::crd_frames::chord_error(&table) != (0.0, [0.0; 2], [0.0; 2]) {
+        for command in super::crd_frames::chord_commands(c, n, &axes, &table) {
+            c.command(command);
+        }
     }
     let turn_vel = c.service.frames().crd_turn_vel(n);
     if turn_vel > 0.0 {
