@@ -1252,3 +1252,96 @@ fn bad_splines_and_ellipses_are_refused_and_nothing_is_queued() {
     }
     assert_eq!(group(&e).queue_used, 0);
 }
+
+/// Issue 13 (NMC arc sections, `TArcSecSetting` → `chord_error`): every tick's commanded
+/// point lies on the arc, and the chord between two ticks leaves it by at most the chord
+/// error (its sagitta r − |midpoint − centre|): the error is between samples, never of them.
+#[test]
+fn chord_error_samples_lie_on_the_arc_and_chords_stay_within_the_error() {
+    let mut e = machine(2, &[0, 1]);
+    let epsilon = 1e-6;
+    common::group_parameter(&mut e, GroupParameter::ChordError, epsilon);
+    // A full circle of radius 10 about (10, 0) from the origin, at 100 mm/s requested: the
+    // chord error caps it at 2·r·acos(1 − ε/r)/T = 8.94 mm/s (the axes allow 100).
+    common::group_parameter(&mut e, GroupParameter::Velocity, 100.0);
+    send(&mut e, circle(&[10.0, 0.0], &[0.0, 0.0], ArcDirection::Ccw));
+    let mut last = positions(&e, 2);
+    let mut worst_sagitta = 0.0_f64;
+    let n = (20.0 / e.period()).round() as u64;
+    for _ in 0..n {
+        e.step();
+        let p = positions(&e, 2);
+        let r = ((p[0] - 10.0).powi(2) + p[1].powi(2)).sqrt();
+        assert!((r - 10.0).abs() < 1e-9, "a sample off the arc: r {r}");
+        let mid = [(p[0] + last[0]) / 2.0, (p[1] + last[1]) / 2.0];
+        let sagitta = 10.0 - ((mid[0] - 10.0).powi(2) + mid[1].powi(2)).sqrt();
+        worst_sagitta = worst_sagitta.max(sagitta);
+        last = p;
+        if group(&e).state == GroupState::Standby {
+            break;
+        }
+    }
+    assert_eq!(group(&e).state, GroupState::Standby);
+    // The cap binds (the chords come within 1 % of ε) and holds.
+    assert!(
+        worst_sagitta <= epsilon * (1.0 + 1e-6),
+        "sagitta {worst_sagitta}"
+    );
+    assert!(worst_sagitta > 0.99 * epsilon, "sagitta {worst_sagitta}");
+}
+
+/// NMC `NMC_CrdSetFourthAxisToTurnVel` (issue 13): `fourth_coordinate_corner_velocity` limits
+/// the fourth coordinate's speed where the path turns; a junction without it runs faster.
+#[test]
+fn the_fourth_coordinate_corner_velocity_slows_a_turning_junction() {
+    fn slowest_at_the_corner(limit: Option<f64>) -> f64 {
+        let mut e = machine(4, &[0, 1, 2, 3]);
+        if let Some(v) = limit {
+            common::group_parameter(&mut e, GroupParameter::FourthCoordinateCornerVelocity, v);
+        }
+        send(&mut e, line(&[40.0, 0.0, 0.0, 40.0]));
+        send(
+            &mut e,
+            MoveLinearAbsolute {
+                buffer_mode: GroupBufferMode::BlendingPrevious,
+                // A slight turn in XY (0.01 rad), which the axes' own corner rule lets pass
+                // at full speed.
+                ..line(&[80.0, 0.4, 0.0, 80.0])
+            },
+        );
+        let mut slowest = f64::INFINITY;
+        let n = (20.0 / e.period()).round() as u64;
+        for _ in 0..n {
+            e.step();
+            let g = group(&e);
+            let p = positions(&e, 4);
+            if (p[0] - 40.0).abs() < 1.0 {
+                slowest = slowest.min(g.path_velocity);
+            }
+            if g.state == GroupState::Standby {
+                break;
+            }
+        }
+        slowest
+    }
+    // A moves at about v/√2 on both lines: at most 5 mm/s at the corner is a path speed of
+    // 7.07 (plus at most one tick of path acceleration).
+    let capped = slowest_at_the_corner(Some(5.0));
+    assert!(capped <= 5.0 * 2f64.sqrt() + 1.0 + 1e-9, "{capped}");
+    assert!(capped > 0.0, "a blended corner does not stop");
+    let free = slowest_at_the_corner(None);
+    assert!(free > capped + 5.0, "{free} vs {capped}");
+    // Negative or non-finite: refused; 0: off.
+    let mut e = machine(4, &[0, 1, 2, 3]);
+    for bad in [-1.0, f64::NAN] {
+        refused(
+            &mut e,
+            Command::from(GroupSetParameter {
+                group: 1,
+                name: GroupParameter::FourthCoordinateCornerVelocity,
+                value: bad,
+            }),
+        );
+    }
+    common::group_parameter(&mut e, GroupParameter::FourthCoordinateCornerVelocity, 0.0);
+}
