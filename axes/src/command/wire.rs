@@ -200,6 +200,8 @@ pub(super) enum Command {
     CompensationOffsetProfile(super::CompensationOffsetProfile),
     CompensationOffsetTrigger(super::CompensationOffsetTrigger),
     CompensationOffsetStop(super::CompensationOffsetStop),
+    // Issue 14, HIMC BindEMO: the E-stop input.
+    SetEstopInput(super::SetEstopInput),
 }
 
 impl From<Command> for super::Command {
@@ -365,6 +367,7 @@ impl From<Command> for super::Command {
             Command::CompensationOffsetProfile(c) => super::Command::from(c),
             Command::CompensationOffsetTrigger(c) => super::Command::from(c),
             Command::CompensationOffsetStop(c) => super::Command::from(c),
+            Command::SetEstopInput(c) => super::Command::from(c),
         }
     }
 }
@@ -416,6 +419,7 @@ impl From<super::Command> for Command {
             }
             super::Command::Machine(MachineCommand::ResetAll(c)) => Command::ResetAll(c),
             super::Command::Machine(MachineCommand::GantryHome(c)) => Command::GantryHome(c),
+            super::Command::Machine(MachineCommand::SetEstopInput(c)) => Command::SetEstopInput(c),
             super::Command::Group(GroupCommand::Create(c)) => Command::GroupCreate(c),
             super::Command::Group(GroupCommand::Delete(c)) => Command::GroupDelete(c),
             super::Command::Group(GroupCommand::Enable(c)) => Command::GroupEnable(c),

@@ -26,6 +26,9 @@ pub enum Ty {
     /// `double *` output of 6 elements (§8.3.30, 8.3.32–33): written as `{}` (or any array);
     /// the values come back in the reply.
     OutArray6,
+    /// `int *` output (`GetConfigVar`'s `result`, §17.3.1): written as `{}` like the array
+    /// outputs; the value comes back in the reply.
+    OutInt,
 }
 
 /// A return type.
@@ -39,6 +42,9 @@ pub enum Ret {
     Int64,
     /// `int` return code plus the 6-element output array.
     Array6,
+    /// A `double` plus an `int *` status output, 0 ok and −1 failed (`GetConfigVar`):
+    /// replied as the status then the value, as the array getters put their code first.
+    DoubleWithStatus,
     Void,
 }
 
@@ -130,6 +136,7 @@ pub fn check_args(params: &[Ty], args: Vec<Arg>) -> Result<Args, ArgMismatch> {
                 }
             },
             (Ty::OutArray6, Arg::Array(_)) => Value::Array([0.0; 6]),
+            (Ty::OutInt, Arg::Array(_)) => Value::Int(0),
             (ty, arg) => {
                 return Err(ArgMismatch(format!(
                     "argument {}: {arg:?} is not {ty:?}",
