@@ -13,7 +13,8 @@ pub enum Outcome {
     Int64(i64),
     /// The return code and the six output values (§8.3.30, §8.3.32–33).
     Array(i32, [f64; 6]),
-    /// The `int *` status output, then the `double` returned (`GetConfigVar`, §17.3.1).
+    /// A status and a value: `GetConfigVar`'s `int *` status output then the `double` it
+    /// returns (§17.3.1); `GetTouchProbe1Pos`'s `int` code then its `double *` output (§13.10).
     WithStatus(i32, f64),
     Void,
 }

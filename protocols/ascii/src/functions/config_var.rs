@@ -304,7 +304,7 @@ pub static ROWS: &[Function] = &[
     row(
         "GetConfigVar",
         "17.3.1",
-        &[Ty::Int, Ty::OutInt],
+        &[Ty::Int, Ty::Out],
         Ret::DoubleWithStatus,
         Addresses::Controller,
         get_config_var,
