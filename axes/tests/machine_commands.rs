@@ -9,10 +9,12 @@
 mod common;
 
 use axes::cia402::State;
+use axes::command::ForceDigitalInput;
 use axes::command::{
     AxisInput, BufferMode, Command, CommandState, DisableAll, EmergencyStopAll, Enable, EnableAll,
     EngineError, ErrorKind, ForceInput, GetCommandState, MoveAbsolute, MoveRelative, MoveTogether,
-    MoveVelocity, Reply, ResetAll, SetParameter, StopAll, StopAxes, StopMode, TogetherMove,
+    MoveVelocity, Reply, ResetAll, SetEstopInput, SetParameter, StopAll, StopAxes, StopMode,
+    TogetherMove,
 };
 use axes::config::AxisConfig;
 use axes::engine::MAX_ATOMIC_COMMANDS;
@@ -507,6 +509,79 @@ fn emergency_stop_all_latches_estop_until_reset_all() {
         first_moving_ticks(&mut e, &[0, 1], 5),
         vec![Some(e.tick()); 2]
     );
+}
+
+fn force(e: &mut Engine, channel: u16, value: bool) {
+    ok(
+        e,
+        Command::from(ForceDigitalInput {
+            channel,
+            value: Some(value),
+        }),
+    );
+}
+
+fn estop_input(channel: Option<u16>, level: bool) -> Command {
+    Command::from(SetEstopInput { channel, level })
+}
+
+fn estopped(e: &Engine, axis: usize) -> bool {
+    let s = st(e, axis);
+    s.state == AxisState::ErrorStop && s.latched.contains(AxisFlags::ESTOP)
+}
+
+#[test]
+fn the_estop_input_stops_every_axis_in_the_tick_that_reads_its_edge() {
+    // HIMC BindEMO (digest 004 §1.10, §9.2.6): GPI 8 is DI 7.
+    let mut e = jogging(2, 20.0);
+    // The twin is e-stopped by command just before the same tick.
+    let mut twin = jogging(2, 20.0);
+    ok(&mut e, estop_input(Some(7), true));
+    force(&mut e, 7, true);
+    force(&mut twin, 7, true);
+    ok(&mut twin, Command::from(EmergencyStopAll {}));
+    e.step();
+    twin.step();
+    assert_eq!(e.estop_input_trips(), 1);
+    for a in 0..2 {
+        assert!(estopped(&e, a), "axis {a} in the tick that read the edge");
+        assert_eq!(st(&e, a), st(&twin, a), "axis {a}");
+    }
+    // Held high: no new edge. Falling and rising again fires again.
+    run(&mut e, 0.01);
+    assert_eq!(e.estop_input_trips(), 1);
+    force(&mut e, 7, false);
+    e.step();
+    force(&mut e, 7, true);
+    e.step();
+    assert_eq!(e.estop_input_trips(), 2);
+}
+
+#[test]
+fn an_estop_input_bound_at_its_active_level_waits_for_the_next_edge() {
+    let mut e = jogging(1, 20.0);
+    force(&mut e, 3, true);
+    e.step();
+    ok(&mut e, estop_input(Some(3), true));
+    run(&mut e, 0.01);
+    assert!(!estopped(&e, 0), "already on when bound: no edge");
+    // Active low (an inverted input): the input falling is the edge.
+    ok(&mut e, estop_input(Some(3), false));
+    force(&mut e, 3, false);
+    e.step();
+    assert!(estopped(&e, 0));
+    // Unbound: nothing fires.
+    ok(&mut e, Command::from(ResetAll {}));
+    enable(&mut e, 0);
+    ok(&mut e, estop_input(None, true));
+    force(&mut e, 3, true);
+    run(&mut e, 0.01);
+    force(&mut e, 3, false);
+    run(&mut e, 0.01);
+    assert!(!estopped(&e, 0));
+    assert_eq!(e.estop_input_trips(), 1);
+    let err = refused(&mut e, estop_input(Some(64), true));
+    assert_eq!(err.kind(), ErrorKind::InvalidChannel, "{err}");
 }
 
 #[test]

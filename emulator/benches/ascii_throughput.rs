@@ -4,12 +4,19 @@
 //!
 //! ```sh
 //! cargo bench -p mcemu --bench ascii_throughput
-//! MCEMU_ASCII_CALLS=20000 cargo bench -p mcemu --bench ascii_throughput
+//! MCEMU_ASCII_CALLS=5000 MCEMU_ASCII_ROUNDS=9 cargo bench -p mcemu --bench ascii_throughput
 //! ```
 //!
 //! mcemu runs as its own process (`mcemu run --config fixtures/himc.toml`, listeners on free
 //! ports); the echo server is a thread per connection of this process reading a line and
 //! writing it back.
+//!
+//! A loaded host moves both figures by more than the difference between them, so the two are
+//! measured in interleaved rounds (echo then mcemu, then mcemu then echo, …), each round gives
+//! a ratio, and the figure is the median ratio (with the lowest and highest); the host's load
+//! average is printed before and after. Beside it, the median of echo p50 ÷ mcemu p50: with one
+//! call in flight the p50 latency is the rate a call takes when neither side is descheduled,
+//! which a loaded host moves least.
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
@@ -25,7 +32,26 @@ fn calls() -> usize {
     std::env::var("MCEMU_ASCII_CALLS")
         .ok()
         .and_then(|v| v.parse().ok())
-        .unwrap_or(5000)
+        .unwrap_or(2000)
+}
+
+fn rounds() -> usize {
+    std::env::var("MCEMU_ASCII_ROUNDS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .filter(|&r| r > 0)
+        .unwrap_or(7)
+}
+
+fn load_average() -> String {
+    std::fs::read_to_string("/proc/loadavg")
+        .map(|s| s.split_whitespace().take(3).collect::<Vec<_>>().join(" "))
+        .unwrap_or_else(|_| "?".into())
+}
+
+fn median(values: &mut [f64]) -> f64 {
+    values.sort_by(f64::total_cmp);
+    values[values.len() / 2]
 }
 
 /// One client: send the call, read one reply line.
@@ -119,6 +145,7 @@ fn echo(s: TcpStream) {
 
 fn main() {
     let n = calls();
+    let rounds = rounds();
     let m = Mcemu::start(Some(&workspace_root().join("fixtures/himc.toml")), &[]);
     let native: SocketAddr = m.address("ascii-native").parse().unwrap();
     let listener = TcpListener::bind("127.0.0.1:0").unwrap();
@@ -128,16 +155,38 @@ fn main() {
             std::thread::spawn(move || echo(s));
         }
     });
-    println!("GetPosFb(0) over Native ASCII, {n} calls per client (mcemu {native}):");
+    println!(
+        "GetPosFb(0) over Native ASCII, {n} calls per client, {rounds} interleaved rounds \
+         (mcemu {native}); load average {}",
+        load_average()
+    );
     for clients in [1, 16] {
-        let floor = measure(echo_addr, clients, n);
-        report("line echo", clients, floor);
-        let got = measure(native, clients, n);
-        report("GetPosFb(0), Native ASCII", clients, got);
+        let mut ratios = Vec::with_capacity(rounds);
+        let mut p50_ratios = Vec::with_capacity(rounds);
+        for round in 0..rounds {
+            // Alternate which goes first, so a drift in the host's load favours neither.
+            let (floor, got) = if round % 2 == 0 {
+                let floor = measure(echo_addr, clients, n);
+                (floor, measure(native, clients, n))
+            } else {
+                let got = measure(native, clients, n);
+                (measure(echo_addr, clients, n), got)
+            };
+            report("line echo", clients, floor);
+            report("GetPosFb(0), Native ASCII", clients, got);
+            ratios.push(got.0 / floor.0);
+            p50_ratios.push(floor.1.as_secs_f64() / got.1.as_secs_f64());
+        }
+        let (low, high) = ratios
+            .iter()
+            .fold((f64::MAX, f64::MIN), |(l, h), &r| (l.min(r), h.max(r)));
         println!(
-            "{:>24} {clients:>2} client(s): {:.2}× the echo",
+            "{:>24} {clients:>2} client(s): median {:.2}× the echo (rounds {low:.2}–{high:.2}×); \
+             by p50 latency {:.2}×",
             "ratio",
-            got.0 / floor.0
+            median(&mut ratios),
+            median(&mut p50_ratios)
         );
     }
+    println!("load average after: {}", load_average());
 }

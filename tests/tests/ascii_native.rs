@@ -251,3 +251,26 @@ fn move_home_can_wait_for_the_end_of_homing() {
     assert_eq!(m.axis(1)["state"], "standstill");
     assert_eq!(c.call("IsHomed(1)"), "1");
 }
+
+#[test]
+fn pipelined_replies_ready_before_a_waiting_call_are_not_held_back() {
+    // The replies to the lines of one read go out together, but only up to a line that waits:
+    // the two getters before `MoveHome` (which waits for homing here) are answered while it
+    // still waits, and the getter after it only once it has answered.
+    let m = himc(&["--set", "frontends.ascii_native.move_home_waits=true"]);
+    let mut c = AsciiClient::connect(m.address("ascii-native"));
+    assert_eq!(c.call("SetHomeMethod(1, HOME_METHOD_37)"), "0");
+    assert_eq!(c.call("Enable(1)"), "0");
+    m.advance(&serde_json::json!({"seconds": 0.5}));
+    c.send(b"GetAxisNum()\r\nIsHoming(1)\r\nMoveHome(1)\r\nIsHomed(1)\r\n");
+    // No time passes meanwhile (virtual clock): homing cannot have ended.
+    let ready = Duration::from_secs(10);
+    assert_eq!(c.try_read_reply(ready).as_deref(), Some("4\r\n"));
+    assert_eq!(c.try_read_reply(ready).as_deref(), Some("0\r\n"));
+    let reply = (0..100).find_map(|_| {
+        m.advance(&serde_json::json!({"seconds": 0.1}));
+        c.try_read_reply(Duration::from_millis(100))
+    });
+    assert_eq!(reply.as_deref(), Some("0\r\n"), "MoveHome");
+    assert_eq!(c.read_reply(), "1\r\n", "IsHomed after homing");
+}

@@ -134,6 +134,26 @@ pub struct EmergencyStopAll {}
 #[serde(deny_unknown_fields)]
 pub struct ResetAll {}
 
+/// Bind the machine's E-stop input (HIMC `BindEMO`, digest 004 §1.10, §9.2.6): digital input
+/// `channel` reaching `level` from the other level applies `emergency_stop_all` in the tick that
+/// reads it, before the planners run, so no axis takes a step on that tick's setpoints. Without
+/// `channel`, no input is bound. A new binding starts from the input's level now: binding an
+/// input already at `level` fires nothing until it leaves and comes back. JSON `type`:
+/// `set_estop_input`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SetEstopInput {
+    #[serde(default)]
+    pub channel: Option<u16>,
+    /// The active level (default high; an inverted input is active low).
+    #[serde(default = "active_high")]
+    pub level: bool,
+}
+
+fn active_high() -> bool {
+    true
+}
+
 /// A machine-wide command.
 #[derive(Clone, Debug, PartialEq)]
 pub enum MachineCommand {
@@ -147,6 +167,7 @@ pub enum MachineCommand {
     ResetAll(ResetAll),
     /// HMC_GantryInit (`command/gantry.rs`): a sequence over several axes.
     GantryHome(GantryHome),
+    SetEstopInput(SetEstopInput),
 }
 
 command_from!(
@@ -162,5 +183,6 @@ command_from!(
         EmergencyStopAll => EmergencyStopAll,
         ResetAll => ResetAll,
         GantryHome => GantryHome,
+        SetEstopInput => SetEstopInput,
     ]
 );

@@ -155,7 +155,7 @@ pub use io::{
 };
 pub use machine::{
     DisableAll, EmergencyStopAll, EnableAll, GetCommandState, MachineCommand, MoveTogether,
-    ResetAll, StopAll, StopAxes, TogetherMove,
+    ResetAll, SetEstopInput, StopAll, StopAxes, TogetherMove,
 };
 pub use sampling::{
     SampledVariable, SamplerId, SamplingCommand, SamplingConfigure, SamplingRead, SamplingStart,

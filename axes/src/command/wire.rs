@@ -202,6 +202,8 @@ pub(super) enum Command {
     CompensationOffsetStop(super::CompensationOffsetStop),
     // Issue 13, NMC_MtClrStsByBits.
     ResetFaults(super::ResetFaults),
+    // Issue 14, HIMC BindEMO: the E-stop input.
+    SetEstopInput(super::SetEstopInput),
 }
 
 impl From<Command> for super::Command {
@@ -368,6 +370,7 @@ impl From<Command> for super::Command {
             Command::CompensationOffsetTrigger(c) => super::Command::from(c),
             Command::CompensationOffsetStop(c) => super::Command::from(c),
             Command::ResetFaults(c) => super::Command::from(c),
+            Command::SetEstopInput(c) => super::Command::from(c),
         }
     }
 }
@@ -420,6 +423,7 @@ impl From<super::Command> for Command {
             }
             super::Command::Machine(MachineCommand::ResetAll(c)) => Command::ResetAll(c),
             super::Command::Machine(MachineCommand::GantryHome(c)) => Command::GantryHome(c),
+            super::Command::Machine(MachineCommand::SetEstopInput(c)) => Command::SetEstopInput(c),
             super::Command::Group(GroupCommand::Create(c)) => Command::GroupCreate(c),
             super::Command::Group(GroupCommand::Delete(c)) => Command::GroupDelete(c),
             super::Command::Group(GroupCommand::Enable(c)) => Command::GroupEnable(c),

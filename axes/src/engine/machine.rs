@@ -40,6 +40,8 @@ pub(super) struct Checkpoint {
     input_starts: Option<Vec<super::stream_inputs::InputStart>>,
     /// `gantry_home` runs (a batch may start one).
     gantry_homes: Option<Vec<super::gantry_home::GantryHoming>>,
+    /// The E-stop input binding (`set_estop_input` may be in a batch).
+    estop_input: Option<super::estop_input::EstopInput>,
     io: Option<Io>,
     slaves: Option<Vec<Slave>>,
     ledger: LedgerMark,
@@ -126,6 +128,7 @@ impl Engine {
             }
             MachineCommand::ResetAll(_) => self.reset_everything(),
             MachineCommand::GantryHome(c) => self.start_gantry_home(c),
+            MachineCommand::SetEstopInput(c) => self.set_estop_input(c),
         }
     }
 
@@ -285,7 +288,7 @@ impl Engine {
     /// stops the axis, powers it off and leaves the drive in Fault; a power walk in progress is
     /// dropped.
     /// Every enabled group goes to ErrorStop (`emergency_stop`) too.
-    fn emergency_stop_everything(&mut self) {
+    pub(super) fn emergency_stop_everything(&mut self) {
         self.groups_await_power = false;
         self.with_groups(|groups, env| groups.emergency_stop_all(env));
         for axis in 0..self.axes.len() {
@@ -393,8 +396,10 @@ impl Engine {
         let triggers = matches!(scope, Scope::Machine).then(|| self.triggers.clone());
         let input_starts = matches!(scope, Scope::Machine).then(|| self.input_starts.clone());
         let gantry_homes = matches!(scope, Scope::Machine).then(|| self.gantry_homes.clone());
+        let estop_input = matches!(scope, Scope::Machine).then_some(self.estop_input);
         Checkpoint {
             gantry_homes,
+            estop_input,
             axes,
             groups,
             couplings,
@@ -427,6 +432,9 @@ impl Engine {
         }
         if let Some(runs) = checkpoint.gantry_homes {
             self.gantry_homes = runs;
+        }
+        if let Some(estop_input) = checkpoint.estop_input {
+            self.estop_input = estop_input;
         }
         if let Some(io) = checkpoint.io {
             self.io = io;

@@ -25,6 +25,7 @@ use std::sync::Arc;
 
 mod compensation;
 mod do_pulses;
+mod estop_input;
 mod gantry_home;
 mod machine;
 mod planner;
@@ -152,6 +153,8 @@ pub struct Engine {
     input_starts: Vec<stream_inputs::InputStart>,
     /// `gantry_home` runs, running or ended (`gantry_home.rs`).
     gantry_homes: Vec<gantry_home::GantryHoming>,
+    /// The E-stop input (`estop_input.rs`), watched in stage 1b.
+    estop_input: estop_input::EstopInput,
 }
 
 impl Engine {
@@ -230,6 +233,7 @@ impl Engine {
             samplers: Samplers::default(),
             input_starts: Vec::new(),
             gantry_homes: Vec::new(),
+            estop_input: Default::default(),
         })
     }
 
@@ -710,7 +714,8 @@ impl Engine {
     /// traces compare bit for bit):
     ///
     /// 1. `read_inputs`: the I/O image's inputs from last tick's sensors, and the timed
-    ///    outputs (`pulse_digital_output`) that toggle this tick;
+    ///    outputs (`pulse_digital_output`) that toggle this tick; 1b. the E-stop input
+    ///    (`set_estop_input`): reaching its active level e-stops the machine in this tick;
     /// 2. `run_planners`: the axis groups (issue 11), in group-number order, then the other
     ///    machine-level planners, feed their axes this tick's setpoints;
     /// 3. `step_axes`: every axis, in index order, or with couplings (issue 12) masters before
@@ -731,6 +736,7 @@ impl Engine {
         self.step_gantry_homes();
         self.tick += 1;
         self.read_inputs();
+        self.watch_estop_input();
         self.run_planners();
         self.gather_compensation_inputs();
         self.step_axes();

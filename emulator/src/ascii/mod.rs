@@ -2,10 +2,9 @@
 //! (`listening: ascii-native ADDR`), served by `mcemu_ascii::transport::native` over the engine,
 //! its counters in `GET /api/v1/state`. The User ASCII front-end is [`user`].
 //!
-//! It runs on a thread of its own with a single-threaded tokio runtime (issue 14,
-//! Performance): a client's line is read, answered and written by the thread epoll woke,
-//! without the shared runtime waking a second worker for every line. Only what a line sends to
-//! the engine crosses to the servo thread; a getter answers from the latest snapshot.
+//! It runs on the shared runtime (docs/decisions.md, "Native ASCII stays on the shared
+//! runtime"). Only what a line sends to the engine crosses to the servo thread; a getter
+//! answers from the latest snapshot.
 
 pub mod user;
 
@@ -51,7 +50,9 @@ pub fn start<'a>(cx: &'a FrontendContext<'a>, tasks: &'a mut JoinSet<()>) -> Sta
             .await
             .map_err(|e| FrontendError::new("ascii_native", e))?;
         let server = Server::new(config.clone(), cx.handle.clone());
-        // The E-stop input (BindEMO, digest 004 §1.10) is watched every servo tick.
+        // The E-stop input (BindEMO, digest 004 §1.10): the engine watches it every servo
+        // tick; the observer reports its trips for the error latch.
+        server.install_estop().await;
         cx.handle
             .add_observer_async(server.estop_observer())
             .await

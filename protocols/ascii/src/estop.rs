@@ -2,87 +2,87 @@
 //! the bound GPI (8 unless `BindEMO` chose another, 0 = none) stops every axis at once, as
 //! `EStop` does, and latches `eERR_EMERGENCY_STOP`.
 //!
-//! Sans-IO. [`EstopBinding`] is shared between the Native ASCII server, which publishes the
-//! binding its registers hold after every line ([`EstopBinding::publish`]), and an
-//! [`EstopInput`], which the transport runs after every servo tick (an engine observer) with
-//! the digital inputs of that tick: [`EstopInput::tick`] says whether the E-stop fires now.
-//! The server then reads [`EstopBinding::take_tripped`] before each line to latch the code.
+//! The engine watches the input (`set_estop_input`): the tick that reads the edge is the tick
+//! the axes stop. This module is the front-end's side of it, sans-IO:
+//! - [`EstopSent`]: the binding the engine holds, so that a line that changed the registers'
+//!   binding (`BindEMO`, `SetGPIInvert` of the bound pin) sends the new one before its reply;
+//! - [`EstopTrips`]: the engine's count of trips, which an engine observer publishes after every
+//!   tick, so that the next line latches the code.
 
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::atomic::{AtomicU64, Ordering};
 
-/// The bound input as the server last published it: 0 = none, else (channel + 1) with bit 32
-/// set when the input is inverted (`SetGPIInvert`, which the E-stop sees as every reader does).
-#[derive(Debug)]
-pub struct EstopBinding {
-    bound: AtomicU64,
-    tripped: AtomicBool,
+use axes::command::{Command, SetEstopInput};
+
+/// The binding registers ask for: (channel, inverted), or none.
+pub type Binding = Option<(usize, bool)>;
+
+/// The engine command that binds `binding`: an inverted input is active low (the E-stop sees
+/// the input as every HMPL reader does).
+pub fn command(binding: Binding) -> Command {
+    let bound = binding.and_then(|(c, inverted)| Some((u16::try_from(c).ok()?, inverted)));
+    Command::from(SetEstopInput {
+        channel: bound.map(|(c, _)| c),
+        level: !bound.is_some_and(|(_, inverted)| inverted),
+    })
 }
 
+/// The binding last sent to the engine, as one word (`u64::MAX`: none sent yet; 0: none
+/// bound; else channel + 1, bit 32 set when inverted), so every line compares it without a
+/// lock.
+#[derive(Debug)]
+pub struct EstopSent(AtomicU64);
+
+const NOT_SENT: u64 = u64::MAX;
 const INVERTED: u64 = 1 << 32;
 
-impl EstopBinding {
-    /// GPI 8 (channel 7), not inverted: the controller's default.
-    pub fn new() -> EstopBinding {
-        let b = EstopBinding {
-            bound: AtomicU64::new(0),
-            tripped: AtomicBool::new(false),
-        };
-        b.publish(Some(7), false);
-        b
-    }
-
-    /// The binding now: input `channel` (0-based), inverted or not; `None`: no E-stop input.
-    pub fn publish(&self, channel: Option<usize>, inverted: bool) {
-        let word = match channel.and_then(|c| u32::try_from(c).ok()) {
-            Some(c) => (u64::from(c) + 1) | if inverted { INVERTED } else { 0 },
-            None => 0,
-        };
-        self.bound.store(word, Ordering::Relaxed);
-    }
-
-    fn load(&self) -> Option<(usize, bool)> {
-        let word = self.bound.load(Ordering::Relaxed);
-        let channel = (word & u64::from(u32::MAX)).checked_sub(1)?;
-        Some((usize::try_from(channel).ok()?, word & INVERTED != 0))
-    }
-
-    /// Whether the E-stop fired since the last call (the code is then to be latched).
-    pub fn take_tripped(&self) -> bool {
-        // A plain load first: the common case (nothing fired) writes nothing.
-        self.tripped.load(Ordering::Relaxed) && self.tripped.swap(false, Ordering::AcqRel)
+fn word(binding: Binding) -> u64 {
+    match binding.and_then(|(c, inv)| Some((u32::try_from(c).ok()?, inv))) {
+        Some((c, inverted)) => (u64::from(c) + 1) | if inverted { INVERTED } else { 0 },
+        None => 0,
     }
 }
 
-impl Default for EstopBinding {
+impl EstopSent {
+    pub fn new() -> EstopSent {
+        EstopSent(AtomicU64::new(NOT_SENT))
+    }
+
+    /// Whether the engine holds `binding` already.
+    pub fn holds(&self, binding: Binding) -> bool {
+        self.0.load(Ordering::Acquire) == word(binding)
+    }
+
+    /// The engine was sent `binding`.
+    pub fn sent(&self, binding: Binding) {
+        self.0.store(word(binding), Ordering::Release);
+    }
+}
+
+impl Default for EstopSent {
     fn default() -> Self {
-        EstopBinding::new()
+        EstopSent::new()
     }
 }
 
-/// The edge detector, one per machine: call [`EstopInput::tick`] once per servo tick.
+/// The engine's E-stop input trips, as the observer saw them and as the lines latched them.
 #[derive(Debug, Default)]
-pub struct EstopInput {
-    /// The binding and its level at the last tick.
-    last: Option<((usize, bool), bool)>,
+pub struct EstopTrips {
+    published: AtomicU64,
+    latched: AtomicU64,
 }
 
-impl EstopInput {
-    /// The digital inputs `di` of this tick; true when the bound input rose (after inversion)
-    /// since the last tick, and `binding` records that it fired. A new binding starts from the
-    /// input's level: binding an input that is already on fires nothing.
-    pub fn tick(&mut self, binding: &EstopBinding, di: &[bool]) -> bool {
-        let Some(bound) = binding.load() else {
-            self.last = None;
-            return false;
-        };
-        let (channel, inverted) = bound;
-        let level = di.get(channel).is_some_and(|&on| on != inverted);
-        let rose = matches!(self.last, Some((was, false)) if was == bound) && level;
-        self.last = Some((bound, level));
-        if rose {
-            binding.tripped.store(true, Ordering::Release);
-        }
-        rose
+impl EstopTrips {
+    /// After a tick: the engine's count (`Engine::estop_input_trips`).
+    pub fn publish(&self, trips: u64) {
+        self.published.store(trips, Ordering::Release);
+    }
+
+    /// Whether the input fired since the last call (the code is then to be latched).
+    pub fn take_tripped(&self) -> bool {
+        let now = self.published.load(Ordering::Acquire);
+        // A plain load first: the common case (nothing fired) writes nothing.
+        self.latched.load(Ordering::Relaxed) != now
+            && self.latched.swap(now, Ordering::AcqRel) != now
     }
 }
 
@@ -91,41 +91,38 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_rising_edge_of_the_bound_input_fires_once() {
-        let b = EstopBinding::new();
-        let mut e = EstopInput::default();
-        let mut di = [false; 8];
-        assert!(!e.tick(&b, &di));
-        di[7] = true;
-        assert!(e.tick(&b, &di));
-        assert!(!e.tick(&b, &di), "held high: no new edge");
-        assert!(b.take_tripped());
-        assert!(!b.take_tripped());
-        di[7] = false;
-        assert!(!e.tick(&b, &di));
-        di[3] = true;
-        assert!(!e.tick(&b, &di), "another input");
+    fn an_inverted_input_is_active_low() {
+        let c = |b| serde_json::to_value(command(b)).unwrap();
+        assert_eq!(
+            c(Some((7, false))),
+            serde_json::json!({"type": "set_estop_input", "channel": 7, "level": true})
+        );
+        assert_eq!(c(Some((2, true)))["level"], false);
+        assert_eq!(c(None)["channel"], serde_json::Value::Null);
     }
 
     #[test]
-    fn unbound_rebound_and_inverted() {
-        let b = EstopBinding::new();
-        let mut e = EstopInput::default();
-        let mut di = [false; 8];
-        b.publish(None, false);
-        e.tick(&b, &di);
-        di[7] = true;
-        assert!(!e.tick(&b, &di), "BindEMO(0): TV 7, no reaction");
-        // Bound to an input that is already on: no edge until it falls and rises again.
-        b.publish(Some(7), false);
-        assert!(!e.tick(&b, &di));
-        // Inverted: the input reads off while it is on; switching it off is the rising edge.
-        b.publish(Some(7), true);
-        assert!(!e.tick(&b, &di));
-        di[7] = false;
-        assert!(e.tick(&b, &di));
-        // A channel the machine does not have reads off.
-        b.publish(Some(40), false);
-        assert!(!e.tick(&b, &di));
+    fn a_binding_is_sent_once() {
+        let s = EstopSent::new();
+        assert!(!s.holds(Some((7, false))));
+        assert!(!s.holds(None), "nothing sent yet: not even none");
+        s.sent(Some((7, false)));
+        assert!(s.holds(Some((7, false))));
+        assert!(!s.holds(Some((7, true))));
+        s.sent(None);
+        assert!(s.holds(None));
+    }
+
+    #[test]
+    fn each_trip_is_latched_once() {
+        let t = EstopTrips::default();
+        assert!(!t.take_tripped());
+        t.publish(1);
+        assert!(t.take_tripped());
+        assert!(!t.take_tripped());
+        t.publish(1);
+        assert!(!t.take_tripped(), "the same count: no new trip");
+        t.publish(3);
+        assert!(t.take_tripped());
     }
 }

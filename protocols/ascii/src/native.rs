@@ -274,6 +274,7 @@ fn success(ret: Ret) -> Outcome {
         Ret::Double => Outcome::Double(0.0),
         Ret::Int64 => Outcome::Int64(0),
         Ret::Int | Ret::Status | Ret::Array6 => Outcome::Int(0),
+        Ret::DoubleWithStatus | Ret::IntWithValue => Outcome::WithStatus(0, 0.0),
     }
 }
 
@@ -286,6 +287,8 @@ fn failure(ret: Ret, code: u32) -> Outcome {
         Ret::Double => Outcome::Double(0.0),
         Ret::Int64 => Outcome::Int64(-1),
         Ret::Array6 => Outcome::Array(code as i32, [0.0; 6]),
+        Ret::DoubleWithStatus => Outcome::WithStatus(-1, 0.0),
+        Ret::IntWithValue => Outcome::WithStatus(code as i32, 0.0),
         Ret::Void => Outcome::Void,
     }
 }

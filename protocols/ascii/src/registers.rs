@@ -108,6 +108,12 @@ impl Registers {
     pub fn emo_channel(&self) -> Option<usize> {
         self.emo_pin.unwrap_or(8).checked_sub(1)
     }
+
+    /// The E-stop input's channel and whether it is inverted (`SetGPIInvert`), if one is bound.
+    pub fn estop_binding(&self) -> Option<(usize, bool)> {
+        self.emo_channel()
+            .map(|c| (c, self.gpi_inverted.contains(&(c + 1))))
+    }
 }
 
 /// The group's transition parameters (§8.3.26): trans_vel, trans_dis, trans_dev, trans_curv.

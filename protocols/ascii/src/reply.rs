@@ -1,6 +1,7 @@
 //! What a call returns, and its text on the wire (issue 14 item 1): `int` as a signed decimal
 //! (0x830207DA prints -2097018918, TV 71), `double` as C's `%.15g`, `int64` in decimal, the
-//! array getters as the code then six values, `void` as `0`.
+//! array getters as the code then six values, `GetConfigVar` as its status then its value,
+//! `void` as `0`.
 
 use std::fmt::Write;
 
@@ -12,6 +13,9 @@ pub enum Outcome {
     Int64(i64),
     /// The return code and the six output values (§8.3.30, §8.3.32–33).
     Array(i32, [f64; 6]),
+    /// A status and a value: `GetConfigVar`'s `int *` status output then the `double` it
+    /// returns (§17.3.1); `GetTouchProbe1Pos`'s `int` code then its `double *` output (§13.10).
+    WithStatus(i32, f64),
     Void,
 }
 
@@ -42,6 +46,10 @@ impl Outcome {
                     out.push(',');
                     write_g15(v, out);
                 }
+            }
+            Outcome::WithStatus(status, value) => {
+                let _ = write!(out, "{status},");
+                write_g15(value, out);
             }
             Outcome::Void => out.push('0'),
         }
@@ -129,5 +137,11 @@ mod tests {
     fn arrays_are_the_code_then_six_values() {
         let o = Outcome::Array(0, [400.0, 200.0, 0.0, 0.0, 0.0, 45.0]);
         assert_eq!(text(o), "0,400,200,0,0,0,45");
+    }
+
+    #[test]
+    fn a_status_output_comes_before_the_value() {
+        assert_eq!(text(Outcome::WithStatus(0, 2000.0)), "0,2000");
+        assert_eq!(text(Outcome::WithStatus(-1, 0.0)), "-1,0");
     }
 }

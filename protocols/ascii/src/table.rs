@@ -26,6 +26,10 @@ pub enum Ty {
     /// `double *` output of 6 elements (§8.3.30, 8.3.32–33): written as `{}` (or any array);
     /// the values come back in the reply.
     OutArray6,
+    /// A scalar output, `int *` or `double *` (`GetConfigVar`'s `result`, §17.3.1;
+    /// `GetTouchProbe1Pos`'s `output`, §13.10): written as `{}` like the array outputs; the
+    /// value comes back in the reply.
+    Out,
 }
 
 /// A return type.
@@ -39,6 +43,11 @@ pub enum Ret {
     Int64,
     /// `int` return code plus the 6-element output array.
     Array6,
+    /// A `double` plus an `int *` status output, 0 ok and −1 failed (`GetConfigVar`):
+    /// replied as the status then the value, as the array getters put their code first.
+    DoubleWithStatus,
+    /// An `int` return code plus a `double *` output (`GetTouchProbe1Pos`): `code,value`.
+    IntWithValue,
     Void,
 }
 
@@ -130,6 +139,7 @@ pub fn check_args(params: &[Ty], args: Vec<Arg>) -> Result<Args, ArgMismatch> {
                 }
             },
             (Ty::OutArray6, Arg::Array(_)) => Value::Array([0.0; 6]),
+            (Ty::Out, Arg::Array(_)) => Value::Int(0),
             (ty, arg) => {
                 return Err(ArgMismatch(format!(
                     "argument {}: {arg:?} is not {ty:?}",

@@ -1,21 +1,26 @@
-//! `SetConfigVar` (§17.3.2, digest 004 §1.11): a controller variable by its HCV id
-//! `0xCCNNAAAA` (CC class, NN axis or group, AAAA address). A variable an HMPL setter also
-//! writes goes through that setter, so its checks and codes are the setter's (TV 68:
-//! `SetConfigVar(0x83000065, 0.0)` is `SetSWRL(0, 0.0)`); the free variables `ltest0…9` and
-//! `dtest0…9` are kept in the registers. Unmarked (digest 004 §1.6): accepted unless `strict`.
+//! `SetConfigVar` (§17.3.2) and `GetConfigVar` (§17.3.1, digest 004 §1.11): a controller
+//! variable by its HCV id `0xCCNNAAAA` (CC class, NN axis or group, AAAA address). A variable
+//! an HMPL setter also writes goes through that setter, so its checks and codes are the
+//! setter's (TV 68: `SetConfigVar(0x83000065, 0.0)` is `SetSWRL(0, 0.0)`), and is read by the
+//! getter of the same name where there is one, else from the engine parameter it is (TV 74:
+//! the homing parameters, which have no getter); the free variables `ltest0…9` and `dtest0…9`
+//! are kept in the registers. Unmarked (digest 004 §1.6): accepted unless `strict`.
 //!
-//! Codes: an id of no listed variable → `eERR_HCV_ID_NOT_FOUND`; a status variable (clock,
-//! homing status, last error …) → `eERR_HCV_IS_READ_ONLY`; a listed variable mcemu does not
-//! model (P2P settings, drive resolutions …) → `eERR_HMPL_NOT_SUPPORTED`; a value an `int`
-//! setter cannot take (not integral, out of `int`) → `eERR_HCV_VALUE_OUT_OF_RANGE`.
+//! Codes: an id of no listed variable → `eERR_HCV_ID_NOT_FOUND` (TV 69); a status variable
+//! (clock, homing status, last error …) written → `eERR_HCV_IS_READ_ONLY`; a listed variable
+//! mcemu does not model (P2P settings, drive resolutions …) → `eERR_HMPL_NOT_SUPPORTED`; a value
+//! an `int` setter cannot take (not integral, out of `int`) → `eERR_HCV_VALUE_OUT_OF_RANGE`.
+//! `GetConfigVar` replies `result,value` (`0,2000`; failed: `-1,0`, the code latched).
 
 use axes::ParamId;
+use mcemu_dialects::himc::group::ProfileValues;
 use mcemu_dialects::himc::system::{
-    HCV_ID_NOT_FOUND, HCV_IS_READ_ONLY, HCV_VALUE_OUT_OF_RANGE, HMPL_NOT_SUPPORTED,
+    HCV_ID_NOT_FOUND, HCV_IS_READ_ONLY, HCV_VALUE_OUT_OF_RANGE, HMPL_INTERNAL_ERROR,
+    HMPL_NOT_SUPPORTED,
 };
-use mcemu_dialects::himc::{AXIS_CLASS, GROUP_CLASS};
+use mcemu_dialects::himc::{AxisVariable, AXIS_CLASS, GROUP_CLASS};
 
-use super::{axis_of, set_param};
+use super::{axis_of, param, set_param};
 use crate::reply::Outcome;
 use crate::table::{row, Addresses, Args, Ctx, Function, Plan, Ret, Ty, Value};
 
@@ -107,7 +112,9 @@ const GROUP: &[(u16, Variable)] = &[
     (0x00f6, Variable::Unmodelled),
     (0x00f7, Variable::Unmodelled),
     (0x0104, Variable::Setter("SetGrpVelScale")),
-    (0x0119, Variable::Unmodelled), // grp_shaper_fr
+    (0x0119, Variable::Unmodelled), // grp_shaper_fr, grp_shaper_xi: SetGrpInShape sets both
+    (0x011a, Variable::Unmodelled),
+    (0x038f, Variable::ReadOnly), // grp_last_err
 ];
 
 /// Table 17.1.1.1: `HCV_ID_ltest0…9` (ints), `HCV_ID_dtest0…9` (doubles).
@@ -190,14 +197,127 @@ fn set_config_var(cx: &mut Ctx<'_>, args: &Args) -> Plan {
     }
 }
 
-pub static ROWS: &[Function] = &[row(
-    "SetConfigVar",
-    "17.3.2",
-    &[Ty::Int, Ty::Double],
-    Ret::Int,
-    Addresses::Controller,
-    set_config_var,
-)];
+/// `GetConfigVar(hcv_id, {})`: `0,value`, or `-1,0` with the code latched.
+fn get_config_var(cx: &mut Ctx<'_>, args: &Args) -> Plan {
+    match read(cx, args.int(0) as u32) {
+        Ok(value) => Plan::Done(Outcome::WithStatus(0, value)),
+        Err(code) => Plan::Fail(code),
+    }
+}
+
+fn read(cx: &mut Ctx<'_>, hcv: u32) -> Result<f64, u32> {
+    let [class, id, hi, lo] = hcv.to_be_bytes();
+    let address = u16::from_be_bytes([hi, lo]);
+    match class {
+        AXIS_CLASS => read_axis(cx, id, address),
+        GROUP_CLASS => read_group(cx, id, address),
+        0 if id == 0 => read_system(cx, hcv),
+        _ => Err(HCV_ID_NOT_FOUND),
+    }
+}
+
+/// Table 17.1.1.1: the free variables, the clocks (on the engine's virtual clock).
+fn read_system(cx: &Ctx<'_>, hcv: u32) -> Result<f64, u32> {
+    let seconds = cx.snapshot.tick as f64 * cx.snapshot.period;
+    match hcv {
+        _ if LTEST.contains(&hcv) || DTEST.contains(&hcv) => Ok(cx
+            .registers
+            .free_variables
+            .get(&hcv)
+            .copied()
+            .unwrap_or(0.0)),
+        // fclk: +1 every 250 µs.
+        0x012c => Ok((seconds / 250e-6).round()),
+        0x012e => Ok((seconds * 1e3).round()),
+        _ if SYSTEM_ARRAYS.contains(&hcv) => Err(HMPL_NOT_SUPPORTED),
+        _ => Err(HCV_ID_NOT_FOUND),
+    }
+}
+
+/// Table 17.1.1.2: the states through their getters, the settings from the engine parameter
+/// each is (`himc::AXIS_VARIABLES`).
+fn read_axis(cx: &mut Ctx<'_>, id: u8, address: u16) -> Result<f64, u32> {
+    let axis = axis_of(cx, &Args(vec![Value::Int(i64::from(id))]))?.0;
+    let getter = match address {
+        0x00a0 => Some("IsHomed"),
+        0x0117 => Some("GetRolloverTurns"),
+        0x0263 => Some("GetAxisLastErr"),
+        0x03c2 => Some("GetGearRatio"),
+        _ => None,
+    };
+    if let Some(name) = getter {
+        return call_getter(cx, name, id);
+    }
+    if address == 0x0193 {
+        // A pair's id is its RHS axis (decisions.md, HIMC gantry); −1: not paired.
+        return Ok(super::gantry::pair_of(cx, axis).map_or(-1.0, |(rhs, _)| f64::from(rhs)));
+    }
+    match AxisVariable::by_address(address) {
+        Some(AxisVariable { param: Some(p), .. }) => Ok(param(cx, axis, *p)),
+        Some(_) => Err(HMPL_NOT_SUPPORTED),
+        None => Err(HCV_ID_NOT_FOUND),
+    }
+}
+
+/// Table 17.1.1.3: through the group getters, or from the profiles the registers keep.
+fn read_group(cx: &mut Ctx<'_>, id: u8, address: u16) -> Result<f64, u32> {
+    let group = u16::from(id);
+    let linear = super::group_state::profile_of(cx, group);
+    let angular = super::group_state::angular_of(cx, group);
+    let time = |p: &ProfileValues, a: f64| p.velocity / a * 1e3;
+    match address {
+        0x0002 => Ok(cx.registers.group_members.get(&group).map_or(0, Vec::len) as f64),
+        0x038f => call_getter(cx, "GetGrpLastErr", id),
+        0x00e1 => Ok(time(&linear, linear.acceleration)),
+        0x00e2 => Ok(time(&linear, linear.deceleration)),
+        0x00e7 => Ok(angular.velocity),
+        0x00e8 => Ok(angular.acceleration),
+        0x00e9 => Ok(angular.deceleration),
+        0x00ea => Ok(angular.smooth_ms),
+        0x00eb => Ok(time(&angular, angular.acceleration)),
+        0x00ec => Ok(time(&angular, angular.deceleration)),
+        _ => match lookup(GROUP, address) {
+            Some(Variable::Setter(name)) => {
+                let getter = name.replacen("Set", "Get", 1);
+                call_getter(cx, &getter, id)
+            }
+            Some(_) => Err(HMPL_NOT_SUPPORTED),
+            None => Err(HCV_ID_NOT_FOUND),
+        },
+    }
+}
+
+/// The value getter `name` answers for axis or group `id`.
+fn call_getter(cx: &mut Ctx<'_>, name: &str, id: u8) -> Result<f64, u32> {
+    let f = super::all()
+        .find(|f| f.name == name)
+        .ok_or(HMPL_INTERNAL_ERROR)?;
+    match (f.handler)(cx, &Args(vec![Value::Int(i64::from(id))])) {
+        Plan::Done(Outcome::Int(v)) => Ok(f64::from(v)),
+        Plan::Done(Outcome::Double(v)) => Ok(v),
+        Plan::Fail(code) => Err(code),
+        _ => Err(HMPL_INTERNAL_ERROR),
+    }
+}
+
+pub static ROWS: &[Function] = &[
+    row(
+        "GetConfigVar",
+        "17.3.1",
+        &[Ty::Int, Ty::Out],
+        Ret::DoubleWithStatus,
+        Addresses::Controller,
+        get_config_var,
+    ),
+    row(
+        "SetConfigVar",
+        "17.3.2",
+        &[Ty::Int, Ty::Double],
+        Ret::Int,
+        Addresses::Controller,
+        set_config_var,
+    ),
+];
 
 #[cfg(test)]
 mod tests {
@@ -211,6 +331,18 @@ mod tests {
                     .find(|f| f.name == *name)
                     .unwrap_or_else(|| panic!("{name} is not served"));
                 assert_eq!(f.params.len(), 2, "{name}");
+            }
+        }
+    }
+
+    #[test]
+    fn every_group_setter_named_has_its_getter() {
+        for (address, v) in GROUP {
+            if let Variable::Setter(name) = v {
+                let getter = name.replacen("Set", "Get", 1);
+                let served = super::super::all().any(|f| f.name == getter);
+                // Read from the profile where the manual has no getter.
+                assert!(served || matches!(address, 0x00e1 | 0x00e2), "{getter}");
             }
         }
     }

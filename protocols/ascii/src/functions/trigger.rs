@@ -146,7 +146,28 @@ fn probe_bool(cx: &mut Ctx<'_>, args: &Args, probe: u8, triggered: bool) -> Plan
     }
 }
 
+/// §13.10–13.11 (unmarked: accepted unless `strict`): the actual position the probe latched
+/// last, `code,position`; a probe that has latched nothing since it was enabled is
+/// `eERR_AXIS_CMD_INVALID_STATE` (the manual names no code).
+fn probe_position(cx: &mut Ctx<'_>, args: &Args, probe: u8) -> Plan {
+    let a = match axis(cx, args) {
+        Ok(a) => a,
+        Err(c) => return Plan::Fail(c),
+    };
+    let latched = cx
+        .snapshot
+        .captures
+        .iter()
+        .filter(|c| c.axis == a && c.channel == probe)
+        .find_map(|c| c.latches.last());
+    match latched {
+        Some(l) => Plan::Done(Outcome::WithStatus(0, l.act_pos)),
+        None => Plan::Fail(axis_error(a, "eERR_AXIS_CMD_INVALID_STATE")),
+    }
+}
+
 const A: &[Ty] = &[Ty::Int];
+const AO: &[Ty] = &[Ty::Int, Ty::Out];
 const AD: &[Ty] = &[Ty::Int, Ty::Double];
 const FUNC: &[Ty] = &[Ty::Int, Ty::Int, Ty::Int, Ty::Int];
 
@@ -252,6 +273,22 @@ pub static ROWS: &[Function] = &[
         Ret::Int,
         Axis,
         |cx, a| probe_bool(cx, a, 1, true),
+    ),
+    row(
+        "GetTouchProbe1Pos",
+        "13.10",
+        AO,
+        Ret::IntWithValue,
+        Axis,
+        |cx, a| probe_position(cx, a, 0),
+    ),
+    row(
+        "GetTouchProbe2Pos",
+        "13.11",
+        AO,
+        Ret::IntWithValue,
+        Axis,
+        |cx, a| probe_position(cx, a, 1),
     ),
     row(
         "SetTouchProbe1Func",

@@ -8,13 +8,16 @@
 //! The per-line path arms no timer (issue 14, Performance): the idle limit is one sleep per
 //! connection that, when it fires, re-arms itself from the last read's time unless the client
 //! has been silent for the whole limit; a reply is first written without waiting, and only a
-//! reply the socket cannot take at once waits, within the write limit.
+//! reply the socket cannot take at once waits, within the write limit. The replies to the lines
+//! one read brought (a client that pipelines) go out in one write, up to the first line that
+//! waits for the engine.
 
 pub mod native;
 pub mod user;
 
 use std::future::Future;
 use std::sync::Arc;
+use std::task::Poll;
 use std::time::Duration;
 
 use mcemu_dialects::himc::system::HMPL_STR_MAX_LEN;
@@ -114,6 +117,7 @@ async fn connection<S: LineServer>(server: Arc<S>, mut c: Connection) {
     let mut splitter = LineSplitter::new(HMPL_STR_MAX_LEN);
     let mut buf = vec![0u8; 4096];
     let mut lines = Vec::new();
+    let mut out = Vec::new();
     let mut last_read = Instant::now();
     // Without a limit the sleep is never polled (the branch is disabled).
     let idle_sleep = tokio::time::sleep(idle.unwrap_or(Duration::ZERO));
@@ -128,7 +132,7 @@ async fn connection<S: LineServer>(server: Arc<S>, mut c: Connection) {
         let n = match event {
             Event::Stop => return,
             Event::Broadcast(m) => {
-                if !write(&mut c, &m, write_limit, counters).await {
+                if !write(&mut c.stream, &m, write_limit, counters).await {
                     return;
                 }
                 continue;
@@ -157,14 +161,28 @@ async fn connection<S: LineServer>(server: Arc<S>, mut c: Connection) {
         c.activity.received();
         counters.bytes_in.add(n as u64);
         splitter.push(buf.get(..n).unwrap_or_default(), &mut lines);
+        // The replies to the lines of one read go out in one write, as far as they are ready
+        // at once; a line that waits (for the engine) first sends the replies before it.
+        out.clear();
         for line in lines.drain(..) {
-            let reply = {
-                let _in_request = c.activity.request();
-                server.handle(&line).await
-            };
-            if !write(&mut c, reply.as_bytes(), write_limit, counters).await {
-                return;
-            }
+            let _in_request = c.activity.request();
+            let handling = server.handle(&line);
+            tokio::pin!(handling);
+            let reply =
+                match std::future::poll_fn(|cx| Poll::Ready(handling.as_mut().poll(cx))).await {
+                    Poll::Ready(reply) => reply,
+                    Poll::Pending => {
+                        if !write(&mut c.stream, &out, write_limit, counters).await {
+                            return;
+                        }
+                        out.clear();
+                        handling.await
+                    }
+                };
+            out.extend_from_slice(reply.as_bytes());
+        }
+        if !write(&mut c.stream, &out, write_limit, counters).await {
+            return;
         }
     }
 }
@@ -172,13 +190,13 @@ async fn connection<S: LineServer>(server: Arc<S>, mut c: Connection) {
 /// Write `bytes` within the write limit; whether the connection lives on. What the socket
 /// takes at once is written without arming a timer (a reply line almost always fits).
 async fn write(
-    c: &mut Connection,
+    stream: &mut TcpStream,
     mut bytes: &[u8],
     limit: Option<Duration>,
     counters: &StreamCounters,
 ) -> bool {
     while !bytes.is_empty() {
-        match c.stream.try_write(bytes) {
+        match stream.try_write(bytes) {
             Ok(0) => return false,
             Ok(n) => bytes = bytes.get(n..).unwrap_or_default(),
             Err(e) if e.kind() == std::io::ErrorKind::WouldBlock => break,
@@ -188,7 +206,7 @@ async fn write(
     if bytes.is_empty() {
         return true;
     }
-    match within(limit, c.stream.write_all(bytes)).await {
+    match within(limit, stream.write_all(bytes)).await {
         Some(Ok(())) => true,
         Some(Err(_)) => false,
         None => {

@@ -5,7 +5,6 @@
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::Duration;
 
-use axes::command::{Command, EmergencyStopAll};
 use axes::runtime::{CallError, EngineHandle};
 use axes::{AxisState, Engine};
 use mcemu_dialects::himc::system::EMERGENCY_STOP;
@@ -13,7 +12,7 @@ use mcemu_dialects::himc::system::EMERGENCY_STOP;
 use super::{Limits, LineServer};
 use crate::config::NativeConfig;
 use crate::counters::{Counters, StreamCounters};
-use crate::estop::{EstopBinding, EstopInput};
+use crate::estop::{self, Binding, EstopSent, EstopTrips};
 use crate::line::Line;
 use crate::native::{Native, Pending, Step};
 use crate::registers::Registers;
@@ -28,8 +27,12 @@ pub struct Server {
     registers: Mutex<Registers>,
     engine: EngineHandle,
     config: NativeConfig,
-    /// The E-stop input the registers bind (`BindEMO`), for the servo-tick observer.
-    estop: Arc<EstopBinding>,
+    /// The E-stop input binding the engine holds (`BindEMO`, `SetGPIInvert`).
+    estop_sent: EstopSent,
+    /// Serialises sending it, so the engine ends with the registers' latest.
+    estop_sending: tokio::sync::Mutex<()>,
+    /// The engine's E-stop trips, published by the observer after every tick.
+    estop_trips: Arc<EstopTrips>,
 }
 
 impl Server {
@@ -40,26 +43,41 @@ impl Server {
             registers: Mutex::new(Registers::default()),
             engine,
             config,
-            estop: Arc::new(EstopBinding::new()),
+            estop_sent: EstopSent::new(),
+            estop_sending: tokio::sync::Mutex::new(()),
+            estop_trips: Arc::new(EstopTrips::default()),
         })
     }
 
-    /// The engine observer that carries out the E-stop input (digest 004 §1.10): after every
-    /// tick, a rising edge of the bound GPI applies `emergency_stop_all` (at the next tick, as
-    /// `EStop` would) and the next line latches `eERR_EMERGENCY_STOP`. Install it with
-    /// `EngineHandle::add_observer_async`.
+    /// The engine observer that reports the E-stop input's trips (digest 004 §1.10; the engine
+    /// stops the axes itself, in the tick that reads the edge): the next line latches
+    /// `eERR_EMERGENCY_STOP`. Install it with `EngineHandle::add_observer_async`.
     pub fn estop_observer(&self) -> impl FnMut(&Engine) -> bool + Send + 'static {
-        let binding = Arc::clone(&self.estop);
-        let engine = self.engine.clone();
-        let mut input = EstopInput::default();
+        let trips = Arc::clone(&self.estop_trips);
         move |e: &Engine| {
-            if input.tick(&binding, &e.io().di) {
-                // Queued without waiting (this is the servo thread); a full queue drops it,
-                // which the latch still reports.
-                let _ = engine.submit(Command::from(EmergencyStopAll {}));
-            }
+            trips.publish(e.estop_input_trips());
             true
         }
+    }
+
+    /// Bind the controller's E-stop input in the engine (GPI 8 at start): call once before
+    /// serving.
+    pub async fn install_estop(&self) {
+        self.send_estop().await;
+    }
+
+    /// Send the registers' binding unless the engine holds it; read under the sending lock, so
+    /// concurrent lines leave the engine with the latest.
+    async fn send_estop(&self) {
+        let _sending = self.estop_sending.lock().await;
+        let binding: Binding = self.registers().estop_binding();
+        if self.estop_sent.holds(binding) {
+            return;
+        }
+        // A pin the machine lacks binds nothing (the engine refuses it, and an input it does
+        // not have never rises); a stopped engine has nothing to stop.
+        let _ = self.engine.call_async(estop::command(binding)).await;
+        self.estop_sent.sent(binding);
     }
 
     pub fn counters(&self) -> &Counters {
@@ -74,17 +92,17 @@ impl Server {
     /// The reply to one line, after the engine if the call needs it.
     pub async fn handle(&self, line: &Line) -> String {
         let snapshot = self.engine.snapshot();
-        let step = {
+        let (step, estop) = {
             let mut registers = self.registers();
-            if self.estop.take_tripped() {
+            if self.estop_trips.take_tripped() {
                 registers.latch(EMERGENCY_STOP);
             }
             let step = self.native.line(line, &snapshot, &mut registers);
-            let channel = registers.emo_channel();
-            let inverted = channel.is_some_and(|c| registers.gpi_inverted.contains(&(c + 1)));
-            self.estop.publish(channel, inverted);
-            step
+            (step, registers.estop_binding())
         };
+        if !self.estop_sent.holds(estop) {
+            self.send_estop().await;
+        }
         let (commands, pending) = match step {
             Step::Reply(text) => return text,
             Step::Engine(commands, pending) => (commands, pending),
