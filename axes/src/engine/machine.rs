@@ -40,6 +40,8 @@ pub(super) struct Checkpoint {
     input_starts: Option<Vec<super::stream_inputs::InputStart>>,
     /// `gantry_home` runs (a batch may start one).
     gantry_homes: Option<Vec<super::gantry_home::GantryHoming>>,
+    /// The watchdog and input stops (a batch may arm them).
+    guards: Option<crate::guard::Guards>,
     io: Option<Io>,
     slaves: Option<Vec<Slave>>,
     ledger: LedgerMark,
@@ -126,6 +128,22 @@ impl Engine {
             }
             MachineCommand::ResetAll(_) => self.reset_everything(),
             MachineCommand::GantryHome(c) => self.start_gantry_home(c),
+            MachineCommand::EstimateGroupTime(c) => self.estimate_group_time(c),
+            MachineCommand::WatchdogSet(c) => self.set_watchdog(c),
+            MachineCommand::WatchdogKick(c) => {
+                self.guards.kick_watchdog(c.deadline);
+                Ok(Reply::Done)
+            }
+            MachineCommand::InputStopSet(c) => self.set_input_stop(c),
+            MachineCommand::InputStopClear(c) => {
+                self.guards.clear_input_stop(c.slot);
+                Ok(Reply::Done)
+            }
+            MachineCommand::PositionWatchSet(c) => self.set_position_watch(c),
+            MachineCommand::PositionWatchClear(c) => {
+                self.guards.clear_position_watch(c.axis);
+                Ok(Reply::Done)
+            }
         }
     }
 
@@ -393,8 +411,10 @@ impl Engine {
         let triggers = matches!(scope, Scope::Machine).then(|| self.triggers.clone());
         let input_starts = matches!(scope, Scope::Machine).then(|| self.input_starts.clone());
         let gantry_homes = matches!(scope, Scope::Machine).then(|| self.gantry_homes.clone());
+        let guards = matches!(scope, Scope::Machine).then(|| self.guards.clone());
         Checkpoint {
             gantry_homes,
+            guards,
             axes,
             groups,
             couplings,
@@ -427,6 +447,9 @@ impl Engine {
         }
         if let Some(runs) = checkpoint.gantry_homes {
             self.gantry_homes = runs;
+        }
+        if let Some(guards) = checkpoint.guards {
+            self.guards = guards;
         }
         if let Some(io) = checkpoint.io {
             self.io = io;
