@@ -6,8 +6,9 @@
 //! look-ahead, blending, arcs, dwells and buffered I/O, the members' own limits.
 //!
 //! Left out of the dry run: the registered machine-level planners and the samplers (their
-//! state is not checkpointed), and the runtime's observers (they are called by the runtime
-//! after each real step, never here). The tick counter is put back too.
+//! state is not checkpointed), and the runtime's observers and fieldbuses (the runtime calls
+//! them around each real step, never here: a drive mastered from outside the engine gets no
+//! frames meanwhile). The tick counter is put back too.
 
 use super::{Engine, Stages};
 use crate::command::{Command, EngineError, EstimateGroupTime, GroupId, Reply};
