@@ -130,4 +130,12 @@ fn a_refused_command_or_an_unknown_group_is_an_error_and_changes_nothing() {
         matches!(err, EngineError::UnknownGroup { group: 9 }),
         "{err:?}"
     );
+    // Samplers are not put back after a dry run: no sampling command in one.
+    let err = estimate(
+        &mut e,
+        vec![axes::command::SamplingStart { sampler: 0 }.into()],
+    )
+    .unwrap_err();
+    assert!(matches!(err, EngineError::Item { .. }), "{err:?}");
+    assert_eq!(e.snapshot(), before);
 }

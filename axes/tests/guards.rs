@@ -57,8 +57,10 @@ fn an_input_stop_fires_on_the_tick_its_filter_ends() {
     common::run(&mut e, 0.1);
     ok(
         &mut e,
-        cmd(r#"{"type":"input_stop_set","slot":0,"level":true,"filter":3,"axes":[0],
-                "input":{"kind":"digital","channel":1}}"#),
+        cmd(
+            r#"{"type":"input_stop_set","slot":0,"level":true,"filter":3,"axes":[0],
+                "input":{"kind":"digital","channel":1}}"#,
+        ),
     );
     ok(
         &mut e,
@@ -78,8 +80,10 @@ fn an_input_stop_fires_on_the_tick_its_filter_ends() {
     // An input out of range, or no axis, is refused.
     let err = refused(
         &mut e,
-        cmd(r#"{"type":"input_stop_set","slot":0,"level":true,"axes":[0],
-                "input":{"kind":"digital","channel":9}}"#),
+        cmd(
+            r#"{"type":"input_stop_set","slot":0,"level":true,"axes":[0],
+                "input":{"kind":"digital","channel":9}}"#,
+        ),
     );
     assert!(matches!(err, EngineError::InvalidChannel { .. }), "{err:?}");
     let err = refused(
@@ -87,7 +91,10 @@ fn an_input_stop_fires_on_the_tick_its_filter_ends() {
         cmd(r#"{"type":"input_stop_set","slot":0,"level":true,"axes":[],
                 "input":{"kind":"home","axis":1}}"#),
     );
-    assert!(matches!(err, EngineError::InvalidArgument { .. }), "{err:?}");
+    assert!(
+        matches!(err, EngineError::InvalidArgument { .. }),
+        "{err:?}"
+    );
 }
 
 /// The watchdog fires at its deadline tick (every axis stops, DO2 is written), once; a kick
@@ -145,7 +152,11 @@ fn a_position_watch_changes_the_speed_where_the_position_is_passed() {
         assert!(e.tick() < 5000, "never passed");
     }
     let s = e.axis_status(0).unwrap();
-    assert!(s.cmd_pos >= 20.0 && s.cmd_pos < 20.0 + 50.0 * e.period(), "{}", s.cmd_pos);
+    assert!(
+        s.cmd_pos >= 20.0 && s.cmd_pos < 20.0 + 50.0 * e.period(),
+        "{}",
+        s.cmd_pos
+    );
     assert!(!e.snapshot().position_watches[0].armed);
     common::run(&mut e, 0.2);
     let v = e.axis_status(0).unwrap().cmd_vel;
@@ -156,5 +167,8 @@ fn a_position_watch_changes_the_speed_where_the_position_is_passed() {
         &mut e,
         cmd(r#"{"type":"position_watch_set","axis":0,"position":20,"positive":true,"speed":0}"#),
     );
-    assert!(matches!(err, EngineError::InvalidArgument { .. }), "{err:?}");
+    assert!(
+        matches!(err, EngineError::InvalidArgument { .. }),
+        "{err:?}"
+    );
 }

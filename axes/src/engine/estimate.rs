@@ -11,7 +11,7 @@
 //! frames meanwhile). The tick counter is put back too.
 
 use super::{Engine, Stages};
-use crate::command::{Command, EngineError, EstimateGroupTime, GroupId, Reply};
+use crate::command::{Command, EngineError, EstimateGroupTime, GroupId, MachineCommand, Reply};
 use crate::status::GroupState;
 
 /// Servo periods a dry run may step before it gives up (a path waiting on an input that never
@@ -31,17 +31,22 @@ impl Engine {
         if self.groups.get(c.group).is_none() {
             return Err(EngineError::UnknownGroup { group: c.group });
         }
-        if c.commands.iter().any(|k| {
+        // What a checkpoint does not put back cannot be in a dry run.
+        if let Some(index) = c.commands.iter().position(|k| {
             matches!(
                 k,
-                Command::Machine(crate::command::MachineCommand::EstimateGroupTime(_))
+                Command::Sampling(_) | Command::Machine(MachineCommand::EstimateGroupTime(_))
             )
         }) {
-            return Err(EngineError::InvalidArgument {
-                name: "commands",
-                value: 0.0,
-                reason: "an estimate cannot hold another estimate",
-            });
+            return Err(EngineError::item(
+                "commands",
+                index,
+                EngineError::InvalidArgument {
+                    name: "commands",
+                    value: index as f64,
+                    reason: "a dry run holds no sampling command and no other estimate",
+                },
+            ));
         }
         let checkpoint = self.checkpoint(super::machine::Scope::Machine);
         let tick = self.tick;
