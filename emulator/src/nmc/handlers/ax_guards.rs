@@ -27,7 +27,7 @@ fn ex_slot(g: usize) -> u16 {
     g as u16
 }
 
-fn axis_slot(c: &Call<'_>, axis: usize) -> Result<u16, Refusal> {
+fn axis_slot(axis: usize) -> Result<u16, Refusal> {
     u16::try_from(ESTOP_DI_EX_CH_NUM + axis)
         .ok()
         .filter(|s| *s < axes::command::MAX_INPUT_STOPS)
@@ -40,13 +40,6 @@ fn axis_slot(c: &Call<'_>, axis: usize) -> Result<u16, Refusal> {
                     usize::from(axes::command::MAX_INPUT_STOPS) - ESTOP_DI_EX_CH_NUM - 1
                 ),
             )
-        })
-        .and_then(|s| {
-            if axis < c.snapshot.axes.len() {
-                Ok(s)
-            } else {
-                Err(Refusal::range("axis", axis, "an axis of the machine"))
-            }
         })
 }
 
@@ -64,7 +57,7 @@ fn mt_set_estop_di(c: &mut Call<'_>) -> Result<(), Refusal> {
     let axis = c.axis()?;
     let (gpi, sense) = (c.input.i16()?, c.input.i16()?);
     let inputs = c.snapshot.io.di.len();
-    let slot = axis_slot(c, axis)?;
+    let slot = axis_slot(axis)?;
     if gpi == -1 {
         c.service.ax().estop_di.remove(&axis);
         c.command(InputStopClear { slot });

@@ -10,7 +10,7 @@
 //! (pulses of that member axis), 0 for the path velocity (pulse/ms of the first member); the
 //! coordinate system must be configured. The laser variables (N/A) are refused as unsupported.
 //! `startDelay` is in ms like `interval`: the first sample is taken that long after the
-//! trigger (decisions.md, "NMC data collection").
+//! trigger (decisions.md, "NMC system functions").
 
 use axes::command::{
     EngineError, GroupId, Reply, SampledVariable, SamplerId, SamplingConfigure, SamplingRead,
