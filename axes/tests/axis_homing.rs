@@ -6,10 +6,12 @@
 
 mod common;
 
-use axes::command::{Command, CommandState, EngineError, ErrorKind, Stop};
+use axes::command::{
+    Command, CommandState, EngineError, ErrorKind, PositionFrame, SetPosition, Stop,
+};
 use axes::config::HomeSwitchConfig;
 use axes::homing::vendor::{hmc, HmcInstruction};
-use axes::homing::{HomingError, HomingQuirks, HomingSpec};
+use axes::homing::{HomingError, HomingFailure, HomingQuirks, HomingSpec};
 use axes::{AxisFlags, AxisState, Engine};
 use common::*;
 
@@ -117,9 +119,43 @@ fn homing_timeout_fails_the_command_and_the_axis_stops() {
     assert_eq!(state_of(&mut e, id), CommandState::Error(ErrorKind::Homing));
     let s = status(&e);
     assert!(s.latched.contains(AxisFlags::HOMING_FAILED));
+    assert_eq!(s.homing_failure, Some(HomingFailure::Timeout));
     assert!(!s.flags.contains(AxisFlags::HOMED));
     assert_eq!(s.state, AxisState::Standstill);
     assert_eq!(s.cmd_vel, 0.0);
+}
+
+#[test]
+fn home_error_is_the_home_found_minus_the_home_defined() {
+    // Method 17: the negative limit releases at −500 mm (physical); NMC_MtGetHomeError.
+    let mut e = homing_axis();
+    ok(&mut e, home(&cia(17, 0.0)));
+    assert!(run_until(&mut e, 60.0, |s| s.current_command.is_none()).is_some());
+    // No home defined before: the power-on origin stands for it.
+    let first = status(&e).home_error;
+    assert!((first + 500.0).abs() < 1e-3, "{first}");
+    // A trial run in the frame the homing made finds home where it put it.
+    let mut trial = cia(17, 0.0);
+    trial.quirks.trial = true;
+    ok(&mut e, home(&trial));
+    assert!(run_until(&mut e, 60.0, |s| s.current_command.is_none()).is_some());
+    let again = status(&e).home_error;
+    assert!(again.abs() < 1e-3, "{again}");
+    // The recorded home is a number: redefining the position by +10 reads as 10 of error.
+    let here = status(&e).cmd_pos;
+    ok(
+        &mut e,
+        Command::from(SetPosition {
+            axis: 0,
+            position: here + 10.0,
+            frame: PositionFrame::default(),
+        }),
+    );
+    ok(&mut e, home(&trial));
+    assert!(run_until(&mut e, 60.0, |s| s.current_command.is_none()).is_some());
+    let shifted = status(&e).home_error;
+    assert!((shifted - 10.0).abs() < 1e-3, "{shifted}");
+    assert_eq!(status(&e).homing_failure, None);
 }
 
 #[test]
@@ -156,6 +192,7 @@ fn a_homing_run_that_fails_on_a_limit_ends_at_rest() {
     assert_eq!(s.cmd_vel, 0.0, "{s:?}");
     assert!(!s.flags.contains(AxisFlags::MOVING), "{s:?}");
     assert!(s.latched.contains(AxisFlags::HOMING_FAILED));
+    assert_eq!(s.homing_failure, Some(HomingFailure::LimitHit));
 }
 
 #[test]

@@ -8,7 +8,8 @@ mod common;
 
 use axes::command::{
     AxisInput, Command, CommandState, Direction, Enable, EngineError, ErrorKind, ForceDigitalInput,
-    InjectFollowingError, Reset, SetParameter, Setpoint, StreamSetpoint,
+    InjectFollowingError, Reset, ResetFaults, SetParameter, Setpoint, Stop, StopMode,
+    StreamSetpoint,
 };
 use axes::config::{AxisConfig, AxisSignal, EngineConfig, InputBinding, PlantModel};
 use axes::{AxisFlags, AxisState, Engine, ParamId};
@@ -48,6 +49,67 @@ fn hard_limit_stops_the_axis_latches_and_allows_motion_out() {
     assert!(s.latched.contains(AxisFlags::HW_LIMIT_POS));
     ok(&mut e, Command::from(Reset { axis: 0 }));
     assert!(!status(&e).flags.contains(AxisFlags::HW_LIMIT_POS));
+}
+
+#[test]
+fn masked_reset_clears_only_the_named_latches() {
+    // NMC_MtClrStsByBits (TV26): a latched + limit (input released) and an E-stop.
+    let mut e = enabled(stepper_mm());
+    set(&mut e, ParamId::LimitLatch, 1.0);
+    force(&mut e, AxisInput::LimitPos, Some(true));
+    run(&mut e, 0.001);
+    assert!(status(&e).inputs.contains(AxisFlags::HW_LIMIT_POS));
+    force(&mut e, AxisInput::LimitPos, None);
+    run(&mut e, 0.001);
+    ok(
+        &mut e,
+        Command::from(Stop {
+            axis: 0,
+            mode: StopMode::Emergency,
+            deceleration: None,
+        }),
+    );
+    let s = status(&e);
+    // The input's live level is gone; its latch is not.
+    assert!(!s.inputs.contains(AxisFlags::HW_LIMIT_POS));
+    assert!(s
+        .latched
+        .contains(AxisFlags::HW_LIMIT_POS | AxisFlags::ESTOP));
+    ok(
+        &mut e,
+        Command::from(ResetFaults {
+            axis: 0,
+            faults: AxisFlags::ESTOP,
+        }),
+    );
+    let s = status(&e);
+    assert!(!s.latched.contains(AxisFlags::ESTOP));
+    assert!(s.latched.contains(AxisFlags::HW_LIMIT_POS));
+    // A named latch whose cause remains stays, and is reported.
+    force(&mut e, AxisInput::LimitPos, Some(true));
+    run(&mut e, 0.001);
+    match refused(
+        &mut e,
+        Command::from(ResetFaults {
+            axis: 0,
+            faults: AxisFlags::HW_LIMIT_POS,
+        }),
+    ) {
+        EngineError::CauseStillPresent { faults, .. } => {
+            assert_eq!(faults, AxisFlags::HW_LIMIT_POS)
+        }
+        other => panic!("{other}"),
+    }
+    force(&mut e, AxisInput::LimitPos, None);
+    run(&mut e, 0.001);
+    ok(
+        &mut e,
+        Command::from(ResetFaults {
+            axis: 0,
+            faults: AxisFlags::HW_LIMIT_POS,
+        }),
+    );
+    assert!(!status(&e).latched.contains(AxisFlags::HW_LIMIT_POS));
 }
 
 #[test]

@@ -699,3 +699,52 @@ fn bad_frames_and_protections_are_typed_errors_and_change_nothing() {
     e.step();
     assert_eq!(group(&e, 1).interference, InterferenceStatus::NotEnabled);
 }
+
+/// Issue 13 defect (NMC mv_protect.c): the reserve counted one period at the speed of the last
+/// tick, not the speed the path could reach by the next check. A line accelerating at
+/// 500 000 units/s² toward a stop braking at the group's 5000 units/s² gains 2000 units of
+/// braking length a tick, so the guard decided one tick late and the path stopped 400 units
+/// (that tick's growth less its travel) past the protection distance.
+#[test]
+fn a_path_accelerating_hard_toward_a_gentle_stop_stops_before_the_protection_distance() {
+    use axes::param::ParamId;
+    let mut a = stepper_mm();
+    for (p, v) in [
+        (ParamId::Units, 1.0),
+        (ParamId::Speed, 100_000.0),
+        (ParamId::Accel, 1e6),
+        (ParamId::Decel, 1e6),
+        (ParamId::FastDecel, 1e7),
+    ] {
+        a.params.insert(p, v);
+    }
+    a.switches.limit_pos = None;
+    a.switches.limit_neg = None;
+    let mut e = with_group_2(common::with_group(engine_with(vec![a.clone(), a]), &[0]), 1);
+    ok(
+        &mut e,
+        Command::from(MoveProtectionEnable {
+            origin_distance: 50_000.0,
+            protection_distance: 10_000.0,
+            ..protection(ProtectionMode::BothStop)
+        }),
+    );
+    ok(
+        &mut e,
+        Command::from(MoveLinearAbsolute {
+            velocity: Some(20_000.0),
+            acceleration: Some(500_000.0),
+            deceleration: Some(500_000.0),
+            jerk: Some(0.0),
+            ..line_in(1, &[100_000.0], None)
+        }),
+    );
+    let mut closest = f64::INFINITY;
+    run_all(&mut e, 100.0, |e| {
+        closest = closest.min(50_000.0 - pos(e, 0) + pos(e, 1));
+    });
+    assert!(closest >= 10_000.0, "closed to {closest}");
+    // Stopped for the protection, in the last tick whose stop still ends before the distance:
+    // within one tick's growth of the braking length (≤ 2000 + 20 here) of it.
+    assert!(closest < 12_020.0, "stopped at {closest}");
+}

@@ -518,6 +518,105 @@ fn bad_motion_input_is_refused_with_a_typed_error_and_nothing_is_queued() {
     assert_eq!(group(&e, 1).state, GroupState::Standby);
 }
 
+/// Issue 11 "Bad input": "the engine and the other groups keep running". Group 2 runs a
+/// path; every bad input of the issue's list is thrown at group 1 (at rest), at group 2 itself
+/// and at the group table while it runs. Group 2's members and status, and the free axis, are
+/// bit for bit what they are in a run without the refusals, and group 2 ends on its target.
+#[test]
+fn refusals_leave_a_running_group_and_the_engine_exactly_as_without_them() {
+    let bad_inputs = || -> Vec<Command> {
+        let circle = |group: u16, aux: Vec<f64>, end: Vec<f64>| {
+            common::group_arc(group, &aux, &end, axes::command::ArcDirection::Ccw)
+        };
+        vec![
+            Command::from(line(7, &[1.0, 1.0])),
+            create(3, &[2, 4]),
+            create(3, &[]),
+            create(3, &[0, 1, 2, 3, 4, 5, 6, 7, 8, 9]),
+            Command::from(circle(1, vec![5.0, 0.0], vec![11.0, 0.0])),
+            Command::from(MoveCircularAbsolute {
+                mode: axes::command::CircleMode::Radius,
+                radius: Some(4.0),
+                ..circle(1, vec![], vec![10.0, 0.0])
+            }),
+            Command::from(MoveCircularAbsolute {
+                mode: axes::command::CircleMode::Border,
+                ..circle(1, vec![0.0, 0.0], vec![10.0, 0.0])
+            }),
+            Command::from(line(1, &[f64::NAN, 0.0])),
+            Command::from(line(2, &[0.0, f64::INFINITY])),
+            Command::from(MoveLinearAbsolute {
+                velocity: Some(0.0),
+                ..line(2, &[1.0, 1.0])
+            }),
+            Command::from(MoveLinearAbsolute {
+                deceleration: Some(-1.0),
+                ..line(1, &[1.0, 1.0])
+            }),
+            Command::from(GroupSetOverride {
+                group: 2,
+                factor: f64::NAN,
+            }),
+            // Motion on a disabled group (group 3 of the free axis 4, never enabled).
+            Command::from(line(3, &[1.0])),
+        ]
+    };
+    let run_with = |refusals: bool| {
+        let mut e = machine(5);
+        enable_all(&mut e);
+        ok(&mut e, create(1, &[0, 1]));
+        ok(&mut e, create(2, &[2, 3]));
+        ok(&mut e, Command::from(GroupEnable { group: 1 }));
+        ok(&mut e, Command::from(GroupEnable { group: 2 }));
+        ok(&mut e, Command::from(line(2, &[30.0, -20.0])));
+        ok(&mut e, Command::from(line(2, &[-10.0, 5.0])));
+        let (mut trace, mut kinds) = (Vec::new(), Vec::new());
+        for k in 0..3000 {
+            if k == 100 && refusals {
+                for (i, command) in bad_inputs().into_iter().enumerate() {
+                    if i == 4 {
+                        // After the bad definitions: a disabled group for the last case.
+                        ok(&mut e, create(3, &[4]));
+                    }
+                    kinds.push(refused(&mut e, command).kind());
+                }
+                ok(&mut e, Command::from(GroupDelete { group: 3 }));
+            }
+            e.step();
+            let s = e.snapshot();
+            // A refusal aimed at group 2 is its `last_error` (status, issue 11 item 7), and
+            // nothing else of it.
+            let g2 = s.groups.iter().find(|g| g.group == 2).map(|g| GroupStatus {
+                last_error: None,
+                ..*g
+            });
+            trace.push(serde_json::to_string(&(&s.axes[2..], g2)).unwrap());
+        }
+        (e, trace, kinds)
+    };
+    let (clean, clean_trace, _) = run_with(false);
+    let (e, trace, kinds) = run_with(true);
+    use ErrorKind::{GroupState as Refused, InvalidArgument as Argument, InvalidGroup as Group};
+    #[rustfmt::skip]
+    let expected = [
+        Group, Group, Group, Group,
+        Argument, Argument, Argument, Argument, Argument, Argument, Argument, Argument,
+        Refused,
+    ];
+    assert_eq!(kinds, expected);
+    assert_eq!(trace.len(), clean_trace.len());
+    for (k, (a, b)) in trace.iter().zip(&clean_trace).enumerate() {
+        assert!(a == b, "tick {k}: the running group differs");
+    }
+    assert_eq!(group(&e, 2).last_error, Some(ErrorKind::InvalidArgument));
+    assert_eq!(group(&clean, 2).last_error, None);
+    assert_eq!(group(&e, 2).position(), &[-10.0, 5.0]);
+    assert_eq!(group(&e, 2).state, GroupState::Standby);
+    let g1 = group(&e, 1);
+    assert_eq!((g1.state, g1.queue_used), (GroupState::Standby, 0));
+    assert_eq!(group(&clean, 1).state, GroupState::Standby);
+}
+
 #[test]
 fn a_refused_group_motion_takes_no_command_id() {
     let mut e = machine(3);

@@ -2,7 +2,8 @@
 //! goes): paths reach their end exactly, members stay within their own limits, buffered
 //! outputs, dwells, waits and single-axis moves happen where the path reaches them, stop / halt
 //! / continue / override, a member's fault stops the whole group, the queue bound, command
-//! states, a one-axis group against the axis's own profile, determinism.
+//! states, a one-axis group against the axis's own profile, determinism, LinuxCNC #3773's small
+//! blended arcs within the members' acceleration limit.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 mod common;
@@ -1021,6 +1022,91 @@ fn circle_peak(parameters: &[(GroupParameter, f64)]) -> f64 {
     peak
 }
 
+/// LinuxCNC issue #3773 through the engine (issue 11 "Blending cases"): 200 tangent arcs of
+/// radius 3.8–4.2 mm and 20–90° (alternating turn, a slight climb in z), blended at a higher
+/// programmed speed than the arcs allow, at 1 kHz; every member's acceleration limit 1750
+/// mm/s². The members' commanded positions, differenced twice, never exceed 1.00× the limit
+/// (LinuxCNC measured 1.9–8×), and the path ends on the last arc's end.
+#[test]
+fn linuxcnc_3773_small_blended_arcs_keep_every_members_acceleration_within_its_limit() {
+    const ACCEL: f64 = 1750.0;
+    let mut e = Engine::new(&EngineConfig {
+        axes: (0..3).map(|_| common::fast_mm_axis(400.0, ACCEL)).collect(),
+        ..EngineConfig::default()
+    })
+    .unwrap();
+    e = common::with_group(e, &[0, 1, 2]);
+    let mut seed = 0x2545_f491_4f6c_dd1du64;
+    let mut rnd = || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let (mut x, mut y, mut heading) = (0.0f64, 0.0f64, 0.0f64);
+    let mut end = [0.0; 3];
+    for i in 0..200 {
+        let r = 3.8 + 0.4 * rnd();
+        let sweep = (20.0 + 70.0 * rnd()).to_radians();
+        let ccw = i % 2 == 0;
+        let side = if ccw { 1.0 } else { -1.0 };
+        // The centre on the left (CCW) or right (CW) of the heading: tangent junctions.
+        let normal = heading + side * std::f64::consts::FRAC_PI_2;
+        let (cx, cy) = (x + r * normal.cos(), y + r * normal.sin());
+        let (sin, cos) = (side * sweep).sin_cos();
+        let (dx, dy) = (x - cx, y - cy);
+        let (ex, ey) = (cx + dx * cos - dy * sin, cy + dx * sin + dy * cos);
+        end = [ex, ey, 0.01 * f64::from(i + 1)];
+        send(
+            &mut e,
+            MoveCircularAbsolute {
+                velocity: Some(2000.0),
+                acceleration: Some(20_000.0),
+                deceleration: Some(20_000.0),
+                jerk: Some(0.0),
+                buffer_mode: GroupBufferMode::BlendingHigh,
+                ..circle(
+                    &[cx, cy, 0.0],
+                    &end,
+                    if ccw {
+                        ArcDirection::Ccw
+                    } else {
+                        ArcDirection::Cw
+                    },
+                )
+            },
+        );
+        (x, y) = (ex, ey);
+        heading += side * sweep;
+    }
+    let t = e.period();
+    let mut trace: Vec<Vec<f64>> = vec![positions(&e, 3)];
+    let mut top: f64 = 0.0;
+    for _ in 0..60_000 {
+        e.step();
+        trace.push(positions(&e, 3));
+        top = top.max(group(&e).path_velocity);
+        if group(&e).state == GroupState::Standby {
+            break;
+        }
+    }
+    assert_eq!(group(&e).state, GroupState::Standby);
+    assert_eq!(positions(&e, 3), end);
+    let mut peak: f64 = 0.0;
+    for k in 0..3 {
+        // A second difference of three rounded positions errs by ≤ 4ε|x|/T².
+        let scale = trace.iter().map(|p| p[k].abs()).fold(1.0, f64::max);
+        let slack = 4.0 * f64::EPSILON * scale / (t * t);
+        for w in trace.windows(3) {
+            let a = (w[2][k] - 2.0 * w[1][k] + w[0][k]) / (t * t);
+            peak = peak.max((a.abs() - slack).max(0.0) / ACCEL);
+        }
+    }
+    assert!(peak <= 1.0, "peak acceleration {peak}× the limit");
+    // Nor does it crawl: the arcs run near their curvature speed, √(A/√2·r) ≈ 70 mm/s.
+    assert!(top > 60.0, "top path speed {top}");
+}
+
 #[test]
 fn himc_look_ahead_parameters_cap_the_arc_speed_and_zero_turns_them_off() {
     // HIMC SetGrpLookAheadPrm prm 1 (digest 004 §2.7): v ≤ √(A_arc·r) = √(20 · 10).
@@ -1165,4 +1251,97 @@ fn bad_splines_and_ellipses_are_refused_and_nothing_is_queued() {
         assert_eq!(err.kind(), ErrorKind::InvalidArgument, "{c:?}: {err}");
     }
     assert_eq!(group(&e).queue_used, 0);
+}
+
+/// Issue 13 (NMC arc sections, `TArcSecSetting` → `chord_error`): every tick's commanded
+/// point lies on the arc, and the chord between two ticks leaves it by at most the chord
+/// error (its sagitta r − |midpoint − centre|): the error is between samples, never of them.
+#[test]
+fn chord_error_samples_lie_on_the_arc_and_chords_stay_within_the_error() {
+    let mut e = machine(2, &[0, 1]);
+    let epsilon = 1e-6;
+    common::group_parameter(&mut e, GroupParameter::ChordError, epsilon);
+    // A full circle of radius 10 about (10, 0) from the origin, at 100 mm/s requested: the
+    // chord error caps it at 2·r·acos(1 − ε/r)/T = 8.94 mm/s (the axes allow 100).
+    common::group_parameter(&mut e, GroupParameter::Velocity, 100.0);
+    send(&mut e, circle(&[10.0, 0.0], &[0.0, 0.0], ArcDirection::Ccw));
+    let mut last = positions(&e, 2);
+    let mut worst_sagitta = 0.0_f64;
+    let n = (20.0 / e.period()).round() as u64;
+    for _ in 0..n {
+        e.step();
+        let p = positions(&e, 2);
+        let r = ((p[0] - 10.0).powi(2) + p[1].powi(2)).sqrt();
+        assert!((r - 10.0).abs() < 1e-9, "a sample off the arc: r {r}");
+        let mid = [(p[0] + last[0]) / 2.0, (p[1] + last[1]) / 2.0];
+        let sagitta = 10.0 - ((mid[0] - 10.0).powi(2) + mid[1].powi(2)).sqrt();
+        worst_sagitta = worst_sagitta.max(sagitta);
+        last = p;
+        if group(&e).state == GroupState::Standby {
+            break;
+        }
+    }
+    assert_eq!(group(&e).state, GroupState::Standby);
+    // The cap binds (the chords come within 1 % of ε) and holds.
+    assert!(
+        worst_sagitta <= epsilon * (1.0 + 1e-6),
+        "sagitta {worst_sagitta}"
+    );
+    assert!(worst_sagitta > 0.99 * epsilon, "sagitta {worst_sagitta}");
+}
+
+/// NMC `NMC_CrdSetFourthAxisToTurnVel` (issue 13): `fourth_coordinate_corner_velocity` limits
+/// the fourth coordinate's speed where the path turns; a junction without it runs faster.
+#[test]
+fn the_fourth_coordinate_corner_velocity_slows_a_turning_junction() {
+    fn slowest_at_the_corner(limit: Option<f64>) -> f64 {
+        let mut e = machine(4, &[0, 1, 2, 3]);
+        if let Some(v) = limit {
+            common::group_parameter(&mut e, GroupParameter::FourthCoordinateCornerVelocity, v);
+        }
+        send(&mut e, line(&[40.0, 0.0, 0.0, 40.0]));
+        send(
+            &mut e,
+            MoveLinearAbsolute {
+                buffer_mode: GroupBufferMode::BlendingPrevious,
+                // A slight turn in XY (0.01 rad), which the axes' own corner rule lets pass
+                // at full speed.
+                ..line(&[80.0, 0.4, 0.0, 80.0])
+            },
+        );
+        let mut slowest = f64::INFINITY;
+        let n = (20.0 / e.period()).round() as u64;
+        for _ in 0..n {
+            e.step();
+            let g = group(&e);
+            let p = positions(&e, 4);
+            if (p[0] - 40.0).abs() < 1.0 {
+                slowest = slowest.min(g.path_velocity);
+            }
+            if g.state == GroupState::Standby {
+                break;
+            }
+        }
+        slowest
+    }
+    // A moves at about v/√2 on both lines: at most 5 mm/s at the corner is a path speed of
+    // 7.07 (plus at most one tick of path acceleration).
+    let capped = slowest_at_the_corner(Some(5.0));
+    assert!(capped <= 5.0 * 2f64.sqrt() + 1.0 + 1e-9, "{capped}");
+    assert!(capped > 0.0, "a blended corner does not stop");
+    let free = slowest_at_the_corner(None);
+    assert!(free > capped + 5.0, "{free} vs {capped}");
+    // Negative or non-finite: refused; 0: off.
+    let mut e = machine(4, &[0, 1, 2, 3]);
+    for bad in [-1.0, f64::NAN] {
+        refused(
+            &mut e,
+            Command::from(GroupSetParameter {
+                group: 1,
+                name: GroupParameter::FourthCoordinateCornerVelocity,
+                value: bad,
+            }),
+        );
+    }
+    common::group_parameter(&mut e, GroupParameter::FourthCoordinateCornerVelocity, 0.0);
 }

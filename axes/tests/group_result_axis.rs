@@ -184,6 +184,43 @@ fn tv14_full_circle_result_axis_ends_at_two_pi_r() {
     assert!(close(min_y, -10000.0, 1e-3), "{min_y}");
 }
 
+/// Peak path velocity of a clockwise full circle of radius `r` (from the origin about
+/// (r, 0)) whose result axis has `speed` and S-curve `jerk` (JerkMode 1), acceleration far
+/// above what the jerk lets the path reach.
+fn circle_peak_with_result_jerk(r: f64, speed: f64, jerk: f64) -> (f64, Engine) {
+    let mut result = virtual_axis(speed, 1e9);
+    result.params.insert(ParamId::JerkMode, 1.0);
+    result.params.insert(ParamId::Jerk, jerk);
+    let mut e = Engine::new(&EngineConfig {
+        axes: vec![result, virtual_axis(1e7, 1e9), virtual_axis(1e7, 1e9)],
+        ..EngineConfig::default()
+    })
+    .unwrap();
+    for axis in 0..3 {
+        ok(&mut e, Command::from(Enable { axis }));
+    }
+    ok(&mut e, Command::from(create(1, &[1, 2], Some(0))));
+    ok(&mut e, Command::from(GroupEnable { group: 1 }));
+    send(&mut e, arc(&[r, 0.0], &[0.0, 0.0], ArcDirection::Cw));
+    let mut peak: f64 = 0.0;
+    run_path(&mut e, 60.0, |e| peak = peak.max(group(e).path_velocity));
+    (peak, e)
+}
+
+#[test]
+fn tv37_a_circle_s_speed_is_capped_at_the_cube_root_of_jerk_over_curvature_squared() {
+    // Digest 000 TV 37 (§4.4.7 (2)): an arc at Speed 20000 with Jerk 5000 reaches at most
+    // 7937.01 (radius 10000: (5000 · 10000²)^(1/3) = 7937.005); with Jerk 5e9 it reaches 20000.
+    let (peak, e) = circle_peak_with_result_jerk(10_000.0, 20_000.0, 5_000.0);
+    assert!(close(peak, 7937.005, 0.01), "peak path velocity {peak}");
+    assert!(close(pos(&e, 0), TAU * 10_000.0, 1e-6), "{}", pos(&e, 0));
+    let (peak, _) = circle_peak_with_result_jerk(10_000.0, 20_000.0, 5e9);
+    assert!(close(peak, 20_000.0, 1e-6), "peak path velocity {peak}");
+    // TV 36's small circle (curvature 1/(50·√2)) with Jerk := 100000 at Speed 1000: ≈ 793.7.
+    let (peak, _) = circle_peak_with_result_jerk(50.0 * 2f64.sqrt(), 1000.0, 100_000.0);
+    assert!(close(peak, 793.700_5, 1e-3), "peak path velocity {peak}");
+}
+
 #[test]
 fn tv15_triangle_contour_result_axis_300_700_1200_then_the_absolute_version() {
     // HMC_Move2D(10, 0, 1, …) ×3, then the same path with HMC_MoveAbs2D.

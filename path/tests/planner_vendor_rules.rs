@@ -7,7 +7,8 @@ mod common;
 use common::*;
 use path::geometry::{Arc, Segment, Turn};
 use path::planner::{
-    CornerAngles, Join, LookaheadLimits, PathEvent, PathPlanner, PlannerConfig, Transition,
+    ChordErrorBands, CornerAngles, Join, LookaheadLimits, PathEvent, PathPlanner, PlannerConfig,
+    Transition,
 };
 
 /// Two lines of 100 with a turn of `angle` between them, blended at the previous motion's
@@ -183,4 +184,127 @@ fn lookahead_limits_must_be_positive() {
         assert!(pl.set_lookahead_limits(rules).is_err());
     }
     assert_eq!(pl.lookahead_limits(), LookaheadLimits::default());
+}
+
+/// Two 4-D lines turning in XY with the fourth coordinate moving along both: the path
+/// velocity when the second starts.
+fn fourth_coordinate_corner(rules: LookaheadLimits) -> f64 {
+    let cfg = PlannerConfig::uniform(4, axis(1e6, 1e9, f64::INFINITY), 1e-3);
+    let mut pl = PathPlanner::new(cfg, p(&[0.0; 4])).unwrap();
+    pl.set_lookahead_limits(rules).unwrap();
+    let corner = p(&[100.0, 0.0, 0.0, 100.0]);
+    let end = p(&[100.0, 100.0, 0.0, 200.0]);
+    let lim = limits(100.0, 1000.0, f64::INFINITY);
+    pl.push_motion(motion(
+        line(p(&[0.0; 4]), corner, 4),
+        lim,
+        Join::Buffered,
+        Transition::None,
+        1,
+    ))
+    .unwrap();
+    pl.push_motion(motion(
+        line(corner, end, 4),
+        lim,
+        Join::BlendingPrevious,
+        Transition::None,
+        2,
+    ))
+    .unwrap();
+    let (states, _) = run(&mut pl, 100_000);
+    assert!(close(&states.last().unwrap().position, &end, 0.0));
+    let index = states.iter().position(|st| st.tag == Some(2)).unwrap();
+    states[index - 1]
+        .path_velocity
+        .max(states[index].path_velocity)
+}
+
+#[test]
+fn nmc_fourth_axis_turn_velocity_caps_the_corner_where_the_path_turns() {
+    // NMC_CrdSetFourthAxisToTurnVel(10): A moves at v/√2 on both lines, so the corner is at
+    // most 10·√2 = 14.14 (within one step of path acceleration, 1).
+    let capped = fourth_coordinate_corner(LookaheadLimits {
+        corner_coordinate_velocity: Some((3, 10.0)),
+        ..LookaheadLimits::default()
+    });
+    let cap = 10.0 * 2f64.sqrt();
+    assert!(
+        capped > cap - 0.01 && capped < cap + 1.01,
+        "{capped} vs {cap}"
+    );
+    assert!(fourth_coordinate_corner(LookaheadLimits::default()) > 50.0);
+    // A straight continuation is no corner: the limit does not apply.
+    let cfg = PlannerConfig::uniform(4, axis(1e6, 1e9, f64::INFINITY), 1e-3);
+    let mut pl = PathPlanner::new(cfg, p(&[0.0; 4])).unwrap();
+    pl.set_lookahead_limits(LookaheadLimits {
+        corner_coordinate_velocity: Some((3, 10.0)),
+        ..LookaheadLimits::default()
+    })
+    .unwrap();
+    let lim = limits(100.0, 1000.0, f64::INFINITY);
+    let mid = p(&[100.0, 0.0, 0.0, 100.0]);
+    let end = p(&[200.0, 0.0, 0.0, 200.0]);
+    pl.push_motion(motion(
+        line(p(&[0.0; 4]), mid, 4),
+        lim,
+        Join::Buffered,
+        Transition::None,
+        1,
+    ))
+    .unwrap();
+    pl.push_motion(motion(
+        line(mid, end, 4),
+        lim,
+        Join::BlendingPrevious,
+        Transition::None,
+        2,
+    ))
+    .unwrap();
+    let (states, _) = run(&mut pl, 100_000);
+    let index = states.iter().position(|st| st.tag == Some(2)).unwrap();
+    assert!(
+        states[index].path_velocity > 90.0,
+        "{}",
+        states[index].path_velocity
+    );
+}
+
+#[test]
+fn nmc_arc_section_bands_pick_the_chord_error_by_radius() {
+    // TArcSecSetting: [0, r0] → err0, [r0, r1] → err1, beyond → err2. The circle's radius is
+    // 10: with r0 = 5, r1 = 50 it takes err1; with r0 = 20 err0; with r1 = 8 err2.
+    let peak_for = |edges: [f64; 2]| {
+        circle_peak(LookaheadLimits {
+            chord_error: Some(0.001),
+            chord_error_bands: Some(ChordErrorBands {
+                edges,
+                errors: [Some(0.004), Some(0.0001)],
+            }),
+            ..LookaheadLimits::default()
+        })
+    };
+    let expected = |e: f64| 2.0 * 10.0 * (1.0 - e / 10.0).acos() / 1e-3;
+    for (edges, e) in [
+        ([5.0, 50.0], 0.004),
+        ([20.0, 50.0], 0.001),
+        ([5.0, 8.0], 0.0001),
+    ] {
+        let peak = peak_for(edges);
+        assert!(
+            (peak - expected(e)).abs() < 1e-6,
+            "{edges:?}: {peak} vs {}",
+            expected(e)
+        );
+    }
+    // Both edges 0: no bands, the chord error everywhere; a band without an error: no limit.
+    assert!((peak_for([0.0, 0.0]) - expected(0.001)).abs() < 1e-6);
+    let free = circle_peak(LookaheadLimits {
+        chord_error: Some(0.001),
+        chord_error_bands: Some(ChordErrorBands {
+            edges: [5.0, 50.0],
+            errors: [None, None],
+        }),
+        ..LookaheadLimits::default()
+    });
+    assert!(free > 900.0, "{free}");
 }

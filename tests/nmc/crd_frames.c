@@ -64,7 +64,7 @@ static void ptp(short k, long target) {
 /* S-TRANS-ROTATE (C3§10.5.3a) in short: the table (axis 3, 10000 pulses a turn) turns about
  * (0, 15000) between segments; a program point is fixed to the table. */
 static void rotate(void) {
-    long p[4] = {10000, 15000, 0, 0}, rot = -2500;
+    long p[4] = {10000, 15000, 0, 0}, rot = -2500, user[2];
     short rc;
 
     rc = NMC_CrdSetTransRotate(crdHandle, 0, 2 * PI_ / 10000, 0, 15000);
@@ -89,6 +89,12 @@ static void rotate(void) {
     near(3, -2500, 0, "table");
     near(0, 0, 2, "rotated X");
     near(1, -5000, 2, "rotated Y");
+    /* NMC_CrdGetPrfPos reads the coordinate system's own (program) coordinates, seen on the
+     * turned table; NMC_CrdGetAxisPos the machine's. */
+    OK(NMC_CrdGetPrfPos(crdHandle, 2, user));
+    CHECK(labs(user[0] - 20000) <= 2 && labs(user[1] - 15000) <= 2, "program point (%ld, %ld)", user[0], user[1]);
+    OK(NMC_CrdGetAxisPos(crdHandle, 2, user));
+    CHECK(labs(user[0]) <= 2 && labs(user[1] + 5000) <= 2, "machine point (%ld, %ld)", user[0], user[1]);
 
     /* Deleted: machine coordinates again. */
     OK(NMC_CrdDelTransRotate(crdHandle));
@@ -200,6 +206,7 @@ static void arc_sections(void) {
     OK(NMC_CrdSetFourthAxisToTurnVel(crdHandle, 5));
     CHECK(NMC_CrdSetFourthAxisToTurnVel(crdHandle, -1) == RTN_ARG_RANGE, "tolVel −1");
     CHECK(NMC_CrdSetFourthAxisToTurnVel(crdHandle, NAN) == RTN_ARG_RANGE, "tolVel NaN");
+    OK(NMC_CrdSetFourthAxisToTurnVel(crdHandle, 0)); /* off again */
 }
 
 /* The break point: an E-stop with a slow estpDec carries the axes past where the path was
@@ -285,6 +292,12 @@ static void xyza(void) {
     near(0, 10000 - 3687, 2, "X with the tool offset");
     near(1, 20000 - 9494, 2, "Y with the tool offset");
     near(2, 0, 0, "Z");
+    {
+        long prog[4];
+        OK(NMC_CrdGetPrfPos(crdHandle, 4, prog));
+        CHECK(labs(prog[0] - 10000) <= 2 && labs(prog[1] - 20000) <= 2 && prog[2] == 0 && prog[3] == 48000,
+              "the tip in program coordinates (%ld, %ld, %ld, %ld)", prog[0], prog[1], prog[2], prog[3]);
+    }
 
     /* Deleted: the machine point again. */
     OK(NMC_CrdDelTransXYZA(crdHandle));

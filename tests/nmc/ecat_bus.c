@@ -2,7 +2,8 @@
  * EtherCAT drives (axes 16, 17; SDO devId 0, 1) and one I/O slave (devId 2) after the card's
  * two local pulse axes. The bus axes power up through their drives' state machines, move,
  * report a drive fault as the alarm bit, clear it by a fault reset, home in the drive (CiA 402
- * method 21, a home sensor active from -3000 down), and answer SDOs with their abort codes. */
+ * method 21, a home sensor active from -3000 down), answer SDOs with their abort codes, and
+ * are named by axis-number arguments (masks, a gear master) as 16 and 17. */
 #include <string.h>
 #include "check.h"
 
@@ -55,8 +56,10 @@ int main(void) {
     unsigned char v[4] = {0}, st = 0;
     unsigned int abort_code = 0;
     char gml[] = "test.gml";
-    long pos = 0, di = 0;
+    long pos = 0, pos2 = 0, di = 0;
+    short master = -1, kind = -1;
     THomeSetting hs;
+    TPtpPara ptp;
 
     OK(NMC_DevOpen(0, &dev));
     /* Nothing is online before the master runs (S-ECAT-START, TV33). */
@@ -172,6 +175,28 @@ int main(void) {
     OK(NMC_MtSetSvOff(ax16));
     EVENTUALLY(NMC_MtGetSts(ax16, &sts), !(sts & BIT_AXIS_SVON));
     EVENTUALLY((w = statusword(dev, 0), 0), (w & 0x4F) == SWITCH_ON_DISABLED);
+
+    /* Axis numbers passed as arguments name the bus drives from 16, as NMC_MtOpen does: mask
+     * bit 17 of NMC_MtUpdateMulti starts axis 17's PTP move; bit 2 names no axis of this card
+     * (its local axes are 0 and 1) and is refused, as is a gear master 2; master 16 is kept. */
+    memset(&ptp, 0, sizeof ptp);
+    ptp.acc = 1;
+    ptp.dec = 1;
+    wait_still(ax17);
+    OK(NMC_MtGetPrfPos(ax17, &pos));
+    OK(NMC_MtSetPrfMode(ax17, MT_PTP_PRF_MODE));
+    OK(NMC_MtSetPtpPara(ax17, &ptp));
+    OK(NMC_MtSetVel(ax17, 50));
+    OK(NMC_MtSetPtpTgtPos(ax17, pos + 3000));
+    CHECK(NMC_MtUpdateMulti(ax1, 1L << 2) == RTN_ARG_RANGE, "mask bit 2: no axis 2 on this card");
+    OK(NMC_MtUpdateMulti(ax1, 1L << 17));
+    wait_still(ax17);
+    OK(NMC_MtGetPrfPos(ax17, &pos2));
+    CHECK(pos2 == pos + 3000, "UpdateMulti bit 17: from %ld to %ld", pos, pos2);
+    CHECK(NMC_MtGearSetMaster(ax1, 2, 1) == RTN_ARG_RANGE, "gear master 2");
+    OK(NMC_MtGearSetMaster(ax1, 16, 1));
+    OK(NMC_MtGearGetMaster(ax1, &master, &kind));
+    CHECK(master == 16 && kind == 1, "gear master read back: %d %d", master, kind);
     printf("ok\n");
     return 0;
 }

@@ -126,9 +126,10 @@ int main(void) {
     OK(NMC_SetMvProtect(devHandle, 0, 0));
     CHECK(sts() == 1, "enabled, far apart: 1");
     seen = move0(100000);
-    /* At most one braking distance (v²/2a = 20²/(2·0.5) = 400 pulses) past 40000: the engine's
-     * guard lets the path close by up to that (decisions.md, "NMC coordinate transforms …"). */
-    CHECK(x0() <= 40000 + 450 && x0() > 30000, "stopped at %ld", x0());
+    /* It stops before the gap falls below mvProtectDis (40000), at most a tick's travel
+     * (20 pulses) off: at 20 pulse/ms it brakes at its synAcc (0.5 pulse/ms², the crd's stop
+     * deceleration being synAccMax), 400 pulses, from the last tick that leaves room for it. */
+    CHECK(x0() <= 40000 && x0() >= 40000 - 2 * 20, "stopped at %ld", x0());
     CHECK(seen, "interference (2) was never reported while stopping");
     /* Moving apart is never stopped. */
     move0(0);

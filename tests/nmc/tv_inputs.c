@@ -2,10 +2,10 @@
  * forces through the control API: for each line "post {json}" this program prints, it posts
  * the JSON to /api/v1/commands and answers "done". A forced switch input is its electrical
  * level (the fixture's switches are wired plain, high when actuated).
- * TV40 (NMC_MtGetMotionIO bits), TV21 (a low-active + limit: stop, same direction refused,
- * reverse allowed, cleared once released), TV23 (a high-active drive alarm), TV24 (following
- * error, servo-off action). TV26 is not here: mcemu's NMC_MtClrStsByBits clears as
- * NMC_MtClrError does, all latched bits whose cause is gone or none (docs/decisions.md). */
+ * TV40 (NMC_MtGetMotionIO bits: the inputs' live levels), TV21 (a low-active + limit: stop,
+ * same direction refused, reverse allowed, cleared once released), TV23 (a high-active drive
+ * alarm), TV24 (following error: actions 0 flag only, 2 stop, 1 servo off), TV26
+ * (NMC_MtClrStsByBits clears only the masked latched bits). */
 #include <string.h>
 #include "check.h"
 
@@ -55,15 +55,21 @@ static void wait_past(HAND ax, long beyond) {
     } while (beyond >= 0 ? pos <= beyond : pos >= beyond);
 }
 
-/* NMC_MtClrError until motion-I/O bit `bit` of a released input reads 0. */
-static void clear_released(HAND ax, long bit) {
-    long io = 0, polls = 0;
-    for (;;) {
-        NMC_MtClrError(ax);
-        OK(NMC_MtGetMotionIO(ax, &io));
-        if (!(io & bit)) return;
-        CHECK(++polls < 1000000L, "bit %#lx stays after release: %#lx", bit, io);
-    }
+/* NMC_MtClrError until it succeeds (the engine has seen every cause go). */
+static void clear_errors(HAND ax) {
+    long polls = 0;
+    while (NMC_MtClrError(ax) != 0) CHECK(++polls < 1000000L, "errors never cleared");
+}
+
+/* A released input: its motion-I/O bit `io_bit` drops at once (the live level), while the
+ * status bit `sts_bit` it latched stays until NMC_MtClrError. */
+static void released(HAND ax, long io_bit, short sts_bit) {
+    long io = 0;
+    short sts = 0;
+    EVENTUALLY(NMC_MtGetMotionIO(ax, &io), !(io & io_bit));
+    OK(NMC_MtGetSts(ax, &sts));
+    CHECK((sts & sts_bit) == sts_bit, "TV40: latched %#x gone with the input: %#x", sts_bit, sts);
+    clear_errors(ax);
 }
 
 int main(void) {
@@ -86,21 +92,38 @@ int main(void) {
     force(0, "limit_pos", "true");
     EVENTUALLY(NMC_MtGetMotionIO(ax0, &io), io & BIT_AXMTIO_LMTP);
     CHECK(!(io & BIT_AXMTIO_LMTN), "TV40: + limit shows as - too: %#lx", io);
-    /* mcemu shows a latched limit in these bits until NMC_MtClrError (not the input level):
-     * clear it once the input is released. */
+    /* The bits are the inputs' levels, not the status word's latched limits (TV40). */
     force(0, "limit_pos", "null");
-    clear_released(ax0, BIT_AXMTIO_LMTP);
+    released(ax0, BIT_AXMTIO_LMTP, BIT_AXIS_LMTP);
     force(0, "limit_neg", "true");
     EVENTUALLY(NMC_MtGetMotionIO(ax0, &io), io & BIT_AXMTIO_LMTN);
     CHECK(!(io & BIT_AXMTIO_LMTP), "TV40: - limit shows as + too: %#lx", io);
     force(0, "limit_neg", "null");
-    clear_released(ax0, BIT_AXMTIO_LMTN);
+    released(ax0, BIT_AXMTIO_LMTN, BIT_AXIS_LMTN);
     OK(NMC_MtSetAlarmCfg(ax0, 1, 1));
     force(0, "drive_alarm", "true");
     EVENTUALLY(NMC_MtGetMotionIO(ax0, &io), io & BIT_AXMTIO_ALM);
     force(0, "drive_alarm", "null");
-    clear_released(ax0, BIT_AXMTIO_ALM);
+    released(ax0, BIT_AXMTIO_ALM, BIT_AXIS_ALM);
     force(0, "home", "null");
+
+    /* TV26 on axis 0: ESTP and a latched LMTP (the + limit pressed and released): the mask
+     * 0x1000 clears ESTP and leaves LMTP; LMTP's own bit then clears it. */
+    force(0, "limit_pos", "true");
+    EVENTUALLY(NMC_MtGetSts(ax0, &sts), sts & BIT_AXIS_LMTP);
+    force(0, "limit_pos", "null");
+    EVENTUALLY(NMC_MtGetMotionIO(ax0, &io), !(io & BIT_AXMTIO_LMTP));
+    OK(NMC_MtEstp(ax0));
+    OK(NMC_MtGetSts(ax0, &sts));
+    CHECK((sts & (BIT_AXIS_ESTP | BIT_AXIS_LMTP)) == (BIT_AXIS_ESTP | BIT_AXIS_LMTP),
+          "TV26: before: %#x", sts);
+    OK(NMC_MtClrStsByBits(ax0, 0x1000));
+    OK(NMC_MtGetSts(ax0, &sts));
+    CHECK(!(sts & BIT_AXIS_ESTP), "TV26: ESTP stays: %#x", sts);
+    CHECK(sts & BIT_AXIS_LMTP, "TV26: LMTP cleared by the ESTP mask: %#x", sts);
+    OK(NMC_MtClrStsByBits(ax0, BIT_AXIS_LMTP));
+    OK(NMC_MtGetSts(ax0, &sts));
+    CHECK(!(sts & BIT_AXIS_LMTP), "TV26: LMTP stays: %#x", sts);
 
     /* TV21 on axis 2, limits enabled low-active: both inputs held high (inactive) first. */
     force(2, "limit_pos", "true");
@@ -165,17 +188,48 @@ int main(void) {
     OK(NMC_MtGetPrfPos(ax1, &pos2));
     CHECK(pos2 == pos + 1000, "TV23: move after clearing from %ld to %ld", pos, pos2);
 
-    /* TV24 on axis 3: limit 100, |prf − enc| = 150 while jogging; with action 1 (servo off)
-     * POSERR is set and SVON cleared. Actions 0 (flag only, the jog goes on) and 2 (stop) are
-     * not checked: the fixture's engine default axis_err_mask 1 switches the drive off on any
-     * following-error fault, whatever the action. */
+    /* TV24 on axis 3: limit 100, |prf − enc| = 150 while jogging sets POSERR; what follows is
+     * the action's alone. Action 0: the jog goes on, servo on. */
     OK(NMC_MtSetSvOn(ax3));
     OK(NMC_MtSetPosErrLmt(ax3, 100));
-    OK(NMC_MtSetPosErrAction(ax3, 1));
+    OK(NMC_MtSetPosErrAction(ax3, 0));
     OK(NMC_MtMoveJog(ax3, 0.5, 0.5, 2, 0, 0));
     wait_past(ax3, 50);
     OK(NMC_MtGetSts(ax3, &sts));
     CHECK(!(sts & BIT_AXIS_POSERR), "TV24: POSERR before: %#x", sts);
+    following_error(3, "150");
+    EVENTUALLY(NMC_MtGetSts(ax3, &sts), sts & BIT_AXIS_POSERR);
+    OK(NMC_MtGetPrfPos(ax3, &pos));
+    wait_past(ax3, pos + 200);
+    OK(NMC_MtGetSts(ax3, &sts));
+    CHECK(sts & BIT_AXIS_SVON, "TV24 action 0: servo off: %#x", sts);
+    following_error(3, "null");
+    OK(NMC_MtStop(ax3));
+    wait_still(ax3);
+    clear_errors(ax3);
+
+    /* Action 2: the axis stops and stays stopped, servo on. */
+    OK(NMC_MtSetPosErrAction(ax3, 2));
+    OK(NMC_MtMoveJog(ax3, 0.5, 0.5, 2, 0, 0));
+    OK(NMC_MtGetPrfPos(ax3, &pos));
+    wait_past(ax3, pos + 50);
+    following_error(3, "150");
+    EVENTUALLY(NMC_MtGetSts(ax3, &sts), sts & BIT_AXIS_POSERR);
+    sts = wait_still(ax3);
+    CHECK(sts & BIT_AXIS_SVON, "TV24 action 2: servo off: %#x", sts);
+    OK(NMC_MtGetPrfPos(ax3, &pos));
+    OK(NMC_MtGetSts(ax3, &sts));
+    OK(NMC_MtGetPrfPos(ax3, &pos2));
+    CHECK(pos2 == pos && !(sts & BIT_AXIS_BUSY), "TV24 action 2: moving %ld -> %ld, sts %#x",
+          pos, pos2, sts);
+    following_error(3, "null");
+    clear_errors(ax3);
+
+    /* Action 1: servo off. */
+    OK(NMC_MtSetPosErrAction(ax3, 1));
+    OK(NMC_MtMoveJog(ax3, 0.5, 0.5, 2, 0, 0));
+    OK(NMC_MtGetPrfPos(ax3, &pos));
+    wait_past(ax3, pos + 50);
     following_error(3, "150");
     EVENTUALLY(NMC_MtGetSts(ax3, &sts), !(sts & BIT_AXIS_SVON));
     CHECK(sts & BIT_AXIS_POSERR, "TV24 action 1: %#x", sts);

@@ -146,6 +146,16 @@ int main(void) {
     CHECK(pos > -1000 && pos < 1000, "TV32: after TryHome at %ld", pos);
     OK(NMC_MtGetHomeError(ax0, &err));
     CHECK(err >= -10 && err <= 10, "TV32: home error %ld", err);
+    /* The home error is the found home minus the recorded one: with both positions zeroed at
+     * 5000 (homing captures the actual position), a trial homing finds home at -5000 and
+     * reads -5000 (docs/decisions.md). */
+    OK(NMC_MtMovePtpAbs(ax0, 1, 1, 0, 0, 20, 0, 5000));
+    wait_still(ax0);
+    OK(NMC_MtZeroPos(ax0));
+    home_and_wait(ax0, 1, &homeSts);
+    CHECK(homeSts == BIT_AXHOME_OK, "TV32: trial homing %#x", homeSts);
+    OK(NMC_MtGetHomeError(ax0, &err));
+    CHECK(err >= -5010 && err <= -4990, "TV32: home error after zeroing at 5000: %ld", err);
     printf("ok\n");
     return 0;
 }

@@ -644,7 +644,7 @@ fn tv27_tv28_tv31_tv32_tv65_moves_homing_clock() {
 /// TV21, TV23, TV24, TV40 on inputs this harness forces: the program prints
 /// `post {json}` lines, each posted to the control API and answered `done`.
 #[test]
-fn tv21_tv23_tv24_tv40_forced_inputs() {
+fn tv21_tv23_tv24_tv26_tv40_forced_inputs() {
     let dir = fresh_dir(env!("CARGO_TARGET_TMPDIR"), "nmc-tv-inputs");
     let exe = compile_example("tv_inputs.c", &dir, &[]);
     let m = Mcemu::start(Some(&gaochuan()), &[]);

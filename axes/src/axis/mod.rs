@@ -29,7 +29,7 @@ use crate::command::{
 };
 use crate::compensation::Compensation;
 use crate::config::{AxisConfig, AxisSignal, PlantModel, DEFAULT_FIFO_DEPTH};
-use crate::homing::Homing;
+use crate::homing::{Homing, HomingFailure};
 use crate::hw::encoder::EncoderTick;
 use crate::hw::plant::{LoopGains, PlantInput};
 use crate::hw::switch::Edge;
@@ -164,6 +164,17 @@ struct Inputs {
     index_at: Option<f64>,
 }
 
+/// What the axis remembers of its homing runs (NMC_MtGetHomeSts bits 3/4, NMC_MtGetHomeError).
+#[derive(Clone, Copy, Debug, Default)]
+struct HomingRecord {
+    failure: Option<HomingFailure>,
+    /// Where the last completed homing put its home point (its offset), in the frame it made;
+    /// not moved by later redefinitions of the position: the controller keeps the number.
+    home_point: Option<f64>,
+    /// The home point the last run found minus `home_point` (0 before any was defined).
+    home_error: f64,
+}
+
 /// One simulated axis.
 #[derive(Clone)]
 pub struct Axis {
@@ -257,6 +268,9 @@ pub struct Axis {
     params_version: u64,
     last_error: Option<ErrorKind>,
     homing_phase: u8,
+    /// Homing's outcome beyond the flags: the reason the last run failed, the home point the
+    /// last completed (non-trial) run defined, and the last run's new-minus-that difference.
+    homing_record: HomingRecord,
     target_pos: f64,
     /// The last tick as a hardware latch saw it (capture, position compare).
     sweep: latch::Sweep,
@@ -345,6 +359,7 @@ impl Axis {
             params_version: 0,
             last_error: None,
             homing_phase: 0,
+            homing_record: HomingRecord::default(),
             target_pos: 0.0,
             sweep: latch::Sweep::default(),
             triggers: latch::TriggerCounts::default(),
@@ -1139,6 +1154,12 @@ impl Axis {
             flags |= AxisFlags::GANTRY_FAULT;
         }
         flags.put(AxisFlags::CAPTURE_TRIGGERED, self.triggers.captures > 0);
+        let mut inputs = AxisFlags::empty();
+        inputs.put(AxisFlags::HW_LIMIT_POS, self.inputs.limit_pos);
+        inputs.put(AxisFlags::HW_LIMIT_NEG, self.inputs.limit_neg);
+        inputs.put(AxisFlags::HOME_SWITCH, self.inputs.home);
+        inputs.put(AxisFlags::INDEX, self.inputs.index);
+        inputs.put(AxisFlags::DRIVE_ALARM, self.inputs.drive_alarm);
         let next = self
             .fifo
             .get(usize::from(current.is_some()))
@@ -1210,6 +1231,9 @@ impl Axis {
             z_output: self.triggers.z_output,
             compensation_offset,
             compensation_offset_moving,
+            inputs,
+            homing_failure: self.homing_record.failure,
+            home_error: self.homing_record.home_error,
         };
     }
 }

@@ -257,7 +257,13 @@ impl Axis {
         };
         let offset = homing.spec().offset;
         let out = homing.step(&inputs);
+        if let Some(found) = out.home_found {
+            // Before `set_home` moves the frame: both in the frame the run started in.
+            let record = &mut self.homing_record;
+            record.home_error = found - record.home_point.unwrap_or(0.0);
+        }
         if let Some(at) = out.set_home {
+            self.homing_record.home_point = Some(offset);
             // The home point reads `offset` from now on; the motor does not move.
             let delta = offset - at;
             self.shift_commanded(delta);
@@ -273,10 +279,12 @@ impl Axis {
             self.target_pos = self.raw.p;
             match result {
                 Ok(()) => {
+                    self.homing_record.failure = None;
                     self.flags |= AxisFlags::HOMED;
                     self.end_running(ctx, CommandState::Done);
                 }
-                Err(_) => {
+                Err(e) => {
+                    self.homing_record.failure = Some(e.failure());
                     self.latched |= AxisFlags::HOMING_FAILED;
                     self.last_error = Some(ErrorKind::Homing);
                     self.end_running(ctx, CommandState::Error(ErrorKind::Homing));

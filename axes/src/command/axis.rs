@@ -7,6 +7,7 @@ use super::{
 };
 use crate::homing::HomingQuirks;
 use crate::param::ParamId;
+use crate::status::AxisFlags;
 
 /// Power the drive (PLCopen MC_Power on).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -27,6 +28,15 @@ pub struct Disable {
 #[serde(deny_unknown_fields)]
 pub struct Reset {
     pub axis: AxisIndex,
+}
+
+/// Clear only the latched faults in `faults` whose cause is gone (NMC_MtClrStsByBits); the
+/// other latches stay. A fault of `faults` whose cause remains stays latched and is reported.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ResetFaults {
+    pub axis: AxisIndex,
+    pub faults: AxisFlags,
 }
 
 /// Move to an absolute position (PLCopen MC_MoveAbsolute).
@@ -255,6 +265,7 @@ pub enum AxisCommand {
     ForceInput(ForceInput),
     InjectFollowingError(InjectFollowingError),
     Setpoint(StreamSetpoint),
+    ResetFaults(ResetFaults),
 }
 
 impl AxisCommand {
@@ -278,7 +289,8 @@ impl AxisCommand {
             | AxisCommand::Cancel(Cancel { axis, .. })
             | AxisCommand::ForceInput(ForceInput { axis, .. })
             | AxisCommand::InjectFollowingError(InjectFollowingError { axis, .. })
-            | AxisCommand::Setpoint(StreamSetpoint { axis, .. }) => *axis,
+            | AxisCommand::Setpoint(StreamSetpoint { axis, .. })
+            | AxisCommand::ResetFaults(ResetFaults { axis, .. }) => *axis,
         }
     }
 }
@@ -305,5 +317,6 @@ command_from!(
         ForceInput => ForceInput,
         InjectFollowingError => InjectFollowingError,
         StreamSetpoint => Setpoint,
+        ResetFaults => ResetFaults,
     ]
 );

@@ -411,8 +411,21 @@ pub enum GroupParameter {
     CornerAcceleration,
     /// Centripetal acceleration on arcs, `v ≤ √(A·r)` (HIMC prm 1; NMC centAcc); 0 = off.
     ArcAcceleration,
-    /// Largest chord error per servo period on arcs (HIMC prm 2); 0 = off.
+    /// Largest chord error per servo period on arcs (HIMC prm 2); 0 = off. With radius bands
+    /// (`chord_error_radius_1` or `_2` set), the error of radii up to the first edge.
     ChordError,
+    /// NMC's arc-section table (`TArcSecSetting` r0, r1, err1, err2; digest 001 §3.9): radii
+    /// above `chord_error_radius_1` take `chord_error_band_1`, above `chord_error_radius_2`
+    /// `chord_error_band_2` (errors 0 = no limit in that band). The bands are on while either
+    /// radius is positive; keep them ascending.
+    ChordErrorRadius1,
+    ChordErrorRadius2,
+    ChordErrorBand1,
+    ChordErrorBand2,
+    /// The speed the fourth coordinate (index 3, NMC's A) may have at a corner: where the
+    /// direction turns at an unblended junction the path slows so that it is not exceeded
+    /// (NMC `NMC_CrdSetFourthAxisToTurnVel`, digest 001 §2.7); 0 = off (the default).
+    FourthCoordinateCornerVelocity,
     /// HMC's stop after a member's limit or fault (digest 000 §4.3, §6.1 (b)/(c)): the path
     /// decelerates to rest with max(`deceleration`, this value) — the result axis's FastDecel —
     /// and the members still on the path stay on it. 0 = off (the default, NMC and HIMC: the

@@ -109,8 +109,8 @@ mod wire;
 
 pub use axis::{
     AxisCommand, Cancel, Disable, Enable, ForceInput, GetParameter, Halt, Home,
-    InjectFollowingError, ModifyTarget, MoveAbsolute, MoveRelative, MoveVelocity, Reset, Resume,
-    SetParameter, SetPosition, Stop, StreamSetpoint,
+    InjectFollowingError, ModifyTarget, MoveAbsolute, MoveRelative, MoveVelocity, Reset,
+    ResetFaults, Resume, SetParameter, SetPosition, Stop, StreamSetpoint,
 };
 pub use compensation::{
     BacklashDirection, CompensationBacklash, CompensationClear, CompensationCommand,

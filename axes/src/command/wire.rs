@@ -200,6 +200,8 @@ pub(super) enum Command {
     CompensationOffsetProfile(super::CompensationOffsetProfile),
     CompensationOffsetTrigger(super::CompensationOffsetTrigger),
     CompensationOffsetStop(super::CompensationOffsetStop),
+    // Issue 13, NMC_MtClrStsByBits.
+    ResetFaults(super::ResetFaults),
     // Issue 13, NMC: the execution-time dry run and the guards.
     EstimateGroupTime(super::EstimateGroupTime),
     WatchdogSet(super::WatchdogSet),
@@ -388,6 +390,7 @@ impl From<Command> for super::Command {
             Command::CompensationOffsetProfile(c) => super::Command::from(c),
             Command::CompensationOffsetTrigger(c) => super::Command::from(c),
             Command::CompensationOffsetStop(c) => super::Command::from(c),
+            Command::ResetFaults(c) => super::Command::from(c),
         }
     }
 }
@@ -398,6 +401,7 @@ impl From<super::Command> for Command {
             super::Command::Axis(AxisCommand::Enable(c)) => Command::Enable(c),
             super::Command::Axis(AxisCommand::Disable(c)) => Command::Disable(c),
             super::Command::Axis(AxisCommand::Reset(c)) => Command::Reset(c),
+            super::Command::Axis(AxisCommand::ResetFaults(c)) => Command::ResetFaults(c),
             super::Command::Axis(AxisCommand::MoveAbsolute(c)) => Command::MoveAbsolute(c),
             super::Command::Axis(AxisCommand::MoveRelative(c)) => Command::MoveRelative(c),
             super::Command::Axis(AxisCommand::MoveVelocity(c)) => Command::MoveVelocity(c),

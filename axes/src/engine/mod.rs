@@ -8,8 +8,8 @@ use crate::command::{
     AxisCommand, AxisIndex, Cancel, Command, CommandKind, CouplingCommand, Disable, Enable,
     EngineError, ForceAnalogInput, ForceDigitalInput, ForceInput, GetParameter, GroupCommand, Halt,
     Home, InjectFollowingError, IoCommand, ModifyTarget, MoveAbsolute, MoveRelative, MoveVelocity,
-    ReadObject, Reply, Reset, SetParameter, SetPosition, SlaveCommand, Stop, StreamSetpoint,
-    WriteAnalogOutput, WriteDigitalOutput, WriteObject,
+    ReadObject, Reply, Reset, ResetFaults, SetParameter, SetPosition, SlaveCommand, Stop,
+    StreamSetpoint, WriteAnalogOutput, WriteDigitalOutput, WriteObject,
 };
 use crate::config::{ConfigError, EngineConfig, InputBinding};
 use crate::coupling::{Couplings, Env as CouplingEnv};
@@ -20,7 +20,7 @@ use crate::od::Value;
 use crate::param::ParamId;
 use crate::rng::Rng;
 use crate::sampling::Samplers;
-use crate::status::{AxisStatus, DriveStatus, IoImage, Snapshot};
+use crate::status::{AxisFlags, AxisStatus, DriveStatus, IoImage, Snapshot};
 use crate::trigger::{Env as TriggerEnv, Triggers};
 use std::sync::Arc;
 
@@ -471,6 +471,11 @@ impl Engine {
             AxisCommand::Enable(Enable { axis }) => (*axis, PowerTarget::OperationEnabled),
             AxisCommand::Disable(Disable { axis }) => (*axis, PowerTarget::SwitchOnDisabled),
             AxisCommand::Reset(Reset { axis }) => (*axis, PowerTarget::SwitchOnDisabled),
+            AxisCommand::ResetFaults(ResetFaults { axis, faults })
+                if faults.contains(AxisFlags::DRIVE_ALARM) =>
+            {
+                (*axis, PowerTarget::SwitchOnDisabled)
+            }
             _ => return None,
         };
         let slave = self.axis_slave.get(axis as usize).copied().flatten()?;
@@ -478,7 +483,7 @@ impl Engine {
         if s.master != DriveMaster::Engine {
             return None;
         }
-        if let AxisCommand::Reset(_) = command {
+        if let AxisCommand::Reset(_) | AxisCommand::ResetFaults(_) = command {
             // A fault reset walks Fault → Switch on disabled; the axis's own latches are
             // cleared directly.
             if s.drive.state() == State::Fault {
@@ -498,6 +503,7 @@ impl Engine {
             AxisCommand::Enable(_) => axis.enable(&mut ctx),
             AxisCommand::Disable(_) => axis.disable(&mut ctx),
             AxisCommand::Reset(_) => axis.reset(&mut ctx),
+            AxisCommand::ResetFaults(ResetFaults { axis: _, faults }) => axis.reset_faults(faults),
             AxisCommand::MoveAbsolute(MoveAbsolute {
                 axis: _,
                 position,

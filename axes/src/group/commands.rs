@@ -420,6 +420,34 @@ impl Group {
                         // Positive and finite here, so the planner accepts it.
                         let _ = self.planner.set_lookahead_limits(limits);
                     }
+                    GroupParameter::ChordErrorRadius1
+                    | GroupParameter::ChordErrorRadius2
+                    | GroupParameter::ChordErrorBand1
+                    | GroupParameter::ChordErrorBand2 => {
+                        let value = off_or_positive(c.value)?;
+                        let mut limits = self.planner.lookahead_limits();
+                        let mut bands = limits.chord_error_bands.unwrap_or_default();
+                        match c.name {
+                            GroupParameter::ChordErrorRadius1 => {
+                                bands.edges[0] = value.unwrap_or(0.0)
+                            }
+                            GroupParameter::ChordErrorRadius2 => {
+                                bands.edges[1] = value.unwrap_or(0.0)
+                            }
+                            GroupParameter::ChordErrorBand1 => bands.errors[0] = value,
+                            _ => bands.errors[1] = value,
+                        }
+                        limits.chord_error_bands = Some(bands);
+                        // Errors off or positive, edges ≥ 0 and finite: the planner accepts it.
+                        let _ = self.planner.set_lookahead_limits(limits);
+                    }
+                    GroupParameter::FourthCoordinateCornerVelocity => {
+                        let setting = off_or_positive(c.value)?;
+                        let mut limits = self.planner.lookahead_limits();
+                        limits.corner_coordinate_velocity = setting.map(|v| (3, v));
+                        // Positive and finite here, so the planner accepts it.
+                        let _ = self.planner.set_lookahead_limits(limits);
+                    }
                 }
                 Ok(Reply::Done)
             }

@@ -60,16 +60,27 @@ impl Jog {
         &self.direction
     }
 
-    /// The length along the jog coordinate a stop with `deceleration` issued now travels
-    /// before rest (`Group::stop_jog` cuts it to the members' own acceleration).
-    pub fn stopping_distance(&self, deceleration: f64) -> f64 {
+    /// The length along the jog coordinate travelled from now to rest when a stop with
+    /// `deceleration` is issued `delay` seconds from now (`Group::stop_jog` cuts it to the
+    /// members' own acceleration): until then the jog may still speed up (by at most its
+    /// acceleration limit), then it brakes.
+    pub fn stopping_distance(&self, delay: f64, deceleration: f64) -> f64 {
         let sign = if self.last.v < 0.0 { -1.0 } else { 1.0 };
-        path::planner::braking_distance(
-            self.last.v.abs(),
-            self.last.a * sign,
-            deceleration.min(self.members_acceleration),
-            self.limits.jerk,
-        )
+        let delay = delay.max(0.0);
+        let a = self.last.a * sign;
+        let a1 = if self.limits.jerk.is_finite() {
+            (a.max(0.0) + self.limits.jerk * delay).min(self.limits.acceleration.max(a))
+        } else {
+            a.max(0.0)
+        };
+        let v1 = self.last.v.abs() + a1 * delay;
+        v1 * delay
+            + path::planner::braking_distance(
+                v1,
+                a1,
+                deceleration.min(self.members_acceleration),
+                self.limits.jerk,
+            )
     }
 
     /// Plan from the state fed last to the signed velocity `target` with `limits`.

@@ -3,9 +3,9 @@
 //!
 //! Each tick, before the groups step, every protection looks at the two guarded coordinates
 //! as the last tick left them: the distance `origin − Σ dir_k·position_k`, and for each group
-//! how much closer its guarded coordinate would still come if stopped now: along its queued
-//! path (not the tangent) over one period at its speed plus
-//! [`path::planner::PathPlanner::stopping_distance`], or along a jog's direction. If the
+//! how much closer its guarded coordinate would still come if stopped at the next check:
+//! along its queued path (not the tangent) over
+//! [`path::planner::PathPlanner::stopping_distance`] one period on, or along a jog's direction. If the
 //! distance less those reserves would fall below the protection distance, the protection
 //! acts:
 //!
@@ -63,8 +63,11 @@ impl Protection {
 }
 
 /// What one group shows the guard: its guarded coordinate, and how much closer to the other
-/// group a stop issued now would still bring that coordinate (its reserve, ≥ 0). For a path:
-/// one period at its speed plus [`path::planner::PathPlanner::stopping_distance`] of the
+/// group a stop issued at the next check would still bring that coordinate (its reserve,
+/// ≥ 0). For a path: [`path::planner::PathPlanner::stopping_distance`] one period on (the
+/// period travelled at the speed the path may reach by then, and its braking from there; the
+/// speed gained in that period counts — without it a path accelerating hard toward a stop
+/// braking gently decided a period late by a whole braking distance's growth) on the
 /// queued path itself ([`path::planner::PathPlanner::advance_toward`]: a path that turns
 /// toward the other group within its braking distance counts, one that turns away does not).
 /// For a jog: the same length along its fixed direction, times the guarded coordinate's
@@ -82,7 +85,7 @@ fn guarded(g: &Group, env: &Env, axis: usize, direction: f64) -> (f64, f64) {
         if share <= 0.0 || v == 0.0 {
             return (position, 0.0);
         }
-        let length = v.abs() * env.period + jog.stopping_distance(deceleration);
+        let length = jog.stopping_distance(env.period, deceleration);
         return (position, share * length);
     }
     let st = g.planner.state();
@@ -90,7 +93,11 @@ fn guarded(g: &Group, env: &Env, axis: usize, direction: f64) -> (f64, f64) {
     if v <= 0.0 && st.path_acceleration <= 0.0 {
         return (position, 0.0);
     }
-    let length = v * env.period + g.planner.stopping_distance(deceleration);
+    // The stop comes at the earliest with the next check, one period on; its deceleration
+    // over the counted coordinates, as `Group::stop` gives it to the planner.
+    let length = g
+        .planner
+        .stopping_distance(env.period, deceleration / g.length_ratio);
     let mut unit = [0.0; path::MAX_AXES];
     if let Some(u) = unit.get_mut(axis) {
         *u = direction;

@@ -171,8 +171,24 @@ impl Group {
     /// the result axis. A refusal names the slot (member coordinate, or [`RESULT_SLOT`]).
     fn feed(&mut self, env: &mut Env) -> Result<(), (usize, u16, EngineError)> {
         let state = self.planner.state();
-        for (k, &a) in self.members.iter().enumerate() {
-            self.feed_member(env, state, k, a).map_err(|e| (k, a, e))?;
+        // One pass over the members and the path's coordinates (this runs every tick).
+        let (mut ctx, axes) = env.context();
+        let coordinates = state
+            .position
+            .iter()
+            .zip(&state.velocity)
+            .zip(&state.acceleration)
+            .zip(&self.origin);
+        for (k, (&a, (((p, v), acc), o))) in self.members.iter().zip(coordinates).enumerate() {
+            if let Some(axis) = axes.get_mut(usize::from(a)) {
+                let setpoint = MotionState {
+                    p: p + o,
+                    v: *v,
+                    a: *acc,
+                };
+                axis.feed(&mut ctx, Feed::Follow(setpoint))
+                    .map_err(|e| (k, a, e))?;
+            }
         }
         feed_result_axis(&mut self.result, self.length_ratio, env, state)
             .map_err(|(a, e)| (RESULT_SLOT, a, e))

@@ -300,3 +300,31 @@ pub enum HomingError {
     #[error("homing aborted")]
     Aborted,
 }
+
+/// What ended a failed homing, without its details: `Copy`, so the axis status keeps it
+/// (vendor status words tell a parameter error from a switch never found, NMC §3.13).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum HomingFailure {
+    UnsupportedMethod,
+    MissingInput,
+    BadParameter,
+    Timeout,
+    NotFound,
+    LimitHit,
+    Aborted,
+}
+
+impl HomingError {
+    pub fn failure(&self) -> HomingFailure {
+        match self {
+            HomingError::UnsupportedMethod { .. } => HomingFailure::UnsupportedMethod,
+            HomingError::MissingInput { .. } => HomingFailure::MissingInput,
+            HomingError::BadParameter { .. } => HomingFailure::BadParameter,
+            HomingError::Timeout { .. } => HomingFailure::Timeout,
+            HomingError::NotFound { .. } => HomingFailure::NotFound,
+            HomingError::LimitHit { .. } => HomingFailure::LimitHit,
+            HomingError::Aborted => HomingFailure::Aborted,
+        }
+    }
+}

@@ -6,7 +6,10 @@
 //! reports as "bad parameter" come back as [`HomingError`]s; whatever the table leaves to the
 //! machine (speeds ≤ 0, missing inputs) is refused by [`super::Homing::start`].
 
-use super::{AfterHome, HomingError, HomingPhase, HomingQuirks, HomingSpec, HomingStatus, Latch};
+use super::{
+    AfterHome, HomingError, HomingFailure, HomingPhase, HomingQuirks, HomingSpec, HomingStatus,
+    Latch,
+};
 use serde::{Deserialize, Serialize};
 
 fn bad(name: &str, value: f64, requirement: &str) -> HomingError {
@@ -229,11 +232,18 @@ pub fn nmc_home_status(status: &HomingStatus) -> u16 {
         HomingStatus::Idle => 0,
         HomingStatus::Running(_) => NMC_HOME_RUNNING,
         HomingStatus::Succeeded => NMC_HOME_OK,
-        HomingStatus::Failed(e) if is_parameter_error(e) => NMC_HOME_FAIL | NMC_HOME_ERR_MV,
-        HomingStatus::Failed(HomingError::NotFound { .. } | HomingError::LimitHit { .. }) => {
-            NMC_HOME_FAIL | NMC_HOME_ERR_SWT
-        }
-        HomingStatus::Failed(_) => NMC_HOME_FAIL,
+        HomingStatus::Failed(e) => nmc_home_failure(e.failure()),
+    }
+}
+
+/// The `NMC_MtGetHomeSts` word of a failed homing (see [`nmc_home_status`]).
+pub fn nmc_home_failure(failure: HomingFailure) -> u16 {
+    match failure {
+        HomingFailure::UnsupportedMethod
+        | HomingFailure::MissingInput
+        | HomingFailure::BadParameter => NMC_HOME_FAIL | NMC_HOME_ERR_MV,
+        HomingFailure::NotFound | HomingFailure::LimitHit => NMC_HOME_FAIL | NMC_HOME_ERR_SWT,
+        HomingFailure::Timeout | HomingFailure::Aborted => NMC_HOME_FAIL,
     }
 }
 

@@ -6,6 +6,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::homing::HomingFailure;
 use crate::types::{CommandId, CommandKind, ErrorKind, StreamMode};
 
 mod coupling;
@@ -328,6 +329,18 @@ pub struct AxisStatus {
     /// That offset's move is in progress (HMC GetAxisCompenState 1; 0 done).
     #[serde(default)]
     pub compensation_offset_moving: bool,
+    /// The dedicated inputs' active states this tick, after their configured sense and never
+    /// latched: HW_LIMIT_POS, HW_LIMIT_NEG, HOME_SWITCH, INDEX, DRIVE_ALARM (an alarm input
+    /// that is not enabled reads inactive). NMC_MtGetMotionIO reads these (TV40).
+    #[serde(default)]
+    pub inputs: AxisFlags,
+    /// Why the last homing failed, while HOMING_FAILED says it did (NMC home status bits 3/4).
+    #[serde(default)]
+    pub homing_failure: Option<HomingFailure>,
+    /// The home point the last homing found minus the one the last completed homing defined,
+    /// user units (NMC_MtGetHomeError; 0 until a home point is found).
+    #[serde(default)]
+    pub home_error: f64,
 }
 
 /// An axis's PT/PVT buffer and run (NMC `MtPtGetSpace`, `MtPtGetStatic`).

@@ -101,6 +101,11 @@ impl FramesState {
         }
     }
 
+    /// `NMC_CrdSetFourthAxisToTurnVel`'s tolVel of `n` (0: off).
+    pub fn crd_turn_vel(&self, n: usize) -> f64 {
+        self.crd.get(n).map_or(0.0, |f| f.fourth_axis_turn_vel)
+    }
+
     /// `NMC_CrdDelete`: the family's settings of `n` back to their defaults.
     pub fn on_delete(&mut self, n: usize) {
         if self.protect.guards(n) {
@@ -119,17 +124,12 @@ impl FramesState {
     }
 }
 
-/// The engine's chord error for the table `a`, pulses: the smallest positive error (the
-/// engine keeps one chord error for every arc, not one per radius band: the strictest band
-/// holds on every arc; decisions.md); 0 (off) when the radii are all 0.
-pub fn chord_error(a: &ArcSecSetting) -> f64 {
+/// The engine's chord error bands for the table `a`, pulses: (err0, [r0, r1], [err1, err2])
+/// — err0 up to r0, err1 up to r1, err2 beyond (0: no limit in that band); all 0 (off) when
+/// the radii are all 0 ("all 0 = feature off").
+pub fn chord_error(a: &ArcSecSetting) -> (f64, [f64; 2], [f64; 2]) {
     if a.r.iter().all(|r| *r == 0.0) {
-        return 0.0;
+        return (0.0, [0.0; 2], [0.0; 2]);
     }
-    a.err
-        .iter()
-        .copied()
-        .filter(|e| *e > 0.0)
-        .reduce(f64::min)
-        .unwrap_or(0.0)
+    (a.err[0], [a.r[0], a.r[1]], [a.err[1], a.err[2]])
 }

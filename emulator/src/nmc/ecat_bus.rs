@@ -115,6 +115,28 @@ impl EcatBus {
         self.local_axes(engine_axes).nth(usize::from(item))
     }
 
+    /// The NMC axis number of engine axis `axis` (the inverse of [`EcatBus::engine_axis`]).
+    pub fn nmc_number(&self, axis: usize, engine_axes: usize) -> Option<u8> {
+        if let Some((k, _)) = self.drive_of_axis(axis) {
+            return u8::try_from(usize::from(BUS_AXIS_FIRST) + k).ok();
+        }
+        let place = self.local_axes(engine_axes).position(|a| a == axis)?;
+        u8::try_from(place).ok()
+    }
+
+    /// The NMC axis numbers that exist, for range refusals: "[0, L−1]" and, with bus drives,
+    /// "or [16, 15+D] (the bus drives)".
+    pub fn numbers_text(&self, engine_axes: usize) -> String {
+        let local = format!("[0, {}]", self.local_count(engine_axes).saturating_sub(1));
+        match self.drives.len() {
+            0 => local,
+            d => format!(
+                "{local} or [{BUS_AXIS_FIRST}, {}] (the bus drives)",
+                usize::from(BUS_AXIS_FIRST) + d - 1
+            ),
+        }
+    }
+
     fn requested(&self) -> MutexGuard<'_, Vec<Option<u64>>> {
         self.homing_requested
             .lock()

@@ -392,7 +392,10 @@ impl PathPlanner {
             (Some(e), Some(Entry::Motion(m))) => {
                 let pt = m.segment.sample(e.s);
                 st.position = pt.p;
-                for k in 0..MAX_AXES {
+                // The path's own axes: past them the tangent and curvature are 0, and so are
+                // the velocity and acceleration written there (never anything else).
+                let dims = self.config.dims.min(MAX_AXES);
+                for k in 0..dims {
                     st.velocity[k] = pt.t[k] * e.v;
                     st.acceleration[k] = pt.t[k] * e.a + pt.k[k] * e.v * e.v;
                 }

@@ -172,8 +172,46 @@ pub struct LookaheadLimits {
     /// `v ≤ √(A_arc·r)`.
     pub arc_acceleration: Option<f64>,
     /// Largest chord error ε of one servo period's chord on a curve (HIMC, off by default):
-    /// `v ≤ 2·r·acos(1 − ε/r)/T`.
+    /// `v ≤ 2·r·acos(1 − ε/r)/T`. With `chord_error_bands`, the error of radii up to the
+    /// first band edge.
     pub chord_error: Option<f64>,
+    /// NMC's arc-section table (`TArcSecSetting`, digest 001 §3.9: "[0,r0]→err0;
+    /// [r0,r1]→err1; [r1,+max]→err2"): radii above `edges[0]` take `errors[0]`, above
+    /// `edges[1]` `errors[1]` (`None`: no chord limit in that band; see
+    /// [`ChordErrorBands::error_for`]). Off when `None` or both edges are 0: then `chord_error`
+    /// holds at every radius.
+    pub chord_error_bands: Option<ChordErrorBands>,
+    /// The speed one coordinate may have at a corner: `(coordinate, speed)` (NMC
+    /// `NMC_CrdSetFourthAxisToTurnVel`, the A axis of 4-D interpolation: "若大于该速度，则需要进行
+    /// 降速处理"). Where the direction turns at a junction without a blend, the junction
+    /// speed is at most `speed / max(|t₁[k]|, |t₂[k]|)`.
+    pub corner_coordinate_velocity: Option<(usize, f64)>,
+}
+
+/// The radius bands of a chord error table above its first band (see
+/// [`LookaheadLimits::chord_error_bands`]): the band edges (ascending: the caller's to keep)
+/// and the error of each band.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ChordErrorBands {
+    pub edges: [f64; 2],
+    pub errors: [Option<f64>; 2],
+}
+
+impl ChordErrorBands {
+    /// The chord error of a curve of radius `r`; `first` up to the first edge. Both edges 0:
+    /// no bands (`first` everywhere); a second edge not above the first: no second band.
+    pub fn error_for(&self, r: f64, first: Option<f64>) -> Option<f64> {
+        let [r0, r1] = self.edges;
+        if r0 <= 0.0 && r1 <= 0.0 {
+            first
+        } else if r1 > r0 && r > r1 {
+            self.errors[1]
+        } else if r > r0 {
+            self.errors[0]
+        } else {
+            first
+        }
+    }
 }
 
 impl LookaheadLimits {
@@ -182,6 +220,8 @@ impl LookaheadLimits {
         corner_acceleration: Some(5000.0),
         arc_acceleration: Some(100.0),
         chord_error: None,
+        chord_error_bands: None,
+        corner_coordinate_velocity: None,
     };
 
     /// Cap on the path speed of a segment whose largest curvature is `curvature`.
@@ -194,7 +234,11 @@ impl LookaheadLimits {
         if let Some(a) = self.arc_acceleration {
             cap = cap.min((a * r).sqrt());
         }
-        if let Some(e) = self.chord_error {
+        let chord_error = match self.chord_error_bands {
+            Some(b) => b.error_for(r, self.chord_error),
+            None => self.chord_error,
+        };
+        if let Some(e) = chord_error {
             // Half the angle a chord of one period subtends when it is ε from the arc.
             let half = (1.0 - (e / r).min(1.0)).acos();
             cap = cap.min(2.0 * r * half / period);
@@ -203,12 +247,21 @@ impl LookaheadLimits {
     }
 
     fn check(&self) -> Result<(), PlannerError> {
+        if let Some(b) = self.chord_error_bands {
+            if !b.edges.iter().all(|r| *r >= 0.0 && r.is_finite()) {
+                return Err(PlannerError::Invalid(
+                    "chord error band edges must be finite and ≥ 0",
+                ));
+            }
+        }
         for v in [
             self.corner_acceleration,
             self.arc_acceleration,
             self.chord_error,
+            self.corner_coordinate_velocity.map(|(_, v)| v),
         ]
         .into_iter()
+        .chain(self.chord_error_bands.into_iter().flat_map(|b| b.errors))
         .flatten()
         {
             if !(v > 0.0 && v.is_finite()) {
@@ -595,25 +648,41 @@ impl PathPlanner {
         &self.state
     }
 
-    /// An upper bound on the path length a [`PathPlanner::stop`] with `deceleration` issued
-    /// now travels before rest: from the current velocity and acceleration, with the lowest
-    /// deceleration and jerk of every queued motion (a stop never brakes harder than a
-    /// motion allows, and it may cross motion ends). Closed form over the queue: O(queued).
-    /// A guard between two paths uses it (issue 11, NMC `SetMvProtect`).
-    pub fn stopping_distance(&self, deceleration: f64) -> f64 {
+    /// An upper bound on the path length travelled from now to rest when a
+    /// [`PathPlanner::stop`] with `deceleration` is issued `delay` seconds from now (a guard
+    /// that checks once a period passes the period): until then the path may still speed up,
+    /// at its acceleration now and, with a jerk limit, by `jerk·delay` more (never above the
+    /// largest queued acceleration), up to the fastest queued cruise velocity; then it brakes with the lowest deceleration and jerk of
+    /// every queued motion (a stop never brakes harder than a motion allows, and it may cross
+    /// motion ends). Closed form over the queue: O(queued). A guard between two paths uses it
+    /// (issue 11, NMC `SetMvProtect`).
+    pub fn stopping_distance(&self, delay: f64, deceleration: f64) -> f64 {
         let v = self.state.path_velocity.max(0.0);
         let a = self.state.path_acceleration;
         if v <= 0.0 && a <= 0.0 {
             return 0.0;
         }
-        let (mut dec, mut jerk) = (deceleration, f64::INFINITY);
+        let (mut dec, mut jerk, mut acc, mut top) = (deceleration, f64::INFINITY, 0.0_f64, v);
         for entry in &self.queue {
             if let Entry::Motion(m) = entry {
                 dec = dec.min(m.limits.deceleration);
                 jerk = jerk.min(m.limits.jerk);
+                acc = acc.max(m.limits.acceleration);
+                top = top.max(m.cruise(self.override_factor));
             }
         }
-        braking_distance(v, a, dec, jerk)
+        let delay = delay.max(0.0);
+        // The acceleration at the stop, and the speed then: v grows by at most that times
+        // the delay (the acceleration only rises toward it), and not past the fastest queued
+        // cruise velocity (a junction is never faster than both its motions').
+        let a1 = if jerk.is_finite() {
+            (a.max(0.0) + jerk * delay).min(acc.max(a))
+        } else {
+            a.max(0.0)
+        };
+        let v1 = (v + a1 * delay).min(top);
+        let a1 = if v1 >= top { 0.0 } else { a1 };
+        v1 * delay + braking_distance(v1, a1, dec, jerk)
     }
 
     pub fn state(&self) -> &PathState {

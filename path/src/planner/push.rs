@@ -142,10 +142,20 @@ impl PathPlanner {
         if let Some(Entry::Motion(prev)) = self.queue.get_mut(pi) {
             before = prev.segment.sample(prev.length);
             let changed = join(prev, &mut new, axes, period, &rules);
+            let step = crate::geometry::norm(&crate::geometry::sub(&before.t, &after.t));
             if let Some(a) = rules.corner_acceleration {
-                let step = crate::geometry::norm(&crate::geometry::sub(&before.t, &after.t));
                 if step > 0.0 {
                     prev.end_cap = prev.end_cap.min(a * period / step);
+                }
+            }
+            if let Some((k, v)) = rules.corner_coordinate_velocity {
+                let share = before
+                    .t
+                    .get(k)
+                    .map_or(0.0, |t| t.abs())
+                    .max(after.t.get(k).map_or(0.0, |t| t.abs()));
+                if step > 0.0 && share > 0.0 {
+                    prev.end_cap = prev.end_cap.min(v / share);
                 }
             }
             if changed && pi == 0 && self.exec.is_some() {

@@ -46,6 +46,19 @@ pub const PARAMETER_ERROR: u32 = 0xFFFF_FFFF;
 /// `HMC_WaitAxisIdle` with an axis number out of range (digest 000 §6.9, §8 item 46).
 pub const WAIT_AXIS_IDLE_BAD_AXIS: u8 = 0x17;
 
+/// `HMC_ClcJerk(dCurvature, dSpeed)` (digest 000 §4.4.7.2, §3.5): the jerk a curve of
+/// curvature κ needs to run at `speed`, κ²·v³ — the inverse of the curve speed cap
+/// `(Jerk/κ²)^(1/3)` the engine's planner applies with the path's jerk. A negative or
+/// non-finite argument is the manual's parameter error, −1.
+pub fn clc_jerk(curvature: f64, speed: f64) -> f64 {
+    let valid = |x: f64| x.is_finite() && x >= 0.0;
+    if valid(curvature) && valid(speed) {
+        curvature * curvature * speed * speed * speed
+    } else {
+        -1.0
+    }
+}
+
 /// The code a buffered motion function returns for a refused command: the manual lists one
 /// code for every refusal, 0xFFFFFFFF (digest 000 §6.9 "function parameter error (all motion
 /// functions)"); an accepted command returns its command id instead.
@@ -164,5 +177,28 @@ mod tests {
         s.state = CompareState::Done;
         assert_eq!(switch_state(Some(&s)), 3);
         assert_eq!(switch_state(None), 3);
+    }
+
+    #[test]
+    fn clc_jerk_is_curvature_squared_times_speed_cubed_vector_36() {
+        // Digest 000 TV 36: 1/(100·√2) at 1000 → 50000; 1/(50·√2) → 200000; negative → −1.
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.abs();
+        assert!(close(
+            clc_jerk(1.0 / (100.0 * 2f64.sqrt()), 1000.0),
+            50_000.0
+        ));
+        assert!(close(
+            clc_jerk(1.0 / (50.0 * 2f64.sqrt()), 1000.0),
+            200_000.0
+        ));
+        assert_eq!(clc_jerk(0.0, 1000.0), 0.0);
+        for (k, v) in [
+            (-1e-3, 1000.0),
+            (1e-3, -1.0),
+            (f64::NAN, 1.0),
+            (1.0, f64::INFINITY),
+        ] {
+            assert_eq!(clc_jerk(k, v), -1.0, "({k}, {v})");
+        }
     }
 }

@@ -89,6 +89,33 @@ pub fn axis_status(s: &AxisStatus, extra: AxisExtra) -> u16 {
     w
 }
 
+/// The engine latches that `NMC_MtClrStsByBits(ax, stsMask)` clears (digest 001 §2.4, TV26):
+/// each latched bit of the §3.1 word maps to the faults behind it; the bits that are not
+/// latches (BUSY, POSREC, SVON, CRD, STEP, CAPTSET) clear nothing. MVERR covers the faults
+/// that show only as MVERR (a PT stream run dry, a gantry deviation).
+pub fn latched_faults_of(sts_mask: u16) -> AxisFlags {
+    let mut f = AxisFlags::empty();
+    for (bit, faults) in [
+        (
+            BIT_AXIS_MVERR,
+            AxisFlags::MOTION_ERROR | AxisFlags::STREAM_UNDERRUN | AxisFlags::GANTRY_FAULT,
+        ),
+        (BIT_AXIS_LMTP, AxisFlags::HW_LIMIT_POS),
+        (BIT_AXIS_LMTN, AxisFlags::HW_LIMIT_NEG),
+        (BIT_AXIS_SOFTPOSLMT, AxisFlags::SW_LIMIT_POS),
+        (BIT_AXIS_SOFTNEGLMT, AxisFlags::SW_LIMIT_NEG),
+        (BIT_AXIS_ALM, AxisFlags::DRIVE_ALARM),
+        (BIT_AXIS_POSERR, AxisFlags::FE_FAULT),
+        (BIT_AXIS_ESTP, AxisFlags::ESTOP),
+        (BIT_AXIS_HWERR, AxisFlags::ENCODER_LOSS),
+    ] {
+        if sts_mask & bit != 0 {
+            f |= faults;
+        }
+    }
+    f
+}
+
 /// `NMC_EcatGetHomeSts` (digest 001 §3.14) from a bus drive's statusword (0x6041) and mode
 /// display (0x6061): in homing mode (6) bits 13/12/10 (homing error, attained, target
 /// reached) packed into bits 2/1/0 — 000 searching, 010 found and stopping, 011 done, 100

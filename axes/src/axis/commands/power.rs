@@ -53,16 +53,24 @@ impl Axis {
 
     /// Clear latched errors whose cause is gone; report those that remain.
     pub(crate) fn reset(&mut self, _ctx: &mut Context) -> Result<Reply, EngineError> {
+        self.reset_faults(AxisFlags::all())
+    }
+
+    /// Clear the latched errors in `faults` whose cause is gone (all of them: `reset`; some:
+    /// NMC_MtClrStsByBits, digest 001 §2.4); report those of `faults` that remain. Latches
+    /// outside `faults` stay, and so does the last error unless `faults` has MOTION_ERROR.
+    pub(crate) fn reset_faults(&mut self, faults: AxisFlags) -> Result<Reply, EngineError> {
         let present = self.fault_causes_present();
-        let clearable = self.latched & !present;
+        let clearable = self.latched & faults & !present;
         self.latched &= !clearable;
         self.blocking &= !clearable;
-        if self.latched.contains(AxisFlags::FE_FAULT) && !present.contains(AxisFlags::FE_FAULT) {
-            self.latched.remove(AxisFlags::FE_FAULT);
+        if faults.contains(AxisFlags::FE_FAULT) {
+            self.fe_over = 0;
         }
-        self.fe_over = 0;
-        self.last_error = None;
-        let remaining = self.latched & present;
+        if faults.contains(AxisFlags::MOTION_ERROR) {
+            self.last_error = None;
+        }
+        let remaining = self.latched & faults & present;
         if remaining.is_empty() {
             Ok(Reply::Done)
         } else {

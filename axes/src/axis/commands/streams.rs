@@ -2,6 +2,7 @@
 //! axes, and the start of homing.
 
 use super::*;
+use crate::command::MAX_MAGNITUDE;
 use crate::profile::MotionState;
 
 /// What a machine-level planner ([`crate::engine::MachinePlanner`]) asks of one axis for one
@@ -78,7 +79,23 @@ impl Axis {
     /// Take this tick's setpoint from a machine-level planner (engine stage 2), or let go of
     /// the planner. Same rules as a `setpoint` stream: a fed axis is in SynchronizedMotion, its
     /// FIFO waits, and a setpoint into an active limit is refused.
+    #[inline]
     pub(crate) fn feed(&mut self, ctx: &mut Context, feed: Feed) -> Result<(), EngineError> {
+        if let Feed::Follow(state) = feed {
+            if self.follows_freely(&state) {
+                if let Source::Fed(fed) = &mut self.source {
+                    *fed = state;
+                    return Ok(());
+                }
+            }
+        }
+        self.feed_checked(ctx, feed)
+    }
+
+    /// [`Axis::feed`] past its common tick: a release, the first setpoint, or one that some
+    /// check may refuse. Out of line, so the common tick inlines into the caller's loop.
+    #[inline(never)]
+    fn feed_checked(&mut self, ctx: &mut Context, feed: Feed) -> Result<(), EngineError> {
         let state = match feed {
             Feed::Follow(state) => state,
             Feed::Release => {
@@ -105,6 +122,28 @@ impl Axis {
             other => *other = Source::Fed(state),
         }
         Ok(())
+    }
+
+    /// Whether the checks of `feed` below all pass for `state` on an axis already fed: every
+    /// value within ±[`MAX_MAGNITUDE`] (NaN fails the comparison), streaming, free to move and
+    /// on no limit in either direction. The common tick of a running path, decided without
+    /// building a `Result` per check (a group tick's largest cost, once per member); anything
+    /// else takes the checks, which give the same outcome and name the refusal.
+    #[inline]
+    fn follows_freely(&self, state: &MotionState) -> bool {
+        let limits = AxisFlags::SW_LIMIT_POS
+            | AxisFlags::SW_LIMIT_NEG
+            | AxisFlags::HW_LIMIT_POS
+            | AxisFlags::HW_LIMIT_NEG;
+        state.p.abs() <= MAX_MAGNITUDE
+            && state.v.abs() <= MAX_MAGNITUDE
+            && state.a.abs() <= MAX_MAGNITUDE
+            && matches!(self.activity, Activity::Streaming)
+            && self.blocking.is_empty()
+            && self.enabled
+            && self.class.can_move()
+            && !self.flags.intersects(limits)
+            && (self.class != AxisClass::ClosedLoop || self.flag(ParamId::ServoLoop))
     }
 
     /// Refuse single-axis commands that would take the command source from a machine-level

@@ -1,8 +1,8 @@
 //! Axis handles, the status word, positions, velocities, servo (digest 001 §2.2, §2.4, §2.8).
 
-use axes::command::{Disable, Enable, Reset};
-use axes::AxisFlags;
-use mcemu_dialects::nmc::{axis_status, AxisExtra};
+use axes::command::{Disable, Enable, Reset, ResetFaults};
+use axes::{AxisFlags, AxisStatus};
+use mcemu_dialects::nmc::{axis_status, latched_faults_of, AxisExtra};
 use mcemu_nmc::handle::Handle;
 use mcemu_nmc::table::{self, Function};
 
@@ -33,14 +33,7 @@ fn mt_open(c: &mut Call<'_>) -> Result<(), Refusal> {
     let axis = u8::try_from(item)
         .ok()
         .filter(|a| bus.engine_axis(*a, n).is_some())
-        .ok_or_else(|| {
-            let local = format!("[0, {}]", bus.local_count(n).saturating_sub(1));
-            let allowed = match bus.drives().len() {
-                0 => local,
-                d => format!("{local} or [16, {}] (the bus drives)", 15 + d),
-            };
-            Refusal::range("itemNo", item, &allowed)
-        })?;
+        .ok_or_else(|| Refusal::range("itemNo", item, &bus.numbers_text(n)))?;
     c.output.u16(Handle::axis(0, axis).encode());
     Ok(())
 }
@@ -71,13 +64,15 @@ fn mt_clr_error(c: &mut Call<'_>) -> Result<(), Refusal> {
     Ok(())
 }
 
-/// As `NMC_MtClrError`: the engine clears latched errors whose cause is gone, so a bit whose
-/// cause remains (a limit still pressed, TV26) stays whatever the mask says; the mask is not
-/// yet applied bit by bit (docs/decisions.md).
+/// Only the latched bits of `stsMask` whose cause is gone (digest 001 §2.4, TV26): the engine's
+/// masked reset, a bit whose cause remains staying set (refused with CAUSE_STILL_PRESENT).
 fn mt_clr_sts_by_bits(c: &mut Call<'_>) -> Result<(), Refusal> {
     let axis = c.axis()?;
-    let _mask = c.input.i16()?;
-    c.command(Reset { axis: axis as u16 });
+    let mask = c.input.i16()?;
+    c.command(ResetFaults {
+        axis: axis as u16,
+        faults: latched_faults_of(mask as u16),
+    });
     Ok(())
 }
 
@@ -143,26 +138,28 @@ fn mt_set_sv_off(c: &mut Call<'_>) -> Result<(), Refusal> {
 }
 
 /// bit0 negative limit, bit1 positive limit, bit2 home, bit3 drive alarm, bit4 in position,
-/// bit5 capture source (digest 001 §3.3).
+/// bit5 capture source (digest 001 §3.3): the inputs' live active states (TV40), not the
+/// latched status bits.
 fn mt_get_motion_io(c: &mut Call<'_>) -> Result<(), Refusal> {
     let axis = c.axis()?;
-    let f = c.status(axis).map_or(AxisFlags::empty(), |s| s.flags);
-    c.output.i64(motion_io(f));
+    let v = c.status(axis).map_or(0, motion_io);
+    c.output.i64(v);
     Ok(())
 }
 
-/// The `NMC_MtGetMotionIO` bits of flags `f` (each input's active state).
-pub(super) fn motion_io(f: AxisFlags) -> i64 {
+/// The `NMC_MtGetMotionIO` bits of axis status `s`: the dedicated inputs as they are this tick
+/// (after their sense), in-position and the capture latch from the flags.
+pub(super) fn motion_io(s: &AxisStatus) -> i64 {
     let mut v = 0i64;
-    for (bit, flag) in [
-        (0, AxisFlags::HW_LIMIT_NEG),
-        (1, AxisFlags::HW_LIMIT_POS),
-        (2, AxisFlags::HOME_SWITCH),
-        (3, AxisFlags::DRIVE_ALARM),
-        (4, AxisFlags::IN_POSITION),
-        (5, AxisFlags::CAPTURE_TRIGGERED),
+    for (bit, on) in [
+        (0, s.inputs.contains(AxisFlags::HW_LIMIT_NEG)),
+        (1, s.inputs.contains(AxisFlags::HW_LIMIT_POS)),
+        (2, s.inputs.contains(AxisFlags::HOME_SWITCH)),
+        (3, s.inputs.contains(AxisFlags::DRIVE_ALARM)),
+        (4, s.flags.contains(AxisFlags::IN_POSITION)),
+        (5, s.flags.contains(AxisFlags::CAPTURE_TRIGGERED)),
     ] {
-        if f.contains(flag) {
+        if on {
             v |= 1 << bit;
         }
     }

@@ -358,7 +358,9 @@ fn mt_get_step_filter(c: &mut Call<'_>) -> Result<(), Refusal> {
     Ok(())
 }
 
-/// bit 0 servo off, bit 1 stop (the engine's `fe_action`, TV24).
+/// bit 0 servo off, bit 1 stop, 0 flag only (the engine's `fe_action`, TV24). The action alone
+/// decides: the HMC-born `axis_err_mask` loses its following-error bit, which would switch the
+/// drive off whatever the action (docs/decisions.md, NMC front-end).
 fn mt_set_pos_err_action(c: &mut Call<'_>) -> Result<(), Refusal> {
     let axis = c.axis()?;
     let v = c.input.i16()?;
@@ -369,9 +371,21 @@ fn mt_set_pos_err_action(c: &mut Call<'_>) -> Result<(), Refusal> {
             "[0, 3] (bit 0 servo off, bit 1 stop)",
         ));
     }
+    let err_mask = param(c, axis, ParamId::AxisErrMask) as u32;
+    if err_mask & FE_FAULT_BIT != 0 {
+        set(
+            c,
+            axis,
+            ParamId::AxisErrMask,
+            f64::from(err_mask & !FE_FAULT_BIT),
+        );
+    }
     set(c, axis, ParamId::FeAction, f64::from(v));
     Ok(())
 }
+
+/// `axis_err_mask` bit 0: the following-error fault (HMC AxisStatus bit 0, digest 000 §6.2).
+const FE_FAULT_BIT: u32 = 1;
 
 fn mt_get_pos_err_action(c: &mut Call<'_>) -> Result<(), Refusal> {
     let axis = c.axis()?;

@@ -13,6 +13,7 @@ use mcemu_nmc::table::{self, Function};
 use super::analog::raw;
 use super::axis::motion_io;
 use super::motion::{check_ptp_move, ptp_move};
+use super::sync_args::axis_after;
 use crate::nmc::service::{pulses, Call, Handler, Refusal};
 
 pub const HANDLERS: &[(Function, Handler)] = &[
@@ -41,12 +42,18 @@ fn status_word(c: &Call<'_>, axis: usize) -> i16 {
 fn mt_get_sts_multi(c: &mut Call<'_>) -> Result<(), Refusal> {
     let first = c.axis()?;
     let count = c.input.i16()?;
-    let left = c.snapshot.axes.len() - first;
+    // The axes numbered on from the handle's (local, or bus drives from 16).
+    let left = (0..)
+        .take_while(|i| axis_after(c, first, *i).is_some())
+        .count();
     let n = usize::try_from(count)
         .ok()
         .filter(|n| (1..=left).contains(n))
         .ok_or_else(|| Refusal::range("count", count, &format!("[1, {left}]")))?;
-    let words: Vec<i16> = (first..first + n).map(|a| status_word(c, a)).collect();
+    let words: Vec<i16> = (0..n)
+        .filter_map(|i| axis_after(c, first, i))
+        .map(|a| status_word(c, a))
+        .collect();
     mcemu_nmc::sync_structs::write_array(c.output, &words, |w, v| {
         w.i16(*v);
     });
@@ -59,8 +66,7 @@ fn mt_get_sts_multi(c: &mut Call<'_>) -> Result<(), Refusal> {
 /// each active state through its configured sense (`NMC_MtSetLmtCfg`, `MtSetAlarmCfg`,
 /// `MtHomeSns`); in-position and capture are reported as they are.
 fn motion_io_logical(c: &Call<'_>, axis: usize) -> i64 {
-    let f = c.status(axis).map_or(AxisFlags::empty(), |s| s.flags);
-    let mut v = motion_io(f);
+    let mut v = c.status(axis).map_or(0, motion_io);
     let invert = |id| {
         c.snapshot
             .params
@@ -93,11 +99,13 @@ fn mt_get_sts_pack12_ex(c: &mut Call<'_>) -> Result<(), Refusal> {
     let first = c.axis()?;
     let mut p = AxisStsPack12Ex::default();
     for i in 0..PACK12_AXES {
-        let axis = first + i;
+        let Some(axis) = axis_after(c, first, i) else {
+            break;
+        };
         let Some(s) = c.status(axis) else { break };
         let scale = c.scale(axis);
         p.mt_sts[i] = status_word(c, axis);
-        p.mt_mio[i] = motion_io(s.flags) as i16;
+        p.mt_mio[i] = motion_io(s) as i16;
         p.mt_mio_log[i] = motion_io_logical(c, axis) as i16;
         p.mt_prf_pos[i] = pulses(scale, s.cmd_pos);
         p.mt_enc_pos[i] = c.service.ax().enc_pos(axis, s.encoder_counts);
@@ -146,7 +154,6 @@ fn word32(bits: &[bool], start: usize) -> i64 {
 fn pack8(c: &mut Call<'_>, relative: bool) -> Result<(), Refusal> {
     let first = c.axis()?;
     let p = MovePtpPack8::read(&mut c.input)?;
-    let n = c.snapshot.axes.len();
     if p.axis_mask == 0 || (p.axis_mask as u16) >> PACK8_AXES != 0 {
         return Err(Refusal::range(
             "axisMask",
@@ -159,14 +166,13 @@ fn pack8(c: &mut Call<'_>, relative: bool) -> Result<(), Refusal> {
     }
     let mut moves = Vec::new();
     for i in (0..PACK8_AXES).filter(|i| p.axis_mask & (1 << i) != 0) {
-        let axis = first + i;
-        if axis >= n {
-            return Err(Refusal::range(
+        let axis = axis_after(c, first, i).ok_or_else(|| {
+            Refusal::range(
                 "axisMask",
                 format!("{:#x}", p.axis_mask),
-                &format!("axes up to {} (the device's last)", n.saturating_sub(1)),
-            ));
-        }
+                "bits of axes the device has from the handle's on",
+            )
+        })?;
         let ptp = PtpPara {
             acc: p.acc[i],
             dec: p.dec[i],

@@ -10,7 +10,7 @@ use mcemu_nmc::errors::RTN_UNSUPPORTED;
 use mcemu_nmc::sync_structs::{Comp2DimensParam, Comp2DimensSts};
 use mcemu_nmc::table::{self, Function};
 
-use super::sync_args::{axis_number, count_in};
+use super::sync_args::{count_in, local_axis_number};
 use crate::nmc::service::{Call, Handler, Refusal};
 use crate::nmc::sync_state::CompareGroup;
 
@@ -60,13 +60,18 @@ fn output(c: &Call<'_>, g: usize, p: &Comp2DimensParam) -> Result<u16, Refusal> 
         })
 }
 
+/// dir1No/dir2No "0~11" (digest 001 §3.16): a local axis; the bus drives (16+) are beyond it.
+fn compare_axis(c: &Call<'_>, name: &str, n: i16) -> Result<usize, Refusal> {
+    local_axis_number(c, name, i64::from(n), 11)
+}
+
 fn set_param(c: &mut Call<'_>) -> Result<(), Refusal> {
     let g = group(c)?;
     let p = Comp2DimensParam::read(&mut c.input)?;
     chn(c)?;
-    axis_number(c, "dir1No", i64::from(p.dir1_no))?;
+    compare_axis(c, "dir1No", p.dir1_no)?;
     if p.dir2_no != -1 {
-        axis_number(c, "dir2No", i64::from(p.dir2_no))?;
+        compare_axis(c, "dir2No", p.dir2_no)?;
     }
     for (name, v, high) in [
         ("outputType", p.output_type, 1),
@@ -157,17 +162,21 @@ fn onoff(c: &mut Call<'_>) -> Result<(), Refusal> {
     match on {
         0 => c.command(CompareStop { channel: g as u8 }),
         1 => {
-            let ppu = |axis: i16| c.scale(usize::try_from(axis).unwrap_or(0)).pulses_per_unit;
-            let (px, py) = (ppu(p.dir1_no), ppu(p.dir2_no.max(0)));
             let two_d = p.dir2_no >= 0;
+            let x = compare_axis(c, "dir1No", p.dir1_no)?;
+            let y = if two_d {
+                Some(compare_axis(c, "dir2No", p.dir2_no)?)
+            } else {
+                None
+            };
+            let (px, py) = (
+                c.scale(x).pulses_per_unit,
+                c.scale(y.unwrap_or(x)).pulses_per_unit,
+            );
             let start = CompareStart {
                 channel: g as u8,
-                axis: axis_number(c, "dir1No", i64::from(p.dir1_no))? as u16,
-                axis_y: if two_d {
-                    Some(axis_number(c, "dir2No", i64::from(p.dir2_no))? as u16)
-                } else {
-                    None
-                },
+                axis: x as u16,
+                axis_y: y.map(|a| a as u16),
                 source: if p.pos_src == 1 {
                     PositionSource::Actual
                 } else {

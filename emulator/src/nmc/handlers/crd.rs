@@ -153,14 +153,16 @@ fn check_config(c: &Call<'_>, config: &CrdConfig) -> Result<Vec<usize>, Refusal>
     let count = c.snapshot.axes.len();
     let mut axes = Vec::with_capacity(n);
     for (k, a) in config.ax.iter().take(n).enumerate() {
-        let axis = usize::try_from(*a)
+        // Local axes, or bus drives from 16 on an `ecat` card (`ecat_bus`).
+        let axis = u8::try_from(*a)
             .ok()
-            .filter(|a| *a < count && !axes.contains(a))
+            .and_then(|a| c.service.bus().engine_axis(a, count))
+            .filter(|a| !axes.contains(a))
             .ok_or_else(|| {
                 Refusal::range(
                     &format!("pAxArray[{k}]"),
                     a,
-                    &format!("a distinct axis of [0, {}]", count.saturating_sub(1)),
+                    &format!("a distinct axis of {}", c.service.bus().numbers_text(count)),
                 )
             })?;
         axes.push(axis);
@@ -215,22 +217,21 @@ fn crd_config(c: &mut Call<'_>) -> Result<(), Refusal> {
     for command in corner_commands(c, n, &s) {
         c.command(command);
     }
+    for command in stop_commands(c, n, &s) {
+        c.command(command);
+    }
     // The 0x17xx family: transforms and the break point go with the old group; the
     // arc-section table is the new group's chord error.
     let table = c.service.frames().on_config(n);
-    let chord = crate::nmc::crd_frames::chord_error(&table);
-    if chord > 0.0 {
-        let scale = axes.first().map_or(
-            mcemu_dialects::PulseScale {
-                pulses_per_unit: 1.0,
-            },
-            |a| c.scale(*a),
-        );
-        c.command(parameter(
-            n,
-            GroupParameter::ChordError,
-            scale.to_engine(chord),
-        ));
+    if crate::nmc::crd_frames::chord_error(&table) != (0.0, [0.0; 2], [0.0; 2]) {
+        for command in super::crd_frames::chord_commands(c, n, &axes, &table) {
+            c.command(command);
+        }
+    }
+    let turn_vel = c.service.frames().crd_turn_vel(n);
+    if turn_vel > 0.0 {
+        let command = super::crd_frames::turn_vel_command(c, n, &axes, turn_vel);
+        c.command(command);
     }
     s.pending.clear();
     s.started = false;
@@ -297,6 +298,11 @@ fn crd_set_para(c: &mut Call<'_>) -> Result<(), Refusal> {
         let origin = origin_command(c, n, &s, &axes);
         c.command(origin);
     }
+    if group(c, n).is_some() {
+        for command in stop_commands(c, n, &s) {
+            c.command(command);
+        }
+    }
     update(c, n, |now| *now = s);
     Ok(())
 }
@@ -307,8 +313,9 @@ fn crd_get_para(c: &mut Call<'_>) -> Result<(), Refusal> {
     Ok(())
 }
 
-/// Stored; `smoothDec` is `NMC_CrdStopMtn`'s deceleration and `lookAheadSwitch` 0 makes every
-/// segment stop at its end (decisions.md).
+/// Stored; `smoothDec` is `NMC_CrdStopMtn`'s deceleration (and the move protection's stop's,
+/// [`stop_commands`]) and `lookAheadSwitch` 0 makes every segment stop at its end
+/// (decisions.md).
 fn crd_set_ext_para(c: &mut Call<'_>) -> Result<(), Refusal> {
     let n = crd(c)?;
     let p = ExtCrdPara::read(&mut c.input)?;
@@ -334,7 +341,14 @@ fn crd_set_ext_para(c: &mut Call<'_>) -> Result<(), Refusal> {
     if p.event_time < 0 {
         return Err(Refusal::range("eventTime", p.event_time, "[0, 32767] ms"));
     }
-    update(c, n, |s| s.ext = p);
+    let mut s = state(c, n);
+    s.ext = p;
+    if group(c, n).is_some() {
+        for command in stop_commands(c, n, &s) {
+            c.command(command);
+        }
+    }
+    update(c, n, |now| *now = s);
     Ok(())
 }
 
@@ -539,6 +553,37 @@ fn parameter(n: usize, name: GroupParameter, value: f64) -> Command {
         value,
     }
     .into()
+}
+
+/// The group's own acceleration and deceleration: what the engine's move protection stops
+/// with (and `group_stop` without one; every NMC segment carries its own). smoothDec is the
+/// crd's stop deceleration ("停止减速度 (默认accMax)", digest 001 §3.9); 0 or unset is the crd's
+/// synAccMax, which bounds every segment's synAcc, so the stop brakes as the path does.
+pub(super) fn stop_commands(c: &Call<'_>, n: usize, s: &CrdState) -> Vec<Command> {
+    let scale = s.axes().first().map_or(
+        mcemu_dialects::PulseScale {
+            pulses_per_unit: 1.0,
+        },
+        |a| c.scale(*a),
+    );
+    let acc = s.para.syn_acc_max;
+    let dec = if s.ext.smooth_dec > 0.0 {
+        s.ext.smooth_dec
+    } else {
+        acc
+    };
+    vec![
+        parameter(
+            n,
+            GroupParameter::Acceleration,
+            acceleration_to_engine(scale, acc),
+        ),
+        parameter(
+            n,
+            GroupParameter::Deceleration,
+            acceleration_to_engine(scale, dec),
+        ),
+    ]
 }
 
 /// The engine's corner rules for `s`'s look-ahead parameters (none until

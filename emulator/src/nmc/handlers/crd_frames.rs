@@ -23,6 +23,7 @@ use super::crd::{crd, group, here, members, origin_command, state, update};
 use super::crd_segment::read_longs;
 use super::crd_status::path_scale;
 use super::motion::ptp_move;
+use super::sync_args::axis_number;
 use crate::nmc::crd_frames::{chord_error, CrdFrames, CrdTransform};
 use crate::nmc::service::{pulses, Call, Handler, Refusal};
 
@@ -81,13 +82,9 @@ fn configured(c: &Call<'_>, n: usize) -> Result<Vec<usize>, Refusal> {
     Ok(axes)
 }
 
-/// An axis number of the device.
+/// The engine axis of NMC axis number `a` (local, or a bus drive from 16).
 fn device_axis(c: &Call<'_>, name: &str, a: i16) -> Result<usize, Refusal> {
-    let count = c.snapshot.axes.len();
-    usize::try_from(a)
-        .ok()
-        .filter(|a| *a < count)
-        .ok_or_else(|| Refusal::range(name, a, &format!("[0, {}]", count.saturating_sub(1))))
+    axis_number(c, name, i64::from(a))
 }
 
 fn finite(name: &str, v: f64) -> Result<f64, Refusal> {
@@ -349,7 +346,7 @@ fn crd_set_trans_xyza(c: &mut Call<'_>) -> Result<(), Refusal> {
         && map
             .iter()
             .zip(&axes)
-            .all(|(m, a)| usize::try_from(*m).ok() == Some(*a));
+            .all(|(m, a)| axis_number(c, "pAxisMapArray[i]", i64::from(*m)).ok() == Some(*a));
     let axes_in_order = match <[usize; CRD_MAX_AXES]>::try_from(axes.as_slice()) {
         Ok(a) if same => a,
         _ => {
@@ -505,14 +502,38 @@ fn check_arc_sec(a: &ArcSecSetting) -> Result<(), Refusal> {
     Ok(())
 }
 
-pub(super) fn chord_command(c: &Call<'_>, n: usize, a: &ArcSecSetting) -> Command {
-    let scale = path_scale(c, &state(c, n));
-    GroupSetParameter {
-        group: n as GroupId,
-        name: GroupParameter::ChordError,
-        value: scale.to_engine(chord_error(a)),
-    }
-    .into()
+/// The group parameters of the table `a` for the group of `axes` (the first member's
+/// pulses): the band edges, then the bands' errors, then the first band's (`chord_error`).
+pub(super) fn chord_commands(
+    c: &Call<'_>,
+    n: usize,
+    axes: &[usize],
+    a: &ArcSecSetting,
+) -> Vec<Command> {
+    let scale = axes.first().map_or(
+        mcemu_dialects::PulseScale {
+            pulses_per_unit: 1.0,
+        },
+        |a| c.scale(*a),
+    );
+    let (first, edges, errors) = chord_error(a);
+    [
+        (GroupParameter::ChordErrorRadius1, edges[0]),
+        (GroupParameter::ChordErrorRadius2, edges[1]),
+        (GroupParameter::ChordErrorBand1, errors[0]),
+        (GroupParameter::ChordErrorBand2, errors[1]),
+        (GroupParameter::ChordError, first),
+    ]
+    .into_iter()
+    .map(|(name, value)| {
+        GroupSetParameter {
+            group: n as GroupId,
+            name,
+            value: scale.to_engine(value),
+        }
+        .into()
+    })
+    .collect()
 }
 
 fn crd_set_arc_sec_para(c: &mut Call<'_>) -> Result<(), Refusal> {
@@ -520,8 +541,10 @@ fn crd_set_arc_sec_para(c: &mut Call<'_>) -> Result<(), Refusal> {
     let a = ArcSecSetting::read(&mut c.input)?;
     check_arc_sec(&a)?;
     if group(c, n).is_some() {
-        let command = chord_command(c, n, &a);
-        c.command(command);
+        let axes = state(c, n).axes();
+        for command in chord_commands(c, n, &axes, &a) {
+            c.command(command);
+        }
     }
     set_frames(c, n, |f| f.arc_sec = a);
     Ok(())
@@ -533,12 +556,37 @@ fn crd_get_arc_sec_para(c: &mut Call<'_>) -> Result<(), Refusal> {
     Ok(())
 }
 
-/// Stored only: the engine's corner rules have no per-axis corner velocity (decisions.md).
+/// The engine's corner speed of the fourth coordinate (the A axis) for tolVel of the
+/// coordinate system of `axes` (0: off), in the A axis's units.
+pub(super) fn turn_vel_command(c: &Call<'_>, n: usize, axes: &[usize], tol_vel: f64) -> Command {
+    let scale = axes.get(3).map_or(
+        mcemu_dialects::PulseScale {
+            pulses_per_unit: 1.0,
+        },
+        |a| c.scale(*a),
+    );
+    GroupSetParameter {
+        group: n as GroupId,
+        name: GroupParameter::FourthCoordinateCornerVelocity,
+        value: velocity_to_engine(scale, tol_vel),
+    }
+    .into()
+}
+
+/// "设置 4 维插补下，A 轴的最大容忍转弯速度，若大于该速度，则需要进行降速处理": where the path
+/// turns at a junction, it slows so that the A axis (the fourth coordinate) is no faster than
+/// tolVel pulse/ms there (the engine's `fourth_coordinate_corner_velocity`; 0 = off, the
+/// default). Kept across `NMC_CrdConfig`; a coordinate system of fewer than 4 axes has no A.
 fn crd_set_fourth_axis_to_turn_vel(c: &mut Call<'_>) -> Result<(), Refusal> {
     let n = crd(c)?;
     let v = c.input.f64()?;
     if !(v.is_finite() && v >= 0.0) {
-        return Err(Refusal::range("tolVel", v, "[0, ∞) pulse/ms"));
+        return Err(Refusal::range("tolVel", v, "[0, ∞) pulse/ms (0: off)"));
+    }
+    if group(c, n).is_some() {
+        let axes = state(c, n).axes();
+        let command = turn_vel_command(c, n, &axes, v);
+        c.command(command);
     }
     set_frames(c, n, |f| f.fourth_axis_turn_vel = v);
     Ok(())
@@ -613,18 +661,16 @@ mod tests {
     use mcemu_nmc::crd_frames::MAX_ERR_TABLE_SECTION;
 
     #[test]
-    fn the_strictest_band_is_the_chord_error_and_all_zero_radii_turn_it_off() {
+    fn the_bands_go_to_the_engine_and_all_zero_radii_turn_them_off() {
         let mut a = ArcSecSetting {
             r: [100.0, 1000.0],
             err: [0.5, 0.2, 2.0],
             ..ArcSecSetting::default()
         };
-        assert_eq!(chord_error(&a), 0.2);
-        a.err = [0.0; MAX_ERR_TABLE_SECTION + 1];
-        assert_eq!(chord_error(&a), 0.0);
+        assert_eq!(chord_error(&a), (0.5, [100.0, 1000.0], [0.2, 2.0]));
         a.r = [0.0; MAX_ERR_TABLE_SECTION];
         a.err = [1.0; MAX_ERR_TABLE_SECTION + 1];
-        assert_eq!(chord_error(&a), 0.0);
+        assert_eq!(chord_error(&a), (0.0, [0.0; 2], [0.0; 2]));
         assert!(check_arc_sec(&a).is_ok());
         a.r = [1000.0, 100.0];
         assert!(check_arc_sec(&a).is_err());

@@ -13,6 +13,7 @@ use super::crd::{centri_command, corner_commands, crd, group, non_negative, stat
 use super::crd_segment::{marker, Push};
 use super::crd_status::{free, path_scale, used, user_seg, word};
 use super::io::group_value;
+use super::sync_args::axis_number;
 use crate::nmc::service::{pulses, Call, Handler, Refusal};
 
 pub const HANDLERS: &[(Function, Handler)] = &[
@@ -166,7 +167,7 @@ fn crd_get_sts_pack4(c: &mut Call<'_>) -> Result<(), Refusal> {
         p.prf_pos[k] = planned.saturating_sub(origin[k]);
         p.axis_pos[k] = planned;
         p.enc_pos[k] = st.encoder_counts;
-        p.mot_di[k] = motion_io(st.flags) as i16;
+        p.mot_di[k] = motion_io(st) as i16;
     }
     p.write(c.output);
     Ok(())
@@ -180,13 +181,7 @@ fn crd_buf_wait_pos(c: &mut Call<'_>) -> Result<(), Refusal> {
     let _seg_no = c.input.i64()?;
     let (axis, condition, pos) = (c.input.i16()?, c.input.i16()?, c.input.i64()?);
     let (source, time) = (c.input.i16()?, c.input.i64()?);
-    let count = c.snapshot.axes.len();
-    let axis = usize::try_from(axis)
-        .ok()
-        .filter(|a| *a < count)
-        .ok_or_else(|| {
-            Refusal::range("axisNo", axis, &format!("[0, {}]", count.saturating_sub(1)))
-        })?;
+    let axis = axis_number(c, "axisNo", i64::from(axis))?;
     let condition = match condition {
         0 => PositionCondition::AtMost,
         1 => PositionCondition::AtLeast,

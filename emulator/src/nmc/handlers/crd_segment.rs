@@ -15,6 +15,7 @@ use mcemu_nmc::crd::{LineD8Unit, CRD_MAX_AXES, D8_PACK_MAX};
 use mcemu_nmc::table::{self, Function};
 
 use super::crd::{crd, here, members, state, update};
+use super::sync_args::{axes_of_mask, axis_number};
 use crate::nmc::crd::{CrdState, CRD_BUFFER};
 use crate::nmc::service::{pulses, Call, Handler, Refusal};
 
@@ -408,13 +409,7 @@ fn d8(
             &format!("bits 0 … {} (the coordinate system's axes)", p.dims() - 1),
         ));
     }
-    if ext_mask < 0 || ext_mask >> c.snapshot.axes.len().min(32) != 0 {
-        return Err(Refusal::range(
-            "extAxMask",
-            format!("{ext_mask:#x}"),
-            "bits of the device's axes",
-        ));
-    }
+    let ext_axes = axes_of_mask(c, "extAxMask", ext_mask, 32)?;
     let mut values = u.tg_pos.iter().copied();
     let mut end = p.s.end;
     for (k, e) in end.iter_mut().enumerate().take(p.dims()) {
@@ -423,14 +418,12 @@ fn d8(
         }
     }
     let mut ext = Vec::new();
-    for axis in 0..c.snapshot.axes.len().min(32) {
-        if ext_mask & (1 << axis) != 0 {
-            p.outside(c, axis, "extAxMask")?;
-            let target = values
-                .next()
-                .ok_or_else(|| Refusal::range("pTgPosArray", "more than 8 axes", "8 values"))?;
-            ext.push((axis, target));
-        }
+    for axis in ext_axes {
+        p.outside(c, axis, "extAxMask")?;
+        let target = values
+            .next()
+            .ok_or_else(|| Refusal::range("pTgPosArray", "more than 8 axes", "8 values"))?;
+        ext.push((axis, target));
     }
     let length =
         p.s.end
@@ -903,10 +896,8 @@ fn axis_moves(
     let mut moves = Vec::new();
     let mut waits = Vec::new();
     let mut given = values.iter().copied();
-    for axis in 0..16 {
-        if mask as u16 & (1 << axis) == 0 {
-            continue;
-        }
+    // A `short` mask: the local axes only (the bus drives start at bit 16).
+    for axis in axes_of_mask(c, "axisMask", i64::from(mask as u16), 16)? {
         p.outside(c, axis, "axisMask")?;
         let value = given
             .next()
@@ -1007,8 +998,7 @@ fn crd_buf_set_ptp_move_para(c: &mut Call<'_>) -> Result<(), Refusal> {
     let _seg_no = c.input.i64()?;
     let axis = c.input.i16()?;
     let (vel, acc, smooth) = (c.input.f64()?, c.input.f64()?, c.input.i16()?);
-    let axis = usize::try_from(axis)
-        .map_err(|_| Refusal::range("axisNo", axis, "an axis of the device"))?;
+    let axis = axis_number(c, "axisNo", i64::from(axis))?;
     p.outside(c, axis, "axisNo")?;
     if !(vel.is_finite() && vel > 0.0) {
         return Err(Refusal::range("vel", vel, "(0, ∞) pulse/ms"));
@@ -1030,20 +1020,13 @@ fn crd_buf_wait_enc_in_position(c: &mut Call<'_>) -> Result<(), Refusal> {
     let p = Push::begin(c)?;
     let _seg_no = c.input.i64()?;
     let (mask, time) = (c.input.i64()?, c.input.i64()?);
-    let n = c.snapshot.axes.len().min(32);
-    if mask < 0 || mask >> n != 0 {
-        return Err(Refusal::range(
-            "axisMask",
-            format!("{mask:#x}"),
-            "bits of the device's axes",
-        ));
-    }
+    let masked = axes_of_mask(c, "axisMask", mask, 32)?;
     if time < 0 {
         return Err(Refusal::range("overTime", time, "[0, ∞) ms"));
     }
     let origin = p.s.origin();
     let mut waits = Vec::new();
-    for axis in (0..n).filter(|a| mask & (1 << a) != 0) {
+    for axis in masked {
         let at = match p.axes.iter().position(|m| *m == axis) {
             Some(k) => {
                 p.s.end

@@ -1,6 +1,7 @@
 //! Coordinate systems: status, positions, velocity and buffer counts (digest 001 §2.7 "Status",
 //! §3.8). The status word comes from the dialect (`mcemu_dialects::nmc::crd_status`).
 
+use axes::command::CoordinateSystem;
 use mcemu_dialects::nmc::{crd_status, velocity_from_engine, CrdExtra};
 use mcemu_dialects::PulseScale;
 use mcemu_nmc::crd::CRD_MAX_AXES;
@@ -70,7 +71,9 @@ fn crd_get_inner_sts(c: &mut Call<'_>) -> Result<(), Refusal> {
 }
 
 /// `cnts` ∈ [1, 4]; the positions of the coordinate system's axes, `pick`ed from each member's
-/// status in pulses (0 past the last member).
+/// status in pulses (0 past the last member). `user`: in the coordinate system's own
+/// coordinates — machine less the origin, seen through the selected transform if one is
+/// (`NMC_CrdSetTransRotate`, `SetTransXYZA`: the engine's `frame_position`).
 fn positions(
     c: &mut Call<'_>,
     pick: fn(&axes::AxisStatus, PulseScale) -> i64,
@@ -85,9 +88,15 @@ fn positions(
     let s = state(c, n);
     let axes = s.axes();
     let origin = s.origin();
+    let transformed = group(c, n)
+        .filter(|g| user && g.coordinate_system != CoordinateSystem::MCS)
+        .map(|g| g.frame_position);
     c.output.u16(count as u16);
     for (k, o) in origin.iter().enumerate().take(count) {
         let p = axes.get(k).map_or(0, |a| {
+            if let Some(frame) = &transformed {
+                return pulses(c.scale(*a), frame.get(k).copied().unwrap_or(0.0));
+            }
             let v = c.status(*a).map_or(0, |st| pick(st, c.scale(*a)));
             if user {
                 v.saturating_sub(*o)
@@ -100,7 +109,8 @@ fn positions(
     Ok(())
 }
 
-/// Planned positions in user coordinates (machine less the origin, digest 001 §4.1).
+/// Planned positions in user coordinates (machine less the origin, digest 001 §4.1; under a
+/// transform the program's coordinates, "读取规划位置" of the coordinate system).
 fn crd_get_prf_pos(c: &mut Call<'_>) -> Result<(), Refusal> {
     positions(c, |s, scale| pulses(scale, s.cmd_pos), true)
 }

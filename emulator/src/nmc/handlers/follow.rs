@@ -112,7 +112,10 @@ fn mt_follow_get_master(c: &mut Call<'_>) -> Result<(), Refusal> {
     let (no, kind) = match f.master {
         None => (-1, 0),
         Some(m) => (
-            m as i16,
+            c.service
+                .bus()
+                .nmc_number(usize::from(m), c.snapshot.axes.len())
+                .map_or(-1, i16::from),
             match f.master_source {
                 MasterSource::Commanded => 1,
                 MasterSource::Actual => 2,

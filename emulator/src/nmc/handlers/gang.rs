@@ -27,13 +27,19 @@ const MT_GANTRY_MODE: i16 = 4;
 /// group ∈ [0, axes − 1] (a group needs a master of its own).
 fn group_no(c: &mut Call<'_>) -> Result<i16, Refusal> {
     let g = c.input.i16()?;
-    axis_number(c, "group", i64::from(g)).map_err(|mut r| {
-        r.text = r
-            .text
-            .replace("the device's axes", "one group per axis at most");
-        r
-    })?;
-    Ok(g)
+    let axes = c.snapshot.axes.len();
+    if usize::try_from(g).is_ok_and(|g| g < axes) {
+        Ok(g)
+    } else {
+        Err(Refusal::range(
+            "group",
+            g,
+            &format!(
+                "[0, {}] (one group per axis at most)",
+                axes.saturating_sub(1)
+            ),
+        ))
+    }
 }
 
 /// A group's master; replaces the group (its slaves are released).

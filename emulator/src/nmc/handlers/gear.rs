@@ -4,7 +4,7 @@
 use axes::command::{Command, Direction, GearIn, GearSetRatio, MasterSource};
 use mcemu_nmc::table::{self, Function};
 
-use super::sync_args::{axes_to_start, axis_number};
+use super::sync_args::{axes_to_start, axis_number, stored_axis};
 use crate::nmc::service::{Call, Handler, Refusal};
 use crate::nmc::sync_state::AxisSync;
 
@@ -47,7 +47,7 @@ fn mt_gear_get_dir(c: &mut Call<'_>) -> Result<(), Refusal> {
 fn mt_gear_set_master(c: &mut Call<'_>) -> Result<(), Refusal> {
     let axis = c.axis()?;
     let (no, kind) = (c.input.i16()?, c.input.i16()?);
-    axis_number(c, "masterNo", i64::from(no))?;
+    let master = axis_number(c, "masterNo", i64::from(no))?;
     if !(1..=3).contains(&kind) {
         return Err(Refusal::range(
             "masterType",
@@ -55,7 +55,7 @@ fn mt_gear_set_master(c: &mut Call<'_>) -> Result<(), Refusal> {
             "{1 planned, 2 feedback, 3 encoder}",
         ));
     }
-    if usize::try_from(no).ok() == Some(axis) {
+    if master == axis {
         return Err(Refusal::range(
             "masterNo",
             no,
@@ -78,7 +78,7 @@ fn mt_gear_get_master(c: &mut Call<'_>) -> Result<(), Refusal> {
 
 /// The engine's ratio of slave to master travel in user units.
 fn ratio(c: &Call<'_>, slave: usize, s: &AxisSync) -> (f64, f64) {
-    let master = usize::try_from(s.gear_master).unwrap_or(0);
+    let master = stored_axis(c, s.gear_master);
     (
         s.gear_slave_even as f64 / c.scale(slave).pulses_per_unit,
         s.gear_master_even as f64 / c.scale(master).pulses_per_unit,
@@ -136,7 +136,7 @@ fn mt_gear_get_ratio(c: &mut Call<'_>) -> Result<(), Refusal> {
 fn gear_in(c: &Call<'_>, axis: usize) -> Command {
     let s = axis_sync(c, axis);
     let (numerator, denominator) = ratio(c, axis, &s);
-    let master = usize::try_from(s.gear_master).unwrap_or(0);
+    let master = stored_axis(c, s.gear_master);
     GearIn {
         master: master as u16,
         slave: axis as u16,

@@ -4,7 +4,7 @@
 
 use axes::command::{BufferMode, Home, Stop, StopMode};
 use axes::homing::vendor::{
-    nmc, NmcHomeSetting, NMC_HOME_ERR_MV, NMC_HOME_ERR_SWT, NMC_HOME_FAIL, NMC_HOME_OK,
+    nmc, nmc_home_failure, NmcHomeSetting, NMC_HOME_ERR_MV, NMC_HOME_FAIL, NMC_HOME_OK,
     NMC_HOME_RUNNING, NMC_PASS_THROUGH,
 };
 use axes::{AxisFlags, AxisState};
@@ -13,7 +13,7 @@ use mcemu_nmc::structs::HomeSetting;
 use mcemu_nmc::table::{self, Function};
 
 use super::ecat_drive::{bus_axis_of, stop_drive_homing, DriveHoming};
-use crate::nmc::service::{Call, Handler, Refusal};
+use crate::nmc::service::{pulses, Call, Handler, Refusal};
 
 pub const HANDLERS: &[(Function, Handler)] = &[
     (table::MT_SET_HOME_PARA, mt_set_home_para),
@@ -120,8 +120,8 @@ fn mt_home_stop(c: &mut Call<'_>) -> Result<(), Refusal> {
 }
 
 /// bit0 homing, bit1 done, bit2 failed, bit3 bad parameters, bit4 no switch (digest 001
-/// §3.13). The snapshot keeps the outcome as flags: a failure reads as "switch not found"
-/// (the common cause), parameter refusals as bit 3.
+/// §3.13): a failure's bits from the engine's reason (`nmc_home_failure`), parameters the
+/// front-end refused as bit 3.
 fn mt_get_home_sts(c: &mut Call<'_>) -> Result<(), Refusal> {
     let axis = c.axis()?;
     let param_error = c.settings(axis).home_param_error;
@@ -132,7 +132,9 @@ fn mt_get_home_sts(c: &mut Call<'_>) -> Result<(), Refusal> {
         _ if param_error => NMC_HOME_FAIL | NMC_HOME_ERR_MV,
         _ if pending => NMC_HOME_RUNNING,
         Some(s) if s.state == AxisState::Homing => NMC_HOME_RUNNING,
-        Some(s) if s.flags.contains(AxisFlags::HOMING_FAILED) => NMC_HOME_FAIL | NMC_HOME_ERR_SWT,
+        Some(s) if s.flags.contains(AxisFlags::HOMING_FAILED) => {
+            s.homing_failure.map_or(NMC_HOME_FAIL, nmc_home_failure)
+        }
         Some(s) if s.flags.contains(AxisFlags::HOMED) => NMC_HOME_OK,
         _ => 0,
     };
@@ -140,9 +142,12 @@ fn mt_get_home_sts(c: &mut Call<'_>) -> Result<(), Refusal> {
     Ok(())
 }
 
-/// The new home minus the old one; not measured yet: 0 (docs/decisions.md).
+/// The home point the last `NMC_MtHome`/`MtTryHome` found minus the one the last completed
+/// `NMC_MtHome` defined, in pulses (digest 001 §2.6, §4.5; TV32: ≈ 0 when nothing slipped).
 fn mt_get_home_error(c: &mut Call<'_>) -> Result<(), Refusal> {
-    c.axis()?;
-    c.output.i64(0);
+    let axis = c.axis()?;
+    let scale = c.scale(axis);
+    let e = c.status(axis).map_or(0, |s| pulses(scale, s.home_error));
+    c.output.i64(e);
     Ok(())
 }

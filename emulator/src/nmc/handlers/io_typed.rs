@@ -10,6 +10,7 @@ use axes::AxisFlags;
 use mcemu_nmc::table::{self, Function};
 
 use super::io_modules::{group_start, word};
+use super::sync_args::nmc_number;
 use crate::nmc::service::{Call, Handler, Refusal};
 
 pub const HANDLERS: &[(Function, Handler)] = &[
@@ -44,13 +45,14 @@ fn axis_group(group: i16) -> Result<(), Refusal> {
 
 /// Bit k set where axis k has `flag` in `flags`.
 fn axis_bits(c: &Call<'_>, pick: impl Fn(&axes::AxisStatus) -> bool) -> i64 {
+    // Bit n = NMC axis n: bus drives from bit 16 on an `ecat` card.
     c.snapshot
         .axes
         .iter()
-        .take(32)
         .enumerate()
         .filter(|(_, s)| pick(s))
-        .fold(0i64, |v, (i, _)| v | (1 << i))
+        .filter_map(|(a, _)| nmc_number(c, a).filter(|n| *n < 32))
+        .fold(0i64, |v, n| v | (1 << n))
 }
 
 /// The inputs of `diType` in `groupID`; `inverted`: with `NMC_SetDIBitRevs` applied.
@@ -130,9 +132,13 @@ fn set_do_mask(c: &mut Call<'_>) -> Result<(), Refusal> {
     match do_type {
         1 => {
             axis_group(group)?;
-            for axis in (0..c.snapshot.axes.len().min(32)).filter(|i| selected(*i)) {
+            let count = c.snapshot.axes.len();
+            for bit in (0..32u8).filter(|b| selected(usize::from(*b))) {
+                let Some(axis) = c.service.bus().engine_axis(bit, count) else {
+                    continue;
+                };
                 let axis = axis as u16;
-                if high(axis.into()) {
+                if high(usize::from(bit)) {
                     c.command(Enable { axis });
                 } else {
                     c.command(Disable { axis });

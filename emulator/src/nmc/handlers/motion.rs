@@ -12,6 +12,7 @@ use mcemu_nmc::errors::RTN_UNSUPPORTED;
 use mcemu_nmc::structs::{JogPara, PtpPara};
 use mcemu_nmc::table::{self, Function};
 
+use super::sync_args::axes_of_mask;
 use crate::nmc::service::{pulses, AxisSettings, Call, Handler, Refusal};
 
 pub const HANDLERS: &[(Function, Handler)] = &[
@@ -244,18 +245,10 @@ fn mt_update(c: &mut Call<'_>) -> Result<(), Refusal> {
     Ok(())
 }
 
-/// The axes of `mask`, bit n = axis n (absolute numbers; digest 001 §8 item 12 leaves it open,
-/// docs/decisions.md).
+/// Bit n = NMC axis n (absolute numbers; digest 001 §8 item 12 leaves it open,
+/// docs/decisions.md), bus drives from bit 16 on an `ecat` card.
 fn mask_axes(c: &Call<'_>, mask: i64) -> Result<Vec<usize>, Refusal> {
-    let n = c.snapshot.axes.len();
-    if mask < 0 || (n < 63 && mask >> n != 0) {
-        return Err(Refusal::range(
-            "mask",
-            format!("{mask:#x}"),
-            &format!("bits 0 … {} (the device's axes)", n.saturating_sub(1)),
-        ));
-    }
-    Ok((0..n).filter(|a| mask & (1 << a) != 0).collect())
+    axes_of_mask(c, "mask", mask, 63)
 }
 
 /// All axes start in the same tick: one batch (TV27).

@@ -5,19 +5,77 @@ use mcemu_nmc::sync_structs::read_array;
 
 use crate::nmc::service::{Call, Refusal};
 
-/// Axis number `n` (argument `name`) of the device.
+/// The engine axis of NMC axis number `n` (argument `name`): a local axis, or on an `ecat`
+/// card a bus drive from 16 (`ecat_bus`, as `NMC_MtOpen` numbers them).
 pub fn axis_number(c: &Call<'_>, name: &str, n: i64) -> Result<usize, Refusal> {
     let count = c.snapshot.axes.len();
+    let bus = c.service.bus();
+    u8::try_from(n)
+        .ok()
+        .and_then(|a| bus.engine_axis(a, count))
+        .ok_or_else(|| Refusal::range(name, n, &bus.numbers_text(count)))
+}
+
+/// The engine axes of `mask` (argument `name`, a C type of `bits` bits), bit n = NMC axis n
+/// in rising order: local axes, and on an `ecat` card bus drives from bit 16 where the type
+/// is wide enough (a `long`; a `short` mask reaches the local axes only). A bit naming no
+/// axis, or a negative mask, is refused.
+pub fn axes_of_mask(c: &Call<'_>, name: &str, mask: i64, bits: u8) -> Result<Vec<usize>, Refusal> {
+    let count = c.snapshot.axes.len();
+    let bus = c.service.bus();
+    let refuse = || {
+        Refusal::range(
+            name,
+            format!("{mask:#x}"),
+            &format!("bits of the axes {}", bus.numbers_text(count)),
+        )
+    };
+    if mask < 0 || (bits < 63 && mask >> bits != 0) {
+        return Err(refuse());
+    }
+    (0..bits.min(63))
+        .filter(|b| mask & (1 << b) != 0)
+        .map(|b| bus.engine_axis(b, count).ok_or_else(refuse))
+        .collect()
+}
+
+/// The NMC axis number of engine axis `axis` (as `NMC_MtOpen` numbers it).
+pub fn nmc_number(c: &Call<'_>, axis: usize) -> Option<usize> {
+    c.service
+        .bus()
+        .nmc_number(axis, c.snapshot.axes.len())
+        .map(usize::from)
+}
+
+/// The engine axis `i` NMC numbers after engine axis `first` ("consecutive axes from the
+/// handle's", the packs and `NMC_MtGetStsMulti`), if that number exists.
+pub fn axis_after(c: &Call<'_>, first: usize, i: usize) -> Option<usize> {
+    let n = nmc_number(c, first)?.checked_add(i)?;
+    c.service
+        .bus()
+        .engine_axis(u8::try_from(n).ok()?, c.snapshot.axes.len())
+}
+
+/// As [`axis_number`] where the manual bounds the number at `high` (≤ 15): the card's local
+/// axes only, a bus drive (16+) refused.
+pub fn local_axis_number(c: &Call<'_>, name: &str, n: i64, high: u8) -> Result<usize, Refusal> {
+    let count = c.snapshot.axes.len();
+    let bus = c.service.bus();
+    let local = bus.local_count(count).min(usize::from(high) + 1);
     usize::try_from(n)
         .ok()
-        .filter(|a| *a < count)
-        .ok_or_else(|| {
-            Refusal::range(
-                name,
-                n,
-                &format!("[0, {}] (the device's axes)", count.saturating_sub(1)),
-            )
-        })
+        .filter(|a| *a < local)
+        .and_then(|a| bus.engine_axis(a as u8, count))
+        .ok_or_else(|| Refusal::range(name, n, &format!("[0, {}]", local.saturating_sub(1))))
+}
+
+/// The engine axis of NMC axis number `n` stored after `axis_number` accepted it (0 if it no
+/// longer names one, which a running device's fixed bus never makes happen).
+pub fn stored_axis(c: &Call<'_>, n: i16) -> usize {
+    u8::try_from(n)
+        .ok()
+        .and_then(|a| c.service.bus().engine_axis(a, c.snapshot.axes.len()))
+        .unwrap_or(0)
 }
 
 /// A count argument `name` in `[low, high]`.
