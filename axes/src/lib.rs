@@ -14,6 +14,7 @@ pub mod coupling;
 pub mod engine;
 pub mod error;
 pub mod group;
+pub mod guard;
 pub mod homing;
 pub mod hw;
 pub mod od;

@@ -298,3 +298,63 @@ fn bad_input_is_typed() {
     run(&mut e, 1.0);
     assert_eq!(e.axis_status(0).unwrap().cmd_pos, 10.0);
 }
+
+/// NMC COLLECT_ADDRESS_CRD_POS/CRD_VEL: a group's coordinates and path velocity, recorded
+/// `delay` periods after the trigger (TCollectTrig startDelay).
+#[test]
+fn group_coordinates_and_path_velocity_after_a_start_delay() {
+    let mut e = common::with_group(
+        Engine::new(&EngineConfig {
+            axes: (0..2).map(|_| common::stepper_mm()).collect(),
+            ..EngineConfig::default()
+        })
+        .unwrap(),
+        &[0, 1],
+    );
+    ok(
+        &mut e,
+        cmd(
+            r#"{"type":"sampling_configure","sampler":3,"points":1000,"delay":20,
+                "variables":[{"kind":"group_coordinate","group":1,"coordinate":1},
+                             {"kind":"group_velocity","group":1}]}"#,
+        ),
+    );
+    ok(&mut e, cmd(r#"{"type":"sampling_start","sampler":3}"#));
+    ok(&mut e, common::group_line(1, &[30.0, 40.0]).into());
+    let start = e.tick();
+    let mut seen = Vec::new();
+    for _ in 0..40 {
+        e.step();
+        let g = e.snapshot().groups[0];
+        seen.push((g.coordinates[1], g.path_velocity));
+    }
+    let s = e.snapshot().samplers[0].clone();
+    assert_eq!(s.triggered_at, Some(start + 1 + 20), "{s:?}");
+    let (variables, values) = read(&mut e, 3);
+    assert_eq!(variables, 2);
+    assert_eq!(values.len(), 2 * 20);
+    // Sample 0 is the state the 21st tick left.
+    for (k, row) in values.chunks(2).enumerate() {
+        let (y, v) = seen[20 + k];
+        assert_eq!(row, [y, v], "sample {k}");
+    }
+    assert!(values[values.len() - 2] > 0.0 && values[values.len() - 1] > 0.0);
+    let err = refused(
+        &mut e,
+        cmd(r#"{"type":"sampling_configure","sampler":3,"points":10,
+                "variables":[{"kind":"group_coordinate","group":1,"coordinate":2}]}"#),
+    );
+    assert!(
+        matches!(err, EngineError::InvalidGroup { group: 1, .. }),
+        "{err:?}"
+    );
+    let err = refused(
+        &mut e,
+        cmd(r#"{"type":"sampling_configure","sampler":3,"points":10,
+                "variables":[{"kind":"group_velocity","group":7}]}"#),
+    );
+    assert!(
+        matches!(err, EngineError::UnknownGroup { group: 7 }),
+        "{err:?}"
+    );
+}

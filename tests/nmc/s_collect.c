@@ -3,7 +3,8 @@
  * interval 0, no trigger, start, MtMovePtpAbs(ax,1,1,0,0,10,0,10000), wait, stop, read in
  * 1440-byte chunks into a double array — then what the data say: one sample per planning
  * period (1 ms), positions 0 … 10000, velocity 10 pulse/ms in the cruise. Then a rising
- * trigger, clearing, and the documented codes of bad arguments. */
+ * trigger, clearing, and the documented codes of bad arguments; then coordinate system 0's
+ * position and path velocity, recorded startDelay ms after a rising trigger on the velocity. */
 #include <string.h>
 #include "check.h"
 
@@ -18,6 +19,82 @@ static double *read_all(HAND dev, long dataLen) {
     for (i = 0; i < count; i++) OK(NMC_GetCollectData(dev, 1440, (unsigned char *)(data + i * 180)));
     OK(NMC_GetCollectData(dev, (short)(dataLen % 1440), (unsigned char *)(data + count * 180)));
     return data;
+}
+
+/* Coordinate system 0 on axes 0 and 1 runs a diagonal from (20000, 0) to (30000, 10000) at
+ * 10 pulse/ms, 1 pulse/ms²; channels X, Y and the path velocity, triggered when the velocity
+ * rises through 0.5 pulse/ms, the first sample startDelay = 100 ms later. */
+static void crd_collect(HAND dev) {
+    HAND ax1 = 0, crd = 0;
+    TCrdConfig crdConfig;
+    TCrdPara crdPara;
+    TCollectCfg cfg;
+    TCollectTrig trig;
+    unsigned long a[3];
+    short l[3], sts = 0, i;
+    long dataLen = 0, k, tgt[3] = {30000, 10000, 0};
+    double *data;
+
+    OK(NMC_MtOpen(dev, 1, &ax1));
+    OK(NMC_MtClrError(ax1));
+    OK(NMC_MtSetSvOn(ax1));
+    OK(NMC_CrdOpen(dev, &crd));
+    memset(&crdConfig, 0, sizeof crdConfig);
+    crdConfig.axCnts = 2;
+    crdConfig.pAxArray[0] = 0;
+    crdConfig.pAxArray[1] = 1;
+    crdConfig.pAxArray[2] = -1;
+    OK(NMC_CrdConfig(crd, &crdConfig));
+    memset(&crdPara, 0, sizeof crdPara);
+    crdPara.synAccMax = 50;
+    crdPara.synVelMax = 800;
+    OK(NMC_CrdSetPara(crd, &crdPara));
+    OK(NMC_CrdClrError(crd));
+    OK(NMC_CrdBufClr(crd));
+
+    OK(NMC_GetCollectDataAddr(dev, 0, COLLECT_ADDRESS_CRD_POS0, &a[0], &l[0]));
+    OK(NMC_GetCollectDataAddr(dev, 1, COLLECT_ADDRESS_CRD_POS0, &a[1], &l[1]));
+    OK(NMC_GetCollectDataAddr(dev, 0, COLLECT_ADDRESS_CRD_VELO, &a[2], &l[2]));
+    CHECK(NMC_GetCollectDataAddr(dev, 2, COLLECT_ADDRESS_CRD_POS0, &a[2], &l[2]) == RTN_ARG_RANGE, "coordinate 2 of 2");
+    CHECK(NMC_GetCollectDataAddr(dev, 1, COLLECT_ADDRESS_CRD_VELO, &a[2], &l[2]) == RTN_ARG_RANGE, "velocity index 1");
+    CHECK(NMC_GetCollectDataAddr(dev, 0, COLLECT_ADDRESS_CRD_POS1, &a[2], &l[2]) == RTN_INVALID_STATE, "crd 1 unconfigured");
+    memset(&cfg, 0, sizeof cfg);
+    cfg.count = 3;
+    for (i = 0; i < 3; i++) {
+        cfg.address[i] = a[i];
+        cfg.length[i] = l[i];
+    }
+    memset(&trig, 0, sizeof trig);
+    trig.mode = COLLECT_MODE_RISE;
+    trig.source1 = 2;
+    trig.value = 0.5;
+    trig.startDelay = 100;
+    OK(NMC_ClearCollectSts(dev));
+    OK(NMC_ConfigCollect(dev, &cfg, &trig));
+    OK(NMC_CollectOnOff(dev, 1));
+    OK(NMC_CrdLineXYZEx(crd, 1, 0x3, tgt, 0, 10, 1, 1));
+    OK(NMC_CrdStartMtn(crd));
+    do {
+        OK(NMC_CrdGetSts(crd, &sts));
+        CHECK(!(sts & BIT_CORD_MVERR), "MVERR %#x", sts);
+    } while (sts & BIT_CORD_BUSY);
+    wait_still(ax1);
+    OK(NMC_CollectOnOff(dev, 0));
+    OK(NMC_GetCollectSts(dev, &sts, &dataLen));
+    CHECK(sts & COLLECT_STS_TRIGGERED, "triggered %#x", sts);
+    CHECK(dataLen % 24 == 0 && dataLen / 24 > 1000, "crd samples %ld", dataLen / 24);
+    data = read_all(dev, dataLen);
+    /* 100 ms after the first tick at 1 pulse/ms: 50 pulses of ramp, then 90 ms at 10. */
+    CHECK(data[2] == 10, "first sample's path velocity %g", data[2]);
+    CHECK(fabs_((data[0] - 20000) * 1.41421356 - 950) <= 15, "first sample at %g, %g", data[0], data[1]);
+    for (k = 0; k < dataLen / 24; k++) {
+        double x = data[3 * k], y = data[3 * k + 1], v = data[3 * k + 2];
+        CHECK(fabs_((x - 20000) - y) <= 1, "sample %ld off the diagonal: %g, %g", k, x, y);
+        CHECK(v >= 0 && v <= 10 + 1e-9, "sample %ld: path velocity %g", k, v);
+    }
+    CHECK(data[dataLen / 8 - 3] == 30000 && data[dataLen / 8 - 2] == 10000, "last sample %g, %g",
+          data[dataLen / 8 - 3], data[dataLen / 8 - 2]);
+    free(data);
 }
 
 int main(void) {
@@ -49,7 +126,8 @@ int main(void) {
     CHECK(NMC_GetCollectDataAddr(devHandle, 0, 16, &addr[2], &len[2]) == RTN_ARG_RANGE, "dataType 16");
     CHECK(NMC_GetCollectDataAddr(devHandle, 0, -1, &addr[2], &len[2]) == RTN_ARG_RANGE, "dataType -1");
     CHECK(NMC_GetCollectDataAddr(devHandle, 4, COLLECT_ADDRESS_PRF_POS, &addr[2], &len[2]) == RTN_ARG_RANGE, "axis 4");
-    CHECK(NMC_GetCollectDataAddr(devHandle, 0, COLLECT_ADDRESS_CRD_POS, &addr[2], &len[2]) == RTN_UNSUPPORTED, "crd pos");
+    CHECK(NMC_GetCollectDataAddr(devHandle, 0, COLLECT_ADDRESS_CRD_POS, &addr[2], &len[2]) == RTN_INVALID_STATE,
+          "crd pos before NMC_CrdConfig");
     CHECK(NMC_GetCollectDataAddr(devHandle, 0, COLLECT_ADDRESS_LASER_POWER, &addr[2], &len[2]) == RTN_UNSUPPORTED, "laser");
     CHECK(NMC_GetCollectDataAddr(devHandle, 0, COLLECT_ADDRESS_PRF_POS, NULL, &len[2]) == RTN_NULL_POINTER, "NULL pAddr");
     CHECK(NMC_GetCollectDataAddr(axisHandle, 0, COLLECT_ADDRESS_PRF_POS, &addr[2], &len[2]) == RTN_WRONG_HANDLE_KIND, "axis handle");
@@ -79,8 +157,8 @@ int main(void) {
     CHECK(NMC_ConfigCollect(devHandle, &g_cltCfg, &badTrig) == RTN_ARG_RANGE, "mode 7");
     badTrig = cltTrig; badTrig.mode = COLLECT_MODE_RISE; badTrig.source1 = 2;
     CHECK(NMC_ConfigCollect(devHandle, &g_cltCfg, &badTrig) == RTN_ARG_RANGE, "source1 2 of 2 channels");
-    badTrig = cltTrig; badTrig.startDelay = 10;
-    CHECK(NMC_ConfigCollect(devHandle, &g_cltCfg, &badTrig) == RTN_UNSUPPORTED, "startDelay");
+    badTrig = cltTrig; badTrig.startDelay = -1;
+    CHECK(NMC_ConfigCollect(devHandle, &g_cltCfg, &badTrig) == RTN_ARG_RANGE, "startDelay -1");
     CHECK(NMC_ConfigCollect(devHandle, NULL, &cltTrig) == RTN_NULL_POINTER, "NULL pCollect");
 
     /* The manual's example. */
@@ -145,6 +223,7 @@ int main(void) {
     CHECK(fabs_((data[2] - data[0]) - 20) < 1e-9, "2 ms between samples: %g", data[2] - data[0]);
     free(data);
 
+    crd_collect(devHandle);
     printf("ok\n");
     return 0;
 }

@@ -1,6 +1,9 @@
 /* NMC_CrdStartExeTimeCalc / _NMC_CrdGetExeTime (digest 001 §2.7 (11)-(12), App. A): the time a
- * buffered program takes, computed from what is pushed (not run), in ms; the pushed commands
- * never reach the coordinate system. */
+ * buffered program takes, from a dry run of the engine (not run), in ms; the pushed commands
+ * never reach the coordinate system. The time is the ticks until the coordinate system is at
+ * rest, the last (settling) tick included. A program with blends and arcs is then run, and the
+ * ticks it takes, counted by a data collection of the coordinate system, are the estimate. */
+#include <string.h>
 #include "check.h"
 
 static HAND devHandle, crdHandle;
@@ -15,6 +18,90 @@ static void line(long seg, long x, double vel, double acc) {
 }
 
 static double fabs_(double v) { return v < 0 ? -v : v; }
+
+/* Lines blended into arcs and each other (look-ahead on, lookaheadDis 0), the last one ending
+ * at rest at (0, 0). */
+static void blended_program(void) {
+    long tgt[3] = {0, 0, 0}, center[3] = {0, 0, 0};
+    tgt[0] = 8000;
+    OK(NMC_CrdLineXYZEx(crdHandle, 10, 0x3, tgt, 0, 20, 2, 0));
+    tgt[0] = 12000;
+    tgt[1] = 4000;
+    center[0] = 0; /* relative to the arc's start */
+    center[1] = 4000;
+    OK(NMC_CrdArcCenterEx(crdHandle, 11, tgt, center, 1, 0, 20, 2, 0));
+    tgt[0] = 12000;
+    tgt[1] = 9000;
+    OK(NMC_CrdLineXYZEx(crdHandle, 12, 0x3, tgt, 0, 15, 2, 0));
+    tgt[0] = 4000;
+    tgt[1] = 9000;
+    OK(NMC_CrdArcRadiusEx(crdHandle, 13, tgt, 4000, 1, 0, 20, 2, 0));
+    tgt[0] = 0;
+    tgt[1] = 0;
+    OK(NMC_CrdLineXYZEx(crdHandle, 14, 0x3, tgt, 0, 20, 2, 1));
+}
+
+/* Estimate the blended program, then run it with X, Y and the path velocity collected every
+ * tick from the first moving one: the samples up to the first at rest at (0, 0), plus the
+ * settling tick, are the ticks it took. */
+static void estimate_equals_run(HAND dev) {
+    TExtCrdPara ext;
+    TCollectCfg cfg;
+    TCollectTrig trig;
+    unsigned long a[3];
+    short l[3], sts = 0, i;
+    unsigned long clock0 = 0, clock = 0, loop = 0;
+    long dataLen = 0, n, k;
+    double t = -1, *data;
+
+    OK(NMC_CrdGetExtPara(crdHandle, &ext));
+    ext.lookAheadSwitch = 1;
+    OK(NMC_CrdSetExtPara(crdHandle, &ext));
+    OK(NMC_CrdStartExeTimeCalc());
+    blended_program();
+    OK(NMC_CrdGetExeTime(&t));
+    CHECK(t > 2000 && t < 5000, "blended program: %.3f ms", t);
+
+    OK(NMC_GetCollectDataAddr(dev, 0, COLLECT_ADDRESS_CRD_POS0, &a[0], &l[0]));
+    OK(NMC_GetCollectDataAddr(dev, 1, COLLECT_ADDRESS_CRD_POS0, &a[1], &l[1]));
+    OK(NMC_GetCollectDataAddr(dev, 0, COLLECT_ADDRESS_CRD_VEL0, &a[2], &l[2]));
+    memset(&cfg, 0, sizeof cfg);
+    cfg.count = 3;
+    for (i = 0; i < 3; i++) {
+        cfg.address[i] = a[i];
+        cfg.length[i] = l[i];
+    }
+    memset(&trig, 0, sizeof trig);
+    trig.mode = COLLECT_MODE_RISE;
+    trig.source1 = 2;
+    trig.value = 1e-9;
+    OK(NMC_ConfigCollect(dev, &cfg, &trig));
+    OK(NMC_CollectOnOff(dev, 1));
+    /* Armed for a tick at least, so that the first moving tick is a rising edge. */
+    OK(NMC_GetClock(dev, &clock0, &loop));
+    do OK(NMC_GetClock(dev, &clock, &loop)); while (clock == clock0);
+    blended_program();
+    OK(NMC_CrdStartMtn(crdHandle));
+    do {
+        OK(NMC_CrdGetSts(crdHandle, &sts));
+        CHECK(!(sts & BIT_CORD_MVERR), "MVERR %#x", sts);
+    } while (sts & BIT_CORD_BUSY);
+    OK(NMC_CollectOnOff(dev, 0));
+    OK(NMC_GetCollectSts(dev, &sts, &dataLen));
+    CHECK(sts & COLLECT_STS_TRIGGERED, "never moved %#x", sts);
+    data = (double *)calloc((size_t)dataLen / 8 + 1, sizeof(double));
+    CHECK(data != NULL, "out of memory");
+    for (k = 0; k < dataLen; k += 1440) {
+        short chunk = (short)(dataLen - k < 1440 ? dataLen - k : 1440);
+        OK(NMC_GetCollectData(dev, chunk, (unsigned char *)data + k));
+    }
+    for (n = 0; n < dataLen / 24; n++) {
+        if (fabs_(data[3 * n]) < 1e-6 && fabs_(data[3 * n + 1]) < 1e-6 && data[3 * n + 2] == 0) break;
+    }
+    CHECK(n < dataLen / 24, "never at rest at (0, 0) in %ld samples", dataLen / 24);
+    CHECK(t == (double)(n + 2), "estimate %.3f ms, ran %ld ticks", t, n + 2);
+    free(data);
+}
 
 int main(void) {
     TCrdConfig crdConfig = {0};
@@ -53,7 +140,8 @@ int main(void) {
     line(1, 10000, 10, 1);
     OK(NMC_CrdBufDelay(crdHandle, 2, CRD_BUFF_DELAY_SCALE_MS, 100));
     OK(_NMC_CrdGetExeTime(&t));
-    CHECK(fabs_(t - 1110) < 1e-6, "line + delay: %.6f ms", t);
+    /* 1110 ms and the settling tick. */
+    CHECK(fabs_(t - 1111) < 1e-6, "line + delay: %.6f ms", t);
     /* Nothing was kept: the buffer is empty, and the calculation has stopped. */
     OK(NMC_CrdBufGetUsed(crdHandle, &used));
     CHECK(used == 0, "buffer holds %ld", used);
@@ -64,7 +152,9 @@ int main(void) {
     line(3, 10000, 10, 1);
     line(4, 0, 5, 0.5);
     OK(NMC_CrdGetExeTime(&t));
-    CHECK(fabs_(t - 3020) < 1e-6, "there and back: %.6f ms", t);
+    CHECK(fabs_(t - 3021) < 1e-6, "there and back: %.6f ms", t);
+
+    estimate_equals_run(devHandle);
 
     printf("ok\n");
     return 0;

@@ -490,6 +490,51 @@ fn estop_inputs_stop_the_axes() {
     assert!(child.wait().unwrap().success());
 }
 
+/// The watchdog and the E-stop inputs are the engine's guards: on the virtual clock, time
+/// advanced in one long step stops the axes at the tick real time would (TV71; the program's
+/// bounds are the positions of those ticks).
+#[test]
+fn guards_act_on_the_tick_on_the_virtual_clock() {
+    let dir = fresh_dir(env!("CARGO_TARGET_TMPDIR"), "nmc-guards-virtual");
+    let exe = compile_example("guards_virtual.c", &dir, &[]);
+    let m = Mcemu::start(Some(&gaochuan()), &["--clock", "virtual"]);
+    let di = |channel: u16, value: bool| {
+        m.post_ok(
+            "/commands",
+            &json!({"type": "force_digital_input", "channel": channel, "value": value}),
+        );
+    };
+    let advance = |ms: u64| {
+        m.advance(&json!({"seconds": ms as f64 / 1e3}));
+    };
+    di(1, true);
+    di(2, false);
+    let mut child = Command::new(&exe)
+        .env("MCEMU_NMC", m.address("nmc"))
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stdin = child.stdin.take().unwrap();
+    let mut lines = BufReader::new(child.stdout.take().unwrap()).lines();
+    assert_eq!(lines.next().unwrap().unwrap(), "watchdog");
+    advance(10_000);
+    writeln!(stdin).unwrap();
+    assert_eq!(lines.next().unwrap().unwrap(), "estop");
+    advance(200);
+    di(1, false);
+    advance(5_000);
+    writeln!(stdin).unwrap();
+    assert_eq!(lines.next().unwrap().unwrap(), "estop2");
+    advance(100);
+    di(2, true);
+    advance(5_000);
+    writeln!(stdin).unwrap();
+    let rest: Vec<String> = lines.map_while(Result::ok).collect();
+    assert_eq!(rest.last().map(String::as_str), Some("ok"), "{rest:?}");
+    assert!(child.wait().unwrap().success());
+}
+
 /// S-FOLLOW with TV59: the slave waits for the master to cross 50000, then 40000 per 60000.
 #[test]
 fn s_follow_tv59() {
@@ -531,6 +576,36 @@ fn saved_motion_config_survives_a_restart() {
         assert!(exit.status.success(), "{exit:?}");
     }
     assert!(state.join("nmc/nmc.json").is_file());
+}
+
+/// The user parameter areas (digest 001 §2.20, non-volatile): written by one mcemu, read back
+/// from a restarted one on the same state directory.
+#[test]
+fn user_parameter_areas_survive_a_restart() {
+    let dir = fresh_dir(env!("CARGO_TARGET_TMPDIR"), "nmc-user-para");
+    let exe = compile_example("user_para_restart.c", &dir, &[]);
+    let state = dir.join("state");
+    let state_arg = state.to_str().unwrap();
+    for mode in ["save", "check"] {
+        let m = Mcemu::start(Some(&gaochuan()), &["--state-dir", state_arg]);
+        let mut command = Command::new(&exe);
+        command.arg(mode).env("MCEMU_NMC", m.address("nmc"));
+        let out = run_with_timeout(command, b"", PROGRAM_TIMEOUT);
+        let stdout = String::from_utf8_lossy(&out.stdout).to_string();
+        assert!(
+            out.status.success() && stdout.lines().last() == Some("ok"),
+            "{}",
+            output_report(mode, &out)
+        );
+        let exit = m.terminate();
+        assert!(exit.status.success(), "{exit:?}");
+    }
+    assert_eq!(
+        std::fs::metadata(state.join("nmc/nmc.user_para_ex.bin"))
+            .unwrap()
+            .len(),
+        32768
+    );
 }
 
 /// Buffered I/O, stops and packs, advanced buffered I/O (digest 001 §2.7, §3.11, §3.12): the

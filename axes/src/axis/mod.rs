@@ -1012,6 +1012,31 @@ impl Axis {
         let _ = self.plan(tick, goal, limits);
     }
 
+    /// A new speed for the running move (NMC PTP compare, `crate::guard`): a position move
+    /// keeps its target, a velocity move its direction, both their accelerations; re-planned
+    /// from where the axis is. False when no such move runs (or it is halted).
+    pub(crate) fn change_running_speed(&mut self, tick: u64, speed: f64) -> bool {
+        if self.halted || !(speed.is_finite() && speed > 0.0) {
+            return false;
+        }
+        let Activity::Running(run) = &mut self.activity else {
+            return false;
+        };
+        match &mut run.goal {
+            RunGoal::Position { .. } => {}
+            RunGoal::Velocity { velocity } => *velocity = speed.copysign(*velocity),
+            RunGoal::Homing | RunGoal::Stream => return false,
+        }
+        run.overrides.velocity = Some(speed);
+        let overrides = run.overrides;
+        let Some(goal) = Self::run_goal(run) else {
+            return false;
+        };
+        let limits = self.limits_for(&overrides);
+        self.planned_limits = Some(limits);
+        self.plan(tick, goal, limits).is_ok()
+    }
+
     // ------------------------------------------------------------------ status
 
     /// The commanded position is changing (HIMC IsMoving: "PG still outputting new positions").

@@ -14,7 +14,10 @@ impl Axis {
             SampledVariable::ActualVelocity { .. } => self.act_vel,
             SampledVariable::FollowingError { .. } => self.cmd.p - self.act_pos,
             SampledVariable::OutputPosition { .. } => self.cmd.p + self.correction,
-            SampledVariable::DigitalInput { .. } | SampledVariable::DigitalOutput { .. } => 0.0,
+            SampledVariable::DigitalInput { .. }
+            | SampledVariable::DigitalOutput { .. }
+            | SampledVariable::GroupCoordinate { .. }
+            | SampledVariable::GroupVelocity { .. } => 0.0,
         }
     }
 }

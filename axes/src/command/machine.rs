@@ -8,8 +8,9 @@
 use serde::{Deserialize, Serialize};
 
 use super::{
-    command_from, AxisCommand, AxisIndex, BufferMode, CommandId, GantryHome, MoveAbsolute,
-    MoveRelative, MoveVelocity, StopMode,
+    command_from, AxisCommand, AxisIndex, BufferMode, Command, CommandId, GantryHome, GroupId,
+    InputStopClear, InputStopSet, MoveAbsolute, MoveRelative, MoveVelocity, PositionWatchClear,
+    PositionWatchSet, StopMode, WatchdogKick, WatchdogSet,
 };
 
 /// State of a command by id. Ids are engine-wide, so the query is too. JSON `type`:
@@ -154,6 +155,18 @@ fn active_high() -> bool {
     true
 }
 
+/// How many servo periods `group` takes to come to rest after `commands` (NMC
+/// `_NMC_CrdGetExeTime`): a dry run of the engine itself, which is then put back exactly as it
+/// was (`engine/estimate.rs`). The reply is `value`, in ticks. JSON `type`:
+/// `estimate_group_time`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EstimateGroupTime {
+    pub group: GroupId,
+    #[serde(default)]
+    pub commands: Vec<Command>,
+}
+
 /// A machine-wide command.
 #[derive(Clone, Debug, PartialEq)]
 pub enum MachineCommand {
@@ -168,6 +181,14 @@ pub enum MachineCommand {
     /// HMC_GantryInit (`command/gantry.rs`): a sequence over several axes.
     GantryHome(GantryHome),
     SetEstopInput(SetEstopInput),
+    EstimateGroupTime(EstimateGroupTime),
+    /// Guards (`command/guard.rs`): the watchdog and the input stops.
+    WatchdogSet(WatchdogSet),
+    WatchdogKick(WatchdogKick),
+    InputStopSet(InputStopSet),
+    InputStopClear(InputStopClear),
+    PositionWatchSet(PositionWatchSet),
+    PositionWatchClear(PositionWatchClear),
 }
 
 command_from!(
@@ -184,5 +205,12 @@ command_from!(
         ResetAll => ResetAll,
         GantryHome => GantryHome,
         SetEstopInput => SetEstopInput,
+        EstimateGroupTime => EstimateGroupTime,
+        WatchdogSet => WatchdogSet,
+        WatchdogKick => WatchdogKick,
+        InputStopSet => InputStopSet,
+        InputStopClear => InputStopClear,
+        PositionWatchSet => PositionWatchSet,
+        PositionWatchClear => PositionWatchClear,
     ]
 );

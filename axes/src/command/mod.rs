@@ -96,6 +96,7 @@ mod group;
 mod group_frames;
 mod group_io;
 mod group_jog;
+mod guard;
 mod handwheel;
 mod io;
 mod machine;
@@ -145,6 +146,10 @@ pub use group_frames::{
 };
 pub use group_io::{GroupBufferedHalt, GroupPulseOutput, GroupSetAnalogOutput, GroupStopInput};
 pub use group_jog::{GroupJog, GroupJogAxis};
+pub use guard::{
+    GuardInput, InputStopClear, InputStopSet, OutputLevel, PositionWatchClear, PositionWatchSet,
+    WatchdogKick, WatchdogSet, MAX_INPUT_STOPS,
+};
 pub use handwheel::{
     HandwheelExcess, HandwheelIn, HandwheelOut, HandwheelSetRatio, HandwheelTurn,
     HANDWHEEL_EXTERNAL_BASE, HANDWHEEL_EXTERNAL_ENCODERS,
@@ -154,8 +159,8 @@ pub use io::{
     WriteDigitalOutput,
 };
 pub use machine::{
-    DisableAll, EmergencyStopAll, EnableAll, GetCommandState, MachineCommand, MoveTogether,
-    ResetAll, SetEstopInput, StopAll, StopAxes, TogetherMove,
+    DisableAll, EmergencyStopAll, EnableAll, EstimateGroupTime, GetCommandState, MachineCommand,
+    MoveTogether, ResetAll, SetEstopInput, StopAll, StopAxes, TogetherMove,
 };
 pub use sampling::{
     SampledVariable, SamplerId, SamplingCommand, SamplingConfigure, SamplingRead, SamplingStart,

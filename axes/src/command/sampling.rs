@@ -6,7 +6,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{command_from, AxisIndex};
+use super::{command_from, AxisIndex, GroupId};
 
 /// A sampler's number: 0 … [`MAX_SAMPLERS`]−1 (HMC MC1008: four sample channels).
 pub type SamplerId = u16;
@@ -53,6 +53,16 @@ pub enum SampledVariable {
     DigitalOutput {
         channel: u16,
     },
+    /// Coordinate `coordinate` (0 the first member) of a group's commanded position, origin
+    /// offset taken off (NMC COLLECT_ADDRESS_CRD_POS0 / CRD_POS1).
+    GroupCoordinate {
+        group: GroupId,
+        coordinate: u8,
+    },
+    /// A group's commanded velocity along its path (NMC COLLECT_ADDRESS_CRD_VEL0 / CRD_VEL1).
+    GroupVelocity {
+        group: GroupId,
+    },
 }
 
 impl SampledVariable {
@@ -65,7 +75,19 @@ impl SampledVariable {
             | SampledVariable::ActualVelocity { axis }
             | SampledVariable::FollowingError { axis }
             | SampledVariable::OutputPosition { axis } => Some(axis),
-            SampledVariable::DigitalInput { .. } | SampledVariable::DigitalOutput { .. } => None,
+            SampledVariable::DigitalInput { .. }
+            | SampledVariable::DigitalOutput { .. }
+            | SampledVariable::GroupCoordinate { .. }
+            | SampledVariable::GroupVelocity { .. } => None,
+        }
+    }
+
+    /// The group it reads, if it is a group quantity.
+    pub fn group(&self) -> Option<GroupId> {
+        match *self {
+            SampledVariable::GroupCoordinate { group, .. }
+            | SampledVariable::GroupVelocity { group } => Some(group),
+            _ => None,
         }
     }
 }
@@ -117,6 +139,14 @@ pub struct SamplingConfigure {
     pub points: u32,
     #[serde(default)]
     pub trigger: SamplingTrigger,
+    /// Servo periods from the trigger to the first sample (NMC TCollectTrig startDelay); 0:
+    /// the first sample is taken on the trigger's tick.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub delay: u32,
+}
+
+fn is_zero(n: &u32) -> bool {
+    *n == 0
 }
 
 fn one() -> u32 {

@@ -204,6 +204,14 @@ pub(super) enum Command {
     ResetFaults(super::ResetFaults),
     // Issue 14, HIMC BindEMO: the E-stop input.
     SetEstopInput(super::SetEstopInput),
+    // Issue 13, NMC: the execution-time dry run and the guards.
+    EstimateGroupTime(super::EstimateGroupTime),
+    WatchdogSet(super::WatchdogSet),
+    WatchdogKick(super::WatchdogKick),
+    InputStopSet(super::InputStopSet),
+    InputStopClear(super::InputStopClear),
+    PositionWatchSet(super::PositionWatchSet),
+    PositionWatchClear(super::PositionWatchClear),
 }
 
 impl From<Command> for super::Command {
@@ -253,6 +261,21 @@ impl From<Command> for super::Command {
             }
             Command::ResetAll(c) => super::Command::Machine(MachineCommand::ResetAll(c)),
             Command::GantryHome(c) => super::Command::Machine(MachineCommand::GantryHome(c)),
+            Command::EstimateGroupTime(c) => {
+                super::Command::Machine(MachineCommand::EstimateGroupTime(c))
+            }
+            Command::WatchdogSet(c) => super::Command::Machine(MachineCommand::WatchdogSet(c)),
+            Command::WatchdogKick(c) => super::Command::Machine(MachineCommand::WatchdogKick(c)),
+            Command::InputStopSet(c) => super::Command::Machine(MachineCommand::InputStopSet(c)),
+            Command::InputStopClear(c) => {
+                super::Command::Machine(MachineCommand::InputStopClear(c))
+            }
+            Command::PositionWatchSet(c) => {
+                super::Command::Machine(MachineCommand::PositionWatchSet(c))
+            }
+            Command::PositionWatchClear(c) => {
+                super::Command::Machine(MachineCommand::PositionWatchClear(c))
+            }
             Command::GroupCreate(c) => super::Command::Group(GroupCommand::Create(c)),
             Command::GroupDelete(c) => super::Command::Group(GroupCommand::Delete(c)),
             Command::GroupEnable(c) => super::Command::Group(GroupCommand::Enable(c)),
@@ -424,6 +447,21 @@ impl From<super::Command> for Command {
             super::Command::Machine(MachineCommand::ResetAll(c)) => Command::ResetAll(c),
             super::Command::Machine(MachineCommand::GantryHome(c)) => Command::GantryHome(c),
             super::Command::Machine(MachineCommand::SetEstopInput(c)) => Command::SetEstopInput(c),
+            super::Command::Machine(MachineCommand::EstimateGroupTime(c)) => {
+                Command::EstimateGroupTime(c)
+            }
+            super::Command::Machine(MachineCommand::WatchdogSet(c)) => Command::WatchdogSet(c),
+            super::Command::Machine(MachineCommand::WatchdogKick(c)) => Command::WatchdogKick(c),
+            super::Command::Machine(MachineCommand::InputStopSet(c)) => Command::InputStopSet(c),
+            super::Command::Machine(MachineCommand::InputStopClear(c)) => {
+                Command::InputStopClear(c)
+            }
+            super::Command::Machine(MachineCommand::PositionWatchSet(c)) => {
+                Command::PositionWatchSet(c)
+            }
+            super::Command::Machine(MachineCommand::PositionWatchClear(c)) => {
+                Command::PositionWatchClear(c)
+            }
             super::Command::Group(GroupCommand::Create(c)) => Command::GroupCreate(c),
             super::Command::Group(GroupCommand::Delete(c)) => Command::GroupDelete(c),
             super::Command::Group(GroupCommand::Enable(c)) => Command::GroupEnable(c),

@@ -42,6 +42,8 @@ pub(super) struct Checkpoint {
     gantry_homes: Option<Vec<super::gantry_home::GantryHoming>>,
     /// The E-stop input binding (`set_estop_input` may be in a batch).
     estop_input: Option<super::estop_input::EstopInput>,
+    /// The watchdog and input stops (a batch may arm them).
+    guards: Option<crate::guard::Guards>,
     io: Option<Io>,
     slaves: Option<Vec<Slave>>,
     ledger: LedgerMark,
@@ -129,6 +131,22 @@ impl Engine {
             MachineCommand::ResetAll(_) => self.reset_everything(),
             MachineCommand::GantryHome(c) => self.start_gantry_home(c),
             MachineCommand::SetEstopInput(c) => self.set_estop_input(c),
+            MachineCommand::EstimateGroupTime(c) => self.estimate_group_time(c),
+            MachineCommand::WatchdogSet(c) => self.set_watchdog(c),
+            MachineCommand::WatchdogKick(c) => {
+                self.guards.kick_watchdog(c.deadline);
+                Ok(Reply::Done)
+            }
+            MachineCommand::InputStopSet(c) => self.set_input_stop(c),
+            MachineCommand::InputStopClear(c) => {
+                self.guards.clear_input_stop(c.slot);
+                Ok(Reply::Done)
+            }
+            MachineCommand::PositionWatchSet(c) => self.set_position_watch(c),
+            MachineCommand::PositionWatchClear(c) => {
+                self.guards.clear_position_watch(c.axis);
+                Ok(Reply::Done)
+            }
         }
     }
 
@@ -397,9 +415,11 @@ impl Engine {
         let input_starts = matches!(scope, Scope::Machine).then(|| self.input_starts.clone());
         let gantry_homes = matches!(scope, Scope::Machine).then(|| self.gantry_homes.clone());
         let estop_input = matches!(scope, Scope::Machine).then_some(self.estop_input);
+        let guards = matches!(scope, Scope::Machine).then(|| self.guards.clone());
         Checkpoint {
             gantry_homes,
             estop_input,
+            guards,
             axes,
             groups,
             couplings,
@@ -435,6 +455,9 @@ impl Engine {
         }
         if let Some(estop_input) = checkpoint.estop_input {
             self.estop_input = estop_input;
+        }
+        if let Some(guards) = checkpoint.guards {
+            self.guards = guards;
         }
         if let Some(io) = checkpoint.io {
             self.io = io;

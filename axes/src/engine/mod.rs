@@ -14,6 +14,7 @@ use crate::command::{
 use crate::config::{ConfigError, EngineConfig, InputBinding};
 use crate::coupling::{Couplings, Env as CouplingEnv};
 use crate::group::{Env as GroupEnv, Groups, IoRequest as GroupIoRequest};
+use crate::guard::Guards;
 use crate::homing::HomingSpec;
 use crate::od::Value;
 use crate::param::ParamId;
@@ -25,14 +26,17 @@ use std::sync::Arc;
 
 mod compensation;
 mod do_pulses;
+mod estimate;
 mod estop_input;
 mod gantry_home;
+mod guards;
 mod machine;
 mod planner;
 mod sampling;
 mod stream_inputs;
 mod streams;
 pub use crate::axis::Feed;
+pub use estimate::MAX_DRY_RUN_TICKS;
 pub use machine::MAX_ATOMIC_COMMANDS;
 pub use planner::{Feeds, MachinePlanner};
 
@@ -122,6 +126,14 @@ struct Slave {
     controlword: u16,
 }
 
+/// Which stages one servo period runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Stages {
+    All,
+    /// Everything a [`machine::Checkpoint`] saves and puts back (`estimate.rs`).
+    DryRun,
+}
+
 #[derive(Debug)]
 pub struct Engine {
     period: f64,
@@ -155,6 +167,8 @@ pub struct Engine {
     gantry_homes: Vec<gantry_home::GantryHoming>,
     /// The E-stop input (`estop_input.rs`), watched in stage 1b.
     estop_input: estop_input::EstopInput,
+    /// The watchdog and input stops (`guards.rs`), judged after the axes each tick.
+    guards: Guards,
 }
 
 impl Engine {
@@ -234,6 +248,7 @@ impl Engine {
             input_starts: Vec::new(),
             gantry_homes: Vec::new(),
             estop_input: Default::default(),
+            guards: Guards::default(),
         })
     }
 
@@ -732,20 +747,32 @@ impl Engine {
     /// Commands ([`Engine::apply`]) arrive between steps and act on the state the last step
     /// left.
     pub fn step(&mut self) {
+        self.advance(Stages::All);
+    }
+
+    /// One servo period; a dry run ([`Stages::DryRun`], `estimate.rs`) leaves out the
+    /// registered planners and the samplers, whose state a checkpoint does not save.
+    fn advance(&mut self, stages: Stages) {
         self.start_streams_on_inputs();
         self.step_gantry_homes();
         self.tick += 1;
         self.read_inputs();
         self.watch_estop_input();
-        self.run_planners();
+        self.with_groups(|groups, env| groups.step(env));
+        if stages == Stages::All {
+            self.run_planners();
+        }
         self.gather_compensation_inputs();
         self.step_axes();
         self.with_triggers(|t, env| t.step(env));
+        self.step_guards();
         self.step_drives();
         if self.groups_await_power {
             self.enable_groups_once_powered();
         }
-        self.sample();
+        if stages == Stages::All {
+            self.sample();
+        }
     }
 
     /// Add a machine-level planner to stage 2 (see [`MachinePlanner`]). Planners run in the
@@ -754,16 +781,15 @@ impl Engine {
         self.planners.push(planner);
     }
 
-    /// Stage 2, machine-level planners. First the axis groups (`group::Groups::step`): each
-    /// reads its members as the previous tick left them, steps its path and feeds every member
-    /// this tick's setpoint; a refusal or a member in trouble stops the whole group. They also
-    /// write the buffered digital outputs, start buffered single-axis moves and finish their
-    /// commands in the ledger. Then every registered planner reads the axes as the previous
-    /// tick left them and writes setpoints;
-    /// each setpoint becomes its axis's command source for this tick, or goes back to the
-    /// planner as a refusal.
+    /// Stage 2, machine-level planners, after the axis groups (`group::Groups::step`, run by
+    /// [`Engine::advance`]: each reads its members as the previous tick left them, steps its
+    /// path and feeds every member this tick's setpoint; a refusal or a member in trouble stops
+    /// the whole group; they also write the buffered digital outputs, start buffered
+    /// single-axis moves and finish their commands in the ledger). Every registered planner
+    /// reads the axes as the previous tick left them and writes setpoints; each setpoint
+    /// becomes its axis's command source for this tick, or goes back to the planner as a
+    /// refusal.
     fn run_planners(&mut self) {
-        self.with_groups(|groups, env| groups.step(env));
         let Engine {
             axes,
             io,
@@ -942,6 +968,8 @@ impl Engine {
             snapshot.params_version = params_version;
         }
         self.samplers.status_into(&mut snapshot.samplers);
+        self.guards
+            .position_watches_into(&mut snapshot.position_watches);
         snapshot.drives.clear();
         snapshot
             .drives

@@ -55,6 +55,27 @@ impl Engine {
                     count: do_,
                 })
             }
+            SampledVariable::GroupCoordinate { group, coordinate } => {
+                let g = self
+                    .groups
+                    .get(group)
+                    .ok_or(EngineError::UnknownGroup { group })?;
+                if usize::from(coordinate) >= g.members().len() {
+                    return Err(EngineError::InvalidGroup {
+                        group,
+                        reason: format!(
+                            "coordinate {coordinate}: the group has {} coordinates",
+                            g.members().len()
+                        ),
+                    });
+                }
+                Ok(())
+            }
+            SampledVariable::GroupVelocity { group } => self
+                .groups
+                .get(group)
+                .map(|_| ())
+                .ok_or(EngineError::UnknownGroup { group }),
             _ => match v.axis() {
                 Some(axis) if u32::from(axis) >= axes => Err(EngineError::InvalidAxis {
                     axis: u32::from(axis),
@@ -73,6 +94,7 @@ impl Engine {
         let Engine {
             axes,
             io,
+            groups,
             samplers,
             tick,
             ..
@@ -80,6 +102,12 @@ impl Engine {
         samplers.step(*tick, |v| match *v {
             SampledVariable::DigitalInput { channel } => bit(&io.image.di, channel),
             SampledVariable::DigitalOutput { channel } => bit(&io.image.do_, channel),
+            SampledVariable::GroupCoordinate { group, coordinate } => groups
+                .get(group)
+                .map_or(0.0, |g| g.sampled_coordinate(axes, coordinate)),
+            SampledVariable::GroupVelocity { group } => {
+                groups.get(group).map_or(0.0, |g| g.path_velocity())
+            }
             _ => v
                 .axis()
                 .and_then(|axis| axes.get(axis as usize))

@@ -321,6 +321,15 @@ impl Group {
         p
     }
 
+    /// Coordinate `k` of [`Group::current_position`] (a sampler's `group_coordinate`), 0 past
+    /// the last.
+    pub(crate) fn sampled_coordinate(&self, axes: &[Axis], k: u8) -> f64 {
+        self.current_position(axes)
+            .get(usize::from(k))
+            .copied()
+            .unwrap_or(0.0)
+    }
+
     /// The status record, each member's IN_POSITION from its status now.
     pub fn status(&self, axes: &[Axis]) -> GroupStatus {
         self.status_with(axes, |a| {

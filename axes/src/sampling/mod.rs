@@ -39,7 +39,7 @@ pub struct SamplerStatus {
     pub capacity: u32,
     /// Samples recorded so far (HMC GetSampleNum counts values: `points × variables`).
     pub points: u32,
-    /// The tick of the first sample, once triggered.
+    /// The tick of the first sample, once triggered (the trigger's tick plus the delay).
     pub triggered_at: Option<u64>,
 }
 
@@ -236,13 +236,18 @@ impl Samplers {
                 };
                 if fire {
                     s.state = SamplerState::Collecting;
-                    s.triggered_at = Some(tick);
+                    // The first sample's tick: `delay` periods after the trigger's.
+                    s.triggered_at = Some(tick.saturating_add(u64::from(c.delay)));
                 }
             }
             if s.state != SamplerState::Collecting {
                 continue;
             }
-            let since = tick.saturating_sub(s.triggered_at.unwrap_or(tick));
+            let first = s.triggered_at.unwrap_or(tick);
+            if tick < first {
+                continue;
+            }
+            let since = tick - first;
             if !since.is_multiple_of(u64::from(c.interval.max(1))) {
                 continue;
             }

@@ -66,6 +66,9 @@ pub struct Snapshot {
     /// The Z-phase compare channels (HMC SwitchTZ), by channel.
     #[serde(default)]
     pub z_compares: Vec<ZCompareStatus>,
+    /// The position watches (NMC PTP compare, `crate::guard`), by axis.
+    #[serde(default)]
+    pub position_watches: Vec<crate::guard::PositionWatchStatus>,
 }
 
 impl Snapshot {

@@ -24,7 +24,7 @@ fn turn(d: ArcDirection) -> Turn {
 /// The segment `command` moves along from `start` (engine units, the group's coordinates), and
 /// where it ends; `None` for a command that does not move the path or a geometry the engine
 /// would refuse (it is then not counted).
-pub fn segment(start: &[f64], command: &Command) -> Option<(Segment, Vec<f64>)> {
+fn segment(start: &[f64], command: &Command) -> Option<(Segment, Vec<f64>)> {
     let dims = start.len().min(MAX_AXES);
     let s = point(start);
     let Command::Group(g) = command else {

@@ -13,8 +13,9 @@
 //! - `crd_frames`: the transforms, arc sections, break points and move protection as the
 //!   manual's calls wrote them (family 0x17xx);
 //! - `handlers`: one file per family of the function table (`mcemu_nmc::table`);
-//! - `ax_state`, `ax_watch`: the axis-level additions' settings (family 0x13xx), and the
-//!   watchdog and E-stop inputs, judged on the virtual clock by a task of their own;
+//! - `ax_state`: the axis-level additions' settings (family 0x13xx); the watchdog, E-stop
+//!   inputs and PTP compares they arm are the engine's guards, judged on the tick;
+//! - `user_para_file`: the user parameter areas in the state directory;
 //! - `saved_config`: `NMC_SaveMotionConfig`'s file in the state directory, applied at start
 //!   and on `NMC_DevReset`;
 //! - `io_state`: extension modules, dedicated outputs and the written ID (0x12xx families);
@@ -28,7 +29,6 @@
 //!   socket), the connection loop over `mcemu_nmc::session`, the control-API handle.
 
 pub mod ax_state;
-mod ax_watch;
 pub mod config;
 pub mod crd;
 pub mod crd_frames;
@@ -44,3 +44,4 @@ pub mod service;
 pub mod stored;
 pub mod sync_state;
 pub mod sys_state;
+pub mod user_para_file;

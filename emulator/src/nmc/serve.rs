@@ -136,10 +136,7 @@ async fn start_sections(
     if let Some(c) = f.nmc.as_ref().filter(|c| c.enabled) {
         let (frontend, table) = section(cx, "nmc", &c.device, c.max_connections);
         super::saved_config::restore_at_start(&frontend.service).await;
-        tasks.spawn(super::ax_watch::watch(
-            Arc::clone(&frontend.service),
-            stopped(cx.shutdown),
-        ));
+        super::user_para_file::restore_at_start(&frontend.service);
         let listener = bind("nmc", c.bind)
             .await
             .map_err(|e| FrontendError::new("nmc", e))?;
@@ -175,10 +172,7 @@ async fn start_sections(
     if let Some(c) = f.nmc_local.as_ref().filter(|c| c.enabled) {
         let (frontend, table) = section(cx, "nmc_local", &c.device, c.max_connections);
         super::saved_config::restore_at_start(&frontend.service).await;
-        tasks.spawn(super::ax_watch::watch(
-            Arc::clone(&frontend.service),
-            stopped(cx.shutdown),
-        ));
+        super::user_para_file::restore_at_start(&frontend.service);
         // A socket file left by an earlier run would make the bind fail.
         if std::fs::symlink_metadata(&c.path).is_ok_and(|m| {
             use std::os::unix::fs::FileTypeExt;

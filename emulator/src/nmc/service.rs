@@ -330,8 +330,12 @@ impl NmcService {
         let mut plan = Plan::default();
         {
             let snapshot = self.engine.snapshot();
-            // Any request keeps the watchdog quiet (digest 001 §2.20, TV71).
-            self.ax().heard(super::ax_state::seconds(&snapshot));
+            // Any request moves the watchdog's deadline (digest 001 §2.20, TV71): queued
+            // before the request's own commands. A full queue loses it; the next tick's
+            // request sends another.
+            if let Some(kick) = self.ax().heard(snapshot.tick) {
+                let _ = self.engine.submit(kick.into());
+            }
             let mut call = Call {
                 service: self,
                 snapshot,

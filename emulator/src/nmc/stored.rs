@@ -67,8 +67,8 @@ pub struct Stored {
     /// The EtherCAT master (GCE cards): the `.gml` name last loaded, and whether it runs.
     pub ecat_config: Option<String>,
     pub ecat_started: bool,
-    /// The user parameter areas (`NMC_UserParaWr`, `…Ex`), zero until written; kept while
-    /// mcemu runs (decisions.md).
+    /// The user parameter areas (`NMC_UserParaWr`, `…Ex`), zero until written; saved in the
+    /// state directory (`user_para_file`, decisions.md).
     pub user_para: Vec<u8>,
     pub user_para_ex: Vec<u8>,
     /// The laser, SHIO and PWM settings (`crate::nmc::laser_state`).

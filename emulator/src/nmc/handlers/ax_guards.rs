@@ -1,7 +1,10 @@
 //! The guards that act without a call (digest 001 §2.3, §2.20): the per-axis E-stop input,
-//! the advanced E-stop input groups and the communication watchdog. The handlers only arm
-//! them in `ax_state`; `ax_watch` carries them out on the virtual clock (TV71).
+//! the advanced E-stop input groups and the communication watchdog. They are the engine's
+//! guards (`axes::guard`: input stops and the watchdog, judged on the tick); the handlers arm
+//! them and keep what was written in `ax_state` to read it back. Every request moves the
+//! watchdog's deadline (`AxState::heard`, TV71).
 
+use axes::command::{GuardInput, InputStopClear, InputStopSet, OutputLevel, StopMode, WatchdogSet};
 use mcemu_nmc::ax_structs::{EstopExParam, ESTOP_DI_EX_CH_NUM};
 use mcemu_nmc::table::{self, Function};
 
@@ -19,6 +22,27 @@ pub const HANDLERS: &[(Function, Handler)] = &[
     (table::CLR_ESTOP_DI_EX, clr_estop_di_ex),
 ];
 
+/// The engine input-stop slot of advanced group `g`, and of axis `axis`'s `MtSetEstopDI`.
+fn ex_slot(g: usize) -> u16 {
+    g as u16
+}
+
+fn axis_slot(axis: usize) -> Result<u16, Refusal> {
+    u16::try_from(ESTOP_DI_EX_CH_NUM + axis)
+        .ok()
+        .filter(|s| *s < axes::command::MAX_INPUT_STOPS)
+        .ok_or_else(|| {
+            Refusal::range(
+                "axis",
+                axis,
+                &format!(
+                    "[0, {}] for an E-stop input (mcemu's engine)",
+                    usize::from(axes::command::MAX_INPUT_STOPS) - ESTOP_DI_EX_CH_NUM - 1
+                ),
+            )
+        })
+}
+
 fn level(name: &str, v: i64) -> Result<(), Refusal> {
     if (0..=1).contains(&v) {
         Ok(())
@@ -33,12 +57,14 @@ fn mt_set_estop_di(c: &mut Call<'_>) -> Result<(), Refusal> {
     let axis = c.axis()?;
     let (gpi, sense) = (c.input.i16()?, c.input.i16()?);
     let inputs = c.snapshot.io.di.len();
+    let slot = axis_slot(axis)?;
     if gpi == -1 {
         c.service.ax().estop_di.remove(&axis);
+        c.command(InputStopClear { slot });
         return Ok(());
     }
     // A local input, or one of an enabled extension module (the I/O functions' rule).
-    super::io::bit_index(c, gpi, inputs).map_err(|_| {
+    let bit = super::io::bit_index(c, gpi, inputs).map_err(|_| {
         Refusal::range(
             "gpiIndex",
             gpi,
@@ -49,14 +75,16 @@ fn mt_set_estop_di(c: &mut Call<'_>) -> Result<(), Refusal> {
         )
     })?;
     level("sense", i64::from(sense))?;
-    c.service.ax().estop_di.insert(
-        axis,
-        EstopDi {
-            gpi,
-            sense,
-            active: false,
+    c.command(InputStopSet {
+        slot,
+        input: GuardInput::Digital {
+            channel: bit as u16,
         },
-    );
+        level: sense == 1,
+        filter: 0,
+        axes: vec![axis as u16],
+    });
+    c.service.ax().estop_di.insert(axis, EstopDi { gpi, sense });
     Ok(())
 }
 
@@ -78,6 +106,11 @@ fn set_watch_dog(c: &mut Call<'_>) -> Result<(), Refusal> {
     let (group, do_value) = (c.input.i16()?, c.input.i64()?);
     if timeout <= 0 {
         c.service.ax().watchdog = None;
+        c.command(WatchdogSet {
+            deadline: None,
+            mode: StopMode::Smooth,
+            outputs: Vec::new(),
+        });
         return Ok(());
     }
     if !(0..=1).contains(&stop_mode) {
@@ -88,13 +121,29 @@ fn set_watch_dog(c: &mut Call<'_>) -> Result<(), Refusal> {
         ));
     }
     let do_start = group_start(c, group, c.snapshot.io.do_.len())?;
-    c.service.ax().watchdog = Some(Watchdog {
-        timeout: timeout as f64 / 1e3,
-        stop_mode,
-        do_start,
-        do_value,
-        fired: false,
+    // The countdown in whole servo periods: it fires on the first tick `timeout` ms after the
+    // last request's.
+    let period_ms = (c.snapshot.period * 1e3).max(1e-6);
+    let ticks = (timeout as f64 / period_ms - 1e-9).ceil().max(1.0) as u64;
+    let count = c.snapshot.io.do_.len().saturating_sub(do_start).min(32);
+    let outputs = (0..count)
+        .map(|i| OutputLevel {
+            channel: (do_start + i) as u16,
+            value: do_value & (1 << i) != 0,
+        })
+        .collect();
+    c.command(WatchdogSet {
+        deadline: Some(c.snapshot.tick + ticks),
+        mode: if stop_mode == 1 {
+            StopMode::Abrupt
+        } else {
+            StopMode::Smooth
+        },
+        outputs,
     });
+    let mut ax = c.service.ax();
+    ax.watchdog = Some(Watchdog { ticks });
+    ax.last_kick = c.snapshot.tick;
     Ok(())
 }
 
@@ -162,12 +211,29 @@ fn set_estop_di_ex(c: &mut Call<'_>) -> Result<(), Refusal> {
         return Err(Refusal::range("filter", p.filter, "[0, 255]"));
     }
     level("diSense", p.di_sense)?;
+    let di_index = index as u16;
+    let input = match p.di_type {
+        0 => GuardInput::Digital { channel: di_index },
+        1 => GuardInput::NegativeLimit { axis: di_index },
+        2 => GuardInput::PositiveLimit { axis: di_index },
+        3 => GuardInput::Home { axis: di_index },
+        _ => GuardInput::Index { axis: di_index },
+    };
+    // filter: how long the level must hold, in ms (digest 001 §3.6 gives no unit).
+    let period_ms = (c.snapshot.period * 1e3).max(1e-6);
+    let filter = (f64::from(p.filter) / period_ms).round() as u32;
+    c.command(InputStopSet {
+        slot: ex_slot(g),
+        input,
+        level: p.di_sense == 1,
+        filter,
+        axes: (0..axes.min(16))
+            .filter(|a| p.ax_mask & (1 << a) != 0)
+            .map(|a| a as u16)
+            .collect(),
+    });
     if let Some(slot) = c.service.ax().estop_ex.get_mut(g) {
-        *slot = Some(EstopEx {
-            param: p,
-            active_since: None,
-            fired: false,
-        });
+        *slot = Some(EstopEx { param: p });
     }
     Ok(())
 }
@@ -195,5 +261,6 @@ fn clr_estop_di_ex(c: &mut Call<'_>) -> Result<(), Refusal> {
     if let Some(slot) = c.service.ax().estop_ex.get_mut(g) {
         *slot = None;
     }
+    c.command(InputStopClear { slot: ex_slot(g) });
     Ok(())
 }

@@ -5,12 +5,16 @@
 //! An "address" of `NMC_GetCollectDataAddr` is mcemu's: `0x4000_0000 | dataType << 16 |
 //! index`, index the axis (positions, velocities) or the digital channel (DI, DO). Every value
 //! is 8 bytes, a little-endian double in the manual's units (pulses, pulse/ms, 0/1): the
-//! manual's example reads the data into a `double` array. The coordinate-system variables (the
-//! engine samples no group quantity) and the laser ones (N/A) are refused as unsupported.
+//! manual's example reads the data into a `double` array. The coordinate-system variables
+//! (CRD_POS0/1, CRD_VEL0/1) are the engine's group 0 or 1: index the coordinate for a position
+//! (pulses of that member axis), 0 for the path velocity (pulse/ms of the first member); the
+//! coordinate system must be configured. The laser variables (N/A) are refused as unsupported.
+//! `startDelay` is in ms like `interval`: the first sample is taken that long after the
+//! trigger (decisions.md, "NMC system functions").
 
 use axes::command::{
-    EngineError, Reply, SampledVariable, SamplerId, SamplingConfigure, SamplingRead, SamplingStart,
-    SamplingStop, SamplingTrigger, MAX_SAMPLERS,
+    EngineError, GroupId, Reply, SampledVariable, SamplerId, SamplingConfigure, SamplingRead,
+    SamplingStart, SamplingStop, SamplingTrigger, MAX_SAMPLERS,
 };
 use axes::sampling::SamplerState;
 use axes::status::Snapshot;
@@ -46,8 +50,13 @@ const AXIS_POS: i16 = 1;
 const ENC_POS: i16 = 2;
 const CMD_POS: i16 = 3;
 const AXIS_VEL: i16 = 4;
+const CRD_POS0: i16 = 5;
+const CRD_VEL0: i16 = 6;
 const ENC_VEL: i16 = 7;
 const CMD_VEL: i16 = 8;
+const CRD_POS1: i16 = 9;
+const CRD_VEL1: i16 = 10;
+const LASER_OUTPUT: i16 = 11;
 const LASER_POWER: i16 = 13;
 const DI: i16 = 14;
 const DO: i16 = 15;
@@ -136,17 +145,77 @@ fn variable(
             },
             CollectUnit::Level,
         ),
-        5..=LASER_POWER => {
+        CRD_POS0 | CRD_POS1 => {
+            let (group, members) = crd_members(snapshot, data_type)?;
+            let coordinate = u8::try_from(index)
+                .ok()
+                .filter(|k| usize::from(*k) < members.len())
+                .ok_or_else(|| {
+                    Refusal::range(
+                        "index",
+                        index,
+                        &format!(
+                            "[0, {}] (the coordinate of coordinate system {group})",
+                            members.len().saturating_sub(1)
+                        ),
+                    )
+                })?;
+            let axis = members.get(usize::from(coordinate)).copied().unwrap_or(0);
+            (
+                SampledVariable::GroupCoordinate { group, coordinate },
+                CollectUnit::Position { axis },
+            )
+        }
+        CRD_VEL0 | CRD_VEL1 => {
+            let (group, members) = crd_members(snapshot, data_type)?;
+            if index != 0 {
+                return Err(Refusal::range("index", index, "{0} (the path velocity)"));
+            }
+            (
+                SampledVariable::GroupVelocity { group },
+                CollectUnit::Velocity {
+                    axis: members.first().copied().unwrap_or(0),
+                },
+            )
+        }
+        LASER_OUTPUT..=LASER_POWER => {
             return Err(Refusal::new(
                 RTN_UNSUPPORTED,
-                format!(
-                    "dataType {data_type}: coordinate-system and laser variables are not \
-                     collected by mcemu"
-                ),
+                format!("dataType {data_type}: the laser variables are not collected by mcemu"),
             ))
         }
         _ => return Err(Refusal::range("dataType", data_type, "[0, 15]")),
     })
+}
+
+/// The group a coordinate-system `dataType` reads and its member axes; the coordinate system
+/// must be configured.
+fn crd_members(snapshot: &Snapshot, data_type: i16) -> Result<(GroupId, Vec<usize>), Refusal> {
+    let group: GroupId = if matches!(data_type, CRD_POS0 | CRD_VEL0) {
+        0
+    } else {
+        1
+    };
+    let g = snapshot
+        .groups
+        .iter()
+        .find(|g| g.group == group)
+        .ok_or_else(|| {
+            Refusal::new(
+                code_for_kind(axes::command::ErrorKind::InvalidState),
+                format!(
+                    "dataType {data_type}: coordinate system {group} is not configured \
+                     (NMC_CrdConfig first)"
+                ),
+            )
+        })?;
+    let members = g
+        .members
+        .iter()
+        .take(usize::from(g.axis_count))
+        .map(|a| usize::from(*a))
+        .collect();
+    Ok((group, members))
 }
 
 fn get_collect_data_addr(c: &mut Call<'_>) -> Result<(), Refusal> {
@@ -267,18 +336,17 @@ fn config_collect(c: &mut Call<'_>) -> Result<(), Refusal> {
             ))
         }
     };
-    if trig.start_delay != 0 {
-        return Err(Refusal::new(
-            RTN_UNSUPPORTED,
-            format!(
-                "pTrig->startDelay = {}: mcemu starts recording at the trigger (0 only)",
-                trig.start_delay
-            ),
+    if trig.start_delay < 0 {
+        return Err(Refusal::range(
+            "pTrig->startDelay",
+            trig.start_delay,
+            "[0, 32767] ms after the trigger",
         ));
     }
-    // interval ms → servo ticks; 0 = every tick (one planning period).
+    // interval and startDelay ms → servo ticks; interval 0 = every tick (one planning period).
     let period_ms = (c.snapshot.period * 1e3).max(1e-6);
     let interval = ((f64::from(cfg.interval) / period_ms).round() as u32).max(1);
+    let delay = (f64::from(trig.start_delay) / period_ms).round() as u32;
     let row_bytes = 8 * count as u64;
     let config = SamplingConfigure {
         sampler: NMC_SAMPLER,
@@ -286,6 +354,7 @@ fn config_collect(c: &mut Call<'_>) -> Result<(), Refusal> {
         interval,
         points: (BUFFER_BYTES / row_bytes) as u32,
         trigger,
+        delay,
     };
     c.command(config.clone());
     let mut sys = c.service.sys();

@@ -2,10 +2,10 @@
 //! change at a position), the 2-D compare status under its comment name, and the damping
 //! compensation (digest 001 §2.3, §2.5, §2.8, §2.11, §2.13; Appendix A).
 
-use axes::command::{CaptureEdge, StreamStartOnInput};
+use axes::command::{CaptureEdge, PositionWatchSet, StreamStartOnInput};
+use mcemu_dialects::nmc::velocity_to_engine;
 use mcemu_nmc::table::{self, Function};
 
-use crate::nmc::ax_state::PtpCompare;
 use crate::nmc::service::{Call, Handler, Refusal};
 
 pub const HANDLERS: &[(Function, Handler)] = &[
@@ -49,8 +49,9 @@ fn mt_pt_start_mtn_ex(c: &mut Call<'_>) -> Result<(), Refusal> {
 }
 
 /// dir 1 positive / 0 negative, comparaPos pulses, upDateVel pulse/ms (> 0): armed until the
-/// moving axis passes the position, then its move goes on at upDateVel (carried out by
-/// `ax_watch` on the virtual clock).
+/// axis's planned position passes the position moving that way, then its move goes on at
+/// upDateVel (a PTP move to its target, a jog in its direction). The engine's position watch
+/// (`axes::guard`), judged on the tick.
 fn mt_set_ptp_compare_para(c: &mut Call<'_>) -> Result<(), Refusal> {
     let axis = c.axis()?;
     let (dir, pos, vel) = (c.input.i16()?, c.input.i64()?, c.input.f64()?);
@@ -60,24 +61,26 @@ fn mt_set_ptp_compare_para(c: &mut Call<'_>) -> Result<(), Refusal> {
     if !(vel.is_finite() && vel > 0.0) {
         return Err(Refusal::range("upDateVel", vel, "(0, ∞) pulse/ms"));
     }
-    c.service.ax().ptp_compare.insert(
-        axis,
-        PtpCompare {
-            dir,
-            pos,
-            vel,
-            active: true,
-            out: false,
-        },
-    );
+    let scale = c.scale(axis);
+    c.command(PositionWatchSet {
+        axis: axis as u16,
+        position: scale.to_engine(pos as f64),
+        positive: dir == 1,
+        speed: velocity_to_engine(scale, vel),
+    });
     Ok(())
 }
 
 /// Armed (1 until the position is passed), and passed (1 once the velocity changed).
 fn mt_get_ptp_compare_sts(c: &mut Call<'_>) -> Result<(), Refusal> {
     let axis = c.axis()?;
-    let p = c.service.ax().ptp_compare.get(&axis).copied();
-    let (active, out) = p.map_or((0, 0), |p| (i16::from(p.active), i16::from(p.out)));
+    let w = c
+        .snapshot
+        .position_watches
+        .iter()
+        .find(|w| usize::from(w.axis) == axis)
+        .copied();
+    let (active, out) = w.map_or((0, 0), |w| (i16::from(w.armed), i16::from(w.passed)));
     c.output.i16(active).i16(out);
     Ok(())
 }

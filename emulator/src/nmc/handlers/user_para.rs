@@ -1,11 +1,15 @@
 //! The user parameter areas (digest 001 §2.20, TV66): 2048 bytes written at most 256 at a
-//! time (`NMC_UserParaWr/Rd`), 32768 bytes at most 1000 at a time (`…Ex`). Kept while mcemu
-//! runs, not across restarts (decisions.md).
+//! time (`NMC_UserParaWr/Rd`), 32768 bytes at most 1000 at a time (`…Ex`). Non-volatile, as
+//! the manual's: every write is saved in the state directory (`user_para_file`) before it is
+//! acknowledged, and the areas are there again after a restart (decisions.md).
 
+use axes::command::ErrorKind;
+use mcemu_dialects::nmc::code_for_kind;
 use mcemu_nmc::table::{self, Function};
 
 use crate::nmc::service::{Call, Handler, Refusal};
 use crate::nmc::stored::Stored;
+use crate::nmc::user_para_file::{self, AreaFile};
 
 pub const HANDLERS: &[(Function, Handler)] = &[
     (table::USER_PARA_WR, user_para_wr),
@@ -14,23 +18,26 @@ pub const HANDLERS: &[(Function, Handler)] = &[
     (table::USER_PARA_RD_EX, user_para_rd_ex),
 ];
 
-/// An area: its size, the bytes one call moves at most, and where it lives.
+/// An area: its size, the bytes one call moves at most, where it lives and its file.
 struct Area {
     size: usize,
     per_call: usize,
     bytes: fn(&mut Stored) -> &mut Vec<u8>,
+    file: AreaFile,
 }
 
 const AREA: Area = Area {
-    size: 2048,
+    size: AreaFile::Basic.size(),
     per_call: 256,
     bytes: |s| &mut s.user_para,
+    file: AreaFile::Basic,
 };
 
 const AREA_EX: Area = Area {
-    size: 32768,
+    size: AreaFile::Extended.size(),
     per_call: 1000,
     bytes: |s| &mut s.user_para_ex,
+    file: AreaFile::Extended,
 };
 
 /// add and len within the area and the per-call limit: the byte range.
@@ -76,7 +83,11 @@ fn write(c: &mut Call<'_>, area: &Area) -> Result<(), Refusal> {
     if let Some(dest) = bytes.get_mut(range) {
         dest.copy_from_slice(&data);
     }
-    Ok(())
+    let whole = bytes.clone();
+    drop(stored);
+    // Written through, as to the controller's flash: acknowledged once it is on disk.
+    user_para_file::save(c.service, area.file, &whole)
+        .map_err(|e| Refusal::new(code_for_kind(ErrorKind::Fault), e))
 }
 
 fn read(c: &mut Call<'_>, area: &Area) -> Result<(), Refusal> {
