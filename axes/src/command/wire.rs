@@ -200,6 +200,8 @@ pub(super) enum Command {
     CompensationOffsetProfile(super::CompensationOffsetProfile),
     CompensationOffsetTrigger(super::CompensationOffsetTrigger),
     CompensationOffsetStop(super::CompensationOffsetStop),
+    // HMC_SetAddAxis (digest 000 §4.4).
+    AddAxisSet(super::AddAxisSet),
 }
 
 impl From<Command> for super::Command {
@@ -365,6 +367,7 @@ impl From<Command> for super::Command {
             Command::CompensationOffsetProfile(c) => super::Command::from(c),
             Command::CompensationOffsetTrigger(c) => super::Command::from(c),
             Command::CompensationOffsetStop(c) => super::Command::from(c),
+            Command::AddAxisSet(c) => super::Command::from(c),
         }
     }
 }
@@ -524,6 +527,7 @@ impl From<super::Command> for Command {
                 Command::GantrySetPosition(c)
             }
             super::Command::Coupling(CouplingCommand::GantrySetPid(c)) => Command::GantrySetPid(c),
+            super::Command::Coupling(CouplingCommand::AddAxisSet(c)) => Command::AddAxisSet(c),
             super::Command::Trigger(TriggerCommand::CaptureArm(c)) => Command::CaptureArm(c),
             super::Command::Trigger(TriggerCommand::CaptureClear(c)) => Command::CaptureClear(c),
             super::Command::Trigger(TriggerCommand::CompareStart(c)) => Command::CompareStart(c),

@@ -6,7 +6,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::types::{CommandId, CommandKind, ErrorKind, StreamMode};
+use crate::types::{AxisIndex, CommandId, CommandKind, ErrorKind, StreamMode};
 
 mod coupling;
 mod gang;
@@ -328,6 +328,10 @@ pub struct AxisStatus {
     /// That offset's move is in progress (HMC GetAxisCompenState 1; 0 done).
     #[serde(default)]
     pub compensation_offset_moving: bool,
+    /// The HMC add axis whose commanded travel is added to this axis's own (`add_axis_set`,
+    /// HMC_GetAddAxis; none is HMC's 255).
+    #[serde(default)]
+    pub add_axis: Option<AxisIndex>,
 }
 
 /// An axis's PT/PVT buffer and run (NMC `MtPtGetSpace`, `MtPtGetStatic`).
