@@ -665,7 +665,7 @@ fn minimal() -> Vec<(&'static str, Command, &'static str)> {
 
 /// Inputs whose error serde reports, and the text it reports today.
 const ERRORS: &[(&str, &str)] = &[
-    (r#"{"type":"teleport","axis":0}"#, "unknown variant `teleport`, expected one of `enable`, `disable`, `reset`, `move_absolute`, `move_relative`, `move_velocity`, `stop`, `halt`, `resume`, `home`, `set_position`, `set_parameter`, `get_parameter`, `modify_target`, `cancel`, `command_state`, `force_input`, `force_digital_input`, `force_analog_input`, `write_digital_output`, `write_analog_output`, `inject_following_error`, `setpoint`, `read_object`, `write_object`, `move_together`, `stop_axes`, `stop_all`, `enable_all`, `disable_all`, `emergency_stop_all`, `reset_all`, `group_create`, `group_delete`, `group_enable`, `group_disable`, `group_reset`, `move_linear_absolute`, `move_linear_relative`, `move_circular_absolute`, `move_circular_relative`, `group_stop`, `group_halt`, `group_continue`, `group_emergency_stop`, `group_set_override`, `group_set_origin`, `group_set_parameter`, `group_set_output`, `group_dwell`, `group_wait_input`, `group_wait_position`, `group_axis_move`, `move_spline`, `move_ellipse`, `group_set_coordinate_transform`, `group_set_coordinate_system`, `group_set_rotary_transform`, `group_set_xyza_transform`, `group_delete_transform`, `move_protection_enable`, `move_protection_disable`, `move_circular_angle`, `group_jog`, `group_jog_axis`, `gear_in`, `gear_set_ratio`, `gear_out`, `cam_table`, `cam_in`, `cam_out`, `capture_arm`, `capture_clear`, `compare_start`, `compare_stop`, `stream_config`, `pt_push`, `pvt_push`, `stream_clear`, `stream_start`, `pvt_move`, `compensation_lead_screw`, `compensation_backlash`, `compensation_table`, `compensation_enable`, `compensation_disable`, `compensation_clear`, `sampling_configure`, `sampling_start`, `sampling_trigger`, `sampling_stop`, `sampling_read`, `superimpose_in`, `superimpose_set_ratios`, `superimpose_out`, `tangential_in`, `tangential_out`, `gantry_enable`, `gantry_disable`, `handwheel_in`, `handwheel_out`, `handwheel_turn`, `compare_fire`, `follow_config`, `follow_push`, `follow_clear`, `follow_start`, `follow_switch`, `follow_out`, `handwheel_set_ratio`, `stream_start_on_input`, `capture_arm_threshold`, `gantry_home`, `pulse_digital_output`, `tangential_corner_mode`, `tangential_corner_follow_next`, `tangential_corner_continue`, `cam_table_link`, `group_pulse_output`, `group_set_analog_output`, `group_stop_input`, `group_buffered_halt`, `z_compare_start`, `z_compare_stop`, `gantry_set_position`, `gantry_set_pid`, `compensation_offset_amount`, `compensation_offset_profile`, `compensation_offset_trigger`, `compensation_offset_stop`, `reset_faults`, `set_estop_input`, `estimate_group_time`, `watchdog_set`, `watchdog_kick`, `input_stop_set`, `input_stop_clear`, `position_watch_set`, `position_watch_clear` at line 1 column 18"),
+    (r#"{"type":"teleport","axis":0}"#, "unknown variant `teleport`, expected one of `enable`, `disable`, `reset`, `move_absolute`, `move_relative`, `move_velocity`, `stop`, `halt`, `resume`, `home`, `set_position`, `set_parameter`, `get_parameter`, `modify_target`, `cancel`, `command_state`, `force_input`, `force_digital_input`, `force_analog_input`, `write_digital_output`, `write_analog_output`, `inject_following_error`, `setpoint`, `read_object`, `write_object`, `move_together`, `stop_axes`, `stop_all`, `enable_all`, `disable_all`, `emergency_stop_all`, `reset_all`, `group_create`, `group_delete`, `group_enable`, `group_disable`, `group_reset`, `move_linear_absolute`, `move_linear_relative`, `move_circular_absolute`, `move_circular_relative`, `group_stop`, `group_halt`, `group_continue`, `group_emergency_stop`, `group_set_override`, `group_set_origin`, `group_set_parameter`, `group_set_output`, `group_dwell`, `group_wait_input`, `group_wait_position`, `group_axis_move`, `move_spline`, `move_ellipse`, `group_set_coordinate_transform`, `group_set_coordinate_system`, `group_set_rotary_transform`, `group_set_xyza_transform`, `group_delete_transform`, `move_protection_enable`, `move_protection_disable`, `move_circular_angle`, `group_jog`, `group_jog_axis`, `gear_in`, `gear_set_ratio`, `gear_out`, `cam_table`, `cam_in`, `cam_out`, `capture_arm`, `capture_clear`, `compare_start`, `compare_stop`, `stream_config`, `pt_push`, `pvt_push`, `stream_clear`, `stream_start`, `pvt_move`, `compensation_lead_screw`, `compensation_backlash`, `compensation_table`, `compensation_enable`, `compensation_disable`, `compensation_clear`, `sampling_configure`, `sampling_start`, `sampling_trigger`, `sampling_stop`, `sampling_read`, `superimpose_in`, `superimpose_set_ratios`, `superimpose_out`, `tangential_in`, `tangential_out`, `gantry_enable`, `gantry_disable`, `handwheel_in`, `handwheel_out`, `handwheel_turn`, `compare_fire`, `follow_config`, `follow_push`, `follow_clear`, `follow_start`, `follow_switch`, `follow_out`, `handwheel_set_ratio`, `stream_start_on_input`, `capture_arm_threshold`, `gantry_home`, `pulse_digital_output`, `tangential_corner_mode`, `tangential_corner_follow_next`, `tangential_corner_continue`, `cam_table_link`, `group_pulse_output`, `group_set_analog_output`, `group_stop_input`, `group_buffered_halt`, `z_compare_start`, `z_compare_stop`, `gantry_set_position`, `gantry_set_pid`, `compensation_offset_amount`, `compensation_offset_profile`, `compensation_offset_trigger`, `compensation_offset_stop`, `reset_faults`, `set_estop_input`, `estimate_group_time`, `watchdog_set`, `watchdog_kick`, `input_stop_set`, `input_stop_clear`, `position_watch_set`, `position_watch_clear`, `add_axis_set` at line 1 column 18"),
     (r#"{"axis":0}"#, "missing field `type` at line 1 column 10"),
     (r#"{"type":"move_absolute","axis":0}"#, "missing field `position`"),
     (r#"{"type":"move_absolute","axis":0,"positon":10}"#, "unknown field `positon`, expected one of `axis`, `position`, `velocity`, `acceleration`, `deceleration`, `jerk`, `buffer_mode`"),
@@ -915,7 +915,7 @@ fn sampling_commands_keep_their_json() {
 fn superimpose_and_tangential_commands_keep_their_json() {
     use axes::command::CamTableLink;
     use axes::command::{
-        MasterSource, SuperimposeIn, SuperimposeOut, SuperimposeSetRatios,
+        AddAxisSet, MasterSource, SafeZMode, SuperimposeIn, SuperimposeOut, SuperimposeSetRatios,
         TangentialCornerContinue, TangentialCornerFollowNext, TangentialCornerMode,
         TangentialCornerModeKind, TangentialIn, TangentialOut,
     };
@@ -959,8 +959,33 @@ fn superimpose_and_tangential_commands_keep_their_json() {
                 axis: 2,
                 mode: TangentialCornerModeKind::Manual,
                 angle_limit: 0.5,
+                z_axis: None,
+                safe_z: 0.0,
+                safe_z_mode: SafeZMode::Incremental,
             }),
             r#"{"type":"tangential_corner_mode","axis":2,"mode":"manual","angle_limit":0.5}"#,
+        ),
+        (
+            Command::from(TangentialCornerMode {
+                axis: 2,
+                mode: TangentialCornerModeKind::Auto,
+                angle_limit: 0.5,
+                z_axis: Some(3),
+                safe_z: 10.0,
+                safe_z_mode: SafeZMode::Absolute,
+            }),
+            r#"{"type":"tangential_corner_mode","axis":2,"mode":"auto","angle_limit":0.5,"z_axis":3,"safe_z":10.0,"safe_z_mode":"absolute"}"#,
+        ),
+        (
+            Command::from(AddAxisSet {
+                base: 1,
+                add: Some(4),
+            }),
+            r#"{"type":"add_axis_set","base":1,"add":4}"#,
+        ),
+        (
+            Command::from(AddAxisSet { base: 1, add: None }),
+            r#"{"type":"add_axis_set","base":1}"#,
         ),
         (
             Command::from(TangentialCornerFollowNext { axis: 2 }),

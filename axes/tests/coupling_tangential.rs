@@ -11,8 +11,9 @@ type Expected = fn(&EngineError) -> bool;
 
 use axes::command::{
     ArcDirection, Command, EngineError, GroupBufferMode, GroupCreate, GroupDwell,
-    MoveCircularAbsolute, MoveLinearAbsolute, TangentialCornerContinue, TangentialCornerFollowNext,
-    TangentialCornerMode, TangentialCornerModeKind, TangentialIn, TangentialOut, TransitionMode,
+    MoveCircularAbsolute, MoveLinearAbsolute, SafeZMode, TangentialCornerContinue,
+    TangentialCornerFollowNext, TangentialCornerMode, TangentialCornerModeKind, TangentialIn,
+    TangentialOut, TransitionMode,
 };
 use axes::status::{CouplingKind, CouplingPhase, CouplingStatus, GroupState};
 use axes::{AxisFlags, AxisState, Engine, ParamId};
@@ -275,6 +276,9 @@ fn corner_mode(mode: TangentialCornerModeKind, angle_limit: f64) -> Command {
         axis: 2,
         mode,
         angle_limit,
+        z_axis: None,
+        safe_z: 0.0,
+        safe_z_mode: SafeZMode::Incremental,
     })
 }
 

@@ -11,7 +11,9 @@
 //! sync (0/1), and the points held in its PT/PVT buffer. Last, the HIMC status quantities
 //! (issue 14, digest 004 §3.7, §5.3): `move_time` and `settling_time` of the last finished move
 //! (s), `position_offset` (the user frame's origin offset), `rollover_turns` and `torque` (a
-//! fraction of rated torque).
+//! fraction of rated torque). Then HMC's `z_output` (the Z-phase output's level, 0/1, that
+//! SwitchTZ drives, issue 12 item 5) and `compensation_offset` (the axis position compensation
+//! offset, item 8).
 //!
 //! Numbers are written in their shortest round-trip form (`zmij`, `itoa`): a reader that parses
 //! them gets back the exact f64 the engine had. Integral floats drop the `.0` (`100`, not
@@ -23,7 +25,7 @@ use std::io::{self, Write};
 use axes::{AxisFlags, AxisStatus, Engine};
 
 /// The header row, in column order.
-pub const HEADER: &str = "time_s,axis,state,cmd_pos,cmd_vel,cmd_acc,act_pos,act_vel,following_error,pulses,encoder_counts,limit_pos,limit_neg,home_switch,homed,error,group,path_velocity,segment,user_segment,captures,capture_position,compare_outputs,output_pos,compensation,gantry_deviation,coupling,in_sync,stream_used,move_time,settling_time,position_offset,rollover_turns,torque";
+pub const HEADER: &str = "time_s,axis,state,cmd_pos,cmd_vel,cmd_acc,act_pos,act_vel,following_error,pulses,encoder_counts,limit_pos,limit_neg,home_switch,homed,error,group,path_velocity,segment,user_segment,captures,capture_position,compare_outputs,output_pos,compensation,gantry_deviation,coupling,in_sync,stream_used,move_time,settling_time,position_offset,rollover_turns,torque,z_output,compensation_offset";
 
 /// The group columns of a member axis's row (issue 11 item 7).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -161,6 +163,11 @@ fn format_fields(buf: &mut Vec<u8>, axis: usize, s: &AxisStatus, group: Option<&
     buf.extend_from_slice(ints.format(s.rollover_turns).as_bytes());
     buf.push(b',');
     push_f64(buf, &mut floats, s.torque);
+    // HMC SwitchTZ's Z-phase output and the axis position compensation offset (issue 12).
+    buf.push(b',');
+    buf.push(if s.z_output { b'1' } else { b'0' });
+    buf.push(b',');
+    push_f64(buf, &mut floats, s.compensation_offset);
     buf.push(b'\n');
 }
 
@@ -316,7 +323,7 @@ mod tests {
         let line = row(&s, 0.035);
         assert_eq!(
             line,
-            "0.035,3,discrete_motion,0.30000000000000004,-1234.5,1e-7,100,-0,2.5e+20,-42,9223372036854775807,0,1,0,1,limit_reached,,,,,0,0,0,0,0,0,,0,0,0,0,0,0,0
+            "0.035,3,discrete_motion,0.30000000000000004,-1234.5,1e-7,100,-0,2.5e+20,-42,9223372036854775807,0,1,0,1,limit_reached,,,,,0,0,0,0,0,0,,0,0,0,0,0,0,0,0,0
 "
         );
         assert_eq!(
@@ -344,7 +351,7 @@ mod tests {
         let idle = row(&AxisStatus::default(), 0.0);
         assert_eq!(
             idle,
-            "0,3,disabled,0,0,0,0,0,0,0,0,0,0,0,0,,,,,,0,0,0,0,0,0,,0,0,0,0,0,0,0
+            "0,3,disabled,0,0,0,0,0,0,0,0,0,0,0,0,,,,,,0,0,0,0,0,0,,0,0,0,0,0,0,0,0,0
 "
         );
         let mut member = Vec::new();
@@ -357,7 +364,7 @@ mod tests {
         write_member_row(&mut member, 0.0, 1, &AxisStatus::default(), Some(&g)).unwrap();
         assert_eq!(
             String::from_utf8(member).unwrap(),
-            "0,1,disabled,0,0,0,0,0,0,0,0,0,0,0,0,,2,12.5,3,40,0,0,0,0,0,0,,0,0,0,0,0,0,0
+            "0,1,disabled,0,0,0,0,0,0,0,0,0,0,0,0,,2,12.5,3,40,0,0,0,0,0,0,,0,0,0,0,0,0,0,0,0
 "
         );
     }
@@ -384,7 +391,32 @@ mod tests {
                 ("settling_time", "0.012"),
                 ("position_offset", "-100"),
                 ("rollover_turns", "-3"),
-                ("torque", "0.5")
+                ("torque", "0.5"),
+                ("z_output", "0"),
+                ("compensation_offset", "0")
+            ]
+        );
+    }
+
+    #[test]
+    fn the_z_output_and_the_compensation_offset_follow_the_himc_columns() {
+        let s = AxisStatus {
+            z_output: true,
+            compensation_offset: -0.25,
+            torque: 0.5,
+            ..AxisStatus::default()
+        };
+        let line = row(&s, 1.0);
+        let columns: Vec<&str> = line.trim_end().split(',').collect();
+        let names: Vec<&str> = HEADER.split(',').collect();
+        assert_eq!(columns.len(), names.len());
+        let tail: Vec<(&str, &str)> = names.iter().copied().zip(columns).skip(33).collect();
+        assert_eq!(
+            tail,
+            [
+                ("torque", "0.5"),
+                ("z_output", "1"),
+                ("compensation_offset", "-0.25")
             ]
         );
     }

@@ -812,7 +812,7 @@ fn control_trace_records_every_tick_of_an_advance() {
     let num = |row: &[String], c: usize| row[c].parse::<f64>().unwrap();
     let mut last_pos = f64::NEG_INFINITY;
     for (i, row) in rows.iter().enumerate() {
-        assert_eq!(row.len(), 34, "{row:?}");
+        assert_eq!(row.len(), 36, "{row:?}");
         // One row per tick per axis, ticks 8 … 507, axes in order.
         let tick = 8 + (i / 2) as u64;
         assert_eq!(num(row, time), tick as f64 * PERIOD, "row {i}: {row:?}");

@@ -68,7 +68,7 @@ fn read_trace(path: &Path, axes: usize) -> Vec<Vec<Row>> {
     let mut per_axis = vec![Vec::new(); axes];
     for (n, line) in lines.enumerate() {
         let c: Vec<&str> = line.split(',').collect();
-        assert_eq!(c.len(), 34, "line {n}: {line}");
+        assert_eq!(c.len(), 36, "line {n}: {line}");
         let f = |i: usize| -> f64 { c[i].parse().unwrap_or_else(|_| panic!("{line}")) };
         let int = |i: usize| -> i64 { c[i].parse().unwrap_or_else(|_| panic!("{line}")) };
         let flag = |i: usize| match c[i] {

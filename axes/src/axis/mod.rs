@@ -11,6 +11,7 @@
 //! servo loop) → plant → encoder → switches → supervision (limits, following error, alarms) →
 //! command progress (completion, homing, next command) → status record.
 
+mod add_axis;
 mod commands;
 mod compensation;
 pub mod fifo;
@@ -233,6 +234,8 @@ pub struct Axis {
     coupling_kind: Option<CouplingKind>,
     /// Driven by a handwheel (issue 12 item 7): single-axis motion is refused while set.
     handwheel: bool,
+    /// The HMC add axis whose travel is laid on this axis's own command (`add_axis_set`).
+    add_axis: Option<AxisIndex>,
     /// Gantry (issue 12 item 6): this tick's deviation, and whether the master's latched
     /// gantry fault shows on this slave.
     gantry_deviation: f64,
@@ -335,6 +338,7 @@ impl Axis {
             in_sync: false,
             coupling_kind: None,
             handwheel: false,
+            add_axis: None,
             gantry_deviation: 0.0,
             gantry_fault_shown: false,
             fifo: Fifo::new(config.fifo_depth.unwrap_or(DEFAULT_FIFO_DEPTH)),
@@ -1234,6 +1238,7 @@ impl Axis {
             inputs,
             homing_failure: self.homing_record.failure,
             home_error: self.homing_record.home_error,
+            add_axis: self.add_axis,
         };
     }
 }

@@ -8,6 +8,7 @@ use super::superimpose::{
     SuperimposeIn, SuperimposeOut, SuperimposeSetRatios, TangentialCornerContinue,
     TangentialCornerFollowNext, TangentialCornerMode, TangentialIn, TangentialOut,
 };
+use super::AddAxisSet;
 use super::{
     command_from, AxisIndex, Direction, FollowClear, FollowConfig, FollowOut, FollowPush,
     FollowStart, FollowSwitch, GantryDisable, GantryEnable, GantrySetPid, GantrySetPosition,
@@ -276,6 +277,8 @@ pub enum CouplingCommand {
     // HMC_GantryGroupDefPos and HMC_SetGantryAxisPID (digest 000 §4.4), `command/gantry.rs`.
     GantrySetPosition(GantrySetPosition),
     GantrySetPid(GantrySetPid),
+    // HMC_SetAddAxis (digest 000 §4.4), `command/add_axis.rs`.
+    AddAxisSet(AddAxisSet),
 }
 
 impl CouplingCommand {
@@ -311,6 +314,7 @@ impl CouplingCommand {
             CouplingCommand::CamTableLink(_) => None,
             CouplingCommand::GantrySetPosition(c) => Some(c.master),
             CouplingCommand::GantrySetPid(c) => Some(c.axis),
+            CouplingCommand::AddAxisSet(c) => Some(c.base),
         }
     }
 }
@@ -348,5 +352,6 @@ command_from!(
         CamTableLink => CamTableLink,
         GantrySetPosition => GantrySetPosition,
         GantrySetPid => GantrySetPid,
+        AddAxisSet => AddAxisSet,
     ]
 );

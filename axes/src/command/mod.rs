@@ -87,6 +87,7 @@ pub enum AxisInput {
     EncoderLoss,
 }
 
+mod add_axis;
 mod axis;
 mod compensation;
 mod coupling;
@@ -107,6 +108,7 @@ mod superimpose;
 mod trigger;
 mod wire;
 
+pub use add_axis::AddAxisSet;
 pub use axis::{
     AxisCommand, Cancel, Disable, Enable, ForceInput, GetParameter, Halt, Home,
     InjectFollowingError, ModifyTarget, MoveAbsolute, MoveRelative, MoveVelocity, Reset,
@@ -173,7 +175,7 @@ pub use stream::{
     StreamStart, StreamStartOnInput, MAX_PUSH_POINTS, MAX_PVT_MOVE_POINTS,
 };
 pub use superimpose::{
-    SuperimposeIn, SuperimposeOut, SuperimposeSetRatios, TangentialCornerContinue,
+    SafeZMode, SuperimposeIn, SuperimposeOut, SuperimposeSetRatios, TangentialCornerContinue,
     TangentialCornerFollowNext, TangentialCornerMode, TangentialCornerModeKind, TangentialIn,
     TangentialOut,
 };

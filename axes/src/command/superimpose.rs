@@ -97,14 +97,37 @@ pub enum TangentialCornerModeKind {
     /// 1, manual lift: the path stops at every junction that turns by more than
     /// `angle_limit` and waits for `tangential_corner_continue`.
     Manual,
+    /// 2, auto lift: at such a junction the path stops, `z_axis` lifts to the safe position,
+    /// the tangential axis turns to the next motion's direction, `z_axis` comes back and the
+    /// path goes on, all by itself.
+    Auto,
+}
+
+/// How the auto lift's `safe_z` is read (HMC `ucSafePosZMode`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SafeZMode {
+    /// 0: lift by `safe_z` from where Z stands at the corner.
+    #[default]
+    Incremental,
+    /// 1: lift to `safe_z`.
+    Absolute,
+}
+
+fn is_incremental(m: &SafeZMode) -> bool {
+    *m == SafeZMode::Incremental
 }
 
 /// Set a tangential axis's corner mode (HMC_MoveTangConfigCornerMode, manual §4.4.9.2): with
 /// `manual`, the group stops exactly at each junction of two motions whose direction in the
 /// tracked plane turns by more than `angle_limit` radians (judged when the second motion is
 /// queued; a buffered non-motion command between them means no stop), and waits there. The
-/// rule applies to motions queued afterwards. HMC's automatic lift (mode 2) is not modelled.
-/// JSON `type`: `tangential_corner_mode`.
+/// rule applies to motions queued afterwards. With `auto` (mode 2) the group stops at the same
+/// junctions and the engine lifts `z_axis` to `safe_z` (its own move, with its own `speed`,
+/// `accel` and `decel`), turns the tangential axis to the next motion's direction, lowers
+/// `z_axis` back to where it was and lets the path go on. `z_axis` must be another axis than
+/// the tangential axis and not a member of the tracked group. JSON `type`:
+/// `tangential_corner_mode`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TangentialCornerMode {
@@ -113,6 +136,14 @@ pub struct TangentialCornerMode {
     /// Radians, [0, π] (HMC dCornerAngleLimit).
     #[serde(default)]
     pub angle_limit: f64,
+    /// Auto lift only: the axis that lifts (HMC ucAxisZ).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub z_axis: Option<AxisIndex>,
+    /// Auto lift only: the lift (incremental) or the safe position (absolute) (HMC dSafePosZ).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub safe_z: f64,
+    #[serde(default, skip_serializing_if = "is_incremental")]
+    pub safe_z_mode: SafeZMode,
 }
 
 /// At a corner stop: turn the tangential axis (within its own limits) to the direction the

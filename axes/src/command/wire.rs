@@ -212,6 +212,8 @@ pub(super) enum Command {
     InputStopClear(super::InputStopClear),
     PositionWatchSet(super::PositionWatchSet),
     PositionWatchClear(super::PositionWatchClear),
+    // HMC_SetAddAxis (digest 000 §4.4).
+    AddAxisSet(super::AddAxisSet),
 }
 
 impl From<Command> for super::Command {
@@ -394,6 +396,7 @@ impl From<Command> for super::Command {
             Command::CompensationOffsetStop(c) => super::Command::from(c),
             Command::ResetFaults(c) => super::Command::from(c),
             Command::SetEstopInput(c) => super::Command::from(c),
+            Command::AddAxisSet(c) => super::Command::from(c),
         }
     }
 }
@@ -570,6 +573,7 @@ impl From<super::Command> for Command {
                 Command::GantrySetPosition(c)
             }
             super::Command::Coupling(CouplingCommand::GantrySetPid(c)) => Command::GantrySetPid(c),
+            super::Command::Coupling(CouplingCommand::AddAxisSet(c)) => Command::AddAxisSet(c),
             super::Command::Trigger(TriggerCommand::CaptureArm(c)) => Command::CaptureArm(c),
             super::Command::Trigger(TriggerCommand::CaptureClear(c)) => Command::CaptureClear(c),
             super::Command::Trigger(TriggerCommand::CompareStart(c)) => Command::CompareStart(c),

@@ -14,6 +14,7 @@
 //! doing what the refusal left it doing. A master's fault does not decouple: the master's stop
 //! ramp is followed by the slave, so the two stay in ratio (decisions.md, issue 12 gear).
 
+mod add_axis;
 mod cam;
 mod cam_event;
 mod follow;
@@ -25,19 +26,21 @@ mod superimpose;
 pub mod table;
 mod tangential;
 mod tangential_corner;
+mod tangential_lift;
 
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use crate::axis::{Axis, Context, Feed};
 use crate::command::{
-    bounded, positive, AxisIndex, CamIn, CamTableDefine, CouplingCommand, EngineError, GearIn,
-    MasterSource, Reply, SuperimposeIn, TangentialIn, HANDWHEEL_EXTERNAL_ENCODERS,
+    bounded, positive, AddAxisSet, AxisIndex, CamIn, CamTableDefine, CouplingCommand, EngineError,
+    GearIn, MasterSource, Reply, SuperimposeIn, TangentialIn, HANDWHEEL_EXTERNAL_ENCODERS,
 };
 use crate::group::Groups;
 use crate::param::ParamId;
 use crate::profile::MotionState;
 use crate::status::{CouplingKind, CouplingPhase, CouplingStatus};
+pub use add_axis::AddLink;
 pub use cam::{Cam, CamStart, CamStep};
 use cam_event::cam_capture_start;
 pub use follow::{FollowLink, FollowSlave};
@@ -163,6 +166,8 @@ pub struct Couplings {
     external: [i64; HANDWHEEL_EXTERNAL_ENCODERS as usize],
     /// NMC Follow slaves' settings, FIFOs and runs (issue 12 item 2), by axis.
     follows: BTreeMap<AxisIndex, FollowSlave>,
+    /// HMC add axes, by base axis: stage 3 steps each add axis before its base.
+    adds: Vec<AddLink>,
 }
 
 /// What a coupling command may touch.
@@ -203,7 +208,57 @@ fn axis_ref(axes: &[Axis], index: AxisIndex) -> Result<&Axis, EngineError> {
 
 impl Couplings {
     pub fn is_empty(&self) -> bool {
-        self.list.is_empty() && self.handwheels.is_empty()
+        self.list.is_empty() && self.handwheels.is_empty() && self.adds.is_empty()
+    }
+
+    /// The add axis of `base` (HMC_GetAddAxis), if it has one.
+    pub fn add_axis_of(&self, base: AxisIndex) -> Option<AxisIndex> {
+        self.find_add(base).map(|l| l.add)
+    }
+
+    fn find_add(&self, base: AxisIndex) -> Option<&AddLink> {
+        self.adds
+            .binary_search_by_key(&base, |l| l.base)
+            .ok()
+            .and_then(|i| self.adds.get(i))
+    }
+
+    /// `add_axis_set` (HMC_SetAddAxis): associate, replace or (without `add`) end the base's
+    /// add axis. Ending keeps the base where it stands.
+    fn add_axis_set(&mut self, env: &mut Env, c: &AddAxisSet) -> Result<Reply, EngineError> {
+        axis_ref(env.axes, c.base)?;
+        let at = self.adds.binary_search_by_key(&c.base, |l| l.base);
+        let Some(add) = c.add else {
+            if let Ok(i) = at {
+                self.adds.remove(i);
+            }
+            if let Some(axis) = env.axes.get_mut(c.base as usize) {
+                axis.set_add_axis(None);
+            }
+            self.reorder(env.axes.len());
+            return Ok(Reply::Done);
+        };
+        let add_axis = axis_ref(env.axes, add)?;
+        if add == c.base {
+            return Err(EngineError::CoupledToItself { axis: c.base });
+        }
+        // Replacing the base's own link: the old one must not count as a path back to it.
+        let old = at.ok().map(|i| self.adds.remove(i));
+        if let Err(e) = self.check_no_loop(add, c.base) {
+            if let Some(old) = old {
+                let i = self.adds.partition_point(|l| l.base < old.base);
+                self.adds.insert(i, old);
+            }
+            return Err(e);
+        }
+        let link = AddLink::new(c.base, add_axis, add);
+        let i = self.adds.partition_point(|l| l.base < c.base);
+        self.adds.insert(i, link);
+        if let Some(axis) = env.axes.get_mut(c.base as usize) {
+            axis.set_add_axis(Some(add));
+        }
+        self.reorder(env.axes.len());
+        Ok(Reply::Done)
     }
 
     /// A cam table by number.
@@ -271,6 +326,7 @@ impl Couplings {
             CouplingCommand::HandwheelSetRatio(c) => self.handwheel_set_ratio(env, &c),
             CouplingCommand::GantrySetPosition(c) => self.gantry_set_position(env, &c),
             CouplingCommand::GantrySetPid(c) => self.gantry_set_pid(env, &c),
+            CouplingCommand::AddAxisSet(c) => self.add_axis_set(env, &c),
         }
     }
 
@@ -304,12 +360,17 @@ impl Couplings {
                 return Err(EngineError::CouplingLoop { slave, master });
             }
             visited += 1;
-            if visited > 4 * (self.list.len() + 1) * (self.list.len() + 1) {
+            let links = self.list.len() + self.adds.len() + 1;
+            if visited > 4 * links * links {
                 break;
             }
             if let Some(c) = self.find(a) {
                 stack.push(c.master);
                 stack.extend(c.master2);
+            }
+            // An add axis steps before its base as a master before its slave.
+            if let Some(l) = self.find_add(a) {
+                stack.push(l.add);
             }
         }
         Ok(())
@@ -656,14 +717,25 @@ impl Couplings {
     /// index). Loops were refused when the couplings were made, so depths are bounded.
     fn reorder(&mut self, axes: usize) {
         self.order.clear();
-        if self.list.is_empty() {
+        if self.list.is_empty() && self.adds.is_empty() {
             return;
         }
         // A slave's depth is one more than its deepest master's: relaxed once per coupling
         // (a chain is at most that long), so bounded without recursion.
         let mut depths = vec![0usize; axes];
-        for _ in 0..self.list.len() {
+        let edges = self.adds.iter().map(|l| (l.add, l.base));
+        let edges: Vec<(AxisIndex, AxisIndex)> = edges.collect();
+        for _ in 0..self.list.len() + edges.len() {
             let mut changed = false;
+            for &(add, base) in &edges {
+                let deepest = depths.get(add as usize).copied().unwrap_or(0);
+                if let Some(d) = depths.get_mut(base as usize) {
+                    if *d < deepest + 1 {
+                        *d = deepest + 1;
+                        changed = true;
+                    }
+                }
+            }
             for c in &self.list {
                 let deepest = [Some(c.master), c.master2]
                     .into_iter()
@@ -703,13 +775,14 @@ impl Couplings {
     /// are dropped.
     pub(crate) fn step_axes(&mut self, env: &mut Env) {
         self.refresh_corner_waits(env.groups);
+        self.run_auto_lifts(env);
         let Env {
             axes, ctx, period, ..
         } = env;
         if !self.handwheels.is_empty() {
             self.drive_handwheels(axes, ctx, *period);
         }
-        if self.list.is_empty() {
+        if self.list.is_empty() && self.adds.is_empty() {
             for axis in axes.iter_mut() {
                 axis.step(ctx);
             }
@@ -721,6 +794,9 @@ impl Couplings {
             };
             if let Some(slot) = slot {
                 self.drive_slave(slot, axes, ctx, *period);
+            }
+            if !self.adds.is_empty() {
+                self.add_travel(index, axes);
             }
             if let Some(axis) = axes.get_mut(index as usize) {
                 axis.step(ctx);
@@ -824,6 +900,23 @@ impl Couplings {
             }
         } else {
             slave.set_coupled(Some(c.master), in_sync);
+        }
+    }
+
+    /// Stage 3, just before `base` steps: lay its add axis's travel of this tick on it.
+    fn add_travel(&mut self, base: AxisIndex, axes: &mut [Axis]) {
+        let Ok(i) = self.adds.binary_search_by_key(&base, |l| l.base) else {
+            return;
+        };
+        let Some(link) = self.adds.get_mut(i) else {
+            return;
+        };
+        let Some(add) = axes.get(link.add as usize) else {
+            return;
+        };
+        let travel = link.travel(add);
+        if let Some(axis) = axes.get_mut(base as usize) {
+            axis.add_displacement(travel);
         }
     }
 

@@ -57,6 +57,8 @@ pub struct Tangential {
     /// stop.
     corner: CornerMode,
     corner_wait: Option<f64>,
+    /// The auto lift's Z axis and where its sequence stands (mode 2 only).
+    lift: Option<super::tangential_lift::Lift>,
 }
 
 /// How the tangential axis handles corners (HMC_MoveTangConfigCornerMode `ucCornerMode`).
@@ -67,6 +69,9 @@ pub enum CornerMode {
     None,
     /// 1: manual lift: the path stops at corners above the angle limit and waits.
     Manual,
+    /// 2: auto lift: the path stops at the same corners and `tangential_lift` lifts Z, turns
+    /// the axis and lowers Z by itself.
+    Auto,
 }
 
 /// `d` into (−π, π]: the shortest way round.
@@ -101,6 +106,7 @@ impl Tangential {
             phase: CouplingPhase::Waiting,
             corner: CornerMode::None,
             corner_wait: None,
+            lift: None,
         }
     }
 
@@ -123,18 +129,35 @@ impl Tangential {
         }
     }
 
+    /// The auto lift (with `CornerMode::Auto`).
+    pub(super) fn set_lift(&mut self, lift: Option<super::tangential_lift::Lift>) {
+        self.lift = lift;
+    }
+
+    pub(super) fn lift_mut(&mut self) -> Option<&mut super::tangential_lift::Lift> {
+        self.lift.as_mut()
+    }
+
+    /// Whether the group stands at a corner stop.
+    pub(super) fn at_corner(&self) -> bool {
+        self.corner_wait.is_some()
+    }
+
     /// Whether the group stands at a corner stop, and the next motion's direction (radians).
     pub fn set_corner_wait(&mut self, next_direction: Option<f64>) {
         self.corner_wait = next_direction;
     }
 
     /// HMC_GetMoveTangCornerState: 0 no lift, 1 manual and the path running, 2 manual and the
-    /// path standing at a corner (3 and 4, auto lift, are not modelled).
+    /// path standing at a corner, 3 auto and running, 4 auto and lifting (the path standing
+    /// at a corner while Z lifts, the axis turns and Z comes back), 255 an auto lift that
+    /// could not move Z.
     pub fn corner_state(&self) -> u8 {
         match (self.corner, self.corner_wait) {
             (CornerMode::None, _) => 0,
             (CornerMode::Manual, None) => 1,
             (CornerMode::Manual, Some(_)) => 2,
+            (CornerMode::Auto, _) => self.lift.as_ref().map_or(3, |l| l.corner_state()),
         }
     }
 

@@ -3,10 +3,45 @@
 //! set the tracked group's corner stops (`group::corner`), and the per-tick view of whether
 //! that group stands at one.
 
+use super::tangential_lift::Lift;
 use super::{Couplings, Env, Law, Tangential};
-use crate::command::{AxisIndex, CouplingCommand, EngineError, Reply, TangentialCornerModeKind};
+use crate::command::{
+    bounded, AxisIndex, CouplingCommand, EngineError, Reply, TangentialCornerMode,
+    TangentialCornerModeKind,
+};
 use crate::coupling::CornerMode;
 use crate::group::{not_at_corner, CornerStop, Groups};
+
+/// The auto lift of `tangential_corner_mode` `auto`: a Z axis that exists, is not the
+/// tangential axis and not a member of the tracked group (whose path it would leave), and a
+/// finite safe position.
+fn auto_lift(
+    c: &TangentialCornerMode,
+    axes: usize,
+    members: &[AxisIndex],
+) -> Result<Lift, EngineError> {
+    let z = c.z_axis.ok_or(EngineError::InvalidArgument {
+        name: "z_axis",
+        value: 255.0,
+        reason: "the auto lift needs the axis that lifts",
+    })?;
+    if usize::from(z) >= axes {
+        return Err(EngineError::InvalidAxis {
+            axis: u32::from(z),
+            count: axes as u32,
+        });
+    }
+    if z == c.axis || members.contains(&z) {
+        return Err(EngineError::InvalidArgument {
+            name: "z_axis",
+            value: f64::from(z),
+            reason:
+                "the lifting axis must be neither the tangential axis nor a member of its group",
+        });
+    }
+    let safe = bounded("safe_z", c.safe_z)?;
+    Ok(Lift::new(z, safe, c.safe_z_mode))
+}
 
 impl Couplings {
     /// `tangential_corner_mode`, `_follow_next`, `_continue`.
@@ -20,6 +55,7 @@ impl Couplings {
                 let mode = match c.mode {
                     TangentialCornerModeKind::None => CornerMode::None,
                     TangentialCornerModeKind::Manual => CornerMode::Manual,
+                    TangentialCornerModeKind::Auto => CornerMode::Auto,
                 };
                 // NaN fails the range check too.
                 if !(0.0..=std::f64::consts::PI).contains(&c.angle_limit) {
@@ -35,12 +71,17 @@ impl Couplings {
                     .groups
                     .group_mut(group)
                     .ok_or(EngineError::UnknownGroup { group })?;
-                g.set_corner_stop((mode == CornerMode::Manual).then_some(CornerStop {
+                let lift = match mode {
+                    CornerMode::Auto => Some(auto_lift(c, env.axes.len(), g.members())?),
+                    _ => None,
+                };
+                g.set_corner_stop((mode != CornerMode::None).then_some(CornerStop {
                     plane: plane.map(usize::from),
                     angle_limit: c.angle_limit,
                 }));
                 let t = self.tangential_mut(c.axis)?;
                 t.set_corner_mode(mode);
+                t.set_lift(lift);
                 t.set_corner_wait(g.corner_wait().map(|w| w.next_direction));
                 Ok(Reply::Done)
             }

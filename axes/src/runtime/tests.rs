@@ -645,14 +645,45 @@ fn steady_state_publication_reuses_the_snapshot_buffer() {
     assert_eq!(handle.stats().snapshot_allocations, 1);
     // A reader holding a snapshot keeps an unchanged copy; the runtime allocates around it.
     let held = handle.snapshot();
+    // Two advances: the second publication comes round to the buffer the reader holds (an
+    // advance publishes every 64 ticks and after its last).
+    handle.advance(10).unwrap();
     handle.advance(10).unwrap();
     assert_eq!(held.tick, 1000);
-    assert_eq!(handle.snapshot().tick, 1010);
+    assert_eq!(handle.snapshot().tick, 1020);
     let allocations = handle.stats().snapshot_allocations;
     assert!((2..=3).contains(&allocations), "{allocations}");
     drop(held);
     handle.advance(1000).unwrap();
     assert_eq!(handle.stats().snapshot_allocations, allocations);
+}
+
+#[test]
+fn an_advance_publishes_its_last_tick_and_with_a_condition_every_tick() {
+    let (handle, _guard) = virtual_runtime(1);
+    handle.advance(200).unwrap();
+    assert_eq!(handle.snapshot().tick, 200);
+    let before = handle.stats().snapshot_allocations;
+    // Publications after ticks 264, 328, 392 and 400, each refilling the spare buffer.
+    handle.advance(200).unwrap();
+    assert_eq!(handle.snapshot().tick, 400);
+    assert_eq!(handle.stats().snapshot_allocations, before);
+    // With a condition every tick is published for it: it sees tick 401 first.
+    let seen = Arc::new(Mutex::new(Vec::new()));
+    let until = {
+        let seen = Arc::clone(&seen);
+        handle
+            .advance_until(
+                move |s| {
+                    seen.lock().unwrap().push(s.tick);
+                    false
+                },
+                5,
+            )
+            .unwrap()
+    };
+    assert_eq!(until.tick, 405);
+    assert_eq!(seen.lock().unwrap().as_slice(), [401, 402, 403, 404, 405]);
 }
 
 #[test]

@@ -7,7 +7,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::homing::HomingFailure;
-use crate::types::{CommandId, CommandKind, ErrorKind, StreamMode};
+use crate::types::{AxisIndex, CommandId, CommandKind, ErrorKind, StreamMode};
 
 mod coupling;
 mod gang;
@@ -341,6 +341,10 @@ pub struct AxisStatus {
     /// user units (NMC_MtGetHomeError; 0 until a home point is found).
     #[serde(default)]
     pub home_error: f64,
+    /// The HMC add axis whose commanded travel is added to this axis's own (`add_axis_set`,
+    /// HMC_GetAddAxis; none is HMC's 255).
+    #[serde(default)]
+    pub add_axis: Option<AxisIndex>,
 }
 
 /// An axis's PT/PVT buffer and run (NMC `MtPtGetSpace`, `MtPtGetStatic`).

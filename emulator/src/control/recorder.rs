@@ -17,16 +17,17 @@ use super::error::ApiError;
 use crate::trace::GroupColumns;
 
 /// Default of `[frontends.control] trace_max_rows`: the row cap when a start request gives
-/// none, and the largest it may give — about 180 MB of buffer and about 170 MB of CSV at most.
+/// none, and the largest it may give — about 185 MB of buffer and about 170 MB of CSV at most.
 pub const MAX_TRACE_ROWS: usize = 1_000_000;
 
 /// Rows copied out of the buffer per lock while a trace is read, so a long read never holds
 /// the servo thread up for more than a few microseconds at a time.
 const READ_CHUNK: usize = 8192;
 
-/// One recorded axis at one tick: what a trace row needs, and no more (176 bytes: the group
+/// One recorded axis at one tick: what a trace row needs, and no more (184 bytes: the group
 /// columns are kept with an `in_group` flag rather than as an `Option`, whose tag would cost 8
-/// bytes, so the coupling kind and stream count fit; the HIMC status quantities take 40).
+/// bytes, so the coupling kind, stream count and Z-phase output fit; the HIMC status
+/// quantities take 40, the HMC compensation offset 8).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TraceRow {
     pub tick: u64,
@@ -61,6 +62,9 @@ pub struct TraceRow {
     pub position_offset: f64,
     pub rollover_turns: i64,
     pub torque: f64,
+    /// HMC's Z-phase output level and axis position compensation offset (issue 12).
+    pub z_output: bool,
+    pub compensation_offset: f64,
 }
 
 impl TraceRow {
@@ -92,6 +96,8 @@ impl TraceRow {
             position_offset: s.position_offset,
             rollover_turns: s.rollover_turns,
             torque: s.torque,
+            z_output: s.z_output,
+            compensation_offset: s.compensation_offset,
         }
     }
 
@@ -130,6 +136,8 @@ impl TraceRow {
             position_offset: self.position_offset,
             rollover_turns: self.rollover_turns,
             torque: self.torque,
+            z_output: self.z_output,
+            compensation_offset: self.compensation_offset,
             ..AxisStatus::default()
         }
     }
@@ -533,7 +541,7 @@ mod tests {
 
     #[test]
     fn rows_are_compact_and_round_trip_the_columns() {
-        assert!(std::mem::size_of::<TraceRow>() <= 176);
+        assert!(std::mem::size_of::<TraceRow>() <= 184);
         let s = AxisStatus {
             state: AxisState::DiscreteMotion,
             flags: AxisFlags::HOMED | AxisFlags::HW_LIMIT_NEG,
@@ -553,6 +561,8 @@ mod tests {
             position_offset: -100.0,
             rollover_turns: 2,
             torque: -0.5,
+            z_output: true,
+            compensation_offset: 0.125,
             ..AxisStatus::default()
         };
         let (mut a, mut b) = (Vec::new(), Vec::new());

@@ -118,6 +118,8 @@ pub(super) enum Quantity {
     ZOutput,
     /// The HMC position-compensation offset.
     CompensationOffset,
+    /// The HMC add axis, 255 for none (HMC_GetAddAxis).
+    AddAxis,
 }
 
 impl Quantity {
@@ -141,6 +143,7 @@ impl Quantity {
             Quantity::Torque => "torque",
             Quantity::ZOutput => "z_output",
             Quantity::CompensationOffset => "compensation_offset",
+            Quantity::AddAxis => "add_axis",
         }
     }
 
@@ -164,6 +167,7 @@ impl Quantity {
             Quantity::Torque => s.torque,
             Quantity::ZOutput => f64::from(u8::from(s.z_output)),
             Quantity::CompensationOffset => s.compensation_offset,
+            Quantity::AddAxis => s.add_axis.map_or(255.0, f64::from),
         }
     }
 }
@@ -291,6 +295,7 @@ impl Expectation {
             (Quantity::Torque, spec.torque),
             (Quantity::ZOutput, spec.z_output),
             (Quantity::CompensationOffset, spec.compensation_offset),
+            (Quantity::AddAxis, spec.add_axis),
         ] {
             if let Some(v) = v {
                 if !v.is_finite() {
@@ -326,8 +331,8 @@ impl Expectation {
                 "applies to position, velocity, command_position, command_velocity, \
                  following_error, captures, capture_position, compare_outputs, output_position, \
                  compensation, tangent_angle, gantry_deviation, move_time, settling_time, \
-                 position_offset, rollover_turns, torque, z_output, compensation_offset \
-                 or group_position, and none is given"
+                 position_offset, rollover_turns, torque, z_output, compensation_offset, \
+                 add_axis or group_position, and none is given"
                     .into(),
             ));
         }
@@ -407,7 +412,7 @@ impl Expectation {
                 "no condition on it: give state, position, velocity, command_position, \
                  command_velocity, following_error, captures, capture_position, \
                  compare_outputs, output_position, compensation, gantry_deviation, move_time, \
-                 settling_time, position_offset, rollover_turns, torque, z_output, compensation_offset, flags, not_flags, error, coupling, coupling_kind, tangent_angle, stream_space, \
+                 settling_time, position_offset, rollover_turns, torque, z_output, compensation_offset, add_axis, flags, not_flags, error, coupling, coupling_kind, tangent_angle, stream_space, \
                  stream_used, stream_running or stream_underruns"
                     .into(),
             ));

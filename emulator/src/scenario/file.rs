@@ -118,6 +118,9 @@ pub(super) struct ExpectSpec {
     /// The HMC position-compensation offset (`compensation_offset_trigger`).
     #[serde(default)]
     pub compensation_offset: Option<f64>,
+    /// The HMC add axis (`add_axis_set`): its index, or 255 for none (HMC_GetAddAxis).
+    #[serde(default)]
+    pub add_axis: Option<f64>,
     /// Allowed |seen − expected| of the numbers above; 0 (exact) when absent.
     #[serde(default)]
     pub tolerance: Option<f64>,

@@ -485,3 +485,48 @@ period = 0.001
     assert_eq!(r.expectations, 3);
     assert!(r.failures.is_empty(), "{:#?}", r.failures);
 }
+
+#[test]
+fn the_hmc_add_axis_is_checked_by_expect() {
+    // HMC_SetAddAxis(0, 1): axis 0 moves 30 of its own and 20 of axis 1's; 255 = none.
+    let axis = "[[axes]]\n[axes.params]\naxis_type = \"virtual\"\nunits = 1000\nrep_mode = \"finite\"\nspeed = 100\naccel = 1000\ndecel = 1000\n";
+    let text = format!(
+        r#"
+end = 1.5
+[[step]]
+at = 0
+command = {{ type = "enable_all" }}
+[[step]]
+at = 0
+expect = {{ axis = 0, add_axis = 255 }}
+[[step]]
+at = 0
+command = {{ type = "add_axis_set", base = 0, add = 1 }}
+[[step]]
+at = 0
+command = {{ type = "move_relative", axis = 0, distance = 30 }}
+[[step]]
+at = 0
+command = {{ type = "move_relative", axis = 1, distance = 20 }}
+[[step]]
+at = 1
+expect = {{ axis = 0, add_axis = 1, command_position = 50 }}
+[[step]]
+at = 1
+expect = {{ axis = 0, add_axis = 2 }}
+
+[machine]
+period = 0.001
+{axis}{axis}
+"#
+    );
+    let s = parse(&text).unwrap();
+    let r = s.run(None).unwrap();
+    assert_eq!(r.expectations, 3);
+    assert_eq!(r.failures.len(), 1, "{:#?}", r.failures);
+    assert!(
+        r.failures[0].contains("axis 0 add_axis: expected 2"),
+        "{:#?}",
+        r.failures
+    );
+}

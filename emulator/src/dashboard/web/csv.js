@@ -7,7 +7,7 @@ export const HEADER = [
   "homed", "error", "group", "path_velocity", "segment", "user_segment", "captures",
   "capture_position", "compare_outputs", "output_pos", "compensation", "gantry_deviation",
   "coupling", "in_sync", "stream_used", "move_time", "settling_time", "position_offset",
-  "rollover_turns", "torque",
+  "rollover_turns", "torque", "z_output", "compensation_offset",
 ];
 
 /** Channels that are trace columns of the same name. */
@@ -61,7 +61,7 @@ export function parseCsv(text) {
   if (t < 0 || a < 0) throw new Error("not a trace CSV: no time_s and axis columns");
   const numeric = header
     .map((name, i) => [name, i])
-    .filter(([name]) => VALUE_COLUMNS.includes(name) || ["pulses", "encoder_counts", "output_pos", "compensation", "gantry_deviation", "stream_used", "move_time", "settling_time", "position_offset", "rollover_turns", "torque"].includes(name));
+    .filter(([name]) => VALUE_COLUMNS.includes(name) || ["pulses", "encoder_counts", "output_pos", "compensation", "gantry_deviation", "stream_used", "move_time", "settling_time", "position_offset", "rollover_turns", "torque", "z_output", "compensation_offset"].includes(name));
   const times = [];
   const timeIndex = new Map();
   const byAxis = new Map();
