@@ -557,8 +557,16 @@ fn closed_loop_and_profile_config_tv67_tv70() {
 /// same state directory.
 #[test]
 fn saved_motion_config_survives_a_restart() {
-    let dir = fresh_dir(env!("CARGO_TARGET_TMPDIR"), "nmc-motion-config");
-    let exe = compile_example("motion_config.c", &dir, &[]);
+    let state = save_then_check_across_a_restart("motion_config.c");
+    assert!(state.join("nmc/nmc.json").is_file());
+}
+
+/// Compile `name`, run it as `name save` against one mcemu on a fresh state directory and as
+/// `name check` against a second one started on the same directory after the first exited
+/// cleanly; each run must end with `ok`. Returns the state directory.
+fn save_then_check_across_a_restart(name: &str) -> PathBuf {
+    let dir = fresh_dir(env!("CARGO_TARGET_TMPDIR"), &format!("nmc-{name}"));
+    let exe = compile_example(name, &dir, &[]);
     let state = dir.join("state");
     let state_arg = state.to_str().unwrap();
     for mode in ["save", "check"] {
@@ -575,31 +583,14 @@ fn saved_motion_config_survives_a_restart() {
         let exit = m.terminate();
         assert!(exit.status.success(), "{exit:?}");
     }
-    assert!(state.join("nmc/nmc.json").is_file());
+    state
 }
 
 /// The user parameter areas (digest 001 §2.20, non-volatile): written by one mcemu, read back
 /// from a restarted one on the same state directory.
 #[test]
 fn user_parameter_areas_survive_a_restart() {
-    let dir = fresh_dir(env!("CARGO_TARGET_TMPDIR"), "nmc-user-para");
-    let exe = compile_example("user_para_restart.c", &dir, &[]);
-    let state = dir.join("state");
-    let state_arg = state.to_str().unwrap();
-    for mode in ["save", "check"] {
-        let m = Mcemu::start(Some(&gaochuan()), &["--state-dir", state_arg]);
-        let mut command = Command::new(&exe);
-        command.arg(mode).env("MCEMU_NMC", m.address("nmc"));
-        let out = run_with_timeout(command, b"", PROGRAM_TIMEOUT);
-        let stdout = String::from_utf8_lossy(&out.stdout).to_string();
-        assert!(
-            out.status.success() && stdout.lines().last() == Some("ok"),
-            "{}",
-            output_report(mode, &out)
-        );
-        let exit = m.terminate();
-        assert!(exit.status.success(), "{exit:?}");
-    }
+    let state = save_then_check_across_a_restart("user_para_restart.c");
     assert_eq!(
         std::fs::metadata(state.join("nmc/nmc.user_para_ex.bin"))
             .unwrap()
