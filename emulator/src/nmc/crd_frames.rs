@@ -3,6 +3,8 @@
 //! and break point, and the device's move protection. The engine's group keeps the transform
 //! and the protection it carries out; this is the manual's view of them, read back as written.
 
+use axes::command::{Command, GroupId, GroupParameter, GroupSetParameter};
+use mcemu_dialects::PulseScale;
 use mcemu_nmc::crd::CRD_MAX_AXES;
 use mcemu_nmc::crd_frames::{ArcSecSetting, MvProtectPara};
 
@@ -132,4 +134,39 @@ pub fn chord_error(a: &ArcSecSetting) -> (f64, [f64; 2], [f64; 2]) {
         return (0.0, [0.0; 2], [0.0; 2]);
     }
     (a.err[0], [a.r[0], a.r[1]], [a.err[1], a.err[2]])
+}
+
+/// The group parameters of the table `a` for group `n`, in the pulses of `scale` (the group's
+/// first member): the band edges, then the bands' errors, then the first band's
+/// (`chord_error`).
+pub fn chord_commands(n: usize, scale: PulseScale, a: &ArcSecSetting) -> Vec<Command> {
+    let (first, edges, errors) = chord_error(a);
+    [
+        (GroupParameter::ChordErrorRadius1, edges[0]),
+        (GroupParameter::ChordErrorRadius2, edges[1]),
+        (GroupParameter::ChordErrorBand1, errors[0]),
+        (GroupParameter::ChordErrorBand2, errors[1]),
+        (GroupParameter::ChordError, first),
+    ]
+    .into_iter()
+    .map(|(name, value)| {
+        GroupSetParameter {
+            group: n as GroupId,
+            name,
+            value: scale.to_engine(value),
+        }
+        .into()
+    })
+    .collect()
+}
+
+/// The engine's corner speed of the fourth coordinate (the A axis) for tolVel of group `n`
+/// (0: off), in the units of `scale` (the A axis's).
+pub fn turn_vel_command(n: usize, scale: PulseScale, tol_vel: f64) -> Command {
+    GroupSetParameter {
+        group: n as GroupId,
+        name: GroupParameter::FourthCoordinateCornerVelocity,
+        value: mcemu_dialects::nmc::velocity_to_engine(scale, tol_vel),
+    }
+    .into()
 }

@@ -224,13 +224,15 @@ fn crd_config(c: &mut Call<'_>) -> Result<(), Refusal> {
     // arc-section table is the new group's chord error.
     let table = c.service.frames().on_config(n);
     if crate::nmc::crd_frames::chord_error(&table) != (0.0, [0.0; 2], [0.0; 2]) {
-        for command in super::crd_frames::chord_commands(c, n, &axes, &table) {
+        let scale = member_scale(c, &axes, 0);
+        for command in crate::nmc::crd_frames::chord_commands(n, scale, &table) {
             c.command(command);
         }
     }
     let turn_vel = c.service.frames().crd_turn_vel(n);
     if turn_vel > 0.0 {
-        let command = super::crd_frames::turn_vel_command(c, n, &axes, turn_vel);
+        let command =
+            crate::nmc::crd_frames::turn_vel_command(n, member_scale(c, &axes, 3), turn_vel);
         c.command(command);
     }
     s.pending.clear();
@@ -615,4 +617,15 @@ pub(super) fn corner_commands(c: &Call<'_>, n: usize, s: &CrdState) -> Vec<Comma
         parameter(n, GroupParameter::CornerSlowAngle, slow.to_radians()),
         parameter(n, GroupParameter::CornerStopAngle, stop.to_radians()),
     ]
+}
+
+/// The pulse scale of member `k` of `axes` (1 pulse per unit without one): the chord errors
+/// are in the first member's pulses, the A axis's corner speed in the fourth's.
+pub(super) fn member_scale(c: &Call<'_>, axes: &[usize], k: usize) -> mcemu_dialects::PulseScale {
+    axes.get(k).map_or(
+        mcemu_dialects::PulseScale {
+            pulses_per_unit: 1.0,
+        },
+        |a| c.scale(*a),
+    )
 }

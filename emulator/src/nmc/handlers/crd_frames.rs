@@ -10,8 +10,8 @@ use std::f64::consts::TAU;
 
 use axes::command::{
     Command, CoordinateSystem, ErrorKind, GroupDeleteTransform, GroupEnable, GroupId,
-    GroupParameter, GroupSetCoordinateSystem, GroupSetParameter, GroupSetRotaryTransform,
-    GroupSetXyzaTransform, MoveLinearAbsolute, PositionFrame, SetPosition,
+    GroupSetCoordinateSystem, GroupSetRotaryTransform, GroupSetXyzaTransform, MoveLinearAbsolute,
+    PositionFrame, SetPosition,
 };
 use axes::status::GroupState;
 use mcemu_dialects::nmc::{acceleration_to_engine, code_for_kind, velocity_to_engine};
@@ -19,12 +19,12 @@ use mcemu_nmc::crd::CRD_MAX_AXES;
 use mcemu_nmc::crd_frames::ArcSecSetting;
 use mcemu_nmc::table::{self, Function};
 
-use super::crd::{crd, group, here, members, origin_command, state, update};
+use super::crd::{crd, group, here, member_scale, members, origin_command, state, update};
 use super::crd_segment::read_longs;
 use super::crd_status::path_scale;
 use super::motion::ptp_move;
 use super::sync_args::axis_number;
-use crate::nmc::crd_frames::{chord_error, CrdFrames, CrdTransform};
+use crate::nmc::crd_frames::{chord_commands, turn_vel_command, CrdFrames, CrdTransform};
 use crate::nmc::service::{pulses, Call, Handler, Refusal};
 
 pub const HANDLERS: &[(Function, Handler)] = &[
@@ -502,47 +502,13 @@ fn check_arc_sec(a: &ArcSecSetting) -> Result<(), Refusal> {
     Ok(())
 }
 
-/// The group parameters of the table `a` for the group of `axes` (the first member's
-/// pulses): the band edges, then the bands' errors, then the first band's (`chord_error`).
-pub(super) fn chord_commands(
-    c: &Call<'_>,
-    n: usize,
-    axes: &[usize],
-    a: &ArcSecSetting,
-) -> Vec<Command> {
-    let scale = axes.first().map_or(
-        mcemu_dialects::PulseScale {
-            pulses_per_unit: 1.0,
-        },
-        |a| c.scale(*a),
-    );
-    let (first, edges, errors) = chord_error(a);
-    [
-        (GroupParameter::ChordErrorRadius1, edges[0]),
-        (GroupParameter::ChordErrorRadius2, edges[1]),
-        (GroupParameter::ChordErrorBand1, errors[0]),
-        (GroupParameter::ChordErrorBand2, errors[1]),
-        (GroupParameter::ChordError, first),
-    ]
-    .into_iter()
-    .map(|(name, value)| {
-        GroupSetParameter {
-            group: n as GroupId,
-            name,
-            value: scale.to_engine(value),
-        }
-        .into()
-    })
-    .collect()
-}
-
 fn crd_set_arc_sec_para(c: &mut Call<'_>) -> Result<(), Refusal> {
     let n = crd(c)?;
     let a = ArcSecSetting::read(&mut c.input)?;
     check_arc_sec(&a)?;
     if group(c, n).is_some() {
         let axes = state(c, n).axes();
-        for command in chord_commands(c, n, &axes, &a) {
+        for command in chord_commands(n, member_scale(c, &axes, 0), &a) {
             c.command(command);
         }
     }
@@ -554,23 +520,6 @@ fn crd_get_arc_sec_para(c: &mut Call<'_>) -> Result<(), Refusal> {
     let n = crd(c)?;
     frames(c, n).arc_sec.write(c.output);
     Ok(())
-}
-
-/// The engine's corner speed of the fourth coordinate (the A axis) for tolVel of the
-/// coordinate system of `axes` (0: off), in the A axis's units.
-pub(super) fn turn_vel_command(c: &Call<'_>, n: usize, axes: &[usize], tol_vel: f64) -> Command {
-    let scale = axes.get(3).map_or(
-        mcemu_dialects::PulseScale {
-            pulses_per_unit: 1.0,
-        },
-        |a| c.scale(*a),
-    );
-    GroupSetParameter {
-        group: n as GroupId,
-        name: GroupParameter::FourthCoordinateCornerVelocity,
-        value: velocity_to_engine(scale, tol_vel),
-    }
-    .into()
 }
 
 /// "设置 4 维插补下，A 轴的最大容忍转弯速度，若大于该速度，则需要进行降速处理": where the path
@@ -585,7 +534,7 @@ fn crd_set_fourth_axis_to_turn_vel(c: &mut Call<'_>) -> Result<(), Refusal> {
     }
     if group(c, n).is_some() {
         let axes = state(c, n).axes();
-        let command = turn_vel_command(c, n, &axes, v);
+        let command = turn_vel_command(n, member_scale(c, &axes, 3), v);
         c.command(command);
     }
     set_frames(c, n, |f| f.fourth_axis_turn_vel = v);
@@ -658,6 +607,7 @@ fn crd_goto_break(c: &mut Call<'_>) -> Result<(), Refusal> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::nmc::crd_frames::chord_error;
     use mcemu_nmc::crd_frames::MAX_ERR_TABLE_SECTION;
 
     #[test]
