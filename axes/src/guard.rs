@@ -10,6 +10,11 @@
 //! has held the level for `filter` ticks more: its axes get an emergency stop, moving or not;
 //! while the level stays, an axis of it that moves again (and is not already in an E-stop) is
 //! stopped again; the level going away re-arms it.
+//!
+//! The machine's E-stop input (`set_estop_input`, HIMC BindEMO, `engine/estop_input.rs`) is
+//! not an input stop: it acts before the axes step, on every group and axis (powering them
+//! off), on the edge only, and counts trips (docs/decisions.md, "`set_estop_input` stays
+//! beside the guards' input stops").
 
 use serde::{Deserialize, Serialize};
 

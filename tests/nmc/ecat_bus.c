@@ -3,7 +3,9 @@
  * two local pulse axes. The bus axes power up through their drives' state machines, move,
  * report a drive fault as the alarm bit, clear it by a fault reset, home in the drive (CiA 402
  * method 21, a home sensor active from -3000 down), answer SDOs with their abort codes, and
- * are named by axis-number arguments (masks, a gear master) as 16 and 17. */
+ * are named by axis-number arguments (masks, a gear master, the advanced E-stop's diIndex,
+ * typed-DO bitIndex, DI filters, encId, the collection index, MtPrfConfig's default map) as
+ * 16 and 17; a short mask and the reverse counters reach the local axes only. */
 #include <string.h>
 #include "check.h"
 
@@ -60,6 +62,9 @@ int main(void) {
     short master = -1, kind = -1;
     THomeSetting hs;
     TPtpPara ptp;
+    TEstopExParam ex;
+    short revs = -1, filt = -1, map = -1, port = -1, len = 0;
+    unsigned long counts[2] = {0}, addr = 0;
 
     OK(NMC_DevOpen(0, &dev));
     /* Nothing is online before the master runs (S-ECAT-START, TV33). */
@@ -197,6 +202,55 @@ int main(void) {
     OK(NMC_MtGearSetMaster(ax1, 16, 1));
     OK(NMC_MtGearGetMaster(ax1, &master, &kind));
     CHECK(master == 16 && kind == 1, "gear master read back: %d %d", master, kind);
+
+    /* Argument numbers that name bus axes (decisions.md "NMC EtherCAT bus axes"). ax16 rests
+     * at -4000 on its home sensor, so an advanced E-stop group on "home input of axis 16"
+     * stops local axis 1 (axMask bit 1) at once; axMask bit 2 (no local axis 2) and diIndex 2
+     * are refused. */
+    memset(&ex, 0, sizeof ex);
+    ex.axMask = 1 << 2;
+    ex.diType = 3;
+    ex.diIndex = 16;
+    ex.diSense = 1;
+    CHECK(NMC_SetEstopDIEx(dev, &ex, 0) == RTN_ARG_RANGE, "axMask bit 2: no local axis 2");
+    ex.axMask = 1 << 1;
+    ex.diIndex = 2;
+    CHECK(NMC_SetEstopDIEx(dev, &ex, 0) == RTN_ARG_RANGE, "diIndex 2: no axis 2");
+    ex.diIndex = 16;
+    OK(NMC_SetEstopDIEx(dev, &ex, 0));
+    EVENTUALLY(NMC_MtGetSts(ax1, &sts), sts & BIT_AXIS_ESTP);
+    OK(NMC_ClrEstopDIEx(dev, 0));
+    OK(NMC_MtClrError(ax1));
+    EVENTUALLY(NMC_MtGetSts(ax1, &sts), !(sts & BIT_AXIS_ESTP));
+    /* Typed DO: servo-enable/alarm-clear bit k = axis k. */
+    OK(NMC_SetDOBitRevsEx(dev, 2, 0, 17, 1));
+    OK(NMC_GetDOBitRevsEx(dev, 2, 0, 17, &revs));
+    CHECK(revs == 1, "alarm clear of axis 17 inverted: %d", revs);
+    OK(NMC_GetDOBitRevsEx(dev, 2, 0, 16, &revs));
+    CHECK(revs == 0, "axis 16 untouched: %d", revs);
+    CHECK(NMC_SetDOBitRevsEx(dev, 2, 0, 2, 1) == RTN_ARG_RANGE, "bitIndex 2: no axis 2");
+    /* A dedicated input's filter by axis number. */
+    OK(NMC_SetDIFilter(dev, 3, 0, 16, 7));
+    OK(NMC_GetDIFilter(dev, 3, 0, 16, &filt));
+    CHECK(filt == 7, "home filter of axis 16: %d", filt);
+    CHECK(NMC_SetDIFilter(dev, 3, 0, 2, 7) == RTN_ARG_RANGE, "diIndex 2: no axis 2");
+    /* Reverse counters: "others 0~7", the local axes. */
+    CHECK(NMC_GetDiReverseCount(dev, 3, 16, counts, 1) == RTN_ARG_RANGE, "counter of axis 16");
+    CHECK(NMC_GetDiReverseCount(dev, 3, 1, counts, 2) == RTN_ARG_RANGE, "axes 1, 2");
+    OK(NMC_GetDiReverseCount(dev, 3, 0, counts, 2));
+    /* encId: an axis's encoder by its NMC number (its actual position, at rest its prfPos). */
+    OK(NMC_MtGetPrfPos(ax16, &pos));
+    OK(NMC_GetEncPos(dev, 16, &pos2));
+    CHECK(pos2 == pos && pos == -4000, "encoder 16 %ld, axis 16 %ld", pos2, pos);
+    CHECK(NMC_GetEncPos(dev, 2, &pos2) == RTN_ARG_RANGE, "encId 2: no axis 2");
+    /* The collection index. */
+    OK(NMC_GetCollectDataAddr(dev, 17, COLLECT_ADDRESS_PRF_POS, &addr, &len));
+    CHECK((addr & 0xFFFF) == 17, "address of axis 17's prfPos %#lx", addr);
+    CHECK(NMC_GetCollectDataAddr(dev, 2, COLLECT_ADDRESS_PRF_POS, &addr, &len) == RTN_ARG_RANGE,
+          "collection index 2: no axis 2");
+    /* MtPrfConfig's mapAxisNo defaults to the axis itself. */
+    OK(NMC_MtGetPrfConfig(ax17, &map, &port, &pos));
+    CHECK(map == 17 && port == 0 && pos == 0, "axis 17 maps to %d %d %ld", map, port, pos);
     printf("ok\n");
     return 0;
 }

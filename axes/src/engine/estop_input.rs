@@ -1,6 +1,13 @@
 //! The machine's E-stop input (`set_estop_input`, HIMC `BindEMO`, digest 004 §1.10, §9.2.6):
 //! watched in stage 1b of [`Engine::step`], right after the inputs are read, so the tick that
 //! reads the input reaching its active level is the tick the axes stop.
+//!
+//! Not an input stop of [`crate::guard`], though both watch an input: this one acts in stage
+//! 1b (the guards in 3c, a tick later), on every group and axis and powers them off (an input
+//! stop e-stops its listed axes, which stay enabled), on the rising edge only (an input stop
+//! fires when armed at its level and re-stops a moving axis while it holds), and counts trips.
+//! Folding either into the other changes a front-end's observable tick or action
+//! (docs/decisions.md, "`set_estop_input` stays beside the guards' input stops").
 
 use super::Engine;
 use crate::command::{EngineError, Reply, SetEstopInput};

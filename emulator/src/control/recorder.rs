@@ -53,6 +53,8 @@ pub struct TraceRow {
     in_group: bool,
     /// The output position is `cmd_pos + compensation` (as the status computes it).
     pub compensation: f64,
+    /// A gantry axis's deviation from its master (0 off a gantry).
+    pub gantry_deviation: f64,
     /// The group columns of a member axis (see `in_group`).
     group: GroupColumns,
     /// The HIMC status quantities (issue 14): the last move's and settling times, the user
@@ -87,6 +89,7 @@ impl TraceRow {
             capture_position: s.capture_position,
             compare_outputs: s.compare_outputs,
             compensation: s.compensation,
+            gantry_deviation: s.gantry_deviation,
             coupling: s.coupling,
             stream_used: s.stream.used,
             in_group: group.is_some(),
@@ -126,6 +129,7 @@ impl TraceRow {
             compare_outputs: self.compare_outputs,
             output_pos: self.cmd_pos + self.compensation,
             compensation: self.compensation,
+            gantry_deviation: self.gantry_deviation,
             coupling: self.coupling,
             stream: StreamStatus {
                 used: self.stream_used,
@@ -417,7 +421,7 @@ mod tests {
     #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
     use super::*;
-    use axes::command::{Command, Enable};
+    use axes::command::{Command, Enable, GantryEnable, InjectFollowingError};
     use axes::config::{AxisConfig, EngineConfig};
     use axes::runtime::{ClockMode, Runtime, RuntimeGuard, RuntimeOptions};
 
@@ -471,6 +475,48 @@ mod tests {
         assert!(lines[2].starts_with("0.006,0,disabled,"), "{}", lines[2]);
         assert!(lines[20].starts_with("0.015,0,"), "{}", lines[20]);
         assert_eq!(recorder.status().rows, 20);
+    }
+
+    /// The slave's deviation (slave − master actual) reaches the CSV's `gantry_deviation`
+    /// column on both axes of the gantry.
+    #[test]
+    fn a_gantrys_deviation_appears_in_the_recorded_trace() {
+        let (handle, _guard) = runtime(2);
+        for axis in 0..2 {
+            handle.call(Command::from(Enable { axis })).unwrap();
+        }
+        let gantry = GantryEnable {
+            master: 0,
+            slaves: vec![1],
+            warning_limit: 0.0,
+            fault_limit: 0.0,
+            require_disabled: false,
+            closed_loop: false,
+        };
+        handle.call(Command::from(gantry)).unwrap();
+        let recorder = TraceRecorder::default();
+        block_on(recorder.start(&handle, TraceStart::default())).unwrap();
+        let lag = InjectFollowingError {
+            axis: 1,
+            amount: Some(0.5),
+        };
+        handle.call(Command::from(lag)).unwrap();
+        handle.advance(3).unwrap();
+        let lines = csv_lines(&recorder);
+        let column = lines[0]
+            .split(',')
+            .position(|c| c == "gantry_deviation")
+            .unwrap();
+        let last = |axis: &str| {
+            lines
+                .iter()
+                .rev()
+                .find(|l| l.split(',').nth(1) == Some(axis))
+                .and_then(|l| l.split(',').nth(column).map(str::to_string))
+                .unwrap()
+        };
+        assert_eq!(last("1"), "-0.5");
+        assert_eq!(last("0"), "-0.5");
     }
 
     #[test]
@@ -541,7 +587,7 @@ mod tests {
 
     #[test]
     fn rows_are_compact_and_round_trip_the_columns() {
-        assert!(std::mem::size_of::<TraceRow>() <= 184);
+        assert!(std::mem::size_of::<TraceRow>() <= 192);
         let s = AxisStatus {
             state: AxisState::DiscreteMotion,
             flags: AxisFlags::HOMED | AxisFlags::HW_LIMIT_NEG,
@@ -549,6 +595,7 @@ mod tests {
             act_pos: 1.25,
             output_pos: 1.75,
             compensation: 0.25,
+            gantry_deviation: -0.375,
             pulses: -3,
             last_error: Some(ErrorKind::LimitReached),
             coupling: Some(CouplingKind::Superimpose),

@@ -66,8 +66,9 @@ pub struct AxisLoop {
     pub pid: [PidPara; 3],
     pub pid_index: i16,
     pub dac: DacMotor,
-    /// `NMC_MtPrfConfig`: mapped axis, port, and the offset axisPos = prfPos + startPos.
-    pub map_axis: i16,
+    /// `NMC_MtPrfConfig`: mapped axis (None until written: the axis's own NMC number, which
+    /// the handler knows from the bus map), port, and the offset axisPos = prfPos + startPos.
+    pub map_axis: Option<i16>,
     pub port: i16,
     pub start_pos: i64,
     /// `NMC_MtSetPrfCoe` (0, 1].
@@ -75,7 +76,7 @@ pub struct AxisLoop {
 }
 
 impl AxisLoop {
-    pub fn fresh(axis: usize) -> AxisLoop {
+    pub fn fresh() -> AxisLoop {
         AxisLoop {
             ctrl_mode: 0,
             pid: [PidPara::default(); 3],
@@ -85,7 +86,7 @@ impl AxisLoop {
                 bias: 0,
                 dac_lmt: i16::MAX,
             },
-            map_axis: i16::try_from(axis).unwrap_or(i16::MAX),
+            map_axis: None,
             port: 0,
             start_pos: 0,
             prf_coe: 1.0,
@@ -120,13 +121,11 @@ impl AxState {
         self.loops
             .get(&axis)
             .copied()
-            .unwrap_or_else(|| AxisLoop::fresh(axis))
+            .unwrap_or_else(AxisLoop::fresh)
     }
 
     pub fn axis_loop_mut(&mut self, axis: usize) -> &mut AxisLoop {
-        self.loops
-            .entry(axis)
-            .or_insert_with(|| AxisLoop::fresh(axis))
+        self.loops.entry(axis).or_insert_with(AxisLoop::fresh)
     }
 
     /// Axis `axis`'s encoder position from its raw `counts`.

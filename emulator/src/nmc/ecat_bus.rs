@@ -6,8 +6,9 @@
 //! SDO slave `devId` k. The card's own (local) axes 0, 1, … are the engine axes no bus drive
 //! moves, in order, at most 16. A card of another kind has no bus: every engine axis is local,
 //! numbered as in the engine. Functions that take axis *numbers* as arguments (gear masters,
-//! coordinate-system maps, packs) keep reading engine axis numbers: on the Gaochuan fixtures the
-//! local axes come first, so the two agree (docs/decisions.md).
+//! coordinate-system maps, packs, dedicated-input indices, encoder and collection indices)
+//! read them as these NMC numbers through this map (`handlers::sync_args`; docs/decisions.md
+//! "NMC EtherCAT bus axes").
 
 use std::sync::{Mutex, MutexGuard, PoisonError};
 

@@ -9,6 +9,7 @@ use mcemu_nmc::ax_structs::{EstopExParam, ESTOP_DI_EX_CH_NUM};
 use mcemu_nmc::table::{self, Function};
 
 use super::io_modules::group_start;
+use super::sync_args::axis_number;
 use crate::nmc::ax_state::{EstopDi, EstopEx, Watchdog};
 use crate::nmc::io_state::LOCAL_BITS;
 use crate::nmc::service::{Call, Handler, Refusal};
@@ -160,24 +161,72 @@ fn ex_group(group: i16) -> Result<usize, Refusal> {
         })
 }
 
+/// The engine axes of an advanced group's `axMask`: bit n = local NMC axis n (the `short`
+/// reaches no bus drive), at least one bit, each naming an axis.
+fn ex_axes(c: &Call<'_>, mask: i16) -> Result<Vec<usize>, Refusal> {
+    let bus = c.service.bus();
+    let count = c.snapshot.axes.len();
+    let local = bus.local_count(count).min(16);
+    let bits = mask as u16;
+    let axes: Option<Vec<usize>> = (0..16u8)
+        .filter(|b| bits & (1 << b) != 0)
+        .map(|b| {
+            (usize::from(b) < local)
+                .then(|| bus.engine_axis(b, count))
+                .flatten()
+        })
+        .collect();
+    match axes {
+        Some(axes) if !axes.is_empty() => Ok(axes),
+        _ => Err(Refusal::range(
+            "axMask",
+            format!("{mask:#x}"),
+            &format!(
+                "bits 0 … {} (the local axes; a short reaches no bus drive), at least one",
+                local.saturating_sub(1)
+            ),
+        )),
+    }
+}
+
 /// An advanced E-stop input group: the axes of axMask stop (BIT_AXIS_ESTP) once the input has
 /// been at diSense for `filter` ms. diType 0 a general input; 1–4 the negative limit, positive
-/// limit, home or index input of axis diIndex, whose level is its active state.
+/// limit, home or index input of axis diIndex (an NMC number: a bus drive from 16), whose
+/// level is its active state.
 fn set_estop_di_ex(c: &mut Call<'_>) -> Result<(), Refusal> {
     c.device()?;
     let p = EstopExParam::read(&mut c.input)?;
     let g = ex_group(c.input.i16()?)?;
-    let axes = c.snapshot.axes.len();
-    if p.ax_mask == 0 || (axes < 16 && (p.ax_mask as u16) >> axes != 0) {
-        return Err(Refusal::range(
-            "axMask",
-            format!("{:#x}", p.ax_mask),
-            &format!("bits 0 … {}, at least one", axes.saturating_sub(1)),
-        ));
-    }
-    let count = match p.di_type {
-        0 => c.snapshot.io.di.len(),
-        1..=4 => axes,
+    // axMask is a `short`: bit n = local NMC axis n (the bus drives, from 16, are beyond it).
+    let stopped = ex_axes(c, p.ax_mask)?;
+    let input = match p.di_type {
+        0 => {
+            // General inputs: local, or of an enabled extension module.
+            let inputs = c.snapshot.io.di.len();
+            let bit = super::io::bit_index(c, p.di_index, inputs).map_err(|_| {
+                Refusal::range(
+                    "diIndex",
+                    p.di_index,
+                    &format!(
+                        "[0, {}] or an input of an enabled extension module",
+                        inputs.min(LOCAL_BITS).saturating_sub(1)
+                    ),
+                )
+            })?;
+            GuardInput::Digital {
+                channel: bit as u16,
+            }
+        }
+        1..=4 => {
+            // diIndex names an axis as NMC numbers it: local, or a bus drive from 16.
+            let axis = axis_number(c, "diIndex", i64::from(p.di_index))? as u16;
+            match p.di_type {
+                1 => GuardInput::NegativeLimit { axis },
+                2 => GuardInput::PositiveLimit { axis },
+                3 => GuardInput::Home { axis },
+                _ => GuardInput::Index { axis },
+            }
+        }
         t => {
             return Err(Refusal::range(
                 "diType",
@@ -186,39 +235,10 @@ fn set_estop_di_ex(c: &mut Call<'_>) -> Result<(), Refusal> {
             ))
         }
     };
-    let refusal = || {
-        let last = if p.di_type == 0 {
-            count.min(LOCAL_BITS)
-        } else {
-            count
-        };
-        Refusal::range(
-            "diIndex",
-            p.di_index,
-            &format!("[0, {}]", last.saturating_sub(1)),
-        )
-    };
-    let index = usize::try_from(p.di_index).map_err(|_| refusal())?;
-    if index >= count {
-        return Err(refusal());
-    }
-    if p.di_type == 0 {
-        // General inputs: local, or of an enabled extension module.
-        let bit = i16::try_from(index).map_err(|_| refusal())?;
-        super::io::bit_index(c, bit, count).map_err(|_| refusal())?;
-    }
     if !(0..=255).contains(&p.filter) {
         return Err(Refusal::range("filter", p.filter, "[0, 255]"));
     }
     level("diSense", p.di_sense)?;
-    let di_index = index as u16;
-    let input = match p.di_type {
-        0 => GuardInput::Digital { channel: di_index },
-        1 => GuardInput::NegativeLimit { axis: di_index },
-        2 => GuardInput::PositiveLimit { axis: di_index },
-        3 => GuardInput::Home { axis: di_index },
-        _ => GuardInput::Index { axis: di_index },
-    };
     // filter: how long the level must hold, in ms (digest 001 §3.6 gives no unit).
     let period_ms = (c.snapshot.period * 1e3).max(1e-6);
     let filter = (f64::from(p.filter) / period_ms).round() as u32;
@@ -227,10 +247,7 @@ fn set_estop_di_ex(c: &mut Call<'_>) -> Result<(), Refusal> {
         input,
         level: p.di_sense == 1,
         filter,
-        axes: (0..axes.min(16))
-            .filter(|a| p.ax_mask & (1 << a) != 0)
-            .map(|a| a as u16)
-            .collect(),
+        axes: stopped.into_iter().map(|a| a as u16).collect(),
     });
     if let Some(slot) = c.service.ax().estop_ex.get_mut(g) {
         *slot = Some(EstopEx { param: p });

@@ -11,7 +11,7 @@ use mcemu_nmc::ax_structs::{DacMotor, PidPara};
 use mcemu_nmc::table::{self, Function};
 
 use super::axis_config::set;
-use super::sync_args::axis_number;
+use super::sync_args::{axis_number, nmc_number};
 use crate::nmc::service::{Call, Handler, Refusal};
 
 pub const HANDLERS: &[(Function, Handler)] = &[
@@ -173,14 +173,20 @@ fn mt_prf_config(c: &mut Call<'_>) -> Result<(), Refusal> {
     }
     let mut ax = c.service.ax();
     let l = ax.axis_loop_mut(axis);
-    (l.map_axis, l.port, l.start_pos) = (map, port, start);
+    (l.map_axis, l.port, l.start_pos) = (Some(map), port, start);
     Ok(())
 }
 
 fn mt_get_prf_config(c: &mut Call<'_>) -> Result<(), Refusal> {
     let axis = c.axis()?;
     let l = c.service.ax().axis_loop(axis);
-    c.output.i16(l.map_axis).i16(l.port).i64(l.start_pos);
+    // Never written: the axis maps to itself, by its NMC number (a bus drive's is 16 + k).
+    let map = l.map_axis.unwrap_or_else(|| {
+        nmc_number(c, axis)
+            .and_then(|n| i16::try_from(n).ok())
+            .unwrap_or(0)
+    });
+    c.output.i16(map).i16(l.port).i64(l.start_pos);
     Ok(())
 }
 

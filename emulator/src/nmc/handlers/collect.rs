@@ -3,7 +3,8 @@
 //! minimum interval) on the virtual clock, as the card does.
 //!
 //! An "address" of `NMC_GetCollectDataAddr` is mcemu's: `0x4000_0000 | dataType << 16 |
-//! index`, index the axis (positions, velocities) or the digital channel (DI, DO). Every value
+//! index`, index the axis by its NMC number (positions, velocities; an `ecat` card's bus drives
+//! from 16) or the digital channel (DI, DO). Every value
 //! is 8 bytes, a little-endian double in the manual's units (pulses, pulse/ms, 0/1): the
 //! manual's example reads the data into a `double` array. The coordinate-system variables
 //! (CRD_POS0/1, CRD_VEL0/1) are the engine's group 0 or 1: index the coordinate for a position
@@ -24,6 +25,7 @@ use mcemu_nmc::payload::Writer;
 use mcemu_nmc::sys::{CollectCfg, CollectTrig, COLLECT_DATA_MAX, COLLECT_LIST_MAX};
 use mcemu_nmc::table::{self, Function};
 
+use crate::nmc::ecat_bus::EcatBus;
 use crate::nmc::service::{scale_of, Call, Handler, NmcService, Refusal};
 use crate::nmc::sys_state::{Collect, CollectUnit};
 
@@ -69,19 +71,22 @@ const STS_FULL: i16 = 0x4;
 /// The engine variable and unit of `dataType` `index`, checked against the machine.
 fn variable(
     snapshot: &Snapshot,
+    bus: &EcatBus,
     data_type: i16,
     index: i16,
 ) -> Result<(SampledVariable, CollectUnit), Refusal> {
+    // An axis by its NMC number: local, or an `ecat` card's bus drive from 16.
     let axis = || {
-        usize::try_from(index)
+        let count = snapshot.axes.len();
+        u8::try_from(index)
             .ok()
-            .filter(|a| *a < snapshot.axes.len())
+            .and_then(|n| bus.engine_axis(n, count))
             .map(|a| (a as u16, a))
             .ok_or_else(|| {
                 Refusal::range(
                     "index",
                     index,
-                    &format!("[0, {}] (the axis)", snapshot.axes.len().saturating_sub(1)),
+                    &format!("{} (the axis)", bus.numbers_text(count)),
                 )
             })
     };
@@ -221,7 +226,7 @@ fn crd_members(snapshot: &Snapshot, data_type: i16) -> Result<(GroupId, Vec<usiz
 fn get_collect_data_addr(c: &mut Call<'_>) -> Result<(), Refusal> {
     c.device()?;
     let (index, data_type) = (c.input.i16()?, c.input.i16()?);
-    variable(&c.snapshot, data_type, index)?;
+    variable(&c.snapshot, c.service.bus(), data_type, index)?;
     let address = ADDRESS_TAG | (data_type as u64) << 16 | u64::from(index as u16);
     c.output.u64(address).i16(VALUE_BYTES);
     Ok(())
@@ -285,7 +290,7 @@ fn config_collect(c: &mut Call<'_>) -> Result<(), Refusal> {
                 "the addresses NMC_GetCollectDataAddr returns",
             )
         })?;
-        let (v, unit) = variable(&c.snapshot, data_type, index)?;
+        let (v, unit) = variable(&c.snapshot, c.service.bus(), data_type, index)?;
         if length != VALUE_BYTES {
             return Err(Refusal::range(
                 &format!("pCollect->length[{k}]"),

@@ -1,5 +1,6 @@
-//! Encoder channels by number (digest 001 §2.4, §2.20): [0, n) an axis's encoder, 256 and 257
-//! the external encoders (the handwheel inputs that `handwheel_turn` turns).
+//! Encoder channels by number (digest 001 §2.4, §2.20): an axis's encoder by its NMC number
+//! (local axes from 0, an `ecat` card's bus drives from 16, `ecat_bus`), 256 and 257 the
+//! external encoders (the handwheel inputs that `handwheel_turn` turns).
 
 use axes::command::{HandwheelTurn, PositionFrame, SetPosition, HANDWHEEL_EXTERNAL_BASE};
 use mcemu_nmc::table::{self, Function};
@@ -21,22 +22,22 @@ enum Channel {
 
 fn channel(c: &Call<'_>, enc_id: i16) -> Result<Channel, Refusal> {
     let axes = c.snapshot.axes.len();
+    let bus = c.service.bus();
     let external = c.snapshot.external_encoders.len();
-    match usize::try_from(enc_id) {
-        Ok(a) if a < axes => Ok(Channel::Axis(a)),
-        Ok(e)
-            if e >= usize::from(HANDWHEEL_EXTERNAL_BASE)
-                && e < usize::from(HANDWHEEL_EXTERNAL_BASE) + external =>
-        {
-            Ok(Channel::External(e - usize::from(HANDWHEEL_EXTERNAL_BASE)))
-        }
+    let base = usize::from(HANDWHEEL_EXTERNAL_BASE);
+    let axis = u8::try_from(enc_id)
+        .ok()
+        .and_then(|n| bus.engine_axis(n, axes));
+    match (axis, usize::try_from(enc_id)) {
+        (Some(a), _) => Ok(Channel::Axis(a)),
+        (None, Ok(e)) if e >= base && e < base + external => Ok(Channel::External(e - base)),
         _ => Err(Refusal::range(
             "encId",
             enc_id,
             &format!(
-                "[0, {}] (an axis's encoder) or {HANDWHEEL_EXTERNAL_BASE} … {}",
-                axes.saturating_sub(1),
-                usize::from(HANDWHEEL_EXTERNAL_BASE) + external.saturating_sub(1)
+                "{} (an axis's encoder) or {HANDWHEEL_EXTERNAL_BASE} … {}",
+                bus.numbers_text(axes),
+                (base + external).saturating_sub(1)
             ),
         )),
     }

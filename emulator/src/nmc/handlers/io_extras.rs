@@ -18,6 +18,7 @@ use mcemu_nmc::table::{self, Function};
 
 use super::io::{bit_index, drive, get_di_group, get_do_group, set_do_group};
 use super::io_modules::group_start;
+use super::sync_args::axis_number;
 use crate::nmc::io_state::{DEFAULT_DI_FILTER, MAX_DIO_MAPPING, MAX_NUM_DOBIT_PULSE};
 use crate::nmc::service::{Call, Handler, Refusal};
 
@@ -123,13 +124,13 @@ fn typed_do(c: &Call<'_>, do_type: i16, group: i16, bit: i16) -> Result<TypedDo,
             if group != 0 {
                 return Err(Refusal::range("group", group, "{0} (bit k = axis k)"));
             }
-            let axes = c.snapshot.axes.len();
+            // Bit k = NMC axis k: local, or a bus drive from 16 (within the 32 bits).
+            let count = c.snapshot.axes.len();
+            let bus = c.service.bus();
             index
-                .filter(|a| *a < axes)
+                .and_then(|k| bus.engine_axis(k as u8, count))
                 .map(|a| TypedDo::Axis(do_type, a))
-                .ok_or_else(|| {
-                    Refusal::range("bitIndex", bit, &format!("[0, {}]", axes.saturating_sub(1)))
-                })
+                .ok_or_else(|| Refusal::range("bitIndex", bit, &bus.numbers_text(count)))
         }
         3 => {
             let start = group_start(c, group, c.snapshot.io.do_.len())?;
@@ -306,14 +307,8 @@ fn filter_key(c: &mut Call<'_>) -> Result<(i16, i16, i16), Refusal> {
             if group != 0 {
                 return Err(Refusal::range("diGroup", group, "{0}"));
             }
-            let axes = c.snapshot.axes.len();
-            if !usize::try_from(index).is_ok_and(|i| i < axes) {
-                return Err(Refusal::range(
-                    "diIndex",
-                    index,
-                    &format!("[0, {}]", axes.saturating_sub(1)),
-                ));
-            }
+            // An axis as NMC numbers it: local, or a bus drive from 16.
+            axis_number(c, "diIndex", i64::from(index))?;
         }
         _ => {
             return Err(Refusal::range(
@@ -352,19 +347,20 @@ fn get_di_filter(c: &mut Call<'_>) -> Result<(), Refusal> {
 }
 
 /// Which counters `diType`, `diIndex`, `count` name: general inputs 0 … 15 (diType 0), or the
-/// dedicated inputs of axes 0 … 7 (1 negative limit, 2 positive limit, 3 home, 4 Z: the
-/// engine's `AxisStatus::input_edges`); count [1, 16] and within those.
+/// dedicated inputs of local axes 0 … 7 (1 negative limit, 2 positive limit, 3 home, 4 Z: the
+/// engine's `AxisStatus::input_edges`; the manual's "others 0~7" leaves the bus drives, from
+/// 16, out); count [1, 16] and within those.
 #[derive(Clone, Debug, PartialEq, Eq)]
 enum Counters {
     General(std::ops::Range<usize>),
-    /// The `input_edges` slot (diType − 1) and the axes.
-    Dedicated(usize, std::ops::Range<usize>),
+    /// The `input_edges` slot (diType − 1) and the engine axes of the local axes named.
+    Dedicated(usize, Vec<usize>),
 }
 
 fn counters(c: &Call<'_>, t: i16, index: i16, count: i16) -> Result<Counters, Refusal> {
     let (limit, present) = match t {
         0 => (16, c.snapshot.io.di.len()),
-        1..=4 => (8, c.snapshot.axes.len()),
+        1..=4 => (8, c.service.bus().local_count(c.snapshot.axes.len())),
         _ => {
             return Err(Refusal::range(
                 "diType",
@@ -394,7 +390,13 @@ fn counters(c: &Call<'_>, t: i16, index: i16, count: i16) -> Result<Counters, Re
     let range = first..first + n;
     Ok(match t {
         0 => Counters::General(range),
-        _ => Counters::Dedicated(t as usize - 1, range),
+        _ => {
+            let (bus, count) = (c.service.bus(), c.snapshot.axes.len());
+            let axes = range
+                .filter_map(|n| bus.engine_axis(n as u8, count))
+                .collect();
+            Counters::Dedicated(t as usize - 1, axes)
+        }
     })
 }
 
@@ -410,8 +412,8 @@ fn counts(c: &Call<'_>, which: &Counters) -> Vec<(u32, u32)> {
             })
             .collect(),
         Counters::Dedicated(k, axes) => axes
-            .clone()
-            .map(|a| {
+            .iter()
+            .map(|&a| {
                 let edges = c
                     .status(a)
                     .and_then(|s| s.input_edges.get(*k).copied())
@@ -449,7 +451,7 @@ fn set_di_reverse_count(c: &mut Call<'_>) -> Result<(), Refusal> {
         }
         Counters::Dedicated(k, axes) => {
             let mut sys = c.service.sys();
-            for ((a, v), (edges, _)) in axes.zip(values).zip(now) {
+            for ((a, v), (edges, _)) in axes.into_iter().zip(values).zip(now) {
                 sys.dedicated_edge_base
                     .insert((k, a), edges.wrapping_sub(v as u32));
             }

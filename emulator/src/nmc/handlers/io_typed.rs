@@ -97,12 +97,8 @@ fn get_do_ex(c: &mut Call<'_>) -> Result<(), Refusal> {
         }
         2 => {
             axis_group(group)?;
-            let axes = c.snapshot.axes.len().min(32) as u32;
-            let mask = if axes >= 32 {
-                u32::MAX
-            } else {
-                (1u32 << axes) - 1
-            };
+            // The bits of the axes that exist (bit n = NMC axis n, bus drives from 16).
+            let mask = axis_bits(c, |_| true) as u32;
             i64::from(c.service.io().alarm_clear & mask)
         }
         3 => {
