@@ -19,8 +19,10 @@ use axes::{AxisState, Engine};
 
 const AXES: usize = 8;
 const SIM_SECONDS: u64 = 60;
-/// Ticks advanced between two looks at the buffers: under the 32 ms a FIFO half lasts.
-const CHUNK: u64 = 16;
+/// Ticks advanced between two looks at the buffers, as a host refilling a refresh-mode FIFO
+/// does: it holds 2 × 32 points (digest 001 TV57), so after 32 ms one half has run out and is
+/// refilled while the other still holds 32 ms (`STREAM_RUNTIME_CHUNK` overrides, ≤ 32).
+const CHUNK: u64 = 32;
 const RUNS: usize = 3;
 const POINTS_PER_PUSH: usize = 32;
 
@@ -96,10 +98,13 @@ enum Refill {
     Pipelined,
     /// One atomic `call_batch` of the look's pushes.
     Batch,
+    /// One `submit_batch` of the look's pushes, not waited on: one request per look besides
+    /// the advance, so the servo thread is woken at most twice.
+    PipelinedBatch,
 }
 
 /// The PT run: returns its wall time and the pushes made.
-fn pt_run(ticks: u64, refill: Refill) -> (Duration, u64) {
+fn pt_run(ticks: u64, chunk: u64, refill: Refill) -> (Duration, u64) {
     let (handle, guard) = virtual_runtime(common::engine(AXES));
     let mut streams: Vec<_> = (0..AXES as u16)
         .map(|axis| SineStream::new(axis, ticks))
@@ -133,10 +138,14 @@ fn pt_run(ticks: u64, refill: Refill) -> (Duration, u64) {
         .unwrap();
     let mut done = 0;
     let mut pending: Vec<axes::runtime::PendingReply> = Vec::with_capacity(AXES);
-    while done < ticks + CHUNK {
-        handle.advance(CHUNK).unwrap();
-        done += CHUNK;
+    let mut pending_batch: Option<axes::runtime::Pending<Vec<axes::command::Reply>, _>> = None;
+    while done < ticks + chunk {
+        handle.advance(chunk).unwrap();
+        done += chunk;
         for reply in pending.drain(..) {
+            reply.wait().unwrap();
+        }
+        if let Some(reply) = pending_batch.take() {
             reply.wait().unwrap();
         }
         let snapshot = handle.snapshot();
@@ -163,7 +172,14 @@ fn pt_run(ticks: u64, refill: Refill) -> (Duration, u64) {
             Refill::Batch => {
                 handle.call_batch(refills).unwrap();
             }
+            Refill::PipelinedBatch if refills.is_empty() => {}
+            Refill::PipelinedBatch => {
+                pending_batch = Some(handle.submit_batch(refills).unwrap());
+            }
         }
+    }
+    if let Some(reply) = pending_batch.take() {
+        reply.wait().unwrap();
     }
     for reply in pending.drain(..) {
         reply.wait().unwrap();
@@ -180,16 +196,16 @@ fn pt_run(ticks: u64, refill: Refill) -> (Duration, u64) {
 }
 
 /// The baseline: the same axes on plain long moves, advanced and read in the same chunks.
-fn plain_run(ticks: u64) -> Duration {
+fn plain_run(ticks: u64, chunk: u64) -> Duration {
     let (handle, guard) = virtual_runtime(common::engine(AXES));
     for command in common::motion_commands(AXES) {
         handle.call(command).unwrap();
     }
     let start = Instant::now();
     let mut done = 0;
-    while done < ticks + CHUNK {
-        handle.advance(CHUNK).unwrap();
-        done += CHUNK;
+    while done < ticks + chunk {
+        handle.advance(chunk).unwrap();
+        done += chunk;
         std::hint::black_box(handle.snapshot());
     }
     let elapsed = start.elapsed();
@@ -199,7 +215,7 @@ fn plain_run(ticks: u64) -> Duration {
 
 /// The same PT streams on the engine alone, stepped on this thread (no runtime, no snapshots):
 /// the per-tick cost of sampling the streams, refills included.
-fn pt_bare(ticks: u64) -> Duration {
+fn pt_bare(ticks: u64, chunk: u64) -> Duration {
     let mut e = common::engine(AXES);
     let mut streams: Vec<_> = (0..AXES as u16)
         .map(|axis| SineStream::new(axis, ticks))
@@ -218,9 +234,9 @@ fn pt_bare(ticks: u64) -> Duration {
     }))
     .unwrap();
     let start = Instant::now();
-    for tick in 1..=ticks + CHUNK {
+    for tick in 1..=ticks + chunk {
         e.step();
-        if tick % CHUNK == 0 {
+        if tick % chunk == 0 {
             for s in &mut streams {
                 let space = e.axis(usize::from(s.axis)).unwrap().status().stream.space;
                 if space >= POINTS_PER_PUSH as u16 {
@@ -237,10 +253,10 @@ fn pt_bare(ticks: u64) -> Duration {
 }
 
 /// The baseline of [`pt_bare`]: plain moves stepped on this thread.
-fn plain_bare(ticks: u64) -> Duration {
+fn plain_bare(ticks: u64, chunk: u64) -> Duration {
     let mut e = common::moving_engine(AXES);
     let start = Instant::now();
-    for _ in 0..ticks + CHUNK {
+    for _ in 0..ticks + chunk {
         e.step();
     }
     let elapsed = start.elapsed();
@@ -260,19 +276,29 @@ fn main() {
         .and_then(|s| s.parse().ok())
         .unwrap_or(SIM_SECONDS);
     let ticks = (sim_seconds as f64 / period).round() as u64;
+    let chunk: u64 = std::env::var("STREAM_RUNTIME_CHUNK")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(CHUNK)
+        .clamp(1, CHUNK);
     println!(
         "stream_runtime: {AXES} axes, {SIM_SECONDS} simulated s at {} ms through the runtime \
-         (virtual clock), advanced {CHUNK} ticks at a time; median of {RUNS} runs",
+         (virtual clock), advanced {chunk} ticks at a time; median of {RUNS} runs",
         period * 1e3,
         SIM_SECONDS = sim_seconds
     );
     let mut pushes = 0;
     let mut pt_runs = Vec::new();
-    for refill in [Refill::Call, Refill::Pipelined, Refill::Batch] {
+    for refill in [
+        Refill::Call,
+        Refill::Pipelined,
+        Refill::Batch,
+        Refill::PipelinedBatch,
+    ] {
         let wall = median(
             (0..RUNS)
                 .map(|_| {
-                    let (elapsed, n) = pt_run(ticks, refill);
+                    let (elapsed, n) = pt_run(ticks, chunk, refill);
                     pushes = n;
                     elapsed
                 })
@@ -280,9 +306,9 @@ fn main() {
         );
         pt_runs.push((refill, wall));
     }
-    let plain = median((0..RUNS).map(|_| plain_run(ticks)).collect());
-    let pt_engine = median((0..RUNS).map(|_| pt_bare(ticks)).collect());
-    let plain_engine = median((0..RUNS).map(|_| plain_bare(ticks)).collect());
+    let plain = median((0..RUNS).map(|_| plain_run(ticks, chunk)).collect());
+    let pt_engine = median((0..RUNS).map(|_| pt_bare(ticks, chunk)).collect());
+    let plain_engine = median((0..RUNS).map(|_| plain_bare(ticks, chunk)).collect());
     let speed = |d: Duration| sim_seconds as f64 / d.as_secs_f64();
     println!("{:<44} {:>12} {:>14}", "", "wall", "× real time");
     println!(

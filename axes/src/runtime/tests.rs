@@ -248,6 +248,42 @@ fn virtual_command_is_applied_at_once_and_visible_on_reply() {
 }
 
 #[test]
+fn virtual_commands_queued_together_are_each_answered_after_their_effect() {
+    let (handle, _guard) = virtual_runtime(2);
+    // Hold the servo thread inside an advance until everything below is queued, so the
+    // commands are taken off the queue as one run (published once) and the advance behind
+    // them is carried over.
+    let (release, gate) = mpsc::channel::<()>();
+    let gate = Mutex::new(gate);
+    let held = handle
+        .submit_advance(
+            1,
+            Some(Box::new(move |_: &Snapshot| {
+                gate.lock().unwrap().recv().is_ok()
+            })),
+        )
+        .unwrap();
+    let first = handle.submit(enable(0)).unwrap();
+    let refused = handle.submit(enable(7)).unwrap();
+    let second = handle.submit(enable(1)).unwrap();
+    let advance = handle.submit_advance(3, None).unwrap();
+    release.send(()).unwrap();
+    assert_eq!(held.wait().unwrap().tick, 1);
+    assert_eq!(first.wait(), Ok(Reply::Done));
+    let snapshot = handle.snapshot();
+    assert!(snapshot.axes[0].flags.contains(AxisFlags::ENABLED));
+    assert!(matches!(
+        refused.wait(),
+        Err(CallError::Engine(EngineError::InvalidAxis { axis: 7, .. }))
+    ));
+    assert_eq!(second.wait(), Ok(Reply::Done));
+    assert!(handle.snapshot().axes[1].flags.contains(AxisFlags::ENABLED));
+    // The advance taken off the queue behind the commands is served, not lost.
+    assert_eq!(advance.wait().unwrap().tick, 4);
+    assert_eq!(handle.stats().commands_applied, 3);
+}
+
+#[test]
 fn engine_errors_come_back_as_call_errors() {
     let (handle, _guard) = virtual_runtime(2);
     assert_eq!(
