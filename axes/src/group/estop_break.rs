@@ -6,6 +6,7 @@
 //! where the members stand back to the break, put in front of what is left; `group_continue`
 //! runs it and finishes the path.
 
+use path::geometry::{Line, Segment};
 use path::planner::{Join, Motion, Transition};
 
 use super::queue::{Entry, Item};
@@ -35,8 +36,8 @@ impl Group {
         true
     }
 
-    /// The move back to the break: `request` (a linear absolute move) from where the members
-    /// stand; it must end at the break. In front of the path's remainder; Halted until
+    /// The move back to the break: `request` (a linear absolute move, its limits; the end it
+    /// names is taken as the break) from where the members stand. In front of the path's remainder; Halted until
     /// `group_continue`.
     pub(super) fn return_to_break(
         &mut self,
@@ -51,12 +52,19 @@ impl Group {
             });
         }
         let here = self.current_position(env.axes);
-        let (segment, share) = match request.begin(self.id, here, self.dims())? {
-            Construction::Done(segment, share) => (segment, share),
+        let share = match request.begin(self.id, here, self.dims())? {
+            Construction::Done(_, share) => share,
             Construction::Spline(_) => {
                 return Err(self.off_path_refusal("a spline cannot return to the break point"))
             }
         };
+        // It ends at the break exactly, whatever end it names: the caller's reading of the
+        // break (its commanded position when it asked for the e-stop) may be a tick or more
+        // late, and the remainder starts at the break.
+        let at = self.planner.state().position;
+        let segment = Line::new(here, at, self.dims())
+            .map(Segment::Line)
+            .map_err(|_| self.off_path_refusal("the line back to the break point"))?;
         let id = env.ledger.allocate();
         self.planner
             .insert_front(Motion {
