@@ -7,8 +7,8 @@
 mod common;
 
 use axes::command::{
-    ArcDirection, Command, CommandState, ErrorKind, GroupContinue, GroupEmergencyStop, GroupReset,
-    Reset,
+    ArcDirection, Command, CommandState, Disable, ErrorKind, GroupContinue, GroupEmergencyStop,
+    GroupReset, Reset,
 };
 use axes::status::{GroupFault, GroupState};
 use axes::{AxisState, Engine, EngineConfig};
@@ -155,4 +155,23 @@ fn an_estop_that_keeps_the_path_on_an_idle_group_is_the_plain_one() {
     ok(&mut e, Command::from(GroupReset { group: 1 }));
     assert_eq!(e.snapshot().groups[0].state, GroupState::Standby);
     ok(&mut e, Command::from(group_line(1, &[5.0, 5.0])));
+}
+
+#[test]
+fn a_reset_to_disabled_drops_the_kept_path() {
+    let mut e = machine();
+    let ids = program(&mut e);
+    run(&mut e, 0.15);
+    ok(&mut e, estop_keeping_path());
+    run(&mut e, 0.1);
+    for axis in 0..2u16 {
+        ok(&mut e, Command::from(Reset { axis }));
+        ok(&mut e, Command::from(Disable { axis }));
+    }
+    ok(&mut e, Command::from(GroupReset { group: 1 }));
+    let g = e.snapshot().groups[0];
+    assert_eq!((g.state, g.queue_used), (GroupState::Disabled, 0));
+    for id in &ids {
+        assert_eq!(state_of(&mut e, *id), CommandState::Aborted, "{id}");
+    }
 }

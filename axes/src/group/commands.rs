@@ -526,7 +526,7 @@ impl Group {
     /// ErrorStop → Standby once every member is enabled and at rest (HIMC ResetGroup: "only
     /// after all errors are cleared"), or → Disabled when every member is disabled without a
     /// fault ([`Group::reset_target`]); other states: nothing to do.
-    pub(super) fn reset(&mut self, env: &Env) -> Result<Reply, EngineError> {
+    pub(super) fn reset(&mut self, env: &mut Env) -> Result<Reply, EngineError> {
         if self.state != GroupState::ErrorStop {
             return Ok(Reply::Done);
         }
@@ -537,7 +537,11 @@ impl Group {
                 state,
             }
         })?;
-        // An e-stop that kept the path: halted on it, to return and go on.
+        // An e-stop that kept the path: halted on it, to return and go on. Reset to Disabled
+        // (every member disabled), the kept path is dropped: nothing could return to it.
+        if self.off_path && target != GroupState::Standby {
+            self.drop_all(env, CommandState::Aborted);
+        }
         self.state = match target {
             GroupState::Standby if self.off_path => GroupState::Halted,
             other => other,
