@@ -147,7 +147,10 @@ fn full() -> Vec<(Command, &'static str)> {
             r#"{"type":"group_continue","group":1}"#,
         ),
         (
-            Command::from(GroupEmergencyStop { group: 1 }),
+            Command::from(GroupEmergencyStop {
+                group: 1,
+                keep_path: false,
+            }),
             r#"{"type":"group_emergency_stop","group":1}"#,
         ),
         (

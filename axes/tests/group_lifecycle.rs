@@ -233,7 +233,13 @@ fn a_group_emergency_stop_latches_every_members_estop_until_the_members_are_rese
         e
     };
     let mut e = moving();
-    ok(&mut e, Command::from(GroupEmergencyStop { group: 1 }));
+    ok(
+        &mut e,
+        Command::from(GroupEmergencyStop {
+            group: 1,
+            keep_path: false,
+        }),
+    );
     let g = group(&e, 1);
     assert_eq!(
         (g.state, g.fault),
@@ -269,7 +275,13 @@ fn a_group_emergency_stop_latches_every_members_estop_until_the_members_are_rese
 
     // `reset_all` clears the members' latches and then the group, in one command.
     let mut e = moving();
-    ok(&mut e, Command::from(GroupEmergencyStop { group: 1 }));
+    ok(
+        &mut e,
+        Command::from(GroupEmergencyStop {
+            group: 1,
+            keep_path: false,
+        }),
+    );
     run(&mut e, 0.05);
     ok(&mut e, Command::from(ResetAll {}));
     assert_eq!(group(&e, 1).state, GroupState::Standby);
@@ -284,7 +296,13 @@ fn a_group_emergency_stop_leaves_the_members_as_their_own_emergency_stops_do() {
     ok(&mut grouped, Command::from(GroupEnable { group: 1 }));
     let mut single = machine(2);
     enable_all(&mut single);
-    ok(&mut grouped, Command::from(GroupEmergencyStop { group: 1 }));
+    ok(
+        &mut grouped,
+        Command::from(GroupEmergencyStop {
+            group: 1,
+            keep_path: false,
+        }),
+    );
     for axis in 0..2 {
         ok(
             &mut single,
@@ -308,7 +326,13 @@ fn a_group_emergency_stop_leaves_the_members_as_their_own_emergency_stops_do() {
     let mut e = machine(2);
     enable_all(&mut e);
     ok(&mut e, create(1, &[0, 1]));
-    ok(&mut e, Command::from(GroupEmergencyStop { group: 1 }));
+    ok(
+        &mut e,
+        Command::from(GroupEmergencyStop {
+            group: 1,
+            keep_path: false,
+        }),
+    );
     assert_eq!(group(&e, 1).state, GroupState::Disabled);
     assert!(e.axis_status(1).unwrap().latched.contains(AxisFlags::ESTOP));
 }

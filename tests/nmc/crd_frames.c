@@ -210,11 +210,13 @@ static void arc_sections(void) {
 }
 
 /* The break point: an E-stop with a slow estpDec carries the axes past where the path was
- * stopped; NMC_CrdGotoBreak brings them back to it. */
+ * stopped, and keeps the buffer ("急停(并不清空指令缓冲区)"); NMC_CrdGotoBreak brings them
+ * back to it and NMC_CrdStartMtn finishes the path: the rest of segment 1, then segment 2. */
 static void goto_break(void) {
+    long x_back;
     TSafePara slow = {0.05, 32767, 32767}, fast = {32767, 32767, 32767};
-    long p[2] = {300000, 2500}, at[2], x_before, x_stopped, x_back;
-    short rc, k;
+    long p[2] = {300000, 2500}, p2[2] = {300000, 12500}, at[2], seg = 0, x_before, x_stopped;
+    short rc, k, sts = 0, saw_rest_of_1 = 0, saw_2 = 0;
 
     for (k = 0; k < 2; k++) OK(NMC_MtSetSafePara(ax[k], &slow));
     rc = NMC_CrdGotoBreak(crdHandle, 1, 10);
@@ -224,6 +226,7 @@ static void goto_break(void) {
 
     OK(NMC_CrdBufClr(crdHandle));
     OK(NMC_CrdLineXYZEx(crdHandle, 1, 0x3, p, 0, 20, 1, 0));
+    OK(NMC_CrdLineXYZEx(crdHandle, 2, 0x3, p2, 0, 20, 1, 0));
     OK(NMC_CrdStartMtn(crdHandle));
     do {
         OK(NMC_CrdGetPrfPos(crdHandle, 2, at));
@@ -237,18 +240,33 @@ static void goto_break(void) {
     CHECK(rc == RTN_GROUP_STATE, "before NMC_CrdClrError: %d", rc);
     OK(NMC_CrdClrError(crdHandle));
     OK(NMC_CrdGotoBreak(crdHandle, 1, 10));
-    run();
-    x_back = prf(0);
-    CHECK(x_back >= x_before && x_back < x_before + 1500 && x_back < x_stopped - 1000,
-          "back at the break point: stopped at %ld, now %ld, polled %ld before the E-stop", x_stopped, x_back, x_before);
-    near(1, 2500, 0, "Y on the path");
+    OK(NMC_CrdStartMtn(crdHandle));
+    do {
+        OK(NMC_CrdGetStsEx(crdHandle, &sts, &seg));
+        CHECK(!(sts & BIT_CORD_MVERR), "MVERR, sts %#x", sts);
+        OK(NMC_CrdGetPrfPos(crdHandle, 2, at));
+        if (seg == 1 && at[0] > x_stopped && at[0] < p[0]) {
+            /* The rest of segment 1, on its line (not a line from where the ramp ended); the
+             * position is read after the segment number, so only before its end. */
+            saw_rest_of_1 = 1;
+            CHECK(labs(at[1] - 2500) <= 1, "segment 1 off its line at (%ld, %ld)", at[0], at[1]);
+        }
+        if (seg == 2) saw_2 = 1;
+    } while (sts & BIT_CORD_BUSY);
+    CHECK(saw_rest_of_1 && saw_2, "segments run after the return: 1 %d, 2 %d", saw_rest_of_1, saw_2);
+    near(0, p2[0], 0, "X at the programmed end");
+    near(1, p2[1], 0, "Y at the programmed end");
+    OK(NMC_CrdGetUserSegNo(crdHandle, &seg));
+    CHECK(seg == 2, "last user segment %ld", seg);
     CHECK(NMC_CrdGotoBreak(crdHandle, 1, 10) == RTN_GROUP_STATE, "the break point is used up");
     for (k = 0; k < 2; k++) OK(NMC_MtSetSafePara(ax[k], &fast));
 
     /* After NMC_CrdStopMtn the axes stand on the path where it halted: nothing to move, and
      * NMC_CrdStartMtn goes on to the end. */
     OK(NMC_CrdBufClr(crdHandle));
+    x_back = prf(0);
     p[0] = x_back + 40000;
+    p[1] = prf(1);
     OK(NMC_CrdLineXYZEx(crdHandle, 2, 0x3, p, 0, 20, 1, 0));
     OK(NMC_CrdStartMtn(crdHandle));
     do {

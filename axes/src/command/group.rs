@@ -366,11 +366,19 @@ pub struct GroupContinue {
 }
 
 /// Drop the path at once, stop every member with its `fast_decel`, go to ErrorStop (HIMC
-/// EStop for one group).
+/// EStop for one group). `keep_path` (NMC CrdEstopMtn, "急停(并不清空指令缓冲区)"): the path
+/// is frozen where it is instead, its queue kept; the reset returns to Halted, a linear move
+/// back to the break goes in front of what is left, and `group_continue` finishes the path.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct GroupEmergencyStop {
     pub group: GroupId,
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub keep_path: bool,
+}
+
+fn is_false(v: &bool) -> bool {
+    !*v
 }
 
 /// Path velocity override, (0, 10) (NMC CrdSetOverride; HIMC SetGrpVelScale 0–100 % is 0–1).

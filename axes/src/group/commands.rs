@@ -136,6 +136,7 @@ impl Groups {
             angular: DEFAULT_ANGULAR_LIMITS,
             fault_deceleration: None,
             fault_stop: None,
+            off_path: false,
             smallest_acceleration: false,
             override_factor: 1.0,
             feeding: false,
@@ -249,9 +250,12 @@ impl Group {
             }
             GroupCommand::Reset(_) => self.reset(env),
             GroupCommand::MoveLinearAbsolute(c) => {
-                self.require_accepts_motion()?;
                 let mut r = segment::linear_absolute(self.id, self.dims(), &c, &defaults)?;
                 r.frame = self.frame_map(env, c.coordinate_system)?;
+                if self.off_path {
+                    return self.return_to_break(env, r);
+                }
+                self.require_accepts_motion()?;
                 self.submit(env, r)
             }
             GroupCommand::MoveLinearRelative(c) => {
@@ -307,7 +311,10 @@ impl Group {
                 self.halt(decel, defaults.deceleration)
             }
             GroupCommand::Continue(_) => self.resume(),
-            GroupCommand::EmergencyStop(_) => {
+            GroupCommand::EmergencyStop(c) => {
+                if c.keep_path && self.emergency_stop_keeping_path(env) {
+                    return Ok(Reply::Done);
+                }
                 // An e-stop of each member plus the group in ErrorStop; a disabled group stays
                 // Disabled (as with `emergency_stop_all`), its members e-stopped all the same.
                 if self.state != GroupState::Disabled {
@@ -519,7 +526,7 @@ impl Group {
     /// ErrorStop → Standby once every member is enabled and at rest (HIMC ResetGroup: "only
     /// after all errors are cleared"), or → Disabled when every member is disabled without a
     /// fault ([`Group::reset_target`]); other states: nothing to do.
-    pub(super) fn reset(&mut self, env: &Env) -> Result<Reply, EngineError> {
+    pub(super) fn reset(&mut self, env: &mut Env) -> Result<Reply, EngineError> {
         if self.state != GroupState::ErrorStop {
             return Ok(Reply::Done);
         }
@@ -530,7 +537,15 @@ impl Group {
                 state,
             }
         })?;
-        self.state = target;
+        // An e-stop that kept the path: halted on it, to return and go on. Reset to Disabled
+        // (every member disabled), the kept path is dropped: nothing could return to it.
+        if self.off_path && target != GroupState::Standby {
+            self.drop_all(env, CommandState::Aborted);
+        }
+        self.state = match target {
+            GroupState::Standby if self.off_path => GroupState::Halted,
+            other => other,
+        };
         self.fault = None;
         self.last_error = None;
         // Buffered E-stop inputs were armed by the program that ended here.
@@ -627,6 +642,7 @@ impl Group {
     /// dropped); a wait in progress and an aborting motion not yet started end `aborted`. A
     /// halted path stops too: the halt gives way to the stop.
     fn stop_path(&mut self, env: &mut Env, deceleration: f64) {
+        self.off_path = false;
         self.drop_distance_outputs(env, CommandState::Aborted);
         if let Some(wait) = self.waiting.take() {
             self.planner.release_hold();
@@ -671,6 +687,13 @@ impl Group {
 
     /// `group_continue` after a halt.
     pub(super) fn resume(&mut self) -> Result<Reply, EngineError> {
+        if self.off_path {
+            return Err(EngineError::GroupState {
+                group: self.id,
+                state: self.state,
+                action: "continue off the path (a linear move back to the break point first)",
+            });
+        }
         match self.state {
             GroupState::Halted => {
                 self.planner.resume();

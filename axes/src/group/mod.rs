@@ -32,6 +32,7 @@ mod buffered_io;
 pub(crate) use buffered_io::IoRequest;
 mod commands;
 mod corner;
+mod estop_break;
 pub(crate) use corner::not_at_corner;
 pub use corner::{CornerStop, CornerWait};
 mod frames;
@@ -143,6 +144,9 @@ pub struct Group {
     fault_deceleration: Option<f64>,
     /// In ErrorStop, the path still decelerating by HMC's rule: which members have left it.
     fault_stop: Option<[bool; tick::FAULT_STOP_SLOTS]>,
+    /// An e-stop kept the path (`estop_break`): frozen at the break, the members off it until
+    /// a move back.
+    off_path: bool,
     /// Every member limited to the smallest acceleration of the members (CPU 226H).
     smallest_acceleration: bool,
     override_factor: f64,

@@ -48,6 +48,13 @@ impl Group {
                 action: "take path motion while it jogs (stop the jog first)",
             });
         }
+        if self.off_path {
+            return Err(EngineError::GroupState {
+                group: self.id,
+                state: self.state,
+                action: "take motion off the path (a linear move back to the break point first)",
+            });
+        }
         self.require(
             &[GroupState::Standby, GroupState::Moving, GroupState::Halted],
             "take motion",

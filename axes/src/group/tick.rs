@@ -40,6 +40,10 @@ impl Group {
             }
             _ => {}
         }
+        if self.off_path {
+            // Frozen at the break, the members elsewhere: nothing to feed until a move back.
+            return;
+        }
         self.refresh_limits(env.axes);
         if let Some(fault) = self.member_fault(env.axes) {
             if self.stops_along_path() {
@@ -573,6 +577,7 @@ impl Group {
     /// Drop the path at once (the planner's abort), end every command the group holds
     /// (`running` with `running_state`, the rest aborted) and let the members go.
     pub(super) fn drop_all(&mut self, env: &mut Env, running_state: CommandState) {
+        self.off_path = false;
         let mut events = std::mem::take(&mut self.events);
         events.clear();
         self.planner.abort(&mut events);

@@ -33,6 +33,7 @@ use crate::{Point, MAX_AXES};
 mod blend;
 mod braking;
 mod execution;
+mod freeze;
 mod junction;
 mod limits;
 mod lookahead;

@@ -9,7 +9,7 @@ use super::reach::{lowest_end, reach, settle};
 use super::{AxisLimits, Join, LookaheadLimits, MarkerKind, Motion, PathLimits, PathPlanner};
 use crate::geometry::Segment;
 
-fn queued(
+pub(super) fn queued(
     segment: Segment,
     programmed: PathLimits,
     join: Join,

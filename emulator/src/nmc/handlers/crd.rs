@@ -431,9 +431,10 @@ fn crd_stop_mtn(c: &mut Call<'_>) -> Result<(), Refusal> {
     Ok(())
 }
 
-/// The engine's group e-stop: every member stops with its estpDec, the path is dropped (the
-/// manual keeps the buffer; decisions.md) and the group latches MVERR and NODATASTOP until
-/// `NMC_CrdClrError`.
+/// The engine's group e-stop that keeps the path ("急停(并不清空指令缓冲区)", digest 001
+/// §2.7): every member stops with its estpDec, off the path, and the group latches MVERR
+/// until `NMC_CrdClrError`; then `NMC_CrdGotoBreak` and `NMC_CrdStartMtn` finish the path
+/// (decisions.md, "`NMC_CrdGotoBreak(acc, vel)`").
 fn crd_estop_mtn(c: &mut Call<'_>) -> Result<(), Refusal> {
     let n = crd(c)?;
     if group(c, n).is_some_and(|g| g.state != GroupState::Disabled) {
@@ -442,6 +443,7 @@ fn crd_estop_mtn(c: &mut Call<'_>) -> Result<(), Refusal> {
         c.service.frames().note_break(n, at);
         c.command(GroupEmergencyStop {
             group: n as GroupId,
+            keep_path: true,
         });
     }
     Ok(())

@@ -560,7 +560,8 @@ fn crd_goto_break(c: &mut Call<'_>) -> Result<(), Refusal> {
             return refuse("the coordinate system is moving: NMC_CrdStopMtn first")
         }
         Some(GroupState::ErrorStop) => return refuse("NMC_CrdClrError first"),
-        Some(GroupState::Halted) => return Ok(()),
+        // Halted by NMC_CrdStopMtn: on the path, nothing to return from.
+        Some(GroupState::Halted) if frames(c, n).break_point.is_none() => return Ok(()),
         _ => {}
     }
     let mut s = state(c, n);
@@ -570,7 +571,10 @@ fn crd_goto_break(c: &mut Call<'_>) -> Result<(), Refusal> {
         );
     };
     let dims = axes.len().min(CRD_MAX_AXES);
-    if here(c, &s).get(..dims) == point.get(..dims) {
+    // Halted after NMC_CrdEstopMtn (the path kept): the engine takes the line back in front
+    // of the path's remainder, even of length 0; NMC_CrdStartMtn goes on.
+    let kept = state_now == Some(GroupState::Halted);
+    if !kept && here(c, &s).get(..dims) == point.get(..dims) {
         set_frames(c, n, |f| f.break_point = None);
         return Ok(());
     }
@@ -598,8 +602,10 @@ fn crd_goto_break(c: &mut Call<'_>) -> Result<(), Refusal> {
         independent: Default::default(),
         coordinate_system: Some(CoordinateSystem::MCS),
     });
-    s.end = point;
-    update(c, n, |now| now.end = s.end);
+    if !kept {
+        s.end = point;
+        update(c, n, |now| now.end = s.end);
+    }
     set_frames(c, n, |f| f.break_point = None);
     Ok(())
 }
