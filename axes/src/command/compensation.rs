@@ -267,7 +267,8 @@ pub struct CompensationOffsetStop {
 #[serde(deny_unknown_fields)]
 pub struct FilterInputShaping {
     pub axis: AxisIndex,
-    #[serde(default, rename = "type")]
+    /// `zv` (default), `zvd` or `ei` (`type` is the command's own tag).
+    #[serde(default)]
     pub shaper: crate::filter::ShaperType,
     /// The mode's natural frequency (Hz), > 0 and below half the servo rate.
     pub frequency: f64,

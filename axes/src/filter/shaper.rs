@@ -27,7 +27,8 @@ pub struct Shaper {
     head: usize,
     /// Ticks the input has not changed for (saturating at `span`).
     still: usize,
-    /// Ticks back the last impulse reads: the input unchanged this long means the output is it.
+    /// The farthest tick back an impulse reads: the input unchanged this long means every
+    /// impulse reads it, so the output is it.
     span: usize,
 }
 
@@ -83,7 +84,7 @@ impl Shaper {
         }
         let sum: f64 = impulses.iter().map(|(a, _)| a).sum();
         let impulses = impulses.map(|(a, d)| (a / sum, d));
-        let span = last.ceil() as usize + 1;
+        let span = last.ceil() as usize;
         let mut s = Shaper {
             shaper,
             frequency,
@@ -91,7 +92,7 @@ impl Shaper {
             period,
             impulses,
             count,
-            history: vec![position; span + 1],
+            history: vec![position; span + 2],
             head: 0,
             still: span,
             span,
