@@ -8,6 +8,7 @@
 //! has no effect on coordinated (group) motion"). Never-set shapers use the manual's defaults,
 //! 5.5 Hz and 0.03, `SHAPER_NORMAL`.
 
+use axes::status::AxisFlags;
 use serde_json::{json, Value};
 
 use super::group_state::{command, group_error, group_id};
@@ -110,6 +111,23 @@ fn id_of(cx: &Ctx<'_>, args: &Args, filter: Filter) -> Result<u16, u32> {
     }
 }
 
+/// §2.14: "not applicable while the motor is moving": the axis, or any member of the group.
+fn moving(cx: &Ctx<'_>, filter: Filter, id: u16) -> Option<u32> {
+    let is_moving = |axis: u16| {
+        cx.snapshot
+            .axes
+            .get(usize::from(axis))
+            .is_some_and(|s| s.flags.contains(AxisFlags::MOVING))
+    };
+    match filter {
+        Filter::GroupInShape => members(cx, id)
+            .into_iter()
+            .any(is_moving)
+            .then(|| group_error(id, "eERR_CRD_CMD_INVALID_MOVING")),
+        _ => is_moving(id).then(|| axis_error(id, "eERR_AXIS_CMD_INVALID_MOVING")),
+    }
+}
+
 fn set(cx: &mut Ctx<'_>, args: &Args, filter: Filter) -> Plan {
     let id = match id_of(cx, args, filter) {
         Ok(i) => i,
@@ -140,6 +158,10 @@ fn set(cx: &mut Ctx<'_>, args: &Args, filter: Filter) -> Plan {
             "eERR_CRD_CMD_INVALID_INPUTSHAPING_PARAMETER_INCOMPLETE",
         );
     }
+    let on = cx.registers.filters_on.contains(&(filter, id));
+    if let Some(c) = moving(cx, filter, id).filter(|_| on) {
+        return Plan::Fail(c);
+    }
     cx.registers.filters.insert(
         (filter, id),
         FilterSettings {
@@ -148,7 +170,7 @@ fn set(cx: &mut Ctx<'_>, args: &Args, filter: Filter) -> Plan {
             shaper,
         },
     );
-    if !cx.registers.filters_on.contains(&(filter, id)) {
+    if !on {
         return Plan::Done(Outcome::Int(0));
     }
     match install(cx, filter, id) {
@@ -163,6 +185,9 @@ fn switch(cx: &mut Ctx<'_>, args: &Args, filter: Filter, on: bool) -> Plan {
         Ok(i) => i,
         Err(c) => return Plan::Fail(c),
     };
+    if let Some(c) = moving(cx, filter, id) {
+        return Plan::Fail(c);
+    }
     if !on {
         if !cx.registers.filters_on.remove(&(filter, id)) {
             return Plan::Done(Outcome::Int(0));
