@@ -168,3 +168,40 @@ fn shaped_moves_are_bit_identical() {
     };
     assert_eq!(run(), run());
 }
+
+/// Axis 0's commanded position each tick of a group line to (50, 0), with `filter` on it first.
+fn group_run(filter: Option<&str>) -> Vec<f64> {
+    let axis = common::fast_mm_axis(100.0, 1000.0);
+    let mut e = common::with_group(engine_with(vec![axis.clone(), axis]), &[0, 1]);
+    if let Some(f) = filter {
+        ok(&mut e, cmd(f));
+    }
+    ok(&mut e, Command::from(common::group_line(1, &[50.0, 0.0])));
+    (0..2000)
+        .map(|_| {
+            e.step();
+            status(&e).cmd_pos
+        })
+        .collect()
+}
+
+/// Digest 004 §2.14: "Axis InShape has no effect on coordinated (group) motion; use Group
+/// InShape there": the axis slot is idle while the axis is grouped, the group slot shapes.
+#[test]
+fn group_motion_uses_the_group_slot_only() {
+    let plain = group_run(None);
+    let axis_slot = group_run(Some(
+        r#"{"type":"filter_input_shaping","axis":0,"frequency":10,"slot":"axis"}"#,
+    ));
+    let group_slot = group_run(Some(
+        r#"{"type":"filter_input_shaping","axis":0,"frequency":10,"slot":"group"}"#,
+    ));
+    assert_eq!(axis_slot, plain);
+    assert_ne!(group_slot, plain);
+    assert_eq!(*group_slot.last().unwrap(), 50.0);
+    let d = 50;
+    for k in d..plain.len() {
+        let expected = 0.5 * plain[k] + 0.5 * plain[k - d];
+        assert!((group_slot[k] - expected).abs() < 1e-9, "tick {k}");
+    }
+}
