@@ -17,25 +17,20 @@ impl Axis {
         }
     }
 
-    /// This tick's filtered position for the (smoothed) command `input`. A slot that becomes
-    /// active (group join or leave) starts at rest on the output it takes over.
-    pub(super) fn filter_command(&mut self, input: f64) -> f64 {
+    /// This tick's filtered position for the (smoothed) command `input`; `None` without an
+    /// active filter. A slot that becomes active (group join or leave) starts at rest on the
+    /// output it takes over.
+    pub(super) fn filter_command(&mut self, input: f64) -> Option<f64> {
         let slot = self.filter_slot();
         let previous = self.cmd.p;
-        let Some(filters) = self.filters.as_deref_mut() else {
-            return input;
-        };
+        let filters = self.filters.as_deref_mut()?;
         let switched = filters.active != Some(slot);
         filters.active = Some(slot);
-        match filters.slot_mut(slot).as_mut() {
-            Some(f) => {
-                if switched {
-                    f.reset(previous);
-                }
-                f.next(input)
-            }
-            None => input,
+        let f = filters.slot_mut(slot).as_mut()?;
+        if switched {
+            f.reset(previous);
         }
+        Some(f.next(input))
     }
 
     /// The active filter has arrived at its input (or there is none).

@@ -532,10 +532,9 @@ impl Axis {
             Some(filter) => Some(filter.next(self.raw.p)),
             None => None,
         };
-        let filtered = match (&self.filters, smoothed) {
-            (None, s) => s,
-            (Some(_), s) => Some(self.filter_command(s.unwrap_or(self.raw.p))),
-        };
+        let filtered = self
+            .filter_command(smoothed.unwrap_or(self.raw.p))
+            .or(smoothed);
         if let Some(p) = filtered {
             self.cmd = if self.output_settled() {
                 // The output has arrived and stays: at rest from this tick on (the difference
