@@ -205,3 +205,35 @@ fn group_motion_uses_the_group_slot_only() {
         assert!((group_slot[k] - expected).abs() < 1e-9, "tick {k}");
     }
 }
+
+/// The group's own state: it returns to standby when the path ends, before the members' group
+/// shapers have settled (decisions.md, "Command filters after smoothing").
+#[test]
+fn group_standby_comes_with_the_path_not_the_shaper() {
+    let axis = common::fast_mm_axis(100.0, 1000.0);
+    let mut e = common::with_group(engine_with(vec![axis.clone(), axis]), &[0, 1]);
+    ok(
+        &mut e,
+        cmd(r#"{"type":"filter_input_shaping","axis":0,"frequency":10,"slot":"group"}"#),
+    );
+    ok(&mut e, Command::from(common::group_line(1, &[50.0, 0.0])));
+    let (mut standby, mut arrived) = (None, None);
+    for k in 0..3000u32 {
+        e.step();
+        let g = e.group_status(1).unwrap();
+        if k > 0 && standby.is_none() && g.state == axes::status::GroupState::Standby {
+            standby = Some(k);
+        }
+        if arrived.is_none() && status(&e).cmd_pos == 50.0 {
+            arrived = Some(k);
+        }
+    }
+    let (standby, arrived) = (standby.unwrap(), arrived.unwrap());
+    // The group reports standby on the tick after its path's last setpoint; the member's shaped
+    // command arrives the shaper's 50 ticks after that setpoint.
+    assert_eq!(
+        arrived - standby,
+        49,
+        "standby {standby}, arrived {arrived}"
+    );
+}
