@@ -13,6 +13,7 @@ pub mod config;
 pub mod coupling;
 pub mod engine;
 pub mod error;
+pub mod filter;
 pub mod group;
 pub mod guard;
 pub mod homing;

@@ -12,6 +12,7 @@
 //! command progress (completion, homing, next command) → status record.
 
 mod add_axis;
+mod command_filter;
 mod commands;
 mod compensation;
 pub mod fifo;
@@ -214,6 +215,8 @@ pub struct Axis {
     smoothing: Option<MovingAverage>,
     /// Compensation after the planner (issue 12 item 8), out of line: most axes have none.
     compensation: Option<Box<Compensation>>,
+    /// Input shaper / VSF after smoothing (issue 14), out of line: most axes have none.
+    filters: Option<Box<crate::filter::CommandFilters>>,
     /// This tick's correction: the drive receives `cmd.p + correction` (digest 001 §4.1).
     correction: f64,
     act_pos: f64,
@@ -328,6 +331,7 @@ impl Axis {
             cmd: MotionState::default(),
             smoothing: smoothing.and_then(|n| MovingAverage::new(n).ok()),
             compensation: None,
+            filters: None,
             correction: 0.0,
             act_pos: 0.0,
             act_vel: 0.0,
@@ -521,11 +525,18 @@ impl Axis {
         // 1. Command source.
         self.advance_source(ctx.tick);
 
-        // 2. Smoothing (NMC smoothCoef / HIMC SMTime).
+        // 2. Smoothing (NMC smoothCoef / HIMC SMTime), then 2a. the command filter (input
+        // shaper or VSF, digest 004 §2.14: "Smoothing time, VSF and InShape modify PG commands").
         let previous = self.cmd;
-        if let Some(filter) = self.smoothing.as_mut() {
-            let p = filter.next(self.raw.p);
-            self.cmd = if filter.is_settled() {
+        let smoothed = match self.smoothing.as_mut() {
+            Some(filter) => Some(filter.next(self.raw.p)),
+            None => None,
+        };
+        let filtered = self
+            .filter_command(smoothed.unwrap_or(self.raw.p))
+            .or(smoothed);
+        if let Some(p) = filtered {
+            self.cmd = if self.output_settled() {
                 // The output has arrived and stays: at rest from this tick on (the difference
                 // below would still show the last step's motion).
                 MotionState { p, v: 0.0, a: 0.0 }
@@ -734,6 +745,7 @@ impl Axis {
         if let Some(f) = self.smoothing.as_mut() {
             f.reset(p);
         }
+        self.reset_command_filters(p);
         if self.class == AxisClass::Stepper {
             // Re-base the pulse counter so enabling emits no catch-up burst.
             self.pulse
@@ -1235,6 +1247,7 @@ impl Axis {
             z_output: self.triggers.z_output,
             compensation_offset,
             compensation_offset_moving,
+            command_filter: self.filter_status(),
             inputs,
             homing_failure: self.homing_record.failure,
             home_error: self.homing_record.home_error,

@@ -217,7 +217,7 @@ impl Axis {
                         }
                         return;
                     }
-                    if !profile_done || self.smoothing.as_ref().is_some_and(|f| !f.is_settled()) {
+                    if !profile_done || !self.output_settled() {
                         return;
                     }
                     if !self.completion_reached(ctx.tick) {
@@ -363,7 +363,7 @@ impl Axis {
     /// The commanded motion has reached its goal: the source, and the smoothing filter behind
     /// it (a smoothed command keeps moving for one window after the source stops).
     pub(super) fn motion_done(&self, tick: u64) -> bool {
-        self.source_done(tick) && self.smoothing.as_ref().is_none_or(|f| f.is_settled())
+        self.source_done(tick) && self.output_settled()
     }
 
     /// What the homing machine sees this tick (user frame, unwrapped).

@@ -165,6 +165,9 @@ pub enum CompensationCommand {
     OffsetProfile(CompensationOffsetProfile),
     OffsetTrigger(CompensationOffsetTrigger),
     OffsetStop(CompensationOffsetStop),
+    FilterInputShaping(FilterInputShaping),
+    FilterVsf(FilterVsf),
+    FilterDisable(FilterDisable),
 }
 
 impl CompensationCommand {
@@ -180,6 +183,9 @@ impl CompensationCommand {
             CompensationCommand::OffsetProfile(c) => c.axis,
             CompensationCommand::OffsetTrigger(c) => c.axis,
             CompensationCommand::OffsetStop(c) => c.axis,
+            CompensationCommand::FilterInputShaping(c) => c.axis,
+            CompensationCommand::FilterVsf(c) => c.axis,
+            CompensationCommand::FilterDisable(c) => c.axis,
         }
     }
 }
@@ -198,6 +204,9 @@ command_from!(
         CompensationOffsetProfile => OffsetProfile,
         CompensationOffsetTrigger => OffsetTrigger,
         CompensationOffsetStop => OffsetStop,
+        FilterInputShaping => FilterInputShaping,
+        FilterVsf => FilterVsf,
+        FilterDisable => FilterDisable,
     ]
 );
 
@@ -248,4 +257,51 @@ pub struct CompensationOffsetTrigger {
 #[serde(deny_unknown_fields)]
 pub struct CompensationOffsetStop {
     pub axis: AxisIndex,
+}
+
+/// Install an input shaper on the command of `axis` (HIMC SetAxisInShape + EnableAxisInShape,
+/// digest 004 §2.14), replacing what the slot held (a shaper or a VSF: they exclude each other).
+/// `slot: group` is the slot used while the axis is in a group (HIMC SetGrpInShape on each
+/// member). Refused while the axis moves.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FilterInputShaping {
+    pub axis: AxisIndex,
+    /// `zv` (default), `zvd` or `ei` (`type` is the command's own tag).
+    #[serde(default)]
+    pub shaper: crate::filter::ShaperType,
+    /// The mode's natural frequency (Hz), > 0 and below half the servo rate.
+    pub frequency: f64,
+    /// Its damping ratio, 0 ≤ ζ < 1.
+    #[serde(default)]
+    pub damping: f64,
+    #[serde(default)]
+    pub slot: crate::filter::FilterSlot,
+}
+
+/// Install the vibration suppression filter (a notch) on the command of `axis` (HIMC SetAxisVsf
+/// + EnableAxisVsf), replacing a shaper in the axis slot. Refused while the axis moves.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FilterVsf {
+    pub axis: AxisIndex,
+    /// The notch frequency (Hz), > 0 and below half the servo rate.
+    pub frequency: f64,
+    /// The notch's damping ratio (its width), 0 < ζ ≤ 10; HIMC recommends 1.
+    #[serde(default = "one")]
+    pub damping: f64,
+}
+
+/// Remove the filter of a slot, or of both when `slot` is absent (HIMC Disable*). Refused while
+/// the axis moves.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FilterDisable {
+    pub axis: AxisIndex,
+    #[serde(default)]
+    pub slot: Option<crate::filter::FilterSlot>,
+}
+
+fn one() -> f64 {
+    1.0
 }

@@ -119,7 +119,7 @@ pub use compensation::{
     CompensationDisable, CompensationEnable, CompensationInterpolation, CompensationKind,
     CompensationLeadScrew, CompensationOffsetAmount, CompensationOffsetProfile,
     CompensationOffsetStop, CompensationOffsetTrigger, CompensationReference, CompensationTable,
-    ReferenceSource,
+    FilterDisable, FilterInputShaping, FilterVsf, ReferenceSource,
 };
 pub use coupling::{
     CamIn, CamInterpolation, CamOut, CamPoint, CamTableDefine, CamTableLink, CouplingCommand,

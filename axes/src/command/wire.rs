@@ -214,6 +214,10 @@ pub(super) enum Command {
     PositionWatchClear(super::PositionWatchClear),
     // HMC_SetAddAxis (digest 000 §4.4).
     AddAxisSet(super::AddAxisSet),
+    // Issue 14, HIMC chapter 15: command filters.
+    FilterInputShaping(super::FilterInputShaping),
+    FilterVsf(super::FilterVsf),
+    FilterDisable(super::FilterDisable),
 }
 
 impl From<Command> for super::Command {
@@ -394,6 +398,9 @@ impl From<Command> for super::Command {
             Command::CompensationOffsetProfile(c) => super::Command::from(c),
             Command::CompensationOffsetTrigger(c) => super::Command::from(c),
             Command::CompensationOffsetStop(c) => super::Command::from(c),
+            Command::FilterInputShaping(c) => super::Command::from(c),
+            Command::FilterVsf(c) => super::Command::from(c),
+            Command::FilterDisable(c) => super::Command::from(c),
             Command::ResetFaults(c) => super::Command::from(c),
             Command::SetEstopInput(c) => super::Command::from(c),
             Command::AddAxisSet(c) => super::Command::from(c),
@@ -604,6 +611,9 @@ impl From<super::Command> for Command {
                 CompensationCommand::OffsetProfile(c) => Command::CompensationOffsetProfile(c),
                 CompensationCommand::OffsetTrigger(c) => Command::CompensationOffsetTrigger(c),
                 CompensationCommand::OffsetStop(c) => Command::CompensationOffsetStop(c),
+                CompensationCommand::FilterInputShaping(c) => Command::FilterInputShaping(c),
+                CompensationCommand::FilterVsf(c) => Command::FilterVsf(c),
+                CompensationCommand::FilterDisable(c) => Command::FilterDisable(c),
             },
             super::Command::Sampling(c) => match c {
                 SamplingCommand::Configure(c) => Command::SamplingConfigure(c),

@@ -22,6 +22,21 @@ impl Engine {
                 axis: u32::from(index),
                 count,
             })?;
+        match &command {
+            CompensationCommand::FilterInputShaping(c) => {
+                axis.set_input_shaping(c)?;
+                return Ok(Reply::Done);
+            }
+            CompensationCommand::FilterVsf(c) => {
+                axis.set_vsf(c)?;
+                return Ok(Reply::Done);
+            }
+            CompensationCommand::FilterDisable(c) => {
+                axis.disable_filter(c)?;
+                return Ok(Reply::Done);
+            }
+            _ => {}
+        }
         // A table is built on a copy, so that a refusal changes nothing.
         let mut next = axis.compensation().cloned().unwrap_or_default();
         let offset = match &command {
@@ -60,7 +75,10 @@ impl Engine {
             CompensationCommand::OffsetAmount(_)
             | CompensationCommand::OffsetProfile(_)
             | CompensationCommand::OffsetTrigger(_)
-            | CompensationCommand::OffsetStop(_) => {}
+            | CompensationCommand::OffsetStop(_)
+            | CompensationCommand::FilterInputShaping(_)
+            | CompensationCommand::FilterVsf(_)
+            | CompensationCommand::FilterDisable(_) => {}
         }
         Ok(Reply::Done)
     }

@@ -329,6 +329,10 @@ pub struct AxisStatus {
     /// That offset's move is in progress (HMC GetAxisCompenState 1; 0 done).
     #[serde(default)]
     pub compensation_offset_moving: bool,
+    /// The active command filter after smoothing (issue 14: input shaper or VSF); `cmd_pos`
+    /// is its output.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub command_filter: Option<crate::filter::FilterStatus>,
     /// The dedicated inputs' active states this tick, after their configured sense and never
     /// latched: HW_LIMIT_POS, HW_LIMIT_NEG, HOME_SWITCH, INDEX, DRIVE_ALARM (an alarm input
     /// that is not enabled reads inactive). NMC_MtGetMotionIO reads these (TV40).

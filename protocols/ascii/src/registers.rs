@@ -66,6 +66,8 @@ pub struct Registers {
     pub probe_functions: BTreeMap<(u16, u8), ProbeFunction>,
     /// `SetAxisVsf`, `SetAxisInShape` (by axis), `SetGrpInShape` (by group).
     pub filters: BTreeMap<(Filter, u16), FilterSettings>,
+    /// The filters `Enable*` switched on (in the engine), by (filter, axis or group).
+    pub filters_on: std::collections::BTreeSet<(Filter, u16)>,
     /// `EnableGantryPair`: RHS → LHS (§7.2).
     pub gantry_pairs: BTreeMap<u16, u16>,
     /// Axes `EnableComp` switched on (`IsCompActive`).

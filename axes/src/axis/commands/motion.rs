@@ -562,6 +562,10 @@ impl Axis {
                 return self.refuse(e);
             }
         }
+        if !self.filter_settled() {
+            let e = self.invalid_state("set the position while the command filter is still moving");
+            return self.refuse(e);
+        }
         match frame {
             PositionFrame::Both => {
                 let delta = position - self.wrap(self.cmd.p);
@@ -591,6 +595,8 @@ impl Axis {
         if let Some(f) = self.smoothing.as_mut() {
             f.reset(self.cmd.p);
         }
+        let p = self.cmd.p;
+        self.reset_command_filters(p);
         match &mut self.source {
             Source::Profile { shift, .. } => *shift += delta,
             Source::External(Setpoint::Position { position }) => *position += delta,

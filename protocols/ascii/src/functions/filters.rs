@@ -1,15 +1,28 @@
-//! Chapter 15, command filters (digest 004 §2.14; TV 64–66). The engine has no vibration
-//! suppression filter (VSF) and no input shaper, so the setters check the manual's ranges and
-//! keep the values, the `Disable*` functions succeed (the filter is off), and the `Enable*`
-//! functions answer `eERR_HMPL_NOT_SUPPORTED` rather than pretend (decisions.md).
+//! Chapter 15, command filters (digest 004 §2.14; TV 64–66) through the engine's command
+//! filters (`filter_input_shaping`, `filter_vsf`, `filter_disable`). The setters check the
+//! manual's ranges and keep the values (a filter already on is re-installed with them);
+//! `Enable*` installs the filter, `Disable*` removes it. VSF and InShape exclude each other
+//! (§2.14): enabling one while the other is on is refused. `SetGrpInShape`/`EnableGrpInShape`
+//! put the shaper in the group slot of each member the group has at that moment: the engine
+//! uses it while the axis is in a group, and the axis slot otherwise (§2.14: "Axis InShape
+//! has no effect on coordinated (group) motion"). Never-set shapers use the manual's defaults,
+//! 5.5 Hz and 0.03, `SHAPER_NORMAL`.
 
-use mcemu_dialects::himc::system::HMPL_NOT_SUPPORTED;
+use axes::status::AxisFlags;
+use serde_json::{json, Value};
 
-use super::group_state::{group_error, group_id};
+use super::group_state::{command, group_error, group_id};
 use super::{axis_error, axis_of};
 use crate::registers::{Filter, FilterSettings};
 use crate::reply::Outcome;
 use crate::table::{row, Addresses::Axis, Addresses::Group, Args, Ctx, Function, Plan, Ret, Ty};
+
+/// §15.7, §15.10: the defaults of a shaper never set.
+const DEFAULT_SHAPER: FilterSettings = FilterSettings {
+    frequency: 5.5,
+    damping: 0.03,
+    shaper: Some(1),
+};
 
 impl Filter {
     /// §15.4: 0.1 ~ 200 Hz, 0.7 ~ 1.5; §15.7: 1.5 ~ 300 Hz, 0 ~ 0.3; §15.10: 3 ~ 300 Hz, 0 ~ 0.3.
@@ -22,12 +35,101 @@ impl Filter {
     }
 }
 
-fn set(cx: &mut Ctx<'_>, args: &Args, filter: Filter) -> Plan {
-    let id = match filter {
+/// The engine's shaper for `SHAPER_NORMAL` 1 (ZV) and `SHAPER_ROBUST` 0 (ZVD).
+fn shaper_name(shaper: Option<i64>) -> &'static str {
+    match shaper {
+        Some(0) => "zvd",
+        _ => "zv",
+    }
+}
+
+/// The engine commands that put `filter` of `id` on, with its settings.
+fn install(cx: &Ctx<'_>, filter: Filter, id: u16) -> Result<Vec<Value>, u32> {
+    let stored = cx.registers.filters.get(&(filter, id)).copied();
+    let s = match (filter, stored) {
+        (_, Some(s)) => s,
+        (Filter::AxisVsf, None) => {
+            // §15.4 gives no default frequency: a VSF never set cannot be switched on.
+            return Err(axis_error(id, "eERR_AXIS_CMD_INVALID_PARAMETER"));
+        }
+        (_, None) => DEFAULT_SHAPER,
+    };
+    Ok(match filter {
+        Filter::AxisVsf => vec![json!({
+            "type": "filter_vsf", "axis": id, "frequency": s.frequency, "damping": s.damping,
+        })],
+        Filter::AxisInShape => vec![json!({
+            "type": "filter_input_shaping", "axis": id, "shaper": shaper_name(s.shaper),
+            "frequency": s.frequency, "damping": s.damping, "slot": "axis",
+        })],
+        Filter::GroupInShape => members(cx, id)
+            .iter()
+            .map(|&axis| {
+                json!({
+                    "type": "filter_input_shaping", "axis": axis,
+                    "shaper": shaper_name(s.shaper), "frequency": s.frequency,
+                    "damping": s.damping, "slot": "group",
+                })
+            })
+            .collect(),
+    })
+}
+
+fn members(cx: &Ctx<'_>, group: u16) -> Vec<u16> {
+    cx.registers
+        .group_members
+        .get(&group)
+        .cloned()
+        .unwrap_or_default()
+}
+
+/// The engine commands that take `filter` of `id` off.
+fn remove(cx: &Ctx<'_>, filter: Filter, id: u16) -> Vec<Value> {
+    match filter {
+        Filter::GroupInShape => members(cx, id)
+            .iter()
+            .map(|&axis| json!({"type": "filter_disable", "axis": axis, "slot": "group"}))
+            .collect(),
+        _ => vec![json!({"type": "filter_disable", "axis": id, "slot": "axis"})],
+    }
+}
+
+fn batch(commands: Vec<Value>) -> Plan {
+    if commands.is_empty() {
+        return Plan::Done(Outcome::Int(0));
+    }
+    match commands.into_iter().map(command).collect() {
+        Ok(b) => Plan::Engine(b, crate::table::Then::Succeed),
+        Err(c) => Plan::Fail(c),
+    }
+}
+
+fn id_of(cx: &Ctx<'_>, args: &Args, filter: Filter) -> Result<u16, u32> {
+    match filter {
         Filter::GroupInShape => group_id(args),
         _ => axis_of(cx, args).map(|(a, _)| a),
+    }
+}
+
+/// §2.14: "not applicable while the motor is moving": the axis, or any member of the group.
+fn moving(cx: &Ctx<'_>, filter: Filter, id: u16) -> Option<u32> {
+    let is_moving = |axis: u16| {
+        cx.snapshot
+            .axes
+            .get(usize::from(axis))
+            .is_some_and(|s| s.flags.contains(AxisFlags::MOVING))
     };
-    let id = match id {
+    match filter {
+        Filter::GroupInShape => members(cx, id)
+            .into_iter()
+            .any(is_moving)
+            .then(|| group_error(id, "eERR_CRD_CMD_INVALID_MOVING")),
+        _ => is_moving(id).then(|| axis_error(id, "eERR_AXIS_CMD_INVALID_MOVING")),
+    }
+}
+
+fn set(cx: &mut Ctx<'_>, args: &Args, filter: Filter) -> Plan {
+    let id = match id_of(cx, args, filter) {
         Ok(i) => i,
         Err(c) => return Plan::Fail(c),
     };
@@ -56,6 +158,10 @@ fn set(cx: &mut Ctx<'_>, args: &Args, filter: Filter) -> Plan {
             "eERR_CRD_CMD_INVALID_INPUTSHAPING_PARAMETER_INCOMPLETE",
         );
     }
+    let on = cx.registers.filters_on.contains(&(filter, id));
+    if let Some(c) = moving(cx, filter, id).filter(|_| on) {
+        return Plan::Fail(c);
+    }
     cx.registers.filters.insert(
         (filter, id),
         FilterSettings {
@@ -64,19 +170,49 @@ fn set(cx: &mut Ctx<'_>, args: &Args, filter: Filter) -> Plan {
             shaper,
         },
     );
-    Plan::Done(Outcome::Int(0))
+    if !on {
+        return Plan::Done(Outcome::Int(0));
+    }
+    match install(cx, filter, id) {
+        Ok(commands) => batch(commands),
+        Err(c) => Plan::Fail(c),
+    }
 }
 
-/// `Enable*`: not in the engine. `Disable*`: the filter is off.
-fn switch(cx: &mut Ctx<'_>, args: &Args, group: bool, on: bool) -> Plan {
-    let id = if group {
-        group_id(args)
-    } else {
-        axis_of(cx, args).map(|(a, _)| a)
+/// `Enable*` installs the filter, `Disable*` removes it (a filter that is off: nothing to do).
+fn switch(cx: &mut Ctx<'_>, args: &Args, filter: Filter, on: bool) -> Plan {
+    let id = match id_of(cx, args, filter) {
+        Ok(i) => i,
+        Err(c) => return Plan::Fail(c),
     };
-    match id {
-        Ok(_) if on => Plan::Fail(HMPL_NOT_SUPPORTED),
-        Ok(_) => Plan::Done(Outcome::Int(0)),
+    if let Some(c) = moving(cx, filter, id) {
+        return Plan::Fail(c);
+    }
+    if !on {
+        if !cx.registers.filters_on.remove(&(filter, id)) {
+            return Plan::Done(Outcome::Int(0));
+        }
+        return batch(remove(cx, filter, id));
+    }
+    // §2.14: VSF and InShape are mutually exclusive.
+    let other = match filter {
+        Filter::AxisVsf => Some((
+            Filter::AxisInShape,
+            "eERR_AXIS_CMD_INVALID_INPUTSHAPING_ENABLED",
+        )),
+        Filter::AxisInShape => Some((Filter::AxisVsf, "eERR_AXIS_CMD_INVALID_PARAMETER")),
+        Filter::GroupInShape => None,
+    };
+    if let Some((other, error)) = other {
+        if cx.registers.filters_on.contains(&(other, id)) {
+            return Plan::Fail(axis_error(id, error));
+        }
+    }
+    match install(cx, filter, id) {
+        Ok(commands) => {
+            cx.registers.filters_on.insert((filter, id));
+            batch(commands)
+        }
         Err(c) => Plan::Fail(c),
     }
 }
@@ -86,10 +222,10 @@ const SHAPER: &[Ty] = &[Ty::Int, Ty::Double, Ty::Double, Ty::Int];
 
 pub static ROWS: &[Function] = &[
     row("EnableAxisVsf", "15.2", ONE, Ret::Int, Axis, |cx, a| {
-        switch(cx, a, false, true)
+        switch(cx, a, Filter::AxisVsf, true)
     }),
     row("DisableAxisVsf", "15.3", ONE, Ret::Int, Axis, |cx, a| {
-        switch(cx, a, false, false)
+        switch(cx, a, Filter::AxisVsf, false)
     }),
     // TV 65.
     row(
@@ -101,7 +237,7 @@ pub static ROWS: &[Function] = &[
         |cx, a| set(cx, a, Filter::AxisVsf),
     ),
     row("EnableAxisInShape", "15.5", ONE, Ret::Int, Axis, |cx, a| {
-        switch(cx, a, false, true)
+        switch(cx, a, Filter::AxisInShape, true)
     }),
     row(
         "DisableAxisInShape",
@@ -109,14 +245,14 @@ pub static ROWS: &[Function] = &[
         ONE,
         Ret::Int,
         Axis,
-        |cx, a| switch(cx, a, false, false),
+        |cx, a| switch(cx, a, Filter::AxisInShape, false),
     ),
     // TV 64.
     row("SetAxisInShape", "15.7", SHAPER, Ret::Int, Axis, |cx, a| {
         set(cx, a, Filter::AxisInShape)
     }),
     row("EnableGrpInShape", "15.8", ONE, Ret::Int, Group, |cx, a| {
-        switch(cx, a, true, true)
+        switch(cx, a, Filter::GroupInShape, true)
     }),
     row(
         "DisableGrpInShape",
@@ -124,7 +260,7 @@ pub static ROWS: &[Function] = &[
         ONE,
         Ret::Int,
         Group,
-        |cx, a| switch(cx, a, true, false),
+        |cx, a| switch(cx, a, Filter::GroupInShape, false),
     ),
     // TV 66.
     row(
