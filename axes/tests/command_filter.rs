@@ -8,11 +8,7 @@ mod common;
 use axes::command::{Command, CommandState, Enable};
 use axes::filter::{FilterSlot, FilterStatus, ShaperType};
 use axes::{Engine, ParamId};
-use common::{engine_with, free_linear_axis, id_of, ok, refused_code, state_of, status};
-
-fn cmd(json: &str) -> Command {
-    serde_json::from_str(json).unwrap_or_else(|e| panic!("{json}: {e}"))
-}
+use common::{cmd, engine_with, free_linear_axis, id_of, ok, refused_code, state_of, status};
 
 fn machine() -> Engine {
     let axis = free_linear_axis(

@@ -7,11 +7,7 @@ mod common;
 
 use axes::command::{BacklashDirection, Command, Enable};
 use axes::{Engine, EngineError, ParamId};
-use common::{engine_with, free_linear_axis, ok, refused, run};
-
-fn cmd(json: &str) -> Command {
-    serde_json::from_str(json).unwrap_or_else(|e| panic!("{json}: {e}"))
-}
+use common::{cmd, engine_with, free_linear_axis, ok, refused, run};
 
 /// Pulse axes (1 pulse per unit) that move fast enough for the NMC examples' pulse distances.
 fn machine(n: usize) -> Engine {

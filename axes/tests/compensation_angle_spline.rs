@@ -8,11 +8,7 @@ mod common;
 
 use axes::command::{Command, Enable};
 use axes::{Engine, EngineError, ParamId};
-use common::{engine_with, free_linear_axis, ok, refused, run};
-
-fn cmd(json: &str) -> Command {
-    serde_json::from_str(json).unwrap_or_else(|e| panic!("{json}: {e}"))
-}
+use common::{cmd, engine_with, free_linear_axis, ok, refused, run};
 
 fn machine(n: usize) -> Engine {
     let axis = free_linear_axis(

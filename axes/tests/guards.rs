@@ -7,11 +7,7 @@ mod common;
 use axes::command::{Command, Enable};
 use axes::config::IoConfig;
 use axes::{AxisFlags, Engine, EngineConfig, EngineError};
-use common::{ok, refused, stepper_mm};
-
-fn cmd(json: &str) -> Command {
-    serde_json::from_str(json).unwrap_or_else(|e| panic!("{json}: {e}"))
-}
+use common::{cmd, ok, refused, stepper_mm};
 
 /// Two enabled mm steppers, 4 DI and 4 DO, 1 ms period.
 fn machine() -> Engine {

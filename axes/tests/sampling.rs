@@ -9,11 +9,7 @@ use axes::command::{Command, Enable, Reply};
 use axes::config::IoConfig;
 use axes::sampling::SamplerState;
 use axes::{Engine, EngineConfig, EngineError, ParamId};
-use common::{free_linear_axis, ok, refused, run};
-
-fn cmd(json: &str) -> Command {
-    serde_json::from_str(json).unwrap_or_else(|e| panic!("{json}: {e}"))
-}
+use common::{cmd, free_linear_axis, ok, refused, run};
 
 /// One pulse axis per unit, 1 ms period, 4 DI and 4 DO.
 fn machine() -> Engine {

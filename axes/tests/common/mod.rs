@@ -47,6 +47,12 @@ pub fn stepper_mm() -> AxisConfig {
     a
 }
 
+/// A command from its JSON (the scenario and control-API form), panicking with the text and
+/// serde's reason when it does not parse.
+pub fn cmd(json: &str) -> Command {
+    serde_json::from_str(json).unwrap_or_else(|e| panic!("{json}: {e}"))
+}
+
 pub fn engine_with(axes: Vec<AxisConfig>) -> Engine {
     Engine::new(&EngineConfig {
         axes,
