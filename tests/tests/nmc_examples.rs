@@ -632,7 +632,7 @@ fn tv27_tv28_tv31_tv32_tv65_moves_homing_clock() {
     example("tv_motion.c");
 }
 
-/// TV21, TV23, TV24, TV40 on inputs this harness forces: the program prints
+/// TV21, TV23, TV24, TV26, TV40 on inputs this harness forces: the program prints
 /// `post {json}` lines, each posted to the control API and answered `done`.
 #[test]
 fn tv21_tv23_tv24_tv26_tv40_forced_inputs() {
