@@ -10,9 +10,7 @@
 
 use std::hint::black_box;
 
-use axes::command::{
-    Command, EstimateGroupTime, GroupBufferMode, MoveLinearAbsolute, Reply, TransitionMode,
-};
+use axes::command::{Command, EstimateGroupTime, Reply};
 use axes::status::GroupState;
 use axes::Engine;
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion};
@@ -21,30 +19,9 @@ mod common;
 
 const AXES: usize = 4;
 
-fn corner(k: u64) -> Vec<f64> {
-    let gray = k ^ (k >> 1);
-    (0..AXES as u64)
-        .map(|bit| if (gray >> bit) & 1 == 1 { 100.0 } else { 0.0 })
-        .collect()
-}
-
 fn program() -> Vec<Command> {
     (1..=8)
-        .map(|k| {
-            Command::from(MoveLinearAbsolute {
-                group: 1,
-                position: corner(k),
-                velocity: Some(50.0),
-                acceleration: None,
-                deceleration: None,
-                jerk: None,
-                buffer_mode: GroupBufferMode::BlendingLow,
-                transition: TransitionMode::CornerDistance(5.0),
-                user_segment: None,
-                independent: Default::default(),
-                coordinate_system: None,
-            })
-        })
+        .map(|k| common::hypercube_corner_move(AXES, k))
         .collect()
 }
 

@@ -12,22 +12,12 @@
 
 use std::hint::black_box;
 
-use axes::command::{Command, GroupBufferMode, MoveLinearAbsolute, TransitionMode};
 use axes::Engine;
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 
 mod common;
 
 const AXES: usize = 4;
-
-/// The corners of a 4-D hypercube of side 100 mm in Gray-code order: consecutive corners differ
-/// in one coordinate, so every segment is a 100 mm line and every junction a right angle.
-fn corner(k: u64) -> Vec<f64> {
-    let gray = k ^ (k >> 1);
-    (0..AXES as u64)
-        .map(|bit| if (gray >> bit) & 1 == 1 { 100.0 } else { 0.0 })
-        .collect()
-}
 
 struct Group {
     engine: Engine,
@@ -58,19 +48,7 @@ impl Group {
         }
         for _ in 0..64 {
             self.engine
-                .apply(Command::from(MoveLinearAbsolute {
-                    group: 1,
-                    position: corner(self.next),
-                    velocity: Some(50.0),
-                    acceleration: None,
-                    deceleration: None,
-                    jerk: None,
-                    buffer_mode: GroupBufferMode::BlendingLow,
-                    transition: TransitionMode::CornerDistance(5.0),
-                    user_segment: None,
-                    independent: Default::default(),
-                    coordinate_system: None,
-                }))
+                .apply(common::hypercube_corner_move(AXES, self.next))
                 .expect("move_linear_absolute");
             self.next += 1;
         }

@@ -2,7 +2,10 @@
 // Shared by several benches; each uses a part.
 #![allow(dead_code)]
 
-use axes::command::{BufferMode, Enable, GroupCreate, GroupEnable, MoveRelative};
+use axes::command::{
+    BufferMode, Enable, GroupBufferMode, GroupCreate, GroupEnable, MoveLinearAbsolute,
+    MoveRelative, TransitionMode,
+};
 use axes::config::{AxisConfig, EngineConfig, HomeSwitchConfig, PlantModel, SwitchConfig};
 use axes::{Command, Engine, ParamId};
 
@@ -144,4 +147,27 @@ pub fn fmt_duration(d: std::time::Duration) -> String {
     } else {
         format!("{:.0} ns", s * 1e9)
     }
+}
+
+/// The line to corner `k` of an `n`-D hypercube of side 100 mm in Gray-code order, blended
+/// (BlendingLow, corner distance 5 mm) at 50 mm/s: consecutive corners differ in one
+/// coordinate, so every segment is a 100 mm line and every junction a right angle.
+pub fn hypercube_corner_move(n: usize, k: u64) -> Command {
+    let gray = k ^ (k >> 1);
+    let position = (0..n as u64)
+        .map(|bit| if (gray >> bit) & 1 == 1 { 100.0 } else { 0.0 })
+        .collect();
+    Command::from(MoveLinearAbsolute {
+        group: 1,
+        position,
+        velocity: Some(50.0),
+        acceleration: None,
+        deceleration: None,
+        jerk: None,
+        buffer_mode: GroupBufferMode::BlendingLow,
+        transition: TransitionMode::CornerDistance(5.0),
+        user_segment: None,
+        independent: Default::default(),
+        coordinate_system: None,
+    })
 }
