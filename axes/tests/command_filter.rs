@@ -7,6 +7,7 @@ mod common;
 
 use axes::command::{Command, CommandState, Enable};
 use axes::filter::{FilterSlot, FilterStatus, ShaperType};
+use axes::status::AxisFlags;
 use axes::{Engine, ParamId};
 use common::{cmd, engine_with, free_linear_axis, id_of, ok, refused_code, state_of, status};
 
@@ -24,7 +25,8 @@ fn machine() -> Engine {
     e
 }
 
-/// Ticks until the move to 100 is done, and the commanded position each tick.
+/// Ticks until the move to 100 is done, and the commanded position each tick; the axis is
+/// moving and not in position on every tick before.
 fn move_until_done(e: &mut Engine) -> (u64, Vec<f64>) {
     let id = id_of(ok(
         e,
@@ -37,6 +39,11 @@ fn move_until_done(e: &mut Engine) -> (u64, Vec<f64>) {
         if state_of(e, id) == CommandState::Done {
             return (k, seen);
         }
+        // Until the filtered output arrives the axis moves and is not in position (HIMC
+        // IsMoving / IsInPos).
+        let flags = status(e).flags;
+        assert!(!flags.contains(AxisFlags::IN_POSITION), "tick {k}");
+        assert!(flags.contains(AxisFlags::MOVING) || k == 1, "tick {k}");
     }
     panic!("the move never finished");
 }
@@ -202,34 +209,42 @@ fn group_motion_uses_the_group_slot_only() {
     }
 }
 
-/// The group's own state: it returns to standby when the path ends, before the members' group
-/// shapers have settled (decisions.md, "Command filters after smoothing").
+/// The group stays Moving, its line not done and its members moving and not in position,
+/// until every member's shaped output has arrived (decisions.md, "Command filters after
+/// smoothing"): the group's state follows the members' commands, not the planner.
 #[test]
-fn group_standby_comes_with_the_path_not_the_shaper() {
+fn group_is_standby_only_when_the_shaped_members_arrive() {
     let axis = common::fast_mm_axis(100.0, 1000.0);
     let mut e = common::with_group(engine_with(vec![axis.clone(), axis]), &[0, 1]);
     ok(
         &mut e,
         cmd(r#"{"type":"filter_input_shaping","axis":0,"frequency":10,"slot":"group"}"#),
     );
-    ok(&mut e, Command::from(common::group_line(1, &[50.0, 0.0])));
-    let (mut standby, mut arrived) = (None, None);
+    let line = id_of(ok(&mut e, Command::from(common::group_line(1, &[50.0, 0.0]))));
+    let (mut standby, mut arrived, mut done) = (None, None, None);
     for k in 0..3000u32 {
         e.step();
         let g = e.group_status(1).unwrap();
-        if k > 0 && standby.is_none() && g.state == axes::status::GroupState::Standby {
+        let member = status(&e).flags;
+        if standby.is_none() && g.state == axes::status::GroupState::Standby {
             standby = Some(k);
+        }
+        if done.is_none() && state_of(&mut e, line) == CommandState::Done {
+            done = Some(k);
         }
         if arrived.is_none() && status(&e).cmd_pos == 50.0 {
             arrived = Some(k);
         }
+        if arrived.is_none() {
+            assert_eq!(g.state, axes::status::GroupState::Moving, "tick {k}");
+            assert!(!g.in_position, "tick {k}: group in position before arriving");
+            assert!(member.contains(AxisFlags::MOVING), "tick {k}");
+            assert!(!member.contains(AxisFlags::IN_POSITION), "tick {k}");
+            assert_ne!(state_of(&mut e, line), CommandState::Done, "tick {k}");
+        }
     }
-    let (standby, arrived) = (standby.unwrap(), arrived.unwrap());
-    // The group reports standby on the tick after its path's last setpoint; the member's shaped
-    // command arrives the shaper's 50 ticks after that setpoint.
-    assert_eq!(
-        arrived - standby,
-        49,
-        "standby {standby}, arrived {arrived}"
-    );
+    let (standby, arrived, done) = (standby.unwrap(), arrived.unwrap(), done.unwrap());
+    // The member's output settles on the tick it arrives; the group sees that on its next tick.
+    assert_eq!(standby, arrived + 1, "standby {standby}, arrived {arrived}");
+    assert_eq!(done, standby, "the line is done with the group's standby");
 }

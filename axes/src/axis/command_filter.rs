@@ -42,7 +42,7 @@ impl Axis {
     }
 
     /// Smoothing and the command filter have both arrived.
-    pub(super) fn output_settled(&self) -> bool {
+    pub(crate) fn output_settled(&self) -> bool {
         self.smoothing.as_ref().is_none_or(|f| f.is_settled()) && self.filter_settled()
     }
 

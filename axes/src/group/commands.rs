@@ -141,6 +141,7 @@ impl Groups {
             override_factor: 1.0,
             feeding: false,
             running: None,
+            arriving: None,
             segment: 0,
             user_segment: 0,
             waiting: None,

@@ -154,6 +154,9 @@ pub struct Group {
     feeding: bool,
     /// The motion being executed.
     running: Option<CommandId>,
+    /// The last motion of a path that ended while a member's smoothed or filtered output was
+    /// still on its way: done once every member has arrived (`tick::settle`).
+    arriving: Option<CommandId>,
     segment: u64,
     user_segment: u32,
     /// The buffered wait the path stands at.
@@ -375,6 +378,7 @@ impl Group {
             path_acceleration,
             current_command: self
                 .running
+                .or(self.arriving)
                 .or(self.waiting.as_ref().map(|w| w.id))
                 .or(self.jog.as_ref().map(|j| j.id)),
             segment: self.segment,
@@ -402,6 +406,7 @@ impl Group {
     /// State of a command still owned by this group.
     fn queued_state(&self, id: CommandId) -> Option<CommandState> {
         if self.running == Some(id)
+            || self.arriving == Some(id)
             || self.waiting.as_ref().is_some_and(|w| w.id == id)
             || self.jog.as_ref().is_some_and(|j| j.id == id)
             || self.waits_for_distance(id)

@@ -150,14 +150,35 @@ impl Group {
         }
     }
 
-    /// The path is done: let the members go and return to Standby.
+    /// The path is done: let the members go and return to Standby once every member's output
+    /// has arrived (a smoothing window or command filter plays out after the path's last
+    /// setpoint; digest 004 §2.14: the filters "modify PG commands", so the group still moves).
     fn settle(&mut self, env: &mut Env) {
         if self.feeding {
             self.release(env);
         }
         self.running = None;
+        if self.members_arriving(env.axes) {
+            return;
+        }
+        self.finish_arriving(env);
         if matches!(self.state, GroupState::Moving | GroupState::Stopping) {
             self.state = GroupState::Standby;
+        }
+    }
+
+    /// A member's output is still behind its command (smoothing or a command filter).
+    fn members_arriving(&self, axes: &[crate::axis::Axis]) -> bool {
+        self.members
+            .iter()
+            .filter_map(|&a| axes.get(usize::from(a)))
+            .any(|a| !a.output_settled())
+    }
+
+    /// The path's last motion, held until the members arrived, is done.
+    fn finish_arriving(&mut self, env: &mut Env) {
+        if let Some(id) = self.arriving.take() {
+            env.ledger.finish(id, CommandState::Done);
         }
     }
 
@@ -326,6 +347,9 @@ impl Group {
     fn on_event(&mut self, env: &mut Env, event: PathEvent) {
         match event {
             PathEvent::Started { tag } => {
+                // A motion queued while the members were still arriving: the one before is
+                // done as far as the group goes.
+                self.finish_arriving(env);
                 let id = tag as CommandId;
                 self.running = Some(id);
                 self.segment += 1;
@@ -347,7 +371,12 @@ impl Group {
             PathEvent::Done { tag } => {
                 let id = tag as CommandId;
                 if self.queue.take(id).is_some() {
-                    env.ledger.finish(id, CommandState::Done);
+                    if self.planner.is_idle() && self.members_arriving(env.axes) {
+                        // The path's end: done when the members' outputs get there.
+                        self.arriving = Some(id);
+                    } else {
+                        env.ledger.finish(id, CommandState::Done);
+                    }
                 }
                 if self.running == Some(id) {
                     self.running = None;
@@ -589,6 +618,7 @@ impl Group {
     /// End every command the group holds: `running` (and a wait in progress) with
     /// `running_state`, the rest aborted.
     fn end_commands(&mut self, env: &mut Env, running_state: CommandState) {
+        self.finish_arriving(env);
         if let Some(id) = self.running.take() {
             if self.queue.take(id).is_some() {
                 env.ledger.finish(id, running_state);
