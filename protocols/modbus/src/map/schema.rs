@@ -187,7 +187,9 @@ pub struct PointFile {
 #[serde(untagged)]
 pub enum ReadFile {
     Path(String),
-    /// `{ bits = { 0 = "enabled", 1 = "moving", 5 = "!homed", 8 = "state.error_stop" } }`
+    /// `{ bits = { 0 = "enabled", 1 = "moving", 5 = "!homed", 8 = "state.error_stop" } }`: an
+    /// axis flag (`latched.` for its latched copy), `state.` a PLCopen state, or `mode.` one of
+    /// `gantry`, `gear`, `input_shaping`, `vsf`.
     Bits {
         bits: BTreeMap<String, String>,
     },

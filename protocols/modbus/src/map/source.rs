@@ -4,7 +4,8 @@
 
 use axes::command::ErrorKind;
 use axes::param::{parameter_value, ParamId};
-use axes::status::{flag_by_name, AxisState, AxisStatus, Snapshot};
+use axes::filter::FilterStatus;
+use axes::status::{flag_by_name, AxisState, AxisStatus, CouplingKind, Snapshot};
 use axes::AxisFlags;
 
 /// What the machine has, for checking that a map's paths exist.
@@ -103,7 +104,29 @@ pub enum MachineField {
 pub enum BitSource {
     Flag { flag: AxisFlags, latched: bool },
     State(AxisState),
+    Mode(AxisMode),
 }
+
+/// What an axis is part of or runs, beyond its flags (`mode.NAME`; HIMC motion_status bits
+/// 5–8, digest 004 Table 5.1.1.5).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AxisMode {
+    /// Master or slave of an engaged gantry.
+    Gantry,
+    /// The slave of a gear.
+    Gear,
+    /// Its active command filter is an input shaper.
+    InputShaping,
+    /// Its active command filter is a VSF.
+    Vsf,
+}
+
+const AXIS_MODES: &[(&str, AxisMode)] = &[
+    ("gantry", AxisMode::Gantry),
+    ("gear", AxisMode::Gear),
+    ("input_shaping", AxisMode::InputShaping),
+    ("vsf", AxisMode::Vsf),
+];
 
 /// Where a read comes from, with the axis resolved.
 #[derive(Clone, Debug, PartialEq)]
@@ -243,6 +266,13 @@ fn bit_source(name: &str) -> Result<(BitSource, bool), String> {
             .find(|s| s.name() == state)
             .ok_or_else(|| format!("`{state}` is not an axis state ({})", state_names()))?;
         return Ok((BitSource::State(*s), invert));
+    }
+    if let Some(mode) = name.strip_prefix("mode.") {
+        let m = AXIS_MODES
+            .iter()
+            .find(|(n, _)| *n == mode)
+            .ok_or_else(|| format!("`{mode}` is not an axis mode (gantry, gear, input_shaping, vsf)"))?;
+        return Ok((BitSource::Mode(m.1), invert));
     }
     let (latched, flag) = match name.strip_prefix("latched.") {
         Some(f) => (true, f),
@@ -442,8 +472,9 @@ pub fn parse_target(path: &str, scope: &Scope<'_>) -> Result<Target, String> {
     }
 }
 
-fn bit_value(status: &AxisStatus, bit: BitSource) -> bool {
+fn bit_value(snapshot: &Snapshot, axis: usize, status: &AxisStatus, bit: BitSource) -> bool {
     match bit {
+        BitSource::Mode(mode) => mode_holds(snapshot, axis, status, mode),
         BitSource::Flag {
             flag,
             latched: false,
@@ -453,6 +484,24 @@ fn bit_value(status: &AxisStatus, bit: BitSource) -> bool {
             latched: true,
         } => status.latched.contains(flag),
         BitSource::State(s) => status.state == s,
+    }
+}
+
+fn mode_holds(snapshot: &Snapshot, axis: usize, status: &AxisStatus, mode: AxisMode) -> bool {
+    match mode {
+        AxisMode::Gantry => {
+            status.coupling == Some(CouplingKind::Gantry)
+                || snapshot
+                    .couplings
+                    .iter()
+                    .any(|c| c.kind == CouplingKind::Gantry && usize::from(c.master) == axis)
+        }
+        AxisMode::Gear => status.coupling == Some(CouplingKind::Gear),
+        AxisMode::InputShaping => matches!(
+            status.command_filter,
+            Some(FilterStatus::InputShaping { .. })
+        ),
+        AxisMode::Vsf => matches!(status.command_filter, Some(FilterStatus::Vsf { .. })),
     }
 }
 
@@ -477,7 +526,8 @@ impl Source {
             } => Datum::number(*axis as f64),
             Source::Axis { axis, field } => axis_field(snapshot.axes.get(*axis)?, *field),
             Source::AxisBit { axis, bit, invert } => {
-                Datum::number(flag(bit_value(snapshot.axes.get(*axis)?, *bit) != *invert))
+                let status = snapshot.axes.get(*axis)?;
+                Datum::number(flag(bit_value(snapshot, *axis, status, *bit) != *invert))
             }
             Source::Param { axis, id } => Datum::number(parameter_value(
                 *id,
@@ -517,7 +567,7 @@ impl Source {
                 let status = snapshot.axes.get(*axis)?;
                 let word = bits
                     .iter()
-                    .filter(|(_, bit, invert)| bit_value(status, *bit) != *invert)
+                    .filter(|(_, bit, invert)| bit_value(snapshot, *axis, status, *bit) != *invert)
                     .fold(0u64, |w, (n, _, _)| w | 1 << n);
                 Datum::number(word as f64)
             }
@@ -525,7 +575,9 @@ impl Source {
                 for &axis in axes {
                     let status = snapshot.axes.get(axis)?;
                     let hit = cases.iter().find(|(case, _)| match case {
-                        Case::Bit { bit, invert } => bit_value(status, *bit) != *invert,
+                        Case::Bit { bit, invert } => {
+                            bit_value(snapshot, axis, status, *bit) != *invert
+                        }
                         Case::LastError(kind) => status.last_error == Some(*kind),
                     });
                     if let Some((_, value)) = hit {
