@@ -220,7 +220,10 @@ fn group_is_standby_only_when_the_shaped_members_arrive() {
         &mut e,
         cmd(r#"{"type":"filter_input_shaping","axis":0,"frequency":10,"slot":"group"}"#),
     );
-    let line = id_of(ok(&mut e, Command::from(common::group_line(1, &[50.0, 0.0]))));
+    let line = id_of(ok(
+        &mut e,
+        Command::from(common::group_line(1, &[50.0, 0.0])),
+    ));
     let (mut standby, mut arrived, mut done) = (None, None, None);
     for k in 0..3000u32 {
         e.step();
@@ -237,7 +240,10 @@ fn group_is_standby_only_when_the_shaped_members_arrive() {
         }
         if arrived.is_none() {
             assert_eq!(g.state, axes::status::GroupState::Moving, "tick {k}");
-            assert!(!g.in_position, "tick {k}: group in position before arriving");
+            assert!(
+                !g.in_position,
+                "tick {k}: group in position before arriving"
+            );
             assert!(member.contains(AxisFlags::MOVING), "tick {k}");
             assert!(!member.contains(AxisFlags::IN_POSITION), "tick {k}");
             assert_ne!(state_of(&mut e, line), CommandState::Done, "tick {k}");

@@ -70,7 +70,8 @@ mod transcript {
         slaves,
         tables_triggers,
         measured,
-        gpio_invert_estop_config
+        gpio_invert_estop_config,
+        filters_config
     );
 }
 

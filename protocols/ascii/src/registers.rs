@@ -43,6 +43,9 @@ pub struct Registers {
     pub group_transforms: BTreeMap<(u16, i64), [f64; 6]>,
     /// `SetGrpLookAheadPrm` by (group, prm_id).
     pub group_lookahead: BTreeMap<(u16, u8), f64>,
+    /// The group limits `SetConfigVar` lowered, by (group, HCV address 0x00ca … 0x00d6;
+    /// absent: the profile's maximum, §8.3.6–8.3.7).
+    pub group_limits: BTreeMap<(u16, u16), f64>,
     /// `SetGrpQueueSize` by group: n of 2ⁿ entries.
     pub group_queue_sizes: BTreeMap<u16, u8>,
     /// The digital outputs (0x60FE:1) the controller writes to each drive (`SetSlvGPO`).

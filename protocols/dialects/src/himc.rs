@@ -292,9 +292,9 @@ macro_rules! axis_variables {
     };
 }
 
-// `acc_lim`/`dec_lim` have no engine parameter: the engine's `max_accel` caps acceleration and
-// deceleration together. `home_status` is the HIMC's own homing status word, not the engine's
-// homing phase.
+// `acc_lim`/`dec_lim` are both the engine's `max_accel`, which caps acceleration and
+// deceleration together (decisions.md, "What still answers 5201"). `home_status` is the HIMC's
+// own homing status word, not the engine's homing phase.
 axis_variables! {
     (0x0015, "HCV_ID_motion_type", None),
     (0x0033, "HCV_ID_pos_tr", Some(ParamId::InPositionWindow)),
@@ -302,8 +302,8 @@ axis_variables! {
     (0x0065, "HCV_ID_sw_RL", Some(ParamId::FsLimit)),
     (0x0066, "HCV_ID_sw_LL", Some(ParamId::RsLimit)),
     (0x0067, "HCV_ID_vel_lim", Some(ParamId::MaxVelocity)),
-    (0x0068, "HCV_ID_acc_lim", None),
-    (0x0069, "HCV_ID_dec_lim", None),
+    (0x0068, "HCV_ID_acc_lim", Some(ParamId::MaxAccel)),
+    (0x0069, "HCV_ID_dec_lim", Some(ParamId::MaxAccel)),
     (0x0079, "HCV_ID_max_pos_err", Some(ParamId::FeLimit)),
     (0x007a, "HCV_ID_max_comp_lim", None),
     (0x00a0, "HCV_ID_home_status", None),

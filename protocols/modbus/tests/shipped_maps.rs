@@ -274,21 +274,41 @@ async fn the_himc_motion_status_shows_gantry_shapers_vsf_and_gear() {
     let mode_bits = |w: &[u16]| (w[0] >> 5) & 0b1111;
     call(r#"{"type":"filter_vsf","axis":0,"frequency":40}"#);
     call(r#"{"type":"filter_input_shaping","axis":1,"frequency":10}"#);
-    assert_eq!(mode_bits(&himc.registers(0, 2).await), 0b0100, "axis 0: VSF");
-    assert_eq!(mode_bits(&himc.registers(100, 2).await), 0b0010, "axis 1: input shape");
+    assert_eq!(
+        mode_bits(&himc.registers(0, 2).await),
+        0b0100,
+        "axis 0: VSF"
+    );
+    assert_eq!(
+        mode_bits(&himc.registers(100, 2).await),
+        0b0010,
+        "axis 1: input shape"
+    );
     call(r#"{"type":"filter_disable","axis":0}"#);
     call(r#"{"type":"filter_disable","axis":1}"#);
     call(r#"{"type":"enable","axis":0}"#);
     call(r#"{"type":"enable","axis":1}"#);
     call(r#"{"type":"gear_in","master":0,"slave":1,"numerator":1,"denominator":2}"#);
     assert_eq!(mode_bits(&himc.registers(0, 2).await), 0, "a gear's master");
-    assert_eq!(mode_bits(&himc.registers(100, 2).await), 0b1000, "a gear's slave");
+    assert_eq!(
+        mode_bits(&himc.registers(100, 2).await),
+        0b1000,
+        "a gear's slave"
+    );
     call(r#"{"type":"gear_out","slave":1}"#);
     himc.handle.advance(1).unwrap();
     call(r#"{"type":"gantry_enable","master":0,"slaves":[1]}"#);
     himc.handle.advance(1).unwrap();
-    assert_eq!(mode_bits(&himc.registers(0, 2).await), 0b0001, "gantry master");
-    assert_eq!(mode_bits(&himc.registers(100, 2).await), 0b0001, "gantry slave");
+    assert_eq!(
+        mode_bits(&himc.registers(0, 2).await),
+        0b0001,
+        "gantry master"
+    );
+    assert_eq!(
+        mode_bits(&himc.registers(100, 2).await),
+        0b0001,
+        "gantry slave"
+    );
 }
 
 #[tokio::test]

@@ -4,7 +4,10 @@
 //! setter's (TV 68: `SetConfigVar(0x83000065, 0.0)` is `SetSWRL(0, 0.0)`), and is read by the
 //! getter of the same name where there is one, else from the engine parameter it is (TV 74:
 //! the homing parameters, which have no getter); the free variables `ltest0…9` and `dtest0…9`
-//! are kept in the registers. Unmarked (digest 004 §1.6): accepted unless `strict`.
+//! are kept in the registers. A group variable that one setter sets with others (the angular
+//! profile, the transition parameters, the group shaper) is written alone through that setter,
+//! the others kept; the group limits cap the profile setters (`GroupVariable`). Unmarked
+//! (digest 004 §1.6): accepted unless `strict`.
 //!
 //! Codes: an id of no listed variable → `eERR_HCV_ID_NOT_FOUND` (TV 69); a status variable
 //! (clock, homing status, last error …) written → `eERR_HCV_IS_READ_ONLY`; a listed variable
@@ -13,14 +16,14 @@
 //! `GetConfigVar` replies `result,value` (`0,2000`; failed: `-1,0`, the code latched).
 
 use axes::ParamId;
-use mcemu_dialects::himc::group::ProfileValues;
+use mcemu_dialects::himc::group::{self as profile, Profile};
 use mcemu_dialects::himc::system::{
     HCV_ID_NOT_FOUND, HCV_IS_READ_ONLY, HCV_VALUE_OUT_OF_RANGE, HMPL_INTERNAL_ERROR,
     HMPL_NOT_SUPPORTED,
 };
 use mcemu_dialects::himc::{AxisVariable, AXIS_CLASS, GROUP_CLASS};
 
-use super::{axis_of, param, set_param};
+use super::{axis_of, group_state, param, set_param};
 use crate::reply::Outcome;
 use crate::table::{row, Addresses, Args, Ctx, Function, Plan, Ret, Ty, Value};
 
@@ -34,6 +37,24 @@ enum Variable {
     ReadOnly,
     /// Listed by the manual, not modelled.
     Unmodelled,
+    /// A group setting with no setter of its own (`group_variable`).
+    Group(GroupVariable),
+}
+
+/// The group variables of Table 17.1.1.3 that one HMPL setter sets together with others, or
+/// none does: written one at a time, the others kept.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum GroupVariable {
+    /// `grp_{lin,ang}_{vel,acc,dec}_lim`: the most a profile's value `k` may be (velocity,
+    /// acceleration, deceleration); the manual's range maximum until set lower.
+    Limit(Profile, usize),
+    /// `grp_ang_vel`, `_acc`, `_dec`, `_sf`, `_acc_time`, `_dec_time` (§8.3.7's profile).
+    Angular(usize),
+    /// `grp_trans_vel`, `_dis`, `_dev`, `_curvature` (§8.3.26).
+    Transition(usize),
+    /// `grp_shaper_fr`, `grp_shaper_xi` (§15.10).
+    ShaperFrequency,
+    ShaperDamping,
 }
 
 /// Table 17.1.1.2, axis variables `0x83NNAAAA`.
@@ -43,9 +64,10 @@ const AXIS: &[(u16, Variable)] = &[
     (0x0034, Variable::Setter("SetPosWindowTime")),
     (0x0065, Variable::Setter("SetSWRL")),
     (0x0066, Variable::Setter("SetSWLL")),
-    (0x0067, Variable::Unmodelled),              // vel_lim
-    (0x0068, Variable::Unmodelled),              // acc_lim
-    (0x0069, Variable::Unmodelled),              // dec_lim
+    (0x0067, Variable::Param(ParamId::MaxVelocity)), // vel_lim
+    // acc_lim, dec_lim: the engine's one cap on both (decisions.md).
+    (0x0068, Variable::Param(ParamId::MaxAccel)),
+    (0x0069, Variable::Param(ParamId::MaxAccel)),
     (0x0079, Variable::Param(ParamId::FeLimit)), // max_pos_err
     (0x007a, Variable::Unmodelled),              // max_comp_lim (no such limit in the engine)
     (0x00a0, Variable::ReadOnly),                // home_status
@@ -86,34 +108,52 @@ const AXIS: &[(u16, Variable)] = &[
 /// Table 17.1.1.3, group variables `0x82NNAAAA`.
 const GROUP: &[(u16, Variable)] = &[
     (0x0002, Variable::ReadOnly), // grp_num_axis
-    (0x00ca, Variable::Unmodelled),
-    (0x00cb, Variable::Unmodelled),
-    (0x00cc, Variable::Unmodelled),
-    (0x00d4, Variable::Unmodelled),
-    (0x00d5, Variable::Unmodelled),
-    (0x00d6, Variable::Unmodelled),
+    (
+        0x00ca,
+        Variable::Group(GroupVariable::Limit(Profile::Linear, 0)),
+    ),
+    (
+        0x00cb,
+        Variable::Group(GroupVariable::Limit(Profile::Linear, 1)),
+    ),
+    (
+        0x00cc,
+        Variable::Group(GroupVariable::Limit(Profile::Linear, 2)),
+    ),
+    (
+        0x00d4,
+        Variable::Group(GroupVariable::Limit(Profile::Angular, 0)),
+    ),
+    (
+        0x00d5,
+        Variable::Group(GroupVariable::Limit(Profile::Angular, 1)),
+    ),
+    (
+        0x00d6,
+        Variable::Group(GroupVariable::Limit(Profile::Angular, 2)),
+    ),
     (0x00dd, Variable::Setter("SetGrpVel")),
     (0x00de, Variable::Setter("SetGrpAcc")),
     (0x00df, Variable::Setter("SetGrpDec")),
     (0x00e0, Variable::Setter("SetGrpSMTime")),
     (0x00e1, Variable::Setter("SetGrpAccTime")),
     (0x00e2, Variable::Setter("SetGrpDecTime")),
-    (0x00e7, Variable::Unmodelled), // the angular profile: one setter for all four values
-    (0x00e8, Variable::Unmodelled),
-    (0x00e9, Variable::Unmodelled),
-    (0x00ea, Variable::Unmodelled),
-    (0x00eb, Variable::Unmodelled),
-    (0x00ec, Variable::Unmodelled),
+    (0x00e7, Variable::Group(GroupVariable::Angular(0))),
+    (0x00e8, Variable::Group(GroupVariable::Angular(1))),
+    (0x00e9, Variable::Group(GroupVariable::Angular(2))),
+    (0x00ea, Variable::Group(GroupVariable::Angular(3))),
+    (0x00eb, Variable::Group(GroupVariable::Angular(4))),
+    (0x00ec, Variable::Group(GroupVariable::Angular(5))),
     (0x00f1, Variable::Setter("SetGrpCoordSys")),
     (0x00f2, Variable::Setter("SetGrpBufferMode")),
     (0x00f3, Variable::Setter("SetGrpTransMode")),
-    (0x00f4, Variable::Unmodelled), // trans_vel … curvature: one setter for all four
-    (0x00f5, Variable::Unmodelled),
-    (0x00f6, Variable::Unmodelled),
-    (0x00f7, Variable::Unmodelled),
+    (0x00f4, Variable::Group(GroupVariable::Transition(0))),
+    (0x00f5, Variable::Group(GroupVariable::Transition(1))),
+    (0x00f6, Variable::Group(GroupVariable::Transition(2))),
+    (0x00f7, Variable::Group(GroupVariable::Transition(3))),
     (0x0104, Variable::Setter("SetGrpVelScale")),
-    (0x0119, Variable::Unmodelled), // grp_shaper_fr, grp_shaper_xi: SetGrpInShape sets both
-    (0x011a, Variable::Unmodelled),
+    (0x0119, Variable::Group(GroupVariable::ShaperFrequency)),
+    (0x011a, Variable::Group(GroupVariable::ShaperDamping)),
     (0x038f, Variable::ReadOnly), // grp_last_err
 ];
 
@@ -186,6 +226,7 @@ fn set_config_var(cx: &mut Ctx<'_>, args: &Args) -> Plan {
         Some(Variable::ReadOnly) => Plan::Fail(HCV_IS_READ_ONLY),
         Some(Variable::Unmodelled) => Plan::Fail(HMPL_NOT_SUPPORTED),
         Some(Variable::Setter(name)) => call_setter(cx, name, id, value),
+        Some(Variable::Group(v)) => write_group(cx, u16::from(id), v, value),
         Some(Variable::Param(p)) => {
             let axis_args = Args(vec![Value::Int(i64::from(id))]);
             match axis_of(cx, &axis_args) {
@@ -194,6 +235,92 @@ fn set_config_var(cx: &mut Ctx<'_>, args: &Args) -> Plan {
                 Err(code) => Plan::Fail(code),
             }
         }
+    }
+}
+
+/// A group variable of one value: through the setter of all of them, the others as they are.
+fn write_group(cx: &mut Ctx<'_>, group: u16, v: GroupVariable, value: f64) -> Plan {
+    match v {
+        GroupVariable::Limit(which, k) => {
+            // A limit is positive, at most the manual's range, and not below the value in force
+            // (it caps the setters; it does not change the profile).
+            let current = match which {
+                Profile::Linear => group_state::profile_of(cx, group),
+                Profile::Angular => group_state::angular_of(cx, group),
+            };
+            let in_force = [current.velocity, current.acceleration, current.deceleration][k];
+            let max = profile::maxima(which)[k];
+            if !(value > 0.0 && value <= max && value >= in_force) {
+                return Plan::Fail(HCV_VALUE_OUT_OF_RANGE);
+            }
+            let address = group_state::limit_addresses(which)[k];
+            cx.registers.group_limits.insert((group, address), value);
+            Plan::Done(Outcome::Int(0))
+        }
+        GroupVariable::Angular(k) => {
+            let mut p = group_state::angular_of(cx, group);
+            let by_time = |ms: f64| (ms.is_finite() && ms > 0.0).then(|| p.velocity / (ms / 1e3));
+            match k {
+                0 => p.velocity = value,
+                1 => p.acceleration = value,
+                2 => p.deceleration = value,
+                3 => p.smooth_ms = value,
+                _ => match by_time(value) {
+                    Some(a) if k == 4 => p.acceleration = a,
+                    Some(d) => p.deceleration = d,
+                    None => return Plan::Fail(HCV_VALUE_OUT_OF_RANGE),
+                },
+            }
+            group_state::apply_profile(cx, group, Profile::Angular, p)
+        }
+        GroupVariable::Transition(k) => {
+            super::group_settings::set_transition_parameter(cx, group, k, value)
+        }
+        GroupVariable::ShaperFrequency | GroupVariable::ShaperDamping => {
+            let mut s = super::filters::group_shaper_settings(cx, group);
+            if v == GroupVariable::ShaperFrequency {
+                s.frequency = value;
+            } else {
+                s.damping = value;
+            }
+            let Some(f) = super::all().find(|f| f.name == "SetGrpInShape") else {
+                return Plan::Fail(HMPL_INTERNAL_ERROR);
+            };
+            let args = Args(vec![
+                Value::Int(i64::from(group)),
+                Value::Double(s.frequency),
+                Value::Double(s.damping),
+                Value::Int(s.shaper.unwrap_or(1)),
+            ]);
+            (f.handler)(cx, &args)
+        }
+    }
+}
+
+/// A group variable of `write_group` as it stands.
+fn read_group_variable(cx: &Ctx<'_>, group: u16, v: GroupVariable) -> f64 {
+    match v {
+        GroupVariable::Limit(which, k) => group_state::limits_of(cx, group, which)[k],
+        GroupVariable::Angular(k) => {
+            let p = group_state::angular_of(cx, group);
+            let time = |a: f64| p.velocity / a * 1e3;
+            [
+                p.velocity,
+                p.acceleration,
+                p.deceleration,
+                p.smooth_ms,
+                time(p.acceleration),
+                time(p.deceleration),
+            ][k]
+        }
+        GroupVariable::Transition(k) => {
+            let t = group_state::transition_parameters(cx, group);
+            [t.velocity, t.distance, t.deviation, t.curvature][k]
+        }
+        GroupVariable::ShaperFrequency => {
+            super::filters::group_shaper_settings(cx, group).frequency
+        }
+        GroupVariable::ShaperDamping => super::filters::group_shaper_settings(cx, group).damping,
     }
 }
 
@@ -259,28 +386,22 @@ fn read_axis(cx: &mut Ctx<'_>, id: u8, address: u16) -> Result<f64, u32> {
     }
 }
 
-/// Table 17.1.1.3: through the group getters, or from the profiles the registers keep.
+/// Table 17.1.1.3: through the group getters, or from what the registers keep.
 fn read_group(cx: &mut Ctx<'_>, id: u8, address: u16) -> Result<f64, u32> {
     let group = u16::from(id);
-    let linear = super::group_state::profile_of(cx, group);
-    let angular = super::group_state::angular_of(cx, group);
-    let time = |p: &ProfileValues, a: f64| p.velocity / a * 1e3;
+    let linear = group_state::profile_of(cx, group);
+    let time = |a: f64| linear.velocity / a * 1e3;
     match address {
         0x0002 => Ok(cx.registers.group_members.get(&group).map_or(0, Vec::len) as f64),
         0x038f => call_getter(cx, "GetGrpLastErr", id),
-        0x00e1 => Ok(time(&linear, linear.acceleration)),
-        0x00e2 => Ok(time(&linear, linear.deceleration)),
-        0x00e7 => Ok(angular.velocity),
-        0x00e8 => Ok(angular.acceleration),
-        0x00e9 => Ok(angular.deceleration),
-        0x00ea => Ok(angular.smooth_ms),
-        0x00eb => Ok(time(&angular, angular.acceleration)),
-        0x00ec => Ok(time(&angular, angular.deceleration)),
+        0x00e1 => Ok(time(linear.acceleration)),
+        0x00e2 => Ok(time(linear.deceleration)),
         _ => match lookup(GROUP, address) {
             Some(Variable::Setter(name)) => {
                 let getter = name.replacen("Set", "Get", 1);
                 call_getter(cx, &getter, id)
             }
+            Some(Variable::Group(v)) => Ok(read_group_variable(cx, group, v)),
             Some(_) => Err(HMPL_NOT_SUPPORTED),
             None => Err(HCV_ID_NOT_FOUND),
         },

@@ -3,10 +3,10 @@
 //! manual's ranges and keep the values (a filter already on is re-installed with them);
 //! `Enable*` installs the filter, `Disable*` removes it. VSF and InShape exclude each other
 //! (§2.14): enabling one while the other is on is refused. `SetGrpInShape`/`EnableGrpInShape`
-//! put the shaper in the group slot of each member the group has at that moment: the engine
-//! uses it while the axis is in a group, and the axis slot otherwise (§2.14: "Axis InShape
-//! has no effect on coordinated (group) motion"). Never-set shapers use the manual's defaults,
-//! 5.5 Hz and 0.03, `SHAPER_NORMAL`.
+//! put the shaper in the group slot of each member, and a member added later gets it too
+//! (`follow_members`): the engine uses it while the axis is in a group, and the axis slot
+//! otherwise (§2.14: "Axis InShape has no effect on coordinated (group) motion"). Never-set
+//! shapers use the manual's defaults, 5.5 Hz and 0.03, `SHAPER_NORMAL`.
 
 use axes::status::AxisFlags;
 use serde_json::{json, Value};
@@ -64,15 +64,51 @@ fn install(cx: &Ctx<'_>, filter: Filter, id: u16) -> Result<Vec<Value>, u32> {
         })],
         Filter::GroupInShape => members(cx, id)
             .iter()
-            .map(|&axis| {
-                json!({
-                    "type": "filter_input_shaping", "axis": axis,
-                    "shaper": shaper_name(s.shaper), "frequency": s.frequency,
-                    "damping": s.damping, "slot": "group",
-                })
-            })
+            .map(|&axis| group_shaper(axis, &s))
             .collect(),
     })
+}
+
+/// The group's InShape settings: as set, else the manual's defaults (§15.10).
+pub(super) fn group_shaper_settings(cx: &Ctx<'_>, group: u16) -> FilterSettings {
+    cx.registers
+        .filters
+        .get(&(Filter::GroupInShape, group))
+        .copied()
+        .unwrap_or(DEFAULT_SHAPER)
+}
+
+/// The group's shaper `s` in `axis`'s group slot.
+fn group_shaper(axis: u16, s: &FilterSettings) -> Value {
+    json!({
+        "type": "filter_input_shaping", "axis": axis, "shaper": shaper_name(s.shaper),
+        "frequency": s.frequency, "damping": s.damping, "slot": "group",
+    })
+}
+
+fn drop_group_shaper(axis: u16) -> Value {
+    json!({"type": "filter_disable", "axis": axis, "slot": "group"})
+}
+
+/// The engine commands that keep a group's InShape on its members when they change
+/// (`AddAxisToGrp`, `RemoveAxisFromGrp`, `UngrpAllAxes`): an axis that joins gets the shaper,
+/// one that leaves loses it (decisions.md, "Command filters after smoothing"). Nothing while
+/// the group's InShape is off.
+pub(super) fn follow_members(cx: &Ctx<'_>, group: u16, new: &[u16]) -> Vec<Value> {
+    if !cx
+        .registers
+        .filters_on
+        .contains(&(Filter::GroupInShape, group))
+    {
+        return Vec::new();
+    }
+    let s = group_shaper_settings(cx, group);
+    let old = members(cx, group);
+    let left = old.iter().filter(|a| !new.contains(a));
+    let joined = new.iter().filter(|a| !old.contains(a));
+    left.map(|&a| drop_group_shaper(a))
+        .chain(joined.map(|&a| group_shaper(a, &s)))
+        .collect()
 }
 
 fn members(cx: &Ctx<'_>, group: u16) -> Vec<u16> {
@@ -88,7 +124,7 @@ fn remove(cx: &Ctx<'_>, filter: Filter, id: u16) -> Vec<Value> {
     match filter {
         Filter::GroupInShape => members(cx, id)
             .iter()
-            .map(|&axis| json!({"type": "filter_disable", "axis": axis, "slot": "group"}))
+            .map(|&axis| drop_group_shaper(axis))
             .collect(),
         _ => vec![json!({"type": "filter_disable", "axis": id, "slot": "axis"})],
     }

@@ -13,7 +13,7 @@ use serde_json::json;
 use super::engine;
 use super::group_state::{
     apply_profile, command, group_error, group_id, lookahead_parameter, modes, profile_of, regroup,
-    status, target,
+    status, target, transition_parameters,
 };
 use crate::registers::TransitionParameters;
 use crate::reply::Outcome;
@@ -159,31 +159,64 @@ fn get_transform(cx: &mut Ctx<'_>, args: &Args) -> Plan {
 }
 
 /// §8.3.26, Table 8.3.26.1: each > 0; trans_vel < 5000, trans_curv < 10⁷ (the bounds that
-/// depend on the corner are the planner's).
+/// depend on the corner are the planner's). In `TransitionParameters` order: the bound and
+/// the error.
+const TRANSITION_CHECKS: [(f64, &str); 4] = [
+    (5000.0, "eERR_CRD_CMD_INVALID_TRANS_VEL"),
+    (f64::MAX, "eERR_CRD_CMD_INVALID_TRANS_DIS"),
+    (f64::MAX, "eERR_CRD_CMD_INVALID_TRANS_DEV"),
+    (1e7, "eERR_CRD_CMD_INVALID_TRANS_CURVE"),
+];
+
+impl TransitionParameters {
+    fn values(&self) -> [f64; 4] {
+        [self.velocity, self.distance, self.deviation, self.curvature]
+    }
+
+    fn from_values([velocity, distance, deviation, curvature]: [f64; 4]) -> Self {
+        TransitionParameters {
+            velocity,
+            distance,
+            deviation,
+            curvature,
+        }
+    }
+}
+
+/// The error of transition parameter `k` (`TransitionParameters` order) for `value`, if out of
+/// range.
+fn transition_error(group: u16, k: usize, value: f64) -> Option<u32> {
+    let (max, name) = TRANSITION_CHECKS[k];
+    (!(value.is_finite() && value > 0.0 && value < max)).then(|| group_error(group, name))
+}
+
 fn set_transition_parameters(cx: &mut Ctx<'_>, args: &Args) -> Plan {
     let group = match group_id(args) {
         Ok(g) => g,
         Err(c) => return Plan::Fail(c),
     };
-    let p = TransitionParameters {
-        velocity: args.double(1),
-        distance: args.double(2),
-        deviation: args.double(3),
-        curvature: args.double(4),
-    };
-    let checks = [
-        (p.velocity, 5000.0, "eERR_CRD_CMD_INVALID_TRANS_VEL"),
-        (p.distance, f64::MAX, "eERR_CRD_CMD_INVALID_TRANS_DIS"),
-        (p.deviation, f64::MAX, "eERR_CRD_CMD_INVALID_TRANS_DEV"),
-        (p.curvature, 1e7, "eERR_CRD_CMD_INVALID_TRANS_CURVE"),
-    ];
-    if let Some((_, _, name)) = checks
-        .iter()
-        .find(|(v, max, _)| !(v.is_finite() && *v > 0.0 && v < max))
-    {
-        return Plan::Fail(group_error(group, name));
+    let values: [f64; 4] = std::array::from_fn(|k| args.double(k + 1));
+    if let Some(c) = (0..4).find_map(|k| transition_error(group, k, values[k])) {
+        return Plan::Fail(c);
     }
-    cx.registers.group_transition_parameters.insert(group, p);
+    cx.registers
+        .group_transition_parameters
+        .insert(group, TransitionParameters::from_values(values));
+    Plan::Done(Outcome::Int(0))
+}
+
+/// One transition parameter (`k` in `TransitionParameters` order; `SetConfigVar` of
+/// `grp_trans_vel` … `grp_trans_curvature`), checked as §8.3.26 checks it; the others keep
+/// their values.
+pub(super) fn set_transition_parameter(cx: &mut Ctx<'_>, group: u16, k: usize, value: f64) -> Plan {
+    if let Some(c) = transition_error(group, k, value) {
+        return Plan::Fail(c);
+    }
+    let mut values = transition_parameters(cx, group).values();
+    values[k] = value;
+    cx.registers
+        .group_transition_parameters
+        .insert(group, TransitionParameters::from_values(values));
     Plan::Done(Outcome::Int(0))
 }
 

@@ -10,6 +10,7 @@ use mcemu_dialects::himc::group_errors::GroupErrorRow;
 use mcemu_dialects::himc::system::{HMPL_ARG_OUT_OF_RANGE, HMPL_INTERNAL_ERROR};
 use serde_json::{json, Value};
 
+use crate::registers::TransitionParameters;
 use crate::reply::Outcome;
 use crate::table::{Args, Ctx, Plan, Then};
 
@@ -32,11 +33,14 @@ pub(super) fn command(value: Value) -> Result<Command, u32> {
 }
 
 /// The batch that makes the engine's group `group` have `members` (none: no group), with its
-/// motion profile.
+/// motion profile and its InShape on the members.
 pub(super) fn regroup(cx: &Ctx<'_>, group: u16, members: &[u16]) -> Result<Vec<Command>, u32> {
     let mut batch = Vec::new();
     if status(cx, group).is_some() {
         batch.push(command(json!({"type": "group_delete", "group": group}))?);
+    }
+    for c in super::filters::follow_members(cx, group, members) {
+        batch.push(command(c)?);
     }
     if !members.is_empty() {
         // A, B, C (the 4th to 6th axes added) are orientation angles (§8.1, §8.3.7).
@@ -101,6 +105,28 @@ pub(super) fn angular_of(cx: &Ctx<'_>, group: u16) -> ProfileValues {
         .unwrap_or(profile::defaults(Profile::Angular))
 }
 
+/// The HCV addresses of a profile's velocity, acceleration and deceleration limits
+/// (Table 17.1.1.3: `grp_lin_vel_lim` …, `grp_ang_vel_lim` …).
+pub(super) const fn limit_addresses(which: Profile) -> [u16; 3] {
+    match which {
+        Profile::Linear => [0x00ca, 0x00cb, 0x00cc],
+        Profile::Angular => [0x00d4, 0x00d5, 0x00d6],
+    }
+}
+
+/// The group's limits on a profile: as `SetConfigVar` set them, else the manual's maxima.
+pub(super) fn limits_of(cx: &Ctx<'_>, group: u16, which: Profile) -> [f64; 3] {
+    let maxima = profile::maxima(which);
+    let addresses = limit_addresses(which);
+    std::array::from_fn(|k| {
+        cx.registers
+            .group_limits
+            .get(&(group, addresses[k]))
+            .copied()
+            .unwrap_or(maxima[k])
+    })
+}
+
 /// The look-ahead parameters set (§8.3.34), as engine group parameters.
 pub(super) fn lookahead_of(cx: &Ctx<'_>, group: u16) -> Vec<(GroupParameter, f64)> {
     cx.registers
@@ -130,12 +156,7 @@ pub(super) fn modes(cx: &Ctx<'_>, group: u16, move_: &mut Value) {
         5 => "blending_high",
         _ => "buffered",
     };
-    let p = cx
-        .registers
-        .group_transition_parameters
-        .get(&group)
-        .copied()
-        .unwrap_or_default();
+    let p = transition_parameters(cx, group);
     let transition = match cx.registers.group_transition_modes.get(&group) {
         Some(3) => json!({"corner_distance": p.distance}),
         Some(4) => json!({"corner_deviation": p.deviation}),
@@ -145,6 +166,16 @@ pub(super) fn modes(cx: &Ctx<'_>, group: u16, move_: &mut Value) {
     move_["transition"] = transition;
 }
 
+/// The transition parameters as set (§8.3.26; never set: 0 each, which a move takes only with
+/// a transition mode that uses them).
+pub(super) fn transition_parameters(cx: &Ctx<'_>, group: u16) -> TransitionParameters {
+    cx.registers
+        .group_transition_parameters
+        .get(&group)
+        .copied()
+        .unwrap_or_default()
+}
+
 /// Check, keep and (for an existing group) send a profile (§8.3.6–8.3.7, TV 47, 49).
 pub(super) fn apply_profile(
     cx: &mut Ctx<'_>,
@@ -152,7 +183,7 @@ pub(super) fn apply_profile(
     which: Profile,
     values: ProfileValues,
 ) -> Plan {
-    if let Err(e) = profile::check(which, &values) {
+    if let Err(e) = profile::check_within(which, &values, limits_of(cx, group, which)) {
         return Plan::Fail(e.code(byte(group)));
     }
     match which {

@@ -151,6 +151,32 @@ pub fn check(profile: Profile, values: &ProfileValues) -> Result<(), GroupError>
     }
 }
 
+/// The largest velocity, acceleration and deceleration a profile may have (§8.3.6, §8.3.7):
+/// the group limits' values until `SetConfigVar` lowers them (`HCV_ID_grp_lin_vel_lim` …).
+pub fn maxima(profile: Profile) -> [f64; 3] {
+    let [v, a, d, _] = ranges(profile);
+    [*v.values.end(), *a.values.end(), *d.values.end()]
+}
+
+/// [`check`], then the velocity, acceleration and deceleration against the group's `limits`
+/// (each at most its [`maxima`]): over a limit is the value's range error.
+pub fn check_within(
+    profile: Profile,
+    values: &ProfileValues,
+    limits: [f64; 3],
+) -> Result<(), GroupError> {
+    check(profile, values)?;
+    let given = [values.velocity, values.acceleration, values.deceleration];
+    match ranges(profile)
+        .into_iter()
+        .zip(given.into_iter().zip(limits))
+        .find(|(_, (v, limit))| v > limit)
+    {
+        Some((r, _)) => Err(r.error),
+        None => Ok(()),
+    }
+}
+
 /// The engine group parameters a checked profile sets (`group_set_parameter`): the velocity
 /// and accelerations as they are, the smoothing time as a jerk time, jerk = acceleration / Ts
 /// (digest 004 §5.1; 0 ms: none, a trapezoid). A velocity of 0, which the HIMC takes, is
@@ -196,6 +222,26 @@ mod tests {
             deceleration: v[2],
             smooth_ms: v[3],
         }
+    }
+
+    #[test]
+    fn limits_below_the_ranges_refuse_what_exceeds_them() {
+        assert_eq!(maxima(Profile::Linear), [5000.0, 50_000.0, 50_000.0]);
+        assert_eq!(maxima(Profile::Angular), [7200.0, 72_000.0, 72_000.0]);
+        let v = values([200.0, 5000.0, 5000.0, 50.0]);
+        assert_eq!(
+            check_within(Profile::Linear, &v, [200.0, 5000.0, 5000.0]),
+            Ok(())
+        );
+        let over = |limits| check_within(Profile::Linear, &v, limits).unwrap_err().name;
+        assert_eq!(
+            over([199.0, 5000.0, 5000.0]),
+            "eERR_CRD_CMD_INVALID_LIN_VEL"
+        );
+        assert_eq!(
+            over([200.0, 5000.0, 4999.0]),
+            "eERR_CRD_CMD_INVALID_LIN_DEC"
+        );
     }
 
     #[test]

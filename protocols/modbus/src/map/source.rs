@@ -3,8 +3,8 @@
 //! for every read.
 
 use axes::command::ErrorKind;
-use axes::param::{parameter_value, ParamId};
 use axes::filter::FilterStatus;
+use axes::param::{parameter_value, ParamId};
 use axes::status::{flag_by_name, AxisState, AxisStatus, CouplingKind, Snapshot};
 use axes::AxisFlags;
 
@@ -268,10 +268,9 @@ fn bit_source(name: &str) -> Result<(BitSource, bool), String> {
         return Ok((BitSource::State(*s), invert));
     }
     if let Some(mode) = name.strip_prefix("mode.") {
-        let m = AXIS_MODES
-            .iter()
-            .find(|(n, _)| *n == mode)
-            .ok_or_else(|| format!("`{mode}` is not an axis mode (gantry, gear, input_shaping, vsf)"))?;
+        let m = AXIS_MODES.iter().find(|(n, _)| *n == mode).ok_or_else(|| {
+            format!("`{mode}` is not an axis mode (gantry, gear, input_shaping, vsf)")
+        })?;
         return Ok((BitSource::Mode(m.1), invert));
     }
     let (latched, flag) = match name.strip_prefix("latched.") {
