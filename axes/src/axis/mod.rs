@@ -1085,7 +1085,7 @@ impl Axis {
     /// The drive's torque as a fraction of rated torque: the setpoint in torque mode, else
     /// what the commanded acceleration takes, rated torque accelerating at `max_accel` (or
     /// `accel`) as the torque setpoint does (`advance_source`).
-    fn torque(&self) -> f64 {
+    pub(crate) fn torque(&self) -> f64 {
         if let Source::External(Setpoint::Torque { torque }) = self.source {
             return torque;
         }

@@ -54,6 +54,53 @@ pub struct PulseDigitalOutput {
     pub toggles: u32,
 }
 
+/// An axis variable an analog output can follow (`bind_analog_output`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum AnalogSource {
+    /// The commanded position, velocity, acceleration (after smoothing and filters).
+    CmdPos,
+    CmdVel,
+    CmdAcc,
+    /// The actual position and velocity, and the actual velocity's change per second.
+    ActPos,
+    ActVel,
+    ActAcc,
+    /// The drive's torque, a fraction of rated torque.
+    Torque,
+}
+
+/// Bind analog output `channel` to `source` of `axis`: every tick, once the axes have
+/// stepped, the output is `source × scale + offset`, held within `min` … `max` where given (a
+/// converter's range) (HIMC SetSlvAOMonitor with SetSlvAOParam `ao_en_bind` 1, digest 004
+/// §10.4). Without `axis` the binding is released and the output keeps its last value. A
+/// `write_analog_output` to a bound channel lasts until the next tick.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BindAnalogOutput {
+    pub channel: u16,
+    #[serde(default)]
+    pub axis: Option<u16>,
+    #[serde(default = "default_source")]
+    pub source: AnalogSource,
+    #[serde(default = "one")]
+    pub scale: f64,
+    #[serde(default)]
+    pub offset: f64,
+    #[serde(default)]
+    pub min: Option<f64>,
+    #[serde(default)]
+    pub max: Option<f64>,
+}
+
+fn default_source() -> AnalogSource {
+    AnalogSource::CmdPos
+}
+
+fn one() -> f64 {
+    1.0
+}
+
 /// A command on the machine's I/O image; it takes effect at once, between ticks.
 #[derive(Clone, Debug, PartialEq)]
 pub enum IoCommand {
@@ -62,6 +109,7 @@ pub enum IoCommand {
     WriteDigitalOutput(WriteDigitalOutput),
     WriteAnalogOutput(WriteAnalogOutput),
     PulseDigitalOutput(PulseDigitalOutput),
+    BindAnalogOutput(BindAnalogOutput),
 }
 
 command_from!(
@@ -73,5 +121,6 @@ command_from!(
         WriteDigitalOutput => WriteDigitalOutput,
         WriteAnalogOutput => WriteAnalogOutput,
         PulseDigitalOutput => PulseDigitalOutput,
+        BindAnalogOutput => BindAnalogOutput,
     ]
 );

@@ -157,8 +157,8 @@ pub use handwheel::{
     HANDWHEEL_EXTERNAL_BASE, HANDWHEEL_EXTERNAL_ENCODERS,
 };
 pub use io::{
-    ForceAnalogInput, ForceDigitalInput, IoCommand, PulseDigitalOutput, WriteAnalogOutput,
-    WriteDigitalOutput,
+    AnalogSource, BindAnalogOutput, ForceAnalogInput, ForceDigitalInput, IoCommand,
+    PulseDigitalOutput, WriteAnalogOutput, WriteDigitalOutput,
 };
 pub use machine::{
     DisableAll, EmergencyStopAll, EnableAll, EstimateGroupTime, GetCommandState, MachineCommand,

@@ -218,6 +218,8 @@ pub(super) enum Command {
     FilterInputShaping(super::FilterInputShaping),
     FilterVsf(super::FilterVsf),
     FilterDisable(super::FilterDisable),
+    // Issue 14, HIMC SetSlvAOParam ao_en_bind 1.
+    BindAnalogOutput(super::BindAnalogOutput),
 }
 
 impl From<Command> for super::Command {
@@ -404,6 +406,7 @@ impl From<Command> for super::Command {
             Command::ResetFaults(c) => super::Command::from(c),
             Command::SetEstopInput(c) => super::Command::from(c),
             Command::AddAxisSet(c) => super::Command::from(c),
+            Command::BindAnalogOutput(c) => super::Command::from(c),
         }
     }
 }
@@ -434,6 +437,7 @@ impl From<super::Command> for Command {
             super::Command::Io(IoCommand::WriteDigitalOutput(c)) => Command::WriteDigitalOutput(c),
             super::Command::Io(IoCommand::WriteAnalogOutput(c)) => Command::WriteAnalogOutput(c),
             super::Command::Io(IoCommand::PulseDigitalOutput(c)) => Command::PulseDigitalOutput(c),
+            super::Command::Io(IoCommand::BindAnalogOutput(c)) => Command::BindAnalogOutput(c),
             super::Command::Group(GroupCommand::PulseOutput(c)) => Command::GroupPulseOutput(c),
             super::Command::Group(GroupCommand::SetAnalogOutput(c)) => {
                 Command::GroupSetAnalogOutput(c)

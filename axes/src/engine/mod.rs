@@ -24,6 +24,7 @@ use crate::status::{AxisFlags, AxisStatus, DriveStatus, IoImage, Snapshot};
 use crate::trigger::{Env as TriggerEnv, Triggers};
 use std::sync::Arc;
 
+mod ao_bindings;
 mod compensation;
 mod do_pulses;
 mod estimate;
@@ -51,6 +52,8 @@ struct Io {
     bindings: Vec<InputBinding>,
     /// Outputs toggling themselves on the virtual clock.
     pulses: do_pulses::DoPulses,
+    /// Analog outputs following an axis variable (`bind_analog_output`).
+    ao_bindings: ao_bindings::AoBindings,
 }
 
 /// One channel of an I/O image, or the error that names the image and its size.
@@ -233,6 +236,7 @@ impl Engine {
                 ai_forced: vec![None; io.analog_inputs as usize],
                 bindings: io.bindings.clone(),
                 pulses: Default::default(),
+                ao_bindings: Default::default(),
             },
             ledger: Ledger::default(),
             slaves,
@@ -685,6 +689,9 @@ impl Engine {
                 io.version += 1;
                 started
             }
+            IoCommand::BindAnalogOutput(c) => {
+                io.ao_bindings.bind(&c, io.image.ao.len(), &self.axes)
+            }
         }
         .map(|()| Reply::Done)
     }
@@ -736,12 +743,13 @@ impl Engine {
     /// 3. `step_axes`: every axis, in index order, or with couplings (issue 12) masters before
     ///    their slaves, each slave fed from its master's state of this tick (compensation tables
     ///    first read their reference axes as the previous tick left them:
-    ///    `gather_compensation_inputs`); then the capture channels latch this tick's edges and
-    ///    the compare channels fire their outputs (issue 12 items 4–5);
+    ///    `gather_compensation_inputs`); 3b. analog outputs bound to an axis variable take its
+    ///    value of this tick (`bind_analog_output`); then the capture channels latch this
+    ///    tick's edges and the compare channels fire their outputs (issue 12 items 4–5);
     /// 4. `step_drives`: the CiA 402 drives see their axes and answer with commands;
     /// 5. `sample`: armed and recording data samplers read the machine as the tick left it;
     /// 6. outputs and status: no per-tick work. Outputs change only by command (or a timed
-    ///    output's train, stage 1), and status is
+    ///    output's train, stage 1, or a bound analog output, stage 3b), and status is
     ///    assembled when it is read ([`Engine::snapshot_into`], [`Engine::axis_status`]).
     ///
     /// Commands ([`Engine::apply`]) arrive between steps and act on the state the last step
@@ -764,6 +772,7 @@ impl Engine {
         }
         self.gather_compensation_inputs();
         self.step_axes();
+        self.drive_bound_outputs();
         self.with_triggers(|t, env| t.step(env));
         self.step_guards();
         self.step_drives();
@@ -931,6 +940,18 @@ impl Engine {
             }
         }
         if io.pulses.step(&mut io.image.do_, &mut io.image.do_pulses) {
+            io.version += 1;
+        }
+    }
+
+    /// Stage 3b: analog outputs bound to an axis variable take this tick's value.
+    fn drive_bound_outputs(&mut self) {
+        let io = &mut self.io;
+        if !io.ao_bindings.is_empty()
+            && io
+                .ao_bindings
+                .step(&self.axes, self.period, &mut io.image.ao)
+        {
             io.version += 1;
         }
     }
