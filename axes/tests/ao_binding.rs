@@ -10,7 +10,9 @@ use common::{cmd, enabled, move_abs, ok, refused_code, status, stepper_mm};
 
 #[test]
 fn a_bound_output_follows_the_commanded_velocity_every_tick() {
+    // Smoothed: the output follows the command after smoothing, as the status shows it.
     let mut e = enabled(stepper_mm());
+    common::set(&mut e, axes::ParamId::SmoothTime, 0.02);
     ok(
         &mut e,
         cmd(

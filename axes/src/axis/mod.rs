@@ -490,6 +490,20 @@ impl Axis {
         self.raw
     }
 
+    /// The commanded state the status shows: after smoothing and the command filter, a
+    /// cyclic axis's position wrapped (`cmd_pos`, `cmd_vel`, `cmd_acc`).
+    pub(crate) fn commanded_output(&self) -> MotionState {
+        MotionState {
+            p: self.wrap(self.cmd.p),
+            ..self.cmd
+        }
+    }
+
+    /// The actual position the status shows (`act_pos`: a cyclic axis's wrapped).
+    pub(crate) fn actual_position_shown(&self) -> f64 {
+        self.wrap(self.act_pos)
+    }
+
     /// State of a command that is still in this axis's FIFO.
     pub(crate) fn queued_state(&self, id: CommandId) -> Option<CommandState> {
         let pos = self.fifo.position_of(id)?;

@@ -95,12 +95,12 @@ impl AoBindings {
                 continue;
             };
             let velocity = axis.actual_velocity();
-            let cmd = axis.commanded();
+            let cmd = axis.commanded_output();
             let value = match b.source {
                 AnalogSource::CmdPos => cmd.p,
                 AnalogSource::CmdVel => cmd.v,
                 AnalogSource::CmdAcc => cmd.a,
-                AnalogSource::ActPos => axis.actual_position(),
+                AnalogSource::ActPos => axis.actual_position_shown(),
                 AnalogSource::ActVel => velocity,
                 AnalogSource::ActAcc => (velocity - b.last_velocity) / period,
                 AnalogSource::Torque => axis.torque(),

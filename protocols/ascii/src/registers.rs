@@ -57,6 +57,8 @@ pub struct Registers {
     pub ao_monitors: BTreeMap<u16, i64>,
     /// `SetSlvAOParam` by analog output: scale and offset (absent: 1, 0).
     pub ao_scales: BTreeMap<u16, (f64, f64)>,
+    /// Analog outputs bound to their monitor variable (`SetSlvAOParam` `ao_en_bind` 1).
+    pub ao_bound: std::collections::BTreeSet<u16>,
     /// `ForceWritePDO` objects (slave, index, subindex) not yet released.
     pub forced_pdos: std::collections::BTreeSet<(i64, i64, i64)>,
     /// The user table (§11.1), sparse: an entry not here is 0.

@@ -5,15 +5,18 @@
 //! unsigned `low + raw/65536·span`, signed (`HMPL_DAC_SIGNED`) `mid + raw/32768·span/2`, so
 //! 32768 (signed: 0) is the middle exactly and the top count reads one step below the top
 //! (65535 → 9.9997 V; the manual's tables need a tolerance either way, digest 004 §7.3).
-//! The AO monitor binding (§10.4) is kept as settings; the engine has no per-cycle binding of an
-//! output to a controller variable, so enabling it is refused (decisions.md).
+//! The AO monitor binding (§10.4): `SetSlvAOParam` with `ao_en_bind` 1 binds the output to its
+//! `SetSlvAOMonitor` variable in the engine (`bind_analog_output`), AO = variable × scale +
+//! offset in the output's unit (its conversion type's V or mA, else the raw count), held
+//! within the converter (decisions.md).
 
-use mcemu_dialects::himc::constants::DAC_SIGNED;
-use mcemu_dialects::himc::system::{HMPL_ARG_OUT_OF_RANGE, HMPL_NOT_SUPPORTED};
-use serde_json::json;
+use axes::ParamId;
+use mcemu_dialects::himc::constants::{AXIS_VAR_SHIFT, DAC_SIGNED};
+use mcemu_dialects::himc::system::HMPL_ARG_OUT_OF_RANGE;
+use serde_json::{json, Value};
 
-use super::engine;
 use super::slave::{slave, Slave};
+use super::{engine, param};
 use crate::reply::Outcome;
 use crate::table::{row, Addresses::Controller, Args, Ctx, Function, Plan, Ret, Ty};
 
@@ -114,6 +117,9 @@ fn set_type(cx: &mut Ctx<'_>, args: &Args, outputs: bool) -> Plan {
         &mut cx.registers.ai_types
     };
     types.insert(ch, kind);
+    if outputs {
+        return rebind(cx, ch);
+    }
     Plan::Done(Outcome::Int(0))
 }
 
@@ -152,6 +158,81 @@ fn get_value(cx: &mut Ctx<'_>, args: &Args, outputs: bool) -> Plan {
             Some(v) => Plan::Done(Outcome::Double(v)),
             None => Plan::Fail(HMPL_ARG_OUT_OF_RANGE),
         },
+        Err(c) => Plan::Fail(c),
+    }
+}
+
+/// The engine source of an `HMPL_REF_POS` … `HMPL_CUR_FB` variable (§10.4.1).
+fn source(variable: i64) -> Option<&'static str> {
+    Some(match variable {
+        1 => "cmd_pos",
+        2 => "cmd_vel",
+        3 => "cmd_acc",
+        4 => "act_pos",
+        5 => "act_vel",
+        6 => "act_acc",
+        7 => "torque",
+        _ => return None,
+    })
+}
+
+/// The engine binding of bound output `ch`: its monitor variable × scale + offset, taken to
+/// the raw count the channel holds (a conversion type is linear: raw = k·value + c) and held
+/// within the converter. No monitor variable, or one of an axis that does not exist:
+/// `eERR_HMPL_ARG_OUT_OF_RANGE`.
+fn binding(cx: &Ctx<'_>, ch: u16) -> Result<Value, u32> {
+    let var = *cx
+        .registers
+        .ao_monitors
+        .get(&ch)
+        .ok_or(HMPL_ARG_OUT_OF_RANGE)?;
+    let axis = u16::try_from(var >> AXIS_VAR_SHIFT).map_err(|_| HMPL_ARG_OUT_OF_RANGE)?;
+    if usize::from(axis) >= cx.snapshot.axes.len() {
+        return Err(HMPL_ARG_OUT_OF_RANGE);
+    }
+    let variable = var & ((1 << AXIS_VAR_SHIFT) - 1);
+    let source = source(variable).ok_or(HMPL_ARG_OUT_OF_RANGE)?;
+    let (mut scale, mut offset) = cx
+        .registers
+        .ao_scales
+        .get(&ch)
+        .copied()
+        .unwrap_or((1.0, 0.0));
+    if variable == 7 {
+        // GetCurrFb's amperes: the engine's torque is a fraction of rated current.
+        scale *= param(cx, axis, ParamId::RatedCurrent);
+    }
+    let kind = kind_of(cx, true, ch);
+    let (min, max) = match range(kind) {
+        Some((low, high)) => {
+            let k = FULL_SCALE / (high - low);
+            let zero = if signed(kind) {
+                (low + high) / 2.0
+            } else {
+                low
+            };
+            (scale, offset) = (scale * k, (offset - zero) * k);
+            if signed(kind) {
+                (-32768.0, 32767.0)
+            } else {
+                (0.0, 65535.0)
+            }
+        }
+        None => (-32768.0, 65535.0),
+    };
+    Ok(json!({
+        "type": "bind_analog_output", "channel": ch, "axis": axis, "source": source,
+        "scale": scale, "offset": offset, "min": min, "max": max,
+    }))
+}
+
+/// After a change of a bound output's settings: bind it again with them.
+fn rebind(cx: &Ctx<'_>, ch: u16) -> Plan {
+    if !cx.registers.ao_bound.contains(&ch) {
+        return Plan::Done(Outcome::Int(0));
+    }
+    match binding(cx, ch) {
+        Ok(b) => engine(b),
         Err(c) => Plan::Fail(c),
     }
 }
@@ -267,15 +348,15 @@ pub static ROWS: &[Function] = &[
             match channel(cx, a, true) {
                 Ok(ch) if (1..=7).contains(&(var & 0xff)) && (0..=0xfff).contains(&var) => {
                     cx.registers.ao_monitors.insert(ch, var);
-                    Plan::Done(Outcome::Int(0))
+                    rebind(cx, ch)
                 }
                 Ok(_) => Plan::Fail(HMPL_ARG_OUT_OF_RANGE),
                 Err(c) => Plan::Fail(c),
             }
         },
     ),
-    // Scale and offset kept; binding on (ao_en_bind = 1) needs a per-cycle binding the engine
-    // does not have: eERR_HMPL_NOT_SUPPORTED.
+    // Scale and offset kept; ao_en_bind 1 binds the output to its monitor variable, 0
+    // releases it (the output keeps its last value).
     row(
         "SetSlvAOParam",
         "10.4.2",
@@ -291,10 +372,22 @@ pub static ROWS: &[Function] = &[
             if !matches!(bind, 0 | 1) || !scale.is_finite() || !offset.is_finite() {
                 return Plan::Fail(HMPL_ARG_OUT_OF_RANGE);
             }
+            let before = cx.registers.ao_scales.insert(ch, (scale, offset));
             if bind == 1 {
-                return Plan::Fail(HMPL_NOT_SUPPORTED);
+                cx.registers.ao_bound.insert(ch);
+                let bound = rebind(cx, ch);
+                if matches!(bound, Plan::Fail(_)) {
+                    cx.registers.ao_bound.remove(&ch);
+                    match before {
+                        Some(b) => cx.registers.ao_scales.insert(ch, b),
+                        None => cx.registers.ao_scales.remove(&ch),
+                    };
+                }
+                return bound;
             }
-            cx.registers.ao_scales.insert(ch, (scale, offset));
+            if cx.registers.ao_bound.remove(&ch) {
+                return engine(json!({"type": "bind_analog_output", "channel": ch}));
+            }
             Plan::Done(Outcome::Int(0))
         },
     ),
@@ -324,7 +417,6 @@ pub static ROWS: &[Function] = &[
             Err(c) => Plan::Fail(c),
         },
     ),
-    // Never bound (see SetSlvAOParam).
     row(
         "IsSlvAOBound",
         "10.4.5",
@@ -332,7 +424,7 @@ pub static ROWS: &[Function] = &[
         Ret::Int,
         Controller,
         |cx, a| match channel(cx, a, true) {
-            Ok(_) => Plan::Done(Outcome::bool(false)),
+            Ok(ch) => Plan::Done(Outcome::bool(cx.registers.ao_bound.contains(&ch))),
             Err(c) => Plan::Fail(c),
         },
     ),
