@@ -250,6 +250,17 @@ pub const fn row(
     }
 }
 
+/// A row of the commonest shape, `ret f(int id)`: one axis, group, slave or channel id.
+pub const fn unary(
+    name: &'static str,
+    section: &'static str,
+    ret: Ret,
+    addresses: Addresses,
+    handler: Handler,
+) -> Function {
+    row(name, section, &[Ty::Int], ret, addresses, handler)
+}
+
 /// The 270 icon-marked (ASCII-capable) functions, digest 004 Appendix A, with their §, in
 /// manual order (`Idexp` as printed; `ldexp` is served under both names).
 pub const ICON: &[(&str, &str)] = &[

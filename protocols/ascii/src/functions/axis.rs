@@ -5,21 +5,20 @@
 use serde_json::{json, Value};
 
 use super::{axis_of, engine};
-use crate::table::{row, Addresses::Axis, Args, Ctx, Function, Plan, Ret, Ty};
+use crate::table::{row, unary, Addresses::Axis, Args, Ctx, Function, Plan, Ret, Ty};
 
-const A: &[Ty] = &[Ty::Int];
 const AD: &[Ty] = &[Ty::Int, Ty::Double];
 
 pub static ROWS: &[Function] = &[
     // §7.1.1, TV 39: either axis of a gantry pair enables both.
-    row("Enable", "5.2.1", A, Ret::Int, Axis, |cx, a| {
+    unary("Enable", "5.2.1", Ret::Int, Axis, |cx, a| {
         paired(cx, a, "enable")
     }),
     // §5.2.2: de-energizes and clears the planned path (the engine's disable clears the FIFO).
-    row("Disable", "5.2.2", A, Ret::Int, Axis, |cx, a| {
+    unary("Disable", "5.2.2", Ret::Int, Axis, |cx, a| {
         paired(cx, a, "disable")
     }),
-    row("Reset", "5.2.3", A, Ret::Int, Axis, |cx, a| {
+    unary("Reset", "5.2.3", Ret::Int, Axis, |cx, a| {
         simple(cx, a, "reset")
     }),
     row("MoveAbs", "5.2.4", AD, Ret::Int, Axis, |cx, a| {
@@ -48,14 +47,14 @@ pub static ROWS: &[Function] = &[
     // torque setpoint (a fraction of rated torque). `Stop` ends it.
     row("MoveTrq", "5.2.7", AD, Ret::Int, Axis, move_torque),
     // §5.2.9: stops and clears the plan, with the profile deceleration (digest 004 §3.4).
-    row("Stop", "5.2.9", A, Ret::Int, Axis, |cx, a| {
+    unary("Stop", "5.2.9", Ret::Int, Axis, |cx, a| {
         simple(cx, a, "stop")
     }),
     // §5.2.10–11: pause with the plan kept, and go on.
-    row("Halt", "5.2.10", A, Ret::Int, Axis, |cx, a| {
+    unary("Halt", "5.2.10", Ret::Int, Axis, |cx, a| {
         simple(cx, a, "halt")
     }),
-    row("Resume", "5.2.11", A, Ret::Int, Axis, |cx, a| {
+    unary("Resume", "5.2.11", Ret::Int, Axis, |cx, a| {
         simple(cx, a, "resume")
     }),
 ];

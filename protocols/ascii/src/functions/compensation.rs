@@ -14,7 +14,7 @@ use super::gear::axis_arg;
 use super::table_values::index;
 use super::{axis_error, axis_of, engine};
 use crate::reply::Outcome;
-use crate::table::{row, Addresses::Axis, Args, Ctx, Function, Plan, Ret, Ty};
+use crate::table::{row, unary, Addresses::Axis, Args, Ctx, Function, Plan, Ret, Ty};
 
 /// The axis, refused while enabled (§14.2–14.3, TV 62).
 fn disabled_axis(cx: &Ctx<'_>, args: &Args) -> Result<u16, u32> {
@@ -89,10 +89,9 @@ fn set_algorithm(cx: &mut Ctx<'_>, args: &Args) -> Plan {
 }
 
 pub static ROWS: &[Function] = &[
-    row(
+    unary(
         "EnableComp",
         "14.2",
-        &[Ty::Int],
         Ret::Int,
         Axis,
         |cx, a| match disabled_axis(cx, a) {
@@ -103,10 +102,9 @@ pub static ROWS: &[Function] = &[
             Err(c) => Plan::Fail(c),
         },
     ),
-    row(
+    unary(
         "DisableComp",
         "14.3",
-        &[Ty::Int],
         Ret::Int,
         Axis,
         |cx, a| match disabled_axis(cx, a) {
@@ -135,14 +133,9 @@ pub static ROWS: &[Function] = &[
         setup,
     ),
     // TV 61: the correction sent to the drive.
-    row(
-        "GetCompPos",
-        "14.7",
-        &[Ty::Int],
-        Ret::Double,
-        Axis,
-        |cx, a| super::get_status(cx, a, |s| s.compensation),
-    ),
+    unary("GetCompPos", "14.7", Ret::Double, Axis, |cx, a| {
+        super::get_status(cx, a, |s| s.compensation)
+    }),
     row(
         "SetCompAlgType",
         "14.8",

@@ -7,7 +7,7 @@ use mcemu_dialects::himc::code_for_kind;
 
 use super::{axis_error, axis_of};
 use crate::reply::Outcome;
-use crate::table::{row, Addresses, Args, Ctx, Function, Plan, Ret, Ty};
+use crate::table::{row, unary, Addresses, Args, Ctx, Function, Plan, Ret};
 
 fn code(c: u32) -> Plan {
     Plan::Done(Outcome::code(c))
@@ -52,18 +52,16 @@ pub static ROWS: &[Function] = &[
         Addresses::Controller,
         |cx, _| code(cx.registers.system_error),
     ),
-    row(
+    unary(
         "GetAxisLastErr",
         "18.3",
-        &[Ty::Int],
         Ret::Int,
         Addresses::Axis,
         axis_last,
     ),
-    row(
+    unary(
         "ClearAxisLastErr",
         "18.4",
-        &[Ty::Int],
         Ret::Int,
         Addresses::Axis,
         |cx, a| match axis_of(cx, a) {
@@ -74,10 +72,9 @@ pub static ROWS: &[Function] = &[
             Err(c) => Plan::Fail(c),
         },
     ),
-    row(
+    unary(
         "GetGrpLastErr",
         "18.5",
-        &[Ty::Int],
         Ret::Int,
         Addresses::Group,
         |cx, a| {
@@ -85,10 +82,9 @@ pub static ROWS: &[Function] = &[
             code(cx.registers.group_errors.get(&group).copied().unwrap_or(0))
         },
     ),
-    row(
+    unary(
         "ClearGrpLastErr",
         "18.6",
-        &[Ty::Int],
         Ret::Int,
         Addresses::Group,
         |cx, a| {
@@ -98,10 +94,9 @@ pub static ROWS: &[Function] = &[
         },
     ),
     // The drive's own code (0x603F) where the axis has a CiA 402 drive, else 0.
-    row(
+    unary(
         "GetDriveErr",
         "18.7",
-        &[Ty::Int],
         Ret::Int,
         Addresses::Axis,
         |cx, a| match axis_of(cx, a) {

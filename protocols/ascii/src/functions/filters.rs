@@ -15,7 +15,9 @@ use super::group_state::{command, group_error, group_id};
 use super::{axis_error, axis_of};
 use crate::registers::{Filter, FilterSettings};
 use crate::reply::Outcome;
-use crate::table::{row, Addresses::Axis, Addresses::Group, Args, Ctx, Function, Plan, Ret, Ty};
+use crate::table::{
+    row, unary, Addresses::Axis, Addresses::Group, Args, Ctx, Function, Plan, Ret, Ty,
+};
 
 /// §15.7, §15.10: the defaults of a shaper never set.
 const DEFAULT_SHAPER: FilterSettings = FilterSettings {
@@ -253,14 +255,13 @@ fn switch(cx: &mut Ctx<'_>, args: &Args, filter: Filter, on: bool) -> Plan {
     }
 }
 
-const ONE: &[Ty] = &[Ty::Int];
 const SHAPER: &[Ty] = &[Ty::Int, Ty::Double, Ty::Double, Ty::Int];
 
 pub static ROWS: &[Function] = &[
-    row("EnableAxisVsf", "15.2", ONE, Ret::Int, Axis, |cx, a| {
+    unary("EnableAxisVsf", "15.2", Ret::Int, Axis, |cx, a| {
         switch(cx, a, Filter::AxisVsf, true)
     }),
-    row("DisableAxisVsf", "15.3", ONE, Ret::Int, Axis, |cx, a| {
+    unary("DisableAxisVsf", "15.3", Ret::Int, Axis, |cx, a| {
         switch(cx, a, Filter::AxisVsf, false)
     }),
     // TV 65.
@@ -272,32 +273,22 @@ pub static ROWS: &[Function] = &[
         Axis,
         |cx, a| set(cx, a, Filter::AxisVsf),
     ),
-    row("EnableAxisInShape", "15.5", ONE, Ret::Int, Axis, |cx, a| {
+    unary("EnableAxisInShape", "15.5", Ret::Int, Axis, |cx, a| {
         switch(cx, a, Filter::AxisInShape, true)
     }),
-    row(
-        "DisableAxisInShape",
-        "15.6",
-        ONE,
-        Ret::Int,
-        Axis,
-        |cx, a| switch(cx, a, Filter::AxisInShape, false),
-    ),
+    unary("DisableAxisInShape", "15.6", Ret::Int, Axis, |cx, a| {
+        switch(cx, a, Filter::AxisInShape, false)
+    }),
     // TV 64.
     row("SetAxisInShape", "15.7", SHAPER, Ret::Int, Axis, |cx, a| {
         set(cx, a, Filter::AxisInShape)
     }),
-    row("EnableGrpInShape", "15.8", ONE, Ret::Int, Group, |cx, a| {
+    unary("EnableGrpInShape", "15.8", Ret::Int, Group, |cx, a| {
         switch(cx, a, Filter::GroupInShape, true)
     }),
-    row(
-        "DisableGrpInShape",
-        "15.9",
-        ONE,
-        Ret::Int,
-        Group,
-        |cx, a| switch(cx, a, Filter::GroupInShape, false),
-    ),
+    unary("DisableGrpInShape", "15.9", Ret::Int, Group, |cx, a| {
+        switch(cx, a, Filter::GroupInShape, false)
+    }),
     // TV 66.
     row(
         "SetGrpInShape",

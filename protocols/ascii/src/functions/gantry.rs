@@ -12,7 +12,7 @@ use serde_json::json;
 use super::axis_error;
 use super::gear::{axis_arg, enabled};
 use crate::reply::Outcome;
-use crate::table::{row, Addresses::Axis, Ctx, Function, Plan, Ret, Ty};
+use crate::table::{row, unary, Addresses::Axis, Ctx, Function, Plan, Ret, Ty};
 
 /// The pair `axis` belongs to, as (RHS, LHS).
 pub(crate) fn pair_of(cx: &Ctx<'_>, axis: u16) -> Option<(u16, u16)> {
@@ -60,38 +60,30 @@ pub static ROWS: &[Function] = &[
         },
     ),
     // §7.3: either axis of the pair; both disabled.
-    row(
-        "DisableGantryPair",
-        "7.3",
-        &[Ty::Int],
-        Ret::Int,
-        Axis,
-        |cx, a| {
-            let axis = match axis_arg(cx, a, 0) {
-                Ok(x) => x,
-                Err(c) => return Plan::Fail(c),
-            };
-            let Some((rhs, lhs)) = pair_of(cx, axis) else {
-                return Plan::Fail(axis_error(axis, "eERR_AXIS_CMD_INVALID_GANTRY_MODE"));
-            };
-            for x in [rhs, lhs] {
-                if enabled(cx, x) {
-                    return Plan::Fail(axis_error(x, "eERR_AXIS_CMD_INVALID_ENABLED"));
-                }
+    unary("DisableGantryPair", "7.3", Ret::Int, Axis, |cx, a| {
+        let axis = match axis_arg(cx, a, 0) {
+            Ok(x) => x,
+            Err(c) => return Plan::Fail(c),
+        };
+        let Some((rhs, lhs)) = pair_of(cx, axis) else {
+            return Plan::Fail(axis_error(axis, "eERR_AXIS_CMD_INVALID_GANTRY_MODE"));
+        };
+        for x in [rhs, lhs] {
+            if enabled(cx, x) {
+                return Plan::Fail(axis_error(x, "eERR_AXIS_CMD_INVALID_ENABLED"));
             }
-            cx.registers.gantry_pairs.remove(&rhs);
-            if engaged(cx, rhs) {
-                super::engine(json!({"type": "gantry_disable", "master": rhs}))
-            } else {
-                Plan::Done(Outcome::Int(0))
-            }
-        },
-    ),
+        }
+        cx.registers.gantry_pairs.remove(&rhs);
+        if engaged(cx, rhs) {
+            super::engine(json!({"type": "gantry_disable", "master": rhs}))
+        } else {
+            Plan::Done(Outcome::Int(0))
+        }
+    }),
     // §7.4, TV 37: −1 for an axis in no pair.
-    row(
+    unary(
         "GetGantryPairID",
         "7.4",
-        &[Ty::Int],
         Ret::Int,
         Axis,
         |cx, a| match axis_arg(cx, a, 0) {

@@ -10,9 +10,8 @@ use serde_json::json;
 
 use super::{axis_error, engine};
 use crate::reply::Outcome;
-use crate::table::{row, Addresses::Axis, Args, Ctx, Function, Plan, Ret, Ty};
+use crate::table::{row, unary, Addresses::Axis, Args, Ctx, Function, Plan, Ret, Ty};
 
-const A: &[Ty] = &[Ty::Int];
 const AA: &[Ty] = &[Ty::Int, Ty::Int];
 
 /// Argument `i` as an existing axis.
@@ -147,7 +146,7 @@ fn axis_bool(cx: &mut Ctx<'_>, args: &Args, f: fn(&Ctx<'_>, u16) -> bool) -> Pla
 
 pub static ROWS: &[Function] = &[
     row("EnableGear", "6.2", AA, Ret::Int, Axis, enable_gear),
-    row("DisableGear", "6.3", A, Ret::Int, Axis, disable_gear),
+    unary("DisableGear", "6.3", Ret::Int, Axis, disable_gear),
     row(
         "GearIn",
         "6.4",
@@ -156,12 +155,11 @@ pub static ROWS: &[Function] = &[
         Axis,
         gear_in,
     ),
-    row("GearOut", "6.5", A, Ret::Int, Axis, gear_out),
+    unary("GearOut", "6.5", Ret::Int, Axis, gear_out),
     // The engaged ratio, else the last one given, else 0.
-    row(
+    unary(
         "GetGearRatio",
         "6.6",
-        A,
         Ret::Double,
         Axis,
         |cx, a| match axis_arg(cx, a, 0) {
@@ -175,10 +173,10 @@ pub static ROWS: &[Function] = &[
             Err(c) => Plan::Fail(c),
         },
     ),
-    row("IsInGear", "6.7", A, Ret::Int, Axis, |cx, a| {
+    unary("IsInGear", "6.7", Ret::Int, Axis, |cx, a| {
         axis_bool(cx, a, |cx, s| gear_of(cx, s).is_some())
     }),
-    row("IsGearMaster", "6.8", A, Ret::Int, Axis, |cx, a| {
+    unary("IsGearMaster", "6.8", Ret::Int, Axis, |cx, a| {
         axis_bool(cx, a, |cx, m| {
             cx.registers.gear_links.values().any(|&x| x == m)
                 || cx
@@ -188,7 +186,7 @@ pub static ROWS: &[Function] = &[
                     .any(|c| c.master == m && c.kind == CouplingKind::Gear)
         })
     }),
-    row("IsGearSlave", "6.9", A, Ret::Int, Axis, |cx, a| {
+    unary("IsGearSlave", "6.9", Ret::Int, Axis, |cx, a| {
         axis_bool(cx, a, |cx, s| {
             cx.registers.gear_links.contains_key(&s) || gear_of(cx, s).is_some()
         })

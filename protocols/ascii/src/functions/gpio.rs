@@ -11,7 +11,7 @@ use serde_json::json;
 
 use super::engine;
 use crate::reply::Outcome;
-use crate::table::{row, Addresses::Controller, Args, Ctx, Function, Plan, Ret, Ty};
+use crate::table::{row, unary, Addresses::Controller, Args, Ctx, Function, Plan, Ret, Ty};
 
 /// Channel of pin `args[0]` in `pins`, or `None`.
 fn channel(pins: &[bool], args: &Args) -> Option<usize> {
@@ -128,54 +128,32 @@ pub static ROWS: &[Function] = &[
             write(cx, a, |_| on)
         },
     ),
-    row(
-        "ToggleGPO",
-        "9.2.2",
-        &[Ty::Int],
-        Ret::Int,
-        Controller,
-        |cx, a| write(cx, a, |now| !now),
-    ),
-    row(
-        "GetGPI",
-        "9.4.1",
-        &[Ty::Int],
-        Ret::Int,
-        Controller,
-        |cx, a| read(cx, a, true),
-    ),
-    row(
-        "GetGPO",
-        "9.4.2",
-        &[Ty::Int],
-        Ret::Int,
-        Controller,
-        |cx, a| read(cx, a, false),
-    ),
+    unary("ToggleGPO", "9.2.2", Ret::Int, Controller, |cx, a| {
+        write(cx, a, |now| !now)
+    }),
+    unary("GetGPI", "9.4.1", Ret::Int, Controller, |cx, a| {
+        read(cx, a, true)
+    }),
+    unary("GetGPO", "9.4.2", Ret::Int, Controller, |cx, a| {
+        read(cx, a, false)
+    }),
     // Unmarked (digest 004 §1.6), accepted unless `strict`: pin N = bit N−1 of the mask, every
     // output in one batch.
-    row(
-        "SetAllGPO",
-        "9.2.3",
-        &[Ty::Int],
-        Ret::Int,
-        Controller,
-        |cx, a| {
-            let mask = a.int(0) as u32;
-            let batch: Result<Vec<axes::Command>, _> = (0..cx.snapshot.io.do_.len().min(32))
-                .map(|c| {
-                    let on = output_level(cx, c, mask >> c & 1 == 1);
-                    serde_json::from_value(
-                        json!({"type": "write_digital_output", "channel": c, "value": on}),
-                    )
-                })
-                .collect();
-            match batch {
-                Ok(b) => Plan::Engine(b, crate::table::Then::Succeed),
-                Err(_) => Plan::Fail(mcemu_dialects::himc::system::HMPL_INTERNAL_ERROR),
-            }
-        },
-    ),
+    unary("SetAllGPO", "9.2.3", Ret::Int, Controller, |cx, a| {
+        let mask = a.int(0) as u32;
+        let batch: Result<Vec<axes::Command>, _> = (0..cx.snapshot.io.do_.len().min(32))
+            .map(|c| {
+                let on = output_level(cx, c, mask >> c & 1 == 1);
+                serde_json::from_value(
+                    json!({"type": "write_digital_output", "channel": c, "value": on}),
+                )
+            })
+            .collect();
+        match batch {
+            Ok(b) => Plan::Engine(b, crate::table::Then::Succeed),
+            Err(_) => Plan::Fail(mcemu_dialects::himc::system::HMPL_INTERNAL_ERROR),
+        }
+    }),
     // Unmarked (digest 004 §1.6), accepted unless `strict`; TV 8–10.
     row("GetAllGPI", "9.4.3", &[], Ret::Int, Controller, |cx, _| {
         let levels = cx.snapshot.io.di.iter().enumerate();
@@ -202,14 +180,7 @@ pub static ROWS: &[Function] = &[
         Controller,
         set_gpo_invert,
     ),
-    row(
-        "BindEMO",
-        "9.2.6",
-        &[Ty::Int],
-        Ret::Int,
-        Controller,
-        bind_emo,
-    ),
+    unary("BindEMO", "9.2.6", Ret::Int, Controller, bind_emo),
     row(
         "GetAllGPIInvertSt",
         "9.4.5",

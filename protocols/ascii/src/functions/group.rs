@@ -16,13 +16,12 @@ use super::group_state::{
 };
 use crate::reply::Outcome;
 use crate::table::{
-    row, Addresses::Axis, Addresses::Group, Args, Ctx, Function, Plan, Ret, Then, Ty,
+    row, unary, Addresses::Axis, Addresses::Group, Args, Ctx, Function, Plan, Ret, Then, Ty,
 };
 
 /// At most 9 axes in an API-level group (§8.3.1).
 const MAX_GROUP_AXES: usize = 9;
 
-const G: &[Ty] = &[Ty::Int];
 const GDD: &[Ty] = &[Ty::Int, Ty::Double, Ty::Double];
 const GDDD: &[Ty] = &[Ty::Int, Ty::Double, Ty::Double, Ty::Double];
 /// `(group_id, coord_sys, double *out)`: `out` is written `{}`; the values come back in the
@@ -278,22 +277,22 @@ fn pose(cx: &mut Ctx<'_>, args: &Args, feedback: bool) -> Plan {
 }
 
 pub static ROWS: &[Function] = &[
-    row("EnableGroup", "8.2.1", G, Ret::Int, Group, |cx, a| {
+    unary("EnableGroup", "8.2.1", Ret::Int, Group, |cx, a| {
         simple(cx, a, "group_enable")
     }),
-    row("DisableGroup", "8.2.2", G, Ret::Int, Group, |cx, a| {
+    unary("DisableGroup", "8.2.2", Ret::Int, Group, |cx, a| {
         simple(cx, a, "group_disable")
     }),
-    row("ResetGroup", "8.2.3", G, Ret::Int, Group, |cx, a| {
+    unary("ResetGroup", "8.2.3", Ret::Int, Group, |cx, a| {
         simple(cx, a, "group_reset")
     }),
-    row("StopGroup", "8.2.4", G, Ret::Int, Group, |cx, a| {
+    unary("StopGroup", "8.2.4", Ret::Int, Group, |cx, a| {
         simple(cx, a, "group_stop")
     }),
-    row("HaltGroup", "8.2.5", G, Ret::Int, Group, |cx, a| {
+    unary("HaltGroup", "8.2.5", Ret::Int, Group, |cx, a| {
         simple(cx, a, "group_halt")
     }),
-    row("ResumeGroup", "8.2.6", G, Ret::Int, Group, |cx, a| {
+    unary("ResumeGroup", "8.2.6", Ret::Int, Group, |cx, a| {
         simple(cx, a, "group_continue")
     }),
     row("LineAbs2D", "8.2.9", GDD, Ret::Int, Group, |cx, a| {
@@ -340,18 +339,10 @@ pub static ROWS: &[Function] = &[
         Group,
         add_axis,
     ),
-    row(
-        "RemoveAxisFromGrp",
-        "8.3.2",
-        G,
-        Ret::Int,
-        Group,
-        remove_axis,
-    ),
-    row(
+    unary("RemoveAxisFromGrp", "8.3.2", Ret::Int, Group, remove_axis),
+    unary(
         "UngrpAllAxes",
         "8.3.4",
-        G,
         Ret::Int,
         Group,
         |cx, a| match group_id(a) {
@@ -360,7 +351,7 @@ pub static ROWS: &[Function] = &[
         },
     ),
     // TV 52: −1 for an axis in no group.
-    row("GetGroupID", "8.3.5", G, Ret::Int, Axis, |cx, a| {
+    unary("GetGroupID", "8.3.5", Ret::Int, Axis, |cx, a| {
         let axis = u16::try_from(a.int(0)).unwrap_or(u16::MAX);
         let id = cx
             .registers
@@ -379,22 +370,21 @@ pub static ROWS: &[Function] = &[
         motion_profile,
     ),
     // TV 48: a fresh group's profile is [100, 5000, 5000, 50].
-    row("GetGrpVel", "8.3.10", G, Ret::Double, Group, |cx, a| {
+    unary("GetGrpVel", "8.3.10", Ret::Double, Group, |cx, a| {
         profile_get(cx, a, |p| p.velocity)
     }),
-    row("GetGrpAcc", "8.3.12", G, Ret::Double, Group, |cx, a| {
+    unary("GetGrpAcc", "8.3.12", Ret::Double, Group, |cx, a| {
         profile_get(cx, a, |p| p.acceleration)
     }),
-    row("GetGrpDec", "8.3.15", G, Ret::Double, Group, |cx, a| {
+    unary("GetGrpDec", "8.3.15", Ret::Double, Group, |cx, a| {
         profile_get(cx, a, |p| p.deceleration)
     }),
-    row("GetGrpSMTime", "8.3.18", G, Ret::Double, Group, |cx, a| {
+    unary("GetGrpSMTime", "8.3.18", Ret::Double, Group, |cx, a| {
         profile_get(cx, a, |p| p.smooth_ms)
     }),
-    row(
+    unary(
         "GetGrpCmdNum",
         "8.3.27",
-        G,
         Ret::Int,
         Group,
         |cx, a| match group_id(a) {
@@ -405,10 +395,9 @@ pub static ROWS: &[Function] = &[
             Err(c) => Plan::Fail(c),
         },
     ),
-    row(
+    unary(
         "GetGrpCoordSys",
         "8.3.20",
-        G,
         Ret::Int,
         Group,
         |cx, a| match group_id(a) {
@@ -435,10 +424,9 @@ pub static ROWS: &[Function] = &[
         Group,
         set_vel_scale,
     ),
-    row(
+    unary(
         "GetGrpVelScale",
         "8.3.29",
-        G,
         Ret::Double,
         Group,
         |cx, a| match group_id(a) {
@@ -465,16 +453,16 @@ pub static ROWS: &[Function] = &[
         Group,
         |cx, a| pose(cx, a, true),
     ),
-    row("IsGrpEnabled", "8.4.1", G, Ret::Int, Group, |cx, a| {
+    unary("IsGrpEnabled", "8.4.1", Ret::Int, Group, |cx, a| {
         group_bool(cx, a, |s| s.state != GroupState::Disabled)
     }),
-    row("IsGrpMoving", "8.4.2", G, Ret::Int, Group, |cx, a| {
+    unary("IsGrpMoving", "8.4.2", Ret::Int, Group, |cx, a| {
         group_bool(cx, a, |s| s.state == GroupState::Moving)
     }),
-    row("IsGrpInPos", "8.4.3", G, Ret::Int, Group, |cx, a| {
+    unary("IsGrpInPos", "8.4.3", Ret::Int, Group, |cx, a| {
         group_bool(cx, a, |s| s.in_position)
     }),
-    row("IsGrpErrorStop", "8.4.4", G, Ret::Int, Group, |cx, a| {
+    unary("IsGrpErrorStop", "8.4.4", Ret::Int, Group, |cx, a| {
         group_bool(cx, a, |s| s.state == GroupState::ErrorStop)
     }),
 ];

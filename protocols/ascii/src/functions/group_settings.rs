@@ -17,9 +17,8 @@ use super::group_state::{
 };
 use crate::registers::TransitionParameters;
 use crate::reply::Outcome;
-use crate::table::{row, Addresses::Group, Args, Ctx, Function, Plan, Ret, Then, Ty};
+use crate::table::{row, unary, Addresses::Group, Args, Ctx, Function, Plan, Ret, Then, Ty};
 
-const G: &[Ty] = &[Ty::Int];
 const GD: &[Ty] = &[Ty::Int, Ty::Double];
 const GI: &[Ty] = &[Ty::Int, Ty::Int];
 const GID: &[Ty] = &[Ty::Int, Ty::Int, Ty::Double];
@@ -300,7 +299,7 @@ pub static ROWS: &[Function] = &[
             Err(c) => Plan::Fail(c),
         },
     ),
-    row("GetGrpKin", "8.3.8", G, Ret::Int, Group, |cx, a| {
+    unary("GetGrpKin", "8.3.8", Ret::Int, Group, |cx, a| {
         int_register(cx, a, |_, _| KIN_CARTESIAN)
     }),
     // Only the Cartesian kinematics: another id is eERR_CRD_CMD_INVALID_KIN_SETTING.
@@ -359,7 +358,7 @@ pub static ROWS: &[Function] = &[
             true
         })
     }),
-    row("GetGrpBufferMode", "8.3.22", G, Ret::Int, Group, |cx, a| {
+    unary("GetGrpBufferMode", "8.3.22", Ret::Int, Group, |cx, a| {
         int_register(cx, a, |cx, g| {
             cx.registers
                 .group_buffer_modes
@@ -384,7 +383,7 @@ pub static ROWS: &[Function] = &[
             Err(c) => Plan::Fail(c),
         },
     ),
-    row("GetGrpTransMode", "8.3.24", G, Ret::Int, Group, |cx, a| {
+    unary("GetGrpTransMode", "8.3.24", Ret::Int, Group, |cx, a| {
         int_register(cx, a, |cx, g| {
             cx.registers
                 .group_transition_modes

@@ -7,7 +7,7 @@ use serde_json::json;
 
 use super::{axis_error, axis_of, engine_then, set_param};
 use crate::reply::Outcome;
-use crate::table::{row, Addresses::Axis, Args, Ctx, Function, Plan, Ret, Then, Ty};
+use crate::table::{row, unary, Addresses::Axis, Args, Ctx, Function, Plan, Ret, Then, Ty};
 
 const AD: &[Ty] = &[Ty::Int, Ty::Double];
 const AI: &[Ty] = &[Ty::Int, Ty::Int];
@@ -52,7 +52,7 @@ fn predicate(
 }
 
 pub static ROWS: &[Function] = &[
-    row("MoveHome", "20.2", &[Ty::Int], Ret::Int, Axis, |cx, a| {
+    unary("MoveHome", "20.2", Ret::Int, Axis, |cx, a| {
         move_home(cx, a, false)
     }),
     row(
@@ -111,7 +111,7 @@ pub static ROWS: &[Function] = &[
             Err(c) => Plan::Fail(c),
         },
     ),
-    row("IsHomed", "20.10", &[Ty::Int], Ret::Int, Axis, |cx, a| {
+    unary("IsHomed", "20.10", Ret::Int, Axis, |cx, a| {
         predicate(cx, a, |cx, axis, s| {
             cx.registers
                 .homed
@@ -120,21 +120,15 @@ pub static ROWS: &[Function] = &[
                 .unwrap_or(s.flags.contains(AxisFlags::HOMED))
         })
     }),
-    row("IsHoming", "20.11", &[Ty::Int], Ret::Int, Axis, |cx, a| {
+    unary("IsHoming", "20.11", Ret::Int, Axis, |cx, a| {
         predicate(cx, a, |_, _, s| s.state == AxisState::Homing)
     }),
-    row(
-        "IsHomeSwitch",
-        "20.12",
-        &[Ty::Int],
-        Ret::Int,
-        Axis,
-        |cx, a| predicate(cx, a, |_, _, s| s.flags.contains(AxisFlags::HOME_SWITCH)),
-    ),
+    unary("IsHomeSwitch", "20.12", Ret::Int, Axis, |cx, a| {
+        predicate(cx, a, |_, _, s| s.flags.contains(AxisFlags::HOME_SWITCH))
+    }),
 ];
 
 /// `MoveHome` answering once homing has ended (`move_home_waits`).
-pub static WAITING_MOVE_HOME: Function =
-    row("MoveHome", "20.2", &[Ty::Int], Ret::Int, Axis, |cx, a| {
-        move_home(cx, a, true)
-    });
+pub static WAITING_MOVE_HOME: Function = unary("MoveHome", "20.2", Ret::Int, Axis, |cx, a| {
+    move_home(cx, a, true)
+});

@@ -1,7 +1,7 @@
 //! Chapter 4, math functions (digest 004 §2.3, TV 88), computed as C's libm does.
 
 use crate::reply::Outcome;
-use crate::table::{row, Addresses::Controller, Function, Plan, Ret, Ty};
+use crate::table::{row, unary, Addresses::Controller, Function, Plan, Ret, Ty};
 
 const D: &[Ty] = &[Ty::Double];
 const DD: &[Ty] = &[Ty::Double, Ty::Double];
@@ -37,7 +37,7 @@ pub static ROWS: &[Function] = &[
     row("atan2", "4.7", DD, Ret::Double, Controller, |_, a| {
         d(a.double(0).atan2(a.double(1)))
     }),
-    row("abs", "4.8", &[Ty::Int], Ret::Int, Controller, |_, a| {
+    unary("abs", "4.8", Ret::Int, Controller, |_, a| {
         Plan::Done(Outcome::Int((a.int(0) as i32).wrapping_abs()))
     }),
     row("fabs", "4.9", D, Ret::Double, Controller, |_, a| {

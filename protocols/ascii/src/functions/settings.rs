@@ -6,9 +6,8 @@ use axes::{AxisState, ParamId};
 
 use super::{axis_error, axis_of, get_param, get_status, param, set_param};
 use crate::reply::Outcome;
-use crate::table::{row, Addresses::Axis, Args, Ctx, Function, Plan, Ret, Ty};
+use crate::table::{row, unary, Addresses::Axis, Args, Ctx, Function, Plan, Ret, Ty};
 
-const A: &[Ty] = &[Ty::Int];
 const AD: &[Ty] = &[Ty::Int, Ty::Double];
 const AI: &[Ty] = &[Ty::Int, Ty::Int];
 
@@ -44,14 +43,14 @@ fn set_flag(cx: &mut Ctx<'_>, args: &Args, id: ParamId) -> Plan {
 const PARAMETER: &str = "eERR_AXIS_CMD_INVALID_PARAMETER";
 
 pub static ROWS: &[Function] = &[
-    row("GetVel", "5.3.1", A, Ret::Double, Axis, |cx, a| {
+    unary("GetVel", "5.3.1", Ret::Double, Axis, |cx, a| {
         get_param(cx, a, ParamId::Speed)
     }),
     // TV 24: non-zero positive.
     row("SetVel", "5.3.2", AD, Ret::Int, Axis, |cx, a| {
         set_checked(cx, a, ParamId::Speed, positive, "eERR_AXIS_CMD_INVALID_VEL")
     }),
-    row("GetAcc", "5.3.3", A, Ret::Double, Axis, |cx, a| {
+    unary("GetAcc", "5.3.3", Ret::Double, Axis, |cx, a| {
         get_param(cx, a, ParamId::Accel)
     }),
     row("SetAcc", "5.3.4", AD, Ret::Int, Axis, |cx, a| {
@@ -66,7 +65,7 @@ pub static ROWS: &[Function] = &[
             "eERR_AXIS_CMD_INVALID_ACC",
         )
     }),
-    row("GetDec", "5.3.6", A, Ret::Double, Axis, |cx, a| {
+    unary("GetDec", "5.3.6", Ret::Double, Axis, |cx, a| {
         get_param(cx, a, ParamId::Decel)
     }),
     row("SetDec", "5.3.7", AD, Ret::Int, Axis, |cx, a| {
@@ -81,7 +80,7 @@ pub static ROWS: &[Function] = &[
             "eERR_AXIS_CMD_INVALID_DEC",
         )
     }),
-    row("GetKillDec", "5.3.9", A, Ret::Double, Axis, |cx, a| {
+    unary("GetKillDec", "5.3.9", Ret::Double, Axis, |cx, a| {
         get_param(cx, a, ParamId::FastDecel)
     }),
     row("SetKillDec", "5.3.10", AD, Ret::Int, Axis, |cx, a| {
@@ -93,60 +92,54 @@ pub static ROWS: &[Function] = &[
             "eERR_AXIS_CMD_INVALID_KILL_DEC",
         )
     }),
-    row("GetSWRL", "5.3.11", A, Ret::Double, Axis, |cx, a| {
+    unary("GetSWRL", "5.3.11", Ret::Double, Axis, |cx, a| {
         get_param(cx, a, ParamId::FsLimit)
     }),
     row("SetSWRL", "5.3.12", AD, Ret::Int, Axis, |cx, a| {
         set_checked(cx, a, ParamId::FsLimit, finite, PARAMETER)
     }),
-    row("GetSWLL", "5.3.13", A, Ret::Double, Axis, |cx, a| {
+    unary("GetSWLL", "5.3.13", Ret::Double, Axis, |cx, a| {
         get_param(cx, a, ParamId::RsLimit)
     }),
     row("SetSWLL", "5.3.14", AD, Ret::Int, Axis, |cx, a| {
         set_checked(cx, a, ParamId::RsLimit, finite, PARAMETER)
     }),
-    row("GetSMTime", "5.3.15", A, Ret::Double, Axis, |cx, a| {
+    unary("GetSMTime", "5.3.15", Ret::Double, Axis, |cx, a| {
         get_param(cx, a, ParamId::SmoothTime)
     }),
     row("SetSMTime", "5.3.16", AD, Ret::Int, Axis, set_sm_time),
     // §5.3.17–18, digest 004 §3.7: the last move's profile time and its settling time (profile
     // end → in position), measured on the engine's clock; ms.
-    row("GetMoveTime", "5.3.17", A, Ret::Double, Axis, |cx, a| {
+    unary("GetMoveTime", "5.3.17", Ret::Double, Axis, |cx, a| {
         get_status(cx, a, |s| s.move_time * 1000.0)
     }),
-    row(
-        "GetSettlingTime",
-        "5.3.18",
-        A,
-        Ret::Double,
-        Axis,
-        |cx, a| get_status(cx, a, |s| s.settling_time * 1000.0),
-    ),
+    unary("GetSettlingTime", "5.3.18", Ret::Double, Axis, |cx, a| {
+        get_status(cx, a, |s| s.settling_time * 1000.0)
+    }),
     row("SetPos", "5.3.19", AD, Ret::Int, Axis, set_pos),
-    row("GetPosFb", "5.3.20", A, Ret::Double, Axis, |cx, a| {
+    unary("GetPosFb", "5.3.20", Ret::Double, Axis, |cx, a| {
         get_status(cx, a, |s| s.act_pos)
     }),
-    row("GetPosFbComp", "5.3.21", A, Ret::Double, Axis, |cx, a| {
+    unary("GetPosFbComp", "5.3.21", Ret::Double, Axis, |cx, a| {
         get_status(cx, a, |s| s.act_pos + s.compensation)
     }),
     // §5.3.22, digest 004 §3.9: the origin offset `SetPos` moves.
-    row("GetPosOffset", "5.3.22", A, Ret::Double, Axis, |cx, a| {
+    unary("GetPosOffset", "5.3.22", Ret::Double, Axis, |cx, a| {
         get_status(cx, a, |s| s.position_offset)
     }),
-    row("GetPosErr", "5.3.23", A, Ret::Double, Axis, |cx, a| {
+    unary("GetPosErr", "5.3.23", Ret::Double, Axis, |cx, a| {
         get_status(cx, a, |s| s.following_error)
     }),
-    row("GetVelFb", "5.3.24", A, Ret::Double, Axis, |cx, a| {
+    unary("GetVelFb", "5.3.24", Ret::Double, Axis, |cx, a| {
         get_status(cx, a, |s| s.act_vel)
     }),
-    row("GetVelErr", "5.3.25", A, Ret::Double, Axis, |cx, a| {
+    unary("GetVelErr", "5.3.25", Ret::Double, Axis, |cx, a| {
         get_status(cx, a, |s| s.cmd_vel - s.act_vel)
     }),
     // §5.3.26: amperes, the drive's torque (a fraction of rated) × the motor's rated current.
-    row(
+    unary(
         "GetCurrFb",
         "5.3.26",
-        A,
         Ret::Double,
         Axis,
         |cx, a| match axis_of(cx, a) {
@@ -157,22 +150,22 @@ pub static ROWS: &[Function] = &[
             Err(code) => Plan::Fail(code),
         },
     ),
-    row("GetRefPos", "5.3.27", A, Ret::Double, Axis, |cx, a| {
+    unary("GetRefPos", "5.3.27", Ret::Double, Axis, |cx, a| {
         get_status(cx, a, |s| s.cmd_pos)
     }),
-    row("GetRefVel", "5.3.28", A, Ret::Double, Axis, |cx, a| {
+    unary("GetRefVel", "5.3.28", Ret::Double, Axis, |cx, a| {
         get_status(cx, a, |s| s.cmd_vel)
     }),
-    row("GetRefAcc", "5.3.29", A, Ret::Double, Axis, |cx, a| {
+    unary("GetRefAcc", "5.3.29", Ret::Double, Axis, |cx, a| {
         get_status(cx, a, |s| s.cmd_acc)
     }),
-    row("GetPosOut", "5.3.30", A, Ret::Double, Axis, |cx, a| {
+    unary("GetPosOut", "5.3.30", Ret::Double, Axis, |cx, a| {
         get_status(cx, a, |s| s.output_pos)
     }),
-    row("GetVelOut", "5.3.31", A, Ret::Double, Axis, |cx, a| {
+    unary("GetVelOut", "5.3.31", Ret::Double, Axis, |cx, a| {
         get_status(cx, a, |s| s.cmd_vel)
     }),
-    row("GetAccOut", "5.3.32", A, Ret::Double, Axis, |cx, a| {
+    unary("GetAccOut", "5.3.32", Ret::Double, Axis, |cx, a| {
         get_status(cx, a, |s| s.cmd_acc)
     }),
     row("IgnoreHWL", "5.3.33", AI, Ret::Int, Axis, |cx, a| {
@@ -206,15 +199,14 @@ pub static ROWS: &[Function] = &[
             "eERR_AXIS_CMD_INVALID_VEL_SCALE",
         )
     }),
-    row("GetVelScale", "5.3.38", A, Ret::Double, Axis, |cx, a| {
+    unary("GetVelScale", "5.3.38", Ret::Double, Axis, |cx, a| {
         get_param(cx, a, ParamId::VelScale)
     }),
     row("SetRollover", "5.3.39", AD, Ret::Int, Axis, set_rollover),
     // §5.3.40, digest 004 §3.8: whole turns past 0 of the rollover axis's feedback.
-    row(
+    unary(
         "GetRolloverTurns",
         "5.3.40",
-        A,
         Ret::Int,
         Axis,
         |cx, a| match axis_of(cx, a) {
@@ -236,10 +228,9 @@ pub static ROWS: &[Function] = &[
         Axis,
         set_buffer_mode,
     ),
-    row(
+    unary(
         "GetBufferMode",
         "5.3.43",
-        A,
         Ret::Int,
         Axis,
         |cx, a| match axis_of(cx, a) {
@@ -250,10 +241,9 @@ pub static ROWS: &[Function] = &[
             Err(code) => Plan::Fail(code),
         },
     ),
-    row(
+    unary(
         "GetCmdNum",
         "5.3.44",
-        A,
         Ret::Int,
         Axis,
         |cx, a| match axis_of(cx, a) {
@@ -264,20 +254,15 @@ pub static ROWS: &[Function] = &[
     row("SetPosWindow", "5.3.45", AD, Ret::Int, Axis, |cx, a| {
         set_checked(cx, a, ParamId::InPositionWindow, positive, PARAMETER)
     }),
-    row("GetPosWindow", "5.3.46", A, Ret::Double, Axis, |cx, a| {
+    unary("GetPosWindow", "5.3.46", Ret::Double, Axis, |cx, a| {
         get_param(cx, a, ParamId::InPositionWindow)
     }),
     row("SetPosWindowTime", "5.3.47", AD, Ret::Int, Axis, |cx, a| {
         set_checked(cx, a, ParamId::InPositionTime, positive, PARAMETER)
     }),
-    row(
-        "GetPosWindowTime",
-        "5.3.48",
-        A,
-        Ret::Double,
-        Axis,
-        |cx, a| get_param(cx, a, ParamId::InPositionTime),
-    ),
+    unary("GetPosWindowTime", "5.3.48", Ret::Double, Axis, |cx, a| {
+        get_param(cx, a, ParamId::InPositionTime)
+    }),
 ];
 
 fn moving(state: AxisState) -> bool {

@@ -12,7 +12,7 @@ use serde_json::json;
 
 use crate::reply::Outcome;
 use crate::table::{
-    row, Addresses::Controller, Args, Ctx, Function, ObjectReply, Plan, Ret, Then, Ty,
+    row, unary, Addresses::Controller, Args, Ctx, Function, ObjectReply, Plan, Ret, Then, Ty,
 };
 
 /// 0x60FD, the drive's digital inputs (CiA 402).
@@ -196,22 +196,12 @@ pub static ROWS: &[Function] = &[
     row("GetSlvGPO", "9.5.2", SS, Ret::Int, Controller, |cx, a| {
         get_pin(cx, a, false)
     }),
-    row(
-        "GetSlvAllGPI",
-        "9.5.3",
-        &[Ty::Int],
-        Ret::Int,
-        Controller,
-        |cx, a| get_all(cx, a, true, 1),
-    ),
-    row(
-        "GetSlvAllGPO",
-        "9.5.4",
-        &[Ty::Int],
-        Ret::Int,
-        Controller,
-        |cx, a| get_all(cx, a, false, 1),
-    ),
+    unary("GetSlvAllGPI", "9.5.3", Ret::Int, Controller, |cx, a| {
+        get_all(cx, a, true, 1)
+    }),
+    unary("GetSlvAllGPO", "9.5.4", Ret::Int, Controller, |cx, a| {
+        get_all(cx, a, false, 1)
+    }),
     // TV 12: GPI 8 and 11 from start 8 → 9.
     row(
         "GetSlvAllGPIByStartIdx",
@@ -251,10 +241,9 @@ pub static ROWS: &[Function] = &[
         Plan::Done(Outcome::Int(i32::try_from(n).unwrap_or(i32::MAX)))
     }),
     // §21.2: no slave has slots.
-    row(
+    unary(
         "GetSlvSlotNum",
         "21.2",
-        &[Ty::Int],
         Ret::Int,
         Controller,
         |cx, a| match slave(cx, a.int(0)) {

@@ -5,7 +5,7 @@ use mcemu_dialects::himc::{AxisExtra, Predicate};
 
 use super::axis_of;
 use crate::reply::Outcome;
-use crate::table::{row, Addresses::Axis, Args, Ctx, Function, Plan, Ret, Ty};
+use crate::table::{unary, Addresses::Axis, Args, Ctx, Function, Plan, Ret};
 
 fn holds(cx: &mut Ctx<'_>, args: &Args, p: Predicate) -> Plan {
     let cx: &Ctx<'_> = cx;
@@ -24,7 +24,7 @@ fn holds(cx: &mut Ctx<'_>, args: &Args, p: Predicate) -> Plan {
 macro_rules! predicates {
     ($(($name:literal, $section:literal, $p:ident),)*) => {
         pub static ROWS: &[Function] = &[
-            $(row($name, $section, &[Ty::Int], Ret::Int, Axis, |cx, a| holds(cx, a, Predicate::$p)),)*
+            $(unary($name, $section, Ret::Int, Axis, |cx, a| holds(cx, a, Predicate::$p)),)*
         ];
     };
 }

@@ -5,7 +5,7 @@ use serde_json::json;
 
 use super::engine;
 use crate::reply::Outcome;
-use crate::table::{row, Addresses::Controller, Args, Ctx, Function, Plan, Ret, Ty};
+use crate::table::{row, unary, Addresses::Controller, Args, Ctx, Function, Plan, Ret};
 use mcemu_dialects::himc::system::HMPL_ARG_OUT_OF_RANGE;
 
 /// EtherCAT state Operation (§2.5: 1 Init, 2 Pre-Op, 4 Safe-Op, 8 Op).
@@ -27,14 +27,7 @@ pub static ROWS: &[Function] = &[
     row("GetECATSt", "2.5", &[], Ret::Int, Controller, |_, _| {
         done(ECAT_OP)
     }),
-    row(
-        "GetSlvECATSt",
-        "2.6",
-        &[Ty::Int],
-        Ret::Int,
-        Controller,
-        slave_state,
-    ),
+    unary("GetSlvECATSt", "2.6", Ret::Int, Controller, slave_state),
     row("DisableAll", "2.7", &[], Ret::Int, Controller, |_, _| {
         engine(json!({"type": "disable_all"}))
     }),
@@ -51,22 +44,8 @@ pub static ROWS: &[Function] = &[
     row("ScanNetwork", "2.16", &[], Ret::Int, Controller, |_, _| {
         done(0)
     }),
-    row(
-        "SetHMIScope",
-        "2.17",
-        &[Ty::Int],
-        Ret::Int,
-        Controller,
-        |_, _| done(0),
-    ),
-    row(
-        "SendEvent",
-        "2.19",
-        &[Ty::Int],
-        Ret::Int,
-        Controller,
-        |_, _| done(0),
-    ),
+    unary("SetHMIScope", "2.17", Ret::Int, Controller, |_, _| done(0)),
+    unary("SendEvent", "2.19", Ret::Int, Controller, |_, _| done(0)),
     row(
         "RunScheduler",
         "2.21",

@@ -8,7 +8,7 @@ use std::collections::BTreeMap;
 use mcemu_dialects::himc::system::HMPL_ARG_OUT_OF_RANGE;
 
 use crate::reply::Outcome;
-use crate::table::{row, Addresses::Controller, Args, Function, Plan, Ret, Ty};
+use crate::table::{row, unary, Addresses::Controller, Args, Function, Plan, Ret, Ty};
 
 /// Entries of the user table (§11.1: `system_user_table[512000]`).
 pub const USER_TABLE_LEN: u32 = 512_000;
@@ -48,10 +48,9 @@ pub static ROWS: &[Function] = &[
         },
     ),
     // TV 59.
-    row(
+    unary(
         "GetTableValue",
         "11.5",
-        &[Ty::Int],
         Ret::Double,
         Controller,
         |cx, a| match index(a.int(0)) {

@@ -5,7 +5,7 @@
 
 use mcemu_dialects::himc::system::SystemError;
 
-use crate::table::{row, Addresses::Controller, Args, Ctx, Function, Plan, Ret, Ty};
+use crate::table::{row, unary, Addresses::Controller, Args, Ctx, Function, Plan, Ret, Ty};
 
 /// Every task function: not supported.
 fn not_supported(_: &mut Ctx<'_>, _: &Args) -> Plan {
@@ -13,14 +13,7 @@ fn not_supported(_: &mut Ctx<'_>, _: &Args) -> Plan {
 }
 
 pub static ROWS: &[Function] = &[
-    row(
-        "StartTask",
-        "16.2",
-        &[Ty::Int],
-        Ret::Int,
-        Controller,
-        not_supported,
-    ),
+    unary("StartTask", "16.2", Ret::Int, Controller, not_supported),
     row(
         "StartTaskFunc",
         "16.3",
@@ -29,14 +22,7 @@ pub static ROWS: &[Function] = &[
         Controller,
         not_supported,
     ),
-    row(
-        "StopTask",
-        "16.4",
-        &[Ty::Int],
-        Ret::Int,
-        Controller,
-        not_supported,
-    ),
+    unary("StopTask", "16.4", Ret::Int, Controller, not_supported),
     // `void` in the manual; `Int` here so that the refusal is answered (a void call replies 0).
     row(
         "StopAllTask",
@@ -46,14 +32,7 @@ pub static ROWS: &[Function] = &[
         Controller,
         not_supported,
     ),
-    row(
-        "IsTaskStop",
-        "16.6",
-        &[Ty::Int],
-        Ret::Int,
-        Controller,
-        not_supported,
-    ),
+    unary("IsTaskStop", "16.6", Ret::Int, Controller, not_supported),
 ];
 
 #[cfg(test)]

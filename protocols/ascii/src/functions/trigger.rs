@@ -16,7 +16,7 @@ use serde_json::json;
 use super::{axis_error, axis_of, engine};
 use crate::registers::{ProbeFunction, PtSettings};
 use crate::reply::Outcome;
-use crate::table::{row, Addresses::Axis, Args, Ctx, Function, Plan, Ret, Ty};
+use crate::table::{row, unary, Addresses::Axis, Args, Ctx, Function, Plan, Ret, Ty};
 
 fn axis(cx: &Ctx<'_>, args: &Args) -> Result<u16, u32> {
     axis_of(cx, args).map(|(a, _)| a)
@@ -166,14 +166,13 @@ fn probe_position(cx: &mut Ctx<'_>, args: &Args, probe: u8) -> Plan {
     }
 }
 
-const A: &[Ty] = &[Ty::Int];
 const AO: &[Ty] = &[Ty::Int, Ty::Out];
 const AD: &[Ty] = &[Ty::Int, Ty::Double];
 const FUNC: &[Ty] = &[Ty::Int, Ty::Int, Ty::Int, Ty::Int];
 
 pub static ROWS: &[Function] = &[
-    row("EnablePT", "12.2", A, Ret::Int, Axis, enable_pt),
-    row("DisablePT", "12.3", A, Ret::Int, Axis, |cx, a| {
+    unary("EnablePT", "12.2", Ret::Int, Axis, enable_pt),
+    unary("DisablePT", "12.3", Ret::Int, Axis, |cx, a| {
         match axis(cx, a) {
             Ok(x)
                 if cx
@@ -188,17 +187,12 @@ pub static ROWS: &[Function] = &[
             Err(c) => Plan::Fail(c),
         }
     }),
-    row(
-        "IsPTEnabled",
-        "12.4",
-        A,
-        Ret::Int,
-        Axis,
-        |cx, a| match axis(cx, a) {
+    unary("IsPTEnabled", "12.4", Ret::Int, Axis, |cx, a| {
+        match axis(cx, a) {
             Ok(x) => Plan::Done(Outcome::bool(compare_running(cx, x))),
             Err(c) => Plan::Fail(c),
-        },
-    ),
+        }
+    }),
     row("SetPT_StartPos", "12.5", AD, Ret::Int, Axis, |cx, a| {
         set_pt(cx, a, |s, a| finite(a).map(|v| s.start = Some(v)).is_some())
     }),
@@ -230,50 +224,30 @@ pub static ROWS: &[Function] = &[
             })
         },
     ),
-    row("EnableTouchProbe1", "13.2", A, Ret::Int, Axis, |cx, a| {
+    unary("EnableTouchProbe1", "13.2", Ret::Int, Axis, |cx, a| {
         probe(cx, a, 0, true)
     }),
-    row("EnableTouchProbe2", "13.3", A, Ret::Int, Axis, |cx, a| {
+    unary("EnableTouchProbe2", "13.3", Ret::Int, Axis, |cx, a| {
         probe(cx, a, 1, true)
     }),
-    row("DisableTouchProbe1", "13.4", A, Ret::Int, Axis, |cx, a| {
+    unary("DisableTouchProbe1", "13.4", Ret::Int, Axis, |cx, a| {
         probe(cx, a, 0, false)
     }),
-    row("DisableTouchProbe2", "13.5", A, Ret::Int, Axis, |cx, a| {
+    unary("DisableTouchProbe2", "13.5", Ret::Int, Axis, |cx, a| {
         probe(cx, a, 1, false)
     }),
-    row(
-        "IsTouchProbe1Enabled",
-        "13.6",
-        A,
-        Ret::Int,
-        Axis,
-        |cx, a| probe_bool(cx, a, 0, false),
-    ),
-    row(
-        "IsTouchProbe2Enabled",
-        "13.7",
-        A,
-        Ret::Int,
-        Axis,
-        |cx, a| probe_bool(cx, a, 1, false),
-    ),
-    row(
-        "IsTouchProbe1Triggered",
-        "13.8",
-        A,
-        Ret::Int,
-        Axis,
-        |cx, a| probe_bool(cx, a, 0, true),
-    ),
-    row(
-        "IsTouchProbe2Triggered",
-        "13.9",
-        A,
-        Ret::Int,
-        Axis,
-        |cx, a| probe_bool(cx, a, 1, true),
-    ),
+    unary("IsTouchProbe1Enabled", "13.6", Ret::Int, Axis, |cx, a| {
+        probe_bool(cx, a, 0, false)
+    }),
+    unary("IsTouchProbe2Enabled", "13.7", Ret::Int, Axis, |cx, a| {
+        probe_bool(cx, a, 1, false)
+    }),
+    unary("IsTouchProbe1Triggered", "13.8", Ret::Int, Axis, |cx, a| {
+        probe_bool(cx, a, 0, true)
+    }),
+    unary("IsTouchProbe2Triggered", "13.9", Ret::Int, Axis, |cx, a| {
+        probe_bool(cx, a, 1, true)
+    }),
     row(
         "GetTouchProbe1Pos",
         "13.10",
