@@ -12,7 +12,7 @@ use serde_json::json;
 
 use super::engine;
 use super::group_state::{
-    apply_profile, group_error, group_id, modes, profile_of, regroup, status, target,
+    apply_profile, command, group_error, group_id, modes, profile_of, regroup, status, target,
 };
 use crate::reply::Outcome;
 use crate::table::{
@@ -66,8 +66,14 @@ fn add_axis(cx: &mut Ctx<'_>, args: &Args) -> Plan {
     set_members(cx, group, members)
 }
 
+/// Make the group `members`, its InShape following them (§15.8: an axis that joins gets the
+/// group's shaper, one that leaves loses it).
 fn set_members(cx: &mut Ctx<'_>, group: u16, members: Vec<u16>) -> Plan {
-    match regroup(cx, group, &members) {
+    let shaper = super::filters::follow_members(cx, group, &members)
+        .into_iter()
+        .map(command)
+        .collect::<Result<Vec<_>, u32>>();
+    match regroup(cx, group, &members).and_then(|b| Ok([b, shaper?].concat())) {
         Ok(batch) => {
             if members.is_empty() {
                 cx.registers.group_members.remove(&group);

@@ -33,14 +33,11 @@ pub(super) fn command(value: Value) -> Result<Command, u32> {
 }
 
 /// The batch that makes the engine's group `group` have `members` (none: no group), with its
-/// motion profile and its InShape on the members.
+/// motion profile.
 pub(super) fn regroup(cx: &Ctx<'_>, group: u16, members: &[u16]) -> Result<Vec<Command>, u32> {
     let mut batch = Vec::new();
     if status(cx, group).is_some() {
         batch.push(command(json!({"type": "group_delete", "group": group}))?);
-    }
-    for c in super::filters::follow_members(cx, group, members) {
-        batch.push(command(c)?);
     }
     if !members.is_empty() {
         // A, B, C (the 4th to 6th axes added) are orientation angles (§8.1, §8.3.7).
