@@ -71,7 +71,8 @@ mod transcript {
         tables_triggers,
         measured,
         gpio_invert_estop_config,
-        filters_config
+        filters_config,
+        vectors
     );
 }
 
