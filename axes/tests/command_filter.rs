@@ -209,6 +209,36 @@ fn group_motion_uses_the_group_slot_only() {
     }
 }
 
+/// A halt while only the shaped members are still arriving has no path to halt: the group
+/// stays Moving and goes to Standby when they arrive, not Halted for ever.
+#[test]
+fn a_halt_after_the_path_leaves_the_group_to_settle() {
+    let axis = common::fast_mm_axis(100.0, 1000.0);
+    let mut e = common::with_group(engine_with(vec![axis.clone(), axis]), &[0, 1]);
+    ok(
+        &mut e,
+        cmd(r#"{"type":"filter_input_shaping","axis":0,"frequency":10,"slot":"group"}"#),
+    );
+    ok(&mut e, Command::from(common::group_line(1, &[50.0, 0.0])));
+    let state = |e: &Engine| e.group_status(1).unwrap().state;
+    // Until the path is done (nothing queued), then halt in the shaper's tail.
+    for _ in 0..3000 {
+        e.step();
+        if e.group_status(1).unwrap().queue_used == 0 {
+            break;
+        }
+    }
+    assert_eq!(state(&e), axes::status::GroupState::Moving);
+    assert_ne!(status(&e).cmd_pos, 50.0, "still arriving");
+    ok(&mut e, cmd(r#"{"type":"group_halt","group":1}"#));
+    assert_eq!(state(&e), axes::status::GroupState::Moving);
+    for _ in 0..100 {
+        e.step();
+    }
+    assert_eq!(status(&e).cmd_pos, 50.0);
+    assert_eq!(state(&e), axes::status::GroupState::Standby);
+}
+
 /// The group stays Moving, its line not done and its members moving and not in position,
 /// until every member's shaped output has arrived (decisions.md, "Command filters after
 /// smoothing"): the group's state follows the members' commands, not the planner.

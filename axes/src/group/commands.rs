@@ -669,6 +669,9 @@ impl Group {
             return Ok(Reply::Done);
         }
         match self.state {
+            // The path has ended and only the members' filtered outputs are still arriving:
+            // nothing to halt, and the group goes to Standby when they arrive.
+            GroupState::Moving if self.is_idle() => Ok(Reply::Done),
             GroupState::Moving => {
                 self.planner
                     .halt(deceleration.map(|d| d / self.length_ratio));
