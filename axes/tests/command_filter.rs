@@ -209,17 +209,27 @@ fn group_motion_uses_the_group_slot_only() {
     }
 }
 
-/// A halt while only the shaped members are still arriving has no path to halt: the group
-/// stays Moving and goes to Standby when they arrive, not Halted for ever.
-#[test]
-fn a_halt_after_the_path_leaves_the_group_to_settle() {
+/// Group 1 of two fast axes, axis 0 with a 10 Hz group shaper (50 ticks long), and the id of a
+/// line moving axis 0 to 50 just queued.
+fn shaped_group_line() -> (Engine, u32) {
     let axis = common::fast_mm_axis(100.0, 1000.0);
     let mut e = common::with_group(engine_with(vec![axis.clone(), axis]), &[0, 1]);
     ok(
         &mut e,
         cmd(r#"{"type":"filter_input_shaping","axis":0,"frequency":10,"slot":"group"}"#),
     );
-    ok(&mut e, Command::from(common::group_line(1, &[50.0, 0.0])));
+    let line = id_of(ok(
+        &mut e,
+        Command::from(common::group_line(1, &[50.0, 0.0])),
+    ));
+    (e, line)
+}
+
+/// A halt while only the shaped members are still arriving has no path to halt: the group
+/// stays Moving and goes to Standby when they arrive, not Halted for ever.
+#[test]
+fn a_halt_after_the_path_leaves_the_group_to_settle() {
+    let (mut e, _) = shaped_group_line();
     let state = |e: &Engine| e.group_status(1).unwrap().state;
     // Until the path is done (nothing queued), then halt in the shaper's tail.
     for _ in 0..3000 {
@@ -244,16 +254,7 @@ fn a_halt_after_the_path_leaves_the_group_to_settle() {
 /// smoothing"): the group's state follows the members' commands, not the planner.
 #[test]
 fn group_is_standby_only_when_the_shaped_members_arrive() {
-    let axis = common::fast_mm_axis(100.0, 1000.0);
-    let mut e = common::with_group(engine_with(vec![axis.clone(), axis]), &[0, 1]);
-    ok(
-        &mut e,
-        cmd(r#"{"type":"filter_input_shaping","axis":0,"frequency":10,"slot":"group"}"#),
-    );
-    let line = id_of(ok(
-        &mut e,
-        Command::from(common::group_line(1, &[50.0, 0.0])),
-    ));
+    let (mut e, line) = shaped_group_line();
     let (mut standby, mut arrived, mut done) = (None, None, None);
     for k in 0..3000u32 {
         e.step();
