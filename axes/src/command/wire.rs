@@ -218,6 +218,9 @@ pub(super) enum Command {
     FilterInputShaping(super::FilterInputShaping),
     FilterVsf(super::FilterVsf),
     FilterDisable(super::FilterDisable),
+    // Issue 13, NMC CrdSetTransPolar: the polar machine.
+    GroupSetPolarTransform(super::GroupSetPolarTransform),
+    GroupDeletePolarTransform(super::GroupDeletePolarTransform),
 }
 
 impl From<Command> for super::Command {
@@ -401,6 +404,8 @@ impl From<Command> for super::Command {
             Command::FilterInputShaping(c) => super::Command::from(c),
             Command::FilterVsf(c) => super::Command::from(c),
             Command::FilterDisable(c) => super::Command::from(c),
+            Command::GroupSetPolarTransform(c) => super::Command::from(c),
+            Command::GroupDeletePolarTransform(c) => super::Command::from(c),
             Command::ResetFaults(c) => super::Command::from(c),
             Command::SetEstopInput(c) => super::Command::from(c),
             Command::AddAxisSet(c) => super::Command::from(c),
@@ -440,6 +445,12 @@ impl From<super::Command> for Command {
             }
             super::Command::Group(GroupCommand::StopInput(c)) => Command::GroupStopInput(c),
             super::Command::Group(GroupCommand::BufferedHalt(c)) => Command::GroupBufferedHalt(c),
+            super::Command::Group(GroupCommand::SetPolarTransform(c)) => {
+                Command::GroupSetPolarTransform(c)
+            }
+            super::Command::Group(GroupCommand::DeletePolarTransform(c)) => {
+                Command::GroupDeletePolarTransform(c)
+            }
             super::Command::Axis(AxisCommand::InjectFollowingError(c)) => {
                 Command::InjectFollowingError(c)
             }
