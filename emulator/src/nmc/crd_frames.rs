@@ -22,10 +22,13 @@ pub enum CrdTransform {
         center: [i64; 2],
     },
     /// `NMC_CrdSetTransPolar`: the rotary and the linear axis, rad/pulse of the rotary.
+    /// `path`: the two are the coordinate system's X and Y axes, so the engine group feeds them
+    /// the path's (θ, r) (`group_set_polar_transform`); else only `RunToPolarPos/Theta` use it.
     Polar {
         rot_axis: usize,
         trans_axis: usize,
         rot_equiv: f64,
+        path: bool,
     },
     /// `NMC_CrdSetTransXYZA`: the X, Y, Z, A axes (the coordinate system's members in order).
     Xyza { map: [usize; CRD_MAX_AXES] },
