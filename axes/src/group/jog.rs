@@ -184,12 +184,9 @@ impl Group {
     ) -> Result<Reply, EngineError> {
         let velocity = bounded("velocity", velocity)?;
         if self.polar.is_some() {
-            return Err(EngineError::GroupState {
-                group: self.id,
-                state: self.state,
-                action:
-                    "jog under the polar transform (its members do not move along a coordinate)",
-            });
+            return Err(self.state_error(
+                "jog under the polar transform (its members do not move along a coordinate)",
+            ));
         }
         match self.state {
             GroupState::Standby => {}

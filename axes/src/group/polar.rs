@@ -208,11 +208,7 @@ impl Group {
         if self.is_idle() && !self.feeding {
             Ok(())
         } else {
-            Err(EngineError::GroupState {
-                group: self.id,
-                state: self.state,
-                action,
-            })
+            Err(self.state_error(action))
         }
     }
 

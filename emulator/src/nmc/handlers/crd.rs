@@ -136,6 +136,16 @@ pub(super) fn here(c: &Call<'_>, n: usize, s: &CrdState) -> [i64; CRD_MAX_AXES] 
     out
 }
 
+/// The polar transform again, before motions go to the engine group, if `RunToPolarPos/Theta`
+/// lifted it to move the crd's X and Y axes in machine coordinates.
+pub(super) fn polar_resume(c: &Call<'_>, n: usize) -> Option<Command> {
+    let transform = c.service.frames().crd.get(n).map(|f| f.transform)?;
+    if group(c, n)?.polar {
+        return None;
+    }
+    transform.polar_command(n, |a| c.scale(a).pulses_per_unit)
+}
+
 fn open(c: &mut Call<'_>, n: i16) -> Result<(), Refusal> {
     let item = u8::try_from(n)
         .ok()
@@ -414,7 +424,7 @@ fn crd_start_mtn(c: &mut Call<'_>) -> Result<(), Refusal> {
         });
     }
     if !s.pending.is_empty() {
-        if let Some(polar) = super::crd_frames::polar_resume(c, n) {
+        if let Some(polar) = polar_resume(c, n) {
             c.command(polar);
         }
     }

@@ -10,8 +10,8 @@ use std::f64::consts::TAU;
 
 use axes::command::{
     Command, CoordinateSystem, ErrorKind, GroupDeletePolarTransform, GroupDeleteTransform,
-    GroupEnable, GroupId, GroupSetCoordinateSystem, GroupSetPolarTransform,
-    GroupSetRotaryTransform, GroupSetXyzaTransform, MoveLinearAbsolute, PositionFrame, SetPosition,
+    GroupEnable, GroupId, GroupSetCoordinateSystem, GroupSetRotaryTransform, GroupSetXyzaTransform,
+    MoveLinearAbsolute, PositionFrame, SetPosition,
 };
 use axes::status::GroupState;
 use mcemu_dialects::nmc::{acceleration_to_engine, code_for_kind, velocity_to_engine};
@@ -237,8 +237,8 @@ fn crd_set_trans_polar(c: &mut Call<'_>) -> Result<(), Refusal> {
         rot_equiv: equiv,
         path,
     };
-    if path {
-        c.command(polar_command(c, n, polar));
+    if let Some(command) = polar.polar_command(n, |a| c.scale(a).pulses_per_unit) {
+        c.command(command);
     }
     set_frames(c, n, |f| f.transform = polar);
     Ok(())
@@ -256,37 +256,6 @@ fn check_polar_change(c: &Call<'_>, n: usize) -> Result<(), Refusal> {
         ));
     }
     Ok(())
-}
-
-/// The engine's polar transform of `polar` for group `n`.
-fn polar_command(c: &Call<'_>, n: usize, polar: CrdTransform) -> Command {
-    let CrdTransform::Polar {
-        rot_axis,
-        trans_axis,
-        rot_equiv,
-        ..
-    } = polar
-    else {
-        unreachable!("polar_command takes the polar transform");
-    };
-    GroupSetPolarTransform {
-        group: n as GroupId,
-        rotary: rot_axis as u16,
-        feed: trans_axis as u16,
-        // θ = pulses × rotEquiv = units × pulses per unit × rotEquiv.
-        rotary_units_per_radian: 1.0 / (rot_equiv * c.scale(rot_axis).pulses_per_unit),
-        plane: None,
-    }
-    .into()
-}
-
-/// The polar transform again, before motions go to the engine group, if `RunToPolarPos/Theta`
-/// lifted it to move the two axes in machine coordinates.
-pub(super) fn polar_resume(c: &Call<'_>, n: usize) -> Option<Command> {
-    let polar = frames(c, n).transform;
-    let lifted = group(c, n).is_some_and(|g| !g.polar);
-    (matches!(polar, CrdTransform::Polar { path: true, .. }) && lifted)
-        .then(|| polar_command(c, n, polar))
 }
 
 fn crd_del_trans_polar(c: &mut Call<'_>) -> Result<(), Refusal> {
@@ -358,7 +327,7 @@ fn in_range(target: f64) -> Result<f64, Refusal> {
 /// own X and Y (members of the engine group, which refuses single-axis motion): one group line
 /// in machine coordinates with the polar transform lifted, each axis at most at its velocity,
 /// acceleration and deceleration (both arrive together); the transform is set again before the
-/// next motion (`polar_resume`), and the path goes on from the point the axes reach.
+/// next motion (`crd::polar_resume`), and the path goes on from the point the axes reach.
 fn run_to_polar(
     c: &mut Call<'_>,
     n: usize,
@@ -452,27 +421,7 @@ fn run_to_polar(
                 .into(),
             );
         }
-        let scale = path_scale(c, &s);
-        commands.push(
-            MoveLinearAbsolute {
-                group: n as GroupId,
-                position: axes
-                    .iter()
-                    .zip(&position)
-                    .map(|(a, p)| c.scale(*a).to_engine(*p))
-                    .collect(),
-                velocity: Some(velocity_to_engine(scale, vel)),
-                acceleration: Some(acceleration_to_engine(scale, acc)),
-                deceleration: Some(acceleration_to_engine(scale, dec)),
-                jerk: None,
-                buffer_mode: Default::default(),
-                transition: Default::default(),
-                user_segment: None,
-                independent: Default::default(),
-                coordinate_system: Some(CoordinateSystem::MCS),
-            }
-            .into(),
-        );
+        commands.push(machine_line(c, n, &axes, &position, [vel, acc, dec]));
     }
     // The path goes on from the reached point, in the program's (Cartesian) coordinates.
     if let CrdTransform::Polar {
@@ -495,6 +444,37 @@ fn run_to_polar(
     }
     c.plan.commands.extend(commands);
     Ok(())
+}
+
+/// A line of group `n` to `position` (each member's pulses, user coordinates) at `vel`, `acc`,
+/// `dec` (pulse/ms, pulse/ms² of the path's scale) in machine coordinates, whatever transform
+/// is selected.
+fn machine_line(
+    c: &Call<'_>,
+    n: usize,
+    axes: &[usize],
+    position: &[f64],
+    [vel, acc, dec]: [f64; 3],
+) -> Command {
+    let scale = path_scale(c, &state(c, n));
+    MoveLinearAbsolute {
+        group: n as GroupId,
+        position: axes
+            .iter()
+            .zip(position)
+            .map(|(a, p)| c.scale(*a).to_engine(*p))
+            .collect(),
+        velocity: Some(velocity_to_engine(scale, vel)),
+        acceleration: Some(acceleration_to_engine(scale, acc)),
+        deceleration: Some(acceleration_to_engine(scale, dec)),
+        jerk: None,
+        buffer_mode: Default::default(),
+        transition: Default::default(),
+        user_segment: None,
+        independent: Default::default(),
+        coordinate_system: Some(CoordinateSystem::MCS),
+    }
+    .into()
 }
 
 /// (xPos, yPos) in polar coordinates: the rotary axis, its turns cleared first, to the angle
@@ -804,25 +784,8 @@ fn crd_goto_break(c: &mut Call<'_>) -> Result<(), Refusal> {
             group: n as GroupId,
         });
     }
-    let scale = path_scale(c, &s);
-    let position = axes
-        .iter()
-        .zip(&point)
-        .map(|(a, p)| c.scale(*a).to_engine(*p as f64))
-        .collect();
-    c.command(MoveLinearAbsolute {
-        group: n as GroupId,
-        position,
-        velocity: Some(velocity_to_engine(scale, vel)),
-        acceleration: Some(acceleration_to_engine(scale, acc)),
-        deceleration: Some(acceleration_to_engine(scale, acc)),
-        jerk: None,
-        buffer_mode: Default::default(),
-        transition: Default::default(),
-        user_segment: None,
-        independent: Default::default(),
-        coordinate_system: Some(CoordinateSystem::MCS),
-    });
+    let position: Vec<f64> = point.iter().map(|p| *p as f64).collect();
+    c.command(machine_line(c, n, &axes, &position, [vel, acc, acc]));
     if !kept {
         s.end = point;
         update(c, n, |now| now.end = s.end);

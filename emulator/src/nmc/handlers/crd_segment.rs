@@ -290,7 +290,7 @@ impl Push {
             self.s.pushed_length += self.path_scale().from_engine(length);
         }
         if self.s.started {
-            if let Some(polar) = super::crd_frames::polar_resume(c, self.n) {
+            if let Some(polar) = super::crd::polar_resume(c, self.n) {
                 c.command(polar);
             }
             c.plan.commands.extend(commands);
