@@ -3,7 +3,7 @@
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::atomic::Ordering;
 use std::sync::mpsc::{Receiver, TryRecvError};
-use std::sync::Arc;
+use std::sync::{Arc, PoisonError};
 use std::time::Duration;
 
 use arc_swap::ArcSwap;
@@ -46,8 +46,6 @@ pub(super) enum Request {
     },
     /// A fieldbus has input waiting: a virtual runtime serves it at the current tick.
     Poke,
-    /// Wakes a virtual servo thread blocked on the queue, so that it sees the stop flag.
-    Wake,
 }
 
 /// A virtual-clock advance without a condition publishes the snapshot after every this many
@@ -130,6 +128,103 @@ enum HeldReply {
     ),
 }
 
+/// The virtual clock's servo state, behind `Shared::core`'s lock: whoever holds the lock serves
+/// the queue. A virtual clock needs no clock.
+pub(super) type VirtualServo = Servo<Unpaced>;
+
+/// The clock of a [`VirtualServo`]: never read (bus time is engine time on the virtual clock).
+pub(super) struct Unpaced;
+
+impl Clock for Unpaced {
+    fn now(&self) -> Duration {
+        Duration::ZERO
+    }
+
+    fn sleep_until(&self, _deadline: Duration) {}
+}
+
+std::thread_local! {
+    /// The runtimes whose queue this thread is serving now (innermost last), as `Shared`
+    /// addresses: a blocking call to one of them from inside (a condition, an observer, a
+    /// fieldbus) would wait for itself, and is refused instead.
+    static SERVING: std::cell::RefCell<Vec<usize>> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
+fn shared_id(shared: &Shared) -> usize {
+    std::ptr::from_ref(shared) as usize
+}
+
+/// Whether this thread is serving `shared`'s queue right now.
+pub(super) fn serving(shared: &Shared) -> bool {
+    let id = shared_id(shared);
+    SERVING.with(|s| s.borrow().contains(&id))
+}
+
+/// Marks this thread as serving a runtime's queue for as long as it lives.
+struct ServingMark;
+
+impl ServingMark {
+    fn enter(shared: &Shared) -> ServingMark {
+        SERVING.with(|s| s.borrow_mut().push(shared_id(shared)));
+        ServingMark
+    }
+}
+
+impl Drop for ServingMark {
+    fn drop(&mut self) {
+        SERVING.with(|s| s.borrow_mut().pop());
+    }
+}
+
+/// Virtual clock: serve the queue on this thread, everything in it in order, the caller's own
+/// request included. A blocking caller does this instead of waking the servo thread and
+/// sleeping until its reply (two thread wake-ups, ~20 µs each on an idle VM: more than a
+/// 32-tick advance of 8 axes; decisions.md, "PT streams through the runtime"). Blocks while
+/// another thread serves; returns at once once the runtime has stopped. The requests are taken
+/// off the queue only under the lock, so the queue's order is the order they are served in.
+///
+/// A panic in the engine loses it as a dying servo thread did: the state is dropped (every
+/// queued request is answered `Stopped`), the runtime stops running and `RuntimeGuard::stop`
+/// reports `ServoPanicked`.
+pub(super) fn serve_virtual(shared: &Shared) {
+    let mut core = shared.core.lock().unwrap_or_else(PoisonError::into_inner);
+    let Some(servo) = core.as_mut() else {
+        return;
+    };
+    let _mark = ServingMark::enter(shared);
+    if catch_unwind(AssertUnwindSafe(|| servo.serve_queue())).is_err() {
+        *core = None;
+        shared.running.store(false, Ordering::Release);
+    }
+}
+
+/// The virtual clock's servo thread: serves what non-blocking callers queue (they unpark it),
+/// sleeps in between, and at a stop takes the state out of the lock and gives the engine back
+/// (`None` when the engine was lost to a panic).
+pub(super) fn run_virtual(shared: Arc<Shared>) -> Option<Engine> {
+    let _ = shared.servo_thread.set(std::thread::current().id());
+    let _ = shared.servo_waker.set(std::thread::current());
+    let running = RunningFlag(Arc::clone(&shared));
+    // A request queued before the waker was set is served by the first pass; one queued after
+    // a pass found the queue empty unparks the thread, so the park returns at once. The stop's
+    // unpark may have been used up by a park inside the pass (a condition waiting on a
+    // channel), hence the check between the pass and the park.
+    loop {
+        serve_virtual(&shared);
+        if shared.stop.load(Ordering::Acquire) || !shared.running.load(Ordering::Acquire) {
+            break;
+        }
+        std::thread::park();
+    }
+    drop(running);
+    let servo = shared
+        .core
+        .lock()
+        .unwrap_or_else(PoisonError::into_inner)
+        .take()?;
+    Some(servo.finish())
+}
+
 /// Which side of a step a fieldbus is served on.
 #[derive(Clone, Copy)]
 enum Phase {
@@ -208,18 +303,22 @@ impl<C: Clock> Servo<C> {
         }
     }
 
-    pub(super) fn run(mut self) -> Engine {
+    /// The paced servo thread: ticks on `clock` until stopped, then gives the engine back.
+    pub(super) fn run(mut self) -> Option<Engine> {
         let _ = self.shared.servo_thread.set(std::thread::current().id());
         let _ = self.shared.servo_waker.set(std::thread::current());
         let running = RunningFlag(Arc::clone(&self.shared));
-        match self.shared.clock.wall_period(self.engine.period()) {
-            None => self.run_virtual(),
-            Some(wall_period) => self.run_paced(wall_period),
+        if let Some(wall_period) = self.shared.clock.wall_period(self.engine.period()) {
+            self.run_paced(wall_period);
         }
         drop(running);
+        Some(self.finish())
+    }
+
+    /// Publishes the final statistics and returns the engine. Dropping the queue answers every
+    /// request still in it `Stopped` (ReplySender::drop), including any that races in after.
+    fn finish(mut self) -> Engine {
         self.publish_stats();
-        // Dropping the queue answers every request still in it `Stopped` (ReplySender::drop),
-        // including any that races in after this point.
         let Servo { engine, rx, .. } = self;
         drop(rx);
         engine
@@ -231,16 +330,19 @@ impl<C: Clock> Servo<C> {
 
     // ---- virtual clock -------------------------------------------------------------------
 
-    fn run_virtual(&mut self) {
-        // Blocks on the queue rather than polling: an idle virtual runtime costs nothing, and a
-        // command is applied as soon as it arrives, at the current tick. A request taken off the queue while applying a run of commands, served next.
+    /// Serves every request in the queue, in order, at the current tick (advances included),
+    /// until it is empty or a stop is requested; a request taken off the queue after the stop
+    /// is dropped, so its caller gets `Stopped`. Called with the virtual core's lock held, by
+    /// the servo thread or by a blocking caller ([`serve_virtual`]).
+    fn serve_queue(&mut self) {
+        // A request taken off the queue while applying a run of commands, served next.
         let mut carried: Option<Request> = None;
         loop {
             let request = match carried.take() {
                 Some(request) => request,
-                None => match self.rx.recv() {
+                None => match self.rx.try_recv() {
                     Ok(request) => request,
-                    Err(_) => return,
+                    Err(TryRecvError::Empty | TryRecvError::Disconnected) => return,
                 },
             };
             if self.stopping() {
@@ -271,7 +373,6 @@ impl<C: Clock> Servo<C> {
                     self.shared.poked.store(false, Ordering::Release);
                     self.serve_poke();
                 }
-                Request::Wake => {}
             }
         }
     }
@@ -439,7 +540,7 @@ impl<C: Clock> Servo<C> {
                     reply.send(Ok(()));
                 }
                 // The next step serves it.
-                Ok(Request::Poke | Request::Wake) => {}
+                Ok(Request::Poke) => {}
                 // Disconnected: the guard is gone, so the stop flag is set.
                 Err(TryRecvError::Empty | TryRecvError::Disconnected) => break,
             }
