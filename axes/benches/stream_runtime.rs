@@ -104,6 +104,9 @@ enum Refill {
     Batch,
     /// One `submit_batch` of the look's pushes, not waited on: one servo-thread wake-up a look.
     PipelinedBatch,
+    /// One `call_each` of the look's pushes: one request and one publication, each push on its
+    /// own (no rollback to prepare, unlike an atomic batch), served on the calling thread.
+    Each,
 }
 
 /// Voluntary context switches of this process's live threads so far (Linux `/proc`; `None`
@@ -200,6 +203,12 @@ fn pt_run(ticks: u64, chunk: u64, refill: Refill) -> (RunCost, u64) {
             Refill::PipelinedBatch if refills.is_empty() => {}
             Refill::PipelinedBatch => {
                 pending_batch = Some(handle.submit_batch(refills).unwrap());
+            }
+            Refill::Each if refills.is_empty() => {}
+            Refill::Each => {
+                for reply in handle.call_each(refills).unwrap() {
+                    reply.unwrap();
+                }
             }
         }
     }
@@ -340,6 +349,7 @@ fn main() {
         Refill::Pipelined,
         Refill::Batch,
         Refill::PipelinedBatch,
+        Refill::Each,
     ] {
         let cost = median_cost(
             (0..RUNS)

@@ -486,6 +486,42 @@ impl EngineHandle {
         pending.wait()
     }
 
+    /// Queue commands to be applied one after another, between the same two ticks, in order,
+    /// each on its own: a refused command gets its error in its place and the others stand, as
+    /// if each had been `submit`ted, but as one request (one publication, one reply; at most
+    /// [`crate::engine::MAX_ATOMIC_COMMANDS`]). What a host refilling several axes' stream
+    /// buffers at once wants: no rollback to prepare, unlike [`EngineHandle::submit_batch`].
+    pub fn submit_each(
+        &self,
+        commands: Vec<Command>,
+    ) -> Result<Pending<Vec<Result<Reply, EngineError>>, CallError>, SubmitError> {
+        let (reply, pending) = reply_channel();
+        self.enqueue(Request::Each { commands, reply })?;
+        Ok(pending)
+    }
+
+    /// [`EngineHandle::submit_each`] and block until the replies (served on the calling thread
+    /// on the virtual clock, as [`EngineHandle::call`]). Refused on the servo thread.
+    pub fn call_each(
+        &self,
+        commands: Vec<Command>,
+    ) -> Result<Vec<Result<Reply, EngineError>>, CallError> {
+        if self.shared.on_servo_thread() {
+            return Err(CallError::OnServoThread);
+        }
+        let (reply, pending) = reply_channel();
+        self.enqueue_and_serve(Request::Each { commands, reply })?;
+        pending.wait()
+    }
+
+    /// [`EngineHandle::submit_each`] and await the replies (any executor).
+    pub async fn call_each_async(
+        &self,
+        commands: Vec<Command>,
+    ) -> Result<Vec<Result<Reply, EngineError>>, CallError> {
+        self.submit_each(commands)?.await
+    }
+
     /// [`EngineHandle::submit_batch`] and await the replies (any executor).
     pub async fn call_batch_async(&self, commands: Vec<Command>) -> Result<Vec<Reply>, CallError> {
         self.submit_batch(commands)?.await

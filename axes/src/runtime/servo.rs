@@ -12,8 +12,9 @@ use super::{
     AdvanceError, CallError, Clock, Condition, Fieldbus, Observer, ObserverId, ReplySender,
     RuntimeOptions, RuntimeStats, Shared, Until,
 };
-use crate::command::{Command, Reply};
+use crate::command::{Command, EngineError, Reply};
 use crate::engine::Engine;
+use crate::engine::MAX_ATOMIC_COMMANDS;
 use crate::status::Snapshot;
 
 pub(super) enum Request {
@@ -26,6 +27,12 @@ pub(super) enum Request {
     Batch {
         commands: Vec<Command>,
         reply: ReplySender<Vec<Reply>, CallError>,
+    },
+    /// Commands applied one after another between the same two ticks, each on its own (a
+    /// refusal is that command's reply; the others stand), answered together.
+    Each {
+        commands: Vec<Command>,
+        reply: ReplySender<Vec<Result<Reply, EngineError>>, CallError>,
     },
     Advance {
         ticks: u64,
@@ -125,6 +132,10 @@ enum HeldReply {
     Batch(
         ReplySender<Vec<Reply>, CallError>,
         Result<Vec<Reply>, CallError>,
+    ),
+    Each(
+        ReplySender<Vec<Result<Reply, EngineError>>, CallError>,
+        Result<Vec<Result<Reply, EngineError>>, CallError>,
     ),
 }
 
@@ -349,7 +360,9 @@ impl<C: Clock> Servo<C> {
                 return; // `request` is dropped: its caller gets `Stopped`
             }
             match request {
-                request @ (Request::Command { .. } | Request::Batch { .. }) => {
+                request @ (Request::Command { .. }
+                | Request::Batch { .. }
+                | Request::Each { .. }) => {
                     carried = self.apply_queued_commands(request);
                 }
                 Request::Advance {
@@ -389,6 +402,7 @@ impl<C: Clock> Servo<C> {
             match request {
                 Request::Command { command, reply } => self.apply(command, reply),
                 Request::Batch { commands, reply } => self.apply_batch(commands, reply),
+                Request::Each { commands, reply } => self.apply_each(commands, reply),
                 other => break Some(other),
             }
             applied += 1;
@@ -530,6 +544,10 @@ impl<C: Clock> Servo<C> {
                     self.apply_batch(commands, reply);
                     applied += 1;
                 }
+                Ok(Request::Each { commands, reply }) => {
+                    self.apply_each(commands, reply);
+                    applied += 1;
+                }
                 Ok(Request::Advance { reply, .. }) => {
                     reply.send(Err(AdvanceError::NotVirtual(self.shared.clock)));
                 }
@@ -664,11 +682,35 @@ impl<C: Clock> Servo<C> {
         self.replies.push(HeldReply::Batch(reply, result));
     }
 
+    /// Each command on its own, in order; as many as an atomic batch may carry, so that one
+    /// request's work between two ticks stays bounded.
+    fn apply_each(
+        &mut self,
+        commands: Vec<Command>,
+        reply: ReplySender<Vec<Result<Reply, EngineError>>, CallError>,
+    ) {
+        let result = if commands.len() > MAX_ATOMIC_COMMANDS {
+            Err(CallError::Engine(EngineError::InvalidArgument {
+                name: "commands",
+                value: commands.len() as f64,
+                reason: "more than 1024 commands in one request",
+            }))
+        } else {
+            self.stats.commands_applied += commands.len() as u64;
+            Ok(commands
+                .into_iter()
+                .map(|command| self.engine.apply(command))
+                .collect())
+        };
+        self.replies.push(HeldReply::Each(reply, result));
+    }
+
     fn send_replies(&mut self) {
         for held in self.replies.drain(..) {
             match held {
                 HeldReply::One(reply, result) => reply.send(result),
                 HeldReply::Batch(reply, result) => reply.send(result),
+                HeldReply::Each(reply, result) => reply.send(result),
             }
         }
     }

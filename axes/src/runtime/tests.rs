@@ -367,6 +367,57 @@ fn a_batch_is_applied_in_one_go_and_a_refused_one_not_at_all() {
 }
 
 #[test]
+fn call_each_answers_each_command_in_order_and_a_refusal_loses_nothing() {
+    let (handle, _guard) = virtual_runtime(2);
+    // The jog of axis 1 comes before its enable (refused), axis 0's after (accepted): applied
+    // in order. The refused ones keep their places; the others stand.
+    let replies = handle
+        .call_each(vec![
+            jog(1, 1.0),
+            enable(0),
+            enable(7),
+            jog(0, 1.0),
+            enable(1),
+        ])
+        .unwrap();
+    assert_eq!(replies.len(), 5);
+    assert!(
+        matches!(replies[0], Err(EngineError::AxisDisabled { axis: 1 })),
+        "{replies:?}"
+    );
+    assert_eq!(replies[1], Ok(Reply::Done));
+    assert_eq!(
+        replies[2],
+        Err(EngineError::InvalidAxis { axis: 7, count: 2 })
+    );
+    assert_eq!(replies[3], Ok(Reply::Accepted { id: 1 }));
+    assert_eq!(replies[4], Ok(Reply::Done));
+    // One request, one publication: the reply follows the snapshot with every effect.
+    let snapshot = handle.snapshot();
+    assert!(snapshot.axes[0].flags.contains(AxisFlags::ENABLED));
+    assert!(snapshot.axes[1].flags.contains(AxisFlags::ENABLED));
+    assert_eq!(handle.stats().commands_applied, 5);
+    handle.advance(1).unwrap();
+    let snapshot = handle.snapshot();
+    assert!(snapshot.axes[0].cmd_vel > 0.0 && snapshot.axes[1].cmd_vel == 0.0);
+    // Async and not waited on alike; more than an atomic batch may carry is refused whole.
+    let pending = handle.submit_each(vec![jog(1, -1.0)]).unwrap();
+    assert_eq!(
+        block_on(pending.into_future()),
+        Ok(vec![Ok(Reply::Accepted { id: 2 })])
+    );
+    let too_many = vec![enable(0); crate::engine::MAX_ATOMIC_COMMANDS + 1];
+    assert!(matches!(
+        block_on(handle.call_each_async(too_many)),
+        Err(CallError::Engine(EngineError::InvalidArgument {
+            name: "commands",
+            ..
+        }))
+    ));
+    assert_eq!(handle.stats().commands_applied, 6);
+}
+
+#[test]
 fn a_batch_on_a_paced_clock_lands_between_two_ticks_as_one_request() {
     let options = RuntimeOptions {
         max_commands_per_tick: 1,
