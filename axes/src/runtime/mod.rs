@@ -459,9 +459,7 @@ impl EngineHandle {
     /// a blocking caller serving the queue) gets to it, no advance needed; paced clocks: at the
     /// start of the next tick.
     pub fn submit(&self, command: Command) -> Result<PendingReply, SubmitError> {
-        let (reply, pending) = reply_channel();
-        self.enqueue(Request::Command { command, reply })?;
-        Ok(pending)
+        self.request(|reply| Request::Command { command, reply })
     }
 
     /// Queue commands to be applied in one go, between the same two ticks, in order, all or
@@ -471,19 +469,12 @@ impl EngineHandle {
         &self,
         commands: Vec<Command>,
     ) -> Result<Pending<Vec<Reply>, CallError>, SubmitError> {
-        let (reply, pending) = reply_channel();
-        self.enqueue(Request::Batch { commands, reply })?;
-        Ok(pending)
+        self.request(|reply| Request::Batch { commands, reply })
     }
 
     /// [`EngineHandle::submit_batch`] and block until the replies. Refused on the servo thread.
     pub fn call_batch(&self, commands: Vec<Command>) -> Result<Vec<Reply>, CallError> {
-        if self.shared.on_servo_thread() {
-            return Err(CallError::OnServoThread);
-        }
-        let (reply, pending) = reply_channel();
-        self.enqueue_and_serve(Request::Batch { commands, reply })?;
-        pending.wait()
+        self.call_request(|reply| Request::Batch { commands, reply })
     }
 
     /// Queue commands to be applied one after another, between the same two ticks, in order,
@@ -495,9 +486,7 @@ impl EngineHandle {
         &self,
         commands: Vec<Command>,
     ) -> Result<Pending<Vec<Result<Reply, EngineError>>, CallError>, SubmitError> {
-        let (reply, pending) = reply_channel();
-        self.enqueue(Request::Each { commands, reply })?;
-        Ok(pending)
+        self.request(|reply| Request::Each { commands, reply })
     }
 
     /// [`EngineHandle::submit_each`] and block until the replies (served on the calling thread
@@ -506,12 +495,7 @@ impl EngineHandle {
         &self,
         commands: Vec<Command>,
     ) -> Result<Vec<Result<Reply, EngineError>>, CallError> {
-        if self.shared.on_servo_thread() {
-            return Err(CallError::OnServoThread);
-        }
-        let (reply, pending) = reply_channel();
-        self.enqueue_and_serve(Request::Each { commands, reply })?;
-        pending.wait()
+        self.call_request(|reply| Request::Each { commands, reply })
     }
 
     /// [`EngineHandle::submit_each`] and await the replies (any executor).
@@ -530,12 +514,7 @@ impl EngineHandle {
     /// Submit and block until the reply. Refused on the servo thread itself. Virtual clock: the
     /// caller serves the queue itself ([`EngineHandle::advance`]).
     pub fn call(&self, command: Command) -> Result<Reply, CallError> {
-        if self.shared.on_servo_thread() {
-            return Err(CallError::OnServoThread);
-        }
-        let (reply, pending) = reply_channel();
-        self.enqueue_and_serve(Request::Command { command, reply })?;
-        pending.wait()
+        self.call_request(|reply| Request::Command { command, reply })
     }
 
     /// Submit and await the reply (any executor).
@@ -629,8 +608,7 @@ impl EngineHandle {
         until: Option<Condition>,
     ) -> Result<Pending<Until, AdvanceError>, AdvanceError> {
         self.require_virtual()?;
-        let (reply, pending) = reply_channel();
-        self.enqueue(Request::Advance {
+        let pending = self.request(|reply| Request::Advance {
             ticks,
             until,
             reply,
@@ -645,22 +623,15 @@ impl EngineHandle {
         &self,
         fieldbus: Box<dyn Fieldbus>,
     ) -> Result<Pending<(), CallError>, SubmitError> {
-        let (reply, pending) = reply_channel();
-        self.enqueue(Request::AddFieldbus { fieldbus, reply })?;
-        Ok(pending)
+        self.request(|reply| Request::AddFieldbus { fieldbus, reply })
     }
 
     /// [`EngineHandle::submit_fieldbus`] and block until it is installed.
     pub fn add_fieldbus(&self, fieldbus: impl Fieldbus + 'static) -> Result<(), CallError> {
-        if self.shared.on_servo_thread() {
-            return Err(CallError::OnServoThread);
-        }
-        let (reply, pending) = reply_channel();
-        self.enqueue_and_serve(Request::AddFieldbus {
+        self.call_request(|reply| Request::AddFieldbus {
             fieldbus: Box::new(fieldbus),
             reply,
-        })?;
-        pending.wait()
+        })
     }
 
     /// Tell the servo thread that a fieldbus has input waiting; it serves its fieldbuses'
@@ -699,9 +670,7 @@ impl EngineHandle {
         &self,
         observer: Observer,
     ) -> Result<Pending<ObserverId, CallError>, SubmitError> {
-        let (reply, pending) = reply_channel();
-        self.enqueue(Request::Observe { observer, reply })?;
-        Ok(pending)
+        self.request(|reply| Request::Observe { observer, reply })
     }
 
     /// [`EngineHandle::submit_observer`] and block until it is installed.
@@ -709,15 +678,10 @@ impl EngineHandle {
         &self,
         observer: impl FnMut(&Engine) -> bool + Send + 'static,
     ) -> Result<ObserverId, CallError> {
-        if self.shared.on_servo_thread() {
-            return Err(CallError::OnServoThread);
-        }
-        let (reply, pending) = reply_channel();
-        self.enqueue_and_serve(Request::Observe {
+        self.call_request(|reply| Request::Observe {
             observer: Box::new(observer),
             reply,
-        })?;
-        pending.wait()
+        })
     }
 
     pub async fn add_observer_async(
@@ -733,23 +697,40 @@ impl EngineHandle {
         &self,
         id: ObserverId,
     ) -> Result<Pending<bool, CallError>, SubmitError> {
-        let (reply, pending) = reply_channel();
-        self.enqueue(Request::RemoveObserver { id, reply })?;
-        Ok(pending)
+        self.request(|reply| Request::RemoveObserver { id, reply })
     }
 
     /// [`EngineHandle::submit_remove_observer`] and block until it is done.
     pub fn remove_observer(&self, id: ObserverId) -> Result<bool, CallError> {
-        if self.shared.on_servo_thread() {
-            return Err(CallError::OnServoThread);
-        }
-        let (reply, pending) = reply_channel();
-        self.enqueue_and_serve(Request::RemoveObserver { id, reply })?;
-        pending.wait()
+        self.call_request(|reply| Request::RemoveObserver { id, reply })
     }
 
     pub async fn remove_observer_async(&self, id: ObserverId) -> Result<bool, CallError> {
         self.submit_remove_observer(id)?.await
+    }
+
+    /// Queue the request `make` builds around its reply channel, without blocking.
+    fn request<T, E: ReplyError>(
+        &self,
+        make: impl FnOnce(ReplySender<T, E>) -> Request,
+    ) -> Result<Pending<T, E>, SubmitError> {
+        let (reply, pending) = reply_channel();
+        self.enqueue(make(reply))?;
+        Ok(pending)
+    }
+
+    /// Queue the request `make` builds and block until its reply: refused on the servo thread,
+    /// served on this thread on the virtual clock ([`EngineHandle::advance`]).
+    fn call_request<T>(
+        &self,
+        make: impl FnOnce(ReplySender<T, CallError>) -> Request,
+    ) -> Result<T, CallError> {
+        if self.shared.on_servo_thread() {
+            return Err(CallError::OnServoThread);
+        }
+        let (reply, pending) = reply_channel();
+        self.enqueue_and_serve(make(reply))?;
+        pending.wait()
     }
 
     /// Queue a request nobody waits on here: a virtual servo thread is woken to serve it.
