@@ -5,7 +5,9 @@
 //! in the same process: the same 8 axes on plain long moves, advanced and read the same way.
 //!
 //! `cargo bench -p axes --bench stream_runtime`; `STREAM_RUNTIME_SECONDS=5` shortens the
-//! simulated time (for callgrind).
+//! simulated time (for callgrind). Beside each wall time it prints the voluntary context
+//! switches per look at the buffers (Linux): the thread hand-offs, which cost little on a
+//! loaded host and ~20 µs each on an idle VM, so they are the load-independent figure.
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
@@ -90,21 +92,46 @@ fn virtual_runtime(engine: Engine) -> (EngineHandle, axes::runtime::RuntimeGuard
 /// How the host sends the refills of one look at the buffers.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Refill {
-    /// `call` each push, waiting out its round trip.
+    /// `call` each push, waiting for its reply. On the virtual clock a blocking call serves the
+    /// queue on the calling thread: no hand-off at all.
     Call,
     /// `submit` every push of the look and go on to the next advance without waiting: the
     /// virtual runtime's queue applies them in order before it, so their replies are in when
-    /// the advance returns (one hand-off per look instead of two).
+    /// the advance returns. The submits wake the servo thread, which may take the queue before
+    /// the advance does (then the host waits for it).
     Pipelined,
-    /// One atomic `call_batch` of the look's pushes.
+    /// One atomic `call_batch` of the look's pushes (served on the calling thread, as `Call`).
     Batch,
-    /// One `submit_batch` of the look's pushes, not waited on: one request per look besides
-    /// the advance, so the servo thread is woken at most twice.
+    /// One `submit_batch` of the look's pushes, not waited on: one servo-thread wake-up a look.
     PipelinedBatch,
+    /// One `call_each` of the look's pushes: one request and one publication, each push on its
+    /// own (no rollback to prepare, unlike an atomic batch), served on the calling thread.
+    Each,
 }
 
-/// The PT run: returns its wall time and the pushes made.
-fn pt_run(ticks: u64, chunk: u64, refill: Refill) -> (Duration, u64) {
+/// Voluntary context switches of this process's live threads so far (Linux `/proc`; `None`
+/// elsewhere): each is a thread blocking for another, the hand-offs that wall time on a loaded
+/// host hides. Read before the runtime stops, while its servo thread is still alive.
+fn voluntary_switches() -> Option<u64> {
+    let mut total = 0;
+    for task in std::fs::read_dir("/proc/self/task").ok()? {
+        let status = std::fs::read_to_string(task.ok()?.path().join("status")).ok()?;
+        let line = status
+            .lines()
+            .find_map(|l| l.strip_prefix("voluntary_ctxt_switches:"))?;
+        total += line.trim().parse::<u64>().ok()?;
+    }
+    Some(total)
+}
+
+/// Wall time and hand-offs (voluntary context switches) of one run.
+struct RunCost {
+    wall: Duration,
+    switches: Option<u64>,
+}
+
+/// The PT run: returns its cost and the pushes made.
+fn pt_run(ticks: u64, chunk: u64, refill: Refill) -> (RunCost, u64) {
     let (handle, guard) = virtual_runtime(common::engine(AXES));
     let mut streams: Vec<_> = (0..AXES as u16)
         .map(|axis| SineStream::new(axis, ticks))
@@ -122,6 +149,7 @@ fn pt_run(ticks: u64, chunk: u64, refill: Refill) -> (Duration, u64) {
             }))
             .unwrap();
     }
+    let switches_before = voluntary_switches();
     let start = Instant::now();
     let mut pushes = 0;
     // Fill both FIFO halves, then start every axis in the same tick.
@@ -176,6 +204,12 @@ fn pt_run(ticks: u64, chunk: u64, refill: Refill) -> (Duration, u64) {
             Refill::PipelinedBatch => {
                 pending_batch = Some(handle.submit_batch(refills).unwrap());
             }
+            Refill::Each if refills.is_empty() => {}
+            Refill::Each => {
+                for reply in handle.call_each(refills).unwrap() {
+                    reply.unwrap();
+                }
+            }
         }
     }
     if let Some(reply) = pending_batch.take() {
@@ -185,6 +219,9 @@ fn pt_run(ticks: u64, chunk: u64, refill: Refill) -> (Duration, u64) {
         reply.wait().unwrap();
     }
     let elapsed = start.elapsed();
+    let switches = voluntary_switches()
+        .zip(switches_before)
+        .map(|(after, before)| after - before);
     let snapshot = handle.snapshot();
     for (axis, status) in snapshot.axes.iter().enumerate() {
         assert_eq!(status.stream.underruns, 0, "axis {axis} ran dry");
@@ -192,15 +229,20 @@ fn pt_run(ticks: u64, chunk: u64, refill: Refill) -> (Duration, u64) {
         assert!(status.cmd_pos.abs() < 1e-6, "axis {axis} back at its start");
     }
     guard.stop().unwrap();
-    (elapsed, pushes)
+    let cost = RunCost {
+        wall: elapsed,
+        switches,
+    };
+    (cost, pushes)
 }
 
 /// The baseline: the same axes on plain long moves, advanced and read in the same chunks.
-fn plain_run(ticks: u64, chunk: u64) -> Duration {
+fn plain_run(ticks: u64, chunk: u64) -> RunCost {
     let (handle, guard) = virtual_runtime(common::engine(AXES));
     for command in common::motion_commands(AXES) {
         handle.call(command).unwrap();
     }
+    let switches_before = voluntary_switches();
     let start = Instant::now();
     let mut done = 0;
     while done < ticks + chunk {
@@ -209,8 +251,14 @@ fn plain_run(ticks: u64, chunk: u64) -> Duration {
         std::hint::black_box(handle.snapshot());
     }
     let elapsed = start.elapsed();
+    let switches = voluntary_switches()
+        .zip(switches_before)
+        .map(|(after, before)| after - before);
     guard.stop().unwrap();
-    elapsed
+    RunCost {
+        wall: elapsed,
+        switches,
+    }
 }
 
 /// The same PT streams on the engine alone, stepped on this thread (no runtime, no snapshots):
@@ -264,9 +312,16 @@ fn plain_bare(ticks: u64, chunk: u64) -> Duration {
     elapsed
 }
 
-fn median(mut xs: Vec<Duration>) -> Duration {
+fn median<T: Ord + Copy>(mut xs: Vec<T>) -> T {
     xs.sort();
     xs[xs.len() / 2]
+}
+
+/// The median wall time and the median hand-offs of `runs`.
+fn median_cost(runs: Vec<RunCost>) -> (Duration, Option<u64>) {
+    let switches: Option<Vec<u64>> = runs.iter().map(|r| r.switches).collect();
+    let wall = median(runs.iter().map(|r| r.wall).collect());
+    (wall, switches.map(median))
 }
 
 fn main() {
@@ -294,35 +349,46 @@ fn main() {
         Refill::Pipelined,
         Refill::Batch,
         Refill::PipelinedBatch,
+        Refill::Each,
     ] {
-        let wall = median(
+        let cost = median_cost(
             (0..RUNS)
                 .map(|_| {
-                    let (elapsed, n) = pt_run(ticks, chunk, refill);
+                    let (cost, n) = pt_run(ticks, chunk, refill);
                     pushes = n;
-                    elapsed
+                    cost
                 })
                 .collect(),
         );
-        pt_runs.push((refill, wall));
+        pt_runs.push((refill, cost));
     }
-    let plain = median((0..RUNS).map(|_| plain_run(ticks, chunk)).collect());
+    let (plain, plain_switches) = median_cost((0..RUNS).map(|_| plain_run(ticks, chunk)).collect());
     let pt_engine = median((0..RUNS).map(|_| pt_bare(ticks, chunk)).collect());
     let plain_engine = median((0..RUNS).map(|_| plain_bare(ticks, chunk)).collect());
     let speed = |d: Duration| sim_seconds as f64 / d.as_secs_f64();
-    println!("{:<44} {:>12} {:>14}", "", "wall", "× real time");
+    // Hand-offs per look at the buffers: the part of the wall time a loaded host hides and an
+    // idle one shows (each is a thread wake-up).
+    let looks = (ticks + chunk).div_ceil(chunk) as f64;
+    let per_look =
+        |s: Option<u64>| s.map_or("-".to_owned(), |s| format!("{:.2}", s as f64 / looks));
     println!(
-        "{:<44} {:>12} {:>13.0}x",
+        "{:<44} {:>12} {:>14} {:>16}",
+        "", "wall", "× real time", "switches / look"
+    );
+    println!(
+        "{:<44} {:>12} {:>13.0}x {:>16}",
         "baseline: 8 axes on plain moves",
         common::fmt_duration(plain),
-        speed(plain)
+        speed(plain),
+        per_look(plain_switches)
     );
-    for (refill, pt) in pt_runs {
+    for (refill, (pt, switches)) in pt_runs {
         println!(
-            "{:<44} {:>12} {:>13.0}x  ({:.2} × the baseline's wall time)",
+            "{:<44} {:>12} {:>13.0}x {:>16}  ({:.2} × the baseline's wall time)",
             format!("PT streams, refills by {refill:?}"),
             common::fmt_duration(pt),
             speed(pt),
+            per_look(switches),
             pt.as_secs_f64() / plain.as_secs_f64()
         );
     }

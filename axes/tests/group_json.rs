@@ -20,6 +20,7 @@ use axes::command::{
     MoveProtectionDisable, MoveProtectionEnable, ProtectionMode,
 };
 use axes::command::{GroupBufferedHalt, GroupPulseOutput, GroupSetAnalogOutput, GroupStopInput};
+use axes::command::{GroupDeletePolarTransform, GroupSetPolarTransform};
 
 fn full() -> Vec<(Command, &'static str)> {
     vec![
@@ -389,13 +390,27 @@ fn full() -> Vec<(Command, &'static str)> {
             }),
             r#"{"type":"group_jog_axis","group":1,"member":4,"velocity":30.0}"#,
         ),
+        (
+            Command::from(GroupSetPolarTransform {
+                group: 1,
+                rotary: 3,
+                feed: 1,
+                rotary_units_per_radian: 1591.5,
+                plane: Some([1, 2]),
+            }),
+            r#"{"type":"group_set_polar_transform","group":1,"rotary":3,"feed":1,"rotary_units_per_radian":1591.5,"plane":[1,2]}"#,
+        ),
+        (
+            Command::from(GroupDeletePolarTransform { group: 1 }),
+            r#"{"type":"group_delete_polar_transform","group":1}"#,
+        ),
     ]
 }
 
 #[test]
 fn every_group_command_serializes_to_its_pinned_json_and_back() {
     let cases = full();
-    assert_eq!(cases.len(), 37, "one case per group command");
+    assert_eq!(cases.len(), 39, "one case per group command");
     common::assert_pinned(cases);
 }
 

@@ -39,7 +39,7 @@ pub fn nmc_include_dir() -> PathBuf {
 }
 
 /// Compile `tests/nmc/NAME` (C, or C++ for `.cpp`) with `-Wall -Wextra -Werror` and `extra`
-/// flags into `out_dir`, linked with the library; the executable's path.
+/// flags into `out_dir`, linked with the library (and libm); the executable's path.
 pub fn compile_example(name: &str, out_dir: &Path, extra: &[&str]) -> PathBuf {
     let source = workspace_root().join("tests/nmc").join(name);
     let cpp = extra.contains(&"-xc++");
@@ -58,7 +58,7 @@ pub fn compile_example(name: &str, out_dir: &Path, extra: &[&str]) -> PathBuf {
         .arg("-L")
         .arg(&lib)
         .arg(format!("-Wl,-rpath,{}", lib.display()))
-        .args(["-lnmc_lib20", "-lpthread"]);
+        .args(["-lnmc_lib20", "-lpthread", "-lm"]);
     let out = command.output().expect("the compiler runs");
     assert!(out.status.success(), "{}", output_report(name, &out));
     exe

@@ -248,6 +248,13 @@ fn crd_transforms_offset_arc_sections_and_break_point() {
     example_with("crd_frames.c", &["--clock", "scaled:5"]);
 }
 
+/// NMC_CrdSetTransPolar on the coordinate system's X and Y: Cartesian lines and arcs fed to the
+/// rotary and feed axes as (θ, r), RunToPolarPos's (5000, 5000) → 45°, the pole refused.
+#[test]
+fn crd_polar_machine_transforms_lines_and_arcs() {
+    example_with("crd_polar.c", &["--clock", "scaled:5"]);
+}
+
 /// NMC_SetMvProtect and TmvProtectPara: mode 0 stops, mode 1 retreats, read-back, refusals.
 #[test]
 fn crd_move_protection() {

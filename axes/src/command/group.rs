@@ -63,6 +63,7 @@ use super::{
     GroupSetXyzaTransform, MoveProtectionDisable, MoveProtectionEnable,
 };
 use super::{GroupBufferedHalt, GroupPulseOutput, GroupSetAnalogOutput, GroupStopInput};
+use super::{GroupDeletePolarTransform, GroupSetPolarTransform};
 use super::{GroupJog, GroupJogAxis};
 
 /// Make a group of 1–9 axes (PLCopen MC_AddAxisToGroup ×n; HIMC SetupGroup without the enable;
@@ -702,6 +703,8 @@ pub enum GroupCommand {
     SetAnalogOutput(GroupSetAnalogOutput),
     StopInput(GroupStopInput),
     BufferedHalt(GroupBufferedHalt),
+    SetPolarTransform(GroupSetPolarTransform),
+    DeletePolarTransform(GroupDeletePolarTransform),
     /// Between two groups.
     ProtectionEnable(MoveProtectionEnable),
     ProtectionDisable(MoveProtectionDisable),
@@ -746,6 +749,8 @@ impl GroupCommand {
             GroupCommand::SetAnalogOutput(c) => c.group,
             GroupCommand::StopInput(c) => c.group,
             GroupCommand::BufferedHalt(c) => c.group,
+            GroupCommand::SetPolarTransform(c) => c.group,
+            GroupCommand::DeletePolarTransform(c) => c.group,
             GroupCommand::ProtectionEnable(_) | GroupCommand::ProtectionDisable(_) => return None,
         })
     }
@@ -789,4 +794,6 @@ command_from!(GroupCommand, Group, [
     GroupBufferedHalt => BufferedHalt,
     MoveProtectionEnable => ProtectionEnable,
     MoveProtectionDisable => ProtectionDisable,
+    GroupSetPolarTransform => SetPolarTransform,
+    GroupDeletePolarTransform => DeletePolarTransform,
 ]);

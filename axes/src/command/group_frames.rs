@@ -63,6 +63,33 @@ pub struct GroupDeleteTransform {
     pub group: GroupId,
 }
 
+/// NMC's polar machine (`CrdSetTransPolar(crd, rotAxNo, transAxNo, rotEquiv)`, digest 001
+/// C3§10.5 "极坐标转换"): the program is Cartesian in the group coordinates `plane` (X, Y;
+/// default `[0, 1]`), the machine one rotary and one feed axis, the members of those two
+/// coordinates. Each tick the program point (X, Y) (origin included) is fed to `rotary` as
+/// θ = atan2(Y, X) × `rotary_units_per_radian`, unwrapped from the rotary axis's position, and
+/// to `feed` as r = √(X² + Y²) (the feed axis's units, which X and Y are in). Accepted only
+/// while the group holds no motion; motions accepted afterwards are transformed.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GroupSetPolarTransform {
+    pub group: GroupId,
+    pub rotary: AxisIndex,
+    pub feed: AxisIndex,
+    /// The rotary axis's units per radian (NMC: 1 / rotEquiv pulses).
+    pub rotary_units_per_radian: f64,
+    #[serde(default)]
+    pub plane: Option<[usize; 2]>,
+}
+
+/// Back to Cartesian members (`CrdDelTransPolar`): accepted only while the group holds no
+/// motion.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GroupDeletePolarTransform {
+    pub group: GroupId,
+}
+
 /// What a move protection does when the two groups would come too close (NMC
 /// `NMC_SetMvProtect` mode).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]

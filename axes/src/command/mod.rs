@@ -141,6 +141,7 @@ pub use group::{
     MoveCircularAbsolute, MoveCircularAngle, MoveCircularRelative, MoveEllipse, MoveLinearAbsolute,
     MoveLinearRelative, MoveSpline, PositionCondition, TransitionMode,
 };
+pub use group_frames::{GroupDeletePolarTransform, GroupSetPolarTransform};
 pub use group_frames::{
     GroupDeleteTransform, GroupSetCoordinateSystem, GroupSetCoordinateTransform,
     GroupSetRotaryTransform, GroupSetXyzaTransform, MoveProtectionDisable, MoveProtectionEnable,

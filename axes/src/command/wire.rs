@@ -220,6 +220,9 @@ pub(super) enum Command {
     FilterDisable(super::FilterDisable),
     // Issue 14, HIMC SetSlvAOParam ao_en_bind 1.
     BindAnalogOutput(super::BindAnalogOutput),
+    // Issue 13, NMC CrdSetTransPolar: the polar machine.
+    GroupSetPolarTransform(super::GroupSetPolarTransform),
+    GroupDeletePolarTransform(super::GroupDeletePolarTransform),
 }
 
 impl From<Command> for super::Command {
@@ -403,6 +406,8 @@ impl From<Command> for super::Command {
             Command::FilterInputShaping(c) => super::Command::from(c),
             Command::FilterVsf(c) => super::Command::from(c),
             Command::FilterDisable(c) => super::Command::from(c),
+            Command::GroupSetPolarTransform(c) => super::Command::from(c),
+            Command::GroupDeletePolarTransform(c) => super::Command::from(c),
             Command::ResetFaults(c) => super::Command::from(c),
             Command::SetEstopInput(c) => super::Command::from(c),
             Command::AddAxisSet(c) => super::Command::from(c),
@@ -444,6 +449,12 @@ impl From<super::Command> for Command {
             }
             super::Command::Group(GroupCommand::StopInput(c)) => Command::GroupStopInput(c),
             super::Command::Group(GroupCommand::BufferedHalt(c)) => Command::GroupBufferedHalt(c),
+            super::Command::Group(GroupCommand::SetPolarTransform(c)) => {
+                Command::GroupSetPolarTransform(c)
+            }
+            super::Command::Group(GroupCommand::DeletePolarTransform(c)) => {
+                Command::GroupDeletePolarTransform(c)
+            }
             super::Command::Axis(AxisCommand::InjectFollowingError(c)) => {
                 Command::InjectFollowingError(c)
             }

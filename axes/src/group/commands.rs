@@ -131,6 +131,7 @@ impl Groups {
             queue: GroupQueue::new(capacity),
             origin: [0.0; MAX_AXES],
             frames: GroupFrames::default(),
+            polar: None,
             defaults: DEFAULT_PATH_LIMITS,
             orientation: c.orientation,
             angular: DEFAULT_ANGULAR_LIMITS,
@@ -233,6 +234,8 @@ impl Group {
                 self.frames.delete_nmc();
                 Ok(Reply::Done)
             }
+            GroupCommand::SetPolarTransform(c) => self.set_polar(env.axes, &c),
+            GroupCommand::DeletePolarTransform(_) => self.delete_polar(env.axes),
             GroupCommand::Jog(c) => {
                 let direction =
                     self.coordinate_direction(env, c.coordinate, c.coordinate_system)?;

@@ -183,6 +183,11 @@ impl Group {
         velocity: f64,
     ) -> Result<Reply, EngineError> {
         let velocity = bounded("velocity", velocity)?;
+        if self.polar.is_some() {
+            return Err(self.state_error(
+                "jog under the polar transform (its members do not move along a coordinate)",
+            ));
+        }
         match self.state {
             GroupState::Standby => {}
             GroupState::Moving if self.jog.is_some() => {}

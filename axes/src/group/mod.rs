@@ -38,6 +38,7 @@ pub use corner::{CornerStop, CornerWait};
 mod frames;
 mod jog;
 mod merge;
+mod polar;
 mod protection;
 mod queue;
 mod segment;
@@ -133,6 +134,8 @@ pub struct Group {
     origin: Point,
     /// HIMC's frame chain, NMC's transform and the selected coordinate system.
     frames: GroupFrames,
+    /// NMC's polar machine: the plane's point fed as (θ, r) (`polar`).
+    polar: Option<polar::PolarMachine>,
     /// Path limits of motions that give none (`group_set_parameter`).
     defaults: PathLimits,
     /// The orientation coordinates (HIMC A, B, C) and their angular profile (HIMC
@@ -315,7 +318,8 @@ impl Group {
         self.members.len()
     }
 
-    /// The group coordinates of the members' commanded positions (minus the origin offset).
+    /// The group coordinates of the members' commanded positions (minus the origin offset;
+    /// under the polar transform the plane's Cartesian point).
     fn current_position(&self, axes: &[Axis]) -> Point {
         let mut p = [0.0; MAX_AXES];
         for (k, &a) in self.members.iter().enumerate() {
@@ -324,6 +328,9 @@ impl Group {
             {
                 *out = axis.commanded().p - o;
             }
+        }
+        if let Some(polar) = self.polar {
+            polar.cartesian_from_members(&mut p, &self.origin);
         }
         p
     }
@@ -392,6 +399,7 @@ impl Group {
             fault: self.fault,
             merge_speed_tolerance: self.planner.merge_rule().map_or(0.0, |r| r.speed_tolerance),
             mergeable: self.result.is_some() && self.merge_eligible,
+            polar: self.polar.is_some(),
         }
     }
 

@@ -28,11 +28,16 @@ impl Group {
         if states.contains(&self.state) {
             Ok(())
         } else {
-            Err(EngineError::GroupState {
-                group: self.id,
-                state: self.state,
-                action,
-            })
+            Err(self.state_error(action))
+        }
+    }
+
+    /// `action` refused in the group's present state.
+    pub(super) fn state_error(&self, action: &'static str) -> EngineError {
+        EngineError::GroupState {
+            group: self.id,
+            state: self.state,
+            action,
         }
     }
 

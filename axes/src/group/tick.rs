@@ -4,6 +4,7 @@
 use path::planner::{Motion, PathEvent, PathState, PlannerError};
 use path::MAX_AXES;
 
+use super::polar::PolarSetpoints;
 use super::queue::{Entry, Item, Wait};
 use super::{axis_limits, Env, Group, ResultAxis};
 use crate::axis::{Feed, MotionAction, MotionSubmission, Overrides};
@@ -140,7 +141,14 @@ impl Group {
                 .map(|l| l.acceleration)
                 .fold(f64::INFINITY, f64::min)
         });
+        // Under the polar transform X and Y are in the feed axis's units: its limits hold for
+        // both (the motion's own limits keep the two members within theirs, `polar`).
+        let plane = self.polar.map(|p| (p.plane_slots(), p.feed_slot()));
         for (k, a) in self.members.iter().enumerate() {
+            let a = match plane {
+                Some((slots, feed)) if slots.contains(&k) => self.members.get(feed).unwrap_or(a),
+                _ => a,
+            };
             if let Some(mut limits) = member(a) {
                 if let Some(acceleration) = smallest {
                     limits.acceleration = acceleration;
@@ -192,10 +200,12 @@ impl Group {
         }
     }
 
-    /// Feed every member this tick's point of the path (axis = group coordinate + origin), then
-    /// the result axis. A refusal names the slot (member coordinate, or [`RESULT_SLOT`]).
+    /// Feed every member this tick's point of the path (axis = group coordinate + origin; the
+    /// polar transform's two members θ and r), then the result axis. A refusal names the slot
+    /// (member coordinate, or [`RESULT_SLOT`]).
     fn feed(&mut self, env: &mut Env) -> Result<(), (usize, u16, EngineError)> {
         let state = self.planner.state();
+        let polar = self.polar.as_mut().map(|p| p.map(state, &self.origin));
         // One pass over the members and the path's coordinates (this runs every tick).
         let (mut ctx, axes) = env.context();
         let coordinates = state
@@ -206,11 +216,11 @@ impl Group {
             .zip(&self.origin);
         for (k, (&a, (((p, v), acc), o))) in self.members.iter().zip(coordinates).enumerate() {
             if let Some(axis) = axes.get_mut(usize::from(a)) {
-                let setpoint = MotionState {
+                let setpoint = polar.and_then(|m| m.get(k)).unwrap_or(MotionState {
                     p: p + o,
                     v: *v,
                     a: *acc,
-                };
+                });
                 axis.feed(&mut ctx, Feed::Follow(setpoint))
                     .map_err(|e| (k, a, e))?;
             }
@@ -219,11 +229,13 @@ impl Group {
             .map_err(|(a, e)| (RESULT_SLOT, a, e))
     }
 
-    /// Feed member `a` (group coordinate `k`) this tick's point of the path.
+    /// Feed member `a` (group coordinate `k`) this tick's point of the path (`polar`: the
+    /// polar transform's setpoints of this tick).
     fn feed_member(
         &self,
         env: &mut Env,
         state: &PathState,
+        polar: Option<&PolarSetpoints>,
         k: usize,
         a: u16,
     ) -> Result<(), EngineError> {
@@ -239,11 +251,11 @@ impl Group {
         let Some(axis) = axes.get_mut(a as usize) else {
             return Ok(());
         };
-        let setpoint = MotionState {
+        let setpoint = polar.and_then(|m| m.get(k)).unwrap_or(MotionState {
             p: p + o,
             v: *v,
             a: *acc,
-        };
+        });
         axis.feed(&mut ctx, Feed::Follow(setpoint))
     }
 
@@ -326,8 +338,16 @@ impl Group {
         let Some(mut left) = self.fault_stop else {
             return;
         };
+        // The polar setpoints once a tick: the member that refused this tick's point took them.
+        let polar = if from == 0 {
+            self.polar.as_mut().map(|p| p.map(state, &self.origin))
+        } else {
+            self.polar.map(|mut p| p.map(state, &self.origin))
+        };
         for (k, &a) in self.members.iter().enumerate().skip(from) {
-            if left.get(k) == Some(&false) && self.feed_member(env, state, k, a).is_err() {
+            if left.get(k) == Some(&false)
+                && self.feed_member(env, state, polar.as_ref(), k, a).is_err()
+            {
                 if let Some(flag) = left.get_mut(k) {
                     *flag = true;
                 }
@@ -551,16 +571,19 @@ impl Group {
         };
         let join = self.merged_join(env.axes, request.join, &segment);
         let mergeable = self.merge_eligible && super::merge::mergeable(&segment);
+        let limits = self.polar_limits(env.axes, &segment, share.limits)?;
+        let end = segment.end();
         self.planner
             .push_motion(Motion {
                 segment,
-                limits: share.limits,
+                limits,
                 join,
                 transition: request.transition,
                 tag: u64::from(id),
             })
             .map_err(|e| self.planner_error(e))?;
         self.last_mergeable = mergeable;
+        self.polar_queued(&end);
         self.queue.push(Entry {
             id,
             item: Item::Motion {
@@ -575,6 +598,7 @@ impl Group {
     /// At rest with nothing queued: the path starts where the members are.
     pub(super) fn sync_position(&mut self, env: &Env) -> Result<(), EngineError> {
         if self.planner.is_idle() && self.waiting.is_none() {
+            self.polar_resync(env.axes);
             let here = self.current_position(env.axes);
             self.planner
                 .reset_position(here)

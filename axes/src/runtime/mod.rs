@@ -4,7 +4,9 @@
 //! [`Runtime::start`] moves an [`Engine`] onto the servo thread ("mcemu-servo") and returns an
 //! [`EngineHandle`], which front-ends clone freely (blocking and async calls, no tokio), and a
 //! [`RuntimeGuard`], which stops the thread and gives the engine back. Observers
-//! ([`EngineHandle::add_observer`]) see the engine after every tick, on the servo thread.
+//! ([`EngineHandle::add_observer`]) see the engine after every tick, on the servo thread (on the
+//! virtual clock: on whichever thread serves the queue, the servo thread or a blocking caller,
+//! one at a time; see [`EngineHandle::advance`]).
 //!
 //! Ordering guarantees:
 //! - commands are applied in the order the queue received them;
@@ -23,7 +25,7 @@ use std::future::{Future, IntoFuture};
 use std::pin::Pin;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{self, SyncSender, TrySendError};
-use std::sync::{Arc, OnceLock};
+use std::sync::{Arc, Mutex, OnceLock, PoisonError};
 use std::task::{Context, Poll};
 use std::thread::{JoinHandle, ThreadId};
 use std::time::Duration;
@@ -38,7 +40,7 @@ use crate::status::Snapshot;
 pub use clock::{Clock, SystemClock};
 pub use stats::{LatenessHistogram, RuntimeStats, LATENESS_BUCKETS};
 
-use servo::{Request, Servo};
+use servo::{Request, Servo, Unpaced, VirtualServo};
 
 /// Range of the scaled clock's factor: beyond it a tick's wall period leaves the range a
 /// deadline can be computed and slept for meaningfully (62.5 ns … 10⁴ s).
@@ -233,15 +235,17 @@ pub struct Until {
 /// tick (the same one readers get).
 pub type Condition = Box<dyn Fn(&Snapshot) -> bool + Send>;
 
-/// A per-tick observer ([`EngineHandle::add_observer`]): called on the servo thread with the
-/// engine after every step, for as long as it returns `true`.
+/// A per-tick observer ([`EngineHandle::add_observer`]): called on the servo thread (virtual
+/// clock: the thread serving the queue) with the engine after every step, for as long as it
+/// returns `true`.
 pub type Observer = Box<dyn FnMut(&Engine) -> bool + Send>;
 
 /// A fieldbus served inside the servo tick ([`EngineHandle::add_fieldbus`]): a protocol whose
 /// slaves must see every tick and answer within it (CANopen SYNC, PDOs and SDOs on the engine's
 /// CiA 402 drives), rather than go through the command queue and the snapshots.
 ///
-/// Both calls run on the servo thread, inside the tick: they must be short and must not block
+/// Both calls run on the servo thread (virtual clock: the thread serving the queue), inside the
+/// tick: they must be short and must not block
 /// (exchange frames through lock-free or bounded queues; blocking handle calls are refused).
 ///
 /// `now` is bus time, what the protocol's own timers (heartbeats, SDO timeouts, inhibit times)
@@ -358,11 +362,16 @@ struct Shared {
     /// A fieldbus has input waiting: set by a poke, cleared when the servo thread starts to
     /// serve it (on the virtual clock the poke also queues a request, to keep it in order).
     poked: AtomicBool,
+    /// Virtual clock: the engine and the queue's receiver, served by whoever holds the lock
+    /// (`servo::serve_virtual`); `None` on a paced clock and once stopped.
+    core: Mutex<Option<VirtualServo>>,
 }
 
 impl Shared {
+    /// Whether this thread runs the engine: the paced servo thread, or any thread serving the
+    /// virtual queue (a blocking call from there would wait for itself).
     fn on_servo_thread(&self) -> bool {
-        self.servo_thread.get() == Some(&std::thread::current().id())
+        self.servo_thread.get() == Some(&std::thread::current().id()) || servo::serving(self)
     }
 }
 
@@ -403,12 +412,27 @@ impl Runtime {
             servo_thread: OnceLock::new(),
             servo_waker: OnceLock::new(),
             poked: AtomicBool::new(false),
+            core: Mutex::new(None),
         });
-        let servo = Servo::new(engine, rx, Arc::clone(&shared), clock, &options);
-        let thread = std::thread::Builder::new()
-            .name("mcemu-servo".to_owned())
-            .spawn(move || servo.run())
-            .map_err(RuntimeError::Spawn)?;
+        let builder = std::thread::Builder::new().name("mcemu-servo".to_owned());
+        let spawned = if options.clock == ClockMode::Virtual {
+            let servo = Servo::new(engine, rx, Arc::clone(&shared), Unpaced, &options);
+            *shared.core.lock().unwrap_or_else(PoisonError::into_inner) = Some(servo);
+            let serving = Arc::clone(&shared);
+            builder.spawn(move || servo::run_virtual(serving))
+        } else {
+            let servo = Servo::new(engine, rx, Arc::clone(&shared), clock, &options);
+            builder.spawn(move || servo.run())
+        };
+        let thread = spawned.map_err(|e| {
+            // The state holds an `Arc` of `shared`: drop it, or the two keep each other alive.
+            shared
+                .core
+                .lock()
+                .unwrap_or_else(PoisonError::into_inner)
+                .take();
+            RuntimeError::Spawn(e)
+        })?;
         let handle = EngineHandle {
             shared: Arc::clone(&shared),
             tx: tx.clone(),
@@ -431,12 +455,11 @@ pub struct EngineHandle {
 }
 
 impl EngineHandle {
-    /// Queue a command without blocking. Virtual clock: applied as soon as the servo thread
-    /// gets to it (no advance needed); paced clocks: at the start of the next tick.
+    /// Queue a command without blocking. Virtual clock: applied as soon as the servo thread (or
+    /// a blocking caller serving the queue) gets to it, no advance needed; paced clocks: at the
+    /// start of the next tick.
     pub fn submit(&self, command: Command) -> Result<PendingReply, SubmitError> {
-        let (reply, pending) = reply_channel();
-        self.enqueue(Request::Command { command, reply })?;
-        Ok(pending)
+        self.request(|reply| Request::Command { command, reply })
     }
 
     /// Queue commands to be applied in one go, between the same two ticks, in order, all or
@@ -446,17 +469,41 @@ impl EngineHandle {
         &self,
         commands: Vec<Command>,
     ) -> Result<Pending<Vec<Reply>, CallError>, SubmitError> {
-        let (reply, pending) = reply_channel();
-        self.enqueue(Request::Batch { commands, reply })?;
-        Ok(pending)
+        self.request(|reply| Request::Batch { commands, reply })
     }
 
     /// [`EngineHandle::submit_batch`] and block until the replies. Refused on the servo thread.
     pub fn call_batch(&self, commands: Vec<Command>) -> Result<Vec<Reply>, CallError> {
-        if self.shared.on_servo_thread() {
-            return Err(CallError::OnServoThread);
-        }
-        self.submit_batch(commands)?.wait()
+        self.call_request(|reply| Request::Batch { commands, reply })
+    }
+
+    /// Queue commands to be applied one after another, between the same two ticks, in order,
+    /// each on its own: a refused command gets its error in its place and the others stand, as
+    /// if each had been `submit`ted, but as one request (one publication, one reply; at most
+    /// [`crate::engine::MAX_ATOMIC_COMMANDS`]). What a host refilling several axes' stream
+    /// buffers at once wants: no rollback to prepare, unlike [`EngineHandle::submit_batch`].
+    pub fn submit_each(
+        &self,
+        commands: Vec<Command>,
+    ) -> Result<Pending<Vec<Result<Reply, EngineError>>, CallError>, SubmitError> {
+        self.request(|reply| Request::Each { commands, reply })
+    }
+
+    /// [`EngineHandle::submit_each`] and block until the replies (served on the calling thread
+    /// on the virtual clock, as [`EngineHandle::call`]). Refused on the servo thread.
+    pub fn call_each(
+        &self,
+        commands: Vec<Command>,
+    ) -> Result<Vec<Result<Reply, EngineError>>, CallError> {
+        self.call_request(|reply| Request::Each { commands, reply })
+    }
+
+    /// [`EngineHandle::submit_each`] and await the replies (any executor).
+    pub async fn call_each_async(
+        &self,
+        commands: Vec<Command>,
+    ) -> Result<Vec<Result<Reply, EngineError>>, CallError> {
+        self.submit_each(commands)?.await
     }
 
     /// [`EngineHandle::submit_batch`] and await the replies (any executor).
@@ -464,12 +511,10 @@ impl EngineHandle {
         self.submit_batch(commands)?.await
     }
 
-    /// Submit and block until the reply. Refused on the servo thread itself.
+    /// Submit and block until the reply. Refused on the servo thread itself. Virtual clock: the
+    /// caller serves the queue itself ([`EngineHandle::advance`]).
     pub fn call(&self, command: Command) -> Result<Reply, CallError> {
-        if self.shared.on_servo_thread() {
-            return Err(CallError::OnServoThread);
-        }
-        self.submit(command)?.wait()
+        self.call_request(|reply| Request::Command { command, reply })
     }
 
     /// Submit and await the reply (any executor).
@@ -497,11 +542,39 @@ impl EngineHandle {
     }
 
     /// Virtual clock: run `ticks` ticks, after everything queued before; returns the tick after.
+    ///
+    /// Like every blocking call on the virtual clock, it serves the queue on the calling thread
+    /// (in order, its own request included) rather than wake the servo thread and sleep until
+    /// the reply; conditions, observers and fieldbuses then run on this thread, under the lock
+    /// the servo thread serves under. Non-blocking and async calls are served by the servo
+    /// thread.
     pub fn advance(&self, ticks: u64) -> Result<u64, AdvanceError> {
+        Ok(self.blocking_advance(ticks, None)?.tick)
+    }
+
+    fn blocking_advance(
+        &self,
+        ticks: u64,
+        until: Option<Condition>,
+    ) -> Result<Until, AdvanceError> {
         if self.shared.on_servo_thread() {
             return Err(AdvanceError::OnServoThread);
         }
-        Ok(self.submit_advance(ticks, None)?.wait()?.tick)
+        self.require_virtual()?;
+        let (reply, pending) = reply_channel();
+        self.enqueue_and_serve(Request::Advance {
+            ticks,
+            until,
+            reply,
+        })?;
+        pending.wait()
+    }
+
+    fn require_virtual(&self) -> Result<(), AdvanceError> {
+        match self.shared.clock {
+            ClockMode::Virtual => Ok(()),
+            clock => Err(AdvanceError::NotVirtual(clock)),
+        }
     }
 
     pub async fn advance_async(&self, ticks: u64) -> Result<u64, AdvanceError> {
@@ -516,11 +589,7 @@ impl EngineHandle {
         condition: impl Fn(&Snapshot) -> bool + Send + 'static,
         max_ticks: u64,
     ) -> Result<Until, AdvanceError> {
-        if self.shared.on_servo_thread() {
-            return Err(AdvanceError::OnServoThread);
-        }
-        self.submit_advance(max_ticks, Some(Box::new(condition)))?
-            .wait()
+        self.blocking_advance(max_ticks, Some(Box::new(condition)))
     }
 
     pub async fn advance_until_async(
@@ -538,11 +607,8 @@ impl EngineHandle {
         ticks: u64,
         until: Option<Condition>,
     ) -> Result<Pending<Until, AdvanceError>, AdvanceError> {
-        if self.shared.clock != ClockMode::Virtual {
-            return Err(AdvanceError::NotVirtual(self.shared.clock));
-        }
-        let (reply, pending) = reply_channel();
-        self.enqueue(Request::Advance {
+        self.require_virtual()?;
+        let pending = self.request(|reply| Request::Advance {
             ticks,
             until,
             reply,
@@ -557,17 +623,15 @@ impl EngineHandle {
         &self,
         fieldbus: Box<dyn Fieldbus>,
     ) -> Result<Pending<(), CallError>, SubmitError> {
-        let (reply, pending) = reply_channel();
-        self.enqueue(Request::AddFieldbus { fieldbus, reply })?;
-        Ok(pending)
+        self.request(|reply| Request::AddFieldbus { fieldbus, reply })
     }
 
     /// [`EngineHandle::submit_fieldbus`] and block until it is installed.
     pub fn add_fieldbus(&self, fieldbus: impl Fieldbus + 'static) -> Result<(), CallError> {
-        if self.shared.on_servo_thread() {
-            return Err(CallError::OnServoThread);
-        }
-        self.submit_fieldbus(Box::new(fieldbus))?.wait()
+        self.call_request(|reply| Request::AddFieldbus {
+            fieldbus: Box::new(fieldbus),
+            reply,
+        })
     }
 
     /// Tell the servo thread that a fieldbus has input waiting; it serves its fieldbuses'
@@ -585,6 +649,8 @@ impl EngineHandle {
             if self.tx.try_send(Request::Poke).is_err() {
                 // Queue full: the requests in it get served anyway; let the next poke queue.
                 self.shared.poked.store(false, Ordering::Release);
+            } else {
+                self.wake_virtual_servo();
             }
         } else if let Some(servo) = self.shared.servo_waker.get() {
             servo.unpark();
@@ -604,9 +670,7 @@ impl EngineHandle {
         &self,
         observer: Observer,
     ) -> Result<Pending<ObserverId, CallError>, SubmitError> {
-        let (reply, pending) = reply_channel();
-        self.enqueue(Request::Observe { observer, reply })?;
-        Ok(pending)
+        self.request(|reply| Request::Observe { observer, reply })
     }
 
     /// [`EngineHandle::submit_observer`] and block until it is installed.
@@ -614,10 +678,10 @@ impl EngineHandle {
         &self,
         observer: impl FnMut(&Engine) -> bool + Send + 'static,
     ) -> Result<ObserverId, CallError> {
-        if self.shared.on_servo_thread() {
-            return Err(CallError::OnServoThread);
-        }
-        self.submit_observer(Box::new(observer))?.wait()
+        self.call_request(|reply| Request::Observe {
+            observer: Box::new(observer),
+            reply,
+        })
     }
 
     pub async fn add_observer_async(
@@ -633,24 +697,69 @@ impl EngineHandle {
         &self,
         id: ObserverId,
     ) -> Result<Pending<bool, CallError>, SubmitError> {
-        let (reply, pending) = reply_channel();
-        self.enqueue(Request::RemoveObserver { id, reply })?;
-        Ok(pending)
+        self.request(|reply| Request::RemoveObserver { id, reply })
     }
 
     /// [`EngineHandle::submit_remove_observer`] and block until it is done.
     pub fn remove_observer(&self, id: ObserverId) -> Result<bool, CallError> {
-        if self.shared.on_servo_thread() {
-            return Err(CallError::OnServoThread);
-        }
-        self.submit_remove_observer(id)?.wait()
+        self.call_request(|reply| Request::RemoveObserver { id, reply })
     }
 
     pub async fn remove_observer_async(&self, id: ObserverId) -> Result<bool, CallError> {
         self.submit_remove_observer(id)?.await
     }
 
+    /// Queue the request `make` builds around its reply channel, without blocking.
+    fn request<T, E: ReplyError>(
+        &self,
+        make: impl FnOnce(ReplySender<T, E>) -> Request,
+    ) -> Result<Pending<T, E>, SubmitError> {
+        let (reply, pending) = reply_channel();
+        self.enqueue(make(reply))?;
+        Ok(pending)
+    }
+
+    /// Queue the request `make` builds and block until its reply: refused on the servo thread,
+    /// served on this thread on the virtual clock ([`EngineHandle::advance`]).
+    fn call_request<T>(
+        &self,
+        make: impl FnOnce(ReplySender<T, CallError>) -> Request,
+    ) -> Result<T, CallError> {
+        if self.shared.on_servo_thread() {
+            return Err(CallError::OnServoThread);
+        }
+        let (reply, pending) = reply_channel();
+        self.enqueue_and_serve(make(reply))?;
+        pending.wait()
+    }
+
+    /// Queue a request nobody waits on here: a virtual servo thread is woken to serve it.
     fn enqueue(&self, request: Request) -> Result<(), SubmitError> {
+        self.send(request)?;
+        self.wake_virtual_servo();
+        Ok(())
+    }
+
+    /// Queue a request whose caller is about to block on its reply: on the virtual clock the
+    /// caller serves the queue itself (`servo::serve_virtual`); a paced clock applies it at its
+    /// next tick.
+    fn enqueue_and_serve(&self, request: Request) -> Result<(), SubmitError> {
+        self.send(request)?;
+        if self.shared.clock == ClockMode::Virtual {
+            servo::serve_virtual(&self.shared);
+        }
+        Ok(())
+    }
+
+    fn wake_virtual_servo(&self) {
+        if self.shared.clock == ClockMode::Virtual {
+            if let Some(servo) = self.shared.servo_waker.get() {
+                servo.unpark();
+            }
+        }
+    }
+
+    fn send(&self, request: Request) -> Result<(), SubmitError> {
         if self.shared.stop.load(Ordering::Acquire) {
             return Err(SubmitError::Stopped);
         }
@@ -678,7 +787,8 @@ impl std::fmt::Debug for EngineHandle {
 pub struct RuntimeGuard {
     shared: Arc<Shared>,
     tx: SyncSender<Request>,
-    thread: Option<JoinHandle<Engine>>,
+    /// Returns the engine, or `None` when a panic lost it.
+    thread: Option<JoinHandle<Option<Engine>>>,
 }
 
 impl RuntimeGuard {
@@ -699,11 +809,9 @@ impl RuntimeGuard {
     fn stop_thread(&mut self) -> Option<Engine> {
         let thread = self.thread.take()?;
         self.shared.stop.store(true, Ordering::Release);
-        // A paced servo thread sleeps in `park_timeout`; a virtual one blocks on the queue. If
-        // the queue is full the servo thread has work and will see the flag without the wake.
+        // A paced servo thread sleeps in `park_timeout`, a virtual one in `park`.
         thread.thread().unpark();
-        let _ = self.tx.try_send(Request::Wake);
-        thread.join().ok()
+        thread.join().ok().flatten()
     }
 }
 

@@ -3,7 +3,7 @@
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::atomic::Ordering;
 use std::sync::mpsc::{Receiver, TryRecvError};
-use std::sync::Arc;
+use std::sync::{Arc, PoisonError};
 use std::time::Duration;
 
 use arc_swap::ArcSwap;
@@ -12,8 +12,9 @@ use super::{
     AdvanceError, CallError, Clock, Condition, Fieldbus, Observer, ObserverId, ReplySender,
     RuntimeOptions, RuntimeStats, Shared, Until,
 };
-use crate::command::{Command, Reply};
+use crate::command::{Command, EngineError, Reply};
 use crate::engine::Engine;
+use crate::engine::MAX_ATOMIC_COMMANDS;
 use crate::status::Snapshot;
 
 pub(super) enum Request {
@@ -26,6 +27,12 @@ pub(super) enum Request {
     Batch {
         commands: Vec<Command>,
         reply: ReplySender<Vec<Reply>, CallError>,
+    },
+    /// Commands applied one after another between the same two ticks, each on its own (a
+    /// refusal is that command's reply; the others stand), answered together.
+    Each {
+        commands: Vec<Command>,
+        reply: ReplySender<Vec<Result<Reply, EngineError>>, CallError>,
     },
     Advance {
         ticks: u64,
@@ -46,8 +53,6 @@ pub(super) enum Request {
     },
     /// A fieldbus has input waiting: a virtual runtime serves it at the current tick.
     Poke,
-    /// Wakes a virtual servo thread blocked on the queue, so that it sees the stop flag.
-    Wake,
 }
 
 /// A virtual-clock advance without a condition publishes the snapshot after every this many
@@ -128,6 +133,107 @@ enum HeldReply {
         ReplySender<Vec<Reply>, CallError>,
         Result<Vec<Reply>, CallError>,
     ),
+    Each(
+        ReplySender<Vec<Result<Reply, EngineError>>, CallError>,
+        Result<Vec<Result<Reply, EngineError>>, CallError>,
+    ),
+}
+
+/// The virtual clock's servo state, behind `Shared::core`'s lock: whoever holds the lock serves
+/// the queue. A virtual clock needs no clock.
+pub(super) type VirtualServo = Servo<Unpaced>;
+
+/// The clock of a [`VirtualServo`]: never read (bus time is engine time on the virtual clock).
+pub(super) struct Unpaced;
+
+impl Clock for Unpaced {
+    fn now(&self) -> Duration {
+        Duration::ZERO
+    }
+
+    fn sleep_until(&self, _deadline: Duration) {}
+}
+
+std::thread_local! {
+    /// The runtimes whose queue this thread is serving now (innermost last), as `Shared`
+    /// addresses: a blocking call to one of them from inside (a condition, an observer, a
+    /// fieldbus) would wait for itself, and is refused instead.
+    static SERVING: std::cell::RefCell<Vec<usize>> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
+fn shared_id(shared: &Shared) -> usize {
+    std::ptr::from_ref(shared) as usize
+}
+
+/// Whether this thread is serving `shared`'s queue right now.
+pub(super) fn serving(shared: &Shared) -> bool {
+    let id = shared_id(shared);
+    SERVING.with(|s| s.borrow().contains(&id))
+}
+
+/// Marks this thread as serving a runtime's queue for as long as it lives.
+struct ServingMark;
+
+impl ServingMark {
+    fn enter(shared: &Shared) -> ServingMark {
+        SERVING.with(|s| s.borrow_mut().push(shared_id(shared)));
+        ServingMark
+    }
+}
+
+impl Drop for ServingMark {
+    fn drop(&mut self) {
+        SERVING.with(|s| s.borrow_mut().pop());
+    }
+}
+
+/// Virtual clock: serve the queue on this thread, everything in it in order, the caller's own
+/// request included. A blocking caller does this instead of waking the servo thread and
+/// sleeping until its reply (two thread wake-ups, ~20 µs each on an idle VM: more than a
+/// 32-tick advance of 8 axes; decisions.md, "PT streams through the runtime"). Blocks while
+/// another thread serves; returns at once once the runtime has stopped. The requests are taken
+/// off the queue only under the lock, so the queue's order is the order they are served in.
+///
+/// A panic in the engine loses it as a dying servo thread did: the state is dropped (every
+/// queued request is answered `Stopped`), the runtime stops running and `RuntimeGuard::stop`
+/// reports `ServoPanicked`.
+pub(super) fn serve_virtual(shared: &Shared) {
+    let mut core = shared.core.lock().unwrap_or_else(PoisonError::into_inner);
+    let Some(servo) = core.as_mut() else {
+        return;
+    };
+    let _mark = ServingMark::enter(shared);
+    if catch_unwind(AssertUnwindSafe(|| servo.serve_queue())).is_err() {
+        *core = None;
+        shared.running.store(false, Ordering::Release);
+    }
+}
+
+/// The virtual clock's servo thread: serves what non-blocking callers queue (they unpark it),
+/// sleeps in between, and at a stop takes the state out of the lock and gives the engine back
+/// (`None` when the engine was lost to a panic).
+pub(super) fn run_virtual(shared: Arc<Shared>) -> Option<Engine> {
+    let _ = shared.servo_thread.set(std::thread::current().id());
+    let _ = shared.servo_waker.set(std::thread::current());
+    let running = RunningFlag(Arc::clone(&shared));
+    // A request queued before the waker was set is served by the first pass; one queued after
+    // a pass found the queue empty unparks the thread, so the park returns at once. The stop's
+    // unpark may have been used up by a park inside the pass (a condition waiting on a
+    // channel), hence the check between the pass and the park.
+    loop {
+        serve_virtual(&shared);
+        if shared.stop.load(Ordering::Acquire) || !shared.running.load(Ordering::Acquire) {
+            break;
+        }
+        std::thread::park();
+    }
+    drop(running);
+    let servo = shared
+        .core
+        .lock()
+        .unwrap_or_else(PoisonError::into_inner)
+        .take()?;
+    Some(servo.finish())
 }
 
 /// Which side of a step a fieldbus is served on.
@@ -208,18 +314,22 @@ impl<C: Clock> Servo<C> {
         }
     }
 
-    pub(super) fn run(mut self) -> Engine {
+    /// The paced servo thread: ticks on `clock` until stopped, then gives the engine back.
+    pub(super) fn run(mut self) -> Option<Engine> {
         let _ = self.shared.servo_thread.set(std::thread::current().id());
         let _ = self.shared.servo_waker.set(std::thread::current());
         let running = RunningFlag(Arc::clone(&self.shared));
-        match self.shared.clock.wall_period(self.engine.period()) {
-            None => self.run_virtual(),
-            Some(wall_period) => self.run_paced(wall_period),
+        if let Some(wall_period) = self.shared.clock.wall_period(self.engine.period()) {
+            self.run_paced(wall_period);
         }
         drop(running);
+        Some(self.finish())
+    }
+
+    /// Publishes the final statistics and returns the engine. Dropping the queue answers every
+    /// request still in it `Stopped` (ReplySender::drop), including any that races in after.
+    fn finish(mut self) -> Engine {
         self.publish_stats();
-        // Dropping the queue answers every request still in it `Stopped` (ReplySender::drop),
-        // including any that races in after this point.
         let Servo { engine, rx, .. } = self;
         drop(rx);
         engine
@@ -231,23 +341,28 @@ impl<C: Clock> Servo<C> {
 
     // ---- virtual clock -------------------------------------------------------------------
 
-    fn run_virtual(&mut self) {
-        // Blocks on the queue rather than polling: an idle virtual runtime costs nothing, and a
-        // command is applied as soon as it arrives, at the current tick. A request taken off the queue while applying a run of commands, served next.
+    /// Serves every request in the queue, in order, at the current tick (advances included),
+    /// until it is empty or a stop is requested; a request taken off the queue after the stop
+    /// is dropped, so its caller gets `Stopped`. Called with the virtual core's lock held, by
+    /// the servo thread or by a blocking caller ([`serve_virtual`]).
+    fn serve_queue(&mut self) {
+        // A request taken off the queue while applying a run of commands, served next.
         let mut carried: Option<Request> = None;
         loop {
             let request = match carried.take() {
                 Some(request) => request,
-                None => match self.rx.recv() {
+                None => match self.rx.try_recv() {
                     Ok(request) => request,
-                    Err(_) => return,
+                    Err(TryRecvError::Empty | TryRecvError::Disconnected) => return,
                 },
             };
             if self.stopping() {
                 return; // `request` is dropped: its caller gets `Stopped`
             }
             match request {
-                request @ (Request::Command { .. } | Request::Batch { .. }) => {
+                request @ (Request::Command { .. }
+                | Request::Batch { .. }
+                | Request::Each { .. }) => {
                     carried = self.apply_queued_commands(request);
                 }
                 Request::Advance {
@@ -271,7 +386,6 @@ impl<C: Clock> Servo<C> {
                     self.shared.poked.store(false, Ordering::Release);
                     self.serve_poke();
                 }
-                Request::Wake => {}
             }
         }
     }
@@ -288,6 +402,7 @@ impl<C: Clock> Servo<C> {
             match request {
                 Request::Command { command, reply } => self.apply(command, reply),
                 Request::Batch { commands, reply } => self.apply_batch(commands, reply),
+                Request::Each { commands, reply } => self.apply_each(commands, reply),
                 other => break Some(other),
             }
             applied += 1;
@@ -429,6 +544,10 @@ impl<C: Clock> Servo<C> {
                     self.apply_batch(commands, reply);
                     applied += 1;
                 }
+                Ok(Request::Each { commands, reply }) => {
+                    self.apply_each(commands, reply);
+                    applied += 1;
+                }
                 Ok(Request::Advance { reply, .. }) => {
                     reply.send(Err(AdvanceError::NotVirtual(self.shared.clock)));
                 }
@@ -439,7 +558,7 @@ impl<C: Clock> Servo<C> {
                     reply.send(Ok(()));
                 }
                 // The next step serves it.
-                Ok(Request::Poke | Request::Wake) => {}
+                Ok(Request::Poke) => {}
                 // Disconnected: the guard is gone, so the stop flag is set.
                 Err(TryRecvError::Empty | TryRecvError::Disconnected) => break,
             }
@@ -563,11 +682,35 @@ impl<C: Clock> Servo<C> {
         self.replies.push(HeldReply::Batch(reply, result));
     }
 
+    /// Each command on its own, in order; as many as an atomic batch may carry, so that one
+    /// request's work between two ticks stays bounded.
+    fn apply_each(
+        &mut self,
+        commands: Vec<Command>,
+        reply: ReplySender<Vec<Result<Reply, EngineError>>, CallError>,
+    ) {
+        let result = if commands.len() > MAX_ATOMIC_COMMANDS {
+            Err(CallError::Engine(EngineError::InvalidArgument {
+                name: "commands",
+                value: commands.len() as f64,
+                reason: "more than 1024 commands in one request",
+            }))
+        } else {
+            self.stats.commands_applied += commands.len() as u64;
+            Ok(commands
+                .into_iter()
+                .map(|command| self.engine.apply(command))
+                .collect())
+        };
+        self.replies.push(HeldReply::Each(reply, result));
+    }
+
     fn send_replies(&mut self) {
         for held in self.replies.drain(..) {
             match held {
                 HeldReply::One(reply, result) => reply.send(result),
                 HeldReply::Batch(reply, result) => reply.send(result),
+                HeldReply::Each(reply, result) => reply.send(result),
             }
         }
     }

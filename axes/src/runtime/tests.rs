@@ -284,6 +284,35 @@ fn virtual_commands_queued_together_are_each_answered_after_their_effect() {
 }
 
 #[test]
+fn a_blocking_call_serves_what_was_queued_before_it_first() {
+    let (handle, _guard) = virtual_runtime(2);
+    // Whichever thread serves them (the servo thread woken by the submits, or this one in the
+    // advance), the queue's order holds: both commands before the advance, the refused one
+    // answered with its own error, and every reply in by the time the advance returns.
+    let first = handle.submit(enable(0)).unwrap();
+    let refused = handle.submit(enable(7)).unwrap();
+    let batch = handle.submit_batch(vec![enable(1)]).unwrap();
+    assert_eq!(handle.advance(2), Ok(2));
+    assert_eq!(first.try_take(), Some(Ok(Reply::Done)));
+    assert!(matches!(
+        refused.try_take(),
+        Some(Err(CallError::Engine(EngineError::InvalidAxis {
+            axis: 7,
+            ..
+        })))
+    ));
+    assert_eq!(batch.try_take(), Some(Ok(vec![Reply::Done])));
+    let enabled_at = |axis: usize| {
+        handle.snapshot().axes[axis]
+            .flags
+            .contains(AxisFlags::ENABLED)
+    };
+    assert!(enabled_at(0) && enabled_at(1));
+    let stats = handle.stats();
+    assert_eq!((stats.commands_applied, stats.ticks_run), (3, 2));
+}
+
+#[test]
 fn engine_errors_come_back_as_call_errors() {
     let (handle, _guard) = virtual_runtime(2);
     assert_eq!(
@@ -335,6 +364,57 @@ fn a_batch_is_applied_in_one_go_and_a_refused_one_not_at_all() {
     assert_eq!(*error, EngineError::InvalidAxis { axis: 9, count: 2 });
     assert_eq!(*handle.snapshot(), *before);
     assert_eq!(handle.stats().commands_applied, 4);
+}
+
+#[test]
+fn call_each_answers_each_command_in_order_and_a_refusal_loses_nothing() {
+    let (handle, _guard) = virtual_runtime(2);
+    // The jog of axis 1 comes before its enable (refused), axis 0's after (accepted): applied
+    // in order. The refused ones keep their places; the others stand.
+    let replies = handle
+        .call_each(vec![
+            jog(1, 1.0),
+            enable(0),
+            enable(7),
+            jog(0, 1.0),
+            enable(1),
+        ])
+        .unwrap();
+    assert_eq!(replies.len(), 5);
+    assert!(
+        matches!(replies[0], Err(EngineError::AxisDisabled { axis: 1 })),
+        "{replies:?}"
+    );
+    assert_eq!(replies[1], Ok(Reply::Done));
+    assert_eq!(
+        replies[2],
+        Err(EngineError::InvalidAxis { axis: 7, count: 2 })
+    );
+    assert_eq!(replies[3], Ok(Reply::Accepted { id: 1 }));
+    assert_eq!(replies[4], Ok(Reply::Done));
+    // One request, one publication: the reply follows the snapshot with every effect.
+    let snapshot = handle.snapshot();
+    assert!(snapshot.axes[0].flags.contains(AxisFlags::ENABLED));
+    assert!(snapshot.axes[1].flags.contains(AxisFlags::ENABLED));
+    assert_eq!(handle.stats().commands_applied, 5);
+    handle.advance(1).unwrap();
+    let snapshot = handle.snapshot();
+    assert!(snapshot.axes[0].cmd_vel > 0.0 && snapshot.axes[1].cmd_vel == 0.0);
+    // Async and not waited on alike; more than an atomic batch may carry is refused whole.
+    let pending = handle.submit_each(vec![jog(1, -1.0)]).unwrap();
+    assert_eq!(
+        block_on(pending.into_future()),
+        Ok(vec![Ok(Reply::Accepted { id: 2 })])
+    );
+    let too_many = vec![enable(0); crate::engine::MAX_ATOMIC_COMMANDS + 1];
+    assert!(matches!(
+        block_on(handle.call_each_async(too_many)),
+        Err(CallError::Engine(EngineError::InvalidArgument {
+            name: "commands",
+            ..
+        }))
+    ));
+    assert_eq!(handle.stats().commands_applied, 6);
 }
 
 #[test]
@@ -482,26 +562,48 @@ fn advance_until_condition_panic_fails_the_advance_only() {
     assert_eq!(guard.stop().unwrap().tick(), 4);
 }
 
+/// A condition that records the thread it runs on and what blocking calls back into the
+/// handle give.
+type Seen = Arc<
+    Mutex<
+        Option<(
+            Option<String>,
+            Result<Reply, CallError>,
+            Result<u64, AdvanceError>,
+        )>,
+    >,
+>;
+
+fn reentering_condition(handle: &EngineHandle, seen: &Seen) -> Condition {
+    let inner = handle.clone();
+    let seen = Arc::clone(seen);
+    Box::new(move |_| {
+        let name = thread::current().name().map(str::to_owned);
+        *seen.lock().unwrap() = Some((name, inner.call(enable(0)), inner.advance(1)));
+        true
+    })
+}
+
 #[test]
 fn blocking_calls_from_the_servo_thread_are_refused() {
     let (handle, _guard) = virtual_runtime(1);
-    let inner = handle.clone();
-    let seen = Arc::new(Mutex::new(None));
-    let seen_in = Arc::clone(&seen);
-    handle
-        .advance_until(
-            move |_| {
-                let name = thread::current().name().map(str::to_owned);
-                *seen_in.lock().unwrap() = Some((name, inner.call(enable(0)), inner.advance(1)));
-                true
-            },
-            1,
-        )
-        .unwrap();
+    let seen = Seen::default();
+    // A blocking advance is served on the caller's thread, a submitted one on the servo
+    // thread; either way the engine's thread must not wait for itself.
+    let condition = reentering_condition(&handle, &seen);
+    handle.advance_until(condition, 1).unwrap();
+    let (name, call, advance) = seen.lock().unwrap().take().unwrap();
+    assert_eq!(name, thread::current().name().map(str::to_owned));
+    assert_eq!(call, Err(CallError::OnServoThread));
+    assert_eq!(advance, Err(AdvanceError::OnServoThread));
+    let condition = reentering_condition(&handle, &seen);
+    let submitted = handle.submit_advance(1, Some(condition)).unwrap();
+    assert_eq!(submitted.wait(), Ok(Until { met: true, tick: 2 }));
     let (name, call, advance) = seen.lock().unwrap().take().unwrap();
     assert_eq!(name.as_deref(), Some("mcemu-servo"));
     assert_eq!(call, Err(CallError::OnServoThread));
     assert_eq!(advance, Err(AdvanceError::OnServoThread));
+    assert_eq!(handle.call(enable(0)), Ok(Reply::Done)); // not left marked
 }
 
 /// Stalls a virtual servo thread inside an advance_until condition until the returned sender is

@@ -149,6 +149,10 @@ pub struct GroupStatus {
     /// without a result axis, which never merges).
     #[serde(default)]
     pub mergeable: bool,
+    /// The polar transform is set (`group_set_polar_transform`): `coordinates` are the
+    /// program's Cartesian point, the rotary and feed members' positions θ and r.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub polar: bool,
 }
 
 impl GroupStatus {

@@ -3,7 +3,7 @@
 //! and break point, and the device's move protection. The engine's group keeps the transform
 //! and the protection it carries out; this is the manual's view of them, read back as written.
 
-use axes::command::{Command, GroupId, GroupParameter, GroupSetParameter};
+use axes::command::{Command, GroupId, GroupParameter, GroupSetParameter, GroupSetPolarTransform};
 use mcemu_dialects::PulseScale;
 use mcemu_nmc::crd::CRD_MAX_AXES;
 use mcemu_nmc::crd_frames::{ArcSecSetting, MvProtectPara};
@@ -22,13 +22,47 @@ pub enum CrdTransform {
         center: [i64; 2],
     },
     /// `NMC_CrdSetTransPolar`: the rotary and the linear axis, rad/pulse of the rotary.
+    /// `path`: the two are the coordinate system's X and Y axes, so the engine group feeds them
+    /// the path's (θ, r) (`group_set_polar_transform`); else only `RunToPolarPos/Theta` use it.
     Polar {
         rot_axis: usize,
         trans_axis: usize,
         rot_equiv: f64,
+        path: bool,
     },
     /// `NMC_CrdSetTransXYZA`: the X, Y, Z, A axes (the coordinate system's members in order).
     Xyza { map: [usize; CRD_MAX_AXES] },
+}
+
+impl CrdTransform {
+    /// The engine's polar transform of group `n` when this is the polar transform of the crd's
+    /// own X and Y axes; `pulses_per_unit(axis)` (θ = pulses × rotEquiv = units × pulses per
+    /// unit × rotEquiv).
+    pub fn polar_command(
+        &self,
+        n: usize,
+        pulses_per_unit: impl Fn(usize) -> f64,
+    ) -> Option<Command> {
+        let CrdTransform::Polar {
+            rot_axis,
+            trans_axis,
+            rot_equiv,
+            path: true,
+        } = *self
+        else {
+            return None;
+        };
+        Some(
+            GroupSetPolarTransform {
+                group: n as GroupId,
+                rotary: rot_axis as u16,
+                feed: trans_axis as u16,
+                rotary_units_per_radian: 1.0 / (rot_equiv * pulses_per_unit(rot_axis)),
+                plane: None,
+            }
+            .into(),
+        )
+    }
 }
 
 /// One coordinate system's settings of this family.

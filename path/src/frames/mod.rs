@@ -12,6 +12,8 @@
 //!   bits), convert points both ways and get the composite PCS → MCS transform.
 //! - [`RotaryTransform`] and [`XyzaTransform`]: NMC's transforms that follow a rotary axis
 //!   (`CrdSetTransRotate`, `CrdSetTransXYZA`, digest 001 §2.10 S-TRANS-ROTATE/S-TRANS-XYZA).
+//! - [`polar`]: NMC's polar machine (`CrdSetTransPolar`), the non-rigid (x, y) → (θ, r) map of
+//!   each tick's point and the bounds of its rates along a segment.
 //!
 //! Pure values: nothing here allocates or keeps state beyond its fields.
 
@@ -19,6 +21,7 @@ use crate::checks::{check_axis, check_dims, check_finite, check_number, Geometry
 use crate::{Point, MAX_AXES};
 
 mod chain;
+pub mod polar;
 mod rotary;
 
 pub use chain::{Frame, FrameChain, FrameSelection, WCS_COUNT};

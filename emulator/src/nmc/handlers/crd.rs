@@ -16,6 +16,7 @@ use mcemu_nmc::handle::{Handle, HandleKind};
 use mcemu_nmc::table::{self, Function};
 
 use crate::nmc::crd::{CrdState, CRD_BUFFER, CRD_COUNT};
+use crate::nmc::crd_frames::CrdTransform;
 use crate::nmc::service::{pulses, Call, Handler, Refusal};
 
 pub const HANDLERS: &[(Function, Handler)] = &[
@@ -104,17 +105,45 @@ pub(super) fn members(s: &CrdState) -> Result<Vec<usize>, Refusal> {
 }
 
 /// Where the coordinate system's path stands now, pulses in user coordinates (members'
-/// commanded positions less the origin).
-pub(super) fn here(c: &Call<'_>, s: &CrdState) -> [i64; CRD_MAX_AXES] {
+/// commanded positions less the origin; under the polar transform of its X and Y axes, X and
+/// Y are the Cartesian point of the two axes' θ and r).
+pub(super) fn here(c: &Call<'_>, n: usize, s: &CrdState) -> [i64; CRD_MAX_AXES] {
     let origin = s.origin();
     let mut out = [0; CRD_MAX_AXES];
-    for (k, axis) in s.axes().into_iter().enumerate().take(CRD_MAX_AXES) {
+    let axes = s.axes();
+    for (k, axis) in axes.iter().enumerate().take(CRD_MAX_AXES) {
         let p = c
-            .status(axis)
-            .map_or(0, |st| pulses(c.scale(axis), st.cmd_pos));
+            .status(*axis)
+            .map_or(0, |st| pulses(c.scale(*axis), st.cmd_pos));
         out[k] = p.saturating_sub(origin[k]);
     }
+    let polar = c.service.frames().crd.get(n).map(|f| f.transform);
+    if let Some(CrdTransform::Polar {
+        rot_axis,
+        trans_axis,
+        rot_equiv,
+        path: true,
+    }) = polar
+    {
+        let exact = |axis: usize| {
+            c.status(axis)
+                .map_or(0.0, |st| st.cmd_pos * c.scale(axis).pulses_per_unit)
+        };
+        let (theta, r) = (exact(rot_axis) * rot_equiv, exact(trans_axis));
+        out[0] = (r * theta.cos()).round() as i64 - origin[0];
+        out[1] = (r * theta.sin()).round() as i64 - origin[1];
+    }
     out
+}
+
+/// The polar transform again, before motions go to the engine group, if `RunToPolarPos/Theta`
+/// lifted it to move the crd's X and Y axes in machine coordinates.
+pub(super) fn polar_resume(c: &Call<'_>, n: usize) -> Option<Command> {
+    let transform = c.service.frames().crd.get(n).map(|f| f.transform)?;
+    if group(c, n)?.polar {
+        return None;
+    }
+    transform.polar_command(n, |a| c.scale(a).pulses_per_unit)
 }
 
 fn open(c: &mut Call<'_>, n: i16) -> Result<(), Refusal> {
@@ -237,7 +266,7 @@ fn crd_config(c: &mut Call<'_>) -> Result<(), Refusal> {
     }
     s.pending.clear();
     s.started = false;
-    s.end = here(c, &s);
+    s.end = here(c, n, &s);
     update(c, n, |now| *now = s);
     Ok(())
 }
@@ -394,6 +423,11 @@ fn crd_start_mtn(c: &mut Call<'_>) -> Result<(), Refusal> {
             factor: s.override_factor,
         });
     }
+    if !s.pending.is_empty() {
+        if let Some(polar) = polar_resume(c, n) {
+            c.command(polar);
+        }
+    }
     c.plan.commands.append(&mut s.pending);
     s.started = true;
     update(c, n, |now| *now = s);
@@ -439,7 +473,7 @@ fn crd_estop_mtn(c: &mut Call<'_>) -> Result<(), Refusal> {
     let n = crd(c)?;
     if group(c, n).is_some_and(|g| g.state != GroupState::Disabled) {
         // Where NMC_CrdGotoBreak returns to (0x17xx family).
-        let at = here(c, &state(c, n));
+        let at = here(c, n, &state(c, n));
         c.service.frames().note_break(n, at);
         c.command(GroupEmergencyStop {
             group: n as GroupId,
@@ -486,7 +520,7 @@ fn crd_buf_clr(c: &mut Call<'_>) -> Result<(), Refusal> {
     s.started = false;
     s.pushed = 0;
     s.pushed_length = 0.0;
-    s.end = here(c, &s);
+    s.end = here(c, n, &s);
     s.ext_end.clear();
     update(c, n, |now| *now = s);
     Ok(())

@@ -1,17 +1,17 @@
 //! Coordinate transforms, arc sections, the A axis's corner velocity, the buffer offset and the
 //! break point, family 0x17xx (digest 001 §2.7, §2.20 C3§10.5, §3.7; S-TRANS-ROTATE,
 //! S-TRANS-XYZA). The rotary and XYZA transforms are the engine group's (`group/frames.rs`):
-//! set, then selected for the moves that follow. The polar transform is the front-end's: the
-//! engine has no non-linear kinematics, so it moves the two axes by single-axis PTP
-//! (`NMC_CrdRunToPolarPos/Theta`, as the manual says it does) and leaves paths untransformed
-//! (decisions.md, "NMC coordinate transforms and move protection").
+//! set, then selected for the moves that follow. The polar transform of the crd's own X and Y
+//! axes is the engine group's output map (`group/polar.rs`: Cartesian paths fed as θ and r);
+//! on axes outside the crd it serves `NMC_CrdRunToPolarPos/Theta` only (decisions.md, "NMC
+//! coordinate transforms, break point and move protection", "Polar machine").
 
 use std::f64::consts::TAU;
 
 use axes::command::{
-    Command, CoordinateSystem, ErrorKind, GroupDeleteTransform, GroupEnable, GroupId,
-    GroupSetCoordinateSystem, GroupSetRotaryTransform, GroupSetXyzaTransform, MoveLinearAbsolute,
-    PositionFrame, SetPosition,
+    Command, CoordinateSystem, ErrorKind, GroupDeletePolarTransform, GroupDeleteTransform,
+    GroupEnable, GroupId, GroupSetCoordinateSystem, GroupSetRotaryTransform, GroupSetXyzaTransform,
+    MoveLinearAbsolute, PositionFrame, SetPosition,
 };
 use axes::status::GroupState;
 use mcemu_dialects::nmc::{acceleration_to_engine, code_for_kind, velocity_to_engine};
@@ -118,6 +118,11 @@ fn delete_transform(c: &mut Call<'_>, n: usize) {
             .into()],
         );
     }
+    if group(c, n).is_some_and(|g| g.polar) {
+        c.command(GroupDeletePolarTransform {
+            group: n as GroupId,
+        });
+    }
     set_frames(c, n, |f| f.transform = CrdTransform::None);
 }
 
@@ -187,6 +192,11 @@ fn crd_del_trans_rotate(c: &mut Call<'_>) -> Result<(), Refusal> {
 
 /// `NMC_CrdSetTransPolar(crd, rotAxNo, transAxNo, rotEquiv)`: which axis turns (rotEquiv rad per
 /// pulse, 2π / pulses per turn) and which moves along the radius. Replaces another transform.
+/// When the two are the coordinate system's X and Y axes (either order) the crd motions pushed
+/// from now on are Cartesian and the engine group feeds the two axes θ and r
+/// (`group_set_polar_transform`, the rotary axis's whole turns kept); the transform changes
+/// only with nothing pushed or moving. Other axes: only `RunToPolarPos/Theta` use it
+/// (decisions.md, "Polar machine").
 fn crd_set_trans_polar(c: &mut Call<'_>) -> Result<(), Refusal> {
     let n = crd(c)?;
     let (rot, trans, equiv) = (c.input.i16()?, c.input.i16()?, c.input.f64()?);
@@ -206,33 +216,69 @@ fn crd_set_trans_polar(c: &mut Call<'_>) -> Result<(), Refusal> {
             "(0, 2π] rad/pulse (2π / pulses per turn)",
         ));
     }
-    delete_transform(c, n);
-    set_frames(c, n, |f| {
-        f.transform = CrdTransform::Polar {
-            rot_axis: rot,
-            trans_axis: trans,
-            rot_equiv: equiv,
+    let s = state(c, n);
+    let xy = s.axes().get(..2).map(<[usize]>::to_vec);
+    let path =
+        group(c, n).is_some() && xy.is_some_and(|xy| xy.contains(&rot) && xy.contains(&trans));
+    if path {
+        check_polar_change(c, n)?;
+        if c.scale(rot) != c.scale(trans) {
+            return Err(Refusal::range(
+                "rotAxNo",
+                rot,
+                "an axis with the pulses per unit of transAxNo (X and Y are in its pulses)",
+            ));
         }
-    });
+    }
+    delete_transform(c, n);
+    let polar = CrdTransform::Polar {
+        rot_axis: rot,
+        trans_axis: trans,
+        rot_equiv: equiv,
+        path,
+    };
+    if let Some(command) = polar.polar_command(n, |a| c.scale(a).pulses_per_unit) {
+        c.command(command);
+    }
+    set_frames(c, n, |f| f.transform = polar);
+    Ok(())
+}
+
+/// The polar transform of the path changes only with nothing pushed waiting for
+/// `NMC_CrdStartMtn` (those segments were given in the other coordinates) and the path at
+/// rest (the engine refuses a moving group's change).
+fn check_polar_change(c: &Call<'_>, n: usize) -> Result<(), Refusal> {
+    let s = state(c, n);
+    if !s.started && !s.pending.is_empty() {
+        return Err(Refusal::new(
+            code_for_kind(ErrorKind::GroupState),
+            "segments are pushed: the polar transform changes before them (NMC_CrdBufClr)",
+        ));
+    }
     Ok(())
 }
 
 fn crd_del_trans_polar(c: &mut Call<'_>) -> Result<(), Refusal> {
     let n = crd(c)?;
-    if matches!(frames(c, n).transform, CrdTransform::Polar { .. }) {
-        set_frames(c, n, |f| f.transform = CrdTransform::None);
+    if let CrdTransform::Polar { path, .. } = frames(c, n).transform {
+        if path {
+            check_polar_change(c, n)?;
+        }
+        delete_transform(c, n);
     }
     Ok(())
 }
 
-/// The polar transform's axes and rad/pulse, or a refusal naming the missing call.
-fn polar(c: &Call<'_>, n: usize) -> Result<(usize, usize, f64), Refusal> {
+/// The polar transform's axes and rad/pulse, and whether they are the path's X and Y, or a
+/// refusal naming the missing call.
+fn polar(c: &Call<'_>, n: usize) -> Result<(usize, usize, f64, bool), Refusal> {
     match frames(c, n).transform {
         CrdTransform::Polar {
             rot_axis,
             trans_axis,
             rot_equiv,
-        } => Ok((rot_axis, trans_axis, rot_equiv)),
+            path,
+        } => Ok((rot_axis, trans_axis, rot_equiv, path)),
         _ => Err(Refusal::new(
             code_for_kind(ErrorKind::InvalidState),
             "no polar transform: NMC_CrdSetTransPolar first",
@@ -258,6 +304,12 @@ fn clear_turns(c: &Call<'_>, axis: usize, equiv: f64) -> Option<Command> {
 
 /// One PTP of `axis` to `target` pulses at `vel` pulse/ms, with the axis's own PTP parameters.
 fn ptp(c: &Call<'_>, axis: usize, target: f64, vel: f64) -> Result<Vec<Command>, Refusal> {
+    let target = in_range(target)?;
+    let para = c.settings(axis).ptp;
+    ptp_move(c, axis, para, vel, target as i64, false)
+}
+
+fn in_range(target: f64) -> Result<f64, Refusal> {
     let target = target.round();
     if target.abs() > 2_147_483_647.0 {
         return Err(Refusal::range(
@@ -266,26 +318,181 @@ fn ptp(c: &Call<'_>, axis: usize, target: f64, vel: f64) -> Result<Vec<Command>,
             "[-2147483647, 2147483647] pulses",
         ));
     }
-    let para = c.settings(axis).ptp;
-    ptp_move(c, axis, para, vel, target as i64, false)
+    Ok(target)
+}
+
+/// The moves of `RunToPolarPos/Theta`: each axis of `moves` (axis, target pulses, velocity
+/// pulse/ms) to its target with its own PTP acc/dec, the rotary axis's turns cleared first when
+/// `clear` is `Some(rotEquiv)`. Axes outside the coordinate system: single-axis PTPs. The path's
+/// own X and Y (members of the engine group, which refuses single-axis motion): one group line
+/// in machine coordinates with the polar transform lifted, each axis at most at its velocity,
+/// acceleration and deceleration (both arrive together); the transform is set again before the
+/// next motion (`crd::polar_resume`), and the path goes on from the point the axes reach.
+fn run_to_polar(
+    c: &mut Call<'_>,
+    n: usize,
+    path: bool,
+    moves: &[(usize, f64, f64)],
+    clear: Option<(usize, f64)>,
+) -> Result<(), Refusal> {
+    let mut commands: Vec<Command> = clear
+        .and_then(|(axis, equiv)| clear_turns(c, axis, equiv))
+        .into_iter()
+        .collect();
+    if !path {
+        for &(axis, target, vel) in moves {
+            commands.extend(ptp(c, axis, target, vel)?);
+        }
+        c.plan.commands.extend(commands);
+        return Ok(());
+    }
+    check_polar_change(c, n)?;
+    let g = group(c, n).copied();
+    if let Some(g) = g.filter(|g| !matches!(g.state, GroupState::Disabled | GroupState::Standby)) {
+        return Err(Refusal::new(
+            code_for_kind(ErrorKind::GroupState),
+            format!(
+                "the coordinate system is {:?}: the polar axes move when it is at rest",
+                g.state
+            ),
+        ));
+    }
+    let mut s = state(c, n);
+    let axes = members(&s)?;
+    let origin = s.origin();
+    // Machine coordinates (members less the origin), after the turns are cleared.
+    let mut position: Vec<f64> = axes
+        .iter()
+        .zip(origin)
+        .map(|(a, o)| {
+            let p = c.status(*a).map_or(0, |st| pulses(c.scale(*a), st.cmd_pos));
+            p as f64 - o as f64
+        })
+        .collect();
+    if let Some((k, equiv)) =
+        clear.and_then(|(a, equiv)| Some((axes.iter().position(|m| *m == a)?, equiv)))
+    {
+        let now = position[k] + origin[k] as f64;
+        position[k] = now.rem_euclid(TAU / equiv).round() - origin[k] as f64;
+    }
+    // Each moving axis's distance and its velocity, acceleration and deceleration.
+    let mut steps: Vec<(f64, [f64; 3])> = Vec::new();
+    for &(axis, target, vel) in moves {
+        let target = in_range(target)?;
+        if let Some(k) = axes.iter().position(|m| *m == axis) {
+            let para = c.settings(axis).ptp;
+            let delta = target - origin[k] as f64 - position[k];
+            position[k] = target - origin[k] as f64;
+            steps.push((delta.abs(), [vel, para.acc, para.dec]));
+        }
+    }
+    let length = steps.iter().map(|(d, _)| d * d).sum::<f64>().sqrt();
+    if g.is_some_and(|g| g.polar) {
+        commands.push(
+            GroupDeletePolarTransform {
+                group: n as GroupId,
+            }
+            .into(),
+        );
+    }
+    if length > 0.0 {
+        // Path limits such that each axis's share stays within its own (pulses; the scales of
+        // the two are equal, `crd_set_trans_polar`).
+        let least = |i: usize| {
+            steps
+                .iter()
+                .filter(|(d, _)| *d > 0.0)
+                .map(|(d, limits)| limits[i] * length / d)
+                .fold(f64::INFINITY, f64::min)
+        };
+        let (vel, acc, dec) = (least(0), least(1), least(2));
+        if !(acc.is_finite() && acc > 0.0 && dec.is_finite() && dec > 0.0) {
+            return Err(Refusal::range(
+                "TPtpPara.acc/dec",
+                format!("{acc}/{dec}"),
+                "(0, ∞) pulse/ms² for the polar axes (NMC_MtSetPtpPara)",
+            ));
+        }
+        if g.is_some_and(|g| g.state == GroupState::Disabled) {
+            commands.push(
+                GroupEnable {
+                    group: n as GroupId,
+                }
+                .into(),
+            );
+        }
+        commands.push(machine_line(c, n, &axes, &position, [vel, acc, dec]));
+    }
+    // The path goes on from the reached point, in the program's (Cartesian) coordinates.
+    if let CrdTransform::Polar {
+        rot_axis,
+        trans_axis,
+        rot_equiv,
+        ..
+    } = frames(c, n).transform
+    {
+        let at = |axis: usize| {
+            let k = axes.iter().position(|m| *m == axis).unwrap_or(0);
+            position[k] + origin[k] as f64
+        };
+        let (theta, r) = (at(rot_axis) * rot_equiv, at(trans_axis));
+        let (x, y) = (r * theta.cos(), r * theta.sin());
+        // X and Y are the plane's coordinates 0 and 1, whichever axis each is.
+        s.end[0] = (x - origin[0] as f64).round() as i64;
+        s.end[1] = (y - origin[1] as f64).round() as i64;
+        update(c, n, |now| now.end = s.end);
+    }
+    c.plan.commands.extend(commands);
+    Ok(())
+}
+
+/// A line of group `n` to `position` (each member's pulses, user coordinates) at `vel`, `acc`,
+/// `dec` (pulse/ms, pulse/ms² of the path's scale) in machine coordinates, whatever transform
+/// is selected.
+fn machine_line(
+    c: &Call<'_>,
+    n: usize,
+    axes: &[usize],
+    position: &[f64],
+    [vel, acc, dec]: [f64; 3],
+) -> Command {
+    let scale = path_scale(c, &state(c, n));
+    MoveLinearAbsolute {
+        group: n as GroupId,
+        position: axes
+            .iter()
+            .zip(position)
+            .map(|(a, p)| c.scale(*a).to_engine(*p))
+            .collect(),
+        velocity: Some(velocity_to_engine(scale, vel)),
+        acceleration: Some(acceleration_to_engine(scale, acc)),
+        deceleration: Some(acceleration_to_engine(scale, dec)),
+        jerk: None,
+        buffer_mode: Default::default(),
+        transition: Default::default(),
+        user_segment: None,
+        independent: Default::default(),
+        coordinate_system: Some(CoordinateSystem::MCS),
+    }
+    .into()
 }
 
 /// (xPos, yPos) in polar coordinates: the rotary axis, its turns cleared first, to the angle
 /// atan2(y, x) ∈ [0, 2π) and the linear axis to the radius √(x² + y²) (digest 001 C3§10.5:
-/// (5000, 5000) → 45°, √2·5000), each a single-axis PTP at its velocity.
+/// (5000, 5000) → 45°, √2·5000), each at its velocity (`run_to_polar`).
 fn crd_run_to_polar_pos(c: &mut Call<'_>) -> Result<(), Refusal> {
     let n = crd(c)?;
     let x = finite("xPos", c.input.f64()?)?;
     let y = finite("yPos", c.input.f64()?)?;
     let rot_vel = positive("rotVel", c.input.f64()?, "pulse/ms")?;
     let trans_vel = positive("transVel", c.input.f64()?, "pulse/ms")?;
-    let (rot, trans, equiv) = polar(c, n)?;
+    let (rot, trans, equiv, path) = polar(c, n)?;
     let theta = y.atan2(x).rem_euclid(TAU);
-    let mut commands: Vec<Command> = clear_turns(c, rot, equiv).into_iter().collect();
-    commands.extend(ptp(c, rot, theta / equiv, rot_vel)?);
-    commands.extend(ptp(c, trans, x.hypot(y), trans_vel)?);
-    c.plan.commands.extend(commands);
-    Ok(())
+    let moves = [
+        (rot, theta / equiv, rot_vel),
+        (trans, x.hypot(y), trans_vel),
+    ];
+    run_to_polar(c, n, path, &moves, Some((rot, equiv)))
 }
 
 /// The rotary axis to angle `theta` (rad), turns cleared first when clrRoundFlag is 1.
@@ -297,15 +504,9 @@ fn crd_run_to_polar_theta(c: &mut Call<'_>) -> Result<(), Refusal> {
     if !(0..=1).contains(&clear) {
         return Err(Refusal::range("clrRoundFlag", clear, "{0, 1}"));
     }
-    let (rot, _, equiv) = polar(c, n)?;
-    let mut commands: Vec<Command> = if clear == 1 {
-        clear_turns(c, rot, equiv).into_iter().collect()
-    } else {
-        Vec::new()
-    };
-    commands.extend(ptp(c, rot, theta / equiv, vel)?);
-    c.plan.commands.extend(commands);
-    Ok(())
+    let (rot, _, equiv, path) = polar(c, n)?;
+    let clear = (clear == 1).then_some((rot, equiv));
+    run_to_polar(c, n, path, &[(rot, theta / equiv, vel)], clear)
 }
 
 /// The engine's XYZA transform of `f`'s parameters for the members `axes` (X, Y, Z, A).
@@ -574,7 +775,7 @@ fn crd_goto_break(c: &mut Call<'_>) -> Result<(), Refusal> {
     // Halted after NMC_CrdEstopMtn (the path kept): the engine takes the line back in front
     // of the path's remainder, even of length 0; NMC_CrdStartMtn goes on.
     let kept = state_now == Some(GroupState::Halted);
-    if !kept && here(c, &s).get(..dims) == point.get(..dims) {
+    if !kept && here(c, n, &s).get(..dims) == point.get(..dims) {
         set_frames(c, n, |f| f.break_point = None);
         return Ok(());
     }
@@ -583,25 +784,8 @@ fn crd_goto_break(c: &mut Call<'_>) -> Result<(), Refusal> {
             group: n as GroupId,
         });
     }
-    let scale = path_scale(c, &s);
-    let position = axes
-        .iter()
-        .zip(&point)
-        .map(|(a, p)| c.scale(*a).to_engine(*p as f64))
-        .collect();
-    c.command(MoveLinearAbsolute {
-        group: n as GroupId,
-        position,
-        velocity: Some(velocity_to_engine(scale, vel)),
-        acceleration: Some(acceleration_to_engine(scale, acc)),
-        deceleration: Some(acceleration_to_engine(scale, acc)),
-        jerk: None,
-        buffer_mode: Default::default(),
-        transition: Default::default(),
-        user_segment: None,
-        independent: Default::default(),
-        coordinate_system: Some(CoordinateSystem::MCS),
-    });
+    let position: Vec<f64> = point.iter().map(|p| *p as f64).collect();
+    c.command(machine_line(c, n, &axes, &position, [vel, acc, acc]));
     if !kept {
         s.end = point;
         update(c, n, |now| now.end = s.end);

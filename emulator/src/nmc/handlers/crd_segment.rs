@@ -130,7 +130,7 @@ impl Push {
         let axes = members(&s)?;
         if !s.started && s.pending.is_empty() {
             // At rest with nothing pushed: the path starts where the axes are now.
-            s.end = here(c, &s);
+            s.end = here(c, n, &s);
             s.ext_end.clear();
         }
         let scales = axes.iter().map(|a| c.scale(*a)).collect();
@@ -290,6 +290,9 @@ impl Push {
             self.s.pushed_length += self.path_scale().from_engine(length);
         }
         if self.s.started {
+            if let Some(polar) = super::crd::polar_resume(c, self.n) {
+                c.command(polar);
+            }
             c.plan.commands.extend(commands);
         } else {
             if self.s.pending.len() + commands.len() > CRD_BUFFER {

@@ -7,7 +7,7 @@ use mcemu_dialects::PulseScale;
 use mcemu_nmc::crd::CRD_MAX_AXES;
 use mcemu_nmc::table::{self, Function};
 
-use super::crd::{crd, group, state};
+use super::crd::{crd, group, here, state};
 use crate::nmc::crd::{CrdState, CRD_BUFFER};
 use crate::nmc::service::{pulses, Call, Handler, Refusal};
 
@@ -73,7 +73,8 @@ fn crd_get_inner_sts(c: &mut Call<'_>) -> Result<(), Refusal> {
 /// `cnts` ∈ [1, 4]; the positions of the coordinate system's axes, `pick`ed from each member's
 /// status in pulses (0 past the last member). `user`: in the coordinate system's own
 /// coordinates — machine less the origin, seen through the selected transform if one is
-/// (`NMC_CrdSetTransRotate`, `SetTransXYZA`: the engine's `frame_position`).
+/// (`NMC_CrdSetTransRotate`, `SetTransXYZA`: the engine's `frame_position`; `SetTransPolar`
+/// on the X and Y axes: the Cartesian point of their θ and r, `here`).
 fn positions(
     c: &mut Call<'_>,
     pick: fn(&axes::AxisStatus, PulseScale) -> i64,
@@ -92,6 +93,13 @@ fn positions(
         .filter(|g| user && g.coordinate_system != CoordinateSystem::MCS)
         .map(|g| g.frame_position);
     c.output.u16(count as u16);
+    if user && polar_path(c, n) {
+        let at = here(c, n, &s);
+        for (k, p) in at.iter().enumerate().take(count) {
+            c.output.i64(if k < axes.len() { *p } else { 0 });
+        }
+        return Ok(());
+    }
     for (k, o) in origin.iter().enumerate().take(count) {
         let p = axes.get(k).map_or(0, |a| {
             if let Some(frame) = &transformed {
@@ -199,5 +207,14 @@ pub(super) fn packed(c: &Call<'_>, n: usize) -> (i16, f64, i64, i64, i64, i64, i
         used(c, n, &s) as i64,
         g.map_or(0, |g| pulses(scale, g.remaining_length)),
         s.pushed as i64,
+    )
+}
+
+/// The polar transform of the coordinate system's own X and Y axes is set.
+fn polar_path(c: &Call<'_>, n: usize) -> bool {
+    let transform = c.service.frames().crd.get(n).map(|f| f.transform);
+    matches!(
+        transform,
+        Some(crate::nmc::crd_frames::CrdTransform::Polar { path: true, .. })
     )
 }
