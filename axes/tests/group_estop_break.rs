@@ -175,3 +175,72 @@ fn a_reset_to_disabled_drops_the_kept_path() {
         assert_eq!(state_of(&mut e, *id), CommandState::Aborted, "{id}");
     }
 }
+
+/// A keep-path e-stop, then the members' and the group's resets: where the members stand.
+fn estop_and_reset(e: &mut Engine) -> (f64, f64) {
+    ok(e, estop_keeping_path());
+    run(e, 0.1);
+    for axis in 0..2u16 {
+        ok(e, Command::from(Reset { axis }));
+    }
+    ok(e, Command::from(GroupReset { group: 1 }));
+    let g = e.snapshot().groups[0];
+    assert_eq!(g.state, GroupState::Halted);
+    (g.coordinates[0], g.coordinates[1])
+}
+
+/// Distance from (x, y) to the segment from `a` to `b`.
+fn off_segment((x, y): (f64, f64), (ax, ay): (f64, f64), (bx, by): (f64, f64)) -> f64 {
+    let (dx, dy) = (bx - ax, by - ay);
+    let t = (((x - ax) * dx + (y - ay) * dy) / (dx * dx + dy * dy)).clamp(0.0, 1.0);
+    (x - ax - t * dx).hypot(y - ay - t * dy)
+}
+
+/// A second e-stop on the return line: the break is still where the program was interrupted,
+/// so the next return goes straight there (not to the point on the first return line), the
+/// first return ends aborted, and the program finishes as programmed.
+#[test]
+fn a_second_estop_on_the_return_line_returns_to_the_program_break() {
+    let mut e = machine();
+    let ids = program(&mut e);
+    run(&mut e, 0.15);
+    let g = e.snapshot().groups[0];
+    let at = (g.coordinates[0], g.coordinates[1]);
+    estop_and_reset(&mut e);
+    let mut back = group_line(1, &[at.0, at.1]);
+    back.user_segment = Some(9);
+    let first_back = id_of(ok(&mut e, Command::from(back.clone())));
+    ok(&mut e, Command::from(GroupContinue { group: 1 }));
+    run(&mut e, 0.02);
+    let g = e.snapshot().groups[0];
+    assert_eq!(
+        (g.state, g.user_segment),
+        (GroupState::Moving, 9),
+        "on the way back"
+    );
+    let stood = estop_and_reset(&mut e);
+    assert!(
+        off_segment(stood, (g.coordinates[0], g.coordinates[1]), at) > 1e-3,
+        "{stood:?} is off the first return line"
+    );
+    let second_back = id_of(ok(&mut e, Command::from(back)));
+    ok(&mut e, Command::from(GroupContinue { group: 1 }));
+    let mut seen = Vec::new();
+    run_path(&mut e, 10.0, |_, g| {
+        let p = (g.coordinates[0], g.coordinates[1]);
+        if g.user_segment == 9 {
+            let off = off_segment(p, stood, at);
+            assert!(off < 1e-6, "{p:?} is {off} off the line back to the break");
+        } else {
+            assert!(off_program(p.0, p.1) < 1e-6, "{p:?} is off the program");
+        }
+        if seen.last() != Some(&g.user_segment) {
+            seen.push(g.user_segment);
+        }
+    });
+    assert_eq!(seen, vec![9, 1, 2, 3]);
+    for id in ids.iter().chain([&second_back]) {
+        assert_eq!(state_of(&mut e, *id), CommandState::Done, "{id}");
+    }
+    assert_eq!(state_of(&mut e, first_back), CommandState::Aborted);
+}
