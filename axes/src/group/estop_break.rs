@@ -39,7 +39,7 @@ impl Group {
     /// The move back to the break: `request` (a linear absolute move, its limits; the end it
     /// names is taken as the break) from where the members stand. In front of the path's
     /// remainder, replacing an earlier return a second e-stop cut; Halted until
-    /// `group_continue`.
+    /// `group_continue`. It reports the interrupted motion's user segment unless it names one.
     pub(super) fn return_to_break(
         &mut self,
         env: &mut Env,
@@ -87,7 +87,11 @@ impl Group {
         self.queue.push(Entry {
             id,
             item: Item::Motion {
-                user_segment: request.user_segment,
+                // None given (0): the way back into the interrupted motion is reported as it.
+                user_segment: match request.user_segment {
+                    0 => self.user_segment,
+                    n => n,
+                },
                 length_ratio: share.ratio,
                 speed_basis: None,
             },
