@@ -1,11 +1,10 @@
-/* What the data-collection programs share (s_collect.c, s_exe_time.c): a coordinate system on
- * the first axes, a collection of its X, Y and velocity triggered on the velocity, and reading
- * the collected bytes back. */
+/* What the data-collection programs share (s_collect.c, s_exe_time.c): a collection of
+ * coordinate system 0's X, Y and velocity triggered on the velocity, and reading the collected
+ * bytes back. */
 #ifndef NMC_COLLECT_H
 #define NMC_COLLECT_H
 
-#include <string.h>
-#include "check.h"
+#include "crd_open.h"
 
 static double fabs_(double v) { return v < 0 ? -v : v; }
 
@@ -18,34 +17,6 @@ static double *read_all(HAND dev, long dataLen) {
     for (i = 0; i < count; i++) OK(NMC_GetCollectData(dev, 1440, (unsigned char *)(data + i * 180)));
     OK(NMC_GetCollectData(dev, (short)(dataLen % 1440), (unsigned char *)(data + count * 180)));
     return data;
-}
-
-/* Coordinate system 0 on axes 0 … axes-1 (errors cleared, servo on), synAccMax 50 pulse/ms²,
- * synVelMax 800 pulse/ms, origin flag orgFlag; its errors and buffer cleared. */
-static HAND open_crd(HAND dev, short axes, short orgFlag) {
-    TCrdConfig config;
-    TCrdPara para;
-    HAND ax = 0, crd = 0;
-    short i;
-    memset(&config, 0, sizeof config);
-    for (i = 0; i < axes; i++) {
-        OK(NMC_MtOpen(dev, i, &ax));
-        OK(NMC_MtClrError(ax));
-        OK(NMC_MtSetSvOn(ax));
-        config.pAxArray[i] = i;
-    }
-    if (axes < 4) config.pAxArray[axes] = -1;
-    config.axCnts = axes;
-    OK(NMC_CrdOpen(dev, &crd));
-    OK(NMC_CrdConfig(crd, &config));
-    memset(&para, 0, sizeof para);
-    para.orgFlag = orgFlag;
-    para.synAccMax = 50;
-    para.synVelMax = 800;
-    OK(NMC_CrdSetPara(crd, &para));
-    OK(NMC_CrdClrError(crd));
-    OK(NMC_CrdBufClr(crd));
-    return crd;
 }
 
 /* Collect coordinate system 0's X, Y and `velocity` (a COLLECT_ADDRESS_CRD_VEL* kind) every

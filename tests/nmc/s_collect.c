@@ -11,13 +11,14 @@
  * 10 pulse/ms, 1 pulse/ms²; channels X, Y and the path velocity, triggered when the velocity
  * rises through 0.5 pulse/ms, the first sample startDelay = 100 ms later. */
 static void crd_collect(HAND dev) {
-    HAND ax1 = 0, crd = open_crd(dev, 2, 0);
+    HAND ax[2], crd;
     unsigned long a = 0;
     short l = 0, sts = 0;
     long dataLen = 0, k, tgt[3] = {30000, 10000, 0};
     double *data;
 
-    OK(NMC_MtOpen(dev, 1, &ax1));
+    servo_on_axes(dev, 2, ax);
+    crd = open_crd(dev, 2, 0);
     CHECK(NMC_GetCollectDataAddr(dev, 2, COLLECT_ADDRESS_CRD_POS0, &a, &l) == RTN_ARG_RANGE, "coordinate 2 of 2");
     CHECK(NMC_GetCollectDataAddr(dev, 1, COLLECT_ADDRESS_CRD_VELO, &a, &l) == RTN_ARG_RANGE, "velocity index 1");
     CHECK(NMC_GetCollectDataAddr(dev, 0, COLLECT_ADDRESS_CRD_POS1, &a, &l) == RTN_INVALID_STATE, "crd 1 unconfigured");
@@ -29,7 +30,7 @@ static void crd_collect(HAND dev) {
         OK(NMC_CrdGetSts(crd, &sts));
         CHECK(!(sts & BIT_CORD_MVERR), "MVERR %#x", sts);
     } while (sts & BIT_CORD_BUSY);
-    wait_still(ax1);
+    wait_still(ax[1]);
     OK(NMC_CollectOnOff(dev, 0));
     OK(NMC_GetCollectSts(dev, &sts, &dataLen));
     CHECK(sts & COLLECT_STS_TRIGGERED, "triggered %#x", sts);

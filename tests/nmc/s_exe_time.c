@@ -87,6 +87,7 @@ int main(void) {
     OK(NMC_DevOpen(0, &devHandle));
     CHECK(_NMC_CrdGetExeTime(&t) == RTN_INVALID_STATE, "read before start");
     CHECK(NMC_CrdGetExeTime(NULL) == RTN_NULL_POINTER, "NULL pTime");
+    servo_on_axes(devHandle, 3, NULL);
     crdHandle = open_crd(devHandle, 3, 1);
 
     /* 10000 pulses at 10 pulse/ms, 1 pulse/ms²: 10 + 990 + 10 ms; then a 100 ms delay. */
