@@ -509,6 +509,11 @@ fn set_position_frames() {
     );
     let s = status(&e);
     assert_eq!((s.cmd_pos, s.act_pos), (100.0, 100.0));
+    // The raw counter stays; the user frame's counter (NMC encPos) reads the new position.
+    assert_eq!(
+        (s.encoder_counts, s.encoder_counts + s.encoder_offset),
+        (10_000, 100_000)
+    );
     run(&mut e, 0.1);
     assert_eq!(
         status(&e).pulses,
@@ -528,6 +533,7 @@ fn set_position_frames() {
     assert_eq!(s.act_pos, 0.0);
     assert_eq!(s.cmd_pos, 100.0);
     assert_eq!(s.following_error, 100.0);
+    assert_eq!(s.encoder_counts + s.encoder_offset, 0);
     ok(
         &mut e,
         Command::from(SetPosition {
@@ -537,7 +543,13 @@ fn set_position_frames() {
         }),
     );
     run(&mut e, 0.001);
-    assert_eq!(status(&e).following_error, 0.0);
+    let s = status(&e);
+    assert_eq!(s.following_error, 0.0);
+    assert_eq!(
+        s.encoder_counts + s.encoder_offset,
+        0,
+        "the plan's frame only"
+    );
 }
 
 #[test]

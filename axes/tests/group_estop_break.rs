@@ -7,8 +7,8 @@
 mod common;
 
 use axes::command::{
-    ArcDirection, Command, CommandState, Disable, ErrorKind, GroupContinue, GroupEmergencyStop,
-    GroupReset, Reset,
+    ArcDirection, Command, CommandState, Disable, ErrorKind, GroupBufferMode, GroupContinue,
+    GroupEmergencyStop, GroupReset, Reset, TransitionMode,
 };
 use axes::status::{GroupFault, GroupState};
 use axes::{AxisState, Engine, EngineConfig};
@@ -174,4 +174,122 @@ fn a_reset_to_disabled_drops_the_kept_path() {
     for id in &ids {
         assert_eq!(state_of(&mut e, *id), CommandState::Aborted, "{id}");
     }
+}
+
+/// A keep-path e-stop, then the members' and the group's resets: where the members stand.
+fn estop_and_reset(e: &mut Engine) -> (f64, f64) {
+    ok(e, estop_keeping_path());
+    run(e, 0.1);
+    for axis in 0..2u16 {
+        ok(e, Command::from(Reset { axis }));
+    }
+    ok(e, Command::from(GroupReset { group: 1 }));
+    let g = e.snapshot().groups[0];
+    assert_eq!(g.state, GroupState::Halted);
+    (g.coordinates[0], g.coordinates[1])
+}
+
+/// Distance from (x, y) to the segment from `a` to `b`.
+fn off_segment((x, y): (f64, f64), (ax, ay): (f64, f64), (bx, by): (f64, f64)) -> f64 {
+    let (dx, dy) = (bx - ax, by - ay);
+    let t = (((x - ax) * dx + (y - ay) * dy) / (dx * dx + dy * dy)).clamp(0.0, 1.0);
+    (x - ax - t * dx).hypot(y - ay - t * dy)
+}
+
+/// A second e-stop on the return line: the break is still where the program was interrupted,
+/// so the next return goes straight there (not to the point on the first return line), the
+/// first return ends aborted, and the program finishes as programmed.
+#[test]
+fn a_second_estop_on_the_return_line_returns_to_the_program_break() {
+    let mut e = machine();
+    let ids = program(&mut e);
+    run(&mut e, 0.15);
+    let g = e.snapshot().groups[0];
+    let at = (g.coordinates[0], g.coordinates[1]);
+    estop_and_reset(&mut e);
+    let mut back = group_line(1, &[at.0, at.1]);
+    back.user_segment = Some(9);
+    let first_back = id_of(ok(&mut e, Command::from(back.clone())));
+    ok(&mut e, Command::from(GroupContinue { group: 1 }));
+    run(&mut e, 0.02);
+    let g = e.snapshot().groups[0];
+    assert_eq!(
+        (g.state, g.user_segment),
+        (GroupState::Moving, 9),
+        "on the way back"
+    );
+    let stood = estop_and_reset(&mut e);
+    assert!(
+        off_segment(stood, (g.coordinates[0], g.coordinates[1]), at) > 1e-3,
+        "{stood:?} is off the first return line"
+    );
+    let second_back = id_of(ok(&mut e, Command::from(back)));
+    ok(&mut e, Command::from(GroupContinue { group: 1 }));
+    let mut seen = Vec::new();
+    run_path(&mut e, 10.0, |_, g| {
+        let p = (g.coordinates[0], g.coordinates[1]);
+        if g.user_segment == 9 {
+            let off = off_segment(p, stood, at);
+            assert!(off < 1e-6, "{p:?} is {off} off the line back to the break");
+        } else {
+            assert!(off_program(p.0, p.1) < 1e-6, "{p:?} is off the program");
+        }
+        if seen.last() != Some(&g.user_segment) {
+            seen.push(g.user_segment);
+        }
+    });
+    assert_eq!(seen, vec![9, 1, 2, 3]);
+    for id in ids.iter().chain([&second_back]) {
+        assert_eq!(state_of(&mut e, *id), CommandState::Done, "{id}");
+    }
+    assert_eq!(state_of(&mut e, first_back), CommandState::Aborted);
+}
+
+/// An e-stop in a blend arc (the corner between user segments 1 and 2 rounded by the
+/// look-ahead, which reports the motion it begins): the user segment reads 2, a number the
+/// user gave, after the e-stop, after the return is queued, on the way back (the return names
+/// none: it is the way back into segment 2) and through the rest of 2; then 3.
+#[test]
+fn an_estop_in_a_blend_arc_reports_the_users_segment_throughout() {
+    let mut e = machine();
+    let mut first = group_line(1, &[30.0, 0.0]);
+    first.user_segment = Some(1);
+    let mut second = group_line(1, &[30.0, 30.0]);
+    second.user_segment = Some(2);
+    second.buffer_mode = GroupBufferMode::BlendingLow;
+    second.transition = TransitionMode::CornerDistance(5.0);
+    let mut third = group_line(1, &[0.0, 30.0]);
+    third.user_segment = Some(3);
+    for m in [first, second, third] {
+        ok(&mut e, Command::from(m));
+    }
+    // Into the arc: past the corner's start, not yet on the second line.
+    let mut ticks = 0;
+    let g = loop {
+        e.step();
+        let g = e.snapshot().groups[0];
+        if g.coordinates[0] > 26.0 && g.coordinates[1] > 0.2 {
+            break g;
+        }
+        ticks += 1;
+        assert!(ticks < 100_000 && g.state == GroupState::Moving, "{g:?}");
+    };
+    assert!(
+        g.coordinates[0] < 30.0 - 1e-6 && g.coordinates[1] < 5.0,
+        "{g:?} in the arc"
+    );
+    assert_eq!(g.user_segment, 2);
+    let at = (g.coordinates[0], g.coordinates[1]);
+    estop_and_reset(&mut e);
+    assert_eq!(e.snapshot().groups[0].user_segment, 2, "after the e-stop");
+    ok(&mut e, Command::from(group_line(1, &[at.0, at.1])));
+    assert_eq!(e.snapshot().groups[0].user_segment, 2, "the return queued");
+    ok(&mut e, Command::from(GroupContinue { group: 1 }));
+    let mut seen = Vec::new();
+    run_path(&mut e, 10.0, |_, g| {
+        if seen.last() != Some(&g.user_segment) {
+            seen.push(g.user_segment);
+        }
+    });
+    assert_eq!(seen, vec![2, 3], "the way back is segment 2's");
 }

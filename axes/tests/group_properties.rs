@@ -150,6 +150,34 @@ fn path_commands(steps: &[Step], blend: bool, corner: f64, jerk: f64) -> (Vec<Co
     (commands, at)
 }
 
+/// One member per `(velocity, acceleration)`.
+fn limited(limits: &[(f64, f64); 3]) -> Vec<AxisConfig> {
+    limits.iter().map(|(v, a)| axis(*v, *a)).collect()
+}
+
+/// A machine of the three `axes` in group 1 with the random path of `steps` queued (see
+/// [`path_commands`]): the engine, the motions' ids and where the path ends.
+fn queued_path(
+    axes: Vec<AxisConfig>,
+    steps: &[Step],
+    blend: bool,
+    corner: f64,
+    jerk: f64,
+) -> (Engine, Vec<u32>, [f64; 3]) {
+    let mut e = Engine::new(&EngineConfig {
+        axes,
+        ..EngineConfig::default()
+    })
+    .unwrap();
+    grouped(&mut e, &[0, 1, 2]);
+    let (commands, at) = path_commands(steps, blend, corner, jerk);
+    let ids = commands
+        .into_iter()
+        .map(|command| id_of(ok(&mut e, command)))
+        .collect();
+    (e, ids, at)
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 96, ..ProptestConfig::default() })]
 
@@ -160,17 +188,7 @@ proptest! {
         blend in any::<bool>(),
         corner in 0.0..2.0f64,
     ) {
-        let mut e = Engine::new(&EngineConfig {
-            axes: limits.iter().map(|(v, a)| axis(*v, *a)).collect(),
-            ..EngineConfig::default()
-        })
-        .unwrap();
-        grouped(&mut e, &[0, 1, 2]);
-        let (commands, at) = path_commands(&steps, blend, corner, 0.0);
-        let mut ids = Vec::new();
-        for command in commands {
-            ids.push(id_of(ok(&mut e, command)));
-        }
+        let (mut e, ids, at) = queued_path(limited(&limits), &steps, blend, corner, 0.0);
         let mut done = false;
         for _ in 0..120_000 {
             e.step();
@@ -201,15 +219,7 @@ fn snapshots(
     corner: f64,
     override_at: u64,
 ) -> Vec<Snapshot> {
-    let mut e = Engine::new(&EngineConfig {
-        axes: limits.iter().map(|(v, a)| axis(*v, *a)).collect(),
-        ..EngineConfig::default()
-    })
-    .unwrap();
-    grouped(&mut e, &[0, 1, 2]);
-    for command in path_commands(steps, blend, corner, 0.0).0 {
-        ok(&mut e, command);
-    }
+    let (mut e, _, _) = queued_path(limited(limits), steps, blend, corner, 0.0);
     let mut out = Vec::new();
     for k in 0..120_000u64 {
         if k == override_at {
@@ -337,12 +347,7 @@ proptest! {
                 c
             })
             .collect();
-        let mut e = Engine::new(&EngineConfig { axes, ..EngineConfig::default() }).unwrap();
-        grouped(&mut e, &[0, 1, 2]);
-        let (commands, at) = path_commands(&steps, blend, corner, 1e6);
-        for command in commands {
-            ok(&mut e, command);
-        }
+        let (mut e, _, at) = queued_path(axes, &steps, blend, corner, 1e6);
         let t = e.period();
         let mut trace = vec![[0.0f64; 3]];
         let mut done = false;

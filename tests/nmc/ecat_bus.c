@@ -138,6 +138,13 @@ int main(void) {
     OK(NMC_MtMovePtpAbs(ax16, 1, 1, 0, 0, 50, 0, -4000));
     wait_still(ax16);
     EVENTUALLY(NMC_EcatAxisGetDi(ax16, &di), di & 0x4);
+    /* The encoder of a bus axis is the drive's 0x6064, which the homing redefined (0x607C at
+     * the home point): every reading of it says -4000, not the power-on count -7000. */
+    EVENTUALLY((pos = sdo_i32(dev, 0, 0x6064), 0), pos == -4000);
+    OK(NMC_MtGetEncPos(ax16, &pos));
+    CHECK(pos == -4000, "MtGetEncPos after the drive's homing: %ld", pos);
+    OK(NMC_GetEncPos(dev, 16, &pos));
+    CHECK(pos == -4000, "GetEncPos after the drive's homing: %ld", pos);
 
     /* TV35: NMC_EcatStopHome mid-way: not 011. */
     servo_on(ax17);

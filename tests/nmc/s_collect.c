@@ -5,80 +5,32 @@
  * period (1 ms), positions 0 … 10000, velocity 10 pulse/ms in the cruise. Then a rising
  * trigger, clearing, and the documented codes of bad arguments; then coordinate system 0's
  * position and path velocity, recorded startDelay ms after a rising trigger on the velocity. */
-#include <string.h>
-#include "check.h"
-
-static double fabs_(double v) { return v < 0 ? -v : v; }
-
-/* Read dataLen bytes the way the manual does: 1440-byte chunks, then the rest. */
-static double *read_all(HAND dev, long dataLen) {
-    double *data = (double *)calloc((size_t)dataLen / 8 + 1, sizeof(double));
-    short count = (short)(dataLen / 1440);
-    int i;
-    CHECK(data != NULL, "out of memory");
-    for (i = 0; i < count; i++) OK(NMC_GetCollectData(dev, 1440, (unsigned char *)(data + i * 180)));
-    OK(NMC_GetCollectData(dev, (short)(dataLen % 1440), (unsigned char *)(data + count * 180)));
-    return data;
-}
+#include "collect.h"
 
 /* Coordinate system 0 on axes 0 and 1 runs a diagonal from (20000, 0) to (30000, 10000) at
  * 10 pulse/ms, 1 pulse/ms²; channels X, Y and the path velocity, triggered when the velocity
  * rises through 0.5 pulse/ms, the first sample startDelay = 100 ms later. */
 static void crd_collect(HAND dev) {
-    HAND ax1 = 0, crd = 0;
-    TCrdConfig crdConfig;
-    TCrdPara crdPara;
-    TCollectCfg cfg;
-    TCollectTrig trig;
-    unsigned long a[3];
-    short l[3], sts = 0, i;
+    HAND ax[2], crd;
+    unsigned long a = 0;
+    short l = 0, sts = 0;
     long dataLen = 0, k, tgt[3] = {30000, 10000, 0};
     double *data;
 
-    OK(NMC_MtOpen(dev, 1, &ax1));
-    OK(NMC_MtClrError(ax1));
-    OK(NMC_MtSetSvOn(ax1));
-    OK(NMC_CrdOpen(dev, &crd));
-    memset(&crdConfig, 0, sizeof crdConfig);
-    crdConfig.axCnts = 2;
-    crdConfig.pAxArray[0] = 0;
-    crdConfig.pAxArray[1] = 1;
-    crdConfig.pAxArray[2] = -1;
-    OK(NMC_CrdConfig(crd, &crdConfig));
-    memset(&crdPara, 0, sizeof crdPara);
-    crdPara.synAccMax = 50;
-    crdPara.synVelMax = 800;
-    OK(NMC_CrdSetPara(crd, &crdPara));
-    OK(NMC_CrdClrError(crd));
-    OK(NMC_CrdBufClr(crd));
-
-    OK(NMC_GetCollectDataAddr(dev, 0, COLLECT_ADDRESS_CRD_POS0, &a[0], &l[0]));
-    OK(NMC_GetCollectDataAddr(dev, 1, COLLECT_ADDRESS_CRD_POS0, &a[1], &l[1]));
-    OK(NMC_GetCollectDataAddr(dev, 0, COLLECT_ADDRESS_CRD_VELO, &a[2], &l[2]));
-    CHECK(NMC_GetCollectDataAddr(dev, 2, COLLECT_ADDRESS_CRD_POS0, &a[2], &l[2]) == RTN_ARG_RANGE, "coordinate 2 of 2");
-    CHECK(NMC_GetCollectDataAddr(dev, 1, COLLECT_ADDRESS_CRD_VELO, &a[2], &l[2]) == RTN_ARG_RANGE, "velocity index 1");
-    CHECK(NMC_GetCollectDataAddr(dev, 0, COLLECT_ADDRESS_CRD_POS1, &a[2], &l[2]) == RTN_INVALID_STATE, "crd 1 unconfigured");
-    memset(&cfg, 0, sizeof cfg);
-    cfg.count = 3;
-    for (i = 0; i < 3; i++) {
-        cfg.address[i] = a[i];
-        cfg.length[i] = l[i];
-    }
-    memset(&trig, 0, sizeof trig);
-    trig.mode = COLLECT_MODE_RISE;
-    trig.source1 = 2;
-    trig.value = 0.5;
-    trig.startDelay = 100;
+    servo_on_axes(dev, 2, ax);
+    crd = open_crd(dev, 2, 0);
+    CHECK(NMC_GetCollectDataAddr(dev, 2, COLLECT_ADDRESS_CRD_POS0, &a, &l) == RTN_ARG_RANGE, "coordinate 2 of 2");
+    CHECK(NMC_GetCollectDataAddr(dev, 1, COLLECT_ADDRESS_CRD_VELO, &a, &l) == RTN_ARG_RANGE, "velocity index 1");
+    CHECK(NMC_GetCollectDataAddr(dev, 0, COLLECT_ADDRESS_CRD_POS1, &a, &l) == RTN_INVALID_STATE, "crd 1 unconfigured");
     OK(NMC_ClearCollectSts(dev));
-    OK(NMC_ConfigCollect(dev, &cfg, &trig));
-    OK(NMC_CollectOnOff(dev, 1));
+    collect_crd(dev, COLLECT_ADDRESS_CRD_VELO, 0.5, 100);
     OK(NMC_CrdLineXYZEx(crd, 1, 0x3, tgt, 0, 10, 1, 1));
     OK(NMC_CrdStartMtn(crd));
     do {
         OK(NMC_CrdGetSts(crd, &sts));
         CHECK(!(sts & BIT_CORD_MVERR), "MVERR %#x", sts);
     } while (sts & BIT_CORD_BUSY);
-    wait_still(ax1);
+    wait_still(ax[1]);
     OK(NMC_CollectOnOff(dev, 0));
     OK(NMC_GetCollectSts(dev, &sts, &dataLen));
     CHECK(sts & COLLECT_STS_TRIGGERED, "triggered %#x", sts);

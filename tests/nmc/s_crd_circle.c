@@ -1,7 +1,7 @@
 /* Full circles through three points (NMC_CrdCirclePPP in XY, NMC_CrdCircle3DEx in space) and
  * the pushed path length (NMC_CrdSetBufLengthFlag / NMC_CrdGetBufLength), digest 001 §2.7, on
  * the GCN400 fixture on a scaled clock. */
-#include "check.h"
+#include "crd_open.h"
 
 static HAND devHandle, crdHandle, ax[4];
 
@@ -79,34 +79,15 @@ static void spans(const Box *b, int k, long lo, long hi) {
 }
 
 int main(void) {
-    TCrdConfig crdConfig = {0};
-    TCrdPara crdPara = {0};
     long st[2] = {1000, 0}, mid[2] = {2000, 1000}, tg[2] = {3000, 0}, line[2] = {5000, 0};
     long center2[3] = {2000, 0, 0}, center3[3] = {1000, 0, 1000};
     long origin[3] = {0, 0, 0}, mid3[3] = {2000, 0, 1000}, tg3[3] = {1000, 0, 2000}, on_line[3] = {2000, 0, 0}, end3[3] = {3000, 0, 0};
     double len = -1, circle = 2 * 3.14159265358979 * 1000;
-    short i;
     Box box;
 
     OK(NMC_DevOpen(0, &devHandle));
-    for (i = 0; i < 4; i++) {
-        OK(NMC_MtOpen(devHandle, i, &ax[i]));
-        OK(NMC_MtClrError(ax[i]));
-        OK(NMC_MtSetSvOn(ax[i]));
-    }
-    OK(NMC_CrdOpen(devHandle, &crdHandle));
-    crdConfig.axCnts = 3;
-    crdConfig.pAxArray[0] = 0;
-    crdConfig.pAxArray[1] = 1;
-    crdConfig.pAxArray[2] = 2;
-    crdConfig.pAxArray[3] = -1;
-    OK(NMC_CrdConfig(crdHandle, &crdConfig));
-    crdPara.orgFlag = 1;
-    crdPara.synAccMax = 50;
-    crdPara.synVelMax = 800;
-    OK(NMC_CrdSetPara(crdHandle, &crdPara));
-    OK(NMC_CrdClrError(crdHandle));
-    OK(NMC_CrdBufClr(crdHandle));
+    servo_on_axes(devHandle, 4, ax);
+    crdHandle = open_crd(devHandle, 3, 1);
     /* From the origin. */
     OK(NMC_CrdLineXYZEx(crdHandle, 0, 0x7, origin, 0, 50, 1, 0));
     run(&box, origin, 0);

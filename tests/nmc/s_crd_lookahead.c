@@ -3,7 +3,7 @@
  * stops between segments), NMC_CrdGetStsPack4 against the single calls, NMC_CrdBufWaitPos
  * (the path stands until another axis passes a position; a timeout is MVERR). Run on a scaled
  * clock. */
-#include "check.h"
+#include "crd_open.h"
 
 static HAND devHandle, crdHandle, ax[4];
 
@@ -58,8 +58,6 @@ static double joint_velocity(void) {
 }
 
 int main(void) {
-    TCrdConfig crdConfig = {0};
-    TCrdPara crdPara = {0};
     TExtCrdPara ext;
     TLookaheadPara def, lkh, back;
     TPackedCrdSts4 pack;
@@ -68,24 +66,8 @@ int main(void) {
     double low;
 
     OK(NMC_DevOpen(0, &devHandle));
-    for (i = 0; i < 4; i++) {
-        OK(NMC_MtOpen(devHandle, i, &ax[i]));
-        OK(NMC_MtClrError(ax[i]));
-        OK(NMC_MtSetSvOn(ax[i]));
-    }
-    OK(NMC_CrdOpen(devHandle, &crdHandle));
-    crdConfig.axCnts = 3;
-    crdConfig.pAxArray[0] = 0;
-    crdConfig.pAxArray[1] = 1;
-    crdConfig.pAxArray[2] = 2;
-    crdConfig.pAxArray[3] = -1;
-    OK(NMC_CrdConfig(crdHandle, &crdConfig));
-    crdPara.orgFlag = 1;
-    crdPara.synAccMax = 50;
-    crdPara.synVelMax = 800;
-    OK(NMC_CrdSetPara(crdHandle, &crdPara));
-    OK(NMC_CrdClrError(crdHandle));
-    OK(NMC_CrdBufClr(crdHandle));
+    servo_on_axes(devHandle, 4, ax);
+    crdHandle = open_crd(devHandle, 3, 1);
 
     /* §3.9: the stated defaults. */
     OK(NMC_CrdGetLookaheadPara(crdHandle, &def, 1));

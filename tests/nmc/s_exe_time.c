@@ -3,8 +3,7 @@
  * never reach the coordinate system. The time is the ticks until the coordinate system is at
  * rest, the last (settling) tick included. A program with blends and arcs is then run, and the
  * ticks it takes, counted by a data collection of the coordinate system, are the estimate. */
-#include <string.h>
-#include "check.h"
+#include "collect.h"
 
 static HAND devHandle, crdHandle;
 
@@ -16,8 +15,6 @@ static void line(long seg, long x, double vel, double acc) {
     /* endVel 0 and lookaheadDis 1: an exact stop at the end (no blending). */
     OK(NMC_CrdLineXYZEx(crdHandle, seg, 0x7, tgt, 0, vel, acc, 1));
 }
-
-static double fabs_(double v) { return v < 0 ? -v : v; }
 
 /* Lines blended into arcs and each other (look-ahead on, lookaheadDis 0), the last one ending
  * at rest at (0, 0). */
@@ -46,12 +43,9 @@ static void blended_program(void) {
  * settling tick, are the ticks it took. */
 static void estimate_equals_run(HAND dev) {
     TExtCrdPara ext;
-    TCollectCfg cfg;
-    TCollectTrig trig;
-    unsigned long a[3];
-    short l[3], sts = 0, i;
+    short sts = 0;
     unsigned long clock0 = 0, clock = 0, loop = 0;
-    long dataLen = 0, n, k;
+    long dataLen = 0, n;
     double t = -1, *data;
 
     OK(NMC_CrdGetExtPara(crdHandle, &ext));
@@ -62,21 +56,7 @@ static void estimate_equals_run(HAND dev) {
     OK(NMC_CrdGetExeTime(&t));
     CHECK(t > 2000 && t < 5000, "blended program: %.3f ms", t);
 
-    OK(NMC_GetCollectDataAddr(dev, 0, COLLECT_ADDRESS_CRD_POS0, &a[0], &l[0]));
-    OK(NMC_GetCollectDataAddr(dev, 1, COLLECT_ADDRESS_CRD_POS0, &a[1], &l[1]));
-    OK(NMC_GetCollectDataAddr(dev, 0, COLLECT_ADDRESS_CRD_VEL0, &a[2], &l[2]));
-    memset(&cfg, 0, sizeof cfg);
-    cfg.count = 3;
-    for (i = 0; i < 3; i++) {
-        cfg.address[i] = a[i];
-        cfg.length[i] = l[i];
-    }
-    memset(&trig, 0, sizeof trig);
-    trig.mode = COLLECT_MODE_RISE;
-    trig.source1 = 2;
-    trig.value = 1e-9;
-    OK(NMC_ConfigCollect(dev, &cfg, &trig));
-    OK(NMC_CollectOnOff(dev, 1));
+    collect_crd(dev, COLLECT_ADDRESS_CRD_VEL0, 1e-9, 0);
     /* Armed for a tick at least, so that the first moving tick is a rising edge. */
     OK(NMC_GetClock(dev, &clock0, &loop));
     do OK(NMC_GetClock(dev, &clock, &loop)); while (clock == clock0);
@@ -89,12 +69,7 @@ static void estimate_equals_run(HAND dev) {
     OK(NMC_CollectOnOff(dev, 0));
     OK(NMC_GetCollectSts(dev, &sts, &dataLen));
     CHECK(sts & COLLECT_STS_TRIGGERED, "never moved %#x", sts);
-    data = (double *)calloc((size_t)dataLen / 8 + 1, sizeof(double));
-    CHECK(data != NULL, "out of memory");
-    for (k = 0; k < dataLen; k += 1440) {
-        short chunk = (short)(dataLen - k < 1440 ? dataLen - k : 1440);
-        OK(NMC_GetCollectData(dev, chunk, (unsigned char *)data + k));
-    }
+    data = read_all(dev, dataLen);
     for (n = 0; n < dataLen / 24; n++) {
         if (fabs_(data[3 * n]) < 1e-6 && fabs_(data[3 * n + 1]) < 1e-6 && data[3 * n + 2] == 0) break;
     }
@@ -104,36 +79,16 @@ static void estimate_equals_run(HAND dev) {
 }
 
 int main(void) {
-    TCrdConfig crdConfig = {0};
-    TCrdPara crdPara = {0};
-    HAND ax;
     double t = -1;
     long used = -1;
-    short i;
 
     /* No device open: nothing to calculate on. */
     CHECK(NMC_CrdStartExeTimeCalc() == RTN_INVALID_HANDLE, "no device");
     OK(NMC_DevOpen(0, &devHandle));
     CHECK(_NMC_CrdGetExeTime(&t) == RTN_INVALID_STATE, "read before start");
     CHECK(NMC_CrdGetExeTime(NULL) == RTN_NULL_POINTER, "NULL pTime");
-    for (i = 0; i < 3; i++) {
-        OK(NMC_MtOpen(devHandle, i, &ax));
-        OK(NMC_MtClrError(ax));
-        OK(NMC_MtSetSvOn(ax));
-    }
-    OK(NMC_CrdOpen(devHandle, &crdHandle));
-    crdConfig.axCnts = 3;
-    crdConfig.pAxArray[0] = 0;
-    crdConfig.pAxArray[1] = 1;
-    crdConfig.pAxArray[2] = 2;
-    crdConfig.pAxArray[3] = -1;
-    OK(NMC_CrdConfig(crdHandle, &crdConfig));
-    crdPara.orgFlag = 1;
-    crdPara.synAccMax = 50;
-    crdPara.synVelMax = 800;
-    OK(NMC_CrdSetPara(crdHandle, &crdPara));
-    OK(NMC_CrdClrError(crdHandle));
-    OK(NMC_CrdBufClr(crdHandle));
+    servo_on_axes(devHandle, 3, NULL);
+    crdHandle = open_crd(devHandle, 3, 1);
 
     /* 10000 pulses at 10 pulse/ms, 1 pulse/ms²: 10 + 990 + 10 ms; then a 100 ms delay. */
     OK(NMC_CrdStartExeTimeCalc());

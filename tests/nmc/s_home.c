@@ -8,7 +8,7 @@ int main(void) {
     HAND devHandle = 0, axisHandle = 0;
     THomeSetting homePara;
     unsigned short homeSts = 0;
-    long pos = 0;
+    long pos = 0, enc = 0;
     short sts;
 
     OK(NMC_DevOpen(0, &devHandle));
@@ -26,6 +26,14 @@ int main(void) {
     homePara.scan2ndVel = 0;
     homePara.acc = 0.5;
     OK(NMC_MtSetHomePara(axisHandle, &homePara));
+    /* One encoder, two readers: NMC_MtSetEncPos shows in NMC_GetEncPos, NMC_SetEncPos in
+     * NMC_MtGetEncPos; the homing then clears it with the position (digest 001 §2.6). */
+    OK(NMC_MtSetEncPos(axisHandle, 50000));
+    OK(NMC_GetEncPos(devHandle, 0, &enc));
+    CHECK(enc == 50000, "GetEncPos after MtSetEncPos %ld", enc);
+    OK(NMC_SetEncPos(devHandle, 0, 40000));
+    OK(NMC_MtGetEncPos(axisHandle, &enc));
+    CHECK(enc == 40000, "MtGetEncPos after SetEncPos %ld", enc);
     OK(NMC_MtHome(axisHandle));
     do {
         OK(NMC_MtGetHomeSts(axisHandle, &homeSts));
@@ -36,6 +44,9 @@ int main(void) {
     CHECK(!(sts & BIT_AXIS_MVERR), "sts %#x", sts);
     printf("home at %ld\n", pos);
     CHECK(pos > -1000 && pos < 1000, "home position %ld", pos);
+    EVENTUALLY(NMC_MtGetEncPos(axisHandle, &enc), enc == pos);
+    OK(NMC_GetEncPos(devHandle, 0, &enc));
+    CHECK(enc == pos, "GetEncPos after homing %ld, prfPos %ld", enc, pos);
 
     /* TV30: scan1stVel 0 starts nothing and shows bit 3. */
     homePara.scan1stVel = 0;

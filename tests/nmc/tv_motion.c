@@ -148,9 +148,11 @@ int main(void) {
     CHECK(err >= -10 && err <= 10, "TV32: home error %ld", err);
     /* The home error is the found home minus the recorded one: with both positions zeroed at
      * 5000 (homing captures the actual position), a trial homing finds home at -5000 and
-     * reads -5000 (docs/decisions.md). */
+     * reads -5000 (docs/decisions.md). Zeroed once the servo has settled there: ZeroPos zeroes
+     * the encoder where the motor is. */
     OK(NMC_MtMovePtpAbs(ax0, 1, 1, 0, 0, 20, 0, 5000));
     wait_still(ax0);
+    EVENTUALLY(NMC_MtGetEncPos(ax0, &pos), pos == 5000);
     OK(NMC_MtZeroPos(ax0));
     home_and_wait(ax0, 1, &homeSts);
     CHECK(homeSts == BIT_AXHOME_OK, "TV32: trial homing %#x", homeSts);

@@ -5,9 +5,9 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-use std::io::{BufRead, BufReader, Write};
-use std::path::PathBuf;
-use std::process::{Command, Stdio};
+use std::io::{BufRead, BufReader, Lines, Write};
+use std::path::{Path, PathBuf};
+use std::process::{Child, ChildStdin, ChildStdout, Command, Stdio};
 use std::time::{Duration, Instant};
 
 use mcemu_tests::{
@@ -44,6 +44,23 @@ fn example_on(config: &std::path::Path, name: &str, args: &[&str]) -> String {
         output_report(name, &out)
     );
     stdout
+}
+
+/// Start the compiled program `exe` against the NMC server at `address`, for a test that talks
+/// to it between its steps: the child, its stdin and its stdout's lines.
+fn spawn_interactive(
+    exe: &Path,
+    address: &str,
+) -> (Child, ChildStdin, Lines<BufReader<ChildStdout>>) {
+    let mut child = Command::new(exe)
+        .env("MCEMU_NMC", address)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let stdin = child.stdin.take().unwrap();
+    let lines = BufReader::new(child.stdout.take().unwrap()).lines();
+    (child, stdin, lines)
 }
 
 /// S-COLLECT: data collection sampled every planning period, a rising trigger, bad arguments.
@@ -292,14 +309,7 @@ fn a_lost_mcemu_is_minus_one_and_the_next_call_reconnects() {
     let exe = compile_example("reconnect.c", &dir, &[]);
     let m = Mcemu::start(Some(&gaochuan()), &[]);
     let address = m.address("nmc").to_string();
-    let mut child = Command::new(&exe)
-        .env("MCEMU_NMC", &address)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let mut stdin = child.stdin.take().unwrap();
-    let mut lines = BufReader::new(child.stdout.take().unwrap()).lines();
+    let (mut child, mut stdin, mut lines) = spawn_interactive(&exe, &address);
     assert_eq!(lines.next().unwrap().unwrap(), "ready");
     drop(m);
     let asked = Instant::now();
@@ -331,14 +341,7 @@ fn tv60_tv61_capture_on_di0() {
         );
     };
     di0(true);
-    let mut child = Command::new(&exe)
-        .env("MCEMU_NMC", m.address("nmc"))
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let mut stdin = child.stdin.take().unwrap();
-    let mut lines = BufReader::new(child.stdout.take().unwrap()).lines();
+    let (mut child, mut stdin, mut lines) = spawn_interactive(&exe, m.address("nmc"));
     assert_eq!(lines.next().unwrap().unwrap(), "at 500");
     di0(false);
     writeln!(stdin, "fell").unwrap();
@@ -357,14 +360,7 @@ fn nmc_faults_give_minus_one_and_the_next_call_works() {
     let dir = fresh_dir(env!("CARGO_TARGET_TMPDIR"), "nmc-faults");
     let exe = compile_example("faults.c", &dir, &[]);
     let m = Mcemu::start(Some(&gaochuan()), &[]);
-    let mut child = Command::new(&exe)
-        .env("MCEMU_NMC", m.address("nmc"))
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let mut stdin = child.stdin.take().unwrap();
-    let mut lines = BufReader::new(child.stdout.take().unwrap()).lines();
+    let (mut child, mut stdin, mut lines) = spawn_interactive(&exe, m.address("nmc"));
     assert_eq!(lines.next().unwrap().unwrap(), "ready");
     let faults = [
         json!({"frontend": "nmc", "fault": "delay", "ms": 1500, "count": 1}),
@@ -402,14 +398,7 @@ fn mcemu_killed_during_a_call_is_minus_one_and_the_next_call_reconnects() {
     let exe = compile_example("faults.c", &dir, &[]);
     let m = Mcemu::start(Some(&gaochuan()), &[]);
     let address = m.address("nmc").to_string();
-    let mut child = Command::new(&exe)
-        .env("MCEMU_NMC", &address)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let mut stdin = child.stdin.take().unwrap();
-    let mut lines = BufReader::new(child.stdout.take().unwrap()).lines();
+    let (mut child, mut stdin, mut lines) = spawn_interactive(&exe, &address);
     assert_eq!(lines.next().unwrap().unwrap(), "ready");
     m.fault(&json!({"frontend": "nmc", "fault": "no_reply"}));
     let requests = m.frontend("nmc")["requests"].as_u64().unwrap();
@@ -476,14 +465,7 @@ fn estop_inputs_stop_the_axes() {
     };
     di(1, true);
     di(2, false);
-    let mut child = Command::new(&exe)
-        .env("MCEMU_NMC", m.address("nmc"))
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let mut stdin = child.stdin.take().unwrap();
-    let mut lines = BufReader::new(child.stdout.take().unwrap()).lines();
+    let (mut child, mut stdin, mut lines) = spawn_interactive(&exe, m.address("nmc"));
     for (line, (channel, value)) in [
         ("jogging", (1, false)),
         ("release", (1, true)),
@@ -516,14 +498,7 @@ fn guards_act_on_the_tick_on_the_virtual_clock() {
     };
     di(1, true);
     di(2, false);
-    let mut child = Command::new(&exe)
-        .env("MCEMU_NMC", m.address("nmc"))
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let mut stdin = child.stdin.take().unwrap();
-    let mut lines = BufReader::new(child.stdout.take().unwrap()).lines();
+    let (mut child, mut stdin, mut lines) = spawn_interactive(&exe, m.address("nmc"));
     assert_eq!(lines.next().unwrap().unwrap(), "watchdog");
     advance(10_000);
     writeln!(stdin).unwrap();
@@ -646,15 +621,9 @@ fn tv21_tv23_tv24_tv26_tv40_forced_inputs() {
     let dir = fresh_dir(env!("CARGO_TARGET_TMPDIR"), "nmc-tv-inputs");
     let exe = compile_example("tv_inputs.c", &dir, &[]);
     let m = Mcemu::start(Some(&gaochuan()), &[]);
-    let mut child = Command::new(&exe)
-        .env("MCEMU_NMC", m.address("nmc"))
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let mut stdin = child.stdin.take().unwrap();
+    let (mut child, mut stdin, lines) = spawn_interactive(&exe, m.address("nmc"));
     let mut last = String::new();
-    for line in BufReader::new(child.stdout.take().unwrap()).lines() {
+    for line in lines {
         let line = line.unwrap();
         if let Some(body) = line.strip_prefix("post ") {
             let body: serde_json::Value = serde_json::from_str(body).unwrap();

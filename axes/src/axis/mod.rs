@@ -1266,6 +1266,7 @@ impl Axis {
             homing_failure: self.homing_record.failure,
             home_error: self.homing_record.home_error,
             add_axis: self.add_axis,
+            encoder_offset: self.encoder.counts_of(self.act_offset),
         };
     }
 }

@@ -138,6 +138,7 @@ impl Groups {
             fault_deceleration: None,
             fault_stop: None,
             off_path: false,
+            return_motion: None,
             smallest_acceleration: false,
             override_factor: 1.0,
             feeding: false,

@@ -12,7 +12,7 @@ use path::planner::{Join, Motion, Transition};
 use super::queue::{Entry, Item};
 use super::segment::{Construction, PathRequest};
 use super::{Env, Group};
-use crate::command::{EngineError, Reply};
+use crate::command::{CommandState, EngineError, Reply};
 use crate::status::{GroupFault, GroupState};
 
 impl Group {
@@ -37,8 +37,9 @@ impl Group {
     }
 
     /// The move back to the break: `request` (a linear absolute move, its limits; the end it
-    /// names is taken as the break) from where the members stand. In front of the path's remainder; Halted until
-    /// `group_continue`.
+    /// names is taken as the break) from where the members stand. In front of the path's
+    /// remainder, replacing an earlier return a second e-stop cut; Halted until
+    /// `group_continue`. It reports the interrupted motion's user segment unless it names one.
     pub(super) fn return_to_break(
         &mut self,
         env: &mut Env,
@@ -50,6 +51,14 @@ impl Group {
                 state: self.state,
                 action: "return to the break point before its reset",
             });
+        }
+        // A return cut by a second e-stop is replaced: the break stays where the program was
+        // interrupted (the manual's break point), not the point on the return line.
+        if let Some(cut) = self.return_motion.take() {
+            if self.planner.drop_front(u64::from(cut)) {
+                self.queue.take(cut);
+                env.ledger.finish(cut, CommandState::Aborted);
+            }
         }
         let here = self.current_position(env.axes);
         let share = match request.begin(self.id, here, self.dims())? {
@@ -78,12 +87,17 @@ impl Group {
         self.queue.push(Entry {
             id,
             item: Item::Motion {
-                user_segment: request.user_segment,
+                // None given (0): the way back into the interrupted motion is reported as it.
+                user_segment: match request.user_segment {
+                    0 => self.user_segment,
+                    n => n,
+                },
                 length_ratio: share.ratio,
                 speed_basis: None,
             },
         });
         self.off_path = false;
+        self.return_motion = Some(id);
         Ok(Reply::Accepted { id })
     }
 

@@ -150,6 +150,8 @@ pub struct Group {
     /// An e-stop kept the path (`estop_break`): frozen at the break, the members off it until
     /// a move back.
     off_path: bool,
+    /// The last move back to the break (`estop_break`), which a second e-stop may cut.
+    return_motion: Option<CommandId>,
     /// Every member limited to the smallest acceleration of the members (CPU 226H).
     smallest_acceleration: bool,
     override_factor: f64,

@@ -168,6 +168,11 @@ impl Encoder {
         self.position_of(counts)
     }
 
+    /// Counts of a distance (user units), rounded.
+    pub fn counts_of(&self, distance: f64) -> i64 {
+        super::round_to_i64(distance * self.counts_per_unit)
+    }
+
     /// The counter the controller reads.
     pub fn counts(&self) -> i64 {
         self.counts

@@ -349,6 +349,12 @@ pub struct AxisStatus {
     /// HMC_GetAddAxis; none is HMC's 255).
     #[serde(default)]
     pub add_axis: Option<AxisIndex>,
+    /// The actual position's user-frame offset in encoder counts (rounded): what
+    /// `set_position` (frames actual and both) and homing moved it by. `encoder_counts +
+    /// encoder_offset` is the counter of a controller that redefines its encoder with the
+    /// position (NMC encPos; a CiA 402 drive's 0x6064), `encoder_counts` the raw one.
+    #[serde(default)]
+    pub encoder_offset: i64,
 }
 
 /// An axis's PT/PVT buffer and run (NMC `MtPtGetSpace`, `MtPtGetStatic`).

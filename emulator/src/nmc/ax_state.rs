@@ -6,6 +6,7 @@
 //! deadline ([`AxState::heard`]).
 
 use axes::command::WatchdogKick;
+use axes::AxisStatus;
 use mcemu_nmc::ax_structs::{DacMotor, EstopExParam, PidPara, ESTOP_DI_EX_CH_NUM};
 
 /// `NMC_SetWatchDog`, armed in the engine: its timeout in servo periods.
@@ -27,12 +28,18 @@ pub struct EstopEx {
     pub param: EstopExParam,
 }
 
-/// How `NMC_MtGetEncPos` reports an axis's encoder counts: times `coe` (`NMC_MtSetEncCoe`,
-/// default 1), plus `offset` (`NMC_MtSetEncPos`, `MtZeroPos`), in pulses.
+/// How the NMC reads an axis's encoder (`NMC_MtGetEncPos`, `NMC_GetEncPos`, the packs, the
+/// captures): the engine's counter in the user frame (`encoder_counts + encoder_offset`, which
+/// homing and the actual-position redefinitions move: the card clears its encoder with the
+/// position on homing, digest 001 §2.6, §4.1, and a bus drive's homing redefines its 0x6064), times
+/// `coe` (`NMC_MtSetEncCoe`, default 1), plus `offset` (`NMC_MtSetEncPos`) while the frame it
+/// was set in holds: a later redefinition (homing, `NMC_MtZeroPos`) supersedes it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct EncReport {
     pub coe: f64,
-    pub offset: i64,
+    offset: i64,
+    /// The `encoder_offset` `offset` was set in.
+    frame: i64,
 }
 
 impl Default for EncReport {
@@ -40,20 +47,46 @@ impl Default for EncReport {
         EncReport {
             coe: 1.0,
             offset: 0,
+            frame: 0,
         }
     }
 }
 
 impl EncReport {
-    /// The reported position of raw `counts`.
-    pub fn position(&self, counts: i64) -> i64 {
-        let scaled = (counts as f64 * self.coe).round();
-        (scaled.clamp(i64::MIN as f64, i64::MAX as f64) as i64).saturating_add(self.offset)
+    /// The reading of raw `counts` (now, or latched) in the frame of `status`.
+    pub fn reading(&self, counts: i64, status: &AxisStatus) -> i64 {
+        let user = counts.wrapping_add(status.encoder_offset);
+        let scaled = (user as f64 * self.coe).round();
+        let offset = if status.encoder_offset == self.frame {
+            self.offset
+        } else {
+            0
+        };
+        (scaled.clamp(i64::MIN as f64, i64::MAX as f64) as i64).saturating_add(offset)
     }
 
-    /// The offset that makes raw `counts` read `wanted`.
-    pub fn offset_for(&self, counts: i64, wanted: i64) -> i64 {
-        wanted.saturating_sub(EncReport { offset: 0, ..*self }.position(counts))
+    /// The encoder's reading now.
+    pub fn position(&self, status: &AxisStatus) -> i64 {
+        self.reading(status.encoder_counts, status)
+    }
+
+    /// Make the encoder read `wanted` now.
+    pub fn set_position(&mut self, status: &AxisStatus, wanted: i64) {
+        self.offset = 0;
+        self.frame = status.encoder_offset;
+        self.offset = wanted.saturating_sub(self.position(status));
+    }
+
+    /// Scale the counts by `coe` from now on, the reading continuous.
+    pub fn set_coe(&mut self, status: &AxisStatus, coe: f64) {
+        let now = self.position(status);
+        self.coe = coe;
+        self.set_position(status, now);
+    }
+
+    /// Forget `NMC_MtSetEncPos`: the counts as they are (`NMC_MtZeroPos`, which zeroes them).
+    pub fn clear_offset(&mut self) {
+        self.offset = 0;
     }
 }
 
@@ -128,13 +161,18 @@ impl AxState {
         self.loops.entry(axis).or_insert_with(AxisLoop::fresh)
     }
 
-    /// Axis `axis`'s encoder position from its raw `counts`.
-    pub fn enc_pos(&self, axis: usize, counts: i64) -> i64 {
+    /// Axis `axis`'s encoder reading now (`status` is the axis's).
+    pub fn enc_pos(&self, axis: usize, status: &AxisStatus) -> i64 {
+        self.enc_reading(axis, status.encoder_counts, status)
+    }
+
+    /// Axis `axis`'s encoder reading of raw `counts` (a latch).
+    pub fn enc_reading(&self, axis: usize, counts: i64, status: &AxisStatus) -> i64 {
         self.enc
             .get(&axis)
             .copied()
             .unwrap_or_default()
-            .position(counts)
+            .reading(counts, status)
     }
 
     /// A request arrived at tick `tick`: the watchdog's new deadline for the engine, once per

@@ -10,7 +10,7 @@ use std::time::Duration;
 
 use mcemu_frontend::counter::Counter;
 use mcemu_frontend::fault::{
-    self, parse_request, Common, Fault, FaultError, FaultList, FaultRequest, Parsed,
+    self, parse_request, Common, CommonFault, Fault, FaultError, FaultList, FaultRequest, Parsed,
 };
 use serde::Serialize;
 use serde_json::{Map, Value};
@@ -18,30 +18,13 @@ use serde_json::{Map, Value};
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
 #[serde(tag = "fault", rename_all = "snake_case")]
 pub enum NmcFault {
-    Delay {
-        ms: u64,
-        #[serde(skip_serializing_if = "Option::is_none")]
-        count: Option<u32>,
-    },
-    NoReply {
-        #[serde(skip_serializing_if = "Option::is_none")]
-        count: Option<u32>,
-    },
-    Close {
-        #[serde(skip_serializing_if = "Option::is_none")]
-        count: Option<u32>,
-    },
-    Corrupt {
-        #[serde(skip_serializing_if = "Option::is_none")]
-        byte: Option<u16>,
-        bit: u8,
-        #[serde(skip_serializing_if = "Option::is_none")]
-        count: Option<u32>,
-    },
     WrongSequence {
         #[serde(skip_serializing_if = "Option::is_none")]
         count: Option<u32>,
     },
+    /// `delay`, `no_reply`, `close`, `corrupt`.
+    #[serde(untagged)]
+    Common(CommonFault),
 }
 
 const KINDS: [(&str, &[&str]); 5] = [
@@ -55,31 +38,22 @@ const KINDS: [(&str, &[&str]); 5] = [
 impl Fault for NmcFault {
     fn kind(&self) -> &'static str {
         match self {
-            NmcFault::Delay { .. } => "delay",
-            NmcFault::NoReply { .. } => "no_reply",
-            NmcFault::Close { .. } => "close",
-            NmcFault::Corrupt { .. } => "corrupt",
             NmcFault::WrongSequence { .. } => "wrong_sequence",
+            NmcFault::Common(c) => c.kind(),
         }
     }
 
     fn count_mut(&mut self) -> &mut Option<u32> {
         match self {
-            NmcFault::Delay { count, .. }
-            | NmcFault::NoReply { count }
-            | NmcFault::Close { count }
-            | NmcFault::Corrupt { count, .. }
-            | NmcFault::WrongSequence { count } => count,
+            NmcFault::WrongSequence { count } => count,
+            NmcFault::Common(c) => c.count_mut(),
         }
     }
 
     fn common(&self) -> Option<Common> {
-        match *self {
-            NmcFault::Delay { ms, .. } => Some(Common::Delay(Duration::from_millis(ms))),
-            NmcFault::NoReply { .. } => Some(Common::NoReply),
-            NmcFault::Close { .. } => Some(Common::Close),
-            NmcFault::Corrupt { byte, bit, .. } => Some(Common::Corrupt { byte, bit }),
+        match self {
             NmcFault::WrongSequence { .. } => None,
+            NmcFault::Common(c) => Some(c.effect()),
         }
     }
 }
@@ -90,22 +64,9 @@ pub fn parse(map: &Map<String, Value>) -> Result<FaultRequest<NmcFault>, FaultEr
         Parsed::Clear(kind) => return Ok(FaultRequest::Clear(kind)),
         Parsed::Set { kind, fields } => (kind, fields),
     };
-    let spec = match kind {
-        "delay" => NmcFault::Delay {
-            ms: f.delay_ms()?,
-            count: f.count()?,
-        },
-        "no_reply" => NmcFault::NoReply { count: f.count()? },
-        "close" => NmcFault::Close { count: f.count()? },
-        "corrupt" => {
-            let (byte, bit) = f.corrupt_at()?;
-            NmcFault::Corrupt {
-                byte,
-                bit,
-                count: f.count()?,
-            }
-        }
-        _ => NmcFault::WrongSequence { count: f.count()? },
+    let spec = match f.common(kind)? {
+        Some(c) => NmcFault::Common(c),
+        None => NmcFault::WrongSequence { count: f.count()? },
     };
     Ok(FaultRequest::Set(spec))
 }
@@ -195,6 +156,14 @@ mod tests {
         ));
         f.list
             .apply(request(serde_json::json!({"fault": "delay", "ms": 5})));
+        assert_eq!(
+            serde_json::to_value(f.list.active()).unwrap(),
+            serde_json::json!([
+                {"fault": "wrong_sequence", "count": 1},
+                {"fault": "delay", "ms": 5},
+            ]),
+            "each kind's own JSON"
+        );
         let a = f.take();
         assert!(a.wrong_sequence);
         assert_eq!(a.delay, Some(Duration::from_millis(5)));

@@ -352,7 +352,7 @@ impl PathPlanner {
         }
     }
 
-    fn pop_front(&mut self) {
+    pub(super) fn pop_front(&mut self) {
         if let Some(e) = self.queue.pop_front() {
             let user = match &e {
                 Entry::Marker { .. } => true,

@@ -91,4 +91,25 @@ impl PathPlanner {
         self.lookahead(0);
         Ok(())
     }
+
+    /// Drop the front motion of a frozen path if it is tagged `tag` (a motion put in front by
+    /// [`PathPlanner::insert_front`] and cut by a second freeze): the path's position becomes
+    /// its end, the break it was returning to. Whether it was dropped.
+    pub fn drop_front(&mut self, tag: u64) -> bool {
+        if !(self.state.halted && self.exec.is_none() && self.carry <= 0.0) {
+            return false;
+        }
+        let end = match self.queue.front() {
+            Some(Entry::Motion(m)) if m.tag == tag => m.segment.end(),
+            _ => return false,
+        };
+        self.pop_front();
+        if let Some(Entry::Motion(m)) = self.queue.front() {
+            self.end_tangent = m.segment.start_tangent();
+        }
+        self.position = end;
+        self.state.position = end;
+        self.lookahead(0);
+        true
+    }
 }

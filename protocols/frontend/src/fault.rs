@@ -40,6 +40,67 @@ pub enum Common {
     Corrupt { byte: Option<u16>, bit: u8 },
 }
 
+/// A fault of a common kind with its count, which a protocol's enum of faults carries as its
+/// last variant, `#[serde(untagged)] Common(CommonFault)`: its JSON is the kind's own
+/// (`{"fault": "delay", "ms": 100, "count": 2}`), and [`Fields::common`] parses it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(tag = "fault", rename_all = "snake_case")]
+pub enum CommonFault {
+    Delay {
+        ms: u64,
+        #[serde(skip_serializing_if = "Option::is_none")]
+        count: Option<u32>,
+    },
+    NoReply {
+        #[serde(skip_serializing_if = "Option::is_none")]
+        count: Option<u32>,
+    },
+    Close {
+        #[serde(skip_serializing_if = "Option::is_none")]
+        count: Option<u32>,
+    },
+    Corrupt {
+        /// Index into the reply frame; `None`: the protocol's default byte.
+        #[serde(skip_serializing_if = "Option::is_none")]
+        byte: Option<u16>,
+        bit: u8,
+        #[serde(skip_serializing_if = "Option::is_none")]
+        count: Option<u32>,
+    },
+}
+
+impl CommonFault {
+    /// For [`Fault::kind`].
+    pub fn kind(&self) -> &'static str {
+        match self {
+            CommonFault::Delay { .. } => "delay",
+            CommonFault::NoReply { .. } => "no_reply",
+            CommonFault::Close { .. } => "close",
+            CommonFault::Corrupt { .. } => "corrupt",
+        }
+    }
+
+    /// For [`Fault::count_mut`].
+    pub fn count_mut(&mut self) -> &mut Option<u32> {
+        match self {
+            CommonFault::Delay { count, .. }
+            | CommonFault::NoReply { count }
+            | CommonFault::Close { count }
+            | CommonFault::Corrupt { count, .. } => count,
+        }
+    }
+
+    /// For [`Fault::common`]: what it does.
+    pub fn effect(&self) -> Common {
+        match *self {
+            CommonFault::Delay { ms, .. } => Common::Delay(Duration::from_millis(ms)),
+            CommonFault::NoReply { .. } => Common::NoReply,
+            CommonFault::Close { .. } => Common::Close,
+            CommonFault::Corrupt { byte, bit, .. } => Common::Corrupt { byte, bit },
+        }
+    }
+}
+
 /// One kind of fault of a protocol, as its front-end lists it.
 pub trait Fault: Clone {
     /// The kind's name, as `fault` (and `clear`'s `kind`) names it.
@@ -204,6 +265,28 @@ impl Fields<'_> {
         let byte = self.uint("byte", 0, 255)?.map(|b| b as u16);
         let bit = self.uint("bit", 0, 7)?.unwrap_or(0) as u8;
         Ok((byte, bit))
+    }
+
+    /// The fault of `kind` when it is a common kind (`None`: one of the protocol's own).
+    pub fn common(&self, kind: &str) -> Result<Option<CommonFault>, FaultError> {
+        let count = || self.count();
+        Ok(Some(match kind {
+            "delay" => CommonFault::Delay {
+                ms: self.delay_ms()?,
+                count: count()?,
+            },
+            "no_reply" => CommonFault::NoReply { count: count()? },
+            "close" => CommonFault::Close { count: count()? },
+            "corrupt" => {
+                let (byte, bit) = self.corrupt_at()?;
+                CommonFault::Corrupt {
+                    byte,
+                    bit,
+                    count: count()?,
+                }
+            }
+            _ => return Ok(None),
+        }))
     }
 }
 

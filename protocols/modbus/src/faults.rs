@@ -20,6 +20,7 @@
 
 use std::time::Duration;
 
+pub use mcemu_frontend::fault::CommonFault;
 use mcemu_frontend::fault::{self, parse_request, Common, Fault, FaultList, Parsed};
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value};
@@ -34,15 +35,6 @@ use crate::pdu::Exception;
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
 #[serde(tag = "fault", rename_all = "snake_case")]
 pub enum FaultSpec {
-    Delay {
-        ms: u64,
-        #[serde(skip_serializing_if = "Option::is_none")]
-        count: Option<u32>,
-    },
-    NoReply {
-        #[serde(skip_serializing_if = "Option::is_none")]
-        count: Option<u32>,
-    },
     Exception {
         code: u8,
         #[serde(skip_serializing_if = "Option::is_none")]
@@ -57,18 +49,10 @@ pub enum FaultSpec {
         #[serde(skip_serializing_if = "Option::is_none")]
         count: Option<u32>,
     },
-    Corrupt {
-        /// Index into the reply frame (0 = the address byte); default the last PDU byte.
-        #[serde(skip_serializing_if = "Option::is_none")]
-        byte: Option<u16>,
-        bit: u8,
-        #[serde(skip_serializing_if = "Option::is_none")]
-        count: Option<u32>,
-    },
-    Close {
-        #[serde(skip_serializing_if = "Option::is_none")]
-        count: Option<u32>,
-    },
+    /// `delay`, `no_reply`, `corrupt` (its `byte` indexes the reply frame, 0 = the address
+    /// byte; default the last PDU byte) and `close`.
+    #[serde(untagged)]
+    Common(CommonFault),
 }
 
 /// Modbus's kinds and their fields, in the order error messages list them.
@@ -84,32 +68,22 @@ const KINDS: [(&str, &[&str]); 6] = [
 impl Fault for FaultSpec {
     fn kind(&self) -> &'static str {
         match self {
-            FaultSpec::Delay { .. } => "delay",
-            FaultSpec::NoReply { .. } => "no_reply",
             FaultSpec::Exception { .. } => "exception",
             FaultSpec::DropBytes { .. } => "drop_bytes",
-            FaultSpec::Corrupt { .. } => "corrupt",
-            FaultSpec::Close { .. } => "close",
+            FaultSpec::Common(c) => c.kind(),
         }
     }
 
     fn count_mut(&mut self) -> &mut Option<u32> {
         match self {
-            FaultSpec::Delay { count, .. }
-            | FaultSpec::NoReply { count }
-            | FaultSpec::Exception { count, .. }
-            | FaultSpec::DropBytes { count, .. }
-            | FaultSpec::Corrupt { count, .. }
-            | FaultSpec::Close { count } => count,
+            FaultSpec::Exception { count, .. } | FaultSpec::DropBytes { count, .. } => count,
+            FaultSpec::Common(c) => c.count_mut(),
         }
     }
 
     fn common(&self) -> Option<Common> {
-        match *self {
-            FaultSpec::Delay { ms, .. } => Some(Common::Delay(Duration::from_millis(ms))),
-            FaultSpec::NoReply { .. } => Some(Common::NoReply),
-            FaultSpec::Corrupt { byte, bit, .. } => Some(Common::Corrupt { byte, bit }),
-            FaultSpec::Close { .. } => Some(Common::Close),
+        match self {
+            FaultSpec::Common(c) => Some(c.effect()),
             FaultSpec::Exception { .. } | FaultSpec::DropBytes { .. } => None,
         }
     }
@@ -143,12 +117,10 @@ pub fn parse(map: &Map<String, Value>) -> Result<FaultRequest, FaultError> {
         Parsed::Clear(kind) => return Ok(FaultRequest::Clear(kind)),
         Parsed::Set { kind, fields } => (kind, fields),
     };
+    if let Some(c) = f.common(kind)? {
+        return Ok(FaultRequest::Set(FaultSpec::Common(c)));
+    }
     let spec = match kind {
-        "delay" => FaultSpec::Delay {
-            ms: f.delay_ms()?,
-            count: f.count()?,
-        },
-        "no_reply" => FaultSpec::NoReply { count: f.count()? },
         "exception" => {
             let code = f.required("code", 1, 255)?;
             if Exception::from_code(code as u8).is_none() {
@@ -164,19 +136,10 @@ pub fn parse(map: &Map<String, Value>) -> Result<FaultRequest, FaultError> {
                 count: f.count()?,
             }
         }
-        "drop_bytes" => FaultSpec::DropBytes {
+        _ => FaultSpec::DropBytes {
             bytes: f.required("bytes", 1, 255)? as u8,
             count: f.count()?,
         },
-        "corrupt" => {
-            let (byte, bit) = f.corrupt_at()?;
-            FaultSpec::Corrupt {
-                byte,
-                bit,
-                count: f.count()?,
-            }
-        }
-        _ => FaultSpec::Close { count: f.count()? },
     };
     Ok(FaultRequest::Set(spec))
 }
@@ -234,7 +197,7 @@ impl Faults {
         let kind = spec.kind();
         if matches!(
             spec,
-            FaultSpec::DropBytes { .. } | FaultSpec::Corrupt { .. }
+            FaultSpec::DropBytes { .. } | FaultSpec::Common(CommonFault::Corrupt { .. })
         ) && !self.framing.is_rtu()
         {
             return Err(FaultError::field(
@@ -245,7 +208,9 @@ impl Faults {
                 ),
             ));
         }
-        if matches!(spec, FaultSpec::Close { .. }) && self.framing == Framing::Rtu {
+        if matches!(spec, FaultSpec::Common(CommonFault::Close { .. }))
+            && self.framing == Framing::Rtu
+        {
             return Err(FaultError::field(
                 "fault",
                 "`close` closes a TCP connection; a serial line has none",
@@ -352,10 +317,10 @@ mod tests {
     fn requests_parse_and_errors_name_the_field() {
         assert_eq!(
             parse(r#"{"fault":"delay","ms":200,"count":3}"#),
-            Ok(FaultRequest::Set(FaultSpec::Delay {
+            Ok(FaultRequest::Set(FaultSpec::Common(CommonFault::Delay {
                 ms: 200,
                 count: Some(3)
-            }))
+            })))
         );
         assert_eq!(
             parse(r#"{"fault":"exception","code":4}"#),
@@ -410,15 +375,15 @@ mod tests {
         let f = Faults::new(Framing::Rtu);
         let applied = FaultsApplied::default();
         assert_eq!(f.take_delay(&applied), None);
-        f.install(FaultSpec::Delay {
+        f.install(FaultSpec::Common(CommonFault::Delay {
             ms: 5,
             count: Some(2),
-        })
+        }))
         .unwrap_or(());
-        f.install(FaultSpec::Delay {
+        f.install(FaultSpec::Common(CommonFault::Delay {
             ms: 7,
             count: Some(2),
-        })
+        }))
         .unwrap_or(());
         assert_eq!(f.active().len(), 1, "a second delay replaces the first");
         assert_eq!(f.take_delay(&applied), Some(Duration::from_millis(7)));
@@ -468,11 +433,11 @@ mod tests {
     fn rtu_replies_are_damaged_and_tcp_refuses_rtu_faults() {
         let f = Faults::new(Framing::RtuOverTcp);
         let applied = FaultsApplied::default();
-        f.install(FaultSpec::Corrupt {
+        f.install(FaultSpec::Common(CommonFault::Corrupt {
             byte: None,
             bit: 0,
             count: Some(1),
-        })
+        }))
         .unwrap_or(());
         f.install(FaultSpec::DropBytes {
             bytes: 2,
@@ -503,18 +468,20 @@ mod tests {
     fn close_needs_a_connection_and_is_used_up_like_the_others() {
         let applied = FaultsApplied::default();
         let serial = Faults::new(Framing::Rtu);
-        let e = serial.install(FaultSpec::Close { count: None });
+        let e = serial.install(FaultSpec::Common(CommonFault::Close { count: None }));
         assert_eq!(e.err().and_then(|e| e.field).as_deref(), Some("fault"));
         let tcp = Faults::new(Framing::Tcp);
         assert_eq!(
             parse_json(r#"{"fault":"close","count":2}"#),
-            Ok(FaultRequest::Set(FaultSpec::Close { count: Some(2) }))
+            Ok(FaultRequest::Set(FaultSpec::Common(CommonFault::Close {
+                count: Some(2)
+            })))
         );
         assert_eq!(
             parse_json(r#"{"fault":"clear","kind":"close"}"#),
             Ok(FaultRequest::Clear(Some("close")))
         );
-        tcp.install(FaultSpec::Close { count: Some(2) })
+        tcp.install(FaultSpec::Common(CommonFault::Close { count: Some(2) }))
             .unwrap_or(());
         assert!(tcp.take_close(&applied));
         assert!(!tcp.take_no_reply(&applied), "close is not no_reply");
@@ -523,7 +490,7 @@ mod tests {
         assert_eq!(applied.close.get(), 2);
         let rtu_over_tcp = Faults::new(Framing::RtuOverTcp);
         assert!(rtu_over_tcp
-            .install(FaultSpec::Close { count: None })
+            .install(FaultSpec::Common(CommonFault::Close { count: None }))
             .is_ok());
     }
 
@@ -533,7 +500,9 @@ mod tests {
         let specs: Result<Vec<FaultSpec>, _> = serde_json::from_value(v);
         assert_eq!(
             specs.ok(),
-            Some(vec![FaultSpec::NoReply { count: Some(2) }])
+            Some(vec![FaultSpec::Common(CommonFault::NoReply {
+                count: Some(2)
+            })])
         );
         let v = serde_json::json!([{"fault": "no_reply", "cuont": 2}]);
         let e = serde_json::from_value::<Vec<FaultSpec>>(v)
@@ -541,7 +510,8 @@ mod tests {
             .map(|e| e.to_string());
         assert!(e.is_some_and(|m| m.contains("cuont")));
         let round =
-            serde_json::to_value(FaultSpec::Delay { ms: 3, count: None }).unwrap_or_default();
+            serde_json::to_value(FaultSpec::Common(CommonFault::Delay { ms: 3, count: None }))
+                .unwrap_or_default();
         assert_eq!(round, serde_json::json!({"fault": "delay", "ms": 3}));
     }
 }

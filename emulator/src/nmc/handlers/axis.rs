@@ -104,12 +104,13 @@ fn mt_get_cmd_pos(c: &mut Call<'_>) -> Result<(), Refusal> {
     position(c, |s| s.output_pos)
 }
 
-/// The encoder counter (internal mode counts the axis's own pulses, digest 001 §4.1), as
-/// `NMC_MtSetEncPos` / `MtSetEncCoe` adjust its report (`ax_state::EncReport`).
+/// The encoder counter (internal mode counts the axis's own pulses, digest 001 §4.1) as the
+/// card reads it (`ax_state::EncReport`: homing, `NMC_MtSetEncPos`, `MtSetEncCoe`).
 fn mt_get_enc_pos(c: &mut Call<'_>) -> Result<(), Refusal> {
     let axis = c.axis()?;
-    let counts = c.status(axis).map_or(0, |s| s.encoder_counts);
-    let p = c.service.ax().enc_pos(axis, counts);
+    let p = c
+        .status(axis)
+        .map_or(0, |s| c.service.ax().enc_pos(axis, s));
     c.output.i64(p);
     Ok(())
 }

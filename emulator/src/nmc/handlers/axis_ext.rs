@@ -108,7 +108,7 @@ fn mt_get_sts_pack12_ex(c: &mut Call<'_>) -> Result<(), Refusal> {
         p.mt_mio[i] = motion_io(s) as i16;
         p.mt_mio_log[i] = motion_io_logical(c, axis) as i16;
         p.mt_prf_pos[i] = pulses(scale, s.cmd_pos);
-        p.mt_enc_pos[i] = c.service.ax().enc_pos(axis, s.encoder_counts);
+        p.mt_enc_pos[i] = c.service.ax().enc_pos(axis, s);
         p.mt_prf_vel[i] = velocity_from_engine(scale, s.cmd_vel);
     }
     for n in 0..2 {
@@ -204,12 +204,16 @@ fn mt_move_ptp_rel_pack8(c: &mut Call<'_>) -> Result<(), Refusal> {
 /// The manual's position range (digest 001 §1.3: 32-bit pulses).
 const POS_MAX: i64 = 2_147_483_647;
 
-/// The encoder report of axis `axis` that reads `wanted` now.
-fn set_enc_report(c: &Call<'_>, axis: usize, wanted: i64) {
-    let counts = c.status(axis).map_or(0, |s| s.encoder_counts);
-    let mut ax = c.service.ax();
-    let e = ax.enc.entry(axis).or_default();
-    e.offset = e.offset_for(counts, wanted);
+/// Axis `axis`'s encoder reads `wanted` from now on (`NMC_MtSetEncPos`, `NMC_SetEncPos`).
+pub(super) fn set_enc_reading(c: &Call<'_>, axis: usize, wanted: i64) {
+    if let Some(s) = c.status(axis) {
+        c.service
+            .ax()
+            .enc
+            .entry(axis)
+            .or_default()
+            .set_position(s, wanted);
+    }
 }
 
 fn moving(c: &Call<'_>, axis: usize) -> Result<(), Refusal> {
@@ -245,21 +249,24 @@ fn mt_set_enc_pos(c: &mut Call<'_>) -> Result<(), Refusal> {
     let axis = c.axis()?;
     let pos = c.input.i64()?.clamp(-POS_MAX, POS_MAX);
     moving(c, axis)?;
-    set_enc_report(c, axis, pos);
+    set_enc_reading(c, axis, pos);
     Ok(())
 }
 
-/// Planned and encoder positions both to 0 (the engine's actual position shifts with the
-/// plan, keeping the following error). At rest only.
+/// Planned and encoder positions both to 0 (digest 001 §4.1: "zeroes planned and encoder
+/// positions"): the engine's commanded and actual positions are each redefined as 0, which
+/// moves the encoder's frame (`ax_state::EncReport`) so that it reads 0 too. At rest only.
 fn mt_zero_pos(c: &mut Call<'_>) -> Result<(), Refusal> {
     let axis = c.axis()?;
     moving(c, axis)?;
-    c.command(SetPosition {
-        axis: axis as u16,
-        position: 0.0,
-        frame: PositionFrame::Both,
-    });
-    set_enc_report(c, axis, 0);
+    for frame in [PositionFrame::Commanded, PositionFrame::Actual] {
+        c.command(SetPosition {
+            axis: axis as u16,
+            position: 0.0,
+            frame,
+        });
+    }
+    c.service.ax().enc.entry(axis).or_default().clear_offset();
     Ok(())
 }
 

@@ -42,6 +42,13 @@ fn channel<'s>(c: &'s Call<'_>, axis: usize, channel: u8) -> Option<&'s CaptureS
         .find(|k| usize::from(k.axis) == axis && k.channel == channel)
 }
 
+/// A latched count of axis `axis`'s encoder as the encoder reads (`ax_state::EncReport`), in
+/// the frame of now: a homing since the edge moves it with the rest.
+fn latched_reading(c: &Call<'_>, axis: usize, counts: i64) -> i64 {
+    c.status(axis)
+        .map_or(counts, |s| c.service.ax().enc_reading(axis, counts, s))
+}
+
 fn edge(rising: bool) -> CaptureEdge {
     if rising {
         CaptureEdge::Rising
@@ -122,12 +129,12 @@ fn mt_set_capt(c: &mut Call<'_>) -> Result<(), Refusal> {
     arm(c, axis, 1)
 }
 
-/// The encoder counter at the newest edge (0 before any).
+/// The encoder counter at the newest edge (0 before any), read as `NMC_MtGetEncPos` reads it.
 fn mt_get_capt_pos(c: &mut Call<'_>) -> Result<(), Refusal> {
     let axis = c.axis()?;
     let p = channel(c, axis, PLAIN)
         .and_then(|k| k.latches.last())
-        .map_or(0, |l| l.encoder_counts);
+        .map_or(0, |l| latched_reading(c, axis, l.encoder_counts));
     c.output.i64(p);
     Ok(())
 }
@@ -174,7 +181,7 @@ fn mt_get_capt_repeat_pos_multi(c: &mut Call<'_>) -> Result<(), Refusal> {
                 .iter()
                 .skip(start)
                 .take(n)
-                .map(|l| l.encoder_counts)
+                .map(|l| latched_reading(c, axis, l.encoder_counts))
                 .collect()
         })
         .unwrap_or_default();
@@ -274,7 +281,9 @@ fn mt_get_adv_capt_pos(c: &mut Call<'_>) -> Result<(), Refusal> {
         .iter_mut()
         .zip(k.map(|k| k.latches.as_slice()).unwrap_or_default())
     {
-        *p = l.encoder_counts;
+        *p = axis.map_or(l.encoder_counts, |a| {
+            latched_reading(c, a, l.encoder_counts)
+        });
     }
     c.output.i16(sts);
     mcemu_nmc::sync_structs::write_array(c.output, &pos, |w, p| {

@@ -217,12 +217,13 @@ fn mt_set_enc_coe(c: &mut Call<'_>) -> Result<(), Refusal> {
     if !(coe > 0.0 && coe <= 1000.0) {
         return Err(Refusal::range("encCoe", coe, "(0, 1000]"));
     }
-    let counts = c.status(axis).map_or(0, |s| s.encoder_counts);
-    let mut ax = c.service.ax();
-    let e = ax.enc.entry(axis).or_default();
-    let now = e.position(counts);
-    e.coe = coe;
-    e.offset = e.offset_for(counts, now);
+    let status = c.status(axis).copied().unwrap_or_default();
+    c.service
+        .ax()
+        .enc
+        .entry(axis)
+        .or_default()
+        .set_coe(&status, coe);
     Ok(())
 }
 

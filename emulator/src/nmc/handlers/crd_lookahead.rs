@@ -166,7 +166,7 @@ fn crd_get_sts_pack4(c: &mut Call<'_>) -> Result<(), Refusal> {
         p.ax_sts[k] = axis_status(st, AxisExtra::default()) as i16;
         p.prf_pos[k] = planned.saturating_sub(origin[k]);
         p.axis_pos[k] = planned;
-        p.enc_pos[k] = st.encoder_counts;
+        p.enc_pos[k] = c.service.ax().enc_pos(axis, st);
         p.mot_di[k] = motion_io(st) as i16;
     }
     p.write(c.output);

@@ -77,7 +77,7 @@ fn crd_get_inner_sts(c: &mut Call<'_>) -> Result<(), Refusal> {
 /// on the X and Y axes: the Cartesian point of their θ and r, `here`).
 fn positions(
     c: &mut Call<'_>,
-    pick: fn(&axes::AxisStatus, PulseScale) -> i64,
+    pick: fn(&Call<'_>, usize, &axes::AxisStatus) -> i64,
     user: bool,
 ) -> Result<(), Refusal> {
     let n = crd(c)?;
@@ -105,7 +105,7 @@ fn positions(
             if let Some(frame) = &transformed {
                 return pulses(c.scale(*a), frame.get(k).copied().unwrap_or(0.0));
             }
-            let v = c.status(*a).map_or(0, |st| pick(st, c.scale(*a)));
+            let v = c.status(*a).map_or(0, |st| pick(c, *a, st));
             if user {
                 v.saturating_sub(*o)
             } else {
@@ -120,16 +120,17 @@ fn positions(
 /// Planned positions in user coordinates (machine less the origin, digest 001 §4.1; under a
 /// transform the program's coordinates, "读取规划位置" of the coordinate system).
 fn crd_get_prf_pos(c: &mut Call<'_>) -> Result<(), Refusal> {
-    positions(c, |s, scale| pulses(scale, s.cmd_pos), true)
+    positions(c, |c, a, s| pulses(c.scale(a), s.cmd_pos), true)
 }
 
 /// Planned positions in machine coordinates.
 fn crd_get_axis_pos(c: &mut Call<'_>) -> Result<(), Refusal> {
-    positions(c, |s, scale| pulses(scale, s.cmd_pos), false)
+    positions(c, |c, a, s| pulses(c.scale(a), s.cmd_pos), false)
 }
 
+/// The members' encoders as `NMC_MtGetEncPos` reads them.
 fn crd_get_enc_pos(c: &mut Call<'_>) -> Result<(), Refusal> {
-    positions(c, |s, _| s.encoder_counts, false)
+    positions(c, |c, a, s| c.service.ax().enc_pos(a, s), false)
 }
 
 /// The path scale: the first member's (decisions.md).

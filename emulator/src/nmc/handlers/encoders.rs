@@ -2,10 +2,11 @@
 //! (local axes from 0, an `ecat` card's bus drives from 16, `ecat_bus`), 256 and 257 the
 //! external encoders (the handwheel inputs that `handwheel_turn` turns).
 
-use axes::command::{HandwheelTurn, PositionFrame, SetPosition, HANDWHEEL_EXTERNAL_BASE};
+use axes::command::{HandwheelTurn, HANDWHEEL_EXTERNAL_BASE};
 use mcemu_nmc::table::{self, Function};
 
-use crate::nmc::service::{pulses, Call, Handler, Refusal};
+use super::axis_ext::set_enc_reading;
+use crate::nmc::service::{Call, Handler, Refusal};
 
 pub const HANDLERS: &[(Function, Handler)] = &[
     (table::GET_ENC_POS, get_enc_pos),
@@ -43,13 +44,12 @@ fn channel(c: &Call<'_>, enc_id: i16) -> Result<Channel, Refusal> {
     }
 }
 
-/// An axis encoder's position is the axis's actual position in pulses (1 count per pulse on
-/// the Gaochuan fixture), so that `NMC_SetEncPos` redefines it as the engine's `actual` frame.
+/// An axis's encoder reads as `NMC_MtGetEncPos` reads it: one counter, two ways to name it.
 fn get_enc_pos(c: &mut Call<'_>) -> Result<(), Refusal> {
     c.device()?;
     let enc_id = c.input.i16()?;
     let p = match channel(c, enc_id)? {
-        Channel::Axis(a) => c.status(a).map_or(0, |s| pulses(c.scale(a), s.act_pos)),
+        Channel::Axis(a) => c.status(a).map_or(0, |s| c.service.ax().enc_pos(a, s)),
         Channel::External(e) => c.snapshot.external_encoders.get(e).copied().unwrap_or(0),
     };
     c.output.i64(p);
@@ -70,20 +70,14 @@ fn get_enc_vel(c: &mut Call<'_>) -> Result<(), Refusal> {
     Ok(())
 }
 
-/// An axis's encoder: the axis's actual position is redefined (the motor does not move); an
+/// An axis's encoder: its reading is set, as `NMC_MtSetEncPos` sets it (the plan and the
+/// engine's actual position stay; the manual does not restrict this one to a still axis); an
 /// external encoder's count is turned to `encPos`.
 fn set_enc_pos(c: &mut Call<'_>) -> Result<(), Refusal> {
     c.device()?;
     let (enc_id, pos) = (c.input.i16()?, c.input.i64()?);
     match channel(c, enc_id)? {
-        Channel::Axis(a) => {
-            let position = c.scale(a).to_engine(pos as f64);
-            c.command(SetPosition {
-                axis: a as u16,
-                position,
-                frame: PositionFrame::Actual,
-            });
-        }
+        Channel::Axis(a) => set_enc_reading(c, a, pos),
         Channel::External(e) => {
             let now = c.snapshot.external_encoders.get(e).copied().unwrap_or(0);
             c.command(HandwheelTurn {
