@@ -4,7 +4,7 @@
  * what it reads back, and the documented code for bad arguments. */
 #include <math.h>
 #include <string.h>
-#include "check.h"
+#include "crd_open.h"
 
 #define PI_ 3.14159265358979
 
@@ -328,13 +328,8 @@ static void xyza(void) {
 }
 
 int main(void) {
-    short i;
     OK(NMC_DevOpen(0, &devHandle));
-    for (i = 0; i < 4; i++) {
-        OK(NMC_MtOpen(devHandle, i, &ax[i]));
-        OK(NMC_MtClrError(ax[i]));
-        OK(NMC_MtSetSvOn(ax[i]));
-    }
+    servo_on_axes(devHandle, 4, ax);
     OK(NMC_CrdOpen(devHandle, &crdHandle));
     configure(2);
     rotate();

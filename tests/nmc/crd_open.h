@@ -7,7 +7,7 @@
 #include "check.h"
 
 /* Axes 0 … n-1 opened (into ax[] when it is not NULL), their errors cleared, servo on. */
-static void servo_on_axes(HAND dev, short n, HAND *ax) {
+static inline void servo_on_axes(HAND dev, short n, HAND *ax) {
     HAND h = 0;
     short i;
     for (i = 0; i < n; i++) {
@@ -20,7 +20,7 @@ static void servo_on_axes(HAND dev, short n, HAND *ax) {
 
 /* Coordinate system 0 on axes 0 … axes-1, synAccMax 50 pulse/ms², synVelMax 800 pulse/ms,
  * origin flag orgFlag; its errors and buffer cleared. */
-static HAND open_crd(HAND dev, short axes, short orgFlag) {
+static inline HAND open_crd(HAND dev, short axes, short orgFlag) {
     TCrdConfig config;
     TCrdPara para;
     HAND crd = 0;

@@ -7,7 +7,7 @@
  * scaled clock. */
 #include <math.h>
 #include <string.h>
-#include "check.h"
+#include "crd_open.h"
 
 #define PI_ 3.14159265358979
 #define EQUIV (2 * PI_ / 10000)
@@ -75,14 +75,10 @@ static double off_arc(double x, double y) {
 int main(void) {
     TCrdConfig cfg;
     long p[4] = {0, 0, 0, 0}, center[2], user[2];
-    short i, rc;
+    short rc;
 
     OK(NMC_DevOpen(0, &devHandle));
-    for (i = 0; i < 2; i++) {
-        OK(NMC_MtOpen(devHandle, i, &ax[i]));
-        OK(NMC_MtClrError(ax[i]));
-        OK(NMC_MtSetSvOn(ax[i]));
-    }
+    servo_on_axes(devHandle, 2, ax);
     OK(NMC_CrdOpen(devHandle, &crdHandle));
     memset(&cfg, 0, sizeof cfg);
     cfg.axCnts = 2;
