@@ -133,7 +133,10 @@ fn switching_on_over_the_limit_is_refused_tv63() {
     );
     ok(&mut e, cmd(table));
     let err = refused(&mut e, cmd(r#"{"type":"compensation_enable","axis":0}"#));
-    assert!(matches!(err, EngineError::CompensationLimit { .. }), "{err}");
+    assert!(
+        matches!(err, EngineError::CompensationLimit { .. }),
+        "{err}"
+    );
     e.step();
     let s = e.axis_status(0).unwrap();
     assert!(!e.axis(0).unwrap().compensation_status().enabled);

@@ -72,7 +72,8 @@ mod transcript {
         measured,
         gpio_invert_estop_config,
         filters_config,
-        vectors
+        vectors,
+        compensation_limit
     );
 }
 
