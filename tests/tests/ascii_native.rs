@@ -13,9 +13,7 @@ use std::path::PathBuf;
 use std::process::{Command, Stdio};
 use std::time::Duration;
 
-use mcemu_tests::{
-    run_python_client, run_transcript, wait_for, workspace_root, AsciiClient, Mcemu,
-};
+use mcemu_tests::{run_pymodbus_tcp, run_transcript, wait_for, workspace_root, AsciiClient, Mcemu};
 use serde_json::{json, Value};
 
 fn himc(args: &[&str]) -> Mcemu {
@@ -311,15 +309,8 @@ fn a_compensation_limit_fault_shows_in_the_modbus_last_error_view() {
     m.advance(&json!({"seconds": 0.5}));
     assert_eq!(c.call("IsErrorStop(0)"), "1");
     let port = m.port("modbus-tcp");
-    let r = run_python_client(
-        [
-            "--client",
-            "pymodbus",
-            "--transport",
-            "tcp",
-            "--port",
-            &port,
-        ],
+    let r = run_pymodbus_tcp(
+        &port,
         &json!([
             {"op": "read_holding_registers", "address": 58, "count": 2},
             {"op": "read_holding_registers", "address": 8210, "count": 2},
