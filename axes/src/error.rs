@@ -27,6 +27,10 @@ pub enum EngineError {
     ReadOnlyParameter { name: &'static str },
     #[error("axis {axis}: compensation: {reason}")]
     InvalidCompensation { axis: u32, reason: String },
+    /// Compensation that would output more than the axis's `compensation_limit` (digest 004
+    /// §2.13, HIMC eERR_AXIS_COMP_LIMIT).
+    #[error("axis {axis}: compensation {value} exceeds the limit {limit}")]
+    CompensationLimit { axis: u32, value: f64, limit: f64 },
     #[error("sampler {sampler}: {reason}")]
     InvalidSampling { sampler: u16, reason: String },
     #[error("{name} = {value}: {reason}")]
@@ -245,6 +249,7 @@ impl EngineError {
             EngineError::ReadOnlyParameter { .. } => ErrorKind::ReadOnlyParameter,
             EngineError::InvalidArgument { .. } => ErrorKind::InvalidArgument,
             EngineError::InvalidCompensation { .. } => ErrorKind::InvalidArgument,
+            EngineError::CompensationLimit { .. } => ErrorKind::InvalidState,
             EngineError::InvalidSampling { .. } => ErrorKind::InvalidArgument,
             EngineError::AxisDisabled { .. } => ErrorKind::AxisDisabled,
             EngineError::AxisInError { .. } => ErrorKind::AxisInError,

@@ -299,6 +299,8 @@ param_table! {
     // ---- Limits (HMC §2.6, NMC §3.2, HIMC §5.3) ----
     FeLimit { "fe_limit", ["FELimit", "FELimits", "PosErrLmt", "max_pos_err"], Real, Unit::Position, 1000.0, AtLeast(0.0), RW, No,
         "following-error limit; 0 disables the check (NMC)" }
+    CompensationLimit { "compensation_limit", ["max_comp_lim"], Real, Unit::Position, 0.0, AtLeast(0.0), RW, No,
+        "largest |compensation| the axis may output; over it COMPENSATION_LIMIT stops the axis; 0 unlimited (HIMC max_comp_lim, 1 mm)" }
     FeFaultCycles { "fe_fault_cycles", [], Int, Unit::Ticks, 10.0, Between(1.0, 1e9), RW, No,
         "consecutive ticks over fe_limit that latch FE_FAULT (HMC: 10)" }
     FeWarningClearCycles { "fe_warning_clear_cycles", [], Int, Unit::Ticks, 1000.0, Between(1.0, 1e9), RW, No,

@@ -188,6 +188,14 @@ where
     run_python_client_with_timeout(args, ops, CLIENT_TIMEOUT)
 }
 
+/// [`run_python_client`] as pymodbus over Modbus TCP to `port` on localhost.
+pub fn run_pymodbus_tcp(port: &str, ops: &serde_json::Value) -> serde_json::Value {
+    run_python_client(
+        ["--client", "pymodbus", "--transport", "tcp", "--port", port],
+        ops,
+    )
+}
+
 /// [`run_python_client`] with another time bound.
 pub fn run_python_client_with_timeout<I, S>(
     args: I,

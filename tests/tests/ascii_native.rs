@@ -13,8 +13,8 @@ use std::path::PathBuf;
 use std::process::{Command, Stdio};
 use std::time::Duration;
 
-use mcemu_tests::{run_transcript, wait_for, workspace_root, AsciiClient, Mcemu};
-use serde_json::Value;
+use mcemu_tests::{run_pymodbus_tcp, run_transcript, wait_for, workspace_root, AsciiClient, Mcemu};
+use serde_json::{json, Value};
 
 fn himc(args: &[&str]) -> Mcemu {
     let mut all = vec!["--clock", "virtual"];
@@ -72,7 +72,8 @@ mod transcript {
         measured,
         gpio_invert_estop_config,
         filters_config,
-        vectors
+        vectors,
+        compensation_limit
     );
 }
 
@@ -275,4 +276,55 @@ fn pipelined_replies_ready_before_a_waiting_call_are_not_held_back() {
     });
     assert_eq!(reply.as_deref(), Some("0\r\n"), "MoveHome");
     assert_eq!(c.read_reply(), "1\r\n", "IsHomed after homing");
+}
+
+/// TV 63's fault seen by a Modbus HMI (pymodbus): set up through Native ASCII, axis 0's
+/// `last_err` (HR 58–59) and the controller's `latest_error` (HR 8210–8211, both u32 low word
+/// first) read eERR_AXIS_COMP_LIMIT 0x83000802 while the fault is latched.
+#[test]
+fn a_compensation_limit_fault_shows_in_the_modbus_last_error_view() {
+    let m = himc(&[]);
+    let mut c = AsciiClient::connect(m.address("ascii-native"));
+    for line in [
+        "SetTableValue(1, 0)",
+        "SetTableValue(2, 1.5)",
+        "SetupComp(0, 1, 0, 100, 2, 1)",
+        "Enable(0)",
+        "Enable(1)",
+    ] {
+        assert_eq!(c.call(line), "0", "{line}");
+    }
+    m.advance(&json!({"seconds": 0.5}));
+    assert_eq!(c.call("MoveAbs(0, 10)"), "0");
+    assert_eq!(c.call("MoveAbs(1, 100)"), "0");
+    m.advance(&json!({"seconds": 1}));
+    assert_eq!(c.call("Disable(0)"), "0");
+    // The EtherCAT drive follows the disable over a few cycles.
+    m.advance(&json!({"seconds": 0.1}));
+    for line in ["SetConfigVar(0x8300007a, 2)", "EnableComp(0)", "Enable(0)"] {
+        assert_eq!(c.call(line), "0", "{line}");
+    }
+    m.advance(&json!({"seconds": 0.5}));
+    assert_eq!(c.call("SetConfigVar(0x8300007a, 1)"), "0");
+    m.advance(&json!({"seconds": 0.5}));
+    assert_eq!(c.call("IsErrorStop(0)"), "1");
+    let port = m.port("modbus-tcp");
+    let r = run_pymodbus_tcp(
+        &port,
+        &json!([
+            {"op": "read_holding_registers", "address": 58, "count": 2},
+            {"op": "read_holding_registers", "address": 8210, "count": 2},
+        ]),
+    );
+    let code = |v: &Value| {
+        let words: Vec<u64> = v["ok"]
+            .as_array()
+            .unwrap_or_else(|| panic!("{v}"))
+            .iter()
+            .map(|w| w.as_u64().unwrap())
+            .collect();
+        words[1] << 16 | words[0]
+    };
+    assert_eq!(code(&r[0]), 0x8300_0802, "{r}");
+    assert_eq!(code(&r[1]), 0x8300_0802, "{r}");
 }

@@ -10,7 +10,9 @@
 use std::process::Command;
 use std::time::{Duration, Instant};
 
-use mcemu_tests::{require_tool, run_python_client, run_with_timeout, PtyPair, PymodbusServer};
+use mcemu_tests::{
+    require_tool, run_pymodbus_tcp, run_python_client, run_with_timeout, PtyPair, PymodbusServer,
+};
 use serde_json::{json, Value};
 
 const TOOL_TIMEOUT: Duration = Duration::from_secs(20);
@@ -147,15 +149,8 @@ fn tcp_driver_and_mbpoll_against_the_pymodbus_server() {
     assert!(read, "mbpoll read failed\n{out}\n{err}");
     assert_eq!(mbpoll_values(&out), [(9999, 42)], "{out}");
     // The driver reads what mbpoll wrote.
-    let r = run_python_client(
-        [
-            "--client",
-            "pymodbus",
-            "--transport",
-            "tcp",
-            "--port",
-            &port,
-        ],
+    let r = run_pymodbus_tcp(
+        &port,
         &json!([{"op": "read_holding_registers", "address": 500, "count": 3}]),
     );
     assert_eq!(r[0], ok(json!([123, 65534, 7])));

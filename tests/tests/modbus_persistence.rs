@@ -10,7 +10,7 @@
 use std::path::Path;
 use std::time::Duration;
 
-use mcemu_tests::{run_python_client, wait_for, Mcemu, TempDir};
+use mcemu_tests::{run_pymodbus_tcp, run_python_client, wait_for, Mcemu, TempDir};
 use serde_json::{json, Value};
 
 /// Where the TCP front-end keeps its persisted areas.
@@ -27,17 +27,7 @@ fn start(dir: &Path) -> Mcemu {
 
 fn pymodbus(m: &Mcemu, ops: Value) -> Value {
     let port = m.port("modbus-tcp");
-    run_python_client(
-        [
-            "--client",
-            "pymodbus",
-            "--transport",
-            "tcp",
-            "--port",
-            &port,
-        ],
-        &ops,
-    )
+    run_pymodbus_tcp(&port, &ops)
 }
 
 fn stop(m: Mcemu) -> String {

@@ -4,7 +4,6 @@
 use super::Axis;
 use crate::command::{CompensationReference, ReferenceSource};
 use crate::compensation::{Compensation, CompensationStatus, MAX_DIMENSIONS};
-use crate::error::EngineError;
 
 impl Axis {
     /// The axis's compensation, created empty on first use.
@@ -24,17 +23,25 @@ impl Axis {
 
     /// Switch the tables off. The table part drops at once and the backlash part at its rate;
     /// either way the motor moves by the change, as a real drive would.
-    pub(crate) fn enable_compensation(&mut self, on: bool) -> Result<(), EngineError> {
-        let axis = u32::from(self.index);
-        let c = self.compensation_mut();
-        if on && c.is_empty() {
-            return Err(EngineError::InvalidCompensation {
-                axis,
-                reason: "no compensation table is set".into(),
-            });
-        }
-        c.set_enabled(on);
-        Ok(())
+    pub(crate) fn disable_compensation(&mut self) {
+        self.compensation_mut().set_enabled(false);
+    }
+
+    /// The compensation this tick is over `compensation_limit` (digest 004 §2.13): the cause
+    /// of `COMPENSATION_LIMIT`.
+    pub(crate) fn compensation_over_limit(&self) -> bool {
+        let limit = self.setup.compensation_limit;
+        limit > 0.0
+            && self
+                .compensation
+                .as_deref()
+                .is_some_and(|c| c.last_correction().abs() > limit)
+    }
+
+    /// The limit `compensation_limit` sets, if any.
+    pub(crate) fn compensation_limit(&self) -> Option<f64> {
+        let limit = self.setup.compensation_limit;
+        (limit > 0.0).then_some(limit)
     }
 
     /// The correction added this tick.

@@ -568,8 +568,16 @@ impl Axis {
 
         // 2b. Compensation after the planner: the planned position stays as it is, the output
         // gets the correction (digest 001 §4.1, digest 004 §2.13).
+        // Over the compensation limit the output is held at the limit (supervision stops the
+        // axis): the drive is never sent more than the limit allows.
         if let Some(c) = self.compensation.as_deref_mut() {
-            self.correction = c.correction(self.index, self.cmd.p, self.cmd.v);
+            let correction = c.correction(self.index, self.cmd.p, self.cmd.v);
+            let limit = self.setup.compensation_limit;
+            self.correction = if limit > 0.0 {
+                correction.clamp(-limit, limit)
+            } else {
+                correction
+            };
         }
 
         // 3–5. Output stage, plant, encoder.

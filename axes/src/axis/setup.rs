@@ -73,6 +73,8 @@ pub(super) struct Setup {
     pub fe_warning_clear_cycles: u32,
     pub axis_err_mask: u32,
     pub in_position_window: f64,
+    /// The largest |compensation| output; 0 unlimited (digest 004 §2.13, HCV max_comp_lim).
+    pub compensation_limit: f64,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -123,6 +125,7 @@ impl Setup {
             fe_fault_cycles: p.get(ParamId::FeFaultCycles) as u32,
             fe_warning_clear_cycles: p.get(ParamId::FeWarningClearCycles) as u32,
             axis_err_mask: p.get(ParamId::AxisErrMask) as u32,
+            compensation_limit: p.get(ParamId::CompensationLimit),
             in_position_window: p.get(ParamId::InPositionWindow),
         }
     }

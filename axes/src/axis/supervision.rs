@@ -19,6 +19,7 @@ impl Axis {
         self.supervise_limits(ctx, homing, &mut live);
         self.supervise_following_error(ctx, &mut live);
         self.supervise_faults(ctx, &mut live);
+        self.supervise_compensation(ctx);
         self.flags = live;
     }
 
@@ -164,6 +165,19 @@ impl Axis {
                     self.fault_disable(ctx, causes);
                 }
             }
+        }
+    }
+
+    /// Digest 004 §2.13: compensation over `compensation_limit` is a fault (eERR_AXIS_COMP_LIMIT).
+    /// The manual gives no reaction; the axis stops as for a following-error fault with a stop
+    /// reaction, its output held at the limit meanwhile (decisions.md).
+    fn supervise_compensation(&mut self, ctx: &mut Context) {
+        if self.enabled
+            && self.compensation_over_limit()
+            && !self.latched.contains(AxisFlags::COMPENSATION_LIMIT)
+        {
+            self.latched |= AxisFlags::COMPENSATION_LIMIT;
+            self.fault_stop(ctx, AxisFlags::COMPENSATION_LIMIT);
         }
     }
 

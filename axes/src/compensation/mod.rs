@@ -155,6 +155,18 @@ impl Compensation {
         self.enabled = on;
     }
 
+    /// Switch the tables on: refused while there are none.
+    pub fn enable(&mut self, axis: u32) -> Result<(), EngineError> {
+        if self.is_empty() {
+            return Err(EngineError::InvalidCompensation {
+                axis,
+                reason: "no compensation table is set".into(),
+            });
+        }
+        self.enabled = true;
+        Ok(())
+    }
+
     pub fn is_enabled(&self) -> bool {
         self.enabled
     }
@@ -190,14 +202,7 @@ impl Compensation {
             self.correction = self.backlash_now + offset;
             return self.correction;
         }
-        let mut c = offset;
-        if let Some(ls) = self.lead_screw.as_mut() {
-            c += if self.direction < 0.0 {
-                ls.negative.value_at(planned)
-            } else {
-                ls.positive.value_at(planned)
-            };
-        }
+        let mut c = offset + self.lead_screw_value(planned);
         if let Some(b) = self.backlash {
             // TV 72: moving in the compensated direction, ±amount is added at `step` per period.
             let target = match b.direction {
@@ -210,17 +215,51 @@ impl Compensation {
             self.backlash_now = 0.0;
         }
         c += self.backlash_now;
-        if let Some(t) = self.table.as_ref() {
-            let mut x = self.inputs;
-            for (slot, r) in x.iter_mut().zip(&t.references) {
-                if r.axis == axis && r.source == ReferenceSource::Planned {
-                    *slot = planned;
-                }
-            }
-            c += t.grid.value_at(&x);
-        }
+        c += self.grid_value(axis, planned);
         self.correction = c;
         c
+    }
+
+    /// What the correction would be with the tables enabled, the axis at rest at `planned` and
+    /// the references at `inputs`: the up-front check of the compensation limit when the
+    /// tables are switched on (digest 004 §2.13, TV 63 "at the current ref position").
+    pub fn value_at_rest(
+        &mut self,
+        axis: AxisIndex,
+        planned: f64,
+        inputs: [f64; MAX_DIMENSIONS],
+    ) -> f64 {
+        self.inputs = inputs;
+        self.offset.position()
+            + self.lead_screw_value(planned)
+            + self.backlash_now
+            + self.grid_value(axis, planned)
+    }
+
+    /// The lead-screw table's value at `planned` in the last direction of motion.
+    fn lead_screw_value(&mut self, planned: f64) -> f64 {
+        let Some(ls) = self.lead_screw.as_mut() else {
+            return 0.0;
+        };
+        if self.direction < 0.0 {
+            ls.negative.value_at(planned)
+        } else {
+            ls.positive.value_at(planned)
+        }
+    }
+
+    /// The grid's value at the gathered inputs, `axis`'s own planned position at `planned`.
+    fn grid_value(&self, axis: AxisIndex, planned: f64) -> f64 {
+        let Some(t) = self.table.as_ref() else {
+            return 0.0;
+        };
+        let mut x = self.inputs;
+        for (slot, r) in x.iter_mut().zip(&t.references) {
+            if r.axis == axis && r.source == ReferenceSource::Planned {
+                *slot = planned;
+            }
+        }
+        t.grid.value_at(&x)
     }
 
     /// One tick of the backlash towards `target`, by at most its step.

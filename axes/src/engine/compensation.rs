@@ -2,8 +2,8 @@
 //! the reference positions a grid table reads from other axes before stage 3.
 
 use super::Engine;
-use crate::command::{CompensationCommand, EngineError, Reply};
-use crate::compensation::MAX_DIMENSIONS;
+use crate::command::{AxisIndex, CompensationCommand, EngineError, ReferenceSource, Reply};
+use crate::compensation::{Compensation, MAX_DIMENSIONS};
 
 impl Engine {
     /// `compensation_set` / `_enable` / `_disable` / `_clear` on one axis. A refused table
@@ -58,29 +58,57 @@ impl Engine {
             CompensationCommand::LeadScrew(c) => next.set_lead_screw(c).map(|()| c.enable)?,
             CompensationCommand::Backlash(c) => next.set_backlash(c).map(|()| c.enable)?,
             CompensationCommand::Table(c) => next.set_table(c, count).map(|()| c.enable)?,
+            CompensationCommand::Enable(_) => true,
             _ => false,
         };
         match command {
-            CompensationCommand::LeadScrew(_)
-            | CompensationCommand::Backlash(_)
-            | CompensationCommand::Table(_) => {
-                if enable {
-                    next.set_enabled(true);
-                }
-                *axis.compensation_mut() = next;
-            }
-            CompensationCommand::Enable(_) => axis.enable_compensation(true)?,
-            CompensationCommand::Disable(_) => axis.enable_compensation(false)?,
+            CompensationCommand::Disable(_) => axis.disable_compensation(),
             CompensationCommand::Clear(_) => axis.clear_compensation(),
-            CompensationCommand::OffsetAmount(_)
-            | CompensationCommand::OffsetProfile(_)
-            | CompensationCommand::OffsetTrigger(_)
-            | CompensationCommand::OffsetStop(_)
-            | CompensationCommand::FilterInputShaping(_)
-            | CompensationCommand::FilterVsf(_)
-            | CompensationCommand::FilterDisable(_) => {}
+            _ => {
+                if enable {
+                    next.enable(u32::from(index))?;
+                }
+                if next.is_enabled() {
+                    self.check_compensation_limit(index, &mut next)?;
+                }
+                if let Some(axis) = self.axes.get_mut(index as usize) {
+                    *axis.compensation_mut() = next;
+                }
+            }
         }
         Ok(Reply::Done)
+    }
+
+    /// Digest 004 §2.13, TV 63: tables switched on whose value at the axes' present positions
+    /// is already over the axis's `compensation_limit` are refused at once.
+    fn check_compensation_limit(
+        &self,
+        index: AxisIndex,
+        next: &mut Compensation,
+    ) -> Result<(), EngineError> {
+        let Some(axis) = self.axes.get(index as usize) else {
+            return Ok(());
+        };
+        let Some(limit) = axis.compensation_limit() else {
+            return Ok(());
+        };
+        let mut inputs = [0.0; MAX_DIMENSIONS];
+        for (slot, r) in inputs.iter_mut().zip(next.references()) {
+            *slot = self
+                .axes
+                .get(r.axis as usize)
+                .map_or(0.0, |a| a.reference_position(r.source));
+        }
+        let planned = axis.reference_position(ReferenceSource::Planned);
+        let value = next.value_at_rest(index, planned, inputs);
+        if value.abs() > limit {
+            return Err(EngineError::CompensationLimit {
+                axis: u32::from(index),
+                value,
+                limit,
+            });
+        }
+        Ok(())
     }
 
     /// Before stage 3: every grid table reads its reference axes as the previous tick left

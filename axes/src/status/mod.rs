@@ -121,6 +121,9 @@ bitflags::bitflags! {
         const GANTRY_FAULT = 1 << 29;
         /// Driven by a handwheel (issue 12 item 7): single-axis motion is refused.
         const HANDWHEEL = 1 << 30;
+        /// The compensation went over `compensation_limit` (latched, an error-stop fault;
+        /// HIMC eERR_AXIS_COMP_LIMIT, digest 004 §2.13).
+        const COMPENSATION_LIMIT = 1 << 31;
     }
 }
 
@@ -150,7 +153,8 @@ impl AxisFlags {
         .union(AxisFlags::ENCODER_LOSS)
         .union(AxisFlags::HOMING_FAILED)
         .union(AxisFlags::STREAM_UNDERRUN)
-        .union(AxisFlags::GANTRY_FAULT);
+        .union(AxisFlags::GANTRY_FAULT)
+        .union(AxisFlags::COMPENSATION_LIMIT);
 
     /// Flags that can be latched and must be cleared by `reset`.
     pub const LATCHABLE: AxisFlags = AxisFlags::ERROR_STOP_FAULTS
@@ -164,7 +168,7 @@ impl AxisFlags {
 
 /// Every axis flag and its snake_case name, in bit order: the names the control API, traces and
 /// register maps use. A fixed table, so that renaming a constant cannot silently change them.
-pub const FLAG_NAMES: [(AxisFlags, &str); 31] = [
+pub const FLAG_NAMES: [(AxisFlags, &str); 32] = [
     (AxisFlags::ENABLED, "enabled"),
     (AxisFlags::MOVING, "moving"),
     (AxisFlags::IN_POSITION, "in_position"),
@@ -196,6 +200,7 @@ pub const FLAG_NAMES: [(AxisFlags, &str); 31] = [
     (AxisFlags::GANTRY_WARNING, "gantry_warning"),
     (AxisFlags::GANTRY_FAULT, "gantry_fault"),
     (AxisFlags::HANDWHEEL, "handwheel"),
+    (AxisFlags::COMPENSATION_LIMIT, "compensation_limit"),
 ];
 
 /// The names of the flags set in `flags`, in bit order.

@@ -214,6 +214,13 @@ impl Native {
             }
             Err(e) => {
                 self.counters.engine_refusals.inc();
+                if let (true, Subject::Axis(a)) =
+                    (pending.function.name == "EnableComp", pending.subject)
+                {
+                    // Recorded before the engine answered: a refused EnableComp (no table, or
+                    // over the compensation limit, TV 63) leaves the compensation off.
+                    registers.compensating.remove(&a);
+                }
                 let code = e.map_or(HMPL_INTERNAL_ERROR, |e| error_code(&e, pending.subject));
                 self.fail(pending.function, code, registers)
             }

@@ -252,6 +252,9 @@ pub fn code_for(e: &EngineError) -> Option<&'static AxisError> {
             return AxisError::by_name(name);
         }
     }
+    if let EngineError::CompensationLimit { .. } = e.innermost() {
+        return AxisError::by_name("eERR_AXIS_COMP_LIMIT");
+    }
     code_for_kind(e.kind())
 }
 
@@ -305,7 +308,7 @@ axis_variables! {
     (0x0068, "HCV_ID_acc_lim", Some(ParamId::MaxAccel)),
     (0x0069, "HCV_ID_dec_lim", Some(ParamId::MaxAccel)),
     (0x0079, "HCV_ID_max_pos_err", Some(ParamId::FeLimit)),
-    (0x007a, "HCV_ID_max_comp_lim", None),
+    (0x007a, "HCV_ID_max_comp_lim", Some(ParamId::CompensationLimit)),
     (0x00a0, "HCV_ID_home_status", None),
     (0x00a1, "HCV_ID_home_method", Some(ParamId::HomeMethod)),
     (0x00a2, "HCV_ID_home_fast_vel", Some(ParamId::HomeSwitchVelocity)),

@@ -92,6 +92,10 @@ impl Axis {
         let fe = (self.cmd.p - self.act_pos).abs();
         let limit = self.param(ParamId::FeLimit);
         present.set(AxisFlags::FE_FAULT, limit > 0.0 && fe > limit);
+        present.set(
+            AxisFlags::COMPENSATION_LIMIT,
+            self.compensation_over_limit(),
+        );
         present.set(AxisFlags::HW_LIMIT_POS, self.inputs.limit_pos);
         present.set(AxisFlags::HW_LIMIT_NEG, self.inputs.limit_neg);
         present.set(

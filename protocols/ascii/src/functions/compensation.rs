@@ -1,11 +1,13 @@
-//! Chapter 14, dynamic error compensation (digest 004 §2.13; TV 61–62) through the engine's
+//! Chapter 14, dynamic error compensation (digest 004 §2.13; TV 61–63) through the engine's
 //! grid tables: `SetupComp` reads `num_pt` values of the user table (chapter 11) from
 //! `start_idx` into a 1-D `compensation_table` over the reference axis's planned position
 //! (linear between points, the end values held beyond), stored switched off; `EnableComp` and
 //! `DisableComp` switch it (only while the axis is disabled), `DisableComp` also clears it.
 //! `SetCompAlgType(axis, 1)` makes the table a natural cubic spline (the engine's
 //! `interpolation: "cubic"`), `0` linear again: for the next `SetupComp`, and for the table
-//! already set up, which is sent again with the new interpolation.
+//! already set up, which is sent again with the new interpolation. TV 63: the engine's
+//! `compensation_limit` (HCV `max_comp_lim`, 1 mm in `fixtures/himc.toml`) refuses an
+//! `EnableComp` over it with `eERR_AXIS_COMP_LIMIT` and stops an axis that goes over it.
 
 use axes::status::AxisFlags;
 use serde_json::json;

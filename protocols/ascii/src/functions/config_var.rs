@@ -69,7 +69,7 @@ const AXIS: &[(u16, Variable)] = &[
     (0x0068, Variable::Param(ParamId::MaxAccel)),
     (0x0069, Variable::Param(ParamId::MaxAccel)),
     (0x0079, Variable::Param(ParamId::FeLimit)), // max_pos_err
-    (0x007a, Variable::Unmodelled),              // max_comp_lim (no such limit in the engine)
+    (0x007a, Variable::Param(ParamId::CompensationLimit)), // max_comp_lim
     (0x00a0, Variable::ReadOnly),                // home_status
     (0x00a1, Variable::Setter("SetHomeMethod")),
     (0x00a2, Variable::Setter("SetHomeSwitchVel")),

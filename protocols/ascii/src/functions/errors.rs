@@ -18,6 +18,7 @@ fn fault_code(axis: u16, flags: AxisFlags) -> Option<u32> {
     let faults = [
         (AxisFlags::DRIVE_ALARM, "eERR_AXIS_DRIVE_FAULT"),
         (AxisFlags::FE_FAULT, "eERR_AXIS_PERR"),
+        (AxisFlags::COMPENSATION_LIMIT, "eERR_AXIS_COMP_LIMIT"),
         (AxisFlags::SW_LIMIT_POS, "eERR_AXIS_SWRL"),
         (AxisFlags::SW_LIMIT_NEG, "eERR_AXIS_SWLL"),
         (AxisFlags::HW_LIMIT_POS, "eERR_AXIS_HWRL"),

@@ -110,6 +110,11 @@ pub fn error_code(e: &EngineError, subject: Subject) -> u32 {
             u16::try_from(*a).unwrap_or(u16::MAX),
             "eERR_AXIS_COMP_NOT_CNFG",
         ),
+        // TV 63 (digest 004 §2.13).
+        E::CompensationLimit { axis: a, .. } => axis(
+            u16::try_from(*a).unwrap_or(u16::MAX),
+            "eERR_AXIS_COMP_LIMIT",
+        ),
         E::UnknownGroup { group: g } | E::InvalidGroup { group: g, .. } => {
             group(*g, "eERR_CRD_CMD_GRP_AXIS_INVALID")
         }
