@@ -133,7 +133,7 @@ enum Activity {
 }
 
 /// Which physical input each logical input comes from, and what forced it.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 struct Forces {
     limit_pos: Option<bool>,
     limit_neg: Option<bool>,
@@ -257,6 +257,11 @@ pub struct Axis {
     limits_dirty: bool,
     /// Changes of the dedicated inputs (negative limit, positive limit, home, index).
     input_edges: [u32; 4],
+    /// The last full input refresh found nothing forced, no hold input and no limit or home
+    /// routed to a general input, and neither the forces nor the setup changed since: a tick
+    /// whose switches and index keep their levels leaves the inputs as they are. Cleared
+    /// wherever the forces or the setup change (`wiring_changed`).
+    plain_wiring: bool,
 
     // State.
     enabled: bool,
@@ -354,6 +359,7 @@ impl Axis {
             planned_limits: None,
             limits_dirty: false,
             input_edges: [0; 4],
+            plain_wiring: false,
             enabled: false,
             flags: AxisFlags::empty(),
             latched: AxisFlags::empty(),
@@ -763,6 +769,27 @@ impl Axis {
             limit_neg_edge: ln_edge,
             home_edge,
         } = self.switches.update(from, to);
+        if self.plain_wiring {
+            let i = &self.inputs;
+            // The common tick: no edge, no index, every level as it was. Routing, forcing and
+            // inversion are those the last full refresh applied, so every input stays.
+            let unchanged = lp_edge.is_none()
+                && ln_edge.is_none()
+                && home_edge.is_none()
+                && encoder.index_at.is_none()
+                && lp ^ self.limit_pos_active_low == i.sensor_limit_pos
+                && ln ^ self.limit_neg_active_low == i.sensor_limit_neg
+                && home ^ self.home_active_low == i.sensor_home
+                && self.encoder.index() == i.index;
+            if unchanged {
+                let i = &mut self.inputs;
+                i.home_edge = None;
+                i.limit_pos_edge = None;
+                i.limit_neg_edge = None;
+                i.index_at = None;
+                return;
+            }
+        }
         let f = self.forces;
         let w = self.setup;
         // Forcing sets the switch's actuation, which then goes through the same wiring.
@@ -814,6 +841,17 @@ impl Axis {
         }
         self.inputs = next;
         self.encoder.set_lost(f.encoder_loss.unwrap_or(false));
+        let own = |route| !matches!(route, setup::Route::Di(_));
+        self.plain_wiring = f == Forces::default()
+            && w.hold.is_none()
+            && own(w.limit_pos)
+            && own(w.limit_neg)
+            && own(w.home);
+    }
+
+    /// The forces or the input wiring changed: the next tick refreshes the inputs in full.
+    pub(super) fn wiring_changed(&mut self) {
+        self.plain_wiring = false;
     }
 
     // ------------------------------------------------------------------ planning
