@@ -5,7 +5,7 @@ use super::{setup::Route, unbinding_velocity, Activity, Axis, Context, Ramp, Run
 use crate::command::{CommandState, Direction, ErrorKind, StopMode};
 use crate::homing::{HomingInputs, MotionRequest};
 use crate::hw::switch::Edge;
-use crate::param::{axis_status_word, ParamId};
+use crate::param::{axis_status_word, ParamId, AXIS_STATUS_WORD_FLAGS};
 use crate::profile::{Goal, Limits, Options, Profile};
 use crate::status::AxisFlags;
 
@@ -137,7 +137,8 @@ impl Axis {
             self.fault_disable(ctx, AxisFlags::ENCODER_LOSS);
         }
         // HMC §3.3.4: AxisStatus & AxisErrMask ≠ 0 switches the drive off.
-        if self.enabled {
+        // Most ticks no flag the word reads is set: then it is 0 and nothing is masked.
+        if self.enabled && (*live | self.latched).intersects(AXIS_STATUS_WORD_FLAGS) {
             let word = axis_status_word(*live | self.latched);
             let mask = self.setup.axis_err_mask;
             let hit = word & mask;
