@@ -571,19 +571,19 @@ impl Axis {
         let motor_after = self.motor_position();
 
         // 6. Switches and inputs.
-        let inputs_before = self.inputs;
+        // The sweep's fields are written in place: `Inputs` is large, and a copy through a
+        // local costs twice.
+        self.sweep.before = self.inputs;
         self.refresh_inputs(motor_before, motor_after, ctx.di, encoder_tick);
 
         // Disabled: the command follows the actual position (PLCopen), so nothing jumps on enable.
         if !self.enabled {
             self.track_actual();
         }
-        self.sweep = latch::Sweep {
-            motor: [motor_before, motor_after],
-            cmd: [previous.p, self.cmd.p],
-            act: [act_before, self.act_pos],
-            before: inputs_before,
-        };
+        let sweep = &mut self.sweep;
+        sweep.motor = [motor_before, motor_after];
+        sweep.cmd = [previous.p, self.cmd.p];
+        sweep.act = [act_before, self.act_pos];
 
         // 7. Supervision.
         self.supervise(ctx);
