@@ -760,26 +760,21 @@ impl Axis {
     }
 
     /// Compute the logical input levels from the switches, forcing, routing and inversion.
+    /// The common tick is decided here, inline; anything else goes to `refresh_inputs_full`.
+    #[inline]
     fn refresh_inputs(&mut self, from: f64, to: f64, di: &[bool], encoder: EncoderTick) {
-        let SwitchTick {
-            limit_pos: lp,
-            limit_neg: ln,
-            home,
-            limit_pos_edge: lp_edge,
-            limit_neg_edge: ln_edge,
-            home_edge,
-        } = self.switches.update(from, to);
+        let switches = self.switches.update(from, to);
         if self.plain_wiring {
             let i = &self.inputs;
             // The common tick: no edge, no index, every level as it was. Routing, forcing and
             // inversion are those the last full refresh applied, so every input stays.
-            let unchanged = lp_edge.is_none()
-                && ln_edge.is_none()
-                && home_edge.is_none()
+            let unchanged = switches.limit_pos_edge.is_none()
+                && switches.limit_neg_edge.is_none()
+                && switches.home_edge.is_none()
                 && encoder.index_at.is_none()
-                && lp ^ self.limit_pos_active_low == i.sensor_limit_pos
-                && ln ^ self.limit_neg_active_low == i.sensor_limit_neg
-                && home ^ self.home_active_low == i.sensor_home
+                && switches.limit_pos ^ self.limit_pos_active_low == i.sensor_limit_pos
+                && switches.limit_neg ^ self.limit_neg_active_low == i.sensor_limit_neg
+                && switches.home ^ self.home_active_low == i.sensor_home
                 && self.encoder.index() == i.index;
             if unchanged {
                 let i = &mut self.inputs;
@@ -790,6 +785,19 @@ impl Axis {
                 return;
             }
         }
+        self.refresh_inputs_full(switches, di, encoder);
+    }
+
+    #[inline(never)]
+    fn refresh_inputs_full(&mut self, switches: SwitchTick, di: &[bool], encoder: EncoderTick) {
+        let SwitchTick {
+            limit_pos: lp,
+            limit_neg: ln,
+            home,
+            limit_pos_edge: lp_edge,
+            limit_neg_edge: ln_edge,
+            home_edge,
+        } = switches;
         let f = self.forces;
         let w = self.setup;
         // Forcing sets the switch's actuation, which then goes through the same wiring.
