@@ -761,7 +761,7 @@ impl Axis {
 
     /// Compute the logical input levels from the switches, forcing, routing and inversion.
     /// The common tick is decided here, inline; anything else goes to `refresh_inputs_full`.
-    #[inline]
+    #[inline(always)]
     fn refresh_inputs(&mut self, from: f64, to: f64, di: &[bool], encoder: EncoderTick) {
         let switches = self.switches.update(from, to);
         if self.plain_wiring {
