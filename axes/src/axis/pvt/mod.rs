@@ -316,6 +316,7 @@ impl PvtStream {
 
     /// The stream at time `t` ms of its run, relative to its start. Moves the cursor past the
     /// segments that ended.
+    #[inline]
     pub fn sample(&mut self, t: f64) -> StreamSample {
         self.time_ms = t;
         let looping = self.mode() == StreamMode::Static;
