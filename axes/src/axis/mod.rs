@@ -571,9 +571,7 @@ impl Axis {
         let motor_after = self.motor_position();
 
         // 6. Switches and inputs.
-        // The sweep's fields are written in place: `Inputs` is large, and a copy through a
-        // local costs twice.
-        self.sweep.before = self.inputs;
+        // The sweep's fields are written in place (`refresh_inputs` keeps the inputs before).
         self.refresh_inputs(motor_before, motor_after, ctx.di, encoder_tick);
 
         // Disabled: the command follows the actual position (PLCopen), so nothing jumps on enable.
@@ -777,6 +775,7 @@ impl Axis {
                 && switches.home ^ self.home_active_low == i.sensor_home
                 && self.encoder.index() == i.index;
             if unchanged {
+                self.sweep.levels_changed = false;
                 let i = &mut self.inputs;
                 i.home_edge = None;
                 i.limit_pos_edge = None;
@@ -790,6 +789,8 @@ impl Axis {
 
     #[inline(never)]
     fn refresh_inputs_full(&mut self, switches: SwitchTick, di: &[bool], encoder: EncoderTick) {
+        self.sweep.before = self.inputs;
+        self.sweep.levels_changed = true;
         let SwitchTick {
             limit_pos: lp,
             limit_neg: ln,
