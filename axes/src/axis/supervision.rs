@@ -34,19 +34,20 @@ impl Axis {
     #[inline]
     fn supervision_quiet(&self) -> bool {
         let (i, p) = (&self.inputs, self.cmd.p);
-        let inside_soft = match self.setup.soft_limits {
-            Some((fs, rs)) => rs < p && p < fs,
-            None => true,
+        let outside_soft = match self.setup.soft_limits {
+            Some((fs, rs)) => !(rs < p && p < fs),
+            None => false,
         };
         let limit = self.setup.fe_limit;
-        let fe = (p - self.act_pos).abs();
-        !i.limit_pos
-            && !i.limit_neg
-            && !i.drive_alarm
-            && inside_soft
-            && !(self.enabled && limit > 0.0 && fe > limit)
-            && self.forces.encoder_loss != Some(true)
-            && !(self.flags | self.latched).intersects(SUPERVISED)
+        let fe_over = self.enabled && limit > 0.0 && (p - self.act_pos).abs() > limit;
+        let unusual = i.limit_pos
+            || i.limit_neg
+            || i.drive_alarm
+            || outside_soft
+            || fe_over
+            || self.forces.encoder_loss == Some(true)
+            || (self.flags | self.latched).intersects(SUPERVISED);
+        !unusual
     }
 
     #[inline(never)]
