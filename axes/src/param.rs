@@ -594,9 +594,6 @@ pub fn parameter_value(id: ParamId, status: &AxisStatus, params: &ParamSet) -> f
     }
 }
 
-/// The value of the `AxisStatus` parameter: the HMC-layout axis status word (HMC §3.3 table 2,
-/// digest 000 §2.2), which `AxisErrMask` masks (supervision). Front-ends name it
-/// `mcemu_dialects::hmc::axis_status`.
 /// The flags [`axis_status_word`] reads: without any of them the word is 0.
 pub const AXIS_STATUS_WORD_FLAGS: AxisFlags = AxisFlags::FE_FAULT
     .union(AxisFlags::FE_WARNING)
@@ -606,6 +603,9 @@ pub const AXIS_STATUS_WORD_FLAGS: AxisFlags = AxisFlags::FE_FAULT
     .union(AxisFlags::SW_LIMIT_POS)
     .union(AxisFlags::SW_LIMIT_NEG);
 
+/// The value of the `AxisStatus` parameter: the HMC-layout axis status word (HMC §3.3 table 2,
+/// digest 000 §2.2), which `AxisErrMask` masks (supervision). Front-ends name it
+/// `mcemu_dialects::hmc::axis_status`.
 pub fn axis_status_word(flags: AxisFlags) -> u32 {
     let mut w = 0;
     if flags.contains(AxisFlags::FE_FAULT) {
