@@ -596,6 +596,15 @@ pub fn parameter_value(id: ParamId, status: &AxisStatus, params: &ParamSet) -> f
     }
 }
 
+/// The flags [`axis_status_word`] reads: without any of them the word is 0.
+pub const AXIS_STATUS_WORD_FLAGS: AxisFlags = AxisFlags::FE_FAULT
+    .union(AxisFlags::FE_WARNING)
+    .union(AxisFlags::PARAMETER_ERROR)
+    .union(AxisFlags::HW_LIMIT_POS)
+    .union(AxisFlags::HW_LIMIT_NEG)
+    .union(AxisFlags::SW_LIMIT_POS)
+    .union(AxisFlags::SW_LIMIT_NEG);
+
 /// The value of the `AxisStatus` parameter: the HMC-layout axis status word (HMC §3.3 table 2,
 /// digest 000 §2.2), which `AxisErrMask` masks (supervision). Front-ends name it
 /// `mcemu_dialects::hmc::axis_status`.

@@ -19,7 +19,10 @@ pub(super) struct Sweep {
     pub cmd: [f64; 2],
     /// Actual position, user frame, unwrapped.
     pub act: [f64; 2],
+    /// The inputs as the tick before left them, kept only by a tick that may have changed
+    /// their levels (`levels_changed`): the common tick, which changes none, copies nothing.
     pub before: Inputs,
+    pub levels_changed: bool,
 }
 
 /// The capture and compare channels' part of the axis's status (see `AxisStatus::captures`).
@@ -83,7 +86,12 @@ impl Axis {
     /// first edge, and a debounce does not delay it: latches sit before the filter); a forced or
     /// routed input changes when the command or the general input did, at the tick's start.
     pub(crate) fn signal_edge(&self, signal: AxisSignal, electrical: bool) -> Option<SignalEdge> {
-        let (now, then, f, w) = (&self.inputs, &self.sweep.before, &self.forces, &self.setup);
+        let then = if self.sweep.levels_changed {
+            &self.sweep.before
+        } else {
+            &self.inputs
+        };
+        let (now, f, w) = (&self.inputs, &self.forces, &self.setup);
         // A switch: its exact edge, whether it is forced, its route, wiring and inversion.
         let switch = match signal {
             AxisSignal::Home => Some((

@@ -133,7 +133,7 @@ enum Activity {
 }
 
 /// Which physical input each logical input comes from, and what forced it.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 struct Forces {
     limit_pos: Option<bool>,
     limit_neg: Option<bool>,
@@ -257,6 +257,11 @@ pub struct Axis {
     limits_dirty: bool,
     /// Changes of the dedicated inputs (negative limit, positive limit, home, index).
     input_edges: [u32; 4],
+    /// The last full input refresh found nothing forced, no hold input and no limit or home
+    /// routed to a general input, and neither the forces nor the setup changed since: a tick
+    /// whose switches and index keep their levels leaves the inputs as they are. Cleared
+    /// wherever the forces or the setup change (`wiring_changed`).
+    plain_wiring: bool,
 
     // State.
     enabled: bool,
@@ -354,6 +359,7 @@ impl Axis {
             planned_limits: None,
             limits_dirty: false,
             input_edges: [0; 4],
+            plain_wiring: false,
             enabled: false,
             flags: AxisFlags::empty(),
             latched: AxisFlags::empty(),
@@ -587,19 +593,17 @@ impl Axis {
         let motor_after = self.motor_position();
 
         // 6. Switches and inputs.
-        let inputs_before = self.inputs;
+        // The sweep's fields are written in place (`refresh_inputs` keeps the inputs before).
         self.refresh_inputs(motor_before, motor_after, ctx.di, encoder_tick);
 
         // Disabled: the command follows the actual position (PLCopen), so nothing jumps on enable.
         if !self.enabled {
             self.track_actual();
         }
-        self.sweep = latch::Sweep {
-            motor: [motor_before, motor_after],
-            cmd: [previous.p, self.cmd.p],
-            act: [act_before, self.act_pos],
-            before: inputs_before,
-        };
+        let sweep = &mut self.sweep;
+        sweep.motor = [motor_before, motor_after];
+        sweep.cmd = [previous.p, self.cmd.p];
+        sweep.act = [act_before, self.act_pos];
 
         // 7. Supervision.
         self.supervise(ctx);
@@ -776,7 +780,39 @@ impl Axis {
     }
 
     /// Compute the logical input levels from the switches, forcing, routing and inversion.
+    /// The common tick is decided here, inline; anything else goes to `refresh_inputs_full`.
+    #[inline(always)]
     fn refresh_inputs(&mut self, from: f64, to: f64, di: &[bool], encoder: EncoderTick) {
+        let switches = self.switches.update(from, to);
+        if self.plain_wiring {
+            let i = &self.inputs;
+            // The common tick: no edge, no index, every level as it was. Routing, forcing and
+            // inversion are those the last full refresh applied, so every input stays.
+            let unchanged = switches.limit_pos_edge.is_none()
+                && switches.limit_neg_edge.is_none()
+                && switches.home_edge.is_none()
+                && encoder.index_at.is_none()
+                && switches.limit_pos ^ self.limit_pos_active_low == i.sensor_limit_pos
+                && switches.limit_neg ^ self.limit_neg_active_low == i.sensor_limit_neg
+                && switches.home ^ self.home_active_low == i.sensor_home
+                && self.encoder.index() == i.index;
+            if unchanged {
+                self.sweep.levels_changed = false;
+                let i = &mut self.inputs;
+                i.home_edge = None;
+                i.limit_pos_edge = None;
+                i.limit_neg_edge = None;
+                i.index_at = None;
+                return;
+            }
+        }
+        self.refresh_inputs_full(switches, di, encoder);
+    }
+
+    #[inline(never)]
+    fn refresh_inputs_full(&mut self, switches: SwitchTick, di: &[bool], encoder: EncoderTick) {
+        self.sweep.before = self.inputs;
+        self.sweep.levels_changed = true;
         let SwitchTick {
             limit_pos: lp,
             limit_neg: ln,
@@ -784,7 +820,7 @@ impl Axis {
             limit_pos_edge: lp_edge,
             limit_neg_edge: ln_edge,
             home_edge,
-        } = self.switches.update(from, to);
+        } = switches;
         let f = self.forces;
         let w = self.setup;
         // Forcing sets the switch's actuation, which then goes through the same wiring.
@@ -836,6 +872,17 @@ impl Axis {
         }
         self.inputs = next;
         self.encoder.set_lost(f.encoder_loss.unwrap_or(false));
+        let own = |route| !matches!(route, setup::Route::Di(_));
+        self.plain_wiring = f == Forces::default()
+            && w.hold.is_none()
+            && own(w.limit_pos)
+            && own(w.limit_neg)
+            && own(w.home);
+    }
+
+    /// The forces or the input wiring changed: the next tick refreshes the inputs in full.
+    pub(super) fn wiring_changed(&mut self) {
+        self.plain_wiring = false;
     }
 
     // ------------------------------------------------------------------ planning

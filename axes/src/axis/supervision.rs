@@ -5,12 +5,53 @@ use super::{setup::Route, unbinding_velocity, Activity, Axis, Context, Ramp, Run
 use crate::command::{CommandState, Direction, ErrorKind, StopMode};
 use crate::homing::{HomingInputs, MotionRequest};
 use crate::hw::switch::Edge;
-use crate::param::{axis_status_word, ParamId};
+use crate::param::{axis_status_word, ParamId, AXIS_STATUS_WORD_FLAGS};
 use crate::profile::{Goal, Limits, Options, Profile};
 use crate::status::AxisFlags;
 
+/// The live and latched flags supervision sets or reads: with none of them set and nothing
+/// over a limit, a tick of supervision changes only the following-error counters.
+const SUPERVISED: AxisFlags = AXIS_STATUS_WORD_FLAGS
+    .union(AxisFlags::SW_LIMIT_CONFIG)
+    .union(AxisFlags::BOTH_LIMITS)
+    .union(AxisFlags::DRIVE_ALARM)
+    .union(AxisFlags::ENCODER_LOSS);
+
 impl Axis {
     pub(super) fn supervise(&mut self, ctx: &mut Context) {
+        if self.supervision_quiet() {
+            // What the checks below do on such a tick (the following error within its limit).
+            self.fe_over = 0;
+            self.fe_ok = self.fe_ok.saturating_add(1);
+            return;
+        }
+        self.supervise_in_full(ctx);
+    }
+
+    /// The common tick, decided by one expression: no limit input, inside the soft limits, the
+    /// following error within its limit, no drive alarm or encoder loss, and no flag set that
+    /// supervision would clear or act on. Then every check below finds nothing to do.
+    #[inline]
+    fn supervision_quiet(&self) -> bool {
+        let (i, p) = (&self.inputs, self.cmd.p);
+        let outside_soft = match self.setup.soft_limits {
+            Some((fs, rs)) => !(rs < p && p < fs),
+            None => false,
+        };
+        let limit = self.setup.fe_limit;
+        let fe_over = self.enabled && limit > 0.0 && (p - self.act_pos).abs() > limit;
+        let unusual = i.limit_pos
+            || i.limit_neg
+            || i.drive_alarm
+            || outside_soft
+            || fe_over
+            || self.forces.encoder_loss == Some(true)
+            || (self.flags | self.latched).intersects(SUPERVISED);
+        !unusual
+    }
+
+    #[inline(never)]
+    fn supervise_in_full(&mut self, ctx: &mut Context) {
         let homing = matches!(&self.activity, Activity::Running(r) if r.goal == RunGoal::Homing);
         // The live flags are built in a local and stored once: single-bit updates in place
         // compile to byte-wide read-modify-writes, and reading the whole word back right after
@@ -138,7 +179,8 @@ impl Axis {
             self.fault_disable(ctx, AxisFlags::ENCODER_LOSS);
         }
         // HMC §3.3.4: AxisStatus & AxisErrMask ≠ 0 switches the drive off.
-        if self.enabled {
+        // Most ticks no flag the word reads is set: then it is 0 and nothing is masked.
+        if self.enabled && (*live | self.latched).intersects(AXIS_STATUS_WORD_FLAGS) {
             let word = axis_status_word(*live | self.latched);
             let mask = self.setup.axis_err_mask;
             let hit = word & mask;

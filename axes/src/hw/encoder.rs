@@ -99,6 +99,7 @@ impl Encoder {
     }
 
     /// Follow the motor to `position` (physical, user units).
+    #[inline]
     pub fn update(&mut self, position: f64) -> EncoderTick {
         let previous = self.raw;
         self.raw = self.counts_at(position);

@@ -128,6 +128,7 @@ impl Plant {
     }
 
     /// Advance one tick. `gains` is used by the position loop only.
+    #[inline]
     pub fn update(&mut self, input: &PlantInput, gains: &LoopGains) {
         let before = self.position;
         match self.model {

@@ -79,6 +79,7 @@ impl Axis {
             ParamId::Rollover => {
                 apply_rollover(&mut self.params, value);
                 self.setup = Setup::from_params(&self.params);
+                self.wiring_changed();
                 self.params_version += 1;
                 return Ok(());
             }
@@ -86,6 +87,7 @@ impl Axis {
         }
         self.params.set_unchecked(id, value);
         self.setup = Setup::from_params(&self.params);
+        self.wiring_changed();
         self.params_version += 1;
         if corrected {
             // HMC §3.5.1: the corrected write latches AxisStatus bit 2.

@@ -3,7 +3,7 @@
 //! source in `axis::stream_source`.
 
 use super::*;
-use crate::axis::pvt::{Segment, StreamLimits};
+use crate::axis::pvt::StreamLimits;
 use crate::command::{CommandId, PtPoint, PvtPoint, StreamMode};
 
 impl Axis {
@@ -35,29 +35,29 @@ impl Axis {
 
     /// NMC `MtPtPush`: 1–32 points after the last one, all or none.
     pub(crate) fn pt_push(&mut self, points: &[PtPoint]) -> Result<Reply, EngineError> {
-        let segments = self.check_stream_push().and_then(|()| {
-            self.stream
-                .pt_segments(self.index, points, self.stream_limits())
-        });
-        self.push_segments(segments)
+        let limits = self.stream_limits();
+        let pushed = self
+            .check_stream_push()
+            .and_then(|()| self.stream.pt_append(self.index, points, limits));
+        self.pushed(pushed)
     }
 
     /// NMC `MtPvtData`: 1–32 knots after the last one, all or none.
     pub(crate) fn pvt_push(&mut self, points: &[PvtPoint]) -> Result<Reply, EngineError> {
-        let segments = self.check_stream_push().and_then(|()| {
-            self.stream
-                .pvt_segments(self.index, points, self.stream_limits(), false)
-        });
-        self.push_segments(segments)
+        let pushed = self
+            .check_stream_push()
+            .and_then(|()| {
+                self.stream
+                    .pvt_segments(self.index, points, self.stream_limits(), false)
+            })
+            .map(|segments| self.stream.append(segments));
+        self.pushed(pushed)
     }
 
-    fn push_segments(
-        &mut self,
-        segments: Result<Vec<Segment>, EngineError>,
-    ) -> Result<Reply, EngineError> {
-        match segments {
-            Ok(segments) => {
-                self.stream.append(segments);
+    /// The outcome of a push: a running stream now ends farther on.
+    fn pushed(&mut self, pushed: Result<(), EngineError>) -> Result<Reply, EngineError> {
+        match pushed {
+            Ok(()) => {
                 if self.stream_runs() {
                     if let Source::Stream { base, .. } = self.source {
                         self.target_pos = base + self.stream.final_position();

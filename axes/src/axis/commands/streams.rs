@@ -30,6 +30,7 @@ impl Axis {
             AxisInput::DriveAlarm => f.drive_alarm = value,
             AxisInput::EncoderLoss => f.encoder_loss = value,
         }
+        self.wiring_changed();
         Ok(Reply::Done)
     }
 

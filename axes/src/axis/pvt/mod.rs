@@ -193,29 +193,33 @@ impl PvtStream {
             .unwrap_or(0.0)
     }
 
-    /// Segments for PT points after the chain's end, checked; nothing is changed.
-    pub fn pt_segments(
-        &self,
+    /// Check PT points after the chain's end and append their segments, all or none: a refused
+    /// point leaves the buffer as it was. The segments go into the buffer as they are checked
+    /// (room for all of them is checked first) rather than through a list built first: a
+    /// refresh-mode host pushes every 32 ms per axis.
+    pub fn pt_append(
+        &mut self,
         axis: AxisIndex,
         points: &[PtPoint],
         limits: StreamLimits,
-    ) -> Result<Vec<Segment>, EngineError> {
+    ) -> Result<(), EngineError> {
         self.check_room(axis, points.len(), MAX_PUSH_POINTS)?;
+        let kept = self.segments.len();
         let mut chain = self.chain;
-        let mut out = Vec::with_capacity(points.len());
         for (i, point) in points.iter().enumerate() {
-            let fail = |problem| point_error(axis, i, problem);
-            let (t, p) = (
-                time(point.time_ms).map_err(fail)?,
-                position(point.position).map_err(fail)?,
-            );
-            check_after(chain, t).map_err(fail)?;
-            let segment = Segment::pt(chain, t, p, point.kind);
-            check_segment(&segment, limits).map_err(fail)?;
-            chain = segment.end();
-            out.push(segment);
+            match pt_segment(chain, point, limits) {
+                Ok(segment) => {
+                    chain = segment.end();
+                    self.segments.push_back(segment);
+                }
+                Err(problem) => {
+                    self.segments.truncate(kept);
+                    return Err(point_error(axis, i, problem));
+                }
+            }
         }
-        Ok(out)
+        self.chain = chain;
+        Ok(())
     }
 
     /// Segments for PVT knots (velocities in units/s), checked; nothing is changed. A push
@@ -316,6 +320,7 @@ impl PvtStream {
 
     /// The stream at time `t` ms of its run, relative to its start. Moves the cursor past the
     /// segments that ended.
+    #[inline]
     pub fn sample(&mut self, t: f64) -> StreamSample {
         self.time_ms = t;
         let looping = self.mode() == StreamMode::Static;
@@ -416,6 +421,19 @@ fn point_error(axis: AxisIndex, point: usize, problem: StreamPointProblem) -> En
     }
 }
 
+/// The segment from `chain` to a PT point, checked.
+fn pt_segment(
+    chain: Knot,
+    point: &PtPoint,
+    limits: StreamLimits,
+) -> Result<Segment, StreamPointProblem> {
+    let (t, p) = (time(point.time_ms)?, position(point.position)?);
+    check_after(chain, t)?;
+    let segment = Segment::pt(chain, t, p, point.kind);
+    check_segment(&segment, limits)?;
+    Ok(segment)
+}
+
 fn time(value: f64) -> Result<f64, StreamPointProblem> {
     bounded("time_ms", value).map_err(|_| StreamPointProblem::NotFinite {
         name: "time_ms",
@@ -485,10 +503,8 @@ mod tests {
                 kind: PtKind::Even,
             })
             .collect();
-        let segments = s
-            .pt_segments(0, &points, StreamLimits::default())
+        s.pt_append(0, &points, StreamLimits::default())
             .expect("valid points");
-        s.append(segments);
         s.start();
         s
     }
@@ -521,8 +537,7 @@ mod tests {
                 kind: PtKind::Even,
             })
             .collect();
-        let segments = s.pt_segments(0, &more, StreamLimits::default()).unwrap();
-        s.append(segments);
+        s.pt_append(0, &more, StreamLimits::default()).unwrap();
         assert_eq!((s.used(), s.space()), (40, 24));
         s.sample(31.5);
         assert_eq!(
