@@ -29,6 +29,7 @@ impl Axis {
 
     /// The compensation this tick is over `compensation_limit` (digest 004 §2.13): the cause
     /// of `COMPENSATION_LIMIT`.
+    #[inline]
     pub(crate) fn compensation_over_limit(&self) -> bool {
         let limit = self.setup.compensation_limit;
         limit > 0.0

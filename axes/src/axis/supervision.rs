@@ -15,7 +15,8 @@ const SUPERVISED: AxisFlags = AXIS_STATUS_WORD_FLAGS
     .union(AxisFlags::SW_LIMIT_CONFIG)
     .union(AxisFlags::BOTH_LIMITS)
     .union(AxisFlags::DRIVE_ALARM)
-    .union(AxisFlags::ENCODER_LOSS);
+    .union(AxisFlags::ENCODER_LOSS)
+    .union(AxisFlags::COMPENSATION_LIMIT);
 
 impl Axis {
     pub(super) fn supervise(&mut self, ctx: &mut Context) {
@@ -29,8 +30,9 @@ impl Axis {
     }
 
     /// The common tick, decided by one expression: no limit input, inside the soft limits, the
-    /// following error within its limit, no drive alarm or encoder loss, and no flag set that
-    /// supervision would clear or act on. Then every check below finds nothing to do.
+    /// following error within its limit, no drive alarm or encoder loss, the compensation within
+    /// its limit, and no flag set that supervision would clear or act on. Then every check below
+    /// finds nothing to do.
     #[inline]
     fn supervision_quiet(&self) -> bool {
         let (i, p) = (&self.inputs, self.cmd.p);
@@ -46,6 +48,7 @@ impl Axis {
             || outside_soft
             || fe_over
             || self.forces.encoder_loss == Some(true)
+            || self.compensation_over_limit()
             || (self.flags | self.latched).intersects(SUPERVISED);
         !unusual
     }
