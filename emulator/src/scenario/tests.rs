@@ -27,6 +27,20 @@ fn with_machine(scenario: &str) -> String {
     format!("{scenario}\n{MACHINE}")
 }
 
+/// One `[[axes]]` table in mm (no switches) of the given `axis_type`, for machines of several.
+fn mm_axis(axis_type: &str) -> String {
+    format!(
+        "[[axes]]\n[axes.params]\naxis_type = \"{axis_type}\"\nunits = 1000\nrep_mode = \"finite\"\nspeed = 100\naccel = 1000\ndecel = 1000\n"
+    )
+}
+
+/// Runs the scenario and requires `expectations` checks, all met.
+fn runs_clean(text: &str, expectations: usize) {
+    let r = parse(text).unwrap().run(None).unwrap();
+    assert_eq!(r.expectations, expectations);
+    assert!(r.failures.is_empty(), "{:#?}", r.failures);
+}
+
 fn err(text: &str) -> ScenarioError {
     match parse(text) {
         Ok(s) => panic!("parsed: {s:?}"),
@@ -240,7 +254,7 @@ fn the_trace_has_a_row_per_axis_per_tick_from_tick_0() {
 fn a_gear_and_a_config_cam_table_run_and_are_checked_by_expect() {
     // The README's "Gear, cam and streams" example on two steppers, plus a cam on a table from
     // `[[cam_tables]]`.
-    let axis = "[[axes]]\n[axes.params]\naxis_type = \"stepper\"\nunits = 1000\nrep_mode = \"finite\"\nspeed = 100\naccel = 1000\ndecel = 1000\n";
+    let axis = mm_axis("stepper");
     let text = format!(
         r#"
 end = 3.0
@@ -289,17 +303,14 @@ table = 4
 points = [{{ master = 0, slave = 0 }}, {{ master = 200, slave = 50 }}]
 "#
     );
-    let s = parse(&text).unwrap();
-    let r = s.run(None).unwrap();
-    assert_eq!(r.expectations, 5);
-    assert!(r.failures.is_empty(), "{:#?}", r.failures);
+    runs_clean(&text, 5);
 }
 
 #[test]
 fn an_nmc_follow_runs_its_fifo_once_and_is_checked_by_expect() {
     // S-FOLLOW's FIFO in mm (digest 001 §2.17, TV 59) with loop count 1: the master's 60 mm
     // move carries the slave 40 mm, then the Follow ends (FIFO 1 is empty).
-    let axis = "[[axes]]\n[axes.params]\naxis_type = \"stepper\"\nunits = 1000\nrep_mode = \"finite\"\nspeed = 100\naccel = 1000\ndecel = 1000\n";
+    let axis = mm_axis("stepper");
     let text = format!(
         r#"
 end = 2.0
@@ -330,16 +341,13 @@ period = 0.001
 {axis}{axis}
 "#
     );
-    let s = parse(&text).unwrap();
-    let r = s.run(None).unwrap();
-    assert_eq!(r.expectations, 2);
-    assert!(r.failures.is_empty(), "{:#?}", r.failures);
+    runs_clean(&text, 2);
 }
 
 #[test]
 fn a_gantry_and_a_handwheel_run_and_are_checked_by_expect() {
     // The README's "Gantry" and "Handwheel" examples on three steppers.
-    let axis = "[[axes]]\n[axes.params]\naxis_type = \"stepper\"\nunits = 1000\nrep_mode = \"finite\"\nspeed = 100\naccel = 1000\ndecel = 1000\n";
+    let axis = mm_axis("stepper");
     let text = format!(
         r#"
 end = 2.0
@@ -382,10 +390,7 @@ period = 0.001
 {axis}{axis}{axis}
 "#
     );
-    let s = parse(&text).unwrap();
-    let r = s.run(None).unwrap();
-    assert_eq!(r.expectations, 4);
-    assert!(r.failures.is_empty(), "{:#?}", r.failures);
+    runs_clean(&text, 4);
 }
 
 #[test]
@@ -440,7 +445,7 @@ expect = { axis = 0, position_offset = -9, settling_time = 99, tolerance = 0.5 }
 fn hmc_switch_tz_and_the_position_compensation_offset_are_checked_by_expect() {
     // Axis 0 passes 10 and 30 units; each toggles axis 1's Z-phase output (SwitchTZ mode 0).
     // Axis 1's offset moves by 2 on a trigger (HMC_TrigAxisCompens).
-    let axis = "[[axes]]\n[axes.params]\naxis_type = \"stepper\"\nunits = 1000\nrep_mode = \"finite\"\nspeed = 100\naccel = 1000\ndecel = 1000\n";
+    let axis = mm_axis("stepper");
     let text = format!(
         r#"
 end = 1.5
@@ -480,16 +485,13 @@ period = 0.001
 {axis}{axis}
 "#
     );
-    let s = parse(&text).unwrap();
-    let r = s.run(None).unwrap();
-    assert_eq!(r.expectations, 3);
-    assert!(r.failures.is_empty(), "{:#?}", r.failures);
+    runs_clean(&text, 3);
 }
 
 #[test]
 fn the_hmc_add_axis_is_checked_by_expect() {
     // HMC_SetAddAxis(0, 1): axis 0 moves 30 of its own and 20 of axis 1's; 255 = none.
-    let axis = "[[axes]]\n[axes.params]\naxis_type = \"virtual\"\nunits = 1000\nrep_mode = \"finite\"\nspeed = 100\naccel = 1000\ndecel = 1000\n";
+    let axis = mm_axis("virtual");
     let text = format!(
         r#"
 end = 1.5
