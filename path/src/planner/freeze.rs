@@ -41,28 +41,26 @@ impl PathPlanner {
         self.lookahead(0);
     }
 
+    /// Halted with nothing executing and nothing carried: where a frozen path waits.
+    fn halted_at_rest(&self) -> bool {
+        self.state.halted && self.exec.is_none() && self.carry <= 0.0
+    }
+
     /// Put `motion` in front of the queue of a frozen path (see [`PathPlanner::freeze`]): it
     /// starts wherever the axes now are and must end where the path broke off (the current
     /// position); the path's position moves to its start. It ends at rest (a junction into
     /// the remainder would need the two planned together; the break is a stop anyway).
     /// Refused unless halted at rest.
     pub fn insert_front(&mut self, motion: Motion) -> Result<(), PlannerError> {
-        if !(self.state.halted && self.exec.is_none() && self.carry <= 0.0) {
+        if !self.halted_at_rest() {
             return Err(PlannerError::Invalid(
                 "a motion goes in front of the queue only while the path is halted at rest",
             ));
         }
-        self.check_room()?;
-        let dims = self.config.dims;
-        if motion.segment.dims() != dims {
-            return Err(PlannerError::Invalid(
-                "the segment's axis count differs from the path's",
-            ));
-        }
-        let length = motion.segment.length();
+        self.check_motion(&motion)?;
         let start = motion.segment.start();
-        if !length.is_finite() || start.iter().any(|c| !c.is_finite()) {
-            return Err(PlannerError::Invalid("the segment is not finite"));
+        if start.iter().any(|c| !c.is_finite()) {
+            return Err(PlannerError::Invalid("the segment's start is not finite"));
         }
         let end = motion.segment.end();
         let gap = norm(&sub(&end, &self.position));
@@ -72,7 +70,7 @@ impl PathPlanner {
             ));
         }
         super::limits::check_path_limits(&motion.limits).map_err(PlannerError::Invalid)?;
-        let dims = dims.min(self.config.axes.len());
+        let dims = self.config.dims.min(self.config.axes.len());
         let axes = self.config.axes;
         let q = queued(
             motion.segment,
@@ -96,7 +94,7 @@ impl PathPlanner {
     /// [`PathPlanner::insert_front`] and cut by a second freeze): the path's position becomes
     /// its end, the break it was returning to. Whether it was dropped.
     pub fn drop_front(&mut self, tag: u64) -> bool {
-        if !(self.state.halted && self.exec.is_none() && self.carry <= 0.0) {
+        if !self.halted_at_rest() {
             return false;
         }
         let end = match self.queue.front() {

@@ -470,17 +470,7 @@ impl PathPlanner {
 
     /// Append a motion. Its segment must start at [`PathPlanner::queue_end`].
     pub fn push_motion(&mut self, motion: Motion) -> Result<(), PlannerError> {
-        self.check_room()?;
-        let dims = self.config.dims;
-        if motion.segment.dims() != dims {
-            return Err(PlannerError::Invalid(
-                "the segment's axis count differs from the path's",
-            ));
-        }
-        let length = motion.segment.length();
-        if !length.is_finite() {
-            return Err(PlannerError::Invalid("the segment's length is not finite"));
-        }
+        self.check_motion(&motion)?;
         let end = self.queue_end();
         let gap = norm(&sub(&motion.segment.start(), &end));
         if gap.is_nan() || gap > POINT_TOLERANCE * (1.0 + norm(&end)) {
@@ -510,6 +500,21 @@ impl PathPlanner {
         self.check_room()?;
         self.queue.push_back(Entry::Marker { tag, kind });
         self.user_entries += 1;
+        Ok(())
+    }
+
+    /// What any motion must be to enter the queue, wherever it goes: room for it, the path's
+    /// axis count, a finite length.
+    fn check_motion(&self, motion: &Motion) -> Result<(), PlannerError> {
+        self.check_room()?;
+        if motion.segment.dims() != self.config.dims {
+            return Err(PlannerError::Invalid(
+                "the segment's axis count differs from the path's",
+            ));
+        }
+        if !motion.segment.length().is_finite() {
+            return Err(PlannerError::Invalid("the segment's length is not finite"));
+        }
         Ok(())
     }
 
