@@ -21,21 +21,11 @@ static void configure(short n) {
     OK(NMC_CrdBufClr(crdHandle));
 }
 
-/* Wait until the coordinate system is still (a halted path's members stay in synchronised
- * motion: their own BUSY bit does not say). */
-static void crd_still(void) {
-    short sts = 0;
-    do {
-        OK(NMC_CrdGetSts(crdHandle, &sts));
-        CHECK(!(sts & BIT_CORD_MVERR), "MVERR, sts %#x", sts);
-    } while (sts & BIT_CORD_BUSY);
-}
-
 /* Start what was pushed and wait until the coordinate system is still. */
 static void run(void) {
     OK(NMC_CrdEndMtn(crdHandle));
     OK(NMC_CrdStartMtn(crdHandle));
-    crd_still();
+    crd_still(crdHandle);
 }
 
 static long prf(short k) {
@@ -273,7 +263,7 @@ static void goto_break(void) {
         OK(NMC_CrdGetPrfPos(crdHandle, 2, at));
     } while (at[0] < x_back + 10000);
     OK(NMC_CrdStopMtn(crdHandle));
-    crd_still();
+    crd_still(crdHandle);
     x_stopped = prf(0);
     OK(NMC_CrdGotoBreak(crdHandle, 1, 10));
     near(0, x_stopped, 0, "GotoBreak after StopMtn does not move");

@@ -40,4 +40,14 @@ static inline HAND open_crd(HAND dev, short axes, short orgFlag) {
     return crd;
 }
 
+/* Wait until coordinate system `crd` is still, failing on MVERR (a halted path's members stay
+ * in synchronised motion: their own BUSY bit does not say). */
+static inline void crd_still(HAND crd) {
+    short sts = 0;
+    do {
+        OK(NMC_CrdGetSts(crd, &sts));
+        CHECK(!(sts & BIT_CORD_MVERR), "MVERR, sts %#x", sts);
+    } while (sts & BIT_CORD_BUSY);
+}
+
 #endif

@@ -14,14 +14,6 @@
 
 static HAND devHandle, crdHandle, ax[2];
 
-static void crd_still(void) {
-    short sts = 0;
-    do {
-        OK(NMC_CrdGetSts(crdHandle, &sts));
-        CHECK(!(sts & BIT_CORD_MVERR), "MVERR, sts %#x", sts);
-    } while (sts & BIT_CORD_BUSY);
-}
-
 static void near(short k, long want, long tol, const char *what) {
     long p = 0;
     OK(NMC_MtGetPrfPos(ax[k], &p));
@@ -92,7 +84,7 @@ int main(void) {
     OK(NMC_CrdSetTransPolar(crdHandle, 0, 1, EQUIV));
     /* The manual's case: the rotary axis to 45° (1250 pulses), the feed axis to √2·5000. */
     OK(NMC_CrdRunToPolarPos(crdHandle, 5000, 5000, 10, 10));
-    crd_still();
+    crd_still(crdHandle);
     near(0, 1250, 0, "45°");
     near(1, 7071, 0, "√2·5000");
     OK(NMC_CrdGetPrfPos(crdHandle, 2, user));
@@ -127,7 +119,7 @@ int main(void) {
     rc = NMC_CrdLineXYZEx(crdHandle, 3, 0x3, p, 0, 20, 0.5, 0);
     if (rc == 0) rc = NMC_CrdStartMtn(crdHandle);
     CHECK(rc == RTN_INVALID_ARGUMENT, "a line through the pole: %d", rc);
-    crd_still();
+    crd_still(crdHandle);
     near(0, 243, 0, "θ stays");
 
     /* Changed only with nothing pushed: those segments were given in the other coordinates. */
@@ -143,7 +135,7 @@ int main(void) {
     OK(NMC_CrdLineXYZEx(crdHandle, 5, 0x3, p, 0, 20, 0.5, 0));
     OK(NMC_CrdEndMtn(crdHandle));
     OK(NMC_CrdStartMtn(crdHandle));
-    crd_still();
+    crd_still(crdHandle);
     near(0, 1000, 0, "X after DelTransPolar");
     near(1, 2000, 0, "Y after DelTransPolar");
     OK(NMC_CrdClose(&crdHandle));
