@@ -2,7 +2,9 @@
 //! the reference positions a grid table reads from other axes before stage 3.
 
 use super::Engine;
-use crate::command::{AxisIndex, CompensationCommand, EngineError, ReferenceSource, Reply};
+use crate::command::{
+    AxisIndex, CompensationCommand, CompensationReference, EngineError, ReferenceSource, Reply,
+};
 use crate::compensation::{Compensation, MAX_DIMENSIONS};
 
 impl Engine {
@@ -92,13 +94,7 @@ impl Engine {
         let Some(limit) = axis.compensation_limit() else {
             return Ok(());
         };
-        let mut inputs = [0.0; MAX_DIMENSIONS];
-        for (slot, r) in inputs.iter_mut().zip(next.references()) {
-            *slot = self
-                .axes
-                .get(r.axis as usize)
-                .map_or(0.0, |a| a.reference_position(r.source));
-        }
+        let inputs = self.reference_inputs(next.references());
         let planned = axis.reference_position(ReferenceSource::Planned);
         let value = next.value_at_rest(index, planned, inputs);
         if value.abs() > limit {
@@ -111,6 +107,21 @@ impl Engine {
         Ok(())
     }
 
+    /// The reference axes' positions, one per reference, in table order (0 beyond them).
+    fn reference_inputs<'a>(
+        &self,
+        refs: impl IntoIterator<Item = &'a CompensationReference>,
+    ) -> [f64; MAX_DIMENSIONS] {
+        let mut inputs = [0.0; MAX_DIMENSIONS];
+        for (slot, r) in inputs.iter_mut().zip(refs) {
+            *slot = self
+                .axes
+                .get(r.axis as usize)
+                .map_or(0.0, |a| a.reference_position(r.source));
+        }
+        inputs
+    }
+
     /// Before stage 3: every grid table reads its reference axes as the previous tick left
     /// them (as a coupling reads its master), so the order of the axes does not matter.
     pub(super) fn gather_compensation_inputs(&mut self) {
@@ -118,15 +129,8 @@ impl Engine {
             let Some(refs) = self.axes.get(i).and_then(|a| a.compensation_references()) else {
                 continue;
             };
-            let mut inputs = [0.0; MAX_DIMENSIONS];
-            for (slot, r) in inputs.iter_mut().zip(refs) {
-                if let Some(r) = r {
-                    *slot = self
-                        .axes
-                        .get(r.axis as usize)
-                        .map_or(0.0, |a| a.reference_position(r.source));
-                }
-            }
+            // The references are a prefix of the slots (`compensation_references`).
+            let inputs = self.reference_inputs(refs.iter().map_while(Option::as_ref));
             if let Some(axis) = self.axes.get_mut(i) {
                 axis.set_compensation_inputs(inputs);
             }
